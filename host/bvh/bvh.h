@@ -1,0 +1,34 @@
+// bvh.h: binned-SAH BVH over a triangle soup, flattened depth-first into 32-byte BvhNodes, and the
+// host reference traversal (the same code the kernels run, from kernels/shared/traverse.h).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "kernels/shared/types.h"
+#include "scene/scene.h"
+
+namespace montecl {
+
+struct BvhBuildOptions {
+  int bins = 16;            // SAH bins per axis
+  int maxLeafSize = 4;      // a node with at most this many triangles may become a leaf
+  float traversalCost = 1.0f;
+  float intersectCost = 1.0f;
+};
+
+struct Bvh {
+  std::vector<BvhNode> nodes;         // nodes[0] is the root; children of an interior node are adjacent
+  std::vector<Triangle> triangles;    // in leaf order, ready for the device
+  std::vector<std::uint32_t> order;   // triangles[i] came from input triangle order[i]
+  int depth = 0;                      // longest root-to-leaf path (always < MCL_BVH_STACK_SIZE)
+  double sahCost = 0.0;               // SAH cost of the tree (traversalCost/intersectCost weighted)
+  double buildMs = 0.0;
+};
+
+Bvh buildBvh(const std::vector<SceneTriangle>& tris, const BvhBuildOptions& options = {});
+
+// Reference traversal on the host.
+Hit intersectClosest(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax);
+bool intersectAny(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax);
+
+}  // namespace montecl

@@ -1,0 +1,36 @@
+// devices.h: enumerating OpenCL platforms/devices and choosing one from a --device SPEC.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cl/opencl.h"
+
+namespace montecl {
+
+struct DeviceInfo {
+  int platformIndex = 0;
+  int deviceIndex = 0;
+  std::string platformName, platformVersion;
+  std::string name, vendor, version, driverVersion, openclCVersion;
+  bool isGpu = false, isCpu = false;
+  std::uint32_t computeUnits = 0;
+  std::uint64_t globalMemBytes = 0, maxAllocBytes = 0;
+  std::size_t maxWorkGroupSize = 0;
+  cl::Device device;
+};
+
+struct DeviceList {
+  std::vector<DeviceInfo> devices;
+  std::vector<std::string> platformErrors;  // "platform 1 (<name>): clGetDeviceIDs failed: CL_..."
+};
+
+// Every device of every platform; a platform that fails is reported in platformErrors, not thrown.
+DeviceList listDevices();
+
+// Chooses a device: spec "P:D", or a case-insensitive substring of the device or platform name;
+// empty spec: first GPU, else first CPU, else first device. Throws InputError when the spec matches
+// nothing, RuntimeError when there is no OpenCL device at all (saying to install pocl-opencl-icd).
+DeviceInfo selectDevice(const std::string& spec);
+
+}  // namespace montecl

@@ -1,0 +1,11 @@
+// commands.h: each montecl subcommand registers itself on the CLI11 app. Its callback runs the
+// command and stores the exit code; errors are thrown (InputError -> 2, others -> 1) to main().
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace montecl {
+
+void addDevicesCommand(CLI::App& app, int& exitCode);
+void addRenderCommand(CLI::App& app, int& exitCode);
+
+}  // namespace montecl

@@ -1,0 +1,32 @@
+// main.cpp: montecl's entry point: parses the command line and maps failures to exit codes.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "cl/cl_errors.h"
+#include "cli/commands.h"
+#include "util/errors.h"
+
+int main(int argc, char** argv) {
+  using namespace montecl;
+  CLI::App app{"montecl: Monte Carlo rendering with OpenCL"};
+  app.require_subcommand(1);
+  int exitCode = kExitOk;
+  addDevicesCommand(app, exitCode);
+  addRenderCommand(app, exitCode);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitBadInput;
+  } catch (const InputError& e) {
+    std::cerr << "montecl: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const cl::Error& e) {
+    std::cerr << "montecl: error: " << describeClError(e) << "\n";
+    return kExitRuntime;
+  } catch (const std::exception& e) {
+    std::cerr << "montecl: error: " << e.what() << "\n";
+    return kExitRuntime;
+  }
+  return exitCode;
+}

@@ -1,0 +1,61 @@
+// scene.h: the in-memory scene: camera, triangle soup with per-triangle materials, render settings.
+// Filled by loadScene() from a scene file (JSON) or a bare OBJ; consumed by the BVH and renderer.
+#pragma once
+#include <glm/glm.hpp>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace montecl {
+
+struct Camera {
+  glm::vec3 position{0.0f, 0.0f, 1.0f};
+  glm::vec3 target{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fovY = 45.0f;  // full vertical field of view, degrees, in (0, 180)
+  int width = 512;
+  int height = 512;
+};
+
+struct RenderSettings {
+  std::string integrator = "ao";  // "ao" (issue 2); "direct" later
+  int spp = 64;
+  std::uint32_t seed = 0;
+  float aoDistance = 1e30f;         // occluders farther than this do not count
+  std::string aoSampling = "cosine";  // "uniform" | "cosine"
+  glm::vec3 background{0.0f};
+};
+
+struct MaterialDesc {
+  std::string name;
+  glm::vec3 albedo{0.5f};    // Kd
+  glm::vec3 emission{0.0f};  // Ke
+};
+
+struct SceneTriangle {
+  glm::vec3 v[3];
+  std::uint32_t material;  // index into Scene::materials
+};
+
+struct Scene {
+  std::string path;  // the file it was loaded from
+  Camera camera;
+  RenderSettings render;
+  std::vector<MaterialDesc> materials;
+  std::vector<SceneTriangle> triangles;  // non-degenerate triangles only
+  std::size_t degenerateDropped = 0;     // zero-area triangles removed while loading
+  glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};
+};
+
+// Loads a scene file (.json) or a bare mesh (.obj, framed by defaultCamera()). Throws InputError
+// with one line "<file>: <key or line>: <problem>" for any bad input; unknown JSON keys are
+// appended to warnings ("<file>: <key>: unknown key, ignored").
+Scene loadScene(const std::string& path, std::vector<std::string>& warnings);
+
+// Appends the triangles and materials of one OBJ (+ its MTL) to scene. Throws InputError.
+void loadObjInto(const std::string& objPath, Scene& scene);
+
+// A camera looking at the bounding box from the +z side (tilted down a little), framing all of it.
+Camera defaultCamera(const glm::vec3& boundsMin, const glm::vec3& boundsMax, int width, int height);
+
+}  // namespace montecl

@@ -1,0 +1,50 @@
+// compat.h: lets the shared headers compile both as OpenCL C 1.2 and as C++17.
+// In OpenCL it maps nothing; in C++ it maps OpenCL vector types, qualifiers and built-ins onto GLM
+// and the standard library, so pure functions (RNG, sampling, intersection) are tested on the host.
+#pragma once
+
+#ifdef __OPENCL_VERSION__
+#define MCL_GLOBAL __global
+#define MCL_CONSTANT __constant
+#define MCL_INLINE inline
+#define make_float2(a, b) ((float2)((a), (b)))
+#define make_float3(a, b, c) ((float3)((a), (b), (c)))
+#define make_float4(a, b, c, d) ((float4)((a), (b), (c), (d)))
+#define MCL_ATOMIC_INC(p) atomic_inc(p)
+#define MCL_STATIC_ASSERT(cond, msg)
+#define MCL_ALIGN16
+#else
+#include <glm/glm.hpp>
+#include <math.h>  // libstdc++'s math.h puts the float overloads of sqrt, fmin, ... in the global namespace
+#include <cstdint>
+#include <cstring>
+using float2 = glm::vec2;
+using float3 = glm::vec3;
+using float4 = glm::vec4;
+using uint = std::uint32_t;
+using uint2 = glm::uvec2;
+using uint4 = glm::uvec4;
+using int2 = glm::ivec2;
+#define MCL_GLOBAL
+#define MCL_CONSTANT
+#define MCL_INLINE inline
+#define MCL_STATIC_ASSERT(cond, msg) static_assert(cond, msg)
+#define MCL_ALIGN16 alignas(16)
+inline float2 make_float2(float a, float b) { return float2(a, b); }
+inline float3 make_float3(float a, float b, float c) { return float3(a, b, c); }
+inline float4 make_float4(float a, float b, float c, float d) { return float4(a, b, c, d); }
+using glm::cross;
+using glm::dot;
+using glm::normalize;
+using glm::length;
+inline float3 fmin(float3 a, float3 b) { return glm::min(a, b); }
+inline float3 fmax(float3 a, float3 b) { return glm::max(a, b); }
+inline float3 fabs(float3 a) { return glm::abs(a); }
+inline float as_float(uint u) { float f; std::memcpy(&f, &u, 4); return f; }
+inline uint as_uint(float f) { uint u; std::memcpy(&u, &f, 4); return u; }
+inline uint MCL_ATOMIC_INC(volatile uint* p) { return __atomic_fetch_add(p, 1u, __ATOMIC_RELAXED); }
+#endif
+
+// Vector helpers that read the same in both languages (no swizzles, which GLM lacks by default).
+MCL_INLINE float3 xyz(float4 v) { return make_float3(v.x, v.y, v.z); }
+MCL_INLINE float4 with_w(float3 v, float w) { return make_float4(v.x, v.y, v.z, w); }

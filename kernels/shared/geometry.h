@@ -1,0 +1,55 @@
+// geometry.h: pure ray-box and ray-triangle tests and the self-intersection offset, shared by the
+// kernels and the host (compiled as C++ by the tests and the reference traversal).
+#pragma once
+#include "types.h"
+
+// Slab test against [bmin, bmax]; returns the entry distance, or 1e30f-ish miss marker (+INF) when
+// the ray misses or the box lies beyond tmax. invDir may hold infinities (axis-parallel rays).
+MCL_INLINE float ray_box(float3 org, float3 invDir, float3 bmin, float3 bmax, float tmax) {
+  float tx1 = (bmin.x - org.x) * invDir.x, tx2 = (bmax.x - org.x) * invDir.x;
+  float ty1 = (bmin.y - org.y) * invDir.y, ty2 = (bmax.y - org.y) * invDir.y;
+  float tz1 = (bmin.z - org.z) * invDir.z, tz2 = (bmax.z - org.z) * invDir.z;
+  float tmin = fmax(fmax(fmin(tx1, tx2), fmin(ty1, ty2)), fmax(fmin(tz1, tz2), 0.0f));
+  float tmx = fmin(fmin(fmax(tx1, tx2), fmax(ty1, ty2)), fmin(fmax(tz1, tz2), tmax));
+  return tmin <= tmx ? tmin : INFINITY;
+}
+
+// Moller-Trumbore. Returns t in (0, tmax) and barycentrics through u, v; INFINITY on a miss.
+MCL_INLINE float ray_triangle(float3 org, float3 dir, float3 v0, float3 e1, float3 e2, float tmax,
+                              float* uOut, float* vOut) {
+  float3 p = cross(dir, e2);
+  float det = dot(e1, p);
+  if (fabs(det) < 1e-30f) return INFINITY;
+  float inv = 1.0f / det;
+  float3 s = org - v0;
+  float u = dot(s, p) * inv;
+  if (u < 0.0f || u > 1.0f) return INFINITY;
+  float3 q = cross(s, e1);
+  float v = dot(dir, q) * inv;
+  if (v < 0.0f || u + v > 1.0f) return INFINITY;
+  float t = dot(e2, q) * inv;
+  if (!(t > 0.0f && t < tmax)) return INFINITY;
+  *uOut = u;
+  *vOut = v;
+  return t;
+}
+
+// Reciprocal of a direction with signed infinities for zero components (no division by zero).
+MCL_INLINE float3 safe_inverse(float3 d) {
+  return make_float3(d.x != 0.0f ? 1.0f / d.x : copysign(INFINITY, d.x),
+                     d.y != 0.0f ? 1.0f / d.y : copysign(INFINITY, d.y),
+                     d.z != 0.0f ? 1.0f / d.z : copysign(INFINITY, d.z));
+}
+
+// Moves p off its surface along the normal n so that a ray leaving it does not hit the same
+// triangle again: integer ULP offsets far from the origin, a small absolute one near it
+// (Waechter and Binder, "A Fast and Robust Method for Avoiding Self-Intersection", 2019).
+MCL_INLINE float offset_coord(float p, float n) {
+  const float origin = 1.0f / 32.0f, floatScale = 1.0f / 65536.0f, intScale = 256.0f;
+  int of = (int)(intScale * n);
+  float pi = as_float((uint)((int)as_uint(p) + ((p < 0.0f) ? -of : of)));
+  return fabs(p) < origin ? p + floatScale * n : pi;
+}
+MCL_INLINE float3 offset_ray_origin(float3 p, float3 n) {
+  return make_float3(offset_coord(p.x, n.x), offset_coord(p.y, n.y), offset_coord(p.z, n.z));
+}

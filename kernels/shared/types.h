@@ -1,0 +1,81 @@
+// types.h: every struct shared by the host and the kernels, defined once. Only float4, float, uint
+// fields, explicit padding, 16-byte alignment; the C++ side checks sizes and offsets below, and a
+// test launches a probe kernel that reports the device's view of them.
+#pragma once
+#include "compat.h"
+
+#define MCL_NO_HIT 0xffffffffu
+#define MCL_BVH_STACK_SIZE 64
+#define MCL_INTEGRATOR_AO 0u
+#define MCL_INTEGRATOR_DIRECT 1u
+#define MCL_AO_UNIFORM 0u
+#define MCL_AO_COSINE 1u
+
+// Flattened BVH node (32 bytes). Interior: triCount == 0 and leftFirst is the left child; the right
+// child is leftFirst + 1. Leaf: triCount > 0 triangles starting at leftFirst.
+typedef struct MCL_ALIGN16 {
+  float minX, minY, minZ;
+  uint leftFirst;
+  float maxX, maxY, maxZ;
+  uint triCount;
+} BvhNode;
+
+// Triangle in BVH order, laid out for Moller-Trumbore: v0, e1 = v1 - v0, e2 = v2 - v0.
+// v0.w holds the material index and e1.w the triangle's index in the input (both as_float bits).
+typedef struct MCL_ALIGN16 {
+  float4 v0;
+  float4 e1;
+  float4 e2;
+} Triangle;
+
+typedef struct MCL_ALIGN16 {
+  float4 albedo;    // rgb: Kd; w unused
+  float4 emission;  // rgb: Ke; w unused
+} Material;
+
+// A ray: origin.w unused (0), dir.w = tmax.
+typedef struct MCL_ALIGN16 {
+  float4 origin;
+  float4 dir;
+} Ray;
+
+// Closest hit: tri == MCL_NO_HIT on a miss; (u, v) barycentrics of v1 and v2.
+typedef struct MCL_ALIGN16 {
+  float t;
+  uint tri;
+  float u, v;
+} Hit;
+
+// An occlusion query: if nothing blocks the ray before dir.w, contribution.rgb is written to
+// slot as_uint(contribution.w) of the sample's shadow-contribution array.
+typedef struct MCL_ALIGN16 {
+  Ray ray;
+  float4 contribution;
+} ShadowWork;
+
+// Constants of one render, read by every stage.
+typedef struct MCL_ALIGN16 {
+  float4 camOrigin;   // pinhole position
+  float4 camTopLeft;  // direction (unnormalised) through the top-left corner of pixel (0, 0)
+  float4 camDx;       // step of one pixel to the right
+  float4 camDy;       // step of one pixel down
+  float4 background;  // radiance of camera rays that hit nothing
+  uint width, height, seed, integrator;
+  uint aoSampling;
+  float aoDistance;
+  uint shadowSlots;   // shadow contributions per sample (1 for AO)
+  uint pad0;
+} FrameParams;
+
+#ifndef __OPENCL_VERSION__
+#include <cstddef>
+static_assert(sizeof(BvhNode) == 32, "BvhNode layout");
+static_assert(offsetof(BvhNode, maxX) == 16, "BvhNode layout");
+static_assert(sizeof(Triangle) == 48, "Triangle layout");
+static_assert(sizeof(Material) == 32, "Material layout");
+static_assert(sizeof(Ray) == 32, "Ray layout");
+static_assert(sizeof(Hit) == 16, "Hit layout");
+static_assert(sizeof(ShadowWork) == 48, "ShadowWork layout");
+static_assert(sizeof(FrameParams) == 112, "FrameParams layout");
+static_assert(offsetof(FrameParams, width) == 80, "FrameParams layout");
+#endif
