@@ -1,1 +1,68 @@
-// placeholder: being written
+// test_rng.cpp: the counter-based generator of kernels/shared/rng.h: a pure function of its
+// inputs, uniform (chi-square), in [0, 1), and uncorrelated across pixels, samples and groups.
+#include <doctest/doctest.h>
+
+#include <set>
+#include <tuple>
+#include <vector>
+
+#include "kernels/shared/rng.h"
+#include "stats.h"
+
+TEST_CASE("rng is a pure function of (seed, pixel, sample, group)") {
+  for (uint i = 0; i < 1000; ++i) {
+    float4 a = rng_uniform4(5u, i, i * 7u, 2u);
+    float4 b = rng_uniform4(5u, i, i * 7u, 2u);
+    CHECK(a == b);
+  }
+}
+
+TEST_CASE("pcg4d is injective on a grid of inputs") {
+  std::set<std::tuple<uint, uint, uint, uint>> seen;
+  for (uint p = 0; p < 64; ++p)
+    for (uint s = 0; s < 64; ++s)
+      for (uint g = 0; g < 4; ++g)
+        for (uint seed = 0; seed < 4; ++seed) {
+          RngOut r = pcg4d(p, s, g, seed);
+          seen.insert({r.x, r.y, r.z, r.w});
+        }
+  CHECK(seen.size() == 64u * 64u * 4u * 4u);
+}
+
+TEST_CASE("rng numbers are uniform in [0, 1) in every component") {
+  const int bins = 64, n = 200000;
+  std::vector<std::vector<double>> counts(4, std::vector<double>(bins, 0.0));
+  for (int i = 0; i < n; ++i) {
+    float4 u = rng_uniform4(0u, uint(i % 1000), uint(i / 1000), 1u);
+    for (int c = 0; c < 4; ++c) {
+      REQUIRE(u[c] >= 0.0f);
+      REQUIRE(u[c] < 1.0f);
+      counts[c][std::min(bins - 1, int(u[c] * bins))] += 1.0;
+    }
+  }
+  for (int c = 0; c < 4; ++c) {
+    double chi2 = 0.0, expected = double(n) / bins;
+    for (double o : counts[c]) chi2 += (o - expected) * (o - expected) / expected;
+    INFO("component " << c << " chi2 " << chi2);
+    CHECK(chi2 < montecl_test::chiSquareCritical(bins - 1));
+  }
+}
+
+TEST_CASE("neighbouring pixels, samples, groups and seeds are uncorrelated") {
+  // Pearson correlation of u(x) with u(x + 1) along each input; |r| must be small (n = 1e5).
+  const int n = 100000;
+  for (int axis = 0; axis < 4; ++axis) {
+    double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+    for (int i = 0; i < n; ++i) {
+      uint in[4] = {uint(i), uint(i) * 3u, 1u, 9u};
+      float a = rng_uniform4(in[3], in[0], in[1], in[2]).x;
+      in[axis] += 1u;
+      float b = rng_uniform4(in[3], in[0], in[1], in[2]).x;
+      sx += a; sy += b; sxx += a * a; syy += b * b; sxy += a * b;
+    }
+    double cov = sxy / n - sx / n * sy / n;
+    double r = cov / std::sqrt((sxx / n - sx * sx / n / n) * (syy / n - sy * sy / n / n));
+    INFO("axis " << axis << " r = " << r);
+    CHECK(std::fabs(r) < 4.0 / std::sqrt(double(n)));
+  }
+}

@@ -1,1 +1,398 @@
-// placeholder: being written
+// bvh_build.cpp: binned-SAH BVH builder on the host, flattened depth-first into 32-byte BvhNodes.
+//
+// Cost model (surface area heuristic). For a node N with half surface area A(N):
+//   cost(leaf with n triangles)  = Ci * n
+//   cost(split into L and R)     = Ct + Ci * (A(L) * n(L) + A(R) * n(R)) / A(N)
+// with Ct = BvhBuildOptions::traversalCost (default 1) and Ci = intersectCost (default 1). The
+// reported Bvh::sahCost is the cost of the whole tree, sum over interior nodes of Ct * A(n)/A(root)
+// plus sum over leaves of Ci * count(n) * A(n)/A(root).
+//
+// Build. Each node bins its triangles' bounding-box centroids into `bins` (default 16, 2..256)
+// equal bins along each axis of the centroid bounds and evaluates the bins-1 planes per axis. A node
+// with at most maxLeafSize (default 4, 1..16) triangles becomes a leaf unless the best split is
+// cheaper than the leaf; a larger node is always split, by the best binned plane even if a leaf
+// would be cheaper, so no leaf ever holds more than maxLeafSize (hard cap 16). When binning cannot
+// split a node (all centroids coincide, or they all fall into one bin) it is split at the object
+// median along the widest centroid axis (or, when every centroid is the same point, into two
+// halves of its range). Depth is bounded: a node at depth d with n triangles always satisfies
+// d + ceil(log2 n) <= 63, and a SAH split that would break that for a child is replaced by a
+// median split, so depth (root = 0, counted in edges) never exceeds 63 < MCL_BVH_STACK_SIZE.
+//
+// Memory: one 32-byte reference per triangle (bounds + input index) partitioned in place, the node
+// array (reserved at 2n-1 entries but only touched as used), then the 48-byte output triangles and
+// the 4-byte order; peak is about 130 bytes per triangle besides the input. Subtrees of at least 64k
+// triangles near the root are built on separate threads (one extra level per doubling of
+// std::thread::hardware_concurrency); the result is identical to the single-threaded build.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <future>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include "bvh/bvh.h"
+#include "bvh/bvh_internal.h"
+
+namespace montecl {
+namespace {
+
+constexpr int kMaxDepth = MCL_BVH_STACK_SIZE - 1;  // deepest leaf, in edges from the root
+constexpr int kMaxLeafCap = 16;
+constexpr int kMaxBins = 256;
+constexpr std::size_t kParallelMin = std::size_t(1) << 16;  // smallest subtree given its own thread
+
+struct Box {
+  glm::vec3 lo{std::numeric_limits<float>::infinity()};
+  glm::vec3 hi{-std::numeric_limits<float>::infinity()};
+  void grow(const glm::vec3& l, const glm::vec3& h) {
+    lo = glm::min(lo, l);
+    hi = glm::max(hi, h);
+  }
+  void grow(const glm::vec3& p) { grow(p, p); }
+  void grow(const Box& b) { grow(b.lo, b.hi); }
+  float halfArea() const {
+    if (!(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) return 0.0f;
+    glm::vec3 d = hi - lo;
+    return d.x * d.y + d.y * d.z + d.z * d.x;
+  }
+};
+
+// Per-triangle build reference: bounds and the input index. Partitioned in place.
+struct PrimRef {
+  glm::vec3 lo;
+  std::uint32_t id;
+  glm::vec3 hi;
+  std::uint32_t pad;
+  glm::vec3 centroid() const { return (lo + hi) * 0.5f; }
+};
+static_assert(sizeof(PrimRef) == 32, "PrimRef is one half cache line");
+
+// Trivially constructible (no initialisers) so the per-node bin arrays cost nothing until used.
+struct Bin {
+  glm::vec3 lo, hi;
+  std::uint32_t count;
+};
+
+struct Split {
+  int axis = -1;
+  int bin = 0;          // left side: centroid bin <= bin
+  float cost = 0.0f;
+  std::size_t nLeft = 0;
+};
+
+// Smallest h with 2^h >= n: the height of a median-split subtree over n triangles.
+int medianHeight(std::size_t n) {
+  int h = 0;
+  while ((std::size_t(1) << h) < n) ++h;
+  return h;
+}
+
+struct Builder {
+  PrimRef* prims;
+  int bins;
+  int maxLeaf;
+  float ct, ci;
+  int maxDepth;
+
+  int binOf(float c, float lo, float scale) const {
+    int b = static_cast<int>((c - lo) * scale);
+    return b < bins ? b : bins - 1;
+  }
+
+  // Best binned SAH plane over prims[begin, end); axis -1 when none separates the centroids.
+  Split findSahSplit(std::size_t begin, std::size_t end, const Box& bounds, const Box& cbounds) const {
+    Split best;
+    float area = bounds.halfArea();
+    if (!(area > 0.0f)) return best;
+    float scale[3];
+    bool ok[3];
+    bool any = false;
+    for (int a = 0; a < 3; ++a) {
+      float ext = cbounds.hi[a] - cbounds.lo[a];
+      scale[a] = ext > 0.0f ? static_cast<float>(bins) / ext : 0.0f;
+      ok[a] = ext > 0.0f && std::isfinite(scale[a]);
+      any = any || ok[a];
+    }
+    if (!any) return best;
+    Bin binArr[3][kMaxBins];
+    const Box empty;
+    for (int a = 0; a < 3; ++a)
+      for (int k = 0; k < bins; ++k) binArr[a][k] = Bin{empty.lo, empty.hi, 0};
+    for (std::size_t i = begin; i < end; ++i) {
+      const PrimRef& p = prims[i];
+      glm::vec3 c = p.centroid();
+      for (int a = 0; a < 3; ++a) {
+        if (!ok[a]) continue;
+        Bin& b = binArr[a][binOf(c[a], cbounds.lo[a], scale[a])];
+        b.lo = glm::min(b.lo, p.lo);
+        b.hi = glm::max(b.hi, p.hi);
+        ++b.count;
+      }
+    }
+    float rightArea[kMaxBins];
+    std::size_t rightCount[kMaxBins];
+    std::size_t n = end - begin;
+    for (int a = 0; a < 3; ++a) {
+      if (!ok[a]) continue;
+      Box acc;
+      std::size_t cnt = 0;
+      for (int k = bins - 1; k > 0; --k) {  // rightArea[k]: bins k..bins-1
+        acc.grow(binArr[a][k].lo, binArr[a][k].hi);
+        cnt += binArr[a][k].count;
+        rightArea[k] = acc.halfArea();
+        rightCount[k] = cnt;
+      }
+      acc = Box();
+      cnt = 0;
+      for (int k = 0; k < bins - 1; ++k) {  // split between bin k and k+1
+        acc.grow(binArr[a][k].lo, binArr[a][k].hi);
+        cnt += binArr[a][k].count;
+        if (cnt == 0 || cnt == n) continue;
+        float cost = ct + ci * (acc.halfArea() * static_cast<float>(cnt) +
+                                rightArea[k + 1] * static_cast<float>(rightCount[k + 1])) / area;
+        if (best.axis < 0 || cost < best.cost) {
+          best.axis = a;
+          best.bin = k;
+          best.cost = cost;
+          best.nLeft = cnt;
+        }
+      }
+    }
+    return best;
+  }
+
+  // Partitions prims[begin, end) by the split; returns the first right index and child bounds.
+  std::size_t partitionSah(std::size_t begin, std::size_t end, const Box& cbounds, const Split& s,
+                           Box child[2], Box childC[2]) const {
+    int a = s.axis;
+    float lo = cbounds.lo[a];
+    float scale = static_cast<float>(bins) / (cbounds.hi[a] - cbounds.lo[a]);
+    auto isLeft = [&](const PrimRef& p) { return binOf(p.centroid()[a], lo, scale) <= s.bin; };
+    auto add = [&](int side, const PrimRef& p) {
+      child[side].grow(p.lo, p.hi);
+      childC[side].grow(p.centroid());
+    };
+    std::size_t i = begin, j = end;
+    for (;;) {
+      while (i < j && isLeft(prims[i])) add(0, prims[i++]);
+      while (i < j && !isLeft(prims[j - 1])) add(1, prims[--j]);
+      if (i >= j) break;
+      std::swap(prims[i], prims[j - 1]);
+      add(0, prims[i++]);
+      add(1, prims[--j]);
+    }
+    return i;
+  }
+
+  // Object median along the widest centroid axis (or just the middle of the range when every
+  // centroid coincides); left gets floor(n/2) triangles.
+  std::size_t partitionMedian(std::size_t begin, std::size_t end, const Box& cbounds, Box child[2],
+                              Box childC[2]) const {
+    glm::vec3 ext = cbounds.hi - cbounds.lo;
+    int a = (ext.x >= ext.y && ext.x >= ext.z) ? 0 : (ext.y >= ext.z ? 1 : 2);
+    std::size_t mid = begin + (end - begin) / 2;
+    if (ext[a] > 0.0f) {
+      std::nth_element(prims + begin, prims + mid, prims + end,
+                       [a](const PrimRef& p, const PrimRef& q) {
+                         return p.centroid()[a] < q.centroid()[a];
+                       });
+    }
+    for (std::size_t i = begin; i < end; ++i) {
+      int side = i < mid ? 0 : 1;
+      child[side].grow(prims[i].lo, prims[i].hi);
+      childC[side].grow(prims[i].centroid());
+    }
+    return mid;
+  }
+
+  static void writeBox(BvhNode& n, const Box& b) {
+    n.minX = b.lo.x; n.minY = b.lo.y; n.minZ = b.lo.z;
+    n.maxX = b.hi.x; n.maxY = b.hi.y; n.maxZ = b.hi.z;
+  }
+
+  // Builds the subtree over prims[begin, end) rooted at out[idx] (already allocated), appending
+  // its descendants to out depth-first with siblings adjacent. Returns the deepest leaf's depth.
+  int build(std::vector<BvhNode>& out, std::size_t idx, std::size_t begin, std::size_t end,
+            const Box& bounds, const Box& cbounds, int depth, int parallelLevels) const {
+    writeBox(out[idx], bounds);
+    std::size_t n = end - begin;
+    bool mustSplit = n > static_cast<std::size_t>(maxLeaf);
+    Box child[2], childC[2];
+    std::size_t mid = 0;
+    bool split = false;
+    if (n > 1) {
+      Split s = findSahSplit(begin, end, bounds, cbounds);
+      bool useSah = s.axis >= 0 && (mustSplit || s.cost < ci * static_cast<float>(n));
+      if (useSah && depth + 1 + medianHeight(std::max(s.nLeft, n - s.nLeft)) > maxDepth) {
+        useSah = false;  // that child could not be finished within the stack; split at the median
+        mustSplit = true;
+      }
+      if (useSah) {
+        mid = partitionSah(begin, end, cbounds, s, child, childC);
+        split = true;
+      } else if (mustSplit) {
+        mid = partitionMedian(begin, end, cbounds, child, childC);
+        split = true;
+      }
+    }
+    if (!split) {
+      out[idx].leftFirst = static_cast<std::uint32_t>(begin);
+      out[idx].triCount = static_cast<std::uint32_t>(n);
+      return depth;
+    }
+    std::size_t childBase = out.size();
+    out[idx].leftFirst = static_cast<std::uint32_t>(childBase);
+    out[idx].triCount = 0;
+    if (parallelLevels > 0 && n >= kParallelMin) {
+      // Each child subtree is built into its own vector on its own thread, then spliced in with
+      // the exact layout the sequential build produces: [left, right, left's descendants, right's].
+      auto sub = [&, depth, parallelLevels](std::size_t b, std::size_t e, int side,
+                                            std::vector<BvhNode>& v) {
+        v.reserve(2 * (e - b) - 1);
+        v.emplace_back();
+        return build(v, 0, b, e, child[side], childC[side], depth + 1, parallelLevels - 1);
+      };
+      std::vector<BvhNode> vl, vr;
+      auto right = std::async(std::launch::async, sub, mid, end, 1, std::ref(vr));
+      int dl = sub(begin, mid, 0, vl);
+      int dr = right.get();
+      auto remap = [](BvhNode node, std::size_t offset) {
+        if (node.triCount == 0) node.leftFirst = static_cast<std::uint32_t>(node.leftFirst + offset);
+        return node;
+      };
+      std::size_t offL = childBase + 1, offR = childBase + vl.size();
+      out.push_back(remap(vl[0], offL));
+      out.push_back(remap(vr[0], offR));
+      for (std::size_t k = 1; k < vl.size(); ++k) out.push_back(remap(vl[k], offL));
+      for (std::size_t k = 1; k < vr.size(); ++k) out.push_back(remap(vr[k], offR));
+      return std::max(dl, dr);
+    }
+    out.emplace_back();
+    out.emplace_back();
+    int dl = build(out, childBase, begin, mid, child[0], childC[0], depth + 1, parallelLevels);
+    int dr = build(out, childBase + 1, mid, end, child[1], childC[1], depth + 1, parallelLevels);
+    return std::max(dl, dr);
+  }
+};
+
+// Runs fn(chunk, begin, end) over [0, n) in up to `threads` contiguous chunks (chunk < threads);
+// exceptions propagate.
+template <class Fn>
+void parallelChunks(std::size_t n, int threads, Fn fn) {
+  std::size_t chunks = (threads > 1 && n >= kParallelMin) ? static_cast<std::size_t>(threads) : 1;
+  std::vector<std::future<void>> rest;
+  for (std::size_t c = 1; c < chunks; ++c)
+    rest.push_back(std::async(std::launch::async, fn, c, n * c / chunks, n * (c + 1) / chunks));
+  fn(std::size_t(0), std::size_t(0), n / chunks);
+  for (auto& f : rest) f.get();
+}
+
+bool finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+}  // namespace
+
+Bvh buildBvh(const std::vector<SceneTriangle>& tris, const BvhBuildOptions& options) {
+  return buildBvhCapped(tris, options, kMaxDepth);
+}
+
+Bvh buildBvhCapped(const std::vector<SceneTriangle>& tris, const BvhBuildOptions& options,
+                   int maxDepth) {
+  auto t0 = std::chrono::steady_clock::now();
+  if (tris.empty()) throw std::invalid_argument("buildBvh: no triangles");
+  if (tris.size() > (std::size_t(1) << 31))
+    throw std::invalid_argument("buildBvh: more than 2^31 triangles");
+  if (options.bins < 2 || options.bins > kMaxBins)
+    throw std::invalid_argument("buildBvh: bins must be in [2, " + std::to_string(kMaxBins) + "]");
+  if (options.maxLeafSize < 1 || options.maxLeafSize > kMaxLeafCap)
+    throw std::invalid_argument("buildBvh: maxLeafSize must be in [1, " +
+                                std::to_string(kMaxLeafCap) + "]");
+  if (!(options.traversalCost > 0.0f) || !(options.intersectCost > 0.0f) ||
+      !std::isfinite(options.traversalCost) || !std::isfinite(options.intersectCost))
+    throw std::invalid_argument("buildBvh: traversal and intersection costs must be finite and > 0");
+  if (maxDepth > kMaxDepth || maxDepth < medianHeight(tris.size()))
+    throw std::invalid_argument("buildBvh: depth cap " + std::to_string(maxDepth) +
+                                " out of range for " + std::to_string(tris.size()) + " triangles");
+
+  unsigned hw = std::thread::hardware_concurrency();
+  int threads = static_cast<int>(std::clamp(hw, 1u, 64u));
+  int parallelLevels = 0;
+  while ((1 << (parallelLevels + 1)) <= threads) ++parallelLevels;
+
+  const std::size_t n = tris.size();
+  Bvh bvh;
+  Box rootBox, rootC;
+  {
+    std::vector<PrimRef> prims(n);
+    {
+      std::vector<Box> partB(threads), partC(threads);
+      std::vector<std::size_t> bad(threads, n);
+      parallelChunks(n, threads, [&](std::size_t slot, std::size_t b, std::size_t e) {
+        Box box, cbox;
+        for (std::size_t i = b; i < e; ++i) {
+          const SceneTriangle& t = tris[i];
+          PrimRef& p = prims[i];
+          p.lo = glm::min(glm::min(t.v[0], t.v[1]), t.v[2]);
+          p.hi = glm::max(glm::max(t.v[0], t.v[1]), t.v[2]);
+          p.id = static_cast<std::uint32_t>(i);
+          p.pad = 0;
+          if (!(finite(t.v[0]) && finite(t.v[1]) && finite(t.v[2])) && bad[slot] == n)
+            bad[slot] = i;
+          box.grow(p.lo, p.hi);
+          cbox.grow(p.centroid());
+        }
+        partB[slot] = box;
+        partC[slot] = cbox;
+      });
+      for (int s = 0; s < threads; ++s) {
+        if (bad[s] != n)
+          throw std::invalid_argument("buildBvh: triangle " + std::to_string(bad[s]) +
+                                      " has a non-finite vertex");
+        rootBox.grow(partB[s]);
+        rootC.grow(partC[s]);
+      }
+    }
+
+    Builder builder{prims.data(), options.bins, options.maxLeafSize, options.traversalCost,
+                    options.intersectCost, maxDepth};
+    bvh.nodes.reserve(2 * n - 1);  // upper bound; untouched capacity costs no memory
+    bvh.nodes.emplace_back();
+    bvh.depth = builder.build(bvh.nodes, 0, 0, n, rootBox, rootC, 0, parallelLevels);
+
+    bvh.order.resize(n);
+    for (std::size_t i = 0; i < n; ++i) bvh.order[i] = prims[i].id;
+  }  // prims freed before the output triangles are allocated
+  if (bvh.nodes.capacity() > bvh.nodes.size() + bvh.nodes.size() / 4) bvh.nodes.shrink_to_fit();
+
+  bvh.triangles.resize(n);
+  parallelChunks(n, threads, [&](std::size_t, std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      const SceneTriangle& t = tris[bvh.order[i]];
+      Triangle& o = bvh.triangles[i];
+      o.v0 = glm::vec4(t.v[0], as_float(t.material));
+      o.e1 = glm::vec4(t.v[1] - t.v[0], as_float(bvh.order[i]));
+      o.e2 = glm::vec4(t.v[2] - t.v[0], 0.0f);
+    }
+  });
+
+  auto halfArea = [](const BvhNode& b) {
+    double dx = b.maxX - b.minX, dy = b.maxY - b.minY, dz = b.maxZ - b.minZ;
+    return dx * dy + dy * dz + dz * dx;
+  };
+  double rootArea = halfArea(bvh.nodes[0]);
+  double cost = 0.0;
+  for (const BvhNode& node : bvh.nodes) {
+    double rel = rootArea > 0.0 ? halfArea(node) / rootArea : 1.0;
+    cost += node.triCount == 0 ? options.traversalCost * rel
+                               : options.intersectCost * static_cast<double>(node.triCount) * rel;
+  }
+  bvh.sahCost = cost;
+  bvh.buildMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return bvh;
+}
+
+}  // namespace montecl

@@ -1,1 +1,25 @@
-// placeholder: being written
+// bvh_traverse.cpp: host reference traversal. Runs the kernels' own closest-hit and any-hit code
+// (kernels/shared/traverse.h, compiled as C++ through compat.h) over a Bvh built on the host.
+// Hit::tri is the index into Bvh::triangles (BVH order); Bvh::order maps it back to the input.
+#include "bvh/bvh.h"
+#include "kernels/shared/traverse.h"
+
+namespace montecl {
+
+Hit intersectClosest(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax) {
+  if (bvh.nodes.empty()) {
+    Hit miss;
+    miss.t = INFINITY;
+    miss.tri = MCL_NO_HIT;
+    miss.u = miss.v = 0.0f;
+    return miss;
+  }
+  return bvh_closest_hit(bvh.nodes.data(), bvh.triangles.data(), org, dir, tmax);
+}
+
+bool intersectAny(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax) {
+  if (bvh.nodes.empty()) return false;
+  return bvh_any_hit(bvh.nodes.data(), bvh.triangles.data(), org, dir, tmax) != 0;
+}
+
+}  // namespace montecl

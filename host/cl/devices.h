@@ -14,6 +14,7 @@ struct DeviceInfo {
   std::string platformName, platformVersion;
   std::string name, vendor, version, driverVersion, openclCVersion;
   bool isGpu = false, isCpu = false;
+  std::string typeName;  // "GPU", "CPU", "accelerator", "custom" (joined with '+' if several)
   std::uint32_t computeUnits = 0;
   std::uint64_t globalMemBytes = 0, maxAllocBytes = 0;
   std::size_t maxWorkGroupSize = 0;
@@ -32,5 +33,11 @@ DeviceList listDevices();
 // empty spec: first GPU, else first CPU, else first device. Throws InputError when the spec matches
 // nothing, RuntimeError when there is no OpenCL device at all (saying to install pocl-opencl-icd).
 DeviceInfo selectDevice(const std::string& spec);
+
+// "P:D", the index form of a device accepted by selectDevice.
+std::string deviceIndexString(const DeviceInfo& d);
+
+// Human-readable byte count: "512 B", "64.0 KiB", "3.7 GiB".
+std::string formatBytes(std::uint64_t bytes);
 
 }  // namespace montecl

@@ -1,1 +1,193 @@
-// placeholder: being written
+// program_cache.cpp: builds OpenCL programs, keeping each built binary on disk keyed by a hash of
+// everything that affects it (platform, device, driver, options, full source). A hit loads the
+// binary and builds it; a stale or unusable binary silently falls back to a source build. The
+// cache is best effort: a folder that cannot be created or written never fails a build.
+#include "cl/program_cache.h"
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <vector>
+
+#include "cl/cl_errors.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
+#include "util/hash.h"
+
+namespace montecl {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Cache file: 8-byte magic, 8-byte second hash of the key (a collision guard for the 64-bit file
+// name), then the program binary as returned by CL_PROGRAM_BINARIES.
+constexpr char kMagic[8] = {'M', 'C', 'L', 'P', 'R', 'G', '0', '1'};
+constexpr std::uint64_t kCheckSeed = 0x84222325cbf29ce4ull;
+
+std::string envOr(const char* name) {
+  const char* v = std::getenv(name);
+  return v ? std::string(v) : std::string();
+}
+
+std::string buildLog(const cl::Program& program, cl_device_id dev) {
+  size_t n = 0;
+  if (clGetProgramBuildInfo(program(), dev, CL_PROGRAM_BUILD_LOG, 0, nullptr, &n) != CL_SUCCESS ||
+      n == 0)
+    return "";
+  std::string log(n, '\0');
+  if (clGetProgramBuildInfo(program(), dev, CL_PROGRAM_BUILD_LOG, n, &log[0], nullptr) !=
+      CL_SUCCESS)
+    return "";
+  while (!log.empty() && (log.back() == '\0' || log.back() == '\n' || log.back() == ' '))
+    log.pop_back();
+  return log;
+}
+
+cl_int build(const cl::Program& program, cl_device_id dev, const std::string& options) {
+  return clBuildProgram(program(), 1, &dev, options.c_str(), nullptr, nullptr);
+}
+
+// The binary of `program` for `dev`; empty if the driver does not provide one.
+std::vector<unsigned char> programBinary(const cl::Program& program, cl_device_id dev) {
+  std::vector<cl::Device> devices = program.getInfo<CL_PROGRAM_DEVICES>();
+  std::vector<std::vector<unsigned char>> binaries = program.getInfo<CL_PROGRAM_BINARIES>();
+  for (std::size_t i = 0; i < devices.size() && i < binaries.size(); ++i)
+    if (devices[i]() == dev) return binaries[i];
+  return {};
+}
+
+bool readCacheFile(const std::string& path, std::uint64_t check, std::vector<unsigned char>& bin) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) return false;
+  std::vector<unsigned char> data((std::istreambuf_iterator<char>(f)),
+                                  std::istreambuf_iterator<char>());
+  if (data.size() <= 16 || std::memcmp(data.data(), kMagic, 8) != 0) return false;
+  std::uint64_t stored = 0;
+  for (int i = 0; i < 8; ++i) stored |= std::uint64_t(data[8 + i]) << (8 * i);
+  if (stored != check) return false;
+  bin.assign(data.begin() + 16, data.end());
+  return true;
+}
+
+void writeCacheFile(const std::string& path, std::uint64_t check,
+                    const std::vector<unsigned char>& bin) {
+  writeAtomically(path, [&](const std::string& tmp) {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    unsigned char header[16];
+    std::memcpy(header, kMagic, 8);
+    for (int i = 0; i < 8; ++i) header[8 + i] = static_cast<unsigned char>(check >> (8 * i));
+    f.write(reinterpret_cast<const char*>(header), sizeof header);
+    f.write(reinterpret_cast<const char*>(bin.data()), static_cast<std::streamsize>(bin.size()));
+    f.close();
+    if (!f) throw RuntimeError(tmp + ": write failed");
+  });
+}
+
+// Program built from a cached binary, or a null program when that does not work.
+cl::Program fromBinary(const cl::Context& context, cl_device_id dev,
+                       const std::vector<unsigned char>& bin, const std::string& options) {
+  const unsigned char* ptr = bin.data();
+  size_t size = bin.size();
+  cl_int binStatus = CL_SUCCESS, err = CL_SUCCESS;
+  cl_program raw =
+      clCreateProgramWithBinary(context(), 1, &dev, &size, &ptr, &binStatus, &err);
+  if (err != CL_SUCCESS || binStatus != CL_SUCCESS || !raw) {
+    if (raw) clReleaseProgram(raw);
+    return cl::Program();
+  }
+  cl::Program program(raw);  // takes ownership
+  if (build(program, dev, options) != CL_SUCCESS) return cl::Program();
+  return program;
+}
+
+}  // namespace
+
+std::string programCacheDir() {
+  std::string dir = envOr("MONTECL_CACHE_DIR");
+  if (!dir.empty()) return dir;
+  dir = envOr("XDG_CACHE_HOME");
+  if (!dir.empty()) return dir + "/montecl";
+  dir = envOr("HOME");
+  if (!dir.empty()) return dir + "/.cache/montecl";
+  return "";
+}
+
+ProgramBuild buildProgramCached(const cl::Context& context, const DeviceInfo& device,
+                                const std::string& source, const std::string& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const cl_device_id dev = device.device();
+  ProgramBuild result;
+  auto finish = [&]() {
+    result.buildMs = std::chrono::duration<double, std::milli>(
+                         std::chrono::steady_clock::now() - start)
+                         .count();
+    return result;
+  };
+
+  // Key everything that can change the binary; query the device itself rather than trusting the
+  // DeviceInfo fields, which a caller may have left empty.
+  cl::Device clDevice = device.device;
+  cl::Platform platform(clDevice.getInfo<CL_DEVICE_PLATFORM>(), true);
+  const std::string deviceName = clDevice.getInfo<CL_DEVICE_NAME>();
+  std::string key;
+  for (const std::string& part :
+       {platform.getInfo<CL_PLATFORM_NAME>(), platform.getInfo<CL_PLATFORM_VERSION>(), deviceName,
+        clDevice.getInfo<CL_DRIVER_VERSION>(), options, source}) {
+    key += part;
+    key.push_back('\0');
+  }
+  const std::uint64_t check = fnv1a64(key, kCheckSeed);
+
+  std::string cachePath;
+  const std::string dir = programCacheDir();
+  if (!dir.empty()) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (!ec && fs::is_directory(dir, ec)) cachePath = dir + "/" + hex64(fnv1a64(key)) + ".bin";
+  }
+
+  if (!cachePath.empty()) {
+    std::vector<unsigned char> bin;
+    if (readCacheFile(cachePath, check, bin)) {
+      cl::Program program = fromBinary(context, dev, bin, options);
+      if (program() != nullptr) {
+        result.program = program;
+        result.fromCache = true;
+        result.cachePath = cachePath;
+        return finish();
+      }
+    }
+  }
+
+  cl::Program program(context, source);
+  cl_int err = build(program, dev, options);
+  if (err != CL_SUCCESS) {
+    std::string log = buildLog(program, dev);
+    std::string msg = "kernel build failed on " + (device.name.empty() ? deviceName : device.name) +
+                      ": " + (options.empty() ? "(no options)" : options) + "\n";
+    if (err != CL_BUILD_PROGRAM_FAILURE || log.empty())
+      msg += "clBuildProgram returned " + std::string(clErrorName(err)) + " (" +
+             std::to_string(err) + ")" + (log.empty() ? "" : "\n");
+    msg += log;
+    throw RuntimeError(msg);
+  }
+  result.program = program;
+
+  if (!cachePath.empty()) {
+    try {
+      std::vector<unsigned char> bin = programBinary(program, dev);
+      if (!bin.empty()) {
+        writeCacheFile(cachePath, check, bin);
+        result.cachePath = cachePath;
+      }
+    } catch (...) {
+      // Best effort: an unwritable cache or a driver without binaries only costs a rebuild.
+    }
+  }
+  return finish();
+}
+
+}  // namespace montecl

@@ -1,1 +1,75 @@
-// placeholder: being written
+// cmd_devices.cpp: `montecl devices [--json]`: lists every OpenCL device with the index (P:D)
+// that --device accepts, plus any platform that failed to enumerate. No device at all: exit 1.
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "cl/devices.h"
+#include "cli/commands.h"
+#include "util/errors.h"
+
+namespace montecl {
+
+namespace {
+
+const char* kNoDevice =
+    "no OpenCL device found: install an OpenCL driver, e.g. 'apt-get install pocl-opencl-icd'";
+
+nlohmann::json deviceJson(const DeviceInfo& d) {
+  return {
+      {"index", deviceIndexString(d)},
+      {"platformIndex", d.platformIndex},
+      {"deviceIndex", d.deviceIndex},
+      {"name", d.name},
+      {"vendor", d.vendor},
+      {"type", d.typeName},
+      {"platform", d.platformName},
+      {"platformVersion", d.platformVersion},
+      {"version", d.version},
+      {"openclCVersion", d.openclCVersion},
+      {"driverVersion", d.driverVersion},
+      {"computeUnits", d.computeUnits},
+      {"globalMemBytes", d.globalMemBytes},
+      {"globalMem", formatBytes(d.globalMemBytes)},
+      {"maxAllocBytes", d.maxAllocBytes},
+      {"maxAlloc", formatBytes(d.maxAllocBytes)},
+      {"maxWorkGroupSize", d.maxWorkGroupSize},
+  };
+}
+
+void printText(const DeviceList& list) {
+  for (const DeviceInfo& d : list.devices) {
+    std::cout << deviceIndexString(d) << "  " << d.name << "\n"
+              << "     platform:       " << d.platformName << " (" << d.platformVersion << ")\n"
+              << "     vendor:         " << d.vendor << "\n"
+              << "     type:           " << d.typeName << "\n"
+              << "     OpenCL:         " << d.version << "; " << d.openclCVersion << "\n"
+              << "     driver:         " << d.driverVersion << "\n"
+              << "     compute units:  " << d.computeUnits << "\n"
+              << "     global memory:  " << formatBytes(d.globalMemBytes) << "\n"
+              << "     max allocation: " << formatBytes(d.maxAllocBytes) << "\n";
+  }
+  for (const std::string& e : list.platformErrors) std::cout << e << "\n";
+}
+
+}  // namespace
+
+void addDevicesCommand(CLI::App& app, int& exitCode) {
+  CLI::App* cmd = app.add_subcommand("devices", "List the OpenCL devices --device can select");
+  auto json = std::make_shared<bool>(false);
+  cmd->add_flag("--json", *json, "Print the list as a JSON array");
+  cmd->callback([json, &exitCode]() {
+    DeviceList list = listDevices();
+    if (*json) {
+      nlohmann::json arr = nlohmann::json::array();
+      for (const DeviceInfo& d : list.devices) arr.push_back(deviceJson(d));
+      std::cout << arr.dump(2) << std::endl;
+      for (const std::string& e : list.platformErrors) std::cerr << e << "\n";
+    } else {
+      printText(list);
+    }
+    if (list.devices.empty()) throw RuntimeError(kNoDevice);
+    exitCode = kExitOk;
+  });
+}
+
+}  // namespace montecl

@@ -1,1 +1,69 @@
-// placeholder: being written
+// image_io.cpp: OpenImageIO output (atomic, by extension) and input of RGB float images.
+#include "image/image_io.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "util/atomic_file.h"
+#include "util/errors.h"
+
+namespace montecl {
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+}  // namespace
+
+void checkOutputPath(const std::string& path) {
+  std::string ext = lowerExtension(path);
+  if (ext != ".png" && ext != ".exr" && ext != ".pfm")
+    throwInputError(path, "", "unsupported image format '" + ext + "' (use .png, .exr or .pfm)");
+  std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  if (!dir.empty() && !std::filesystem::is_directory(dir))
+    throwInputError(path, "", "output folder '" + dir.string() + "' does not exist");
+}
+
+void writeRgbImage(const std::string& path, int width, int height, const std::vector<float>& rgb) {
+  using namespace OIIO;
+  std::string ext = lowerExtension(path);
+  ImageSpec spec(width, height, 3, TypeDesc::FLOAT);
+  ImageBuf linear(spec);
+  linear.set_pixels(ROI(0, width, 0, height, 0, 1, 0, 3), TypeDesc::FLOAT, rgb.data());
+  ImageBuf out;
+  if (ext == ".png") {
+    // sRGB transfer, then OpenImageIO clamps to [0, 1] when converting to 8 bits.
+    if (!ImageBufAlgo::colorconvert(out, linear, "linear", "sRGB"))
+      throw RuntimeError("colour conversion for " + path + " failed: " + out.geterror());
+    out.specmod().attribute("oiio:ColorSpace", "sRGB");
+  } else {
+    out.copy(linear);
+  }
+  TypeDesc format = ext == ".png" ? TypeDesc::UINT8 : TypeDesc::FLOAT;
+  writeAtomically(path, [&](const std::string& tmp) {
+    out.set_write_format(format);
+    if (!out.write(tmp))
+      throw RuntimeError("cannot write " + path + ": " + out.geterror());
+  });
+}
+
+std::vector<float> readRgbImage(const std::string& path, int& width, int& height) {
+  using namespace OIIO;
+  ImageBuf in(path);
+  if (!in.read(0, 0, true, TypeDesc::FLOAT)) throwInputError(path, "", "cannot read image: " + in.geterror());
+  width = in.spec().width;
+  height = in.spec().height;
+  std::vector<float> rgb(size_t(width) * height * 3);
+  in.get_pixels(ROI(0, width, 0, height, 0, 1, 0, 3), TypeDesc::FLOAT, rgb.data());
+  return rgb;
+}
+
+}  // namespace montecl

@@ -24,6 +24,8 @@ struct RenderSettings {
   float aoDistance = 1e30f;         // occluders farther than this do not count
   std::string aoSampling = "cosine";  // "uniform" | "cosine"
   glm::vec3 background{0.0f};
+  std::string directSampling = "mis";  // "light" | "brdf" | "mis" (integrator "direct")
+  int lightSamples = 1;                // light samples per shading point (integrator "direct")
 };
 
 struct MaterialDesc {
@@ -52,8 +54,15 @@ struct Scene {
 // appended to warnings ("<file>: <key>: unknown key, ignored").
 Scene loadScene(const std::string& path, std::vector<std::string>& warnings);
 
-// Appends the triangles and materials of one OBJ (+ its MTL) to scene. Throws InputError.
-void loadObjInto(const std::string& objPath, Scene& scene);
+// Appends the triangles and materials of one OBJ (+ its MTL) to scene, drops degenerate triangles
+// (counted in degenerateDropped) and grows the bounds. Throws InputError "<obj>: line N: <problem>".
+// Non-fatal problems (missing MTL, unknown statements) are appended to warnings when given.
+void loadObjInto(const std::string& objPath, Scene& scene,
+                 std::vector<std::string>* warnings = nullptr);
+
+// Index of the scene's one shared default material (albedo 0.5 grey, no emission), added to
+// scene.materials on first use. Faces without a material use it.
+std::uint32_t defaultMaterialIndex(Scene& scene);
 
 // A camera looking at the bounding box from the +z side (tilted down a little), framing all of it.
 Camera defaultCamera(const glm::vec3& boundsMin, const glm::vec3& boundsMax, int width, int height);

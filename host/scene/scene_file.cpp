@@ -1,1 +1,304 @@
-// placeholder: being written
+// scene_file.cpp: loadScene(): reads a scene file (JSON: camera, meshes, render settings) or a bare
+// OBJ, validates every value, and reports bad input as one InputError line
+// "<file>: <key>: <problem>". Unknown keys become warnings. Meshes are loaded by loadObjInto().
+#include <nlohmann/json.hpp>
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <limits>
+
+#include "scene/scene.h"
+#include "util/errors.h"
+
+namespace montecl {
+namespace {
+
+using nlohmann::json;
+
+constexpr int kMaxImageSide = 16384;
+
+std::string oneLine(const std::string& s) {
+  std::string out = s;
+  for (char& c : out)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  return out;
+}
+
+// The scene file being read, for messages and warnings.
+struct Ctx {
+  std::string file;
+  std::vector<std::string>& warnings;
+};
+
+[[noreturn]] void fail(const Ctx& ctx, const std::string& where, const std::string& problem) {
+  throwInputError(oneLine(ctx.file), oneLine(where), oneLine(problem));
+}
+
+std::string child(const std::string& prefix, const std::string& key) {
+  return prefix.empty() ? key : prefix + "." + key;
+}
+
+// Empty when path is a readable regular file, else why not.
+std::string fileProblem(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return std::strerror(errno);
+  if (S_ISDIR(st.st_mode)) return "is a directory";
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::strerror(errno);
+  return "";
+}
+
+std::string readSceneText(const Ctx& ctx) {
+  std::string problem = fileProblem(ctx.file);
+  if (!problem.empty()) fail(ctx, "", "cannot open: " + problem);
+  std::ifstream in(ctx.file, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) fail(ctx, "", "read error");
+  return text;
+}
+
+// nlohmann's message "[json.exception.parse_error.101] parse error at line 3, column 5: syntax
+// error ..." becomes where = "line 3, column 5", problem = "malformed JSON: syntax error ...".
+json parseJson(const Ctx& ctx, const std::string& text) {
+  try {
+    return json::parse(text);
+  } catch (const json::parse_error& e) {
+    std::string what = e.what();
+    std::size_t at = what.find(" at line ");
+    std::size_t colon = at == std::string::npos ? at : what.find(": ", at);
+    if (colon == std::string::npos) fail(ctx, "byte " + std::to_string(e.byte), "malformed JSON: " + what);
+    fail(ctx, what.substr(at + 4, colon - at - 4), "malformed JSON: " + what.substr(colon + 2));
+  }
+}
+
+void warnUnknownKeys(const Ctx& ctx, const json& obj, const std::string& prefix,
+                     std::initializer_list<const char*> known) {
+  for (auto it = obj.begin(); it != obj.end(); ++it) {
+    bool isKnown = std::any_of(known.begin(), known.end(), [&](const char* k) { return it.key() == k; });
+    if (!isKnown) ctx.warnings.push_back(oneLine(ctx.file) + ": " + oneLine(child(prefix, it.key())) + ": unknown key, ignored");
+  }
+}
+
+const json& requireObject(const Ctx& ctx, const json& v, const std::string& where) {
+  if (!v.is_object()) fail(ctx, where, std::string("expected an object, got ") + v.type_name());
+  return v;
+}
+
+const json& requireKey(const Ctx& ctx, const json& obj, const std::string& prefix, const char* key) {
+  auto it = obj.find(key);
+  if (it == obj.end()) fail(ctx, child(prefix, key), "missing required key");
+  return *it;
+}
+
+const json* optionalKey(const json& obj, const char* key) {
+  auto it = obj.find(key);
+  return it == obj.end() ? nullptr : &*it;
+}
+
+float getFloat(const Ctx& ctx, const json& v, const std::string& where) {
+  if (!v.is_number()) fail(ctx, where, std::string("expected a number, got ") + v.type_name());
+  float f = v.get<float>();
+  if (!std::isfinite(f)) fail(ctx, where, "number out of float range");
+  return f;
+}
+
+// An integer in [lo, hi] (integral floats like 512.0 are accepted).
+long long getInteger(const Ctx& ctx, const json& v, const std::string& where, long long lo, long long hi,
+                     const char* expected) {
+  if (!v.is_number()) fail(ctx, where, std::string("expected ") + expected + ", got " + v.type_name());
+  double d = v.get<double>();
+  if (d != std::floor(d)) fail(ctx, where, std::string("expected ") + expected + ", got " + v.dump());
+  if (d < static_cast<double>(lo) || d > static_cast<double>(hi))
+    fail(ctx, where, std::string("expected ") + expected + ", got " + v.dump());
+  return static_cast<long long>(d);
+}
+
+int getPositiveInt(const Ctx& ctx, const json& v, const std::string& where, int hi,
+                   const char* expected = "a positive integer") {
+  return static_cast<int>(getInteger(ctx, v, where, 1, hi, expected));
+}
+
+glm::vec3 getVec3(const Ctx& ctx, const json& v, const std::string& where) {
+  if (!v.is_array() || v.size() != 3)
+    fail(ctx, where, std::string("expected an array of 3 numbers, got ") +
+                         (v.is_array() ? "an array of " + std::to_string(v.size()) : std::string(v.type_name())));
+  return glm::vec3(getFloat(ctx, v[0], where + "[0]"), getFloat(ctx, v[1], where + "[1]"),
+                   getFloat(ctx, v[2], where + "[2]"));
+}
+
+glm::vec3 getColor(const Ctx& ctx, const json& v, const std::string& where) {
+  glm::vec3 c = getVec3(ctx, v, where);
+  if (c.x < 0 || c.y < 0 || c.z < 0) fail(ctx, where, "components must be >= 0");
+  return c;
+}
+
+std::string getChoice(const Ctx& ctx, const json& v, const std::string& where,
+                      std::initializer_list<const char*> choices) {
+  std::string list;
+  for (const char* c : choices) list += std::string(list.empty() ? "" : ", ") + "\"" + c + "\"";
+  if (!v.is_string()) fail(ctx, where, "expected one of " + list + ", got " + v.type_name());
+  std::string s = v.get<std::string>();
+  if (std::none_of(choices.begin(), choices.end(), [&](const char* c) { return s == c; }))
+    fail(ctx, where, "expected one of " + list + ", got " + v.dump());
+  return s;
+}
+
+// ---- camera ---------------------------------------------------------------------------------
+
+void validateCamera(const Ctx& ctx, const Camera& cam) {
+  if (!(cam.fovY > 0.0f && cam.fovY < 180.0f)) fail(ctx, "camera.fov_y", "must be in (0, 180) degrees");
+  glm::vec3 dir = cam.target - cam.position;
+  if (dir == glm::vec3(0.0f)) fail(ctx, "camera.target", "equals camera.position (no view direction)");
+  if (cam.up == glm::vec3(0.0f)) fail(ctx, "camera.up", "must not be the zero vector");
+  glm::dvec3 d = glm::normalize(glm::dvec3(dir)), u = glm::normalize(glm::dvec3(cam.up));
+  if (glm::length(glm::cross(d, u)) < 1e-5) fail(ctx, "camera.up", "parallel to the view direction");
+}
+
+Camera parseCamera(const Ctx& ctx, const json& root) {
+  const json& j = requireObject(ctx, requireKey(ctx, root, "", "camera"), "camera");
+  warnUnknownKeys(ctx, j, "camera", {"position", "target", "up", "fov_y", "width", "height"});
+  Camera cam;
+  cam.position = getVec3(ctx, requireKey(ctx, j, "camera", "position"), "camera.position");
+  cam.target = getVec3(ctx, requireKey(ctx, j, "camera", "target"), "camera.target");
+  if (const json* up = optionalKey(j, "up")) cam.up = getVec3(ctx, *up, "camera.up");
+  cam.fovY = getFloat(ctx, requireKey(ctx, j, "camera", "fov_y"), "camera.fov_y");
+  const char* side = "a positive integer up to 16384";
+  cam.width = getPositiveInt(ctx, requireKey(ctx, j, "camera", "width"), "camera.width", kMaxImageSide, side);
+  cam.height = getPositiveInt(ctx, requireKey(ctx, j, "camera", "height"), "camera.height", kMaxImageSide, side);
+  validateCamera(ctx, cam);
+  return cam;
+}
+
+// ---- render ---------------------------------------------------------------------------------
+
+RenderSettings parseRender(const Ctx& ctx, const json& root) {
+  RenderSettings r;
+  const json* jp = optionalKey(root, "render");
+  if (!jp) return r;
+  const json& j = requireObject(ctx, *jp, "render");
+  warnUnknownKeys(ctx, j, "render",
+                  {"integrator", "spp", "seed", "ao_distance", "ao_sampling", "background", "direct_sampling",
+                   "light_samples"});
+  const int intMax = std::numeric_limits<int>::max();
+  if (const json* v = optionalKey(j, "integrator")) r.integrator = getChoice(ctx, *v, "render.integrator", {"ao", "direct"});
+  if (const json* v = optionalKey(j, "spp")) r.spp = getPositiveInt(ctx, *v, "render.spp", intMax);
+  if (const json* v = optionalKey(j, "seed"))
+    r.seed = static_cast<std::uint32_t>(getInteger(ctx, *v, "render.seed", 0, 0xffffffffLL, "an integer in [0, 4294967295]"));
+  if (const json* v = optionalKey(j, "ao_distance")) {
+    r.aoDistance = getFloat(ctx, *v, "render.ao_distance");
+    if (!(r.aoDistance > 0.0f)) fail(ctx, "render.ao_distance", "must be > 0");
+  }
+  if (const json* v = optionalKey(j, "ao_sampling")) r.aoSampling = getChoice(ctx, *v, "render.ao_sampling", {"uniform", "cosine"});
+  if (const json* v = optionalKey(j, "background")) r.background = getColor(ctx, *v, "render.background");
+  if (const json* v = optionalKey(j, "direct_sampling"))
+    r.directSampling = getChoice(ctx, *v, "render.direct_sampling", {"light", "brdf", "mis"});
+  if (const json* v = optionalKey(j, "light_samples")) r.lightSamples = getPositiveInt(ctx, *v, "render.light_samples", intMax);
+  return r;
+}
+
+// ---- meshes ---------------------------------------------------------------------------------
+
+struct MeshEntry {
+  std::string path;  // resolved against the scene file's folder
+  std::string where;  // "meshes[i].file"
+  bool hasEmission = false;
+  glm::vec3 emission{0.0f};
+};
+
+std::string resolvePath(const std::string& sceneFile, const std::string& file) {
+  std::filesystem::path folder = std::filesystem::path(sceneFile).parent_path();
+  return (folder / file).lexically_normal().string();
+}
+
+MeshEntry parseMeshEntry(const Ctx& ctx, const json& j, const std::string& prefix) {
+  requireObject(ctx, j, prefix);
+  warnUnknownKeys(ctx, j, prefix, {"file", "emission"});
+  MeshEntry m;
+  m.where = prefix + ".file";
+  const json& file = requireKey(ctx, j, prefix, "file");
+  if (!file.is_string()) fail(ctx, m.where, std::string("expected a file name, got ") + file.type_name());
+  if (file.get<std::string>().empty()) fail(ctx, m.where, "empty file name");
+  m.path = resolvePath(ctx.file, file.get<std::string>());
+  if (const json* e = optionalKey(j, "emission")) {
+    m.hasEmission = true;
+    m.emission = getColor(ctx, *e, prefix + ".emission");
+  }
+  return m;
+}
+
+std::vector<MeshEntry> parseMeshes(const Ctx& ctx, const json& root) {
+  const json& list = requireKey(ctx, root, "", "meshes");
+  if (!list.is_array()) fail(ctx, "meshes", std::string("expected a list of meshes, got ") + list.type_name());
+  if (list.empty()) fail(ctx, "meshes", "empty list (at least one mesh is needed)");
+  std::vector<MeshEntry> meshes;
+  for (std::size_t i = 0; i < list.size(); ++i)
+    meshes.push_back(parseMeshEntry(ctx, list[i], "meshes[" + std::to_string(i) + "]"));
+  for (const MeshEntry& m : meshes) {  // report bad paths before spending time on loading
+    std::string problem = fileProblem(m.path);
+    if (!problem.empty()) fail(ctx, m.where, "cannot open '" + m.path + "': " + problem);
+  }
+  return meshes;
+}
+
+// Gives triangles [firstTri, end) emissive copies of their materials (Kd kept, Ke = emission).
+void applyEmission(Scene& scene, std::size_t firstTri, const glm::vec3& emission) {
+  std::vector<std::int64_t> copyOf(scene.materials.size(), -1);
+  for (std::size_t t = firstTri; t < scene.triangles.size(); ++t) {
+    std::uint32_t& m = scene.triangles[t].material;
+    if (copyOf[m] < 0) {
+      MaterialDesc d = scene.materials[m];
+      d.name += " (emission override)";
+      d.emission = emission;
+      copyOf[m] = static_cast<std::int64_t>(scene.materials.size());
+      scene.materials.push_back(d);
+    }
+    m = static_cast<std::uint32_t>(copyOf[m]);
+  }
+}
+
+void loadMeshes(const std::vector<MeshEntry>& meshes, Scene& scene, std::vector<std::string>& warnings) {
+  for (const MeshEntry& m : meshes) {
+    std::size_t firstTri = scene.triangles.size();
+    loadObjInto(m.path, scene, &warnings);
+    if (m.hasEmission) applyEmission(scene, firstTri, m.emission);
+  }
+}
+
+bool hasObjExtension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == ".obj";
+}
+
+Scene loadBareObj(const std::string& path, std::vector<std::string>& warnings) {
+  Scene scene;
+  scene.path = path;
+  loadObjInto(path, scene, &warnings);
+  scene.camera = defaultCamera(scene.boundsMin, scene.boundsMax, 512, 512);
+  return scene;
+}
+
+}  // namespace
+
+Scene loadScene(const std::string& path, std::vector<std::string>& warnings) {
+  if (hasObjExtension(path)) return loadBareObj(path, warnings);
+  Ctx ctx{path, warnings};
+  json root = parseJson(ctx, readSceneText(ctx));
+  requireObject(ctx, root, "(top level)");
+  warnUnknownKeys(ctx, root, "", {"camera", "meshes", "render"});
+  Scene scene;
+  scene.path = path;
+  scene.camera = parseCamera(ctx, root);
+  scene.render = parseRender(ctx, root);
+  loadMeshes(parseMeshes(ctx, root), scene, warnings);
+  return scene;
+}
+
+}  // namespace montecl

@@ -3,7 +3,11 @@
 // and the standard library, so pure functions (RNG, sampling, intersection) are tested on the host.
 #pragma once
 
-#ifdef __OPENCL_VERSION__
+#if defined(__OPENCL_C_VERSION__) || defined(__OPENCL_VERSION__)
+#define MCL_OPENCL 1
+#endif
+
+#ifdef MCL_OPENCL
 #define MCL_GLOBAL __global
 #define MCL_CONSTANT __constant
 #define MCL_INLINE inline
@@ -22,6 +26,7 @@ using float2 = glm::vec2;
 using float3 = glm::vec3;
 using float4 = glm::vec4;
 using uint = std::uint32_t;
+using ulong = std::uint64_t;
 using uint2 = glm::uvec2;
 using uint4 = glm::uvec4;
 using int2 = glm::ivec2;

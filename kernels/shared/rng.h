@@ -1,1 +1,38 @@
-// placeholder
+// rng.h: counter-based random numbers. Every number is a pure function of
+// (seed, pixel, sample index, dimension), so images do not depend on wave size, work-group size,
+// scheduling or device. pcg4d (Jarzynski and Olano, "Hash Functions for GPU Rendering", JCGT 2020)
+// is a bijection on 128 bits: distinct inputs never share their four outputs.
+#pragma once
+#include "compat.h"
+
+// Dimensions are drawn in groups of four; each stage owns a fixed group.
+#define MCL_DIM_CAMERA 0u     // pixel jitter u, v
+#define MCL_DIM_AO 1u         // AO direction
+#define MCL_DIM_LIGHT 2u      // direct lighting: light choice and point (+ k per extra light sample)
+#define MCL_DIM_BRDF 1u       // direct lighting: BRDF direction (shares AO's group; never both)
+
+typedef struct {
+  uint x, y, z, w;
+} RngOut;
+
+MCL_INLINE RngOut pcg4d(uint x, uint y, uint z, uint w) {
+  x = x * 1664525u + 1013904223u;
+  y = y * 1664525u + 1013904223u;
+  z = z * 1664525u + 1013904223u;
+  w = w * 1664525u + 1013904223u;
+  x += y * w; y += z * x; z += x * y; w += y * z;
+  x ^= x >> 16; y ^= y >> 16; z ^= z >> 16; w ^= w >> 16;
+  x += y * w; y += z * x; z += x * y; w += y * z;
+  RngOut r;
+  r.x = x; r.y = y; r.z = z; r.w = w;
+  return r;
+}
+
+// Top 24 bits to a float in [0, 1): exact, never 1.0f.
+MCL_INLINE float u32_to_unit(uint u) { return (float)(u >> 8) * (1.0f / 16777216.0f); }
+
+// Four uniform numbers in [0, 1) for dimension group `group` of the given sample.
+MCL_INLINE float4 rng_uniform4(uint seed, uint pixel, uint sample, uint group) {
+  RngOut r = pcg4d(pixel, sample, group, seed);
+  return make_float4(u32_to_unit(r.x), u32_to_unit(r.y), u32_to_unit(r.z), u32_to_unit(r.w));
+}

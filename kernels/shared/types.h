@@ -46,11 +46,12 @@ typedef struct MCL_ALIGN16 {
   float u, v;
 } Hit;
 
-// An occlusion query: if nothing blocks the ray before dir.w, contribution.rgb is written to
-// slot as_uint(contribution.w) of the sample's shadow-contribution array.
+// An occlusion query: if nothing blocks the ray before ray.dir.w, (r, g, b) is written to
+// shadowContrib[slot] (slots are per wave item, so the result does not depend on queue order).
 typedef struct MCL_ALIGN16 {
   Ray ray;
-  float4 contribution;
+  float r, g, b;
+  uint slot;
 } ShadowWork;
 
 // Constants of one render, read by every stage.
@@ -67,7 +68,7 @@ typedef struct MCL_ALIGN16 {
   uint pad0;
 } FrameParams;
 
-#ifndef __OPENCL_VERSION__
+#ifndef MCL_OPENCL
 #include <cstddef>
 static_assert(sizeof(BvhNode) == 32, "BvhNode layout");
 static_assert(offsetof(BvhNode, maxX) == 16, "BvhNode layout");
