@@ -11,6 +11,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <future>
 #include <numeric>
 #include <random>
 #include <sstream>
@@ -257,25 +258,39 @@ struct CompareStats {
   std::string first;
 };
 
+// Brute force over all rays, split across two threads (no doctest macros inside).
+std::vector<RefHit> bruteForceAll(const std::vector<SceneTriangle>& tris,
+                                  const std::vector<TestRay>& rays) {
+  std::vector<RefHit> out(rays.size());
+  auto work = [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) out[i] = bruteClosest(tris, rays[i].o, rays[i].d, rays[i].tmax);
+  };
+  std::size_t half = rays.size() / 2;
+  auto other = std::async(std::launch::async, work, half, rays.size());
+  work(0, half);
+  other.get();
+  return out;
+}
+
 // Closest and any hit through the BVH vs brute force. A different triangle is accepted only when
 // its t equals the reference t within a relative 1e-6 (coplanar/duplicate ties).
 CompareStats compareWithBruteForce(const std::vector<SceneTriangle>& tris, const Bvh& bvh,
                                    const std::vector<TestRay>& rays) {
   CompareStats s;
-  for (const TestRay& r : rays) {
-    RefHit ref = bruteClosest(tris, r.o, r.d, r.tmax);
+  std::vector<RefHit> refs = bruteForceAll(tris, rays);
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const TestRay& r = rays[i];
+    const RefHit& ref = refs[i];
     Hit h = intersectClosest(bvh, r.o, r.d, r.tmax);
     bool any = intersectAny(bvh, r.o, r.d, r.tmax);
     ++s.rays;
     bool refHit = ref.tri != MCL_NO_HIT;
-    bool hit = h.tri != MCL_NO_HIT;
+    bool hit = h.tri != MCL_NO_HIT && h.tri < bvh.order.size();
     if (refHit) ++s.hits;
-    bool ok = refHit == hit;
+    bool ok = refHit == hit && (hit || h.tri == MCL_NO_HIT);
     if (ok && hit) {
-      REQUIRE(h.tri < bvh.order.size());
       std::uint32_t id = bvh.order[h.tri];
-      bool sameT = std::fabs(h.t - ref.t) <= 1e-6f * std::fabs(ref.t);
-      ok = sameT;
+      ok = std::fabs(h.t - ref.t) <= 1e-6f * std::fabs(ref.t);
       if (ok && id != ref.tri) ++s.ties;
     }
     if (ok && !hit) ok = h.t == kInf;
@@ -285,7 +300,7 @@ CompareStats compareWithBruteForce(const std::vector<SceneTriangle>& tris, const
         m << "closest mismatch: o=(" << r.o.x << "," << r.o.y << "," << r.o.z << ") d=(" << r.d.x
           << "," << r.d.y << "," << r.d.z << ") tmax=" << r.tmax << " ref t=" << ref.t
           << " tri=" << ref.tri << " bvh t=" << h.t << " tri="
-          << (hit ? bvh.order[h.tri] : MCL_NO_HIT);
+          << (hit ? bvh.order[h.tri] : h.tri);
         s.first = m.str();
       }
     }
@@ -628,43 +643,67 @@ TEST_CASE("bvh: 10k triangles sharing one centroid") {
   }
 }
 
-TEST_CASE("bvh: depth stays within the cap on a depth-adversarial soup") {
-  // Nested squares (two triangles each) growing by 2x: the best binned split peels off the
-  // largest square at every level, so an uncapped SAH tree is as deep as there are squares.
-  std::vector<SceneTriangle> tris;
+TEST_CASE("bvh: depth stays within the cap") {
+  // Nested squares (two triangles each) growing by 2x: binned SAH peels off the largest few
+  // squares at every level, so the uncapped tree is far deeper than a balanced one. Capping its
+  // depth below that exercises the guard that keeps every build under 64 levels.
+  std::vector<SceneTriangle> squares;
   for (int i = 0; i < 56; ++i) {
     float s = std::ldexp(1.0f, i - 28);
-    tris.push_back(makeTri(vec3(0, 0, 0), vec3(s, 0, 0), vec3(s, s, 0)));
-    tris.push_back(makeTri(vec3(0, 0, 0), vec3(s, s, 0), vec3(0, s, 0)));
+    squares.push_back(makeTri(vec3(0, 0, 0), vec3(s, 0, 0), vec3(s, s, 0)));
+    squares.push_back(makeTri(vec3(0, 0, 0), vec3(s, s, 0), vec3(0, s, 0)));
   }
   BvhBuildOptions o;
   o.maxLeafSize = 1;
-  Bvh natural = buildBvh(tris, o);
-  checkStructure(tris, natural, 1, o);
-  CHECK(natural.depth > 40);  // the soup really is adversarial
+  Bvh natural = buildBvh(squares, o);
+  checkStructure(squares, natural, 1, o);
+  CHECK(natural.depth > 20);  // the soup really is unbalanced
   for (int cap : {7, 10, 20}) {
     CAPTURE(cap);
-    Bvh capped = buildBvhCapped(tris, o, cap);
-    checkStructure(tris, capped, 1, o);
+    Bvh capped = buildBvhCapped(squares, o, cap);
+    checkStructure(squares, capped, 1, o);
     CHECK(capped.depth <= cap);
-    std::mt19937 rng(5);
-    checkAgainstBruteForce(tris, capped, makeRays(tris, 2000, rng), 0.1);
   }
-  CHECK_THROWS_AS(buildBvhCapped(tris, o, 6), std::invalid_argument);  // 112 tris need 7 levels
-  CHECK_THROWS_AS(buildBvhCapped(tris, o, MCL_BVH_STACK_SIZE), std::invalid_argument);
+  CHECK_THROWS_AS(buildBvhCapped(squares, o, 6), std::invalid_argument);  // 112 need 7 levels
+  CHECK_THROWS_AS(buildBvhCapped(squares, o, MCL_BVH_STACK_SIZE), std::invalid_argument);
+
+  // Traversal stays exact through a capped tree (of a soup with a sane range of scales).
+  std::mt19937 rng(5);
+  auto tris = mixedSoup(4000, rng);
+  Bvh uncapped = buildBvh(tris);
+  CHECK(uncapped.depth > 13);
+  for (int cap : {12, 13}) {
+    CAPTURE(cap);
+    Bvh capped = buildBvhCapped(tris, BvhBuildOptions{}, cap);
+    checkStructure(tris, capped, 4);
+    CHECK(capped.depth <= cap);
+    checkAgainstBruteForce(tris, capped, makeRays(tris, 4000, rng));
+  }
 }
 
 TEST_CASE("bvh: binned SAH cost is close to a full-sweep SAH build and beats a median build") {
   std::mt19937 rng(13);
-  auto tris = mixedSoup(20000, rng);
-  BvhBuildOptions o;
-  Bvh bvh = buildBvh(tris, o);
-  double rootArea = 0.0;
-  std::vector<RefPrim> p = refPrims(tris, rootArea);
-  double sweep = fullSweepSah(p, 0, p.size(), rootArea, o);
-  double median = medianSah(p, 0, p.size(), rootArea, o);
-  MESSAGE("20k mixed soup SAH: binned " << bvh.sahCost << ", full sweep " << sweep << ", median "
-                                        << median);
-  CHECK(bvh.sahCost <= 1.15 * sweep);
-  CHECK(bvh.sahCost < 0.9 * median);
+  struct Case {
+    const char* name;
+    std::vector<SceneTriangle> tris;
+    double slack;  // allowed excess over the full sweep
+  };
+  // Clustered soups are where 16 bins lose most against a full sweep (about 13% here; 64 bins
+  // get within 2%); on a uniform soup the two agree within 1%.
+  std::vector<Case> cases;
+  cases.push_back({"uniform 20k", randomSoup(20000, 0.01f, rng), 1.03});
+  cases.push_back({"mixed 20k", mixedSoup(20000, rng), 1.15});
+  for (Case& c : cases) {
+    CAPTURE(c.name);
+    BvhBuildOptions o;
+    Bvh bvh = buildBvh(c.tris, o);
+    double rootArea = 0.0;
+    std::vector<RefPrim> p = refPrims(c.tris, rootArea);
+    double sweep = fullSweepSah(p, 0, p.size(), rootArea, o);
+    double median = medianSah(p, 0, p.size(), rootArea, o);
+    MESSAGE(c.name << " SAH: binned " << bvh.sahCost << ", full sweep " << sweep << ", median "
+                   << median);
+    CHECK(bvh.sahCost <= c.slack * sweep);
+    CHECK(bvh.sahCost < 0.9 * median);
+  }
 }

@@ -327,7 +327,13 @@ TEST_CASE("cl: a kernel build error carries the build log") {
   std::string src = expandedKernelSource("main.cl");
   msg = thrownMessage([&] { buildProgramCached(context, dev, src, "-cl-std=CL1.2"); });
   CHECK(msg.find("missing_in_header_abc") != std::string::npos);
-  CHECK(msg.find("shared/oops.h:3") != std::string::npos);
+  INFO(msg);
+  // PoCL honours #line in its diagnostics; Oclgrind reports spelling locations ("input.cl:5").
+  if (dev.platformName.find("Portable Computing Language") != std::string::npos) {
+    CHECK(msg.find("shared/oops.h:3") != std::string::npos);
+  } else {
+    WARN(msg.find("shared/oops.h:3") != std::string::npos);
+  }
 }
 
 // --- struct layout ------------------------------------------------------------------------------

@@ -23,7 +23,8 @@ struct DeviceInfo {
 
 struct DeviceList {
   std::vector<DeviceInfo> devices;
-  std::vector<std::string> platformErrors;  // "platform 1 (<name>): clGetDeviceIDs failed: CL_..."
+  // "platform 1 (<name>): OpenCL call clGetDeviceIDs failed: CL_... (-n)"
+  std::vector<std::string> platformErrors;
 };
 
 // Every device of every platform; a platform that fails is reported in platformErrors, not thrown.

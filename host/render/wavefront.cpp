@@ -7,81 +7,37 @@
 #include <chrono>
 #include <iostream>
 
-#include "cl/cl_errors.h"
-#include "cl/kernel_source.h"
-#include "cl/program_cache.h"
+#include "cl/cl_session.h"
 #include "render/frame_params.h"
 #include "util/errors.h"
 
 namespace montecl {
 namespace {
 
-constexpr const char* kBuildOptions = "-cl-std=CL1.2";
-
 // Bytes of per-wave buffers for one pixel sample with `slots` occlusion queries.
 std::uint64_t bytesPerItem(std::uint32_t slots) {
   return sizeof(Ray) + sizeof(Hit) + sizeof(cl_float4) + slots * (sizeof(cl_float4) + sizeof(ShadowWork));
 }
 
-template <typename T>
-cl::Buffer deviceBuffer(const cl::Context& ctx, cl_mem_flags flags, std::size_t count) {
-  return cl::Buffer(ctx, flags, std::max<std::size_t>(count, 1) * sizeof(T));
-}
-
-template <typename T>
-cl::Buffer uploadBuffer(const cl::Context& ctx, const std::vector<T>& data) {
-  return cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, data.size() * sizeof(T),
-                    const_cast<T*>(data.data()));
-}
-
 }  // namespace
 
 struct WavefrontRenderer::Impl {
-  DeviceInfo device;
+  Impl(const DeviceInfo& device, const RenderOptions& opts)
+      : options(opts), cl(device, opts.workGroupSize), generate(cl.kernel("generate")),
+        intersect(cl.kernel("intersect")), shadeAo(cl.kernel("shade_ao")),
+        intersectShadow(cl.kernel("intersect_shadow")), accumulate(cl.kernel("accumulate")) {}
   RenderOptions options;
-  cl::Context context;
-  cl::CommandQueue queue;
-  ProgramBuild build;
+  ClSession cl;
   cl::Kernel generate, intersect, shadeAo, intersectShadow, accumulate;
-
-  std::size_t localSize(const cl::Kernel& k) const {
-    std::size_t maxSize = k.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device.device);
-    std::size_t want = options.workGroupSize ? options.workGroupSize : 64;
-    return std::max<std::size_t>(1, std::min(want, maxSize));
-  }
-
-  // Launches k over n work items (rounded up to whole work-groups); names the kernel on failure.
-  void launch(cl::Kernel& k, const char* name, std::uint64_t n) {
-    if (n == 0) return;
-    std::size_t local = localSize(k);
-    std::size_t global = ((n + local - 1) / local) * local;
-    try {
-      queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(global), cl::NDRange(local));
-    } catch (const cl::Error& e) {
-      throw RuntimeError(std::string("kernel ") + name + ": " + describeClError(e));
-    }
-  }
 };
 
 WavefrontRenderer::WavefrontRenderer(const DeviceInfo& device, const RenderOptions& options)
-    : impl_(std::make_unique<Impl>()) {
-  Impl& m = *impl_;
-  m.device = device;
-  m.options = options;
-  m.context = cl::Context(device.device);
-  m.queue = cl::CommandQueue(m.context, device.device);
-  m.build = buildProgramCached(m.context, device, expandedKernelSource("montecl.cl"), kBuildOptions);
-  m.generate = cl::Kernel(m.build.program, "generate");
-  m.intersect = cl::Kernel(m.build.program, "intersect");
-  m.shadeAo = cl::Kernel(m.build.program, "shade_ao");
-  m.intersectShadow = cl::Kernel(m.build.program, "intersect_shadow");
-  m.accumulate = cl::Kernel(m.build.program, "accumulate");
-}
+    : impl_(std::make_unique<Impl>(device, options)) {}
 
 WavefrontRenderer::~WavefrontRenderer() = default;
 
-bool WavefrontRenderer::programFromCache() const { return impl_->build.fromCache; }
-double WavefrontRenderer::programBuildMs() const { return impl_->build.buildMs; }
+bool WavefrontRenderer::programFromCache() const { return impl_->cl.build().fromCache; }
+double WavefrontRenderer::programBuildMs() const { return impl_->cl.build().buildMs; }
 
 Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& stats,
                                const ProgressFn& progress) {
@@ -94,31 +50,30 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   // Wave size: the memory budget, the device's largest allocation, and 32-bit item indices.
   std::uint64_t wave = m.options.waveSize;
   if (wave == 0) wave = std::max<std::uint64_t>(1, m.options.memoryBudget / bytesPerItem(slots));
-  wave = std::min<std::uint64_t>(wave, m.device.maxAllocBytes / (slots * sizeof(ShadowWork)));
+  wave = std::min<std::uint64_t>(wave, m.cl.device().maxAllocBytes / (slots * sizeof(ShadowWork)));
   wave = std::min<std::uint64_t>(wave, 0xffffffffull / slots);
   wave = std::max<std::uint64_t>(1, std::min(wave, total));
-  if (pixels * sizeof(cl_float4) > m.device.maxAllocBytes)
+  if (pixels * sizeof(cl_float4) > m.cl.device().maxAllocBytes)
     throw RuntimeError("image of " + std::to_string(pixels) + " pixels needs a buffer larger than the device's "
-                       "maximum allocation (" + std::to_string(m.device.maxAllocBytes) + " bytes)");
+                       "maximum allocation (" + std::to_string(m.cl.device().maxAllocBytes) + " bytes)");
   stats = RenderStats{};
   stats.waveSize = wave;
 
-  const cl::Context& ctx = m.context;
-  cl::Buffer frameBuf(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(frame), const_cast<FrameParams*>(&frame));
-  cl::Buffer nodes = uploadBuffer(ctx, bvh.nodes);
-  cl::Buffer tris = uploadBuffer(ctx, bvh.triangles);
-  cl::Buffer rays = deviceBuffer<Ray>(ctx, CL_MEM_READ_WRITE, wave);
-  cl::Buffer hits = deviceBuffer<Hit>(ctx, CL_MEM_READ_WRITE, wave);
-  cl::Buffer radiance = deviceBuffer<cl_float4>(ctx, CL_MEM_READ_WRITE, wave);
-  cl::Buffer shadowContrib = deviceBuffer<cl_float4>(ctx, CL_MEM_READ_WRITE, wave * slots);
-  cl::Buffer shadowQueue = deviceBuffer<ShadowWork>(ctx, CL_MEM_READ_WRITE, wave * slots);
-  cl::Buffer rayCount = deviceBuffer<cl_uint>(ctx, CL_MEM_READ_WRITE, 1);
-  cl::Buffer queueCount = deviceBuffer<cl_uint>(ctx, CL_MEM_READ_WRITE, 1);
-  cl::Buffer sum = deviceBuffer<cl_float4>(ctx, CL_MEM_READ_WRITE, pixels);
-  cl::Buffer sumSq = deviceBuffer<cl_float4>(ctx, CL_MEM_READ_WRITE, pixels);
+    cl::Buffer frameBuf = m.cl.upload(std::vector<FrameParams>{frame});
+  cl::Buffer nodes = m.cl.upload(bvh.nodes);
+  cl::Buffer tris = m.cl.upload(bvh.triangles);
+  cl::Buffer rays = m.cl.buffer<Ray>(wave);
+  cl::Buffer hits = m.cl.buffer<Hit>(wave);
+  cl::Buffer radiance = m.cl.buffer<cl_float4>(wave);
+  cl::Buffer shadowContrib = m.cl.buffer<cl_float4>(wave * slots);
+  cl::Buffer shadowQueue = m.cl.buffer<ShadowWork>(wave * slots);
+  cl::Buffer rayCount = m.cl.buffer<cl_uint>(1);
+  cl::Buffer queueCount = m.cl.buffer<cl_uint>(1);
+  cl::Buffer sum = m.cl.buffer<cl_float4>(pixels);
+  cl::Buffer sumSq = m.cl.buffer<cl_float4>(pixels);
   const cl_float4 zero4 = {{0.0f, 0.0f, 0.0f, 0.0f}};
-  m.queue.enqueueFillBuffer(sum, zero4, 0, pixels * sizeof(cl_float4));
-  m.queue.enqueueFillBuffer(sumSq, zero4, 0, pixels * sizeof(cl_float4));
+  m.cl.queue().enqueueFillBuffer(sum, zero4, 0, pixels * sizeof(cl_float4));
+  m.cl.queue().enqueueFillBuffer(sumSq, zero4, 0, pixels * sizeof(cl_float4));
 
   m.generate.setArg(0, frameBuf);
   m.generate.setArg(3, rays);
@@ -157,19 +112,19 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
     const cl_ulong waveStart = first + done;
     const cl_uint count = cl_uint(std::min(wave, total - done));
     const cl_uint zero = 0;
-    m.queue.enqueueFillBuffer(rayCount, count, 0, sizeof(cl_uint));
-    m.queue.enqueueFillBuffer(queueCount, zero, 0, sizeof(cl_uint));
+    m.cl.queue().enqueueFillBuffer(rayCount, count, 0, sizeof(cl_uint));
+    m.cl.queue().enqueueFillBuffer(queueCount, zero, 0, sizeof(cl_uint));
     for (cl::Kernel* k : {&m.generate, &m.shadeAo, &m.accumulate}) {
       k->setArg(1, waveStart);
       k->setArg(2, count);
     }
-    m.launch(m.generate, "generate", count);
-    m.launch(m.intersect, "intersect", count);
-    m.launch(m.shadeAo, "shade_ao", count);
-    m.launch(m.intersectShadow, "intersect_shadow", std::uint64_t(count) * slots);
-    m.launch(m.accumulate, "accumulate", std::min<std::uint64_t>(count, pixels));
+    m.cl.launch(m.generate, count);
+    m.cl.launch(m.intersect, count);
+    m.cl.launch(m.shadeAo, count);
+    m.cl.launch(m.intersectShadow, std::uint64_t(count) * slots);
+    m.cl.launch(m.accumulate, std::min<std::uint64_t>(count, pixels));
     cl_uint shadowCount = 0;
-    m.queue.enqueueReadBuffer(queueCount, CL_TRUE, 0, sizeof(cl_uint), &shadowCount);
+    m.cl.queue().enqueueReadBuffer(queueCount, CL_TRUE, 0, sizeof(cl_uint), &shadowCount);
     done += count;
     stats.waves++;
     stats.cameraRays += count;
@@ -183,8 +138,8 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   film.height = int(frame.height);
   film.sum.resize(pixels);
   film.sumSq.resize(pixels);
-  m.queue.enqueueReadBuffer(sum, CL_FALSE, 0, pixels * sizeof(cl_float4), film.sum.data());
-  m.queue.enqueueReadBuffer(sumSq, CL_TRUE, 0, pixels * sizeof(cl_float4), film.sumSq.data());
+  m.cl.queue().enqueueReadBuffer(sum, CL_FALSE, 0, pixels * sizeof(cl_float4), film.sum.data());
+  m.cl.queue().enqueueReadBuffer(sumSq, CL_TRUE, 0, pixels * sizeof(cl_float4), film.sumSq.data());
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return film;
 }

@@ -3,14 +3,21 @@
 #pragma once
 #include "types.h"
 
-// Slab test against [bmin, bmax]; returns the entry distance, or 1e30f-ish miss marker (+INF) when
-// the ray misses or the box lies beyond tmax. invDir may hold infinities (axis-parallel rays).
+// Slab test against the closed box [bmin, bmax]; returns the entry distance (>= 0), or INFINITY
+// when the ray misses or the box lies beyond tmax. invDir may hold infinities (axis-parallel rays).
+// The near and far planes of each axis are picked by the sign of invDir (-0 directions give -inf).
+// A ray parallel to an axis and lying exactly in one of that axis's face planes gives 0 * inf =
+// NaN there; fmax/fmin return the other operand, so that slab then constrains nothing and the ray
+// enters the box, as it must: ray_triangle counts hits on edges, which can lie in that face.
 MCL_INLINE float ray_box(float3 org, float3 invDir, float3 bmin, float3 bmax, float tmax) {
-  float tx1 = (bmin.x - org.x) * invDir.x, tx2 = (bmax.x - org.x) * invDir.x;
-  float ty1 = (bmin.y - org.y) * invDir.y, ty2 = (bmax.y - org.y) * invDir.y;
-  float tz1 = (bmin.z - org.z) * invDir.z, tz2 = (bmax.z - org.z) * invDir.z;
-  float tmin = fmax(fmax(fmin(tx1, tx2), fmin(ty1, ty2)), fmax(fmin(tz1, tz2), 0.0f));
-  float tmx = fmin(fmin(fmax(tx1, tx2), fmax(ty1, ty2)), fmin(fmax(tz1, tz2), tmax));
+  float nx = ((invDir.x < 0.0f ? bmax.x : bmin.x) - org.x) * invDir.x;
+  float fx = ((invDir.x < 0.0f ? bmin.x : bmax.x) - org.x) * invDir.x;
+  float ny = ((invDir.y < 0.0f ? bmax.y : bmin.y) - org.y) * invDir.y;
+  float fy = ((invDir.y < 0.0f ? bmin.y : bmax.y) - org.y) * invDir.y;
+  float nz = ((invDir.z < 0.0f ? bmax.z : bmin.z) - org.z) * invDir.z;
+  float fz = ((invDir.z < 0.0f ? bmin.z : bmax.z) - org.z) * invDir.z;
+  float tmin = fmax(fmax(nx, ny), fmax(nz, 0.0f));
+  float tmx = fmin(fmin(fx, fy), fmin(fz, tmax));
   return tmin <= tmx ? tmin : INFINITY;
 }
 

@@ -20,7 +20,10 @@ MCL_INLINE Hit bvh_closest_hit(MCL_GLOBAL const BvhNode* nodes, MCL_GLOBAL const
   uint stack[MCL_BVH_STACK_SIZE];
   uint sp = 0;
   uint node = 0;
-  if (node_entry(&nodes[0], org, invDir, hit.t) == INFINITY) return hit;
+  if (node_entry(&nodes[0], org, invDir, hit.t) == INFINITY) {
+    hit.t = INFINITY;  // a miss reads t = INFINITY whichever way it is found
+    return hit;
+  }
   for (;;) {
     MCL_GLOBAL const BvhNode* n = &nodes[node];
     if (n->triCount > 0) {

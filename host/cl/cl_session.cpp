@@ -1,0 +1,44 @@
+// cl_session.cpp: context, queue, cached program build and named kernel launches.
+#include "cl/cl_session.h"
+
+#include <algorithm>
+
+#include "cl/cl_errors.h"
+#include "cl/kernel_source.h"
+#include "util/errors.h"
+
+namespace montecl {
+
+ClSession::ClSession(const DeviceInfo& device, std::size_t workGroupSize)
+    : device_(device), workGroupSize_(workGroupSize) {
+  context_ = cl::Context(device.device);
+  queue_ = cl::CommandQueue(context_, device.device);
+  build_ = buildProgramCached(context_, device, expandedKernelSource("montecl.cl"), kKernelBuildOptions);
+}
+
+cl::Kernel ClSession::kernel(const char* name) const {
+  try {
+    return cl::Kernel(build_.program, name);
+  } catch (const cl::Error& e) {
+    throw RuntimeError(std::string("kernel ") + name + ": " + describeClError(e));
+  }
+}
+
+std::size_t ClSession::localSize(const cl::Kernel& k) const {
+  std::size_t maxSize = k.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device_.device);
+  std::size_t want = workGroupSize_ ? workGroupSize_ : 64;
+  return std::max<std::size_t>(1, std::min(want, maxSize));
+}
+
+void ClSession::launch(cl::Kernel& k, std::uint64_t n) {
+  if (n == 0) return;
+  std::size_t local = localSize(k);
+  std::size_t global = ((n + local - 1) / local) * local;
+  try {
+    queue_.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(global), cl::NDRange(local));
+  } catch (const cl::Error& e) {
+    throw RuntimeError("kernel " + k.getInfo<CL_KERNEL_FUNCTION_NAME>() + ": " + describeClError(e));
+  }
+}
+
+}  // namespace montecl

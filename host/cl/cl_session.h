@@ -1,0 +1,48 @@
+// cl_session.h: one OpenCL context + in-order queue on a device, with montecl's kernel program
+// (kernels/montecl.cl) built through the program cache, and kernel launches that name the kernel
+// when they fail.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "cl/devices.h"
+#include "cl/program_cache.h"
+
+namespace montecl {
+
+constexpr const char* kKernelBuildOptions = "-cl-std=CL1.2";
+
+class ClSession {
+ public:
+  // workGroupSize 0: min(64, CL_KERNEL_WORK_GROUP_SIZE) per kernel.
+  explicit ClSession(const DeviceInfo& device, std::size_t workGroupSize = 0);
+
+  const DeviceInfo& device() const { return device_; }
+  const cl::Context& context() const { return context_; }
+  cl::CommandQueue& queue() { return queue_; }
+  const ProgramBuild& build() const { return build_; }
+  cl::Kernel kernel(const char* name) const;
+
+  // Launches k over n work items (global size rounded up to whole work-groups).
+  void launch(cl::Kernel& k, std::uint64_t n);
+  std::size_t localSize(const cl::Kernel& k) const;
+
+  template <typename T>
+  cl::Buffer upload(const std::vector<T>& data, cl_mem_flags flags = CL_MEM_READ_ONLY) const {
+    return cl::Buffer(context_, flags | CL_MEM_COPY_HOST_PTR, std::max<std::size_t>(1, data.size()) * sizeof(T),
+                      data.empty() ? nullptr : const_cast<T*>(data.data()));
+  }
+  template <typename T>
+  cl::Buffer buffer(std::size_t count, cl_mem_flags flags = CL_MEM_READ_WRITE) const {
+    return cl::Buffer(context_, flags, std::max<std::size_t>(1, count) * sizeof(T));
+  }
+
+ private:
+  DeviceInfo device_;
+  std::size_t workGroupSize_;
+  cl::Context context_;
+  cl::CommandQueue queue_;
+  ProgramBuild build_;
+};
+
+}  // namespace montecl

@@ -1,0 +1,51 @@
+// ray_tracer.cpp: one-shot launches of the intersect and intersect_shadow kernels.
+#include "render/ray_tracer.h"
+
+namespace montecl {
+
+RayTracer::RayTracer(ClSession& session, const Bvh& bvh)
+    : cl_(session), nodes_(session.upload(bvh.nodes)), tris_(session.upload(bvh.triangles)),
+      intersect_(session.kernel("intersect")), intersectShadow_(session.kernel("intersect_shadow")) {}
+
+std::vector<Hit> RayTracer::closest(const std::vector<Ray>& rays) {
+  std::vector<Hit> hits(rays.size());
+  if (rays.empty()) return hits;
+  cl::Buffer rayBuf = cl_.upload(rays);
+  cl::Buffer count = cl_.upload(std::vector<cl_uint>{cl_uint(rays.size())});
+  cl::Buffer hitBuf = cl_.buffer<Hit>(rays.size());
+  intersect_.setArg(0, nodes_);
+  intersect_.setArg(1, tris_);
+  intersect_.setArg(2, rayBuf);
+  intersect_.setArg(3, count);
+  intersect_.setArg(4, hitBuf);
+  cl_.launch(intersect_, rays.size());
+  cl_.queue().enqueueReadBuffer(hitBuf, CL_TRUE, 0, hits.size() * sizeof(Hit), hits.data());
+  return hits;
+}
+
+std::vector<int> RayTracer::occluded(const std::vector<Ray>& rays) {
+  std::vector<int> result(rays.size());
+  if (rays.empty()) return result;
+  // Query k writes 1 to slot k when unblocked; slots start at 0.
+  std::vector<ShadowWork> work(rays.size());
+  for (std::size_t k = 0; k < rays.size(); ++k) {
+    work[k].ray = rays[k];
+    work[k].r = work[k].g = work[k].b = 1.0f;
+    work[k].slot = cl_uint(k);
+  }
+  cl::Buffer workBuf = cl_.upload(work);
+  cl::Buffer count = cl_.upload(std::vector<cl_uint>{cl_uint(rays.size())});
+  std::vector<cl_float4> contrib(rays.size(), cl_float4{{0.0f, 0.0f, 0.0f, 0.0f}});
+  cl::Buffer contribBuf = cl_.upload(contrib, CL_MEM_READ_WRITE);
+  intersectShadow_.setArg(0, nodes_);
+  intersectShadow_.setArg(1, tris_);
+  intersectShadow_.setArg(2, workBuf);
+  intersectShadow_.setArg(3, count);
+  intersectShadow_.setArg(4, contribBuf);
+  cl_.launch(intersectShadow_, rays.size());
+  cl_.queue().enqueueReadBuffer(contribBuf, CL_TRUE, 0, contrib.size() * sizeof(cl_float4), contrib.data());
+  for (std::size_t k = 0; k < rays.size(); ++k) result[k] = contrib[k].s[0] == 1.0f ? 0 : 1;
+  return result;
+}
+
+}  // namespace montecl
