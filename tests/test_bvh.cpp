@@ -154,13 +154,17 @@ struct RefHit {
   std::uint32_t tri = MCL_NO_HIT;  // input index
 };
 
-RefHit bruteClosest(const std::vector<SceneTriangle>& tris, vec3 o, vec3 d, float tmax) {
+// Every triangle in input order, (v0, e1, e2) computed as the builder does.
+struct BruteTri {
+  vec3 v0, e1, e2;
+};
+
+RefHit bruteClosest(const std::vector<BruteTri>& tris, vec3 o, vec3 d, float tmax) {
   RefHit h;
   float best = tmax;
   for (std::uint32_t i = 0; i < tris.size(); ++i) {
-    vec3 v0 = tris[i].v[0];
     float u, v;
-    float t = ray_triangle(o, d, v0, tris[i].v[1] - v0, tris[i].v[2] - v0, best, &u, &v);
+    float t = ray_triangle(o, d, tris[i].v0, tris[i].e1, tris[i].e2, best, &u, &v);
     if (t < best) {
       best = t;
       h.t = t;
@@ -261,9 +265,11 @@ struct CompareStats {
 // Brute force over all rays, split across two threads (no doctest macros inside).
 std::vector<RefHit> bruteForceAll(const std::vector<SceneTriangle>& tris,
                                   const std::vector<TestRay>& rays) {
+  std::vector<BruteTri> bt;
+  for (const auto& t : tris) bt.push_back({t.v[0], t.v[1] - t.v[0], t.v[2] - t.v[0]});
   std::vector<RefHit> out(rays.size());
   auto work = [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i) out[i] = bruteClosest(tris, rays[i].o, rays[i].d, rays[i].tmax);
+    for (std::size_t i = b; i < e; ++i) out[i] = bruteClosest(bt, rays[i].o, rays[i].d, rays[i].tmax);
   };
   std::size_t half = rays.size() / 2;
   auto other = std::async(std::launch::async, work, half, rays.size());
@@ -272,8 +278,9 @@ std::vector<RefHit> bruteForceAll(const std::vector<SceneTriangle>& tris,
   return out;
 }
 
-// Closest and any hit through the BVH vs brute force. A different triangle is accepted only when
-// its t equals the reference t within a relative 1e-6 (coplanar/duplicate ties).
+// Closest and any hit through the BVH vs brute force: the same hit/miss, and the same triangle
+// with t within a relative 1e-6, or a different triangle with t within a relative 1e-5 (a tie
+// between coplanar or duplicate triangles, whose t differ by float rounding only).
 CompareStats compareWithBruteForce(const std::vector<SceneTriangle>& tris, const Bvh& bvh,
                                    const std::vector<TestRay>& rays) {
   CompareStats s;
@@ -290,13 +297,15 @@ CompareStats compareWithBruteForce(const std::vector<SceneTriangle>& tris, const
     bool ok = refHit == hit && (hit || h.tri == MCL_NO_HIT);
     if (ok && hit) {
       std::uint32_t id = bvh.order[h.tri];
-      ok = std::fabs(h.t - ref.t) <= 1e-6f * std::fabs(ref.t);
+      float tol = (id == ref.tri ? 1e-6f : 1e-5f) * std::fabs(ref.t);
+      ok = std::fabs(h.t - ref.t) <= tol;
       if (ok && id != ref.tri) ++s.ties;
     }
     if (ok && !hit) ok = h.t == kInf;
     if (!ok) {
       if (s.closestMismatch++ == 0) {
         std::ostringstream m;
+        m.precision(9);
         m << "closest mismatch: o=(" << r.o.x << "," << r.o.y << "," << r.o.z << ") d=(" << r.d.x
           << "," << r.d.y << "," << r.d.z << ") tmax=" << r.tmax << " ref t=" << ref.t
           << " tri=" << ref.tri << " bvh t=" << h.t << " tri="
@@ -581,19 +590,19 @@ TEST_CASE("bvh: structure invariants on random soups") {
 TEST_CASE("bvh: closest and any hit equal brute force on random soups") {
   std::mt19937 rng(7);
   struct Case {
-    const char* name;
+    std::string name;
     std::vector<SceneTriangle> tris;
     std::size_t rays;
     bool snap;
   };
   std::vector<Case> cases;
-  cases.push_back({"random 7", randomSoup(7, 0.3f, rng), 10000, false});
-  cases.push_back({"random 100", randomSoup(100, 0.1f, rng), 20000, false});
+  cases.push_back({"random 7", randomSoup(7, 0.3f, rng), 20000, false});
+  cases.push_back({"random 100", randomSoup(100, 0.1f, rng), 25000, false});
   cases.push_back({"random 2000", randomSoup(2000, 0.03f, rng), 20000, false});
-  cases.push_back({"tiny 20000", randomSoup(20000, 1e-4f, rng), 8000, false});
-  cases.push_back({"thin 3000", thinSoup(3000, rng), 15000, false});
-  cases.push_back({"grid 3000", gridSoup(3000, rng), 20000, true});
-  cases.push_back({"mixed 5000", mixedSoup(5000, rng), 12000, false});
+  cases.push_back({"tiny 10000", randomSoup(10000, 1e-4f, rng), 6000, false});
+  cases.push_back({"thin 2000", thinSoup(2000, rng), 12000, false});
+  cases.push_back({"grid 2000", gridSoup(2000, rng), 15000, true});
+  cases.push_back({"mixed 5000", mixedSoup(5000, rng), 8000, false});
   std::size_t total = 0;
   for (const Case& c : cases) {
     CAPTURE(c.name);
@@ -618,7 +627,7 @@ TEST_CASE("bvh: closest and any hit equal brute force on the Stanford bunny") {
   MESSAGE("bunny: " << tris.size() << " triangles, " << bvh.nodes.size() << " nodes, depth "
                     << bvh.depth << ", SAH " << bvh.sahCost << ", " << bvh.buildMs << " ms");
   std::mt19937 rng(3);
-  checkAgainstBruteForce(tris, bvh, makeRays(tris, 3000, rng));
+  checkAgainstBruteForce(tris, bvh, makeRays(tris, 2000, rng));
 }
 
 TEST_CASE("bvh: 10k triangles sharing one centroid") {
@@ -684,7 +693,7 @@ TEST_CASE("bvh: depth stays within the cap") {
 TEST_CASE("bvh: binned SAH cost is close to a full-sweep SAH build and beats a median build") {
   std::mt19937 rng(13);
   struct Case {
-    const char* name;
+    std::string name;
     std::vector<SceneTriangle> tris;
     double slack;  // allowed excess over the full sweep
   };

@@ -29,7 +29,7 @@ TEST_CASE("pcg4d is injective on a grid of inputs") {
   CHECK(seen.size() == 64u * 64u * 4u * 4u);
 }
 
-TEST_CASE("rng numbers are uniform in [0, 1) in every component") {
+TEST_CASE("rng numbers are uniform on the unit interval in every component") {
   const int bins = 64, n = 200000;
   std::vector<std::vector<double>> counts(4, std::vector<double>(bins, 0.0));
   for (int i = 0; i < n; ++i) {

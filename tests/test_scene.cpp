@@ -390,9 +390,9 @@ TEST_CASE("shared scenes: all load, fast enough to report") {
     std::vector<std::string> warnings;
     Scene scene = montecl::loadScene(file.string(), warnings);
     double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    MESSAGE(name << ": " << scene.triangles.size() << " triangles, " << scene.degenerateDropped
+    MESSAGE(std::string(name) << ": " << scene.triangles.size() << " triangles, " << scene.degenerateDropped
                  << " degenerate dropped, " << scene.materials.size() << " materials, loaded in " << ms << " ms");
-    INFO(name);
+    INFO(std::string(name));
     CHECK(warnings.empty());
     CHECK(scene.triangles.size() > 30);
     std::size_t emitters = 0;

@@ -29,7 +29,7 @@ MCL_INLINE Hit bvh_closest_hit(MCL_GLOBAL const BvhNode* nodes, MCL_GLOBAL const
     if (n->triCount > 0) {
       for (uint i = 0; i < n->triCount; ++i) {
         uint ti = n->leftFirst + i;
-        float u, v;
+        float u = 0.0f, v = 0.0f;
         float t = ray_triangle(org, dir, xyz(tris[ti].v0), xyz(tris[ti].e1), xyz(tris[ti].e2),
                                hit.t, &u, &v);
         if (t < hit.t) {
@@ -76,7 +76,7 @@ MCL_INLINE int bvh_any_hit(MCL_GLOBAL const BvhNode* nodes, MCL_GLOBAL const Tri
     if (n->triCount > 0) {
       for (uint i = 0; i < n->triCount; ++i) {
         uint ti = n->leftFirst + i;
-        float u, v;
+        float u = 0.0f, v = 0.0f;
         if (ray_triangle(org, dir, xyz(tris[ti].v0), xyz(tris[ti].e1), xyz(tris[ti].e2), tmax, &u,
                          &v) < tmax)
           return 1;
