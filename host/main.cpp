@@ -13,6 +13,10 @@ int main(int argc, char** argv) {
   int exitCode = kExitOk;
   addDevicesCommand(app, exitCode);
   addRenderCommand(app, exitCode);
+  addIntegrateCommand(app, exitCode);
+  addMergeCommand(app, exitCode);
+  addBenchCommand(app, exitCode);
+  addGenerateCommand(app, exitCode);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

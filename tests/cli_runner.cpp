@@ -33,8 +33,8 @@ std::string tempRoot() {
 struct CaptureFile {
   CaptureFile() {
     path = tempRoot() + "/montecl-cli-XXXXXX";
-    fd = ::mkstemp(&path[0]);
-    if (fd < 0) throw std::runtime_error("mkstemp failed for " + path);
+    fd = ::mkostemp(&path[0], O_CLOEXEC);  // the child gets it only through dup2
+    if (fd < 0) throw std::runtime_error("mkostemp failed for " + path);
   }
   ~CaptureFile() {
     if (fd >= 0) ::close(fd);

@@ -648,7 +648,7 @@ TEST_CASE("bvh: 10k triangles sharing one centroid") {
     Bvh bvh = buildBvh(*tris);
     checkStructure(*tris, bvh, 4);
     CHECK(bvh.depth < MCL_BVH_STACK_SIZE);
-    checkAgainstBruteForce(*tris, bvh, makeRays(*tris, 1500, rng), 0.1);
+    checkAgainstBruteForce(*tris, bvh, makeRays(*tris, 1000, rng), 0.1);
   }
 }
 

@@ -225,6 +225,18 @@ TEST_CASE("OBJ: quads and polygons are triangulated, negative indices resolved")
   for (const auto& t : scene.triangles) CHECK(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]).z > 0);
 }
 
+TEST_CASE("OBJ: CRLF line ends, a byte order mark, tabs and comments are accepted") {
+  TempDir dir;
+  dir.write("dos.obj", "\xEF\xBB\xBFv 0 0 0\r\n# comment\r\n\tv\t1 0 0\r\nv 0 1 0 1.0\r\n\r\nf 1 2 3\r\n");
+  std::vector<std::string> warnings;
+  Scene scene = montecl::loadScene(dir.file("dos.obj"), warnings);
+  CHECK(warnings.empty());
+  REQUIRE(scene.triangles.size() == 1);
+  CHECK(scene.triangles[0].v[0] == glm::vec3(0, 0, 0));
+  CHECK(scene.triangles[0].v[1] == glm::vec3(1, 0, 0));
+  CHECK(scene.triangles[0].v[2] == glm::vec3(0, 1, 0));
+}
+
 TEST_CASE("OBJ: degenerate triangles are dropped and counted, and do not grow the bounds") {
   TempDir dir;
   dir.write("degenerate.obj",
@@ -322,6 +334,13 @@ TEST_CASE("OBJ: missing MTL and unknown statements are warnings, not errors") {
   CHECK(materialOf(scene, 0).albedo == glm::vec3(0.5f));
   CHECK(containsWarning(warnings, "m.obj", "nowhere.mtl"));
   CHECK(containsWarning(warnings, "line 5", "frobnicate"));
+  dir.write("n.mtl", "newmtl brick\nKd 0.3 0.2 0.1\n");
+  dir.write("n.obj", "mtllib n.mtl\nusemtl marble\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  warnings.clear();
+  scene = montecl::loadScene(dir.file("n.obj"), warnings);
+  REQUIRE(scene.triangles.size() == 1);
+  CHECK(materialOf(scene, 0).albedo == glm::vec3(0.5f));
+  CHECK(containsWarning(warnings, "n.obj", "marble"));
   for (const std::string& w : warnings) CHECK(w.find('\n') == std::string::npos);
 }
 

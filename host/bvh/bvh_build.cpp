@@ -8,7 +8,9 @@
 // plus sum over leaves of Ci * count(n) * A(n)/A(root).
 //
 // Build. Each node bins its triangles' bounding-box centroids into `bins` (default 16, 2..256)
-// equal bins along each axis of the centroid bounds and evaluates the bins-1 planes per axis. A node
+// equal bins along each axis of the centroid bounds and evaluates the bins-1 planes per axis; nodes
+// of at most 16 triangles instead sort their centroids on each axis and evaluate every object split
+// (exact, and cheaper than binning at that size). A node
 // with at most maxLeafSize (default 4, 1..16) triangles becomes a leaf unless the best split is
 // cheaper than the leaf; a larger node is always split, by the best binned plane even if a leaf
 // would be cheaper, so no leaf ever holds more than maxLeafSize (hard cap 16). When binning cannot
@@ -20,9 +22,11 @@
 //
 // Memory: one 32-byte reference per triangle (bounds + input index) partitioned in place, the node
 // array (reserved at 2n-1 entries but only touched as used), then the 48-byte output triangles and
-// the 4-byte order; peak is about 130 bytes per triangle besides the input. Subtrees of at least 64k
-// triangles near the root are built on separate threads (one extra level per doubling of
-// std::thread::hardware_concurrency); the result is identical to the single-threaded build.
+// the 4-byte order: about 125 bytes per triangle at the peak besides the input (the node count
+// depends on the scene: 1 to 1.9 per triangle with the default costs). Near the root, the right
+// subtree of a node with at least 64k triangles is built on another thread (one such level per
+// doubling of std::thread::hardware_concurrency) into its own vector and appended; the result is
+// identical to the single-threaded build.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -41,6 +45,7 @@ namespace {
 constexpr int kMaxDepth = MCL_BVH_STACK_SIZE - 1;  // deepest leaf, in edges from the root
 constexpr int kMaxLeafCap = 16;
 constexpr int kMaxBins = 256;
+constexpr std::size_t kSweepMax = 16;  // nodes this small evaluate every object split exactly
 constexpr std::size_t kParallelMin = std::size_t(1) << 16;  // smallest subtree given its own thread
 
 struct Box {
@@ -134,6 +139,7 @@ struct Builder {
     float rightArea[kMaxBins];
     std::size_t rightCount[kMaxBins];
     std::size_t n = end - begin;
+    float ciOverArea = ci / area;
     for (int a = 0; a < 3; ++a) {
       if (!ok[a]) continue;
       Box acc;
@@ -150,8 +156,8 @@ struct Builder {
         acc.grow(binArr[a][k].lo, binArr[a][k].hi);
         cnt += binArr[a][k].count;
         if (cnt == 0 || cnt == n) continue;
-        float cost = ct + ci * (acc.halfArea() * static_cast<float>(cnt) +
-                                rightArea[k + 1] * static_cast<float>(rightCount[k + 1])) / area;
+        float cost = ct + ciOverArea * (acc.halfArea() * static_cast<float>(cnt) +
+                                        rightArea[k + 1] * static_cast<float>(rightCount[k + 1]));
         if (best.axis < 0 || cost < best.cost) {
           best.axis = a;
           best.bin = k;
@@ -161,6 +167,65 @@ struct Builder {
       }
     }
     return best;
+  }
+
+  // Stable insertion sort of the n (<= kSweepMax) triangles at begin by centroid along axis a.
+  void sortSmall(std::size_t begin, std::size_t n, int a, std::uint8_t* idx) const {
+    for (std::size_t i = 0; i < n; ++i) {
+      std::uint8_t v = static_cast<std::uint8_t>(i);
+      float c = prims[begin + v].centroid()[a];
+      std::size_t j = i;
+      for (; j > 0 && prims[begin + idx[j - 1]].centroid()[a] > c; --j) idx[j] = idx[j - 1];
+      idx[j] = v;
+    }
+  }
+
+  // Exact SAH for a small node: every object split along each axis (nLeft = left count).
+  Split findSweepSplit(std::size_t begin, std::size_t end, const Box& bounds) const {
+    Split best;
+    float area = bounds.halfArea();
+    if (!(area > 0.0f)) return best;
+    std::size_t n = end - begin;
+    float ciOverArea = ci / area;
+    std::uint8_t idx[kSweepMax];
+    float rightArea[kSweepMax];
+    for (int a = 0; a < 3; ++a) {
+      sortSmall(begin, n, a, idx);
+      Box acc;
+      for (std::size_t k = n - 1; k > 0; --k) {  // rightArea[k]: sorted k..n-1
+        acc.grow(prims[begin + idx[k]].lo, prims[begin + idx[k]].hi);
+        rightArea[k] = acc.halfArea();
+      }
+      acc = Box();
+      for (std::size_t k = 1; k < n; ++k) {  // left: sorted 0..k-1
+        acc.grow(prims[begin + idx[k - 1]].lo, prims[begin + idx[k - 1]].hi);
+        float cost = ct + ciOverArea * (acc.halfArea() * static_cast<float>(k) +
+                                        rightArea[k] * static_cast<float>(n - k));
+        if (best.axis < 0 || cost < best.cost) {
+          best.axis = a;
+          best.cost = cost;
+          best.nLeft = k;
+        }
+      }
+    }
+    return best;
+  }
+
+  // Reorders a small node along the sweep split's axis; returns the first right index.
+  std::size_t partitionSweep(std::size_t begin, std::size_t end, const Split& s, Box child[2],
+                             Box childC[2]) const {
+    std::size_t n = end - begin;
+    std::uint8_t idx[kSweepMax];
+    PrimRef tmp[kSweepMax];
+    sortSmall(begin, n, s.axis, idx);
+    for (std::size_t i = 0; i < n; ++i) tmp[i] = prims[begin + idx[i]];
+    for (std::size_t i = 0; i < n; ++i) {
+      prims[begin + i] = tmp[i];
+      int side = i < s.nLeft ? 0 : 1;
+      child[side].grow(tmp[i].lo, tmp[i].hi);
+      childC[side].grow(tmp[i].centroid());
+    }
+    return begin + s.nLeft;
   }
 
   // Partitions prims[begin, end) by the split; returns the first right index and child bounds.
@@ -223,14 +288,16 @@ struct Builder {
     std::size_t mid = 0;
     bool split = false;
     if (n > 1) {
-      Split s = findSahSplit(begin, end, bounds, cbounds);
+      bool small = n <= kSweepMax;
+      Split s = small ? findSweepSplit(begin, end, bounds) : findSahSplit(begin, end, bounds, cbounds);
       bool useSah = s.axis >= 0 && (mustSplit || s.cost < ci * static_cast<float>(n));
       if (useSah && depth + 1 + medianHeight(std::max(s.nLeft, n - s.nLeft)) > maxDepth) {
         useSah = false;  // that child could not be finished within the stack; split at the median
         mustSplit = true;
       }
       if (useSah) {
-        mid = partitionSah(begin, end, cbounds, s, child, childC);
+        mid = small ? partitionSweep(begin, end, s, child, childC)
+                    : partitionSah(begin, end, cbounds, s, child, childC);
         split = true;
       } else if (mustSplit) {
         mid = partitionMedian(begin, end, cbounds, child, childC);
@@ -245,32 +312,29 @@ struct Builder {
     std::size_t childBase = out.size();
     out[idx].leftFirst = static_cast<std::uint32_t>(childBase);
     out[idx].triCount = 0;
+    out.emplace_back();
+    out.emplace_back();
     if (parallelLevels > 0 && n >= kParallelMin) {
-      // Each child subtree is built into its own vector on its own thread, then spliced in with
-      // the exact layout the sequential build produces: [left, right, left's descendants, right's].
-      auto sub = [&, depth, parallelLevels](std::size_t b, std::size_t e, int side,
-                                            std::vector<BvhNode>& v) {
-        v.reserve(2 * (e - b) - 1);
-        v.emplace_back();
-        return build(v, 0, b, e, child[side], childC[side], depth + 1, parallelLevels - 1);
-      };
-      std::vector<BvhNode> vl, vr;
-      auto right = std::async(std::launch::async, sub, mid, end, 1, std::ref(vr));
-      int dl = sub(begin, mid, 0, vl);
+      // The right subtree is built on another thread into its own vector while this thread builds
+      // the left one in place; the right one is then appended, giving the sequential layout:
+      // [left, right, left's descendants, right's descendants].
+      std::vector<BvhNode> vr;
+      auto right = std::async(std::launch::async, [&, depth, parallelLevels] {
+        vr.reserve(2 * (end - mid) - 1);
+        vr.emplace_back();
+        return build(vr, 0, mid, end, child[1], childC[1], depth + 1, parallelLevels - 1);
+      });
+      int dl = build(out, childBase, begin, mid, child[0], childC[0], depth + 1, parallelLevels - 1);
       int dr = right.get();
-      auto remap = [](BvhNode node, std::size_t offset) {
+      std::size_t offset = out.size() - 1;  // vr[k] (k >= 1) lands at out[offset + k]
+      auto remap = [offset](BvhNode node) {
         if (node.triCount == 0) node.leftFirst = static_cast<std::uint32_t>(node.leftFirst + offset);
         return node;
       };
-      std::size_t offL = childBase + 1, offR = childBase + vl.size();
-      out.push_back(remap(vl[0], offL));
-      out.push_back(remap(vr[0], offR));
-      for (std::size_t k = 1; k < vl.size(); ++k) out.push_back(remap(vl[k], offL));
-      for (std::size_t k = 1; k < vr.size(); ++k) out.push_back(remap(vr[k], offR));
+      out[childBase + 1] = remap(vr[0]);
+      for (std::size_t k = 1; k < vr.size(); ++k) out.push_back(remap(vr[k]));
       return std::max(dl, dr);
     }
-    out.emplace_back();
-    out.emplace_back();
     int dl = build(out, childBase, begin, mid, child[0], childC[0], depth + 1, parallelLevels);
     int dr = build(out, childBase + 1, mid, end, child[1], childC[1], depth + 1, parallelLevels);
     return std::max(dl, dr);

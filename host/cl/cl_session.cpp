@@ -9,10 +9,10 @@
 
 namespace montecl {
 
-ClSession::ClSession(const DeviceInfo& device, std::size_t workGroupSize)
+ClSession::ClSession(const DeviceInfo& device, std::size_t workGroupSize, bool profiling)
     : device_(device), workGroupSize_(workGroupSize) {
   context_ = cl::Context(device.device);
-  queue_ = cl::CommandQueue(context_, device.device);
+  queue_ = cl::CommandQueue(context_, device.device, profiling ? CL_QUEUE_PROFILING_ENABLE : 0);
   build_ = buildProgramCached(context_, device, expandedKernelSource("montecl.cl"), kKernelBuildOptions);
 }
 

@@ -14,8 +14,9 @@ constexpr const char* kKernelBuildOptions = "-cl-std=CL1.2";
 
 class ClSession {
  public:
-  // workGroupSize 0: min(64, CL_KERNEL_WORK_GROUP_SIZE) per kernel.
-  explicit ClSession(const DeviceInfo& device, std::size_t workGroupSize = 0);
+  // workGroupSize 0: min(64, CL_KERNEL_WORK_GROUP_SIZE) per kernel. profiling: the queue is
+  // created with CL_QUEUE_PROFILING_ENABLE (event timings, used by `montecl bench`).
+  explicit ClSession(const DeviceInfo& device, std::size_t workGroupSize = 0, bool profiling = false);
 
   const DeviceInfo& device() const { return device_; }
   const cl::Context& context() const { return context_; }

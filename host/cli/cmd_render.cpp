@@ -17,8 +17,8 @@ namespace montecl {
 namespace {
 
 struct RenderArgs {
-  std::string scene, output, device, integrator, aoSampling;
-  std::optional<int> spp, width, height;
+  std::string scene, output, device, integrator, aoSampling, directSampling;
+  std::optional<int> spp, width, height, lightSamples;
   std::optional<std::uint32_t> seed;
   std::optional<float> aoDistance;
   std::uint64_t waveSize = 0;
@@ -35,8 +35,14 @@ void applyOverrides(const RenderArgs& a, Scene& scene) {
   if (!a.integrator.empty()) r.integrator = a.integrator;
   if (!a.aoSampling.empty()) r.aoSampling = a.aoSampling;
   if (a.aoDistance) r.aoDistance = *a.aoDistance;
-  if (r.integrator != "ao")
-    throwInputError(scene.path, "render.integrator", "integrator '" + r.integrator + "' is not available yet (use ao)");
+  if (!a.directSampling.empty()) r.directSampling = a.directSampling;
+  if (a.lightSamples) r.lightSamples = *a.lightSamples;
+}
+
+bool hasEmitter(const Scene& scene) {
+  for (const MaterialDesc& m : scene.materials)
+    if (m.emission.x > 0.0f || m.emission.y > 0.0f || m.emission.z > 0.0f) return true;
+  return false;
 }
 
 int runRender(const RenderArgs& a) {
@@ -50,6 +56,9 @@ int runRender(const RenderArgs& a) {
   DeviceInfo device = selectDevice(a.device);
 
   Bvh bvh = buildBvh(scene.triangles);
+  if (scene.render.integrator == "direct" && !hasEmitter(scene))
+    std::cerr << "montecl: warning: " << scene.path << ": integrator direct but nothing emits (no Ke, no mesh "
+              << "\"emission\"): the image is black\n";
   if (a.verbose) {
     std::cerr << "montecl: " << scene.triangles.size() << " triangles (" << scene.degenerateDropped
               << " degenerate dropped), " << scene.materials.size() << " materials\n"
@@ -90,7 +99,12 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--seed", args->seed, "Random seed");
   cmd->add_option("--width", args->width, "Image width in pixels")->check(CLI::PositiveNumber);
   cmd->add_option("--height", args->height, "Image height in pixels")->check(CLI::PositiveNumber);
-  cmd->add_option("--integrator", args->integrator, "ao")->check(CLI::IsMember({"ao", "direct"}));
+  cmd->add_option("--integrator", args->integrator, "ao (ambient occlusion) | direct (area lights)")
+      ->check(CLI::IsMember({"ao", "direct"}));
+  cmd->add_option("--direct-sampling", args->directSampling, "Direct lighting: light | brdf | mis")
+      ->check(CLI::IsMember({"light", "brdf", "mis"}));
+  cmd->add_option("--light-samples", args->lightSamples, "Light samples per camera sample (direct)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--ao-sampling", args->aoSampling, "AO directions: uniform | cosine")
       ->check(CLI::IsMember({"uniform", "cosine"}));
   cmd->add_option("--ao-distance", args->aoDistance, "Occluders farther than this are ignored")

@@ -7,5 +7,9 @@ namespace montecl {
 
 void addDevicesCommand(CLI::App& app, int& exitCode);
 void addRenderCommand(CLI::App& app, int& exitCode);
+void addIntegrateCommand(CLI::App& app, int& exitCode);
+void addMergeCommand(CLI::App& app, int& exitCode);
+void addBenchCommand(CLI::App& app, int& exitCode);     // cmd_bench.cpp
+void addGenerateCommand(CLI::App& app, int& exitCode);  // cmd_generate.cpp
 
 }  // namespace montecl

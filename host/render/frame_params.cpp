@@ -28,6 +28,10 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
   f.aoSampling = settings.aoSampling == "uniform" ? MCL_AO_UNIFORM : MCL_AO_COSINE;
   f.aoDistance = settings.aoDistance;
   f.shadowSlots = shadowSlots;
+  f.lightSamples = uint(settings.lightSamples);
+  f.directSampling = settings.directSampling == "light"  ? MCL_DIRECT_LIGHT
+                     : settings.directSampling == "brdf" ? MCL_DIRECT_BRDF
+                                                         : MCL_DIRECT_MIS;
   return f;
 }
 

@@ -48,11 +48,13 @@ std::string readWholeFile(const std::string& path) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) fail(path, "", std::string("cannot open: ") + std::strerror(errno));
   if (S_ISDIR(st.st_mode)) fail(path, "", "cannot open: is a directory");
+  if (!S_ISREG(st.st_mode)) fail(path, "", "cannot open: not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, "", std::string("cannot open: ") + std::strerror(errno));
   std::string text;
-  if (S_ISREG(st.st_mode)) text.reserve(static_cast<std::size_t>(st.st_size));
-  text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  char chunk[1 << 16];
+  text.reserve(static_cast<std::size_t>(st.st_size));
+  while (in.read(chunk, sizeof chunk) || in.gcount() > 0) text.append(chunk, static_cast<std::size_t>(in.gcount()));
   if (in.bad()) fail(path, "", "read error");
   return text;
 }
@@ -94,10 +96,21 @@ bool isKnownStatement(const std::string& kw) {
 }
 
 // First byte that cannot be in a text file (NUL or a control character other than whitespace).
+// A control character other than \t \n \v \f \r (branch-free, so the block scan vectorizes).
+unsigned char isBinaryByte(unsigned char u) {
+  return static_cast<unsigned char>((u < 0x20) & (static_cast<unsigned char>(u - '\t') > '\r' - '\t'));
+}
+
 const char* findBinaryByte(const std::string& text) {
-  for (const char& c : text) {
-    unsigned char u = static_cast<unsigned char>(c);
-    if (u < 0x20 && u != '\n' && u != '\r' && u != '\t' && u != '\f' && u != '\v') return &c;
+  const std::size_t block = 4096;
+  const auto* bytes = reinterpret_cast<const unsigned char*>(text.data());
+  for (std::size_t start = 0; start < text.size(); start += block) {
+    std::size_t end = std::min(text.size(), start + block);
+    unsigned char any = 0;
+    for (std::size_t i = start; i < end; ++i) any |= isBinaryByte(bytes[i]);
+    if (!any) continue;
+    for (std::size_t i = start; i < end; ++i)
+      if (isBinaryByte(static_cast<unsigned char>(text[i]))) return &text[i];
   }
   return nullptr;
 }
@@ -132,7 +145,9 @@ void scanFace(const std::string& file, std::size_t line, Tokens tok, ObjScan& sc
     const char* slash = std::find(b, e, '/');
     long index = 0;
     if (!parseIndex(b, slash, index))
-      fail(file, lineWhere(line), "bad face vertex '" + std::string(b, e) + "'");
+      fail(file, lineWhere(line), index == 0 && slash - b == 1 && *b == '0'
+                                      ? "face index 0 is invalid (OBJ indices start at 1)"
+                                      : "bad face vertex '" + std::string(b, e) + "'");
     for (const char* s = slash; s < e;) {  // optional vt / vn parts: empty or a nonzero integer
       const char* partEnd = std::find(s + 1, e, '/');
       long other = 0;
@@ -269,12 +284,12 @@ ObjData parseWithTinyObj(const std::string& file, std::string& text, std::vector
     for (const std::string& m : mtl.missing)
       warnings->push_back(oneLine(file) + ": material file '" + oneLine(m) + "' not found, using default material");
   }
-  // tinyobj's "not found" lines duplicate the ones above; keep its other warnings.
+  // tinyobj's own missing-file lines duplicate the ones above; keep its other warnings.
   std::string rest;
   std::istringstream lines(warn + err);
   std::string line;
   while (std::getline(lines, line))
-    if (line.find("not found") == std::string::npos && line.find("Failed to load material") == std::string::npos)
+    if (line.find("Material file [") == std::string::npos && line.find("Failed to load material") == std::string::npos)
       rest += line + "\n";
   addWarnings(file, rest, warnings);
   return data;
@@ -376,6 +391,7 @@ std::uint32_t defaultMaterialIndex(Scene& scene) {
 
 void loadObjInto(const std::string& objPath, Scene& scene, std::vector<std::string>* warnings) {
   std::string text = readWholeFile(objPath);
+  if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);  // UTF-8 byte order mark
   ObjScan scan = scanObjText(objPath, text);
   if (warnings && scan.unknownStatements > 0)
     warnings->push_back(oneLine(objPath) + ": " + lineWhere(scan.firstUnknownLine) + ": unknown OBJ statement '" +

@@ -50,6 +50,7 @@ std::string fileProblem(const std::string& path) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) return std::strerror(errno);
   if (S_ISDIR(st.st_mode)) return "is a directory";
+  if (!S_ISREG(st.st_mode)) return "not a regular file";
   std::ifstream in(path, std::ios::binary);
   if (!in) return std::strerror(errno);
   return "";

@@ -10,6 +10,9 @@
 #define MCL_INTEGRATOR_DIRECT 1u
 #define MCL_AO_UNIFORM 0u
 #define MCL_AO_COSINE 1u
+#define MCL_DIRECT_LIGHT 0u
+#define MCL_DIRECT_BRDF 1u
+#define MCL_DIRECT_MIS 2u
 
 // Flattened BVH node (32 bytes). Interior: triCount == 0 and leftFirst is the left child; the right
 // child is leftFirst + 1. Leaf: triCount > 0 triangles starting at leftFirst.
@@ -64,9 +67,22 @@ typedef struct MCL_ALIGN16 {
   uint width, height, seed, integrator;
   uint aoSampling;
   float aoDistance;
-  uint shadowSlots;   // shadow contributions per sample (1 for AO)
+  uint shadowSlots;   // shadow contributions per sample (AO: 1; direct: lightSamples + 1)
   uint pad0;
+  uint emitterCount;    // entries of the emitter table
+  uint lightSamples;    // direct lighting: light samples per camera sample
+  uint directSampling;  // MCL_DIRECT_LIGHT | MCL_DIRECT_BRDF | MCL_DIRECT_MIS
+  float emitterPower;   // sum over emitters of area * luminance(Le): the light-selection normaliser
 } FrameParams;
+
+// One emitting triangle. It is picked with probability area * luminance(Le) / emitterPower;
+// cdf is the running sum of those probabilities up to and including this entry.
+typedef struct MCL_ALIGN16 {
+  uint tri;  // index into the BVH-ordered triangles
+  float cdf;
+  float area;
+  float pad;
+} Emitter;
 
 #ifndef MCL_OPENCL
 #include <cstddef>
@@ -77,6 +93,7 @@ static_assert(sizeof(Material) == 32, "Material layout");
 static_assert(sizeof(Ray) == 32, "Ray layout");
 static_assert(sizeof(Hit) == 16, "Hit layout");
 static_assert(sizeof(ShadowWork) == 48, "ShadowWork layout");
-static_assert(sizeof(FrameParams) == 112, "FrameParams layout");
+static_assert(sizeof(FrameParams) == 128, "FrameParams layout");
+static_assert(sizeof(Emitter) == 16, "Emitter layout");
 static_assert(offsetof(FrameParams, width) == 80, "FrameParams layout");
 #endif

@@ -99,11 +99,11 @@ def sphere(obj, name, material, center, radius, slices, stacks):
 def main():
     obj = Obj()
     obj.object("floor", "floor")
-    obj.face(rect((0, 0, -0.5), (0, 0, 2.5), (3, 0, 0)))  # normal +y
+    obj.face(rect((0, 0, 0.75), (0, 0, 3.75), (4, 0, 0)))  # normal +y
     obj.object("wall", "wall")
-    obj.face(rect((0, 1.5, -3), (3, 0, 0), (0, 1.5, 0)))  # normal +z
+    obj.face(rect((0, 1.5, -3), (4, 0, 0), (0, 1.5, 0)))  # normal +z
     box(obj, "cube", "red", (-1.0, 0.4, -0.7), (0.8, 0.8, 0.8), 25)
-    box(obj, "tall_box", "blue", (0.95, 0.7, -1.4), (0.6, 1.4, 0.6), -20)
+    box(obj, "tall_box", "blue", (1.55, 0.7, -1.2), (0.6, 1.4, 0.6), -20)
     sphere(obj, "sphere", "white", (0.25, 0.5, 0.3), 0.5, 48, 24)
     sphere(obj, "small_sphere", "gold", (-0.75, 0.25, 0.75), 0.25, 32, 16)
     obj.object("light", "light")

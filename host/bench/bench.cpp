@@ -1,0 +1,344 @@
+// bench.cpp: the body of `montecl bench`. Steps: load the scene, build the BVH (build ms, nodes,
+// bytes per triangle, SAH cost), generate the seeded ray sets with host references (ray_sets.h),
+// time the `intersect` (closest hit: primary) and `intersect_shadow` (any hit: AO, shadow) kernels
+// with profiling events (warm-up + N repetitions, median and minimum), count mismatches against the
+// reference, then build and trace the same on Embree 3 and compute montecl/Embree ratios.
+//
+// JSON (all times in ms, throughput in Mrays/s, computed from the median time):
+// {"scene", "device", "platform", "driver_version", "compute_units", "cpu_model", "threads",
+//  "width", "height", "triangles", "emitters", "repeat", "rel_tolerance", "embree_version",
+//  "bvh": {"build_ms", "nodes", "depth", "sah_cost", "bytes", "bytes_per_triangle"},
+//  "embree": {"build_ms"}, "build_ratio" (montecl ms / Embree ms),
+//  "rays": [{"kind", "query", "count", "hits", "median_ms", "min_ms", "mrays_per_s",
+//            "best_mrays_per_s", "embree_median_ms", "embree_min_ms", "embree_mrays_per_s",
+//            "ratio" (montecl / Embree Mrays/s), "mismatches", "embree_mismatches",
+//            "host_ref_mrays_per_s" (the same traversal code compiled for the host, on T threads, one run)}],
+//  "peak_rss_mb", "mismatches_total"}
+#include "bench/bench.h"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "bench/embree_tracer.h"
+#include "bench/ray_sets.h"
+#include "bvh/bvh.h"
+#include "cl/cl_errors.h"
+#include "cl/cl_session.h"
+#include "cl/devices.h"
+#include "util/errors.h"
+
+namespace montecl {
+namespace {
+
+using nlohmann::json;
+
+struct Timing {
+  double medianMs = 0.0, minMs = 0.0;
+};
+
+Timing summarize(std::vector<double> ms) {
+  Timing t;
+  if (ms.empty()) return t;
+  std::sort(ms.begin(), ms.end());
+  std::size_t n = ms.size();
+  t.medianMs = n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
+  t.minMs = ms.front();
+  return t;
+}
+
+double peakRssMb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+std::string cpuModel() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) {
+      auto p = line.find(':');
+      if (p != std::string::npos) return line.substr(line.find_first_not_of(" \t", p + 1));
+    }
+  return "unknown";
+}
+
+// The device side: BVH buffers and the two traversal kernels, launched one at a time with an event.
+class DeviceTracer {
+ public:
+  DeviceTracer(ClSession& s, const Bvh& bvh)
+      : s_(s), nodes_(s.upload(bvh.nodes)), tris_(s.upload(bvh.triangles)), intersect_(s.kernel("intersect")),
+        shadow_(s.kernel("intersect_shadow")) {}
+
+  Timing closest(const std::vector<Ray>& rays, int warmup, int repeat, std::vector<float>& t) {
+    cl::Buffer rayBuf = s_.upload(rays);
+    cl::Buffer count = s_.upload(std::vector<cl_uint>{cl_uint(rays.size())});
+    cl::Buffer hitBuf = s_.buffer<Hit>(rays.size());
+    intersect_.setArg(0, nodes_);
+    intersect_.setArg(1, tris_);
+    intersect_.setArg(2, rayBuf);
+    intersect_.setArg(3, count);
+    intersect_.setArg(4, hitBuf);
+    std::vector<double> ms;
+    for (int r = 0; r < warmup + repeat; ++r) {
+      double m = launch(intersect_, rays.size());
+      if (r >= warmup) ms.push_back(m);
+    }
+    std::vector<Hit> hits(rays.size());
+    if (!rays.empty()) s_.queue().enqueueReadBuffer(hitBuf, CL_TRUE, 0, hits.size() * sizeof(Hit), hits.data());
+    t.resize(rays.size());
+    for (std::size_t i = 0; i < hits.size(); ++i) t[i] = hits[i].tri == MCL_NO_HIT ? INFINITY : hits[i].t;
+    return summarize(ms);
+  }
+
+  Timing occluded(const std::vector<Ray>& rays, int warmup, int repeat, std::vector<std::uint8_t>& occ) {
+    std::vector<ShadowWork> work(rays.size());
+    for (std::size_t k = 0; k < rays.size(); ++k) {
+      work[k].ray = rays[k];
+      work[k].r = work[k].g = work[k].b = 1.0f;
+      work[k].slot = cl_uint(k);
+    }
+    cl::Buffer workBuf = s_.upload(work);
+    work.clear();
+    work.shrink_to_fit();
+    cl::Buffer count = s_.upload(std::vector<cl_uint>{cl_uint(rays.size())});
+    // Unblocked queries write 1 to their slot; the slots start (and, blocked, stay) at 0.
+    std::vector<cl_float4> contrib(rays.size(), cl_float4{{0.0f, 0.0f, 0.0f, 0.0f}});
+    cl::Buffer contribBuf = s_.upload(contrib, CL_MEM_READ_WRITE);
+    shadow_.setArg(0, nodes_);
+    shadow_.setArg(1, tris_);
+    shadow_.setArg(2, workBuf);
+    shadow_.setArg(3, count);
+    shadow_.setArg(4, contribBuf);
+    std::vector<double> ms;
+    for (int r = 0; r < warmup + repeat; ++r) {
+      double m = launch(shadow_, rays.size());
+      if (r >= warmup) ms.push_back(m);
+    }
+    if (!rays.empty())
+      s_.queue().enqueueReadBuffer(contribBuf, CL_TRUE, 0, contrib.size() * sizeof(cl_float4), contrib.data());
+    occ.resize(rays.size());
+    for (std::size_t k = 0; k < rays.size(); ++k) occ[k] = contrib[k].s[0] == 1.0f ? 0 : 1;
+    return summarize(ms);
+  }
+
+ private:
+  // One launch over n items, waited for; returns the kernel's execution time from its event.
+  double launch(cl::Kernel& k, std::size_t n) {
+    if (n == 0) return 0.0;
+    std::size_t local = s_.localSize(k);
+    std::size_t global = ((n + local - 1) / local) * local;
+    cl::Event ev;
+    try {
+      s_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(global), cl::NDRange(local), nullptr, &ev);
+      ev.wait();
+    } catch (const cl::Error& e) {
+      throw RuntimeError("kernel " + k.getInfo<CL_KERNEL_FUNCTION_NAME>() + ": " + describeClError(e));
+    }
+    cl_ulong start = ev.getProfilingInfo<CL_PROFILING_COMMAND_START>();
+    cl_ulong end = ev.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+    return double(end - start) * 1e-6;
+  }
+
+  ClSession& s_;
+  cl::Buffer nodes_, tris_;
+  cl::Kernel intersect_, shadow_;
+};
+
+bool closestMismatch(float ref, float got, double tol) {
+  bool rh = std::isfinite(ref), gh = std::isfinite(got);
+  if (rh != gh) return true;
+  return rh && std::fabs(double(got) - double(ref)) > tol * double(ref);
+}
+
+std::size_t countMismatches(const RaySet& set, const std::vector<float>& t, const std::vector<std::uint8_t>& occ,
+                            double tol) {
+  std::size_t n = 0;
+  if (set.query == RayKind::Closest) {
+    for (std::size_t i = 0; i < set.rays.size(); ++i) n += closestMismatch(set.refT[i], t[i], tol);
+  } else {
+    for (std::size_t i = 0; i < set.rays.size(); ++i) n += (set.refOccluded[i] != 0) != (occ[i] != 0);
+  }
+  return n;
+}
+
+double mrays(std::size_t count, double ms) { return ms > 0.0 ? double(count) / (ms * 1e3) : 0.0; }
+
+void checkJsonPath(const std::string& path) {
+  if (path.empty()) return;
+  std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  if (!dir.empty() && !std::filesystem::is_directory(dir))
+    throwInputError(path, "", "output folder '" + dir.string() + "' does not exist");
+}
+
+}  // namespace
+
+json runBench(const BenchOptions& o, bool verbose) {
+  if (o.repeat < 1) throwInputError(o.scene, "", "--repeat must be at least 1");
+  checkJsonPath(o.jsonPath);
+  std::vector<std::string> warnings;
+  Scene scene = loadScene(o.scene, warnings);
+  for (const std::string& w : warnings) std::cerr << "montecl: warning: " << w << "\n";
+  if (o.width) scene.camera.width = *o.width;
+  if (o.height) scene.camera.height = *o.height;
+  if (scene.triangles.empty()) throwInputError(o.scene, "", "the scene has no triangles");
+  DeviceInfo device = selectDevice(o.device);
+  unsigned threads = o.threads ? o.threads : std::max(1u, device.computeUnits);
+  auto say = [&](const std::string& s) {
+    if (verbose) std::cerr << "montecl bench: " << s << "\n";
+  };
+
+  json r;
+  r["scene"] = o.scene;
+  r["device"] = device.name;
+  r["platform"] = device.platformVersion;
+  r["driver_version"] = device.driverVersion;
+  r["compute_units"] = device.computeUnits;
+  r["cpu_model"] = cpuModel();
+  r["threads"] = threads;
+  r["width"] = scene.camera.width;
+  r["height"] = scene.camera.height;
+  r["triangles"] = scene.triangles.size();
+  r["repeat"] = o.repeat;
+  r["rel_tolerance"] = o.relTolerance;
+
+  say("building the BVH over " + std::to_string(scene.triangles.size()) + " triangles");
+  Bvh bvh = buildBvh(scene.triangles);
+  std::size_t bvhBytes = bvh.nodes.size() * sizeof(BvhNode) + bvh.triangles.size() * sizeof(Triangle);
+  r["bvh"] = {{"build_ms", bvh.buildMs},
+              {"nodes", bvh.nodes.size()},
+              {"depth", bvh.depth},
+              {"sah_cost", bvh.sahCost},
+              {"bytes", bvhBytes},
+              {"bytes_per_triangle", double(bvhBytes) / double(scene.triangles.size())},
+              {"node_bytes_per_triangle",
+               double(bvh.nodes.size() * sizeof(BvhNode)) / double(scene.triangles.size())}};
+  r["rss_after_build_mb"] = peakRssMb();
+
+  say("generating rays and host references on " + std::to_string(threads) + " threads");
+  RaySets sets = makeRaySets(scene, bvh, threads);
+  r["emitters"] = sets.emitters;
+
+  std::unique_ptr<EmbreeTracer> embree;
+  if (o.embree && !EmbreeTracer::available())
+    std::cerr << "montecl: warning: built without Embree (install libembree-dev and reconfigure); no comparison\n";
+  if (o.embree && EmbreeTracer::available()) {
+    say("building the Embree scene");
+    embree = std::make_unique<EmbreeTracer>(scene.triangles, threads);
+    r["embree_version"] = EmbreeTracer::version();
+    r["embree"] = {{"build_ms", embree->buildMs()}};
+    r["build_ratio"] = embree->buildMs() > 0.0 ? bvh.buildMs / embree->buildMs() : 0.0;
+  }
+
+  ClSession session(device, o.workGroupSize, /*profiling=*/true);
+  DeviceTracer tracer(session, bvh);
+  r["local_size"] = session.localSize(session.kernel("intersect"));
+  std::size_t total = 0;
+  json rays = json::array();
+  for (RaySet* set : {&sets.primary, &sets.ao, &sets.shadow}) {
+    if (set->kind == "shadow" && sets.emitters == 0) continue;  // no emitters: no shadow rays
+    say("tracing " + std::to_string(set->rays.size()) + " " + set->kind + " rays");
+    std::vector<float> t;
+    std::vector<std::uint8_t> occ;
+    Timing dev = set->query == RayKind::Closest ? tracer.closest(set->rays, o.warmup, o.repeat, t)
+                                                 : tracer.occluded(set->rays, o.warmup, o.repeat, occ);
+    std::size_t mism = countMismatches(*set, t, occ, o.relTolerance);
+    total += mism;
+    std::size_t hits = 0;
+    if (set->query == RayKind::Closest)
+      for (float x : set->refT) hits += std::isfinite(x);
+    else
+      for (auto x : set->refOccluded) hits += x;
+    json k = {{"kind", set->kind},
+              {"query", set->query == RayKind::Closest ? "closest" : "any"},
+              {"kernel", set->query == RayKind::Closest ? "intersect" : "intersect_shadow"},
+              {"count", set->rays.size()},
+              {"hits", hits},
+              {"median_ms", dev.medianMs},
+              {"min_ms", dev.minMs},
+              {"mrays_per_s", mrays(set->rays.size(), dev.medianMs)},
+              {"best_mrays_per_s", mrays(set->rays.size(), dev.minMs)},
+              {"mismatches", mism},
+              {"host_ref_mrays_per_s", mrays(set->rays.size(), set->refMs)}};
+    if (embree) {
+      std::vector<double> ms;
+      std::vector<float> et;
+      std::vector<std::uint8_t> eo;
+      for (int rep = 0; rep < o.warmup + o.repeat; ++rep) {
+        double m = set->query == RayKind::Closest ? embree->closest(set->rays, et) : embree->occluded(set->rays, eo);
+        if (rep >= o.warmup) ms.push_back(m);
+      }
+      Timing e = summarize(ms);
+      double emr = mrays(set->rays.size(), e.medianMs);
+      k["embree_median_ms"] = e.medianMs;
+      k["embree_min_ms"] = e.minMs;
+      k["embree_mrays_per_s"] = emr;
+      k["ratio"] = emr > 0.0 ? k["mrays_per_s"].get<double>() / emr : 0.0;
+      // Informative only: Embree's watertight test may disagree with Moller-Trumbore on edges.
+      k["embree_mismatches"] = countMismatches(*set, et, eo, o.relTolerance);
+    }
+    rays.push_back(k);
+  }
+  r["rays"] = rays;
+  r["mismatches_total"] = total;
+  r["peak_rss_mb"] = peakRssMb();
+  return r;
+}
+
+std::string formatBenchTable(const json& r) {
+  std::ostringstream s;
+  s << std::fixed;
+  const json& b = r["bvh"];
+  s << "scene     " << r["scene"].get<std::string>() << ": " << r["triangles"].get<std::size_t>() << " triangles, "
+    << r["emitters"].get<std::size_t>() << " emissive, " << r["width"].get<int>() << "x" << r["height"].get<int>()
+    << "\n";
+  s << "device    " << r["device"].get<std::string>() << " (" << r["platform"].get<std::string>() << "), "
+    << r["compute_units"].get<unsigned>() << " compute units, local size " << r["local_size"].get<std::size_t>()
+    << "\n";
+  s << "cpu       " << r["cpu_model"].get<std::string>() << "; Embree and reference on "
+    << r["threads"].get<unsigned>() << " threads\n";
+  s << std::setprecision(1) << "bvh       build " << b["build_ms"].get<double>() << " ms, "
+    << b["nodes"].get<std::size_t>() << " nodes, depth " << b["depth"].get<int>() << ", "
+    << b["bytes_per_triangle"].get<double>() << " B/triangle (nodes "
+    << b["node_bytes_per_triangle"].get<double>() << "), SAH cost " << std::setprecision(2)
+    << b["sah_cost"].get<double>() << "\n";
+  bool haveEmbree = r.contains("embree");
+  if (haveEmbree)
+    s << std::setprecision(1) << "embree    " << r["embree_version"].get<std::string>() << " build "
+      << r["embree"]["build_ms"].get<double>() << " ms (RTC_BUILD_QUALITY_HIGH); build time ratio montecl/Embree "
+      << std::setprecision(2) << r["build_ratio"].get<double>() << "\n";
+  s << "\n";
+  s << std::left << std::setw(9) << "rays" << std::right << std::setw(10) << "count" << std::setw(10) << "hits"
+    << std::setw(11) << "median ms" << std::setw(10) << "min ms" << std::setw(10) << "Mrays/s" << std::setw(10) << "host ref";
+  if (haveEmbree) s << std::setw(10) << "Embree" << std::setw(8) << "ratio";
+  s << std::setw(12) << "mismatches";
+  if (haveEmbree) s << std::setw(14) << "(Embree diff)";
+  s << "\n";
+  for (const json& k : r["rays"]) {
+    s << std::left << std::setw(9) << k["kind"].get<std::string>() << std::right << std::setw(10)
+      << k["count"].get<std::size_t>() << std::setw(10) << k["hits"].get<std::size_t>() << std::setprecision(2)
+      << std::setw(11) << k["median_ms"].get<double>() << std::setw(10) << k["min_ms"].get<double>()
+      << std::setw(10) << k["mrays_per_s"].get<double>() << std::setw(10) << k["host_ref_mrays_per_s"].get<double>();
+    if (haveEmbree)
+      s << std::setw(10) << k["embree_mrays_per_s"].get<double>() << std::setw(8) << k["ratio"].get<double>();
+    s << std::setw(12) << k["mismatches"].get<std::size_t>();
+    if (haveEmbree) s << std::setw(14) << k["embree_mismatches"].get<std::size_t>();
+    s << "\n";
+  }
+  s << "\nMrays/s from the median of " << r["repeat"].get<int>()
+    << " runs (closest hit: intersect kernel; any hit: intersect_shadow); ratio = montecl/Embree Mrays/s;\n"
+    << "host ref: the same traversal code compiled for the host, one run on the same threads, no warm-up.\n"
+    << "mismatch: hit/miss differs from the host reference, or t differs by more than "
+    << std::setprecision(0) << std::scientific << r["rel_tolerance"].get<double>() << " relative. "
+    << (r["mismatches_total"].get<std::size_t>() == 0 ? "All rays match." : "MISMATCHES FOUND.") << "\n";
+  return s.str();
+}
+
+}  // namespace montecl

@@ -1,0 +1,44 @@
+// ray_sets.h: the fixed, seeded ray sets of `montecl bench` (primary, ambient occlusion, shadow),
+// built on the host with the kernels' own camera, RNG, sampling and offset code, plus a parallel
+// host reference traversal (intersectClosest / intersectAny) to check every result against.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "bvh/bvh.h"
+#include "scene/scene.h"
+
+namespace montecl {
+
+constexpr int kAoRaysPerHit = 8;
+
+enum class RayKind { Closest, Any };  // traced by `intersect` / `intersect_shadow`
+
+struct RaySet {
+  std::string kind;           // "primary", "ao", "shadow"
+  RayKind query = RayKind::Closest;
+  std::vector<Ray> rays;      // dir.w = tmax
+  // Host reference: closest hit t (INFINITY on a miss) or occluded (0 / 1) for each ray.
+  std::vector<float> refT;
+  std::vector<std::uint8_t> refOccluded;
+  double refMs = 0.0;         // wall time of the host reference traversal (for host Mrays/s)
+};
+
+struct RaySets {
+  RaySet primary, ao, shadow;  // shadow.rays is empty when the scene has no emitters
+  std::vector<Hit> primaryHits;  // host reference closest hits of the primary rays
+  std::size_t emitters = 0;      // triangles whose material emits
+};
+
+// Primary rays: one per pixel of scene.camera, jittered with the camera RNG dimension of sample 0
+// (seed = scene.render.seed). AO: kAoRaysPerHit cosine-distributed rays per primary hit, tmax =
+// scene.render.aoDistance. Shadow: one ray per primary hit toward an area-weighted random point on
+// an emissive triangle, stopping just short of it. References computed on `threads` threads.
+RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads);
+
+// Runs body(begin, end) over [0, n) in chunks on `threads` std::threads.
+void parallelFor(std::size_t n, unsigned threads, const std::function<void(std::size_t, std::size_t)>& body);
+
+}  // namespace montecl

@@ -1,0 +1,243 @@
+// exr_layers.cpp: named-channel float EXR output/input through OpenImageIO, the film -> AOV planes
+// conversion, and the sample-count-weighted merge of renders (parallel variance formula).
+#include "image/exr_layers.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <set>
+
+#include "image/film.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
+
+namespace montecl {
+namespace {
+
+std::string oneLine(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+bool isMeanChannel(const std::string& name, int& c) {
+  for (c = 0; c < 3; ++c)
+    if (name == channel::kMean[c]) return true;
+  return false;
+}
+
+bool isVarianceChannel(const std::string& name) {
+  for (const char* v : channel::kVariance)
+    if (name == v) return true;
+  return false;
+}
+
+}  // namespace
+
+const std::vector<float>* LayeredImage::find(const std::string& name) const {
+  for (std::size_t c = 0; c < channels.size(); ++c)
+    if (channels[c] == name) return &planes[c];
+  return nullptr;
+}
+
+std::vector<float>* LayeredImage::find(const std::string& name) {
+  return const_cast<std::vector<float>*>(static_cast<const LayeredImage*>(this)->find(name));
+}
+
+void LayeredImage::set(const std::string& name, std::vector<float> plane) {
+  if (std::vector<float>* p = find(name)) {
+    *p = std::move(plane);
+    return;
+  }
+  channels.push_back(name);
+  planes.push_back(std::move(plane));
+}
+
+void writeLayeredExr(const std::string& path, const LayeredImage& image) {
+  using namespace OIIO;
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  if (ext != ".exr") throwInputError(path, "", "multi-channel images must be written as .exr");
+  if (image.channels.empty() || image.channels.size() != image.planes.size())
+    throw RuntimeError("cannot write " + path + ": no channels, or channel names and planes differ in number");
+  const std::size_t count = image.pixelCount(), nch = image.channels.size();
+  for (std::size_t c = 0; c < nch; ++c)
+    if (image.planes[c].size() != count)
+      throw RuntimeError("cannot write " + path + ": channel '" + image.channels[c] + "' has " +
+                         std::to_string(image.planes[c].size()) + " values, not " + std::to_string(count));
+  std::vector<float> pixels(count * nch);
+  for (std::size_t p = 0; p < count; ++p)
+    for (std::size_t c = 0; c < nch; ++c) pixels[p * nch + c] = image.planes[c][p];
+
+  ImageSpec spec(image.width, image.height, int(nch), TypeDesc::FLOAT);
+  spec.channelnames = image.channels;
+  spec.alpha_channel = -1;
+  spec.z_channel = -1;
+  for (std::size_t c = 0; c < nch; ++c)
+    if (image.channels[c] == "Z") spec.z_channel = int(c);
+  spec.attribute("compression", "zip");
+  writeAtomically(path, [&](const std::string& tmp) {
+    auto out = ImageOutput::create(tmp);
+    if (!out) throw RuntimeError("cannot write " + path + ": " + oneLine(OIIO::geterror()));
+    if (!out->open(tmp, spec) || !out->write_image(TypeDesc::FLOAT, pixels.data()) || !out->close())
+      throw RuntimeError("cannot write " + path + ": " + oneLine(out->geterror()));
+  });
+}
+
+LayeredImage readLayeredImage(const std::string& path) {
+  using namespace OIIO;
+  if (!std::filesystem::exists(path)) throwInputError(path, "", "cannot read image: no such file");
+  auto in = ImageInput::open(path);
+  if (!in) throwInputError(path, "", "cannot read image: " + oneLine(OIIO::geterror()));
+  const ImageSpec& spec = in->spec();
+  LayeredImage image;
+  image.width = spec.width;
+  image.height = spec.height;
+  const std::size_t count = image.pixelCount(), nch = std::size_t(spec.nchannels);
+  std::vector<float> pixels(count * nch);
+  if (!in->read_image(0, 0, 0, int(nch), TypeDesc::FLOAT, pixels.data()))
+    throwInputError(path, "", "cannot read image: " + oneLine(in->geterror()));
+  in->close();
+  for (std::size_t c = 0; c < nch; ++c) {
+    std::vector<float> plane(count);
+    for (std::size_t p = 0; p < count; ++p) plane[p] = pixels[p * nch + c];
+    std::string name = c < spec.channelnames.size() ? spec.channelnames[c] : "channel" + std::to_string(c);
+    image.channels.push_back(name);
+    image.planes.push_back(std::move(plane));
+  }
+  return image;
+}
+
+LayeredImage layersFromFilm(const Film& film) {
+  LayeredImage image;
+  image.width = film.width;
+  image.height = film.height;
+  const std::size_t count = film.sum.size();
+  std::vector<float> mean[3], var[3], samples(count, 0.0f);
+  for (int c = 0; c < 3; ++c) {
+    mean[c].assign(count, 0.0f);
+    var[c].assign(count, 0.0f);
+  }
+  for (std::size_t p = 0; p < count; ++p) {
+    double n = film.sum[p].w;
+    samples[p] = float(n);
+    if (n <= 0.0) continue;
+    for (int c = 0; c < 3; ++c) {
+      double s = film.sum[p][c], sq = film.sumSq[p][c];
+      mean[c][p] = float(s / n);
+      if (n > 1.0) var[c][p] = float(std::max(0.0, (sq - s * s / n) / (n - 1.0)));
+    }
+  }
+  for (int c = 0; c < 3; ++c) image.set(channel::kMean[c], std::move(mean[c]));
+  image.set(channel::kSamples, std::move(samples));
+  for (int c = 0; c < 3; ++c) image.set(channel::kVariance[c], std::move(var[c]));
+  return image;
+}
+
+SampleStats combineStats(const std::vector<SampleStats>& parts) {
+  SampleStats out;
+  double weighted = 0.0;
+  for (const SampleStats& s : parts) {
+    if (s.n <= 0.0) continue;
+    out.n += s.n;
+    weighted += s.n * s.mean;
+  }
+  if (out.n <= 0.0) return out;
+  out.mean = weighted / out.n;
+  double m2 = 0.0;
+  for (const SampleStats& s : parts) {
+    if (s.n <= 0.0) continue;
+    double d = s.mean - out.mean;
+    m2 += (s.n - 1.0) * s.variance;
+  }
+  out.variance = out.n > 1.0 ? std::max(0.0, m2 / (out.n - 1.0)) : 0.0;
+  return out;
+}
+
+LayeredImage mergeLayeredImages(const std::vector<LayeredImage>& images, const std::vector<std::string>& names) {
+  if (images.empty()) throw InputError("merge: no input images");
+  auto nameOf = [&](std::size_t i) { return i < names.size() ? names[i] : "input " + std::to_string(i + 1); };
+  const LayeredImage& first = images.front();
+  std::set<std::string> firstSet(first.channels.begin(), first.channels.end());
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    const LayeredImage& im = images[i];
+    for (const char* required : {channel::kMean[0], channel::kMean[1], channel::kMean[2], channel::kSamples})
+      if (!im.find(required))
+        throwInputError(nameOf(i), "", std::string("no '") + required + "' channel (not a montecl AOV render?)");
+    if (im.width != first.width || im.height != first.height)
+      throwInputError(nameOf(i), "", "size " + std::to_string(im.width) + "x" + std::to_string(im.height) +
+                                         " differs from " + nameOf(0) + " (" + std::to_string(first.width) + "x" +
+                                         std::to_string(first.height) + ")");
+    for (const std::string& ch : first.channels)
+      if (!im.find(ch)) throwInputError(nameOf(i), "", "no '" + ch + "' channel (" + nameOf(0) + " has one)");
+    for (const std::string& ch : im.channels)
+      if (!firstSet.count(ch))
+        throwInputError(nameOf(i), "", "channel '" + ch + "' is not in " + nameOf(0));
+  }
+  if (images.size() == 1) return first;
+
+  const std::size_t count = first.pixelCount(), k = images.size();
+  std::vector<const std::vector<float>*> samples(k);
+  for (std::size_t i = 0; i < k; ++i) samples[i] = images[i].find(channel::kSamples);
+
+  LayeredImage out;
+  out.width = first.width;
+  out.height = first.height;
+  out.channels = first.channels;
+  out.planes.assign(first.channels.size(), std::vector<float>(count, 0.0f));
+  auto outPlane = [&](const std::string& name) { return out.find(name); };
+
+  std::vector<SampleStats> parts(k);
+  for (std::size_t ci = 0; ci < first.channels.size(); ++ci) {
+    const std::string& name = first.channels[ci];
+    std::vector<float>& dst = out.planes[ci];
+    int mc = 0;
+    if (name == channel::kSamples) {
+      for (std::size_t p = 0; p < count; ++p) {
+        double n = 0.0;
+        for (std::size_t i = 0; i < k; ++i) n += std::max(0.0f, (*samples[i])[p]);
+        dst[p] = float(n);
+      }
+    } else if (isMeanChannel(name, mc)) {
+      const std::string varName = channel::kVariance[mc];
+      bool withVar = first.find(varName) != nullptr;
+      std::vector<float>* varDst = withVar ? outPlane(varName) : nullptr;
+      std::vector<const std::vector<float>*> means(k), vars(k, nullptr);
+      for (std::size_t i = 0; i < k; ++i) {
+        means[i] = images[i].find(name);
+        if (withVar) vars[i] = images[i].find(varName);
+      }
+      for (std::size_t p = 0; p < count; ++p) {
+        for (std::size_t i = 0; i < k; ++i) {
+          parts[i].n = std::max(0.0f, (*samples[i])[p]);
+          parts[i].mean = (*means[i])[p];
+          parts[i].variance = withVar ? (*vars[i])[p] : 0.0;
+        }
+        SampleStats s = combineStats(parts);
+        dst[p] = float(s.mean);
+        if (varDst) (*varDst)[p] = float(s.variance);
+      }
+    } else if (isVarianceChannel(name)) {
+      continue;  // written with its mean channel
+    } else {
+      std::vector<const std::vector<float>*> src(k);
+      for (std::size_t i = 0; i < k; ++i) src[i] = images[i].find(name);
+      for (std::size_t p = 0; p < count; ++p) {
+        double n = 0.0, sum = 0.0, plain = 0.0;
+        for (std::size_t i = 0; i < k; ++i) {
+          double ni = std::max(0.0f, (*samples[i])[p]), v = (*src[i])[p];
+          n += ni;
+          sum += ni * v;
+          plain += v;
+        }
+        dst[p] = float(n > 0.0 ? sum / n : plain / double(k));
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace montecl

@@ -1,0 +1,68 @@
+// exr_layers.h: multi-channel float EXR images with named channels (OpenEXR layer convention
+// "layer.channel"), written from and read back into named planes through OpenImageIO; the AOV
+// layout of montecl's renders; and the per-pixel merge of several renders of one scene weighted
+// by their sample counts (exact parallel-variance combination).
+#pragma once
+#include <string>
+#include <vector>
+
+namespace montecl {
+
+struct Film;
+
+// Channel names of montecl's AOV EXR (R, G, B and samples are required by `montecl merge`).
+//   R G B          mean radiance per pixel
+//   samples        per-pixel sample count n
+//   var.R var.G var.B   unbiased sample variance of ONE sample, s^2 = sum (x - mean)^2 / (n - 1)
+//                       (0 where n < 2); the variance of the mean is var / n
+//   albedo.R/G/B, N.X/Y/Z, Z   optional AOVs (first-hit albedo, normal, depth): averaged by n
+namespace channel {
+constexpr const char* kSamples = "samples";
+inline const char* const kMean[3] = {"R", "G", "B"};
+inline const char* const kVariance[3] = {"var.R", "var.G", "var.B"};
+}  // namespace channel
+
+// width x height float planes, one per named channel, each width * height, row 0 at the top.
+struct LayeredImage {
+  int width = 0, height = 0;
+  std::vector<std::string> channels;
+  std::vector<std::vector<float>> planes;  // planes[c] belongs to channels[c]
+
+  std::size_t pixelCount() const { return std::size_t(width) * std::size_t(height); }
+  // The plane named name, or nullptr.
+  const std::vector<float>* find(const std::string& name) const;
+  std::vector<float>* find(const std::string& name);
+  // Appends (or replaces) a plane; it must hold pixelCount() values.
+  void set(const std::string& name, std::vector<float> plane);
+};
+
+// Writes every plane as a 32-bit float channel of an OpenEXR file, atomically (temporary + rename).
+// Throws InputError when path does not end in .exr or a plane has the wrong size, RuntimeError
+// when writing fails.
+void writeLayeredExr(const std::string& path, const LayeredImage& image);
+
+// Reads every channel of an image (any format OpenImageIO reads; channel names as stored) as float
+// planes. Throws InputError "<path>: cannot read image: ..." (one line) when it cannot be read.
+LayeredImage readLayeredImage(const std::string& path);
+
+// The renderer's AOV image from its film: R, G, B (mean), samples, var.R/G/B (unbiased s^2 of one
+// sample from the sums, clamped at 0). Add optional AOV planes with set() before writing.
+LayeredImage layersFromFilm(const Film& film);
+
+// --- merging -------------------------------------------------------------------------------
+// Statistics of one pixel channel: sample count, mean and unbiased variance of one sample.
+struct SampleStats {
+  double n = 0.0, mean = 0.0, variance = 0.0;
+};
+// Exact combination of disjoint sample sets: n = sum n_i, mean = sum n_i m_i / n,
+// M2 = sum [(n_i - 1) s_i^2 + n_i (m_i - mean)^2], s^2 = M2 / (n - 1) (0 when n < 2).
+SampleStats combineStats(const std::vector<SampleStats>& parts);
+
+// Merges renders of one scene: sizes must match and every input must have the first input's
+// channels, including R, G, B and samples. Channels: samples summed; R/G/B combined with var.R/G/B
+// by combineStats (means weighted by n without var.*); every other channel averaged weighted by n
+// (plain average where the total n is 0). names[i] names images[i] in InputError messages
+// ("<name>: <problem>"). One image is returned unchanged.
+LayeredImage mergeLayeredImages(const std::vector<LayeredImage>& images, const std::vector<std::string>& names);
+
+}  // namespace montecl

@@ -1,0 +1,36 @@
+// emitters.cpp: builds the emitter CDF on the host (in double, stored as float; the last entry
+// is exactly 1 so every u in [0, 1) picks an emitter).
+#include "render/emitters.h"
+
+#include "kernels/shared/lights.h"
+
+namespace montecl {
+
+EmitterTable buildEmitterTable(const Bvh& bvh, const std::vector<MaterialDesc>& materials) {
+  EmitterTable table;
+  std::vector<double> power;
+  double total = 0.0;
+  for (std::size_t i = 0; i < bvh.triangles.size(); ++i) {
+    const Triangle& t = bvh.triangles[i];
+    const glm::vec3 le = materials[triangle_material(&t)].emission;
+    float area = triangle_area(&t);
+    double p = double(area) * double(luminance(le));
+    if (!(p > 0.0)) continue;
+    Emitter e{};
+    e.tri = uint(i);
+    e.area = area;
+    table.emitters.push_back(e);
+    power.push_back(p);
+    total += p;
+  }
+  double running = 0.0;
+  for (std::size_t k = 0; k < table.emitters.size(); ++k) {
+    running += power[k];
+    table.emitters[k].cdf = float(running / total);
+  }
+  if (!table.emitters.empty()) table.emitters.back().cdf = 1.0f;
+  table.totalPower = float(total);
+  return table;
+}
+
+}  // namespace montecl

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# bench.sh: builds montecl if needed, runs `montecl bench` on every shared scene (../shared/scenes,
+# or $SCENES_DIR) and writes bench/<scene>.json plus bench/results.md, a Markdown table of
+# montecl vs Embree per ray kind with the machine (CPU model, cores, PoCL version).
+# Skips with a message (exit 0) when the scenes folder is absent. Exit 1 if any run mismatched.
+# Environment: BUILD_DIR (default build), REPEAT (default 5), DEVICE (--device), THREADS (--threads).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${BUILD_DIR:-build}
+scenes=${SCENES_DIR:-../shared/scenes}
+out=bench
+
+if [ ! -d "$scenes" ]; then
+  echo "bench: no shared scenes at $scenes; skipping (set SCENES_DIR or add ../shared/scenes)"
+  exit 0
+fi
+command -v jq >/dev/null || { echo "bench: jq is needed (run scripts/setup.sh)" >&2; exit 1; }
+[ -f "$build/CMakeCache.txt" ] || cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$build" -j"$(nproc)" --target montecl >/dev/null
+mkdir -p "$out"
+
+args=(--repeat "${REPEAT:-5}")
+[ -n "${DEVICE:-}" ] && args+=(--device "$DEVICE")
+[ -n "${THREADS:-}" ] && args+=(--threads "$THREADS")
+
+status=0
+jsons=()
+for dir in "$scenes"/*/; do
+  name=$(basename "$dir")
+  [ -f "$dir/scene.json" ] || { echo "bench: $name: no scene.json, skipped"; continue; }
+  echo "bench: $name"
+  if "$build/montecl" bench "$dir/scene.json" "${args[@]}" --json "$out/$name.json" -q; then :; else
+    rc=$?; echo "bench: $name: exit $rc" >&2; status=1
+  fi
+  [ -f "$out/$name.json" ] && jsons+=("$out/$name.json")
+done
+[ ${#jsons[@]} -gt 0 ] || { echo "bench: no scene ran"; exit 1; }
+
+first=${jsons[0]}
+cpu=$(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')
+pocl=$(jq -r '.driver_version' "$first")
+platform=$(jq -r '.platform' "$first")
+{
+  echo "# montecl bench"
+  echo
+  echo "Machine: $cpu, $(nproc) cores; OpenCL device $(jq -r '.device' "$first") ($(jq -r '.compute_units' "$first") compute units), driver $pocl ($platform); Embree $(jq -r '.embree_version // "n/a"' "$first") on $(jq -r '.threads' "$first") threads. $(date -u +%Y-%m-%d)."
+  echo
+  echo "Mrays/s from the median of ${REPEAT:-5} timed kernel runs (OpenCL profiling events) after a warm-up; ratio = montecl / Embree Mrays/s (higher is better);"
+  echo "build ratio = montecl ms / Embree ms (lower is better). Closest hit: primary rays (intersect kernel); any hit: AO (8 cosine rays per primary hit) and shadow rays (intersect_shadow)."
+  echo
+  echo "| scene | triangles | BVH ms | Embree build ms | build ratio | nodes | B/tri | SAH | kind | rays | Mrays/s (best) | Embree Mrays/s | ratio | mismatches |"
+  echo "|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|"
+  for j in "${jsons[@]}"; do
+    jq -r --arg name "$(basename "$j" .json)" '
+      . as $r | .rays[] |
+      "| \($name) | \($r.triangles) | \($r.bvh.build_ms * 10 | round / 10) | \(($r.embree.build_ms // 0) * 10 | round / 10) | \(($r.build_ratio // 0) * 100 | round / 100) | \($r.bvh.nodes) | \($r.bvh.bytes_per_triangle * 10 | round / 10) | \($r.bvh.sah_cost * 100 | round / 100) | \(.kind) | \(.count) | \(.mrays_per_s * 100 | round / 100) (\(.best_mrays_per_s * 100 | round / 100)) | \((.embree_mrays_per_s // 0) * 100 | round / 100) | \((.ratio // 0) * 100 | round / 100) | \(.mismatches) |"' "$j"
+  done
+} > "$out/results.md.tmp"
+mv "$out/results.md.tmp" "$out/results.md"
+cat "$out/results.md"
+exit $status

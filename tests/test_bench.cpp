@@ -1,0 +1,113 @@
+// test_bench.cpp: `montecl bench` and `montecl generate` through the real command line: a tiny
+// generated terrain scene and the demo scene at a small resolution, JSON parsed and checked (zero
+// mismatches per ray kind, the ray counts the spec gives, positive throughput), plus the exact
+// triangle count of the generator and bench's exit codes.
+#include <doctest/doctest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "cli_runner.h"
+
+using montecl_test::CliResult;
+using montecl_test::runMontecl;
+using montecl_test::TempDir;
+
+namespace {
+
+nlohmann::json readJson(const std::string& path) {
+  std::ifstream in(path);
+  REQUIRE(in.good());
+  return nlohmann::json::parse(in);
+}
+
+std::size_t countFaces(const std::string& objPath) {
+  std::ifstream in(objPath);
+  std::string line;
+  std::size_t n = 0;
+  while (std::getline(in, line)) n += line.rfind("f ", 0) == 0;
+  return n;
+}
+
+const nlohmann::json* findKind(const nlohmann::json& r, const std::string& kind) {
+  for (const auto& k : r["rays"])
+    if (k["kind"] == kind) return &k;
+  return nullptr;
+}
+
+// The checks every bench run must pass; primaryHits returns the primary hit count.
+void checkBenchJson(const nlohmann::json& r, int width, int height, bool expectShadow) {
+  REQUIRE(r.contains("rays"));
+  CHECK(r["bvh"]["build_ms"].get<double>() >= 0.0);
+  CHECK(r["bvh"]["nodes"].get<std::size_t>() >= 1);
+  CHECK(r["bvh"]["sah_cost"].get<double>() > 0.0);
+  const nlohmann::json* primary = findKind(r, "primary");
+  const nlohmann::json* ao = findKind(r, "ao");
+  REQUIRE(primary != nullptr);
+  REQUIRE(ao != nullptr);
+  CHECK((*primary)["count"].get<std::size_t>() == std::size_t(width) * std::size_t(height));
+  std::size_t hits = (*primary)["hits"].get<std::size_t>();
+  CHECK(hits > 0);
+  CHECK((*ao)["count"].get<std::size_t>() == 8 * hits);
+  CHECK((findKind(r, "shadow") != nullptr) == expectShadow);
+  for (const auto& k : r["rays"]) {
+    INFO("ray kind " << k["kind"]);
+    CHECK(k["mismatches"].get<std::size_t>() == 0);
+    CHECK(k["mrays_per_s"].get<double>() > 0.0);
+    CHECK(k["min_ms"].get<double>() <= k["median_ms"].get<double>());
+    if (r.contains("embree")) {
+      CHECK(k["embree_mrays_per_s"].get<double>() > 0.0);
+      CHECK(k["ratio"].get<double>() > 0.0);
+    }
+  }
+  CHECK(r["mismatches_total"].get<std::size_t>() == 0);
+}
+
+}  // namespace
+
+TEST_CASE("generate terrain writes exactly the requested triangle count") {
+  TempDir dir;
+  for (int n : {1, 2, 7, 1000, 1001, 4096}) {
+    INFO("triangles " << n);
+    std::string obj = dir.file("t" + std::to_string(n) + ".obj");
+    CliResult r = runMontecl({"generate", "terrain", "--triangles", std::to_string(n), "-o", obj});
+    REQUIRE(r.exitCode == 0);
+    CHECK(countFaces(obj) == std::size_t(n));
+  }
+}
+
+TEST_CASE("bench on a generated 1k-triangle terrain: all rays match, counts as specified") {
+  TempDir dir;
+  CliResult g = runMontecl({"generate", "terrain", "--triangles", "1000", "-o", dir.file("terrain.obj"), "--scene",
+                            dir.file("terrain.json"), "--width", "32", "--height", "24"});
+  REQUIRE(g.exitCode == 0);
+  CliResult r = runMontecl({"bench", dir.file("terrain.json"), "--repeat", "2", "--json", dir.file("out.json"), "-q"});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.out.find("Mrays/s") != std::string::npos);
+  nlohmann::json j = readJson(dir.file("out.json"));
+  CHECK(j["triangles"].get<std::size_t>() == 1002);  // terrain + the emissive quad
+  CHECK(j["emitters"].get<std::size_t>() == 2);
+  checkBenchJson(j, 32, 24, /*expectShadow=*/true);
+}
+
+TEST_CASE("bench on the demo scene at a small resolution") {
+  TempDir dir;
+  CliResult r = runMontecl({"bench", MONTECL_SOURCE_DIR "/scenes/demo/scene.json", "--width", "40", "--height", "30",
+                            "--repeat", "1", "--threads", "2", "--json", dir.file("demo.json"), "-q"});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  checkBenchJson(readJson(dir.file("demo.json")), 40, 30, /*expectShadow=*/true);  // demo has a lamp
+}
+
+TEST_CASE("bench bad input exits 2 with one line") {
+  TempDir dir;
+  CliResult r = runMontecl({"bench", dir.file("missing.json")});
+  CHECK(r.exitCode == 2);
+  CHECK(r.err.find('\n') == r.err.size() - 1);
+  CliResult j = runMontecl({"bench", MONTECL_SOURCE_DIR "/scenes/demo/scene.json", "--json",
+                            dir.file("no/such/folder/out.json")});
+  CHECK(j.exitCode == 2);
+}
