@@ -7,18 +7,18 @@
 // reported Bvh::sahCost is the cost of the whole tree, sum over interior nodes of Ct * A(n)/A(root)
 // plus sum over leaves of Ci * count(n) * A(n)/A(root).
 //
-// Build. Each node bins its triangles' bounding-box centroids into `bins` (default 16, 2..256)
-// equal bins along each axis of the centroid bounds and evaluates the bins-1 planes per axis; nodes
-// of at most 16 triangles instead sort their centroids on each axis and evaluate every object split
-// (exact, and cheaper than binning at that size). A node
-// with at most maxLeafSize (default 4, 1..16) triangles becomes a leaf unless the best split is
-// cheaper than the leaf; a larger node is always split, by the best binned plane even if a leaf
-// would be cheaper, so no leaf ever holds more than maxLeafSize (hard cap 16). When binning cannot
-// split a node (all centroids coincide, or they all fall into one bin) it is split at the object
-// median along the widest centroid axis (or, when every centroid is the same point, into two
-// halves of its range). Depth is bounded: a node at depth d with n triangles always satisfies
-// d + ceil(log2 n) <= 63, and a SAH split that would break that for a child is replaced by a
-// median split, so depth (root = 0, counted in edges) never exceeds 63 < MCL_BVH_STACK_SIZE.
+// Build. A node of more than 16 triangles bins their bounding-box centroids into `bins` (default
+// 16, 2..256) equal bins along each axis of the centroid bounds and evaluates the bins-1 planes per
+// axis; a node of at most 16 sorts its centroids on each axis and evaluates every object split
+// (exact, and cheaper than binning at that size). A node with at most maxLeafSize (default 4,
+// 1..16) triangles becomes a leaf unless its best split is cheaper than the leaf; a larger node is
+// always split, by its best SAH split even when a leaf would be cheaper, so no leaf ever holds more
+// than maxLeafSize triangles (hard cap 16). When SAH finds no split (all centroids coincide, or
+// the node's box has zero area) the node is split at the object median along the widest centroid
+// axis, or into the two halves of its range when every centroid is the same point. Depth is
+// bounded: every node at depth d with n triangles satisfies d + ceil(log2 n) <= 63, because a SAH
+// split that would break that for a child is replaced by a median split (which halves n), so no
+// leaf is deeper than 63 edges below the root (< MCL_BVH_STACK_SIZE = 64 stack entries).
 //
 // Memory: one 32-byte reference per triangle (bounds + input index) partitioned in place, the node
 // array (reserved at 2n-1 entries but only touched as used), then the 48-byte output triangles and

@@ -30,8 +30,8 @@ class ClSession {
 
   template <typename T>
   cl::Buffer upload(const std::vector<T>& data, cl_mem_flags flags = CL_MEM_READ_ONLY) const {
-    return cl::Buffer(context_, flags | CL_MEM_COPY_HOST_PTR, std::max<std::size_t>(1, data.size()) * sizeof(T),
-                      data.empty() ? nullptr : const_cast<T*>(data.data()));
+    if (data.empty()) return buffer<T>(1, flags);  // OpenCL has no empty buffers
+    return cl::Buffer(context_, flags | CL_MEM_COPY_HOST_PTR, data.size() * sizeof(T), const_cast<T*>(data.data()));
   }
   template <typename T>
   cl::Buffer buffer(std::size_t count, cl_mem_flags flags = CL_MEM_READ_WRITE) const {

@@ -151,7 +151,7 @@ SampleStats combineStats(const std::vector<SampleStats>& parts) {
   for (const SampleStats& s : parts) {
     if (s.n <= 0.0) continue;
     double d = s.mean - out.mean;
-    m2 += (s.n - 1.0) * s.variance;
+    m2 += (s.n - 1.0) * s.variance + s.n * d * d;
   }
   out.variance = out.n > 1.0 ? std::max(0.0, m2 / (out.n - 1.0)) : 0.0;
   return out;
