@@ -78,7 +78,7 @@ MCL_INLINE float mcl_integrate_term(uint integrand, uint estimator, uint i, uint
   if (integrand == MCL_INTEGRAND_SINE) {
     if (estimator == MCL_EST_RECTANGLE) {
       // midpoint x = (i + 1/2) / n, phase frac(k x) = ((2i + 1) k mod 2n) / 2n, exactly
-      ulong num = ((2ul * (ulong)i + 0ul) * (ulong)k) % (2ul * (ulong)n);
+      ulong num = ((2ul * (ulong)i + 1ul) * (ulong)k) % (2ul * (ulong)n);
       return mcl_sine_f((float)num / (float)(2ul * (ulong)n));  // volume 1
     }
     if (estimator == MCL_EST_MC_UNIFORM) {
