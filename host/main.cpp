@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   addMergeCommand(app, exitCode);
   addBenchCommand(app, exitCode);
   addGenerateCommand(app, exitCode);
+  addConformanceCommand(app, exitCode);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

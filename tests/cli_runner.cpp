@@ -1,5 +1,6 @@
-// cli_runner.cpp: runs the real montecl executable (MONTECL_EXE) with posix_spawn, stdout and stderr
-// redirected to temporary files, and provides TempDir, a per-test scratch folder.
+// cli_runner.cpp: runs the real montecl executable (MONTECL_EXE), or any program, with posix_spawn,
+// stdout and stderr redirected to temporary files and optional extra environment variables, and
+// provides TempDir, a per-test scratch folder.
 #include "cli_runner.h"
 
 #include <fcntl.h>
@@ -72,13 +73,26 @@ int waitWithTimeout(pid_t pid) {
 
 }  // namespace
 
-CliResult runMontecl(const std::vector<std::string>& args) {
+CliResult runProgram(const std::vector<std::string>& args, const std::vector<std::string>& extraEnv) {
   CaptureFile out, err;
-  std::vector<std::string> argvStore{MONTECL_EXE};
-  argvStore.insert(argvStore.end(), args.begin(), args.end());
+  std::vector<std::string> argvStore = args;
   std::vector<char*> argv;
   for (std::string& a : argvStore) argv.push_back(&a[0]);
   argv.push_back(nullptr);
+
+  // The parent's environment, minus the names extraEnv sets, plus extraEnv.
+  std::vector<std::string> envStore;
+  for (char** e = environ; *e; ++e) {
+    std::string entry = *e;
+    bool replaced = false;
+    for (const std::string& x : extraEnv)
+      if (entry.compare(0, x.find('=') + 1, x, 0, x.find('=') + 1) == 0) replaced = true;
+    if (!replaced) envStore.push_back(entry);
+  }
+  envStore.insert(envStore.end(), extraEnv.begin(), extraEnv.end());
+  std::vector<char*> envp;
+  for (std::string& e : envStore) envp.push_back(&e[0]);
+  envp.push_back(nullptr);
 
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
@@ -86,7 +100,7 @@ CliResult runMontecl(const std::vector<std::string>& args) {
   posix_spawn_file_actions_adddup2(&actions, out.fd, 1);
   posix_spawn_file_actions_adddup2(&actions, err.fd, 2);
   pid_t pid = 0;
-  int rc = ::posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  int rc = ::posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) throw std::runtime_error(std::string("cannot run ") + argv[0]);
 
@@ -95,6 +109,12 @@ CliResult runMontecl(const std::vector<std::string>& args) {
   result.out = out.read();
   result.err = err.read();
   return result;
+}
+
+CliResult runMontecl(const std::vector<std::string>& args, const std::vector<std::string>& extraEnv) {
+  std::vector<std::string> argv{MONTECL_EXE};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return runProgram(argv, extraEnv);
 }
 
 TempDir::TempDir() {

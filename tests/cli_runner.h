@@ -10,8 +10,12 @@ struct CliResult {
   std::string out, err;
 };
 
-// Runs MONTECL_EXE with args (no shell), capturing stdout and stderr.
-CliResult runMontecl(const std::vector<std::string>& args);
+// Runs MONTECL_EXE with args (no shell), capturing stdout and stderr. extraEnv: "NAME=value"
+// entries added to (or replacing those in) the child's environment.
+CliResult runMontecl(const std::vector<std::string>& args, const std::vector<std::string>& extraEnv = {});
+
+// Runs argv[0] (searched in PATH) with the rest of argv, like runMontecl.
+CliResult runProgram(const std::vector<std::string>& argv, const std::vector<std::string>& extraEnv = {});
 
 // A fresh empty temporary folder for one test, removed by the destructor.
 struct TempDir {

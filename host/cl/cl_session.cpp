@@ -11,6 +11,9 @@ namespace montecl {
 
 ClSession::ClSession(const DeviceInfo& device, std::size_t workGroupSize, bool profiling)
     : device_(device), workGroupSize_(workGroupSize) {
+  if (device.isHost)
+    throw InputError("--device host: the host backend renders only (montecl render, conformance); this needs an "
+                     "OpenCL device");
   context_ = cl::Context(device.device);
   queue_ = cl::CommandQueue(context_, device.device, profiling ? CL_QUEUE_PROFILING_ENABLE : 0);
   build_ = buildProgramCached(context_, device, expandedKernelSource("montecl.cl"), kKernelBuildOptions);

@@ -1,12 +1,13 @@
 // devices.cpp: enumerates OpenCL platforms and devices (a failing platform is recorded, not fatal)
 // and picks the device a --device SPEC names: "P:D", a name substring, "" for the best default,
-// with "host" reserved for a future CPU backend.
+// or "host" for the host backend (the stage functions as C++ on the CPU, no OpenCL needed).
 #include "cl/devices.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <regex>
+#include <thread>
 
 #include "cl/cl_errors.h"
 #include "util/errors.h"
@@ -67,7 +68,22 @@ DeviceInfo describeDevice(const cl::Device& dev) {
 
 }  // namespace
 
+DeviceInfo hostDeviceInfo() {
+  DeviceInfo d;
+  d.isHost = true;
+  d.platformIndex = d.deviceIndex = -1;
+  d.name = "host backend (C++ stages on the CPU)";
+  d.platformName = "montecl host";
+  d.vendor = "montecl";
+  d.typeName = "host";
+  d.version = "none (no OpenCL)";
+  d.isCpu = true;
+  d.computeUnits = std::thread::hardware_concurrency();
+  return d;
+}
+
 std::string deviceIndexString(const DeviceInfo& d) {
+  if (d.isHost) return "host";
   return std::to_string(d.platformIndex) + ":" + std::to_string(d.deviceIndex);
 }
 
@@ -135,8 +151,7 @@ DeviceList listDevices() {
 
 DeviceInfo selectDevice(const std::string& rawSpec) {
   const std::string spec = trim(rawSpec);
-  if (lower(spec) == "host")
-    throw InputError("--device host: the host backend is not available yet");
+  if (lower(spec) == "host") return hostDeviceInfo();
 
   DeviceList list = listDevices();
   if (list.devices.empty()) {

@@ -1,4 +1,5 @@
-// devices.h: enumerating OpenCL platforms/devices and choosing one from a --device SPEC.
+// devices.h: enumerating OpenCL platforms/devices and choosing one from a --device SPEC (or the
+// host backend, "host").
 #pragma once
 #include <cstdint>
 #include <string>
@@ -9,6 +10,7 @@
 namespace montecl {
 
 struct DeviceInfo {
+  bool isHost = false;  // the host backend (`--device host`): no OpenCL; `device` is null
   int platformIndex = 0;
   int deviceIndex = 0;
   std::string platformName, platformVersion;
@@ -30,12 +32,16 @@ struct DeviceList {
 // Every device of every platform; a platform that fails is reported in platformErrors, not thrown.
 DeviceList listDevices();
 
-// Chooses a device: spec "P:D", or a case-insensitive substring of the device or platform name;
+// The host backend: the stage functions run as C++ on the CPU (render/host_backend.cpp).
+DeviceInfo hostDeviceInfo();
+
+// Chooses a device: spec "host" (case-insensitive) for the host backend, which needs no OpenCL
+// driver; spec "P:D", or a case-insensitive substring of the device or platform name;
 // empty spec: first GPU, else first CPU, else first device. Throws InputError when the spec matches
 // nothing, RuntimeError when there is no OpenCL device at all (saying to install pocl-opencl-icd).
 DeviceInfo selectDevice(const std::string& spec);
 
-// "P:D", the index form of a device accepted by selectDevice.
+// "P:D", the index form of a device accepted by selectDevice ("host" for the host backend).
 std::string deviceIndexString(const DeviceInfo& d);
 
 // Human-readable byte count: "512 B", "64.0 KiB", "3.7 GiB".

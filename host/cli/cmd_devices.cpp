@@ -1,10 +1,12 @@
-// cmd_devices.cpp: `montecl devices [--json]`: lists every OpenCL device with the index (P:D)
-// that --device accepts, plus any platform that failed to enumerate. No device at all: exit 1.
+// cmd_devices.cpp: `montecl devices [--json] [--check]`: lists every OpenCL device with the index
+// (P:D) that --device accepts, then the host backend ("host"), plus any platform that failed to
+// enumerate. No OpenCL device at all: exit 1. --check: also runs `montecl conformance` on them.
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "cl/devices.h"
 #include "cli/commands.h"
+#include "conformance/conformance.h"
 #include "util/errors.h"
 
 namespace montecl {
@@ -15,6 +17,9 @@ const char* kNoDevice =
     "no OpenCL device found: install an OpenCL driver, e.g. 'apt-get install pocl-opencl-icd'";
 
 nlohmann::json deviceJson(const DeviceInfo& d) {
+  if (d.isHost)
+    return {{"index", "host"}, {"name", d.name}, {"type", d.typeName}, {"platform", d.platformName},
+            {"computeUnits", d.computeUnits}};
   return {
       {"index", deviceIndexString(d)},
       {"platformIndex", d.platformIndex},
@@ -48,6 +53,9 @@ void printText(const DeviceList& list) {
               << "     global memory:  " << formatBytes(d.globalMemBytes) << "\n"
               << "     max allocation: " << formatBytes(d.maxAllocBytes) << "\n";
   }
+  const DeviceInfo host = hostDeviceInfo();
+  std::cout << "host " << host.name << "\n"
+            << "     threads:        " << host.computeUnits << "\n";
   for (const std::string& e : list.platformErrors) std::cout << e << "\n";
 }
 
@@ -56,19 +64,34 @@ void printText(const DeviceList& list) {
 void addDevicesCommand(CLI::App& app, int& exitCode) {
   CLI::App* cmd = app.add_subcommand("devices", "List the OpenCL devices --device can select");
   auto json = std::make_shared<bool>(false);
+  auto check = std::make_shared<bool>(false);
   cmd->add_flag("--json", *json, "Print the list as a JSON array");
-  cmd->callback([json, &exitCode]() {
+  cmd->add_flag("--check", *check, "Also run the conformance check (montecl conformance) on every device");
+  cmd->callback([json, check, &exitCode]() {
     DeviceList list = listDevices();
+    bool checkFailed = false;
     if (*json) {
       nlohmann::json arr = nlohmann::json::array();
       for (const DeviceInfo& d : list.devices) arr.push_back(deviceJson(d));
-      std::cout << arr.dump(2) << std::endl;
+      arr.push_back(deviceJson(hostDeviceInfo()));
+      if (*check) {
+        ConformanceReport report = runConformance({});
+        checkFailed = !report.pass;
+        std::cout << nlohmann::json{{"devices", arr}, {"conformance", conformanceJson(report)}}.dump(2) << std::endl;
+      } else {
+        std::cout << arr.dump(2) << std::endl;
+      }
       for (const std::string& e : list.platformErrors) std::cerr << e << "\n";
     } else {
       printText(list);
     }
     if (list.devices.empty()) throw RuntimeError(kNoDevice);
-    exitCode = kExitOk;
+    exitCode = checkFailed ? kExitRuntime : kExitOk;
+    if (*check && !*json) {
+      ConformanceReport report = runConformance({});
+      std::cout << "\n" << conformanceTable(report) << std::flush;
+      if (!report.pass) exitCode = kExitRuntime;
+    }
   });
 }
 

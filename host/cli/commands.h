@@ -11,5 +11,6 @@ void addIntegrateCommand(CLI::App& app, int& exitCode);
 void addMergeCommand(CLI::App& app, int& exitCode);
 void addBenchCommand(CLI::App& app, int& exitCode);     // cmd_bench.cpp
 void addGenerateCommand(CLI::App& app, int& exitCode);  // cmd_generate.cpp
+void addConformanceCommand(CLI::App& app, int& exitCode);  // cmd_conformance.cpp
 
 }  // namespace montecl

@@ -1,6 +1,8 @@
 // wavefront.h: the wavefront renderer. Uploads the BVH, then per wave: generate -> intersect ->
-// shade -> intersect_shadow -> accumulate, each a kernel of kernels/montecl.cl. Waves are bounded
-// by a memory budget; the result does not depend on wave or work-group size.
+// shade -> intersect_shadow -> accumulate, each a kernel of kernels/montecl.cl on an OpenCL device,
+// or the same stage functions run on the CPU when the device is the host backend (DeviceInfo::isHost,
+// `--device host`). Waves are bounded by a memory budget; the result does not depend on wave or
+// work-group size, and agrees across devices to about 1e-6 relative (see `montecl conformance`).
 #pragma once
 #include <cstdint>
 #include <functional>

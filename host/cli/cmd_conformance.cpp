@@ -1,0 +1,49 @@
+// cmd_conformance.cpp: `montecl conformance [--json] [--device SPEC]...`: builds every kernel on
+// each OpenCL device (default: all found), renders the conformance set and compares each image
+// with the host backend's (conformance/conformance.h). Exit 0 when every device passes, else 1.
+#include <iostream>
+
+#include "cli/commands.h"
+#include "conformance/conformance.h"
+#include "util/errors.h"
+
+namespace montecl {
+
+struct ConformanceArgs {
+  ConformanceOptions options;
+  bool json = false;
+};
+
+int runConformanceCommand(const ConformanceArgs& a) {
+  ConformanceReport report = runConformance(a.options);
+  if (a.json)
+    std::cout << conformanceJson(report).dump(2) << std::endl;
+  else
+    std::cout << conformanceTable(report) << std::flush;
+  return report.pass ? kExitOk : kExitRuntime;
+}
+
+void addConformanceOptions(CLI::App* cmd, ConformanceArgs& a) {
+  cmd->add_option("--size", a.options.set.size, "Width and height of the analytic scenes' images")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--spp", a.options.set.spp, "Samples per pixel of the analytic scenes")->check(CLI::PositiveNumber);
+  cmd->add_option("--cornell-size", a.options.set.cornellSize, "Width and height of the Cornell box images")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--cornell-spp", a.options.set.cornellSpp, "Samples per pixel of the Cornell box")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--cornell", a.options.set.cornellPath,
+                  "Cornell box scene.json (default: <source>/../shared/scenes/cornell-box/scene.json)");
+}
+
+void addConformanceCommand(CLI::App& app, int& exitCode) {
+  auto args = std::make_shared<ConformanceArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "conformance", "Render a small test set on each OpenCL device and compare it with the host backend");
+  cmd->add_option("--device", args->options.deviceSpecs,
+                  "Device to check (repeatable): P:D, part of a name, or host; default: every OpenCL device");
+  cmd->add_flag("--json", args->json, "Print the report as JSON");
+  addConformanceOptions(cmd, *args);
+  cmd->callback([args, &exitCode]() { exitCode = runConformanceCommand(*args); });
+}
+
+}  // namespace montecl

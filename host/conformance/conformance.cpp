@@ -1,0 +1,204 @@
+// conformance.cpp: runs the conformance set on the host backend (the reference) and on each
+// selected OpenCL device: builds every kernel program (montecl.cl and integrate.cl), renders each
+// case with the same seed and compares the mean images pixel by pixel (see conformance.h for the
+// tolerance). A device whose build fails is reported with its build log and fails; so does a
+// render that throws.
+#include "conformance/conformance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "bvh/bvh.h"
+#include "cl/cl_errors.h"
+#include "cl/cl_session.h"
+#include "cl/devices.h"
+#include "cl/kernel_source.h"
+#include "cl/program_cache.h"
+#include "render/wavefront.h"
+
+namespace montecl {
+namespace {
+
+struct Rendered {
+  Film film;
+  RenderStats stats;
+};
+
+void compare(const Film& ref, const Film& dev, ImageComparison& c) {
+  const std::vector<float> a = ref.meanRgb(), b = dev.meanRgb();
+  if (a.size() != b.size() || ref.width != dev.width || ref.height != dev.height) {
+    c.error = "image size differs from the host's";
+    c.pass = false;
+    return;
+  }
+  double sumAbs = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double x = a[i], y = b[i];
+    const double diff = std::fabs(x - y), scale = std::max(std::fabs(x), std::fabs(y));
+    sumAbs += diff;
+    c.maxAbsDiff = std::max(c.maxAbsDiff, diff);
+    c.maxRelDiff = std::max(c.maxRelDiff, diff / std::max(scale, kAbsFloor));
+    if (!(diff <= std::max(kRelTolerance * scale, kAbsFloor))) ++c.failingValues;  // NaN fails
+  }
+  for (std::size_t p = 0; p < ref.sum.size(); ++p)
+    if (ref.sum[p].w != dev.sum[p].w) ++c.failingValues;  // sample counts must match exactly
+  c.meanAbsDiff = a.empty() ? 0.0 : sumAbs / double(a.size());
+  c.pass = c.failingValues == 0;
+}
+
+double mrays(const RenderStats& s) { return s.seconds > 0.0 ? double(s.raysTraced()) / s.seconds / 1e6 : 0.0; }
+
+// Builds the separate integrate.cl program (montecl.cl is built by the renderer).
+void buildIntegrateProgram(const DeviceInfo& device, DeviceReport& r) {
+  cl::Context context(device.device);
+  ProgramBuild b = buildProgramCached(context, device, expandedKernelSource("integrate.cl"), kKernelBuildOptions);
+  r.buildMs += b.buildMs;
+  r.fromCache = r.fromCache && b.fromCache;
+}
+
+}  // namespace
+
+ConformanceReport runConformance(const ConformanceOptions& options) {
+  ConformanceReport report;
+  const std::vector<ConformanceCase> cases = conformanceSet(options.set, report.skipped);
+  std::vector<Bvh> bvhs;
+  for (const ConformanceCase& c : cases) bvhs.push_back(buildBvh(c.scene.triangles));
+
+  // Reference images from the host backend.
+  std::vector<Rendered> reference(cases.size());
+  {
+    WavefrontRenderer host(hostDeviceInfo(), {});
+    double rays = 0.0, seconds = 0.0;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      reference[i].film = host.render(cases[i].scene, bvhs[i], reference[i].stats);
+      rays += double(reference[i].stats.raysTraced());
+      seconds += reference[i].stats.seconds;
+    }
+    report.hostMrays = seconds > 0.0 ? rays / seconds / 1e6 : 0.0;
+  }
+
+  std::vector<DeviceInfo> devices;
+  if (options.deviceSpecs.empty()) {
+    DeviceList list = listDevices();
+    devices = list.devices;
+    report.platformErrors = list.platformErrors;
+  } else {
+    for (const std::string& spec : options.deviceSpecs) devices.push_back(selectDevice(spec));
+  }
+
+  report.pass = !devices.empty();
+  for (const DeviceInfo& device : devices) {
+    DeviceReport r;
+    r.index = deviceIndexString(device);
+    r.name = device.name;
+    r.platform = device.platformName;
+    std::unique_ptr<WavefrontRenderer> renderer;
+    try {
+      renderer = std::make_unique<WavefrontRenderer>(device, RenderOptions{});
+      r.buildMs = renderer->programBuildMs();
+      r.fromCache = renderer->programFromCache();
+      if (!device.isHost) buildIntegrateProgram(device, r);
+      r.buildOk = true;
+    } catch (const cl::Error& e) {
+      r.buildError = describeClError(e);
+    } catch (const std::exception& e) {
+      r.buildError = e.what();
+    }
+    r.pass = r.buildOk;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      ImageComparison c;
+      c.name = cases[i].name;
+      c.width = cases[i].scene.camera.width;
+      c.height = cases[i].scene.camera.height;
+      c.spp = cases[i].scene.render.spp;
+      if (renderer) {
+        try {
+          Rendered out;
+          out.film = renderer->render(cases[i].scene, bvhs[i], out.stats);
+          c.rendered = true;
+          c.seconds = out.stats.seconds;
+          c.mrays = mrays(out.stats);
+          compare(reference[i].film, out.film, c);
+        } catch (const cl::Error& e) {
+          c.error = describeClError(e);
+        } catch (const std::exception& e) {
+          c.error = e.what();
+        }
+      } else {
+        c.error = "kernels did not build";
+      }
+      r.pass = r.pass && c.pass;
+      r.images.push_back(c);
+    }
+    report.pass = report.pass && r.pass;
+    report.devices.push_back(std::move(r));
+  }
+  return report;
+}
+
+nlohmann::json conformanceJson(const ConformanceReport& report) {
+  nlohmann::json devices = nlohmann::json::array();
+  for (const DeviceReport& d : report.devices) {
+    nlohmann::json images = nlohmann::json::array();
+    for (const ImageComparison& c : d.images)
+      images.push_back({{"name", c.name},
+                        {"width", c.width},
+                        {"height", c.height},
+                        {"spp", c.spp},
+                        {"rendered", c.rendered},
+                        {"maxAbsDiff", c.maxAbsDiff},
+                        {"meanAbsDiff", c.meanAbsDiff},
+                        {"maxRelDiff", c.maxRelDiff},
+                        {"failingValues", c.failingValues},
+                        {"mrays", c.mrays},
+                        {"seconds", c.seconds},
+                        {"pass", c.pass},
+                        {"error", c.error}});
+    devices.push_back({{"index", d.index},
+                       {"name", d.name},
+                       {"platform", d.platform},
+                       {"build", {{"ok", d.buildOk}, {"ms", d.buildMs}, {"fromCache", d.fromCache},
+                                  {"error", d.buildError}}},
+                       {"images", images},
+                       {"pass", d.pass}});
+  }
+  return {{"reference", "host"},
+          {"tolerance", {{"relative", kRelTolerance}, {"absoluteFloor", kAbsFloor}}},
+          {"hostMrays", report.hostMrays},
+          {"devices", devices},
+          {"skipped", report.skipped},
+          {"platformErrors", report.platformErrors},
+          {"pass", report.pass}};
+}
+
+std::string conformanceTable(const ConformanceReport& report) {
+  std::ostringstream out;
+  char line[512];
+  out << "reference: host backend (" << report.hostMrays << " Mrays/s); tolerance per pixel channel: "
+      << kRelTolerance << " relative, absolute floor " << kAbsFloor << "\n";
+  for (const DeviceReport& d : report.devices) {
+    out << "\n" << d.index << "  " << d.name << " (" << d.platform << "): build "
+        << (d.buildOk ? "ok" : "FAILED") << " (" << d.buildMs << " ms" << (d.fromCache ? ", cached" : "") << ")\n";
+    if (!d.buildOk) out << "  " << d.buildError << "\n";
+    std::snprintf(line, sizeof line, "  %-32s %9s %11s %11s %11s %9s  %s\n", "image", "size", "max abs", "mean abs",
+                  "max rel", "Mrays/s", "result");
+    out << line;
+    for (const ImageComparison& c : d.images) {
+      std::string size = std::to_string(c.width) + "x" + std::to_string(c.height) + "x" + std::to_string(c.spp);
+      std::string result = c.pass ? "pass" : (c.error.empty() ? "FAIL (" + std::to_string(c.failingValues) + " values)"
+                                                               : "FAIL: " + c.error);
+      std::snprintf(line, sizeof line, "  %-32s %9s %11.3g %11.3g %11.3g %9.2f  %s\n", c.name.c_str(), size.c_str(),
+                    c.maxAbsDiff, c.meanAbsDiff, c.maxRelDiff, c.mrays, result.c_str());
+      out << line;
+    }
+  }
+  for (const std::string& s : report.skipped) out << "skipped " << s << "\n";
+  for (const std::string& e : report.platformErrors) out << "platform error: " << e << "\n";
+  if (report.devices.empty()) out << "no OpenCL device found\n";
+  out << (report.pass ? "conformance: all devices pass\n" : "conformance: FAILED\n");
+  return out.str();
+}
+
+}  // namespace montecl

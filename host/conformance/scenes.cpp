@@ -1,0 +1,137 @@
+// scenes.cpp: builds the conformance set (see scenes.h). Every case uses a fixed seed, so every
+// backend renders the same random numbers; the scenes avoid exact ties (rays along edges) so that
+// last-bit differences between devices cannot flip a visibility decision.
+#include "conformance/scenes.h"
+
+#include <fstream>
+
+namespace montecl {
+namespace {
+
+void addQuad(Scene& s, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, std::uint32_t material = 0) {
+  s.triangles.push_back({{a, b, c}, material});
+  s.triangles.push_back({{a, c, d}, material});
+}
+
+void finishScene(Scene& s) {
+  if (s.materials.empty()) s.materials.push_back(MaterialDesc{});
+  s.boundsMin = glm::vec3(1e30f);
+  s.boundsMax = glm::vec3(-1e30f);
+  for (const auto& t : s.triangles)
+    for (const auto& v : t.v) {
+      s.boundsMin = glm::min(s.boundsMin, v);
+      s.boundsMax = glm::max(s.boundsMax, v);
+    }
+}
+
+// The floor y = 0, 2000 units wide, its diagonal well away from the origin.
+void addFloor(Scene& s, std::uint32_t material = 0) {
+  const float r = 1000.0f, dx = 43.0f;
+  addQuad(s, {-r + dx, 0, -r}, {-r + dx, 0, r}, {r + dx, 0, r}, {r + dx, 0, -r}, material);
+}
+
+Scene floorScene(glm::vec3 at, float height, float fovY, int size, int spp) {
+  Scene s;
+  s.path = "<floor scene>";
+  addFloor(s);
+  s.camera.position = at + glm::vec3(0, height, 0);
+  s.camera.target = at;
+  s.camera.up = {0, 0, -1};
+  s.camera.fovY = fovY;
+  s.camera.width = s.camera.height = size;
+  s.render.spp = spp;
+  s.render.seed = 7;
+  finishScene(s);
+  return s;
+}
+
+// The floor plus the wall x = 0, seen from above around x = -0.5 (AO 1/2 there).
+Scene wallScene(int size, int spp) {
+  Scene s = floorScene({-0.5f, 0.0f, 0.0f}, 0.5f, 40.0f, size, spp);
+  s.path = "<wall scene>";
+  const float r = 1000.0f;
+  addQuad(s, {0, 0, -r}, {0, r, -r}, {0, r, r}, {0, 0, r});
+  finishScene(s);
+  return s;
+}
+
+// A tilted square light (front face toward the floor) over a coloured floor, with a small
+// occluding quad casting a soft shadow; seen obliquely so the image also holds the light itself.
+Scene polygonLightScene(int size, int spp) {
+  Scene s;
+  s.path = "<polygon light scene>";
+  s.materials = {MaterialDesc{"floor", glm::vec3(0.5f, 0.6f, 0.7f), glm::vec3(0.0f)},
+                 MaterialDesc{"light", glm::vec3(0.0f), glm::vec3(2.0f, 3.0f, 4.0f)},
+                 MaterialDesc{"occluder", glm::vec3(0.3f, 0.2f, 0.1f), glm::vec3(0.0f)}};
+  addFloor(s, 0);
+  // Light: a square of side 0.8 around (0.5, 1, 0.3), normal roughly (-1, -1, 0.2) normalised.
+  const glm::vec3 c(0.5f, 1.0f, 0.3f), n = glm::normalize(glm::vec3(-1.0f, -1.0f, 0.2f));
+  const glm::vec3 t = glm::normalize(glm::cross(n, glm::vec3(0, 1, 0))), b = glm::cross(n, t);
+  const float h = 0.4f;
+  std::vector<glm::vec3> v = {c - t * h - b * h, c + t * h - b * h, c + t * h + b * h, c - t * h + b * h};
+  if (glm::dot(glm::cross(v[1] - v[0], v[2] - v[0]), n) < 0) std::swap(v[1], v[3]);
+  addQuad(s, v[0], v[1], v[2], v[3], 1);
+  // Occluder: a horizontal quad at y = 0.35 over part of the floor.
+  addQuad(s, {-0.25f, 0.35f, -0.2f}, {-0.25f, 0.35f, 0.15f}, {0.1f, 0.35f, 0.15f}, {0.1f, 0.35f, -0.2f}, 2);
+  s.camera.position = {-1.7f, 1.3f, 0.9f};
+  s.camera.target = {0.05f, 0.2f, 0.05f};
+  s.camera.fovY = 55.0f;
+  s.camera.width = s.camera.height = size;
+  s.render.spp = spp;
+  s.render.seed = 5;
+  s.render.background = {0.1f, 0.2f, 0.3f};  // the far horizon is a miss
+  s.render.integrator = "direct";
+  finishScene(s);
+  return s;
+}
+
+Scene withAo(Scene s, const char* sampling) {
+  s.render.integrator = "ao";
+  s.render.aoSampling = sampling;
+  return s;
+}
+
+Scene withDirect(Scene s, const char* strategy, int lightSamples) {
+  s.render.integrator = "direct";
+  s.render.directSampling = strategy;
+  s.render.lightSamples = lightSamples;
+  return s;
+}
+
+}  // namespace
+
+std::string defaultCornellPath() {
+  return std::string(MONTECL_SOURCE_DIR) + "/../shared/scenes/cornell-box/scene.json";
+}
+
+std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std::vector<std::string>& skipped) {
+  std::vector<ConformanceCase> cases;
+  const Scene wall = wallScene(o.size, o.spp);
+  cases.push_back({"wall/ao-uniform", withAo(wall, "uniform")});
+  cases.push_back({"wall/ao-cosine", withAo(wall, "cosine")});
+  Scene shortAo = withAo(wall, "uniform");
+  shortAo.render.aoDistance = 0.3f;
+  cases.push_back({"wall/ao-uniform-distance-0.3", shortAo});
+  const Scene light = polygonLightScene(o.size, o.spp);
+  cases.push_back({"polygon-light/direct-light", withDirect(light, "light", 1)});
+  cases.push_back({"polygon-light/direct-brdf", withDirect(light, "brdf", 1)});
+  cases.push_back({"polygon-light/direct-mis", withDirect(light, "mis", 2)});
+  cases.push_back({"polygon-light/ao-cosine", withAo(light, "cosine")});
+
+  const std::string path = o.cornellPath.empty() ? defaultCornellPath() : o.cornellPath;
+  if (!std::ifstream(path)) {
+    skipped.push_back("cornell-box: " + path + " not found (the shared scenes are not beside this checkout)");
+    return cases;
+  }
+  std::vector<std::string> warnings;
+  Scene cornell = loadScene(path, warnings);
+  cornell.camera.width = cornell.camera.height = o.cornellSize;
+  cornell.render.spp = o.cornellSpp;
+  cornell.render.seed = 9;
+  cases.push_back({"cornell-box/direct-light", withDirect(cornell, "light", 1)});
+  cases.push_back({"cornell-box/direct-mis", withDirect(cornell, "mis", 1)});
+  cases.push_back({"cornell-box/ao-cosine", withAo(cornell, "cosine")});
+  return cases;
+}
+
+}  // namespace montecl

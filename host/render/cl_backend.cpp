@@ -1,0 +1,128 @@
+// cl_backend.cpp: the OpenCL backend of the wave loop: one ClSession (context, in-order queue,
+// cached kernel program), the per-render device buffers, and one kernel launch per stage. Queue
+// counters are reset on the device; the host never reads a queue count back to size a launch
+// (kernels return past the device-side count), only once per wave for the statistics.
+#include <algorithm>
+
+#include "cl/cl_session.h"
+#include "render/stage_runner.h"
+#include "util/errors.h"
+
+namespace montecl {
+namespace {
+
+// Sets consecutive kernel arguments starting at index 0.
+template <typename... Args>
+void setArgs(cl::Kernel& k, const Args&... args) {
+  cl_uint index = 0;
+  (k.setArg(index++, args), ...);
+}
+
+class ClStageRunner final : public StageRunner {
+ public:
+  ClStageRunner(const DeviceInfo& device, std::size_t workGroupSize)
+      : cl_(device, workGroupSize), generate_(cl_.kernel("generate")), intersectCamera_(cl_.kernel("intersect")),
+        intersectBounce_(cl_.kernel("intersect")), shadeAo_(cl_.kernel("shade_ao")),
+        shadeDirect_(cl_.kernel("shade_direct")), shadeDirectHit_(cl_.kernel("shade_direct_hit")),
+        intersectShadow_(cl_.kernel("intersect_shadow")), accumulate_(cl_.kernel("accumulate")) {}
+
+  std::uint64_t maxAllocBytes() const override { return cl_.device().maxAllocBytes; }
+  bool programFromCache() const override { return cl_.build().fromCache; }
+  double programBuildMs() const override { return cl_.build().buildMs; }
+
+  void setup(const StageInputs& in) override {
+    const std::uint64_t wave = in.wave, slots = in.frame.shadowSlots;
+    pixels_ = std::uint64_t(in.frame.width) * in.frame.height;
+    frameBuf_ = cl_.upload(std::vector<FrameParams>{in.frame});
+    nodes_ = cl_.upload(in.bvh->nodes);
+    tris_ = cl_.upload(in.bvh->triangles);
+    materials_ = cl_.upload(in.materials);
+    emitters_ = cl_.upload(in.emitters);
+    rays_ = cl_.buffer<Ray>(wave);
+    hits_ = cl_.buffer<Hit>(wave);
+    bounce_ = cl_.buffer<Ray>(in.direct ? wave : 1);
+    bounceHits_ = cl_.buffer<Hit>(in.direct ? wave : 1);
+    radiance_ = cl_.buffer<cl_float4>(wave);
+    shadowContrib_ = cl_.buffer<cl_float4>(wave * slots);
+    shadowQueue_ = cl_.buffer<ShadowWork>(wave * slots);
+    rayCount_ = cl_.buffer<cl_uint>(1);
+    queueCount_ = cl_.buffer<cl_uint>(1);
+    sum_ = cl_.buffer<cl_float4>(pixels_);
+    sumSq_ = cl_.buffer<cl_float4>(pixels_);
+    const cl_float4 zero4 = {{0.0f, 0.0f, 0.0f, 0.0f}};
+    cl_.queue().enqueueFillBuffer(sum_, zero4, 0, pixels_ * sizeof(cl_float4));
+    cl_.queue().enqueueFillBuffer(sumSq_, zero4, 0, pixels_ * sizeof(cl_float4));
+
+    // Arguments that stay the same for every wave; waveStart and waveCount are set per wave.
+    const cl_ulong noStart = 0;
+    const cl_uint noCount = 0;
+    setArgs(generate_, frameBuf_, noStart, noCount, rays_);
+    setArgs(intersectCamera_, nodes_, tris_, rays_, rayCount_, hits_);
+    setArgs(intersectBounce_, nodes_, tris_, bounce_, rayCount_, bounceHits_);
+    setArgs(shadeAo_, frameBuf_, noStart, noCount, tris_, rays_, hits_, radiance_, shadowContrib_, shadowQueue_,
+            queueCount_);
+    setArgs(shadeDirect_, frameBuf_, noStart, noCount, tris_, materials_, emitters_, rays_, hits_, radiance_,
+            shadowContrib_, shadowQueue_, queueCount_, bounce_);
+    setArgs(shadeDirectHit_, frameBuf_, noCount, tris_, materials_, rays_, hits_, bounce_, bounceHits_,
+            shadowContrib_);
+    setArgs(intersectShadow_, nodes_, tris_, shadowQueue_, queueCount_, shadowContrib_);
+    setArgs(accumulate_, frameBuf_, noStart, noCount, radiance_, shadowContrib_, sum_, sumSq_);
+  }
+
+  void beginWave(std::uint64_t waveStart, std::uint32_t count) override {
+    count_ = count;
+    const cl_ulong start = waveStart;
+    const cl_uint n = count, zero = 0;
+    cl_.queue().enqueueFillBuffer(rayCount_, n, 0, sizeof(cl_uint));
+    cl_.queue().enqueueFillBuffer(queueCount_, zero, 0, sizeof(cl_uint));
+    for (cl::Kernel* k : {&generate_, &shadeAo_, &shadeDirect_, &accumulate_}) {
+      k->setArg(1, start);
+      k->setArg(2, n);
+    }
+    shadeDirectHit_.setArg(1, n);
+  }
+
+  void generate() override { cl_.launch(generate_, count_); }
+  void intersectCamera() override { cl_.launch(intersectCamera_, count_); }
+  void shadeAo() override { cl_.launch(shadeAo_, count_); }
+  void shadeDirect() override { cl_.launch(shadeDirect_, count_); }
+  void intersectBounce() override { cl_.launch(intersectBounce_, count_); }
+  void shadeDirectHit() override { cl_.launch(shadeDirectHit_, count_); }
+  void intersectShadow(std::uint64_t maxQueries) override { cl_.launch(intersectShadow_, maxQueries); }
+  void accumulate(std::uint64_t pixelsTouched) override { cl_.launch(accumulate_, pixelsTouched); }
+
+  std::uint32_t finishWave() override {
+    cl_uint shadowCount = 0;
+    cl_.queue().enqueueReadBuffer(queueCount_, CL_TRUE, 0, sizeof(cl_uint), &shadowCount);
+    return shadowCount;
+  }
+
+  void readFilm(Film& film) override {
+    film.sum.resize(pixels_);
+    film.sumSq.resize(pixels_);
+    cl_.queue().enqueueReadBuffer(sum_, CL_FALSE, 0, pixels_ * sizeof(cl_float4), film.sum.data());
+    cl_.queue().enqueueReadBuffer(sumSq_, CL_TRUE, 0, pixels_ * sizeof(cl_float4), film.sumSq.data());
+  }
+
+ private:
+  ClSession cl_;
+  cl::Kernel generate_, intersectCamera_, intersectBounce_, shadeAo_, shadeDirect_, shadeDirectHit_,
+      intersectShadow_, accumulate_;
+  cl::Buffer frameBuf_, nodes_, tris_, materials_, emitters_, rays_, hits_, bounce_, bounceHits_, radiance_,
+      shadowContrib_, shadowQueue_, rayCount_, queueCount_, sum_, sumSq_;
+  std::uint64_t pixels_ = 0;
+  std::uint32_t count_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<StageRunner> makeClStageRunner(const DeviceInfo& device, std::size_t workGroupSize) {
+  return std::make_unique<ClStageRunner>(device, workGroupSize);
+}
+
+std::unique_ptr<StageRunner> makeStageRunner(const DeviceInfo& device, std::size_t workGroupSize) {
+  if (device.isHost) return makeHostStageRunner();
+  return makeClStageRunner(device, workGroupSize);
+}
+
+}  // namespace montecl

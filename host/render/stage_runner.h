@@ -1,0 +1,63 @@
+// stage_runner.h: the backend interface of the wave loop. One loop (wavefront.cpp) drives every
+// backend through these calls, stage by stage; a backend owns the per-render buffers and runs the
+// shared stage_* functions (kernels/shared/stages*.h) either as OpenCL kernels (cl_backend.cpp)
+// or as plain C++ loops on the CPU (host_backend.cpp, `--device host`).
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "bvh/bvh.h"
+#include "cl/devices.h"
+#include "image/film.h"
+#include "kernels/shared/types.h"
+
+namespace montecl {
+
+// Everything a render uploads once, before the first wave.
+struct StageInputs {
+  FrameParams frame{};
+  const Bvh* bvh = nullptr;
+  std::vector<Material> materials;
+  std::vector<Emitter> emitters;
+  std::uint64_t wave = 0;    // wave items (pixel samples) per wave
+  bool direct = false;       // direct lighting: bounce buffers are needed
+};
+
+class StageRunner {
+ public:
+  virtual ~StageRunner() = default;
+
+  // Largest single buffer the backend can allocate (wave sizing and the clear "does not fit" error).
+  virtual std::uint64_t maxAllocBytes() const = 0;
+  virtual bool programFromCache() const { return false; }
+  virtual double programBuildMs() const { return 0.0; }
+
+  // Allocates the wave buffers and uploads frame, BVH, materials and emitters; clears the film.
+  virtual void setup(const StageInputs& in) = 0;
+  // Starts a wave of `count` items from global sample index waveStart: resets the ray count to
+  // `count` and the shadow queue count to 0.
+  virtual void beginWave(std::uint64_t waveStart, std::uint32_t count) = 0;
+  virtual void generate() = 0;
+  virtual void intersectCamera() = 0;
+  virtual void shadeAo() = 0;
+  virtual void shadeDirect() = 0;
+  virtual void intersectBounce() = 0;
+  virtual void shadeDirectHit() = 0;
+  // Runs intersect_shadow over up to maxQueries queue entries (the queue's own count bounds it).
+  virtual void intersectShadow(std::uint64_t maxQueries) = 0;
+  // Runs accumulate over the `pixelsTouched` pixels of the wave.
+  virtual void accumulate(std::uint64_t pixelsTouched) = 0;
+  // Waits for the wave; returns the number of occlusion queries it traced.
+  virtual std::uint32_t finishWave() = 0;
+  virtual void readFilm(Film& film) = 0;
+};
+
+// OpenCL kernels on `device` (its kernels built through the program cache).
+std::unique_ptr<StageRunner> makeClStageRunner(const DeviceInfo& device, std::size_t workGroupSize);
+// The stage functions compiled as C++, run on `threads` CPU threads (0: hardware concurrency).
+std::unique_ptr<StageRunner> makeHostStageRunner(unsigned threads = 0);
+// The runner for a device: the host backend when device.isHost, else OpenCL.
+std::unique_ptr<StageRunner> makeStageRunner(const DeviceInfo& device, std::size_t workGroupSize);
+
+}  // namespace montecl
