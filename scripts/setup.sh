@@ -8,6 +8,7 @@ packages=(
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo oclgrind
   libglm-dev libtinyobjloader-dev libopenimageio-dev openimageio-tools
   doctest-dev nlohmann-json3-dev libcli11-dev
+  python3-matplotlib
   libembree-dev jq
 )
 

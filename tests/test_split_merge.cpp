@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <fstream>
 
 #include "cli_runner.h"
 #include "image/exr_layers.h"
@@ -53,4 +54,30 @@ TEST_CASE("a render split with --first-sample and merged equals the single rende
   const std::vector<float>& ar = *a.find("R");
   const std::vector<float>& br = *montecl::readLayeredImage(dir.file("b.exr")).find("R");
   CHECK(ar != br);
+}
+
+TEST_CASE("a .pfm render is a little-endian float map with the image's size and values") {
+  TempDir dir;
+  std::vector<std::string> args = renderArgs(dir.file("x.pfm"), 4, 0);
+  REQUIRE(runMontecl(args).exitCode == 0);
+  args[3] = dir.file("x.exr");
+  REQUIRE(runMontecl(args).exitCode == 0);
+  std::ifstream in(dir.file("x.pfm"), std::ios::binary);
+  std::string magic;
+  int w = 0, h = 0;
+  float scale = 0;
+  in >> magic >> w >> h >> scale;
+  in.get();
+  CHECK(magic == "PF");
+  CHECK(w == 24);
+  CHECK(h == 16);
+  CHECK(scale < 0.0f);
+  std::vector<float> data(std::size_t(w) * h * 3);
+  in.read(reinterpret_cast<char*>(data.data()), std::streamsize(data.size() * 4));
+  REQUIRE(in);
+  montecl::LayeredImage exr = montecl::readLayeredImage(dir.file("x.exr"));
+  // PFM rows run bottom to top; EXR rows top to bottom.
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      REQUIRE(data[(std::size_t(h - 1 - y) * w + x) * 3 + 1] == (*exr.find("G"))[std::size_t(y) * w + x]);
 }
