@@ -8,9 +8,11 @@ packages=(
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo oclgrind
   libglm-dev libtinyobjloader-dev libopenimageio-dev openimageio-tools
   doctest-dev nlohmann-json3-dev libcli11-dev
-  python3-matplotlib
   libembree-dev jq
 )
+
+# Only the plotting scripts need matplotlib: `setup.sh --plots` adds it.
+if [ "${1:-}" = "--plots" ]; then packages+=(python3-matplotlib); fi
 
 missing=()
 for p in "${packages[@]}"; do
