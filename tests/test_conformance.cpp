@@ -1,15 +1,17 @@
 // test_conformance.cpp: portability. The host backend (--device host) renders the same images as
 // the kernels: in process against the default OpenCL device, and through the real montecl
 // binary's `conformance` command on the PoCL pthread device, the PoCL single-threaded device
-// (POCL_DEVICES=basic) and under Oclgrind (API, data-race and uninitialised-memory checks, which
-// must report nothing). Same-seed images agree within 1e-5 relative per pixel everywhere.
+// (POCL_DEVICES=basic) and under Oclgrind (API and data-race checks, which must report nothing). Same-seed images agree within 1e-5 relative per pixel everywhere.
 #include <doctest/doctest.h>
 
 #include <cstdlib>
+#include <regex>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "bvh/bvh.h"
 #include "cl/devices.h"
+#include "cl/kernel_source.h"
 #include "cli_runner.h"
 #include "conformance/conformance.h"
 #include "render/wavefront.h"
@@ -119,12 +121,15 @@ TEST_CASE("conformance: PoCL single-threaded device (POCL_DEVICES=basic)") {
                       "POCL_DEVICES=basic");
 }
 
-TEST_CASE("conformance: Oclgrind reports no API error, data race or uninitialised read") {
+// --uninitialized is left out: Debian 12's Oclgrind (21.10) aborts on LLVM's `freeze` instruction
+// in optimised kernels ("Unsupported instruction: freeze"), and with -cl-opt-disable it reports
+// the undefined fourth lane of float3 values (jrprice/Oclgrind#126) as uninitialised reads.
+TEST_CASE("conformance: Oclgrind reports no API error or data race") {
   if (std::system("oclgrind --version > /dev/null 2>&1") != 0) {
     MESSAGE("skipping: oclgrind not installed (apt-get install oclgrind)");
     return;
   }
-  CliResult r = runProgram({"oclgrind", "--check-api", "--data-races", "--uninitialized", MONTECL_EXE, "conformance",
+  CliResult r = runProgram({"oclgrind", "--check-api", "--data-races", MONTECL_EXE, "conformance",
                             "--json", "--size", "4", "--spp", "2", "--cornell-size", "4", "--cornell-spp", "1"});
   checkConformanceRun(r, "oclgrind");
   // Oclgrind reports every error on stderr; montecl writes nothing there with --json.
@@ -132,4 +137,34 @@ TEST_CASE("conformance: Oclgrind reports no API error, data race or uninitialise
   nlohmann::json j = nlohmann::json::parse(r.out);
   REQUIRE(j["devices"].size() == 1);
   CHECK(j["devices"][0]["platform"].get<std::string>().find("Oclgrind") != std::string::npos);
+}
+
+TEST_CASE("kernel hygiene: no doubles, no unsuffixed float literals, no FP contraction") {
+  for (const char* file : {"montecl.cl", "integrate.cl"}) {
+    CAPTURE(file);
+    const std::string source = expandedKernelSource(file);
+    // OpenCL C part only: the C++ branches (#ifndef MCL_OPENCL, #else of #ifdef MCL_OPENCL) are skipped.
+    struct Block {
+      bool onMcl, cxx;
+    };
+    std::vector<Block> stack;
+    std::istringstream lines(source);
+    std::string line;
+    const std::regex doubleWord(R"(\bdouble\b)"), literal(R"((^|[^\w.])(\d+\.\d*|\.\d+)([eE][-+]?\d+)?(?![\w]))");
+    while (std::getline(lines, line)) {
+      if (line.rfind("#ifdef MCL_OPENCL", 0) == 0) stack.push_back({true, false});
+      else if (line.rfind("#ifndef MCL_OPENCL", 0) == 0) stack.push_back({true, true});
+      else if (line.rfind("#if", 0) == 0) stack.push_back({false, false});
+      else if (line.rfind("#else", 0) == 0 && !stack.empty() && stack.back().onMcl) stack.back().cxx = !stack.back().cxx;
+      else if (line.rfind("#endif", 0) == 0 && !stack.empty()) stack.pop_back();
+      bool cxx = false;
+      for (const Block& blk : stack) cxx = cxx || blk.cxx;
+      if (cxx) continue;
+      const std::string code = line.substr(0, line.find("//"));
+      CAPTURE(line);
+      CHECK_FALSE(std::regex_search(code, doubleWord));
+      CHECK_FALSE(std::regex_search(code, literal));
+    }
+    if (std::string(file) == "montecl.cl") CHECK(source.find("#pragma OPENCL FP_CONTRACT OFF") != std::string::npos);
+  }
 }

@@ -107,6 +107,21 @@ ConformanceReport runConformance(const ConformanceOptions& options) {
       r.buildError = e.what();
     }
     r.pass = r.buildOk;
+    if (renderer) {
+      // Warm-up, untimed: PoCL specialises each kernel on its first launch.
+      for (const char* integrator : {"ao", "direct"}) {
+        Scene tiny = cases.front().scene;
+        tiny.camera.width = tiny.camera.height = 2;
+        tiny.render.spp = 1;
+        tiny.render.integrator = integrator;
+        RenderStats ignored;
+        try {
+          renderer->render(tiny, bvhs.front(), ignored);
+        } catch (const std::exception&) {
+          // reported by the real renders below
+        }
+      }
+    }
     for (std::size_t i = 0; i < cases.size(); ++i) {
       ImageComparison c;
       c.name = cases[i].name;

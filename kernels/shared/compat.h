@@ -8,6 +8,9 @@
 #endif
 
 #ifdef MCL_OPENCL
+// No FMA contraction (OpenCL C lets a compiler fuse a * b + c by default; PoCL does): the host
+// backend compiles these headers with -ffp-contract=off, so both round every operation the same.
+#pragma OPENCL FP_CONTRACT OFF
 #define MCL_GLOBAL __global
 #define MCL_CONSTANT __constant
 #define MCL_INLINE inline
@@ -17,6 +20,27 @@
 #define MCL_ATOMIC_INC(p) atomic_inc(p)
 #define MCL_STATIC_ASSERT(cond, msg)
 #define MCL_ALIGN16
+// dot, cross, length and normalize of float3, written out with the same float operations, in
+// the same order, as GLM's on the host. OpenCL lets the built-ins use any precision or order
+// (Oclgrind, for one, differs from PoCL in the last bit), and a last-bit difference in a cosine
+// near grazing becomes a large relative one in a pdf. Only float3 is used in these headers.
+MCL_INLINE float mcl_dot3(float3 a, float3 b) {
+  float3 t = a * b;
+  return t.x + t.y + t.z;
+}
+MCL_INLINE float3 mcl_cross3(float3 a, float3 b) {
+  return (float3)(a.y * b.z - b.y * a.z, a.z * b.x - b.z * a.x, a.x * b.y - b.x * a.y);
+}
+MCL_INLINE float mcl_length3(float3 v) { return sqrt(mcl_dot3(v, v)); }
+MCL_INLINE float3 mcl_normalize3(float3 v) { return v * (1.0f / sqrt(mcl_dot3(v, v))); }
+#undef dot  // some implementations (PoCL) define the built-ins as macros
+#undef cross
+#undef length
+#undef normalize
+#define dot(a, b) mcl_dot3(a, b)
+#define cross(a, b) mcl_cross3(a, b)
+#define length(v) mcl_length3(v)
+#define normalize(v) mcl_normalize3(v)
 #else
 #include <glm/glm.hpp>
 #include <math.h>  // libstdc++'s math.h puts the float overloads of sqrt, fmin, ... in the global namespace
