@@ -189,7 +189,7 @@ json runBench(const BenchOptions& o, bool verbose) {
   if (o.width) scene.camera.width = *o.width;
   if (o.height) scene.camera.height = *o.height;
   if (scene.triangles.empty()) throwInputError(o.scene, "", "the scene has no triangles");
-  DeviceInfo device = selectDevice(o.device);
+  DeviceInfo device = selectOpenClDevice(o.device, "bench");
   unsigned threads = o.threads ? o.threads : std::max(1u, device.computeUnits);
   auto say = [&](const std::string& s) {
     if (verbose) std::cerr << "montecl bench: " << s << "\n";

@@ -187,4 +187,10 @@ DeviceInfo selectDevice(const std::string& rawSpec) {
   throwNoMatch(spec);
 }
 
+DeviceInfo selectOpenClDevice(const std::string& spec, const std::string& command) {
+  DeviceInfo d = selectDevice(spec);
+  if (d.isHost) throw InputError("--device " + spec + ": montecl " + command + " needs an OpenCL device");
+  return d;
+}
+
 }  // namespace montecl

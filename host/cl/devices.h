@@ -41,6 +41,10 @@ DeviceInfo hostDeviceInfo();
 // nothing, RuntimeError when there is no OpenCL device at all (saying to install pocl-opencl-icd).
 DeviceInfo selectDevice(const std::string& spec);
 
+// selectDevice for commands that need a real OpenCL device: "host" is an InputError naming the
+// command ("--device host: montecl bench needs an OpenCL device").
+DeviceInfo selectOpenClDevice(const std::string& spec, const std::string& command);
+
 // "P:D", the index form of a device accepted by selectDevice ("host" for the host backend).
 std::string deviceIndexString(const DeviceInfo& d);
 

@@ -33,7 +33,7 @@ int runIntegrate(const IntegrateArgs& a) {
   std::vector<Integrand> integrands;
   if (a.integrand == "sine" || a.integrand == "all") integrands.push_back(Integrand::Sine);
   if (a.integrand == "smooth2d" || a.integrand == "all") integrands.push_back(Integrand::Smooth2d);
-  DeviceInfo device = selectDevice(a.device);
+  DeviceInfo device = selectOpenClDevice(a.device, "integrate");
   IntegralEstimator est(device);
   if (a.verbose)
     std::cerr << "montecl: device " << deviceIndexString(device) << " " << device.name << "; kernel "

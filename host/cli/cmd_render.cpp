@@ -123,7 +123,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::IsMember({"uniform", "cosine"}));
   cmd->add_option("--ao-distance", args->aoDistance, "Occluders farther than this are ignored")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--device", args->device, "OpenCL device: P:D, or part of the device or platform name");
+  cmd->add_option("--device", args->device, "OpenCL device: P:D, part of the device or platform name, or host (CPU, no OpenCL)");
   cmd->add_option("--wave-size", args->waveSize, "Pixel samples per wave (default: from a 256 MiB budget)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--work-group-size", args->workGroupSize, "Work-group size (default: min(64, kernel max))")
