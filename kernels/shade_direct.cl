@@ -8,9 +8,10 @@ __kernel void shade_direct(__constant FrameParams* frame, ulong waveStart, uint 
                            __global const Emitter* emitters, __global const Ray* rays,
                            __global const Hit* hits, __global float4* radiance,
                            __global float4* shadowContrib, __global ShadowWork* queue,
-                           __global volatile uint* queueCount, __global Ray* bounce) {
+                           __global volatile uint* queueCount, __global Ray* bounce,
+                           __global const uint* active) {
   uint i = get_global_id(0);
   if (i < waveCount)
-    stage_shade_direct(frame, waveStart, tris, materials, emitters, rays, hits, i, radiance,
+    stage_shade_direct(frame, active, waveStart, tris, materials, emitters, rays, hits, i, radiance,
                        shadowContrib, queue, queueCount, bounce);
 }

@@ -47,6 +47,10 @@ class ClStageRunner final : public StageRunner {
     shadowQueue_ = cl_.buffer<ShadowWork>(wave * slots);
     rayCount_ = cl_.buffer<cl_uint>(1);
     queueCount_ = cl_.buffer<cl_uint>(1);
+    frame_ = in.frame;
+    std::vector<cl_uint> all(pixels_);
+    for (std::uint64_t p = 0; p < pixels_; ++p) all[p] = cl_uint(p);
+    active_ = cl_.upload(all, CL_MEM_READ_WRITE);
     sum_ = cl_.buffer<cl_float4>(pixels_);
     sumSq_ = cl_.buffer<cl_float4>(pixels_);
     const cl_float4 zero4 = {{0.0f, 0.0f, 0.0f, 0.0f}};
@@ -56,17 +60,24 @@ class ClStageRunner final : public StageRunner {
     // Arguments that stay the same for every wave; waveStart and waveCount are set per wave.
     const cl_ulong noStart = 0;
     const cl_uint noCount = 0;
-    setArgs(generate_, frameBuf_, noStart, noCount, rays_);
+    setArgs(generate_, frameBuf_, noStart, noCount, rays_, active_);
     setArgs(intersectCamera_, nodes_, tris_, rays_, rayCount_, hits_);
     setArgs(intersectBounce_, nodes_, tris_, bounce_, rayCount_, bounceHits_);
     setArgs(shadeAo_, frameBuf_, noStart, noCount, tris_, rays_, hits_, radiance_, shadowContrib_, shadowQueue_,
-            queueCount_);
+            queueCount_, active_);
     setArgs(shadeDirect_, frameBuf_, noStart, noCount, tris_, materials_, emitters_, rays_, hits_, radiance_,
-            shadowContrib_, shadowQueue_, queueCount_, bounce_);
+            shadowContrib_, shadowQueue_, queueCount_, bounce_, active_);
     setArgs(shadeDirectHit_, frameBuf_, noCount, tris_, materials_, rays_, hits_, bounce_, bounceHits_,
             shadowContrib_);
     setArgs(intersectShadow_, nodes_, tris_, shadowQueue_, queueCount_, shadowContrib_);
-    setArgs(accumulate_, frameBuf_, noStart, noCount, radiance_, shadowContrib_, sum_, sumSq_);
+    setArgs(accumulate_, frameBuf_, noStart, noCount, radiance_, shadowContrib_, sum_, sumSq_, active_);
+  }
+
+  void setActivePixels(const std::vector<std::uint32_t>& pixels) override {
+    frame_.activeCount = cl_uint(pixels.size());
+    cl_.queue().enqueueWriteBuffer(frameBuf_, CL_TRUE, 0, sizeof(FrameParams), &frame_);
+    if (!pixels.empty())
+      cl_.queue().enqueueWriteBuffer(active_, CL_TRUE, 0, pixels.size() * sizeof(cl_uint), pixels.data());
   }
 
   void beginWave(std::uint64_t waveStart, std::uint32_t count) override {
@@ -109,7 +120,8 @@ class ClStageRunner final : public StageRunner {
   cl::Kernel generate_, intersectCamera_, intersectBounce_, shadeAo_, shadeDirect_, shadeDirectHit_,
       intersectShadow_, accumulate_;
   cl::Buffer frameBuf_, nodes_, tris_, materials_, emitters_, rays_, hits_, bounce_, bounceHits_, radiance_,
-      shadowContrib_, shadowQueue_, rayCount_, queueCount_, sum_, sumSq_;
+      shadowContrib_, shadowQueue_, rayCount_, queueCount_, sum_, sumSq_, active_;
+  FrameParams frame_{};
   std::uint64_t pixels_ = 0;
   std::uint32_t count_ = 0;
 };

@@ -28,6 +28,7 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
   f.aoSampling = settings.aoSampling == "uniform" ? MCL_AO_UNIFORM : MCL_AO_COSINE;
   f.aoDistance = settings.aoDistance;
   f.shadowSlots = shadowSlots;
+  f.activeCount = f.width * f.height;
   f.lightSamples = uint(settings.lightSamples);
   f.directSampling = settings.directSampling == "light"  ? MCL_DIRECT_LIGHT
                      : settings.directSampling == "brdf" ? MCL_DIRECT_BRDF

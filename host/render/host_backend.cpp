@@ -43,8 +43,16 @@ class HostStageRunner final : public StageRunner {
     shadowContrib_.assign(wave * slots, float4(0.0f));
     queue_.assign(wave * slots, ShadowWork{});
     const std::uint64_t pixels = std::uint64_t(frame_.width) * frame_.height;
+    active_.resize(pixels);
+    for (std::uint64_t p = 0; p < pixels; ++p) active_[p] = uint(p);
     sum_.assign(pixels, float4(0.0f));
     sumSq_.assign(pixels, float4(0.0f));
+  }
+
+  void setActivePixels(const std::vector<std::uint32_t>& pixels) override {
+    active_ = pixels;
+    if (active_.empty()) active_.resize(1);
+    frame_.activeCount = uint(pixels.size());
   }
 
   void beginWave(std::uint64_t waveStart, std::uint32_t count) override {
@@ -54,7 +62,7 @@ class HostStageRunner final : public StageRunner {
   }
 
   void generate() override {
-    parallelFor(count_, [&](uint i) { stage_generate(&frame_, waveStart_, i, rays_.data()); });
+    parallelFor(count_, [&](uint i) { stage_generate(&frame_, active_.data(), waveStart_, i, rays_.data()); });
   }
   void intersectCamera() override {
     parallelFor(count_, [&](uint i) { stage_intersect(nodes_.data(), tris_.data(), rays_.data(), i, hits_.data()); });
@@ -66,13 +74,13 @@ class HostStageRunner final : public StageRunner {
   }
   void shadeAo() override {
     parallelFor(count_, [&](uint i) {
-      stage_shade_ao(&frame_, waveStart_, tris_.data(), rays_.data(), hits_.data(), i, radiance_.data(),
+      stage_shade_ao(&frame_, active_.data(), waveStart_, tris_.data(), rays_.data(), hits_.data(), i, radiance_.data(),
                      shadowContrib_.data(), queue_.data(), &queueCount_);
     });
   }
   void shadeDirect() override {
     parallelFor(count_, [&](uint i) {
-      stage_shade_direct(&frame_, waveStart_, tris_.data(), materials_.data(), emitters_.data(), rays_.data(),
+      stage_shade_direct(&frame_, active_.data(), waveStart_, tris_.data(), materials_.data(), emitters_.data(), rays_.data(),
                          hits_.data(), i, radiance_.data(), shadowContrib_.data(), queue_.data(), &queueCount_,
                          bounce_.data());
     });
@@ -91,7 +99,7 @@ class HostStageRunner final : public StageRunner {
   }
   void accumulate(std::uint64_t pixelsTouched) override {
     parallelFor(pixelsTouched, [&](uint j) {
-      stage_accumulate(&frame_, waveStart_, count_, j, radiance_.data(), shadowContrib_.data(), sum_.data(),
+      stage_accumulate(&frame_, active_.data(), waveStart_, count_, j, radiance_.data(), shadowContrib_.data(), sum_.data(),
                        sumSq_.data());
     });
   }
@@ -123,6 +131,7 @@ class HostStageRunner final : public StageRunner {
 
   unsigned threads_;
   FrameParams frame_{};
+  std::vector<uint> active_;
   std::vector<BvhNode> nodes_;
   std::vector<Triangle> tris_;
   std::vector<Material> materials_;

@@ -35,6 +35,9 @@ class StageRunner {
 
   // Allocates the wave buffers and uploads frame, BVH, materials and emitters; clears the film.
   virtual void setup(const StageInputs& in) = 0;
+  // Replaces the active-pixel list the waves walk (setup starts with every pixel, in order) and
+  // sets FrameParams::activeCount to its size.
+  virtual void setActivePixels(const std::vector<std::uint32_t>& pixels) = 0;
   // Starts a wave of `count` items from global sample index waveStart: resets the ray count to
   // `count` and the shadow queue count to 0.
   virtual void beginWave(std::uint64_t waveStart, std::uint32_t count) = 0;
@@ -50,6 +53,7 @@ class StageRunner {
   virtual void accumulate(std::uint64_t pixelsTouched) = 0;
   // Waits for the wave; returns the number of occlusion queries it traced.
   virtual std::uint32_t finishWave() = 0;
+  // Reads the accumulated sums (film.sum, film.sumSq; width and height are the caller's).
   virtual void readFilm(Film& film) = 0;
 };
 

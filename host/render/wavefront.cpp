@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iostream>
 
 #include "render/stage_runner.h"
@@ -93,38 +94,101 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
               << "\n";
 
   const auto start = std::chrono::steady_clock::now();
-  const std::uint64_t first = std::uint64_t(m.options.firstSample) * pixels;
-  for (std::uint64_t done = 0; done < total;) {
-    const std::uint32_t count = std::uint32_t(std::min(wave, total - done));
-    run.beginWave(first + done, count);
-    run.generate();
-    run.intersectCamera();
-    if (direct) {
-      run.shadeDirect();
-      run.intersectBounce();
-      run.shadeDirectHit();
-    } else {
-      run.shadeAo();
-    }
-    run.intersectShadow(std::uint64_t(count) * slots);
-    run.accumulate(std::min<std::uint64_t>(count, pixels));
-    const std::uint32_t shadowCount = run.finishWave();
+  const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  const auto mustStop = [&] {
+    return (m.options.interrupt && *m.options.interrupt) ||
+           (m.options.timeLimit > 0.0 && elapsed() >= m.options.timeLimit);
+  };
+  // Runs the active list's samples [sampleBase, sampleBase + spp) in waves; false if stopped early.
+  std::uint64_t activeCount = pixels, expected = total;
+  const auto runSamples = [&](std::uint64_t sampleBase, std::uint64_t spp) {
+    const std::uint64_t first = sampleBase * activeCount, count = spp * activeCount;
+    for (std::uint64_t done = 0; done < count;) {
+      const std::uint32_t n = std::uint32_t(std::min(wave, count - done));
+      run.beginWave(first + done, n);
+      run.generate();
+      run.intersectCamera();
+      if (direct) {
+        run.shadeDirect();
+        run.intersectBounce();
+        run.shadeDirectHit();
+      } else {
+        run.shadeAo();
+      }
+      run.intersectShadow(std::uint64_t(n) * slots);
+      run.accumulate(std::min<std::uint64_t>(n, activeCount));
+      const std::uint32_t shadowCount = run.finishWave();
 
-    done += count;
-    stats.waves++;
-    stats.cameraRays += count;
-    stats.shadowRays += shadowCount;
-    if (direct && scene.render.directSampling != "light") stats.cameraRays += count;  // BRDF rays
-    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (progress) progress(done, total, stats);
-  }
+      done += n;
+      stats.waves++;
+      stats.samples += n;
+      stats.cameraRays += n;
+      stats.shadowRays += shadowCount;
+      if (direct && scene.render.directSampling != "light") stats.cameraRays += n;  // BRDF rays
+      stats.seconds = elapsed();
+      if (progress) progress(stats.samples, std::max(expected, stats.samples), stats);
+      if (done < count && mustStop()) return false;
+    }
+    return !mustStop();
+  };
 
   Film film;
   film.width = int(frame.width);
   film.height = int(frame.height);
+  const std::uint64_t base = m.options.firstSample;
+  if (m.options.targetError <= 0.0) {
+    stats.rounds = 1;
+    stats.stoppedEarly = !runSamples(base, std::uint64_t(scene.render.spp)) && stats.samples < total;
+  } else {
+    // Adaptive: all pixels share a sample count n while active, so the active list's items map to
+    // sample indices n .. n + k - 1 of each pixel; the rounds are deterministic.
+    std::uint64_t n = std::uint64_t(m.options.minSpp);
+    const std::uint64_t maxSpp = std::uint64_t(std::max(m.options.maxSpp, m.options.minSpp));
+    expected = pixels * n;
+    bool going = runSamples(base, n);
+    stats.rounds = 1;
+    std::vector<std::uint32_t> active;
+    while (going && n < maxSpp) {
+      run.readFilm(film);
+      active.clear();
+      for (std::uint32_t p = 0; p < pixels; ++p)
+        if (film.sum[p].w == float(n) &&
+            relativeStandardError(film.sum[p], film.sumSq[p], m.options.errorFloor) > m.options.targetError)
+          active.push_back(p);
+      if (active.empty()) break;
+      const std::uint64_t k = std::min(n, maxSpp - n);
+      activeCount = active.size();
+      expected = stats.samples + activeCount * k;
+      run.setActivePixels(active);
+      going = runSamples(base + n, k);
+      n += k;
+      stats.rounds++;
+    }
+    stats.stoppedEarly = !going;
+  }
   run.readFilm(film);
-  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (m.options.targetError > 0.0)
+    for (std::uint64_t p = 0; p < pixels; ++p)
+      stats.converged += relativeStandardError(film.sum[p], film.sumSq[p], m.options.errorFloor) <= m.options.targetError;
+  stats.seconds = elapsed();
   return film;
+}
+
+double relativeStandardError(const glm::vec4& sum, const glm::vec4& sumSq, double errorFloor) {
+  const double n = sum.w;
+  if (n < 2.0) return INFINITY;
+  const glm::dvec3 w(0.2126, 0.7152, 0.0722);
+  // Luminance of each sample is a linear combination of its channels; its variance needs the
+  // cross terms, which are not accumulated, so the channels' standard errors are combined as if
+  // fully correlated (an upper bound): se(L) <= sum_c w_c se_c.
+  double mean = 0.0, se = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const double m = sum[c] / n;
+    const double var = std::max(0.0, (sumSq[c] / n - m * m) * n / (n - 1.0));
+    mean += w[c] * m;
+    se += w[c] * std::sqrt(var / n);
+  }
+  return se / std::max(mean, errorFloor);
 }
 
 }  // namespace montecl

@@ -22,7 +22,21 @@ struct RenderOptions {
   std::size_t workGroupSize = 0;               // 0: min(CL_KERNEL_WORK_GROUP_SIZE, 64)
   std::uint32_t firstSample = 0;               // render sample indices firstSample .. + spp - 1
   bool verbose = false;
+  // Stops after the wave during which this many seconds have passed (0: no limit).
+  double timeLimit = 0.0;
+  // Stops after the current wave once *interrupt is non-zero (e.g. set by a SIGINT handler).
+  const volatile int* interrupt = nullptr;
+  // Adaptive sampling when targetError > 0: every pixel gets minSpp samples, then rounds double
+  // the samples of the pixels whose relative standard error exceeds targetError, up to maxSpp
+  // (the scene's spp is ignored). Relative error: stderr / max(mean luminance, errorFloor).
+  double targetError = 0.0;
+  int minSpp = 16;
+  int maxSpp = 1024;
+  double errorFloor = 0.01;
 };
+
+// Relative standard error of a pixel's mean luminance from its sums (infinite below 2 samples).
+double relativeStandardError(const glm::vec4& sum, const glm::vec4& sumSq, double errorFloor);
 
 struct RenderStats {
   double seconds = 0.0;         // wall time of the wave loop (kernels + transfers)
@@ -30,6 +44,10 @@ struct RenderStats {
   std::uint64_t shadowRays = 0;
   std::uint64_t waves = 0;
   std::uint64_t waveSize = 0;
+  std::uint64_t samples = 0;      // pixel samples rendered
+  std::uint64_t rounds = 0;       // adaptive rounds (1 without adaptive sampling)
+  std::uint64_t converged = 0;    // adaptive: pixels that met the target error
+  bool stoppedEarly = false;      // the time limit or an interrupt ended the render
   std::uint64_t raysTraced() const { return cameraRays + shadowRays; }
 };
 

@@ -3,12 +3,25 @@
 #pragma once
 #include "types.h"
 
+// Min and max that ignore a NaN in their FIRST operand (the second is never NaN where they are
+// used): `a < b ? a : b` is one minss/maxss on x86 and the same expression on host and device,
+// where fmin/fmax's symmetric NaN handling costs a compare and a blend (or a libm call on g++).
+MCL_INLINE float mcl_min_nan1(float a, float b) { return a < b ? a : b; }
+MCL_INLINE float mcl_max_nan1(float a, float b) { return a > b ? a : b; }
+
 // Slab test against the closed box [bmin, bmax]; returns the entry distance (>= 0), or INFINITY
 // when the ray misses or the box lies beyond tmax. invDir may hold infinities (axis-parallel rays).
 // The near and far planes of each axis are picked by the sign of invDir (-0 directions give -inf).
 // A ray parallel to an axis and lying exactly in one of that axis's face planes gives 0 * inf =
-// NaN there; fmax/fmin return the other operand, so that slab then constrains nothing and the ray
-// enters the box, as it must: ray_triangle counts hits on edges, which can lie in that face.
+// NaN there; every per-axis distance enters mcl_min_nan1/mcl_max_nan1 as the first operand against
+// a non-NaN accumulator (0 or tmax first), so a NaN slab constrains nothing and the ray enters the
+// box, as it must: ray_triangle counts hits on edges, which can lie in that face.
+MCL_INLINE float slab_entry(float nx, float ny, float nz, float fx, float fy, float fz,
+                            float tmax) {
+  float tmin = mcl_max_nan1(nx, mcl_max_nan1(ny, mcl_max_nan1(nz, 0.0f)));
+  float tmx = mcl_min_nan1(fx, mcl_min_nan1(fy, mcl_min_nan1(fz, tmax)));
+  return tmin <= tmx ? tmin : INFINITY;
+}
 MCL_INLINE float ray_box(float3 org, float3 invDir, float3 bmin, float3 bmax, float tmax) {
   float nx = ((invDir.x < 0.0f ? bmax.x : bmin.x) - org.x) * invDir.x;
   float fx = ((invDir.x < 0.0f ? bmin.x : bmax.x) - org.x) * invDir.x;
@@ -16,9 +29,7 @@ MCL_INLINE float ray_box(float3 org, float3 invDir, float3 bmin, float3 bmax, fl
   float fy = ((invDir.y < 0.0f ? bmin.y : bmax.y) - org.y) * invDir.y;
   float nz = ((invDir.z < 0.0f ? bmax.z : bmin.z) - org.z) * invDir.z;
   float fz = ((invDir.z < 0.0f ? bmin.z : bmax.z) - org.z) * invDir.z;
-  float tmin = fmax(fmax(nx, ny), fmax(nz, 0.0f));
-  float tmx = fmin(fmin(fx, fy), fmin(fz, tmax));
-  return tmin <= tmx ? tmin : INFINITY;
+  return slab_entry(nx, ny, nz, fx, fy, fz, tmax);
 }
 
 // Moller-Trumbore. Returns t in (0, tmax) and barycentrics through u, v; INFINITY on a miss.

@@ -1,7 +1,8 @@
 // stages.h: the body of every wavefront stage for one work item, shared by the OpenCL kernels
-// (kernels/*.cl are thin wrappers) and the host. A wave holds `waveCount` consecutive global
-// sample indices g = waveStart + i, sample-major: pixel = g % pixels, sample = g / pixels, so a
-// pixel's samples are always accumulated in sample order whatever the wave size.
+// (kernels/*.cl are thin wrappers) and the host. A wave holds `waveCount` consecutive indices
+// g = waveStart + i into the active-pixel list, sample-major: pixel = active[g % activeCount],
+// sample = g / activeCount, so a pixel's samples are always accumulated in sample order whatever
+// the wave size. Without adaptive sampling the list holds every pixel in order.
 #pragma once
 #include "camera.h"
 #include "rng.h"
@@ -10,13 +11,20 @@
 
 MCL_INLINE uint frame_pixels(MCL_CONSTANT const FrameParams* f) { return f->width * f->height; }
 
+// The pixel and the sample index of wave item i.
+MCL_INLINE uint item_pixel(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const uint* active,
+                           ulong waveStart, uint i) {
+  return active[(uint)((waveStart + i) % f->activeCount)];
+}
+MCL_INLINE uint item_sample(MCL_CONSTANT const FrameParams* f, ulong waveStart, uint i) {
+  return (uint)((waveStart + i) / f->activeCount);
+}
+
 // generate: writes the camera ray of item i.
-MCL_INLINE void stage_generate(MCL_CONSTANT const FrameParams* f, ulong waveStart, uint i,
-                               MCL_GLOBAL Ray* rays) {
-  ulong g = waveStart + i;
-  uint pixels = frame_pixels(f);
-  uint pixel = (uint)(g % pixels);
-  uint sample = (uint)(g / pixels);
+MCL_INLINE void stage_generate(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const uint* active,
+                               ulong waveStart, uint i, MCL_GLOBAL Ray* rays) {
+  uint pixel = item_pixel(f, active, waveStart, i);
+  uint sample = item_sample(f, waveStart, i);
   float4 u = rng_uniform4(f->seed, pixel, sample, MCL_DIM_CAMERA);
   float px = (float)(pixel % f->width) + u.x;
   float py = (float)(pixel / f->width) + u.y;
@@ -44,7 +52,8 @@ MCL_INLINE float3 hit_position(MCL_GLOBAL const Triangle* tri, Hit h) {
 // shade_ao: for item i, writes radiance[i] (background on a miss, else 0), clears its shadow
 // slots, and pushes one occlusion query whose unoccluded value is the AO estimate
 // V cos(theta) / (pi p(w)): 1 for cosine sampling, 2 cos(theta) for uniform sampling.
-MCL_INLINE void stage_shade_ao(MCL_CONSTANT const FrameParams* f, ulong waveStart,
+MCL_INLINE void stage_shade_ao(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const uint* active,
+                               ulong waveStart,
                                MCL_GLOBAL const Triangle* tris, MCL_GLOBAL const Ray* rays,
                                MCL_GLOBAL const Hit* hits, uint i, MCL_GLOBAL float4* radiance,
                                MCL_GLOBAL float4* shadowContrib, MCL_GLOBAL ShadowWork* queue,
@@ -60,9 +69,8 @@ MCL_INLINE void stage_shade_ao(MCL_CONSTANT const FrameParams* f, ulong waveStar
   float3 dir = xyz(rays[i].dir);
   MCL_GLOBAL const Triangle* tri = &tris[h.tri];
   float3 n = facing_normal(tri, dir);
-  ulong g = waveStart + i;
-  uint pixels = frame_pixels(f);
-  float4 u = rng_uniform4(f->seed, (uint)(g % pixels), (uint)(g / pixels), MCL_DIM_AO);
+  float4 u = rng_uniform4(f->seed, item_pixel(f, active, waveStart, i), item_sample(f, waveStart, i),
+                          MCL_DIM_AO);
   float3 dirLocal;
   float weight;
   if (f->aoSampling == MCL_AO_COSINE) {
@@ -95,15 +103,15 @@ MCL_INLINE void stage_intersect_shadow(MCL_GLOBAL const BvhNode* nodes,
 
 // accumulate: for the j-th pixel touched by the wave, adds each of its samples in the wave, in
 // sample order, to the pixel's running sum (rgb, w = sample count) and sum of squares.
-MCL_INLINE void stage_accumulate(MCL_CONSTANT const FrameParams* f, ulong waveStart,
-                                 uint waveCount, uint j, MCL_GLOBAL const float4* radiance,
+MCL_INLINE void stage_accumulate(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const uint* active,
+                                 ulong waveStart, uint waveCount, uint j,
+                                 MCL_GLOBAL const float4* radiance,
                                  MCL_GLOBAL const float4* shadowContrib, MCL_GLOBAL float4* sum,
                                  MCL_GLOBAL float4* sumSq) {
-  uint pixels = frame_pixels(f);
-  uint pixel = (uint)((waveStart + j) % pixels);
+  uint pixel = item_pixel(f, active, waveStart, j);
   float4 s = sum[pixel];
   float4 q = sumSq[pixel];
-  for (uint i = j; i < waveCount; i += pixels) {
+  for (uint i = j; i < waveCount; i += f->activeCount) {
     float3 value = xyz(radiance[i]);
     for (uint k = 0; k < f->shadowSlots; ++k) value += xyz(shadowContrib[i * f->shadowSlots + k]);
     s += with_w(value, 1.0f);

@@ -16,7 +16,8 @@ MCL_INLINE float3 emitted_toward(MCL_GLOBAL const Triangle* tri, MCL_GLOBAL cons
 // shade_direct: for camera item i writes radiance[i] (background, or Le seen directly), pushes K
 // light-sample occlusion queries (light / mis) and writes the BRDF ray bounce[i] (brdf / mis;
 // otherwise an empty ray with tmax < 0).
-MCL_INLINE void stage_shade_direct(MCL_CONSTANT const FrameParams* f, ulong waveStart,
+MCL_INLINE void stage_shade_direct(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const uint* active,
+                                   ulong waveStart,
                                    MCL_GLOBAL const Triangle* tris,
                                    MCL_GLOBAL const Material* materials,
                                    MCL_GLOBAL const Emitter* emitters, MCL_GLOBAL const Ray* rays,
@@ -38,9 +39,7 @@ MCL_INLINE void stage_shade_direct(MCL_CONSTANT const FrameParams* f, ulong wave
   float3 n = facing_normal(tri, dir);
   float3 albedo = xyz(materials[triangle_material(tri)].albedo);
   float3 origin = offset_ray_origin(hit_position(tri, h), n);
-  ulong g = waveStart + i;
-  uint pixels = frame_pixels(f);
-  uint pixel = (uint)(g % pixels), sample = (uint)(g / pixels);
+  uint pixel = item_pixel(f, active, waveStart, i), sample = item_sample(f, waveStart, i);
   float nLight = (float)f->lightSamples;
   bool useLight = f->directSampling != MCL_DIRECT_BRDF && f->emitterCount > 0;
   bool useBrdf = f->directSampling != MCL_DIRECT_LIGHT;

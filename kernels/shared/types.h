@@ -68,7 +68,7 @@ typedef struct MCL_ALIGN16 {
   uint aoSampling;
   float aoDistance;
   uint shadowSlots;   // shadow contributions per sample (AO: 1; direct: lightSamples + 1)
-  uint pad0;
+  uint activeCount;   // entries of the active-pixel list the waves walk (all pixels unless adaptive)
   uint emitterCount;    // entries of the emitter table
   uint lightSamples;    // direct lighting: light samples per camera sample
   uint directSampling;  // MCL_DIRECT_LIGHT | MCL_DIRECT_BRDF | MCL_DIRECT_MIS
