@@ -1,6 +1,7 @@
 // cmd_render.cpp: `montecl render SCENE`: load the scene, apply command-line overrides, build the
 // BVH, render on the chosen OpenCL device and write the image atomically.
 #include <cctype>
+#include <csignal>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -25,6 +26,8 @@ struct RenderArgs {
   std::optional<float> aoDistance;
   std::uint64_t waveSize = 0;
   std::uint32_t firstSample = 0;
+  double targetError = 0.0, timeLimit = 0.0;
+  int minSpp = 16, maxSpp = 1024;
   std::size_t workGroupSize = 0;
   bool quiet = false, verbose = false;
 };
@@ -41,6 +44,21 @@ void applyOverrides(const RenderArgs& a, Scene& scene) {
   if (!a.directSampling.empty()) r.directSampling = a.directSampling;
   if (a.lightSamples) r.lightSamples = *a.lightSamples;
 }
+
+// Set by SIGINT while rendering: the wave loop stops after the current wave and the image so far
+// is written (exit 130). A second SIGINT kills the process as usual.
+volatile int gInterrupted = 0;
+
+void onInterrupt(int) {
+  gInterrupted = 1;
+  std::signal(SIGINT, SIG_DFL);
+}
+
+struct InterruptGuard {
+  InterruptGuard() { previous = std::signal(SIGINT, onInterrupt); }
+  ~InterruptGuard() { std::signal(SIGINT, previous); }
+  void (*previous)(int);
+};
 
 bool isExr(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -79,6 +97,11 @@ int runRender(const RenderArgs& a) {
   RenderOptions options;
   options.waveSize = a.waveSize;
   options.firstSample = a.firstSample;
+  options.targetError = a.targetError;
+  options.minSpp = a.minSpp;
+  options.maxSpp = a.maxSpp;
+  options.timeLimit = a.timeLimit;
+  options.interrupt = &gInterrupted;
   options.workGroupSize = a.workGroupSize;
   options.verbose = a.verbose;
   WavefrontRenderer renderer(device, options);
@@ -86,8 +109,11 @@ int runRender(const RenderArgs& a) {
     std::cerr << "montecl: kernels " << (renderer.programFromCache() ? "loaded from cache" : "compiled") << " in "
               << renderer.programBuildMs() << " ms\n";
 
+  if (a.targetError > 0.0 && a.minSpp > a.maxSpp)
+    throwInputError("--min-spp", "", "must not exceed --max-spp (" + std::to_string(a.maxSpp) + ")");
   RenderStats stats;
   ProgressBar bar(!a.quiet);
+  InterruptGuard guard;
   Film film = renderer.render(scene, bvh, stats, [&](std::uint64_t done, std::uint64_t total, const RenderStats& s) {
     bar.update(done, total, s);
   });
@@ -97,7 +123,15 @@ int runRender(const RenderArgs& a) {
   else
     writeRgbImage(output, film.width, film.height, film.meanRgb());
   std::cout << "wrote " << output << ": " << summaryLine(film.width, film.height, scene.render.spp, stats) << "\n";
-  return kExitOk;
+  const std::uint64_t pixels = std::uint64_t(film.width) * film.height;
+  if (a.targetError > 0.0)
+    std::cout << "adaptive: " << stats.converged << " of " << pixels << " pixels within relative error "
+              << a.targetError << ", " << stats.samples << " samples (" << double(stats.samples) / pixels
+              << " per pixel) in " << stats.rounds << " rounds\n";
+  if (stats.stoppedEarly)
+    std::cout << (gInterrupted ? "interrupted" : "time limit reached") << ": " << stats.samples
+              << " pixel samples done; the image holds each pixel's own sample count\n";
+  return gInterrupted ? kExitInterrupted : kExitOk;
 }
 
 }  // namespace
@@ -127,6 +161,17 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--wave-size", args->waveSize, "Pixel samples per wave (default: from a 256 MiB budget)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--work-group-size", args->workGroupSize, "Work-group size (default: min(64, kernel max))")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--target-error", args->targetError,
+                  "Adaptive sampling: sample until each pixel's relative standard error (stderr / max(mean "
+                  "luminance, 0.01)) is at most this, between --min-spp and --max-spp; ignores --spp")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--min-spp", args->minSpp, "Adaptive sampling: samples every pixel gets first (default 16)")
+      ->check(CLI::Range(2, 1 << 24));
+  cmd->add_option("--max-spp", args->maxSpp, "Adaptive sampling: most samples a pixel gets (default 1024)")
+      ->check(CLI::Range(2, 1 << 24));
+  cmd->add_option("--time", args->timeLimit,
+                  "Stop after the wave that crosses this many seconds and write the image so far")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--first-sample", args->firstSample,
                   "Render sample indices K .. K+spp-1 of the deterministic sequence (split renders, then merge)");

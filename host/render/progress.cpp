@@ -30,9 +30,15 @@ void ProgressBar::finish() {
 
 std::string summaryLine(int width, int height, int spp, const RenderStats& stats) {
   char buf[256];
+  const double pixels = double(width) * height;
   double mrays = stats.seconds > 0 ? stats.raysTraced() / stats.seconds * 1e-6 : 0.0;
-  std::snprintf(buf, sizeof buf, "%dx%d, %d spp: %.3f s, %.2f M rays, %.2f Mrays/s", width, height,
-                spp, stats.seconds, stats.raysTraced() * 1e-6, mrays);
+  char sppText[64];
+  if (stats.samples == std::uint64_t(pixels) * std::uint64_t(spp))
+    std::snprintf(sppText, sizeof sppText, "%d spp", spp);
+  else
+    std::snprintf(sppText, sizeof sppText, "%.1f spp on average", double(stats.samples) / pixels);
+  std::snprintf(buf, sizeof buf, "%dx%d, %s: %.3f s, %.2f M rays, %.2f Mrays/s", width, height, sppText,
+                stats.seconds, stats.raysTraced() * 1e-6, mrays);
   return buf;
 }
 
