@@ -6,3 +6,5 @@
 #include "shade_direct_hit.cl"
 #include "intersect_shadow.cl"
 #include "accumulate.cl"
+#include "record_aov.cl"
+#include "accumulate_aov.cl"

@@ -1,5 +1,6 @@
 // cmd_render.cpp: `montecl render SCENE`: load the scene, apply command-line overrides, build the
 // BVH, render on the chosen OpenCL device and write the image atomically.
+#include <algorithm>
 #include <cctype>
 #include <csignal>
 #include <filesystem>
@@ -28,6 +29,7 @@ struct RenderArgs {
   std::uint32_t firstSample = 0;
   double targetError = 0.0, timeLimit = 0.0;
   int minSpp = 16, maxSpp = 1024;
+  std::vector<std::string> aovs;
   std::size_t workGroupSize = 0;
   bool quiet = false, verbose = false;
 };
@@ -66,6 +68,30 @@ bool isExr(const std::string& path) {
   return ext == ".exr";
 }
 
+// The EXR layers: R, G, B, samples, var.R/G/B, and the AOVs asked for, averaged over samples:
+// albedo.R/G/B, N.X/Y/Z (facing geometric normal), Z (distance along the camera ray).
+LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs) {
+  LayeredImage img = layersFromFilm(film);
+  if (aovs.empty()) return img;
+  auto wants = [&](const char* name) {
+    return std::find(aovs.begin(), aovs.end(), name) != aovs.end() ||
+           std::find(aovs.begin(), aovs.end(), "all") != aovs.end();
+  };
+  const std::size_t pixels = film.sum.size();
+  auto plane = [&](int vec, int comp) {
+    std::vector<float> out(pixels, 0.0f);
+    for (std::size_t p = 0; p < pixels; ++p)
+      if (film.sum[p].w > 0) out[p] = film.aovSum[2 * p + vec][comp] / film.sum[p].w;
+    return out;
+  };
+  if (wants("albedo"))
+    for (int c = 0; c < 3; ++c) img.set(std::string("albedo.") + "RGB"[c], plane(0, c));
+  if (wants("normal"))
+    for (int c = 0; c < 3; ++c) img.set(std::string("N.") + "XYZ"[c], plane(1, c));
+  if (wants("depth")) img.set("Z", plane(0, 3));
+  return img;
+}
+
 bool hasEmitter(const Scene& scene) {
   for (const MaterialDesc& m : scene.materials)
     if (m.emission.x > 0.0f || m.emission.y > 0.0f || m.emission.z > 0.0f) return true;
@@ -80,6 +106,8 @@ int runRender(const RenderArgs& a) {
   std::string output = a.output;
   if (output.empty()) output = std::filesystem::path(a.scene).stem().string() + ".png";
   checkOutputPath(output);
+  if (!a.aovs.empty() && !isExr(output))
+    throwInputError(output, "--aov", "AOVs need an .exr output");
   DeviceInfo device = selectDevice(a.device);
 
   Bvh bvh = buildBvh(scene.triangles);
@@ -102,6 +130,7 @@ int runRender(const RenderArgs& a) {
   options.maxSpp = a.maxSpp;
   options.timeLimit = a.timeLimit;
   options.interrupt = &gInterrupted;
+  options.aovs = !a.aovs.empty();
   options.workGroupSize = a.workGroupSize;
   options.verbose = a.verbose;
   WavefrontRenderer renderer(device, options);
@@ -119,7 +148,7 @@ int runRender(const RenderArgs& a) {
   });
   bar.finish();
   if (isExr(output))
-    writeLayeredExr(output, layersFromFilm(film));  // R, G, B + samples, var.R/G/B
+    writeLayeredExr(output, renderLayers(film, a.aovs));
   else
     writeRgbImage(output, film.width, film.height, film.meanRgb());
   std::cout << "wrote " << output << ": " << summaryLine(film.width, film.height, scene.render.spp, stats) << "\n";
@@ -173,6 +202,11 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--time", args->timeLimit,
                   "Stop after the wave that crosses this many seconds and write the image so far")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--aov", args->aovs,
+                  "Extra EXR channels, comma-separated: albedo (albedo.R/G/B), normal (N.X/Y/Z), depth (Z), "
+                  "or all; averaged over each pixel's samples")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"albedo", "normal", "depth", "all"}));
   cmd->add_option("--first-sample", args->firstSample,
                   "Render sample indices K .. K+spp-1 of the deterministic sequence (split renders, then merge)");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar");

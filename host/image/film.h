@@ -10,6 +10,8 @@ struct Film {
   int width = 0, height = 0;
   std::vector<glm::vec4> sum;    // rgb: sum of sample values; w: number of samples
   std::vector<glm::vec4> sumSq;  // rgb: sum of squared sample values
+  // With AOVs: 2 per pixel, sums over samples of (albedo, depth) and (normal, 0); else empty.
+  std::vector<glm::vec4> aovSum;
 
   // Mean radiance per pixel, interleaved RGB (0 where a pixel has no samples).
   std::vector<float> meanRgb() const {

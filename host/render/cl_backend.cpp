@@ -24,7 +24,8 @@ class ClStageRunner final : public StageRunner {
       : cl_(device, workGroupSize), generate_(cl_.kernel("generate")), intersectCamera_(cl_.kernel("intersect")),
         intersectBounce_(cl_.kernel("intersect")), shadeAo_(cl_.kernel("shade_ao")),
         shadeDirect_(cl_.kernel("shade_direct")), shadeDirectHit_(cl_.kernel("shade_direct_hit")),
-        intersectShadow_(cl_.kernel("intersect_shadow")), accumulate_(cl_.kernel("accumulate")) {}
+        intersectShadow_(cl_.kernel("intersect_shadow")), accumulate_(cl_.kernel("accumulate")),
+        recordAov_(cl_.kernel("record_aov")), accumulateAov_(cl_.kernel("accumulate_aov")) {}
 
   std::uint64_t maxAllocBytes() const override { return cl_.device().maxAllocBytes; }
   bool programFromCache() const override { return cl_.build().fromCache; }
@@ -51,11 +52,15 @@ class ClStageRunner final : public StageRunner {
     std::vector<cl_uint> all(pixels_);
     for (std::uint64_t p = 0; p < pixels_; ++p) all[p] = cl_uint(p);
     active_ = cl_.upload(all, CL_MEM_READ_WRITE);
+    aovs_ = in.aovs;
+    aov_ = cl_.buffer<cl_float4>(in.aovs ? 2 * wave : 1);
+    aovSum_ = cl_.buffer<cl_float4>(in.aovs ? 2 * pixels_ : 1);
     sum_ = cl_.buffer<cl_float4>(pixels_);
     sumSq_ = cl_.buffer<cl_float4>(pixels_);
     const cl_float4 zero4 = {{0.0f, 0.0f, 0.0f, 0.0f}};
     cl_.queue().enqueueFillBuffer(sum_, zero4, 0, pixels_ * sizeof(cl_float4));
     cl_.queue().enqueueFillBuffer(sumSq_, zero4, 0, pixels_ * sizeof(cl_float4));
+    if (aovs_) cl_.queue().enqueueFillBuffer(aovSum_, zero4, 0, 2 * pixels_ * sizeof(cl_float4));
 
     // Arguments that stay the same for every wave; waveStart and waveCount are set per wave.
     const cl_ulong noStart = 0;
@@ -71,6 +76,8 @@ class ClStageRunner final : public StageRunner {
             shadowContrib_);
     setArgs(intersectShadow_, nodes_, tris_, shadowQueue_, queueCount_, shadowContrib_);
     setArgs(accumulate_, frameBuf_, noStart, noCount, radiance_, shadowContrib_, sum_, sumSq_, active_);
+    setArgs(recordAov_, tris_, materials_, rays_, hits_, noCount, aov_);
+    setArgs(accumulateAov_, frameBuf_, noStart, noCount, aov_, aovSum_, active_);
   }
 
   void setActivePixels(const std::vector<std::uint32_t>& pixels) override {
@@ -91,6 +98,9 @@ class ClStageRunner final : public StageRunner {
       k->setArg(2, n);
     }
     shadeDirectHit_.setArg(1, n);
+    recordAov_.setArg(4, n);
+    accumulateAov_.setArg(1, start);
+    accumulateAov_.setArg(2, n);
   }
 
   void generate() override { cl_.launch(generate_, count_); }
@@ -101,6 +111,8 @@ class ClStageRunner final : public StageRunner {
   void shadeDirectHit() override { cl_.launch(shadeDirectHit_, count_); }
   void intersectShadow(std::uint64_t maxQueries) override { cl_.launch(intersectShadow_, maxQueries); }
   void accumulate(std::uint64_t pixelsTouched) override { cl_.launch(accumulate_, pixelsTouched); }
+  void recordAov() override { cl_.launch(recordAov_, count_); }
+  void accumulateAov(std::uint64_t pixelsTouched) override { cl_.launch(accumulateAov_, pixelsTouched); }
 
   std::uint32_t finishWave() override {
     cl_uint shadowCount = 0;
@@ -113,14 +125,19 @@ class ClStageRunner final : public StageRunner {
     film.sumSq.resize(pixels_);
     cl_.queue().enqueueReadBuffer(sum_, CL_FALSE, 0, pixels_ * sizeof(cl_float4), film.sum.data());
     cl_.queue().enqueueReadBuffer(sumSq_, CL_TRUE, 0, pixels_ * sizeof(cl_float4), film.sumSq.data());
+    if (aovs_) {
+      film.aovSum.resize(2 * pixels_);
+      cl_.queue().enqueueReadBuffer(aovSum_, CL_TRUE, 0, 2 * pixels_ * sizeof(cl_float4), film.aovSum.data());
+    }
   }
 
  private:
   ClSession cl_;
   cl::Kernel generate_, intersectCamera_, intersectBounce_, shadeAo_, shadeDirect_, shadeDirectHit_,
-      intersectShadow_, accumulate_;
+      intersectShadow_, accumulate_, recordAov_, accumulateAov_;
   cl::Buffer frameBuf_, nodes_, tris_, materials_, emitters_, rays_, hits_, bounce_, bounceHits_, radiance_,
-      shadowContrib_, shadowQueue_, rayCount_, queueCount_, sum_, sumSq_, active_;
+      shadowContrib_, shadowQueue_, rayCount_, queueCount_, sum_, sumSq_, active_, aov_, aovSum_;
+  bool aovs_ = false;
   FrameParams frame_{};
   std::uint64_t pixels_ = 0;
   std::uint32_t count_ = 0;

@@ -9,6 +9,7 @@
 #include <limits>
 #include <thread>
 
+#include "kernels/shared/stages_aov.h"
 #include "kernels/shared/stages_direct.h"
 #include "render/stage_runner.h"
 
@@ -45,6 +46,9 @@ class HostStageRunner final : public StageRunner {
     const std::uint64_t pixels = std::uint64_t(frame_.width) * frame_.height;
     active_.resize(pixels);
     for (std::uint64_t p = 0; p < pixels; ++p) active_[p] = uint(p);
+    aovs_ = in.aovs;
+    aov_.assign(in.aovs ? 2 * wave : 1, float4(0.0f));
+    aovSum_.assign(in.aovs ? 2 * pixels : 1, float4(0.0f));
     sum_.assign(pixels, float4(0.0f));
     sumSq_.assign(pixels, float4(0.0f));
   }
@@ -103,11 +107,22 @@ class HostStageRunner final : public StageRunner {
                        sumSq_.data());
     });
   }
+  void recordAov() override {
+    parallelFor(count_, [&](uint i) {
+      stage_record_aov(tris_.data(), materials_.data(), rays_.data(), hits_.data(), i, aov_.data());
+    });
+  }
+  void accumulateAov(std::uint64_t pixelsTouched) override {
+    parallelFor(pixelsTouched, [&](uint j) {
+      stage_accumulate_aov(&frame_, active_.data(), waveStart_, count_, j, aov_.data(), aovSum_.data());
+    });
+  }
   std::uint32_t finishWave() override { return queueCount_; }
 
   void readFilm(Film& film) override {
     film.sum.assign(sum_.begin(), sum_.end());
     film.sumSq.assign(sumSq_.begin(), sumSq_.end());
+    if (aovs_) film.aovSum.assign(aovSum_.begin(), aovSum_.end());
   }
 
  private:
@@ -131,6 +146,8 @@ class HostStageRunner final : public StageRunner {
 
   unsigned threads_;
   FrameParams frame_{};
+  bool aovs_ = false;
+  std::vector<float4> aov_, aovSum_;
   std::vector<uint> active_;
   std::vector<BvhNode> nodes_;
   std::vector<Triangle> tris_;

@@ -22,6 +22,7 @@ struct StageInputs {
   std::vector<Emitter> emitters;
   std::uint64_t wave = 0;    // wave items (pixel samples) per wave
   bool direct = false;       // direct lighting: bounce buffers are needed
+  bool aovs = false;         // record first-hit albedo, normal and depth (record_aov, accumulate_aov)
 };
 
 class StageRunner {
@@ -51,6 +52,9 @@ class StageRunner {
   virtual void intersectShadow(std::uint64_t maxQueries) = 0;
   // Runs accumulate over the `pixelsTouched` pixels of the wave.
   virtual void accumulate(std::uint64_t pixelsTouched) = 0;
+  // AOVs (only when StageInputs::aovs): per item, then per touched pixel.
+  virtual void recordAov() = 0;
+  virtual void accumulateAov(std::uint64_t pixelsTouched) = 0;
   // Waits for the wave; returns the number of occlusion queries it traced.
   virtual std::uint32_t finishWave() = 0;
   // Reads the accumulated sums (film.sum, film.sumSq; width and height are the caller's).

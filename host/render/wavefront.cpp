@@ -18,9 +18,9 @@ namespace montecl {
 namespace {
 
 // Bytes of per-wave buffers for one pixel sample with `slots` occlusion queries.
-std::uint64_t bytesPerItem(std::uint32_t slots, bool bounce) {
+std::uint64_t bytesPerItem(std::uint32_t slots, bool bounce, bool aovs) {
   return sizeof(Ray) + sizeof(Hit) + sizeof(float4) + slots * (sizeof(float4) + sizeof(ShadowWork)) +
-         (bounce ? sizeof(Ray) + sizeof(Hit) : 0);
+         (bounce ? sizeof(Ray) + sizeof(Hit) : 0) + (aovs ? 2 * sizeof(float4) : 0);
 }
 
 }  // namespace
@@ -66,7 +66,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   // Wave size: the memory budget, the device's largest allocation, and 32-bit item indices.
   const std::uint64_t maxAlloc = run.maxAllocBytes();
   std::uint64_t wave = m.options.waveSize;
-  if (wave == 0) wave = std::max<std::uint64_t>(1, m.options.memoryBudget / bytesPerItem(slots, direct));
+  if (wave == 0) wave = std::max<std::uint64_t>(1, m.options.memoryBudget / bytesPerItem(slots, direct, m.options.aovs));
   wave = std::min<std::uint64_t>(wave, maxAlloc / (slots * sizeof(ShadowWork)));
   wave = std::min<std::uint64_t>(wave, 0xffffffffull / slots);
   wave = std::max<std::uint64_t>(1, std::min(wave, total));
@@ -85,10 +85,11 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   inputs.emitters = emitters.emitters;
   inputs.wave = wave;
   inputs.direct = direct;
+  inputs.aovs = m.options.aovs;
   run.setup(inputs);
 
   if (m.options.verbose)
-    std::cerr << "montecl: wave of " << wave << " pixel samples (" << (wave * bytesPerItem(slots, direct) >> 20)
+    std::cerr << "montecl: wave of " << wave << " pixel samples (" << (wave * bytesPerItem(slots, direct, m.options.aovs) >> 20)
               << " MiB), " << (total + wave - 1) / wave << " waves"
               << (direct ? ", " + std::to_string(emitters.emitters.size()) + " emitter triangles" : std::string())
               << "\n";
@@ -117,6 +118,10 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
       }
       run.intersectShadow(std::uint64_t(n) * slots);
       run.accumulate(std::min<std::uint64_t>(n, activeCount));
+      if (m.options.aovs) {
+        run.recordAov();
+        run.accumulateAov(std::min<std::uint64_t>(n, activeCount));
+      }
       const std::uint32_t shadowCount = run.finishWave();
 
       done += n;

@@ -33,6 +33,7 @@ struct RenderOptions {
   int minSpp = 16;
   int maxSpp = 1024;
   double errorFloor = 0.01;
+  bool aovs = false;  // also accumulate first-hit albedo, normal and depth (Film::aovSum)
 };
 
 // Relative standard error of a pixel's mean luminance from its sums (infinite below 2 samples).
