@@ -17,6 +17,7 @@
 #include "cl/devices.h"
 #include "cli_runner.h"
 #include "image/exr_layers.h"
+#include "kernels/shared/stages.h"
 #include "render/wavefront.h"
 #include "stats.h"
 #include "test_scenes.h"
@@ -90,7 +91,7 @@ TEST_CASE("adaptive sampling meets its target on 99% of pixels with fewer sample
   float mostSamples = 0;
   double worstConverged = 0;
   for (std::size_t p = 0; p < f.sum.size(); ++p) {
-    double e = relativeStandardError(f.sum[p], f.sumSq[p], o.errorFloor);
+    double e = relativeStandardError(f, p, o.errorFloor);
     met += e <= o.targetError;
     if (e <= o.targetError) worstConverged = std::max(worstConverged, e);
     easy += f.sum[p].w == float(o.minSpp);
@@ -207,4 +208,32 @@ TEST_CASE("--aov all writes named albedo, normal and depth channels; --aov with 
   CliResult bad = runMontecl({"render", scene, "-o", dir.file("a.png"), "--aov", "albedo", "-q"});
   CHECK(bad.exitCode == 2);
   CHECK(bad.err.find("--aov") != std::string::npos);
+}
+
+TEST_CASE("accumulate keeps the variance of samples with a large mean (Welford, no cancellation)") {
+  // 100k samples 1e4 + U(0, 0.1) through the accumulate stage in waves of 1000: the variance of
+  // one sample must match the double-precision value (0.1^2 / 12) within 2%. With float sums of
+  // x and x^2 it would be lost entirely (x^2 ~ 1e8, float spacing there ~ 8).
+  FrameParams f{};
+  f.width = f.height = 1;
+  f.activeCount = 1;
+  f.shadowSlots = 1;
+  const uint active[1] = {0};
+  float4 mean(0.0f), m2(0.0f);
+  RunningStats exact;
+  const uint wave = 1000;
+  std::vector<float4> radiance(wave), shadow(wave, float4(0.0f));
+  for (uint start = 0; start < 100000; start += wave) {
+    for (uint i = 0; i < wave; ++i) {
+      float v = 1e4f + 0.1f * rng_uniform4(1u, 0u, start + i, 0u).x;
+      radiance[i] = float4(v, v, v, 0.0f);
+      exact.add(v);
+    }
+    stage_accumulate(&f, active, start, wave, 0, radiance.data(), shadow.data(), &mean, &m2);
+  }
+  CHECK(mean.w == 100000.0f);
+  CHECK(mean.x == doctest::Approx(exact.mean).epsilon(1e-6));
+  double variance = m2.x / (mean.w - 1.0);
+  INFO("variance " << variance << ", exact " << exact.variance());
+  CHECK(variance == doctest::Approx(exact.variance()).epsilon(0.02));
 }

@@ -77,11 +77,11 @@ LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs
     return std::find(aovs.begin(), aovs.end(), name) != aovs.end() ||
            std::find(aovs.begin(), aovs.end(), "all") != aovs.end();
   };
-  const std::size_t pixels = film.sum.size();
+  const std::size_t pixels = film.mean.size();
   auto plane = [&](int vec, int comp) {
     std::vector<float> out(pixels, 0.0f);
     for (std::size_t p = 0; p < pixels; ++p)
-      if (film.sum[p].w > 0) out[p] = film.aovSum[2 * p + vec][comp] / film.sum[p].w;
+      if (film.mean[p].w > 0) out[p] = film.aovSum[2 * p + vec][comp] / film.mean[p].w;
     return out;
   };
   if (wants("albedo"))

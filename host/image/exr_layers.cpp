@@ -115,20 +115,19 @@ LayeredImage layersFromFilm(const Film& film) {
   LayeredImage image;
   image.width = film.width;
   image.height = film.height;
-  const std::size_t count = film.sum.size();
+  const std::size_t count = film.mean.size();
   std::vector<float> mean[3], var[3], samples(count, 0.0f);
   for (int c = 0; c < 3; ++c) {
     mean[c].assign(count, 0.0f);
     var[c].assign(count, 0.0f);
   }
   for (std::size_t p = 0; p < count; ++p) {
-    double n = film.sum[p].w;
+    double n = film.mean[p].w;
     samples[p] = float(n);
     if (n <= 0.0) continue;
     for (int c = 0; c < 3; ++c) {
-      double s = film.sum[p][c], sq = film.sumSq[p][c];
-      mean[c][p] = float(s / n);
-      if (n > 1.0) var[c][p] = float(std::max(0.0, (sq - s * s / n) / (n - 1.0)));
+      mean[c][p] = film.mean[p][c];
+      var[c][p] = float(film.variance(p, c));
     }
   }
   for (int c = 0; c < 3; ++c) image.set(channel::kMean[c], std::move(mean[c]));

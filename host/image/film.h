@@ -1,25 +1,48 @@
-// film.h: per-pixel accumulated samples read back from the device: sum (rgb, w = sample count)
-// and sum of squares (rgb), row 0 at the top. Turns them into the mean image.
+// film.h: per-pixel statistics read back from the device: the running mean (rgb, w = sample count)
+// and M2 (rgb: sum of squared deviations from the mean, Welford) the accumulate kernel keeps, the
+// sums derived from them in double, and the AOV sums. Row 0 at the top.
 #pragma once
 #include <glm/glm.hpp>
+#include <algorithm>
 #include <vector>
 
 namespace montecl {
 
 struct Film {
   int width = 0, height = 0;
-  std::vector<glm::vec4> sum;    // rgb: sum of sample values; w: number of samples
-  std::vector<glm::vec4> sumSq;  // rgb: sum of squared sample values
+  std::vector<glm::vec4> mean;   // rgb: mean of the sample values; w: number of samples n
+  std::vector<glm::vec4> m2;     // rgb: sum over samples of (x - mean)^2
+  std::vector<glm::vec4> sum;    // derived by deriveSums(): rgb n * mean; w: n
+  std::vector<glm::vec4> sumSq;  // derived by deriveSums(): rgb m2 + n * mean^2
   // With AOVs: 2 per pixel, sums over samples of (albedo, depth) and (normal, 0); else empty.
   std::vector<glm::vec4> aovSum;
 
+  // Fills sum and sumSq from mean and m2 (in double, then rounded to float).
+  void deriveSums() {
+    sum.resize(mean.size());
+    sumSq.resize(mean.size());
+    for (size_t p = 0; p < mean.size(); ++p) {
+      const double n = mean[p].w;
+      for (int c = 0; c < 3; ++c) {
+        sum[p][c] = float(n * mean[p][c]);
+        sumSq[p][c] = float(double(m2[p][c]) + n * double(mean[p][c]) * mean[p][c]);
+      }
+      sum[p].w = mean[p].w;
+      sumSq[p].w = 0.0f;
+    }
+  }
+
+  // Unbiased variance of one sample of channel c (0 below two samples).
+  double variance(size_t p, int c) const {
+    const double n = mean[p].w;
+    return n > 1.0 ? std::max(0.0, double(m2[p][c]) / (n - 1.0)) : 0.0;
+  }
+
   // Mean radiance per pixel, interleaved RGB (0 where a pixel has no samples).
   std::vector<float> meanRgb() const {
-    std::vector<float> rgb(sum.size() * 3, 0.0f);
-    for (size_t p = 0; p < sum.size(); ++p) {
-      if (sum[p].w <= 0.0f) continue;
-      for (int c = 0; c < 3; ++c) rgb[3 * p + c] = sum[p][c] / sum[p].w;
-    }
+    std::vector<float> rgb(mean.size() * 3, 0.0f);
+    for (size_t p = 0; p < mean.size(); ++p)
+      for (int c = 0; c < 3; ++c) rgb[3 * p + c] = mean[p].w > 0.0f ? mean[p][c] : 0.0f;
     return rgb;
   }
 };

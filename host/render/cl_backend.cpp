@@ -121,10 +121,10 @@ class ClStageRunner final : public StageRunner {
   }
 
   void readFilm(Film& film) override {
-    film.sum.resize(pixels_);
-    film.sumSq.resize(pixels_);
-    cl_.queue().enqueueReadBuffer(sum_, CL_FALSE, 0, pixels_ * sizeof(cl_float4), film.sum.data());
-    cl_.queue().enqueueReadBuffer(sumSq_, CL_TRUE, 0, pixels_ * sizeof(cl_float4), film.sumSq.data());
+    film.mean.resize(pixels_);
+    film.m2.resize(pixels_);
+    cl_.queue().enqueueReadBuffer(sum_, CL_FALSE, 0, pixels_ * sizeof(cl_float4), film.mean.data());
+    cl_.queue().enqueueReadBuffer(sumSq_, CL_TRUE, 0, pixels_ * sizeof(cl_float4), film.m2.data());
     if (aovs_) {
       film.aovSum.resize(2 * pixels_);
       cl_.queue().enqueueReadBuffer(aovSum_, CL_TRUE, 0, 2 * pixels_ * sizeof(cl_float4), film.aovSum.data());

@@ -120,8 +120,8 @@ class HostStageRunner final : public StageRunner {
   std::uint32_t finishWave() override { return queueCount_; }
 
   void readFilm(Film& film) override {
-    film.sum.assign(sum_.begin(), sum_.end());
-    film.sumSq.assign(sumSq_.begin(), sumSq_.end());
+    film.mean.assign(sum_.begin(), sum_.end());
+    film.m2.assign(sumSq_.begin(), sumSq_.end());
     if (aovs_) film.aovSum.assign(aovSum_.begin(), aovSum_.end());
   }
 

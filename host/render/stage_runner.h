@@ -57,7 +57,7 @@ class StageRunner {
   virtual void accumulateAov(std::uint64_t pixelsTouched) = 0;
   // Waits for the wave; returns the number of occlusion queries it traced.
   virtual std::uint32_t finishWave() = 0;
-  // Reads the accumulated sums (film.sum, film.sumSq; width and height are the caller's).
+  // Reads the accumulated statistics (film.mean, film.m2, film.aovSum; the caller sets the size).
   virtual void readFilm(Film& film) = 0;
 };
 

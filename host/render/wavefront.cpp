@@ -157,8 +157,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
       run.readFilm(film);
       active.clear();
       for (std::uint32_t p = 0; p < pixels; ++p)
-        if (film.sum[p].w == float(n) &&
-            relativeStandardError(film.sum[p], film.sumSq[p], m.options.errorFloor) > m.options.targetError)
+        if (film.mean[p].w == float(n) && relativeStandardError(film, p, m.options.errorFloor) > m.options.targetError)
           active.push_back(p);
       if (active.empty()) break;
       const std::uint64_t k = std::min(n, maxSpp - n);
@@ -172,15 +171,16 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
     stats.stoppedEarly = !going;
   }
   run.readFilm(film);
+  film.deriveSums();
   if (m.options.targetError > 0.0)
     for (std::uint64_t p = 0; p < pixels; ++p)
-      stats.converged += relativeStandardError(film.sum[p], film.sumSq[p], m.options.errorFloor) <= m.options.targetError;
+      stats.converged += relativeStandardError(film, p, m.options.errorFloor) <= m.options.targetError;
   stats.seconds = elapsed();
   return film;
 }
 
-double relativeStandardError(const glm::vec4& sum, const glm::vec4& sumSq, double errorFloor) {
-  const double n = sum.w;
+double relativeStandardError(const Film& film, std::size_t p, double errorFloor) {
+  const double n = film.mean[p].w;
   if (n < 2.0) return INFINITY;
   const glm::dvec3 w(0.2126, 0.7152, 0.0722);
   // Luminance of each sample is a linear combination of its channels; its variance needs the
@@ -188,10 +188,8 @@ double relativeStandardError(const glm::vec4& sum, const glm::vec4& sumSq, doubl
   // fully correlated (an upper bound): se(L) <= sum_c w_c se_c.
   double mean = 0.0, se = 0.0;
   for (int c = 0; c < 3; ++c) {
-    const double m = sum[c] / n;
-    const double var = std::max(0.0, (sumSq[c] / n - m * m) * n / (n - 1.0));
-    mean += w[c] * m;
-    se += w[c] * std::sqrt(var / n);
+    mean += w[c] * film.mean[p][c];
+    se += w[c] * std::sqrt(film.variance(p, c) / n);
   }
   return se / std::max(mean, errorFloor);
 }

@@ -36,8 +36,8 @@ struct RenderOptions {
   bool aovs = false;  // also accumulate first-hit albedo, normal and depth (Film::aovSum)
 };
 
-// Relative standard error of a pixel's mean luminance from its sums (infinite below 2 samples).
-double relativeStandardError(const glm::vec4& sum, const glm::vec4& sumSq, double errorFloor);
+// Relative standard error of pixel p's mean luminance (infinite below 2 samples).
+double relativeStandardError(const Film& film, std::size_t p, double errorFloor);
 
 struct RenderStats {
   double seconds = 0.0;         // wall time of the wave loop (kernels + transfers)

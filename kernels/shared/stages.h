@@ -102,21 +102,26 @@ MCL_INLINE void stage_intersect_shadow(MCL_GLOBAL const BvhNode* nodes,
 }
 
 // accumulate: for the j-th pixel touched by the wave, adds each of its samples in the wave, in
-// sample order, to the pixel's running sum (rgb, w = sample count) and sum of squares.
+// sample order, to the pixel's running mean (rgb, w = sample count n) and M2 (rgb: sum of squared
+// deviations from the mean), by Welford's update: no cancellation when the variance is small
+// against the mean, however many samples.
 MCL_INLINE void stage_accumulate(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const uint* active,
                                  ulong waveStart, uint waveCount, uint j,
                                  MCL_GLOBAL const float4* radiance,
-                                 MCL_GLOBAL const float4* shadowContrib, MCL_GLOBAL float4* sum,
-                                 MCL_GLOBAL float4* sumSq) {
+                                 MCL_GLOBAL const float4* shadowContrib, MCL_GLOBAL float4* mean,
+                                 MCL_GLOBAL float4* m2) {
   uint pixel = item_pixel(f, active, waveStart, j);
-  float4 s = sum[pixel];
-  float4 q = sumSq[pixel];
+  float4 m = mean[pixel];
+  float4 q = m2[pixel];
   for (uint i = j; i < waveCount; i += f->activeCount) {
     float3 value = xyz(radiance[i]);
     for (uint k = 0; k < f->shadowSlots; ++k) value += xyz(shadowContrib[i * f->shadowSlots + k]);
-    s += with_w(value, 1.0f);
-    q += with_w(value * value, 0.0f);
+    float n = m.w + 1.0f;
+    float3 delta = value - xyz(m);
+    float3 updated = xyz(m) + delta / n;
+    m = with_w(updated, n);
+    q += with_w(delta * (value - updated), 0.0f);
   }
-  sum[pixel] = s;
-  sumSq[pixel] = q;
+  mean[pixel] = m;
+  m2[pixel] = q;
 }
