@@ -113,14 +113,20 @@ MCL_INLINE void stage_accumulate(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL c
   uint pixel = item_pixel(f, active, waveStart, j);
   float4 m = mean[pixel];
   float4 q = m2[pixel];
+  // float4 throughout (w lanes zeroed): no float3, whose padding lane simulators flag as undefined.
   for (uint i = j; i < waveCount; i += f->activeCount) {
-    float3 value = xyz(radiance[i]);
-    for (uint k = 0; k < f->shadowSlots; ++k) value += xyz(shadowContrib[i * f->shadowSlots + k]);
+    float4 value = radiance[i];
+    for (uint k = 0; k < f->shadowSlots; ++k) value += shadowContrib[i * f->shadowSlots + k];
+    value.w = 0.0f;
     float n = m.w + 1.0f;
-    float3 delta = value - xyz(m);
-    float3 updated = xyz(m) + delta / n;
-    m = with_w(updated, n);
-    q += with_w(delta * (value - updated), 0.0f);
+    float4 delta = value - m;
+    delta.w = 0.0f;
+    float4 updated = m + delta / n;
+    updated.w = n;
+    float4 spread = delta * (value - updated);
+    spread.w = 0.0f;
+    m = updated;
+    q += spread;
   }
   mean[pixel] = m;
   m2[pixel] = q;
