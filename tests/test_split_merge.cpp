@@ -81,3 +81,44 @@ TEST_CASE("a .pfm render is a little-endian float map with the image's size and 
     for (int x = 0; x < w; ++x)
       REQUIRE(data[(std::size_t(h - 1 - y) * w + x) * 3 + 1] == (*exr.find("G"))[std::size_t(y) * w + x]);
 }
+
+TEST_CASE("merging renders with different seeds has the error of the combined sample count") {
+  // Two 8 spp renders (seeds 1, 2) merged, against an independent 512 spp render (seed 3): per
+  // pixel, z = (merged - reference) / sqrt(var/16 + var_ref/512) from the files' own variances.
+  TempDir dir;
+  auto args = [&](const std::string& out, int spp, int seed) {
+    return std::vector<std::string>{"render", kScene, "-o", out, "--width", "24", "--height", "16", "--spp",
+                                    std::to_string(spp), "--seed", std::to_string(seed), "--ao-sampling",
+                                    "uniform", "-q"};
+  };
+  REQUIRE(runMontecl(args(dir.file("s1.exr"), 8, 1)).exitCode == 0);
+  REQUIRE(runMontecl(args(dir.file("s2.exr"), 8, 2)).exitCode == 0);
+  REQUIRE(runMontecl(args(dir.file("ref.exr"), 512, 3)).exitCode == 0);
+  REQUIRE(runMontecl({"merge", dir.file("s1.exr"), dir.file("s2.exr"), "-o", dir.file("m.exr"), "-q"}).exitCode == 0);
+  montecl::LayeredImage m = montecl::readLayeredImage(dir.file("m.exr"));
+  montecl::LayeredImage ref = montecl::readLayeredImage(dir.file("ref.exr"));
+  const auto& mr = *m.find("G");
+  const auto& mv = *m.find("var.G");
+  const auto& mn = *m.find("samples");
+  const auto& rr = *ref.find("G");
+  const auto& rv = *ref.find("var.G");
+  int compared = 0, outliers = 0;
+  double zSum = 0.0, zSq = 0.0;
+  for (std::size_t p = 0; p < mr.size(); ++p) {
+    REQUIRE(mn[p] == 16.0f);
+    double var = mv[p] / 16.0 + rv[p] / 512.0;
+    if (var <= 0.0) continue;  // e.g. background: both exact
+    double z = (mr[p] - rr[p]) / std::sqrt(var);
+    ++compared;
+    zSum += z;
+    zSq += z * z;
+    outliers += std::fabs(z) > 4.0;
+  }
+  double meanZ = zSum / compared, rmsZ = std::sqrt(zSq / compared);
+  INFO("compared " << compared << ", mean z " << meanZ << ", rms z " << rmsZ);
+  REQUIRE(compared > 100);
+  CHECK(outliers <= 2);
+  CHECK(std::fabs(meanZ) < 0.3);
+  CHECK(rmsZ > 0.7);  // an error far below the combined count's would mean the variance is wrong
+  CHECK(rmsZ < 1.4);
+}
