@@ -20,7 +20,25 @@ MCL_INLINE float4 mcl_min4_nan1(float4 a, float4 b) { return select(b, a, a < b)
 MCL_INLINE float4 mcl_entry4(float4 tmin, float4 tmax) {
   return select((float4)(INFINITY), tmin, tmin <= tmax);
 }
+// t where ray_triangle's tests pass (the same comparisons, NaNs included), else INFINITY. The
+// relational built-ins, not the operators: Oclgrind (21.10) got the operator form of these masks
+// wrong (shadow rays at a light's distance disagreed with PoCL and the host); same code on PoCL.
+MCL_INLINE float4 mcl_tri_t4(float4 det, float4 u, float4 v, float4 t, float tmax) {
+  const float4 zero = (float4)(0.0f), one = (float4)(1.0f);
+  int4 bad = isless(fabs(det), (float4)(1e-30f)) | isless(u, zero) | isgreater(u, one) |
+             isless(v, zero) | isgreater(u + v, one);
+  int4 ok = ~bad & isgreater(t, zero) & isless(t, (float4)(tmax));
+  return select((float4)(INFINITY), t, ok);
+}
 #else
+inline float mcl_tri_t1(float det, float u, float v, float t, float tmax) {
+  bool bad = fabs(det) < 1e-30f || u < 0.0f || u > 1.0f || v < 0.0f || u + v > 1.0f;
+  return (!bad && t > 0.0f && t < tmax) ? t : INFINITY;
+}
+inline float4 mcl_tri_t4(float4 det, float4 u, float4 v, float4 t, float tmax) {
+  return float4(mcl_tri_t1(det.x, u.x, v.x, t.x, tmax), mcl_tri_t1(det.y, u.y, v.y, t.y, tmax),
+                mcl_tri_t1(det.z, u.z, v.z, t.z, tmax), mcl_tri_t1(det.w, u.w, v.w, t.w, tmax));
+}
 inline float4 mcl_splat4(float x) { return float4(x); }
 inline float4 mcl_max4_nan1(float4 a, float4 b) {
   return float4(mcl_max_nan1(a.x, b.x), mcl_max_nan1(a.y, b.y), mcl_max_nan1(a.z, b.z),
@@ -89,6 +107,40 @@ MCL_INLINE float4 wide_entry(MCL_GLOBAL const WideNode* n, const RayBoxCtx* c, f
     (ra) = rt_;                              \
   }
 
+
+// Moller-Trumbore (ray_triangle's operations in the same order, lane-wise) against triangles
+// tris[first + i], i < 4, the indices clamped to last (a repeated triangle repeats its t in a later
+// lane, which never wins a tie). Returns t per lane (INFINITY on a miss); u, v through the pointers.
+MCL_INLINE float4 ray_triangle4(MCL_GLOBAL const Triangle* tris, uint first, uint last, float3 org,
+                                float3 dir, float tmax, float4* uOut, float4* vOut) {
+  uint i1 = first + 1u < last ? first + 1u : last, i2 = first + 2u < last ? first + 2u : last;
+  uint i3 = first + 3u < last ? first + 3u : last;
+  float4 a0 = tris[first].v0, a1 = tris[i1].v0, a2 = tris[i2].v0, a3 = tris[i3].v0;
+  float4 b0 = tris[first].e1, b1 = tris[i1].e1, b2 = tris[i2].e1, b3 = tris[i3].e1;
+  float4 c0 = tris[first].e2, c1 = tris[i1].e2, c2 = tris[i2].e2, c3 = tris[i3].e2;
+  float4 v0x = make_float4(a0.x, a1.x, a2.x, a3.x), v0y = make_float4(a0.y, a1.y, a2.y, a3.y),
+         v0z = make_float4(a0.z, a1.z, a2.z, a3.z);
+  float4 e1x = make_float4(b0.x, b1.x, b2.x, b3.x), e1y = make_float4(b0.y, b1.y, b2.y, b3.y),
+         e1z = make_float4(b0.z, b1.z, b2.z, b3.z);
+  float4 e2x = make_float4(c0.x, c1.x, c2.x, c3.x), e2y = make_float4(c0.y, c1.y, c2.y, c3.y),
+         e2z = make_float4(c0.z, c1.z, c2.z, c3.z);
+  float4 px = dir.y * e2z - e2y * dir.z;  // cross(dir, e2)
+  float4 py = dir.z * e2x - e2z * dir.x;
+  float4 pz = dir.x * e2y - e2x * dir.y;
+  float4 det = e1x * px + e1y * py + e1z * pz;
+  float4 inv = 1.0f / det;
+  float4 sx = org.x - v0x, sy = org.y - v0y, sz = org.z - v0z;
+  float4 u = (sx * px + sy * py + sz * pz) * inv;
+  float4 qx = sy * e1z - e1y * sz;  // cross(s, e1)
+  float4 qy = sz * e1x - e1z * sx;
+  float4 qz = sx * e1y - e1x * sy;
+  float4 v = (dir.x * qx + dir.y * qy + dir.z * qz) * inv;
+  float4 t = (e2x * qx + e2y * qy + e2z * qz) * inv;
+  *uOut = u;
+  *vOut = v;
+  return mcl_tri_t4(det, u, v, t, tmax);
+}
+
 MCL_INLINE uint wide_leaf_first(uint ref) { return (ref & ~MCL_WIDE_LEAF) >> 4; }
 MCL_INLINE uint wide_leaf_count(uint ref) { return (ref & 15u) + 1u; }
 
@@ -107,16 +159,21 @@ MCL_INLINE Hit bvh_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL cons
   uint ref = 0;  // the root is wide node 0
   for (;;) {
     if (ref & MCL_WIDE_LEAF) {
-      uint first = wide_leaf_first(ref), end = first + wide_leaf_count(ref);
-      for (uint ti = first; ti < end; ++ti) {
-        float u = 0.0f, v = 0.0f;
-        float t = ray_triangle(org, dir, xyz(tris[ti].v0), xyz(tris[ti].e1), xyz(tris[ti].e2),
-                               hit.t, &u, &v);
-        if (t < hit.t) {
-          hit.t = t;
-          hit.tri = ti;
-          hit.u = u;
-          hit.v = v;
+      uint first = wide_leaf_first(ref), last = first + wide_leaf_count(ref) - 1u;
+      for (uint b = first; b <= last; b += 4u) {
+        float4 u, v;
+        float4 t = ray_triangle4(tris, b, last, org, dir, hit.t, &u, &v);
+        // The nearest lane, the lowest on a tie (as the triangles one by one would find it).
+        float bt = t.x, bu = u.x, bv = v.x;
+        uint bi = b;
+        if (t.y < bt) { bt = t.y; bu = u.y; bv = v.y; bi = b + 1u; }
+        if (t.z < bt) { bt = t.z; bu = u.z; bv = v.z; bi = b + 2u; }
+        if (t.w < bt) { bt = t.w; bu = u.w; bv = v.w; bi = b + 3u; }
+        if (bt < hit.t) {
+          hit.t = bt;
+          hit.tri = bi;
+          hit.u = bu;
+          hit.v = bv;
         }
       }
     } else {
@@ -166,12 +223,11 @@ MCL_INLINE int bvh_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Tr
   uint ref = 0;
   for (;;) {
     if (ref & MCL_WIDE_LEAF) {
-      uint first = wide_leaf_first(ref), end = first + wide_leaf_count(ref);
-      for (uint ti = first; ti < end; ++ti) {
-        float u = 0.0f, v = 0.0f;
-        if (ray_triangle(org, dir, xyz(tris[ti].v0), xyz(tris[ti].e1), xyz(tris[ti].e2), tmax, &u,
-                         &v) < tmax)
-          return 1;
+      uint first = wide_leaf_first(ref), last = first + wide_leaf_count(ref) - 1u;
+      for (uint b = first; b <= last; b += 4u) {
+        float4 u, v;
+        float4 t = ray_triangle4(tris, b, last, org, dir, tmax, &u, &v);
+        if (t.x < tmax || t.y < tmax || t.z < tmax || t.w < tmax) return 1;
       }
     } else {
       MCL_GLOBAL const WideNode* n = &nodes[ref];
