@@ -369,6 +369,9 @@ __kernel void probe(__global uint* out) {
   out[15] = OFF(FrameParams, camDx);
   out[16] = OFF(FrameParams, background);
   out[17] = OFF(FrameParams, width);
+  out[18] = sizeof(WideNode);
+  out[19] = OFF(WideNode, child);
+  out[20] = OFF(WideNode, pad);
 }
 )";
   const std::vector<std::pair<const char*, cl_uint>> host = {
@@ -390,6 +393,9 @@ __kernel void probe(__global uint* out) {
       {"offsetof(FrameParams, camDx)", offsetof(FrameParams, camDx)},
       {"offsetof(FrameParams, background)", offsetof(FrameParams, background)},
       {"offsetof(FrameParams, width)", offsetof(FrameParams, width)},
+      {"sizeof(WideNode)", sizeof(WideNode)},
+      {"offsetof(WideNode, child)", offsetof(WideNode, child)},
+      {"offsetof(WideNode, pad)", offsetof(WideNode, pad)},
   };
   DeviceInfo dev = selectDevice("");
   cl::Context context(dev.device);

@@ -74,7 +74,7 @@ std::string cpuModel() {
 class DeviceTracer {
  public:
   DeviceTracer(ClSession& s, const Bvh& bvh)
-      : s_(s), nodes_(s.upload(bvh.nodes)), tris_(s.upload(bvh.triangles)), intersect_(s.kernel("intersect")),
+      : s_(s), nodes_(s.upload(bvh.wide.empty() ? std::vector<WideNode>{emptyWideNode()} : bvh.wide)), tris_(s.upload(bvh.triangles)), intersect_(s.kernel("intersect")),
         shadow_(s.kernel("intersect_shadow")) {}
 
   Timing closest(const std::vector<Ray>& rays, int warmup, int repeat, std::vector<float>& t) {
@@ -211,7 +211,7 @@ json runBench(const BenchOptions& o, bool verbose) {
 
   say("building the BVH over " + std::to_string(scene.triangles.size()) + " triangles");
   Bvh bvh = buildBvh(scene.triangles);
-  std::size_t bvhBytes = bvh.nodes.size() * sizeof(BvhNode) + bvh.triangles.size() * sizeof(Triangle);
+  std::size_t bvhBytes = bvh.wide.size() * sizeof(WideNode) + bvh.triangles.size() * sizeof(Triangle);
   r["bvh"] = {{"build_ms", bvh.buildMs},
               {"nodes", bvh.nodes.size()},
               {"depth", bvh.depth},
@@ -219,7 +219,7 @@ json runBench(const BenchOptions& o, bool verbose) {
               {"bytes", bvhBytes},
               {"bytes_per_triangle", double(bvhBytes) / double(scene.triangles.size())},
               {"node_bytes_per_triangle",
-               double(bvh.nodes.size() * sizeof(BvhNode)) / double(scene.triangles.size())}};
+               double(bvh.wide.size() * sizeof(WideNode)) / double(scene.triangles.size())}};
   r["rss_after_build_mb"] = peakRssMb();
 
   say("generating rays and host references on " + std::to_string(threads) + " threads");

@@ -357,6 +357,92 @@ bool finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
+
+}  // namespace
+
+WideNode emptyWideNode() {
+  WideNode w;
+  const float inf = std::numeric_limits<float>::infinity();
+  for (int r = 0; r < 6; ++r) w.bounds[r] = glm::vec4((r % 2 == 0) ? inf : -inf);
+  for (int i = 0; i < 4; ++i) {
+    w.child[i] = MCL_WIDE_EMPTY;
+    w.pad[i] = 0;
+  }
+  return w;
+}
+
+namespace {
+
+// Collapses the binary tree into 4-wide nodes: each wide node takes the binary node's two children
+// and, while it has fewer than four, replaces its interior child of largest surface area by that
+// child's two children. Wide nodes are laid out depth-first; leaves keep their triangle ranges.
+void collapseWide(Bvh& bvh) {
+  const std::vector<BvhNode>& nodes = bvh.nodes;
+  std::vector<WideNode>& wide = bvh.wide;
+  wide.clear();
+  if (bvh.triangles.size() > (std::size_t(1) << 27))
+    throw std::invalid_argument("buildBvh: the wide BVH holds at most 2^27 triangles");
+  auto area = [](const BvhNode& b) {
+    float dx = b.maxX - b.minX, dy = b.maxY - b.minY, dz = b.maxZ - b.minZ;
+    return dx * dy + dy * dz + dz * dx;
+  };
+  wide.reserve(nodes.size() / 2 + 1);
+  wide.push_back(emptyWideNode());
+  if (nodes.empty()) return;
+  struct Item {
+    std::uint32_t binary, wide;
+  };
+  std::vector<Item> todo{{0u, 0u}};
+  while (!todo.empty()) {
+    Item it = todo.back();
+    todo.pop_back();
+    std::uint32_t kids[4];
+    int k = 0;
+    const BvhNode& b = nodes[it.binary];
+    if (b.triCount > 0) {
+      kids[k++] = it.binary;  // a leaf root: one child, the whole tree
+    } else {
+      kids[k++] = b.leftFirst;
+      kids[k++] = b.leftFirst + 1;
+      while (k < 4) {
+        int best = -1;
+        float bestArea = -1.0f;
+        for (int i = 0; i < k; ++i)
+          if (nodes[kids[i]].triCount == 0 && area(nodes[kids[i]]) > bestArea) {
+            best = i;
+            bestArea = area(nodes[kids[i]]);
+          }
+        if (best < 0) break;
+        std::uint32_t c = nodes[kids[best]].leftFirst;
+        for (int i = k; i > best + 1; --i) kids[i] = kids[i - 1];  // keep left-to-right order
+        kids[best] = c;
+        kids[best + 1] = c + 1;
+        ++k;
+      }
+    }
+    std::uint32_t pendingFrom = static_cast<std::uint32_t>(todo.size());
+    for (int i = 0; i < k; ++i) {
+      const BvhNode& c = nodes[kids[i]];
+      WideNode& w = wide[it.wide];
+      w.bounds[0][i] = c.minX;
+      w.bounds[1][i] = c.maxX;
+      w.bounds[2][i] = c.minY;
+      w.bounds[3][i] = c.maxY;
+      w.bounds[4][i] = c.minZ;
+      w.bounds[5][i] = c.maxZ;
+      if (c.triCount > 0) {
+        w.child[i] = MCL_WIDE_LEAF | (c.leftFirst << 4) | (c.triCount - 1);
+      } else {
+        std::uint32_t idx = static_cast<std::uint32_t>(wide.size());
+        wide[it.wide].child[i] = idx;
+        wide.push_back(emptyWideNode());  // may reallocate: w is not used after this
+        todo.push_back({kids[i], idx});
+      }
+    }
+    std::reverse(todo.begin() + pendingFrom, todo.end());  // depth-first, left child first
+  }
+}
+
 }  // namespace
 
 Bvh buildBvh(const std::vector<SceneTriangle>& tris, const BvhBuildOptions& options) {
@@ -454,6 +540,7 @@ Bvh buildBvhCapped(const std::vector<SceneTriangle>& tris, const BvhBuildOptions
                                : options.intersectCost * static_cast<double>(node.triCount) * rel;
   }
   bvh.sahCost = cost;
+  collapseWide(bvh);
   bvh.buildMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return bvh;

@@ -7,19 +7,19 @@
 namespace montecl {
 
 Hit intersectClosest(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax) {
-  if (bvh.nodes.empty()) {
+  if (bvh.wide.empty()) {
     Hit miss;
     miss.t = INFINITY;
     miss.tri = MCL_NO_HIT;
     miss.u = miss.v = 0.0f;
     return miss;
   }
-  return bvh_closest_hit(bvh.nodes.data(), bvh.triangles.data(), org, dir, tmax);
+  return bvh_closest_hit(bvh.wide.data(), bvh.triangles.data(), org, dir, tmax);
 }
 
 bool intersectAny(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax) {
-  if (bvh.nodes.empty()) return false;
-  return bvh_any_hit(bvh.nodes.data(), bvh.triangles.data(), org, dir, tmax) != 0;
+  if (bvh.wide.empty()) return false;
+  return bvh_any_hit(bvh.wide.data(), bvh.triangles.data(), org, dir, tmax) != 0;
 }
 
 }  // namespace montecl

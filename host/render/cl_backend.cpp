@@ -35,7 +35,7 @@ class ClStageRunner final : public StageRunner {
     const std::uint64_t wave = in.wave, slots = in.frame.shadowSlots;
     pixels_ = std::uint64_t(in.frame.width) * in.frame.height;
     frameBuf_ = cl_.upload(std::vector<FrameParams>{in.frame});
-    nodes_ = cl_.upload(in.bvh->nodes);
+    nodes_ = cl_.upload(in.bvh->wide.empty() ? std::vector<WideNode>{emptyWideNode()} : in.bvh->wide);
     tris_ = cl_.upload(in.bvh->triangles);
     materials_ = cl_.upload(in.materials);
     emitters_ = cl_.upload(in.emitters);

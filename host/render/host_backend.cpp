@@ -28,13 +28,13 @@ class HostStageRunner final : public StageRunner {
 
   void setup(const StageInputs& in) override {
     frame_ = in.frame;
-    nodes_ = in.bvh->nodes;
+    nodes_ = in.bvh->wide;
     tris_ = in.bvh->triangles;
     materials_ = in.materials;
     emitters_ = in.emitters;
     if (materials_.empty()) materials_.resize(1);
     if (emitters_.empty()) emitters_.resize(1);
-    if (nodes_.empty()) nodes_.resize(1);  // an empty BVH has a single empty leaf on the device too
+    if (nodes_.empty()) nodes_.push_back(emptyWideNode());  // an empty BVH: one node of empty slots, as on the device
     const std::uint64_t wave = std::max<std::uint64_t>(1, in.wave), slots = frame_.shadowSlots;
     rays_.assign(wave, Ray{});
     hits_.assign(wave, Hit{});
@@ -149,7 +149,7 @@ class HostStageRunner final : public StageRunner {
   bool aovs_ = false;
   std::vector<float4> aov_, aovSum_;
   std::vector<uint> active_;
-  std::vector<BvhNode> nodes_;
+  std::vector<WideNode> nodes_;
   std::vector<Triangle> tris_;
   std::vector<Material> materials_;
   std::vector<Emitter> emitters_;

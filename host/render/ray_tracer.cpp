@@ -4,7 +4,7 @@
 namespace montecl {
 
 RayTracer::RayTracer(ClSession& session, const Bvh& bvh)
-    : cl_(session), nodes_(session.upload(bvh.nodes)), tris_(session.upload(bvh.triangles)),
+    : cl_(session), nodes_(session.upload(bvh.wide.empty() ? std::vector<WideNode>{emptyWideNode()} : bvh.wide)), tris_(session.upload(bvh.triangles)),
       intersect_(session.kernel("intersect")), intersectShadow_(session.kernel("intersect_shadow")) {}
 
 std::vector<Hit> RayTracer::closest(const std::vector<Ray>& rays) {
