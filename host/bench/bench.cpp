@@ -29,6 +29,7 @@
 #include "bench/embree_tracer.h"
 #include "bench/ray_sets.h"
 #include "bvh/bvh.h"
+#include "render/ray_tracer.h"
 #include "cl/cl_errors.h"
 #include "cl/cl_session.h"
 #include "cl/devices.h"
@@ -70,87 +71,22 @@ std::string cpuModel() {
   return "unknown";
 }
 
-// The device side: BVH buffers and the two traversal kernels, launched one at a time with an event.
-class DeviceTracer {
- public:
-  DeviceTracer(ClSession& s, const Bvh& bvh)
-      : s_(s), nodes_(s.upload(bvh.wide.empty() ? std::vector<WideNode>{emptyWideNode()} : bvh.wide)), tris_(s.upload(bvh.triangles)), intersect_(s.kernel("intersect")),
-        shadow_(s.kernel("intersect_shadow")) {}
-
-  Timing closest(const std::vector<Ray>& rays, int warmup, int repeat, std::vector<float>& t) {
-    cl::Buffer rayBuf = s_.upload(rays);
-    cl::Buffer count = s_.upload(std::vector<cl_uint>{cl_uint(rays.size())});
-    cl::Buffer hitBuf = s_.buffer<Hit>(rays.size());
-    intersect_.setArg(0, nodes_);
-    intersect_.setArg(1, tris_);
-    intersect_.setArg(2, rayBuf);
-    intersect_.setArg(3, count);
-    intersect_.setArg(4, hitBuf);
-    std::vector<double> ms;
-    for (int r = 0; r < warmup + repeat; ++r) {
-      double m = launch(intersect_, rays.size());
-      if (r >= warmup) ms.push_back(m);
-    }
-    std::vector<Hit> hits(rays.size());
-    if (!rays.empty()) s_.queue().enqueueReadBuffer(hitBuf, CL_TRUE, 0, hits.size() * sizeof(Hit), hits.data());
-    t.resize(rays.size());
+// Runs one ray set through the device kernel warmup + repeat times; times the last `repeat` runs
+// (profiling events) and fills t (closest hit distance, INFINITY on a miss) or occ.
+Timing timeOnDevice(RayTracer& tracer, const RaySet& set, int warmup, int repeat, std::vector<float>& t,
+                    std::vector<std::uint8_t>& occ) {
+  std::vector<double> ms;
+  if (set.query == RayKind::Closest) {
+    std::vector<Hit> hits = tracer.closest(set.rays, warmup + repeat, &ms);
+    t.resize(hits.size());
     for (std::size_t i = 0; i < hits.size(); ++i) t[i] = hits[i].tri == MCL_NO_HIT ? INFINITY : hits[i].t;
-    return summarize(ms);
+  } else {
+    std::vector<int> o = tracer.occluded(set.rays, warmup + repeat, &ms);
+    occ.assign(o.begin(), o.end());
   }
-
-  Timing occluded(const std::vector<Ray>& rays, int warmup, int repeat, std::vector<std::uint8_t>& occ) {
-    std::vector<ShadowWork> work(rays.size());
-    for (std::size_t k = 0; k < rays.size(); ++k) {
-      work[k].ray = rays[k];
-      work[k].r = work[k].g = work[k].b = 1.0f;
-      work[k].slot = cl_uint(k);
-    }
-    cl::Buffer workBuf = s_.upload(work);
-    work.clear();
-    work.shrink_to_fit();
-    cl::Buffer count = s_.upload(std::vector<cl_uint>{cl_uint(rays.size())});
-    // Unblocked queries write 1 to their slot; the slots start (and, blocked, stay) at 0.
-    std::vector<cl_float4> contrib(rays.size(), cl_float4{{0.0f, 0.0f, 0.0f, 0.0f}});
-    cl::Buffer contribBuf = s_.upload(contrib, CL_MEM_READ_WRITE);
-    shadow_.setArg(0, nodes_);
-    shadow_.setArg(1, tris_);
-    shadow_.setArg(2, workBuf);
-    shadow_.setArg(3, count);
-    shadow_.setArg(4, contribBuf);
-    std::vector<double> ms;
-    for (int r = 0; r < warmup + repeat; ++r) {
-      double m = launch(shadow_, rays.size());
-      if (r >= warmup) ms.push_back(m);
-    }
-    if (!rays.empty())
-      s_.queue().enqueueReadBuffer(contribBuf, CL_TRUE, 0, contrib.size() * sizeof(cl_float4), contrib.data());
-    occ.resize(rays.size());
-    for (std::size_t k = 0; k < rays.size(); ++k) occ[k] = contrib[k].s[0] == 1.0f ? 0 : 1;
-    return summarize(ms);
-  }
-
- private:
-  // One launch over n items, waited for; returns the kernel's execution time from its event.
-  double launch(cl::Kernel& k, std::size_t n) {
-    if (n == 0) return 0.0;
-    std::size_t local = s_.localSize(k);
-    std::size_t global = ((n + local - 1) / local) * local;
-    cl::Event ev;
-    try {
-      s_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(global), cl::NDRange(local), nullptr, &ev);
-      ev.wait();
-    } catch (const cl::Error& e) {
-      throw RuntimeError("kernel " + k.getInfo<CL_KERNEL_FUNCTION_NAME>() + ": " + describeClError(e));
-    }
-    cl_ulong start = ev.getProfilingInfo<CL_PROFILING_COMMAND_START>();
-    cl_ulong end = ev.getProfilingInfo<CL_PROFILING_COMMAND_END>();
-    return double(end - start) * 1e-6;
-  }
-
-  ClSession& s_;
-  cl::Buffer nodes_, tris_;
-  cl::Kernel intersect_, shadow_;
-};
+  ms.erase(ms.begin(), ms.begin() + std::min<std::size_t>(std::size_t(warmup), ms.size()));
+  return summarize(ms);
+}
 
 bool closestMismatch(float ref, float got, double tol) {
   bool rh = std::isfinite(ref), gh = std::isfinite(got);
@@ -238,7 +174,7 @@ json runBench(const BenchOptions& o, bool verbose) {
   }
 
   ClSession session(device, o.workGroupSize, /*profiling=*/true);
-  DeviceTracer tracer(session, bvh);
+  RayTracer tracer(session, bvh);
   r["local_size"] = session.localSize(session.kernel("intersect"));
   std::size_t total = 0;
   json rays = json::array();
@@ -247,8 +183,7 @@ json runBench(const BenchOptions& o, bool verbose) {
     say("tracing " + std::to_string(set->rays.size()) + " " + set->kind + " rays");
     std::vector<float> t;
     std::vector<std::uint8_t> occ;
-    Timing dev = set->query == RayKind::Closest ? tracer.closest(set->rays, o.warmup, o.repeat, t)
-                                                 : tracer.occluded(set->rays, o.warmup, o.repeat, occ);
+    Timing dev = timeOnDevice(tracer, *set, o.warmup, o.repeat, t, occ);
     std::size_t mism = countMismatches(*set, t, occ, o.relTolerance);
     total += mism;
     std::size_t hits = 0;

@@ -44,4 +44,20 @@ void ClSession::launch(cl::Kernel& k, std::uint64_t n) {
   }
 }
 
+double ClSession::launchTimed(cl::Kernel& k, std::uint64_t n) {
+  if (n == 0) return 0.0;
+  std::size_t local = localSize(k);
+  std::size_t global = ((n + local - 1) / local) * local;
+  cl::Event ev;
+  try {
+    queue_.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(global), cl::NDRange(local), nullptr, &ev);
+    ev.wait();
+  } catch (const cl::Error& e) {
+    throw RuntimeError("kernel " + k.getInfo<CL_KERNEL_FUNCTION_NAME>() + ": " + describeClError(e));
+  }
+  cl_ulong start = ev.getProfilingInfo<CL_PROFILING_COMMAND_START>();
+  cl_ulong end = ev.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+  return double(end - start) * 1e-6;
+}
+
 }  // namespace montecl

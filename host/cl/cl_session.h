@@ -26,6 +26,9 @@ class ClSession {
 
   // Launches k over n work items (global size rounded up to whole work-groups).
   void launch(cl::Kernel& k, std::uint64_t n);
+  // Launches k over n work items, waits, and returns its execution time in ms from the event's
+  // profiling info (the session must have been created with profiling).
+  double launchTimed(cl::Kernel& k, std::uint64_t n);
   std::size_t localSize(const cl::Kernel& k) const;
 
   template <typename T>

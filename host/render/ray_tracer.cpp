@@ -1,13 +1,24 @@
 // ray_tracer.cpp: one-shot launches of the intersect and intersect_shadow kernels.
 #include "render/ray_tracer.h"
 
+#include <algorithm>
+
 namespace montecl {
 
 RayTracer::RayTracer(ClSession& session, const Bvh& bvh)
     : cl_(session), nodes_(session.upload(bvh.wide.empty() ? std::vector<WideNode>{emptyWideNode()} : bvh.wide)), tris_(session.upload(bvh.triangles)),
       intersect_(session.kernel("intersect")), intersectShadow_(session.kernel("intersect_shadow")) {}
 
-std::vector<Hit> RayTracer::closest(const std::vector<Ray>& rays) {
+void RayTracer::run(cl::Kernel& k, std::size_t n, int runs, std::vector<double>* kernelMs) {
+  for (int r = 0; r < std::max(1, runs); ++r) {
+    if (kernelMs)
+      kernelMs->push_back(cl_.launchTimed(k, n));
+    else
+      cl_.launch(k, n);
+  }
+}
+
+std::vector<Hit> RayTracer::closest(const std::vector<Ray>& rays, int runs, std::vector<double>* kernelMs) {
   std::vector<Hit> hits(rays.size());
   if (rays.empty()) return hits;
   cl::Buffer rayBuf = cl_.upload(rays);
@@ -18,12 +29,12 @@ std::vector<Hit> RayTracer::closest(const std::vector<Ray>& rays) {
   intersect_.setArg(2, rayBuf);
   intersect_.setArg(3, count);
   intersect_.setArg(4, hitBuf);
-  cl_.launch(intersect_, rays.size());
+  run(intersect_, rays.size(), runs, kernelMs);
   cl_.queue().enqueueReadBuffer(hitBuf, CL_TRUE, 0, hits.size() * sizeof(Hit), hits.data());
   return hits;
 }
 
-std::vector<int> RayTracer::occluded(const std::vector<Ray>& rays) {
+std::vector<int> RayTracer::occluded(const std::vector<Ray>& rays, int runs, std::vector<double>* kernelMs) {
   std::vector<int> result(rays.size());
   if (rays.empty()) return result;
   // Query k writes 1 to slot k when unblocked; slots start at 0.
@@ -42,7 +53,7 @@ std::vector<int> RayTracer::occluded(const std::vector<Ray>& rays) {
   intersectShadow_.setArg(2, workBuf);
   intersectShadow_.setArg(3, count);
   intersectShadow_.setArg(4, contribBuf);
-  cl_.launch(intersectShadow_, rays.size());
+  run(intersectShadow_, rays.size(), runs, kernelMs);
   cl_.queue().enqueueReadBuffer(contribBuf, CL_TRUE, 0, contrib.size() * sizeof(cl_float4), contrib.data());
   for (std::size_t k = 0; k < rays.size(); ++k) result[k] = contrib[k].s[0] == 1.0f ? 0 : 1;
   return result;

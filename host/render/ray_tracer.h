@@ -12,12 +12,16 @@ class RayTracer {
  public:
   RayTracer(ClSession& session, const Bvh& bvh);
 
-  // Closest hit of each ray (dir.w = tmax).
-  std::vector<Hit> closest(const std::vector<Ray>& rays);
-  // 1 where something blocks the ray before dir.w, else 0.
-  std::vector<int> occluded(const std::vector<Ray>& rays);
+  // Closest hit of each ray (dir.w = tmax). With kernelMs (the session must profile), the kernel
+  // runs `runs` times and each run's execution time is appended (benchmarks).
+  std::vector<Hit> closest(const std::vector<Ray>& rays, int runs = 1, std::vector<double>* kernelMs = nullptr);
+  // 1 where something blocks the ray before dir.w, else 0; runs and kernelMs as above.
+  std::vector<int> occluded(const std::vector<Ray>& rays, int runs = 1, std::vector<double>* kernelMs = nullptr);
+
 
  private:
+  void run(cl::Kernel& k, std::size_t n, int runs, std::vector<double>* kernelMs);
+
   ClSession& cl_;
   cl::Buffer nodes_, tris_;
   cl::Kernel intersect_, intersectShadow_;
