@@ -132,10 +132,13 @@ ProgramBuild buildProgramCached(const cl::Context& context, const DeviceInfo& de
   cl::Device clDevice = device.device;
   cl::Platform platform(clDevice.getInfo<CL_DEVICE_PLATFORM>(), true);
   const std::string deviceName = clDevice.getInfo<CL_DEVICE_NAME>();
+  // Drivers that take extra build options from the environment change the binary too.
+  const char* oclgrindOptions = std::getenv("OCLGRIND_BUILD_OPTIONS");
   std::string key;
   for (const std::string& part :
        {platform.getInfo<CL_PLATFORM_NAME>(), platform.getInfo<CL_PLATFORM_VERSION>(), deviceName,
-        clDevice.getInfo<CL_DRIVER_VERSION>(), options, source}) {
+        clDevice.getInfo<CL_DRIVER_VERSION>(), options, std::string(oclgrindOptions ? oclgrindOptions : ""),
+        source}) {
     key += part;
     key.push_back('\0');
   }
