@@ -136,4 +136,12 @@ void TempDir::write(const std::string& name, const std::string& text) const {
   if (!f) throw std::runtime_error("cannot write " + p.string());
 }
 
+std::vector<std::string> readLines(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
 }  // namespace montecl_test

@@ -17,6 +17,9 @@ CliResult runMontecl(const std::vector<std::string>& args, const std::vector<std
 // Runs argv[0] (searched in PATH) with the rest of argv, like runMontecl.
 CliResult runProgram(const std::vector<std::string>& argv, const std::vector<std::string>& extraEnv = {});
 
+// The non-empty lines of a text file (expect.txt of the bad-input cases).
+std::vector<std::string> readLines(const std::string& path);
+
 // A fresh empty temporary folder for one test, removed by the destructor.
 struct TempDir {
   TempDir();

@@ -19,14 +19,6 @@ namespace {
 
 const std::string kScenes = std::string(MONTECL_SOURCE_DIR) + "/scenes/test";
 
-std::vector<std::string> readLines(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);)
-    if (!line.empty()) lines.push_back(line);
-  return lines;
-}
-
 std::size_t entriesIn(const std::string& folder) {
   return static_cast<std::size_t>(std::distance(fs::directory_iterator(folder), fs::directory_iterator()));
 }
@@ -57,7 +49,7 @@ TEST_CASE("cli: every bad scene under scenes/test/bad exits 2 with one line nami
   std::sort(cases.begin(), cases.end());
   REQUIRE(cases.size() >= 40);
   for (const fs::path& dir : cases) {
-    std::vector<std::string> expect = readLines((dir / "expect.txt").string());
+    std::vector<std::string> expect = montecl_test::readLines((dir / "expect.txt").string());
     REQUIRE(expect.size() >= 2);
     INFO("case " << dir.filename().string());
     std::string err = renderExpectingBadInput((dir / expect[0]).string());

@@ -51,14 +51,6 @@ std::string loadError(const std::string& path) {
   return "";
 }
 
-std::vector<std::string> readLines(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);)
-    if (!line.empty()) lines.push_back(line);
-  return lines;
-}
-
 // Pixel coordinates of p seen through cam (pinhole, fovY vertical); z <= 0 means behind it.
 glm::dvec3 project(const Camera& cam, const glm::vec3& p) {
   glm::dvec3 f = glm::normalize(glm::dvec3(cam.target - cam.position));
@@ -350,7 +342,7 @@ TEST_CASE("bad input: every case under scenes/test/bad throws one InputError lin
   std::sort(cases.begin(), cases.end());
   REQUIRE(cases.size() >= 40);
   for (const fs::path& dir : cases) {
-    std::vector<std::string> expect = readLines((dir / "expect.txt").string());
+    std::vector<std::string> expect = montecl_test::readLines((dir / "expect.txt").string());
     REQUIRE(expect.size() >= 2);
     std::string path = (dir / expect[0]).string();
     std::string message = loadError(path);

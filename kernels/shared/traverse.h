@@ -107,6 +107,16 @@ MCL_INLINE float4 wide_entry(MCL_GLOBAL const WideNode* n, const RayBoxCtx* c, f
     (ra) = rt_;                              \
   }
 
+// Sorts four (distance, ref) pairs by distance: a 5-comparator network, nearest first.
+#define MCL_SORT4(d0, r0, d1, r1, d2, r2, d3, r3) \
+  {                                               \
+    MCL_CSWAP(d0, r0, d1, r1);                    \
+    MCL_CSWAP(d2, r2, d3, r3);                    \
+    MCL_CSWAP(d0, r0, d2, r2);                    \
+    MCL_CSWAP(d1, r1, d3, r3);                    \
+    MCL_CSWAP(d1, r1, d2, r2);                    \
+  }
+
 
 // Moller-Trumbore (ray_triangle's operations in the same order, lane-wise) against triangles
 // tris[first + i], i < 4, the indices clamped to last (a repeated triangle repeats its t in a later
@@ -181,11 +191,7 @@ MCL_INLINE Hit bvh_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL cons
       float4 d = wide_entry(n, &ctx, hit.t);
       float d0 = d.x, d1 = d.y, d2 = d.z, d3 = d.w;
       uint r0 = n->child[0], r1 = n->child[1], r2 = n->child[2], r3 = n->child[3];
-      MCL_CSWAP(d0, r0, d1, r1);
-      MCL_CSWAP(d2, r2, d3, r3);
-      MCL_CSWAP(d0, r0, d2, r2);
-      MCL_CSWAP(d1, r1, d3, r3);
-      MCL_CSWAP(d1, r1, d2, r2);
+      MCL_SORT4(d0, r0, d1, r1, d2, r2, d3, r3);
       if (d0 != INFINITY) {
         // Push the farther hit children (farthest deepest), visit the nearest.
         stack[sp] = r3;
@@ -234,11 +240,7 @@ MCL_INLINE int bvh_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Tr
       float4 d = wide_entry(n, &ctx, tmax);
       float d0 = d.x, d1 = d.y, d2 = d.z, d3 = d.w;
       uint r0 = n->child[0], r1 = n->child[1], r2 = n->child[2], r3 = n->child[3];
-      MCL_CSWAP(d0, r0, d1, r1);
-      MCL_CSWAP(d2, r2, d3, r3);
-      MCL_CSWAP(d0, r0, d2, r2);
-      MCL_CSWAP(d1, r1, d3, r3);
-      MCL_CSWAP(d1, r1, d2, r2);
+      MCL_SORT4(d0, r0, d1, r1, d2, r2, d3, r3);
       if (d0 != INFINITY) {
         stack[sp] = r3;
         sp += d3 != INFINITY;
