@@ -82,6 +82,24 @@ std::string EmbreeTracer::version() {
          std::to_string(RTC_VERSION_PATCH);
 }
 
+namespace {
+
+// montecl's Ray (origin, dir with dir.w = tmax) as an Embree ray from t = 0.
+RTCRay toEmbreeRay(const Ray& r) {
+  RTCRay ray;
+  ray.org_x = r.origin.x; ray.org_y = r.origin.y; ray.org_z = r.origin.z;
+  ray.dir_x = r.dir.x; ray.dir_y = r.dir.y; ray.dir_z = r.dir.z;
+  ray.tnear = 0.0f;
+  ray.tfar = r.dir.w;
+  ray.time = 0.0f;
+  ray.mask = ~0u;
+  ray.id = 0;
+  ray.flags = 0;
+  return ray;
+}
+
+}  // namespace
+
 double EmbreeTracer::closest(const std::vector<Ray>& rays, std::vector<float>& t) const {
   t.assign(rays.size(), INFINITY);
   RTCScene scene = impl_->scene;
@@ -90,16 +108,8 @@ double EmbreeTracer::closest(const std::vector<Ray>& rays, std::vector<float>& t
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     for (std::size_t i = b; i < e; ++i) {
-      const Ray& r = rays[i];
       RTCRayHit rh;
-      rh.ray.org_x = r.origin.x; rh.ray.org_y = r.origin.y; rh.ray.org_z = r.origin.z;
-      rh.ray.dir_x = r.dir.x; rh.ray.dir_y = r.dir.y; rh.ray.dir_z = r.dir.z;
-      rh.ray.tnear = 0.0f;
-      rh.ray.tfar = r.dir.w;
-      rh.ray.time = 0.0f;
-      rh.ray.mask = ~0u;
-      rh.ray.id = 0;
-      rh.ray.flags = 0;
+      rh.ray = toEmbreeRay(rays[i]);
       rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
       rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
       rtcIntersect1(scene, &ctx, &rh);
@@ -117,16 +127,7 @@ double EmbreeTracer::occluded(const std::vector<Ray>& rays, std::vector<std::uin
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     for (std::size_t i = b; i < e; ++i) {
-      const Ray& r = rays[i];
-      RTCRay ray;
-      ray.org_x = r.origin.x; ray.org_y = r.origin.y; ray.org_z = r.origin.z;
-      ray.dir_x = r.dir.x; ray.dir_y = r.dir.y; ray.dir_z = r.dir.z;
-      ray.tnear = 0.0f;
-      ray.tfar = r.dir.w;
-      ray.time = 0.0f;
-      ray.mask = ~0u;
-      ray.id = 0;
-      ray.flags = 0;
+      RTCRay ray = toEmbreeRay(rays[i]);
       rtcOccluded1(scene, &ctx, &ray);
       occ[i] = ray.tfar == -INFINITY ? 1 : 0;
     }
@@ -143,6 +144,24 @@ EmbreeTracer::EmbreeTracer(const std::vector<SceneTriangle>&, unsigned threads) 
 EmbreeTracer::~EmbreeTracer() = default;
 bool EmbreeTracer::available() { return false; }
 std::string EmbreeTracer::version() { return ""; }
+namespace {
+
+// montecl's Ray (origin, dir with dir.w = tmax) as an Embree ray from t = 0.
+RTCRay toEmbreeRay(const Ray& r) {
+  RTCRay ray;
+  ray.org_x = r.origin.x; ray.org_y = r.origin.y; ray.org_z = r.origin.z;
+  ray.dir_x = r.dir.x; ray.dir_y = r.dir.y; ray.dir_z = r.dir.z;
+  ray.tnear = 0.0f;
+  ray.tfar = r.dir.w;
+  ray.time = 0.0f;
+  ray.mask = ~0u;
+  ray.id = 0;
+  ray.flags = 0;
+  return ray;
+}
+
+}  // namespace
+
 double EmbreeTracer::closest(const std::vector<Ray>&, std::vector<float>&) const { return 0.0; }
 double EmbreeTracer::occluded(const std::vector<Ray>&, std::vector<std::uint8_t>&) const { return 0.0; }
 

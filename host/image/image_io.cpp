@@ -69,15 +69,4 @@ void writeRgbImage(const std::string& path, int width, int height, const std::ve
   });
 }
 
-std::vector<float> readRgbImage(const std::string& path, int& width, int& height) {
-  using namespace OIIO;
-  ImageBuf in(path);
-  if (!in.read(0, 0, true, TypeDesc::FLOAT)) throwInputError(path, "", "cannot read image: " + in.geterror());
-  width = in.spec().width;
-  height = in.spec().height;
-  std::vector<float> rgb(size_t(width) * height * 3);
-  in.get_pixels(ROI(0, width, 0, height, 0, 1, 0, 3), TypeDesc::FLOAT, rgb.data());
-  return rgb;
-}
-
 }  // namespace montecl

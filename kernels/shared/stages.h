@@ -9,8 +9,6 @@
 #include "sampling.h"
 #include "traverse.h"
 
-MCL_INLINE uint frame_pixels(MCL_CONSTANT const FrameParams* f) { return f->width * f->height; }
-
 // The pixel and the sample index of wave item i.
 MCL_INLINE uint item_pixel(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const uint* active,
                            ulong waveStart, uint i) {
