@@ -1,8 +1,6 @@
-// exr_layers.cpp: named-channel float EXR output/input through OpenImageIO, the film -> AOV planes
+// exr_layers.cpp: named-channel float EXR output/input (through the OpenImageIO module), the film -> AOV planes
 // conversion, and the sample-count-weighted merge of renders (parallel variance formula).
 #include "image/exr_layers.h"
-
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cctype>
@@ -10,18 +8,12 @@
 #include <set>
 
 #include "image/film.h"
+#include "image/oiio_loader.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
 namespace montecl {
 namespace {
-
-std::string oneLine(std::string s) {
-  for (char& c : s)
-    if (c == '\n' || c == '\r') c = ' ';
-  while (!s.empty() && s.back() == ' ') s.pop_back();
-  return s;
-}
 
 bool isMeanChannel(const std::string& name, int& c) {
   for (c = 0; c < 3; ++c)
@@ -57,7 +49,6 @@ void LayeredImage::set(const std::string& name, std::vector<float> plane) {
 }
 
 void writeLayeredExr(const std::string& path, const LayeredImage& image) {
-  using namespace OIIO;
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
   if (ext != ".exr") throwInputError(path, "", "multi-channel images must be written as .exr");
@@ -68,47 +59,12 @@ void writeLayeredExr(const std::string& path, const LayeredImage& image) {
     if (image.planes[c].size() != count)
       throw RuntimeError("cannot write " + path + ": channel '" + image.channels[c] + "' has " +
                          std::to_string(image.planes[c].size()) + " values, not " + std::to_string(count));
-  std::vector<float> pixels(count * nch);
-  for (std::size_t p = 0; p < count; ++p)
-    for (std::size_t c = 0; c < nch; ++c) pixels[p * nch + c] = image.planes[c][p];
-
-  ImageSpec spec(image.width, image.height, int(nch), TypeDesc::FLOAT);
-  spec.channelnames = image.channels;
-  spec.alpha_channel = -1;
-  spec.z_channel = -1;
-  for (std::size_t c = 0; c < nch; ++c)
-    if (image.channels[c] == "Z") spec.z_channel = int(c);
-  spec.attribute("compression", "zip");
-  writeAtomically(path, [&](const std::string& tmp) {
-    auto out = ImageOutput::create(tmp);
-    if (!out) throw RuntimeError("cannot write " + path + ": " + oneLine(OIIO::geterror()));
-    if (!out->open(tmp, spec) || !out->write_image(TypeDesc::FLOAT, pixels.data()) || !out->close())
-      throw RuntimeError("cannot write " + path + ": " + oneLine(out->geterror()));
-  });
+  writeAtomically(path, [&](const std::string& tmp) { oiioWrite(tmp, path, image); });
 }
 
 LayeredImage readLayeredImage(const std::string& path) {
-  using namespace OIIO;
   if (!std::filesystem::exists(path)) throwInputError(path, "", "cannot read image: no such file");
-  auto in = ImageInput::open(path);
-  if (!in) throwInputError(path, "", "cannot read image: " + oneLine(OIIO::geterror()));
-  const ImageSpec& spec = in->spec();
-  LayeredImage image;
-  image.width = spec.width;
-  image.height = spec.height;
-  const std::size_t count = image.pixelCount(), nch = std::size_t(spec.nchannels);
-  std::vector<float> pixels(count * nch);
-  if (!in->read_image(0, 0, 0, int(nch), TypeDesc::FLOAT, pixels.data()))
-    throwInputError(path, "", "cannot read image: " + oneLine(in->geterror()));
-  in->close();
-  for (std::size_t c = 0; c < nch; ++c) {
-    std::vector<float> plane(count);
-    for (std::size_t p = 0; p < count; ++p) plane[p] = pixels[p * nch + c];
-    std::string name = c < spec.channelnames.size() ? spec.channelnames[c] : "channel" + std::to_string(c);
-    image.channels.push_back(name);
-    image.planes.push_back(std::move(plane));
-  }
-  return image;
+  return oiioRead(path);
 }
 
 LayeredImage layersFromFilm(const Film& film) {

@@ -1,15 +1,14 @@
-// image_io.cpp: OpenImageIO output (atomic, by extension) and input of RGB float images.
+// image_io.cpp: RGB image output by extension, always atomic: PNG through libpng, EXR through
+// OpenImageIO (loaded on demand), PFM by hand.
 #include "image/image_io.h"
-
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
 
+#include "image/exr_layers.h"
+#include "image/png_write.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
@@ -46,27 +45,19 @@ void checkOutputPath(const std::string& path) {
 }
 
 void writeRgbImage(const std::string& path, int width, int height, const std::vector<float>& rgb) {
-  using namespace OIIO;
   std::string ext = lowerExtension(path);
   if (ext == ".pfm") return writePfm(path, width, height, rgb);
-  ImageSpec spec(width, height, 3, TypeDesc::FLOAT);
-  ImageBuf linear(spec);
-  linear.set_pixels(ROI(0, width, 0, height, 0, 1, 0, 3), TypeDesc::FLOAT, rgb.data());
-  ImageBuf out;
-  if (ext == ".png") {
-    // sRGB transfer, then OpenImageIO clamps to [0, 1] when converting to 8 bits.
-    if (!ImageBufAlgo::colorconvert(out, linear, "linear", "sRGB"))
-      throw RuntimeError("colour conversion for " + path + " failed: " + out.geterror());
-    out.specmod().attribute("oiio:ColorSpace", "sRGB");
-  } else {
-    out.copy(linear);
+  if (ext == ".png")
+    return writeAtomically(path, [&](const std::string& tmp) { writePngSrgb(tmp, path, width, height, rgb); });
+  LayeredImage image;
+  image.width = width;
+  image.height = height;
+  for (int c = 0; c < 3; ++c) {
+    std::vector<float> plane(std::size_t(width) * height);
+    for (std::size_t p = 0; p < plane.size(); ++p) plane[p] = rgb[p * 3 + c];
+    image.set(channel::kMean[c], std::move(plane));
   }
-  TypeDesc format = ext == ".png" ? TypeDesc::UINT8 : TypeDesc::FLOAT;
-  writeAtomically(path, [&](const std::string& tmp) {
-    out.set_write_format(format);
-    if (!out.write(tmp))
-      throw RuntimeError("cannot write " + path + ": " + out.geterror());
-  });
+  writeLayeredExr(path, image);
 }
 
 }  // namespace montecl

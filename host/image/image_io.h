@@ -1,5 +1,5 @@
-// image_io.h: writing RGB images, chosen by extension: .exr (32-bit float, OpenImageIO),
-// .png (8-bit sRGB, clamped, OpenImageIO), .pfm (32-bit float, by hand). Always atomic.
+// image_io.h: writing RGB images, chosen by extension: .exr (32-bit float, OpenImageIO module),
+// .png (8-bit sRGB, clamped, libpng), .pfm (32-bit float, by hand). Always atomic.
 #pragma once
 #include <string>
 #include <vector>

@@ -1,0 +1,93 @@
+// oiio_plugin.cpp: libmontecl_oiio.so, montecl's only user of OpenImageIO (see oiio_plugin_abi.h).
+// Reads: a path and montecl::LayeredImage planes. Writes: the image file (to exactly the path it is
+// given; the caller makes the write atomic), or the planes read back. Never throws.
+#include <OpenImageIO/imageio.h>
+
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "image/exr_layers.h"
+#include "image/oiio_plugin_abi.h"
+
+namespace {
+
+int fail(char* err, std::size_t errSize, std::string message) {
+  for (char& c : message)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!message.empty() && message.back() == ' ') message.pop_back();
+  if (errSize > 0) std::snprintf(err, errSize, "%s", message.c_str());
+  return 1;
+}
+
+int writeImage(const char* path, const montecl::LayeredImage& image, char* err, std::size_t errSize) {
+  using namespace OIIO;
+  const std::size_t count = image.pixelCount(), nch = image.channels.size();
+  std::vector<float> pixels(count * nch);
+  for (std::size_t p = 0; p < count; ++p)
+    for (std::size_t c = 0; c < nch; ++c) pixels[p * nch + c] = image.planes[c][p];
+  ImageSpec spec(image.width, image.height, int(nch), TypeDesc::FLOAT);
+  spec.channelnames = image.channels;
+  spec.alpha_channel = -1;
+  spec.z_channel = -1;
+  for (std::size_t c = 0; c < nch; ++c)
+    if (image.channels[c] == "Z") spec.z_channel = int(c);
+  spec.attribute("compression", "zip");
+  auto out = ImageOutput::create(path);
+  if (!out) return fail(err, errSize, OIIO::geterror());
+  if (!out->open(path, spec) || !out->write_image(TypeDesc::FLOAT, pixels.data()) || !out->close())
+    return fail(err, errSize, out->geterror());
+  return 0;
+}
+
+int readImage(const char* path, montecl::LayeredImage& image, char* err, std::size_t errSize) {
+  using namespace OIIO;
+  auto in = ImageInput::open(path);
+  if (!in) return fail(err, errSize, OIIO::geterror());
+  const ImageSpec& spec = in->spec();
+  image.width = spec.width;
+  image.height = spec.height;
+  const std::size_t count = image.pixelCount(), nch = std::size_t(spec.nchannels);
+  std::vector<float> pixels(count * nch);
+  if (!in->read_image(0, 0, 0, int(nch), TypeDesc::FLOAT, pixels.data())) return fail(err, errSize, in->geterror());
+  in->close();
+  image.channels.clear();
+  image.planes.clear();
+  for (std::size_t c = 0; c < nch; ++c) {
+    std::vector<float> plane(count);
+    for (std::size_t p = 0; p < count; ++p) plane[p] = pixels[p * nch + c];
+    image.channels.push_back(c < spec.channelnames.size() ? spec.channelnames[c] : "channel" + std::to_string(c));
+    image.planes.push_back(std::move(plane));
+  }
+  return 0;
+}
+
+}  // namespace
+
+extern "C" {
+
+__attribute__((visibility("default"))) int montecl_oiio_write(const char* path, const montecl::LayeredImage* image,
+                                                              char* err, std::size_t errSize) {
+  try {
+    return writeImage(path, *image, err, errSize);
+  } catch (const std::exception& e) {
+    return fail(err, errSize, e.what());
+  }
+}
+
+__attribute__((visibility("default"))) int montecl_oiio_read(const char* path, montecl::LayeredImage* image,
+                                                             char* err, std::size_t errSize) {
+  try {
+    return readImage(path, *image, err, errSize);
+  } catch (const std::exception& e) {
+    return fail(err, errSize, e.what());
+  }
+}
+
+}  // extern "C"
+
+// Both entry points must match the types the loader casts them to.
+static_assert(std::is_same<decltype(&montecl_oiio_write), MonteclOiioWriteFn>::value, "plugin ABI");
+static_assert(std::is_same<decltype(&montecl_oiio_read), MonteclOiioReadFn>::value, "plugin ABI");

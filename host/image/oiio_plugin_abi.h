@@ -1,0 +1,25 @@
+// oiio_plugin_abi.h: the C entry points of libmontecl_oiio.so, the module that holds every use of
+// OpenImageIO. montecl loads it with dlopen only when an image goes through OpenImageIO (EXR
+// output, any image input): Debian's OpenImageIO pulls in about 260 shared libraries (OpenCV,
+// FFmpeg, ...) whose relocation alone costs ~0.35 s, which a PNG render should not pay.
+// Both sides are built from this header by the same compiler in the same build, so the functions
+// take montecl's own structs; they never throw: 0 on success, else a one-line message in err.
+#pragma once
+#include <cstddef>
+
+namespace montecl {
+struct LayeredImage;
+}
+
+extern "C" {
+// Writes every plane of image as a 32-bit float channel (zip-compressed for EXR) to path, whose
+// extension picks the format. A channel named "Z" is marked as the depth channel.
+typedef int (*MonteclOiioWriteFn)(const char* path, const montecl::LayeredImage* image, char* err,
+                                  std::size_t errSize);
+// Reads every channel of path as float planes, channel names as stored.
+typedef int (*MonteclOiioReadFn)(const char* path, montecl::LayeredImage* image, char* err,
+                                 std::size_t errSize);
+}
+
+#define MONTECL_OIIO_WRITE_SYMBOL "montecl_oiio_write"
+#define MONTECL_OIIO_READ_SYMBOL "montecl_oiio_read"
