@@ -3,6 +3,7 @@
 # or $SCENES_DIR) and writes bench/<scene>.json plus bench/results.md, a Markdown table of
 # montecl vs Embree per ray kind with the machine (CPU model, cores, PoCL version).
 # Skips with a message (exit 0) when the scenes folder is absent. Exit 1 if any run mismatched.
+# The SAH column gives the binned build's cost and its ratio to a full-sweep build's (--sah-reference).
 # Environment: BUILD_DIR (default build), REPEAT (default 5), DEVICE (--device), THREADS (--threads).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,7 +20,7 @@ command -v jq >/dev/null || { echo "bench: jq is needed (run scripts/setup.sh)" 
 cmake --build "$build" -j"$(nproc)" --target montecl >/dev/null
 mkdir -p "$out"
 
-args=(--repeat "${REPEAT:-5}")
+args=(--repeat "${REPEAT:-5}" --sah-reference)
 [ -n "${DEVICE:-}" ] && args+=(--device "$DEVICE")
 [ -n "${THREADS:-}" ] && args+=(--threads "$THREADS")
 
@@ -48,12 +49,12 @@ platform=$(jq -r '.platform' "$first")
   echo "Mrays/s from the median of ${REPEAT:-5} timed kernel runs (OpenCL profiling events) after a warm-up; ratio = montecl / Embree Mrays/s (higher is better);"
   echo "build ratio = montecl ms / Embree ms (lower is better). Closest hit: primary rays (intersect kernel); any hit: AO (8 cosine rays per primary hit) and shadow rays (intersect_shadow)."
   echo
-  echo "| scene | triangles | BVH ms | Embree build ms | build ratio | nodes | B/tri | SAH | kind | rays | Mrays/s (best) | Embree Mrays/s | ratio | mismatches |"
+  echo "| scene | triangles | BVH ms | Embree build ms | build ratio | nodes | B/tri | SAH (/ full sweep) | kind | rays | Mrays/s (best) | Embree Mrays/s | ratio | mismatches |"
   echo "|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|"
   for j in "${jsons[@]}"; do
     jq -r --arg name "$(basename "$j" .json)" '
       . as $r | .rays[] |
-      "| \($name) | \($r.triangles) | \($r.bvh.build_ms * 10 | round / 10) | \(($r.embree.build_ms // 0) * 10 | round / 10) | \(($r.build_ratio // 0) * 100 | round / 100) | \($r.bvh.nodes) | \($r.bvh.bytes_per_triangle * 10 | round / 10) | \($r.bvh.sah_cost * 100 | round / 100) | \(.kind) | \(.count) | \(.mrays_per_s * 100 | round / 100) (\(.best_mrays_per_s * 100 | round / 100)) | \((.embree_mrays_per_s // 0) * 100 | round / 100) | \((.ratio // 0) * 100 | round / 100) | \(.mismatches) |"' "$j"
+      "| \($name) | \($r.triangles) | \($r.bvh.build_ms * 10 | round / 10) | \(($r.embree.build_ms // 0) * 10 | round / 10) | \(($r.build_ratio // 0) * 100 | round / 100) | \($r.bvh.nodes) | \($r.bvh.bytes_per_triangle * 10 | round / 10) | \($r.bvh.sah_cost * 100 | round / 100) (\(($r.bvh.sah_ratio // 0) * 1000 | round / 1000)) | \(.kind) | \(.count) | \(.mrays_per_s * 100 | round / 100) (\(.best_mrays_per_s * 100 | round / 100)) | \((.embree_mrays_per_s // 0) * 100 | round / 100) | \((.ratio // 0) * 100 | round / 100) | \(.mismatches) |"' "$j"
   done
 } > "$out/results.md.tmp"
 mv "$out/results.md.tmp" "$out/results.md"

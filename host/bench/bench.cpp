@@ -7,7 +7,8 @@
 // JSON (all times in ms, throughput in Mrays/s, computed from the median time):
 // {"scene", "device", "platform", "driver_version", "compute_units", "cpu_model", "threads",
 //  "width", "height", "triangles", "emitters", "repeat", "rel_tolerance", "embree_version",
-//  "bvh": {"build_ms", "nodes", "depth", "sah_cost", "bytes", "bytes_per_triangle"},
+//  "bvh": {"build_ms", "nodes", "depth", "sah_cost", "bytes", "bytes_per_triangle",
+//          with --sah-reference also "sweep_sah_cost" and "sah_ratio" (binned / full sweep)},
 //  "embree": {"build_ms"}, "build_ratio" (montecl ms / Embree ms),
 //  "rays": [{"kind", "query", "count", "hits", "median_ms", "min_ms", "mrays_per_s",
 //            "best_mrays_per_s", "embree_median_ms", "embree_min_ms", "embree_mrays_per_s",
@@ -29,6 +30,7 @@
 #include "bench/embree_tracer.h"
 #include "bench/ray_sets.h"
 #include "bvh/bvh.h"
+#include "bvh/sah_reference.h"
 #include "render/ray_tracer.h"
 #include "cl/cl_errors.h"
 #include "cl/cl_session.h"
@@ -157,6 +159,12 @@ json runBench(const BenchOptions& o, bool verbose) {
               {"node_bytes_per_triangle",
                double(bvh.wide.size() * sizeof(WideNode)) / double(scene.triangles.size())}};
   r["rss_after_build_mb"] = peakRssMb();
+  if (o.sahReference) {
+    say("full-sweep SAH reference build");
+    double sweep = fullSweepSahCost(scene.triangles, BvhBuildOptions{});
+    r["bvh"]["sweep_sah_cost"] = sweep;
+    r["bvh"]["sah_ratio"] = bvh.sahCost / sweep;
+  }
 
   say("generating rays and host references on " + std::to_string(threads) + " threads");
   RaySets sets = makeRaySets(scene, bvh, threads);
@@ -243,7 +251,11 @@ std::string formatBenchTable(const json& r) {
     << b["nodes"].get<std::size_t>() << " nodes, depth " << b["depth"].get<int>() << ", "
     << b["bytes_per_triangle"].get<double>() << " B/triangle (nodes "
     << b["node_bytes_per_triangle"].get<double>() << "), SAH cost " << std::setprecision(2)
-    << b["sah_cost"].get<double>() << "\n";
+    << b["sah_cost"].get<double>();
+  if (b.contains("sweep_sah_cost"))
+    s << " (full sweep " << b["sweep_sah_cost"].get<double>() << ", ratio " << std::setprecision(3)
+      << b["sah_ratio"].get<double>() << ")";
+  s << "\n";
   bool haveEmbree = r.contains("embree");
   if (haveEmbree)
     s << std::setprecision(1) << "embree    " << r["embree_version"].get<std::string>() << " build "

@@ -19,6 +19,7 @@ struct BenchOptions {
   std::optional<int> width, height;  // override the scene's resolution
   std::size_t workGroupSize = 0; // 0 = ClSession's default
   bool embree = true;            // --no-embree skips the comparison
+  bool sahReference = false;     // --sah-reference: also the full-sweep SAH cost (slow: seconds)
   double relTolerance = 1e-4;    // a hit distance differing by more than this (relative) mismatches
 };
 

@@ -32,6 +32,8 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--work-group-size", o->workGroupSize, "Kernel work-group size (default: min(64, kernel max))")
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--no-embree", *noEmbree, "Skip the Embree comparison");
+  cmd->add_flag("--sah-reference", o->sahReference,
+                "Also compute the SAH cost of a full-sweep build (slow) and the ratio binned / full sweep");
   cmd->add_flag("-q,--quiet", *quiet, "No progress messages on stderr");
   cmd->callback([o, quiet, noEmbree, &exitCode]() {
     o->embree = !*noEmbree;
