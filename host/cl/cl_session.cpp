@@ -10,7 +10,7 @@
 namespace montecl {
 
 ClSession::ClSession(const DeviceInfo& device, std::size_t workGroupSize, bool profiling)
-    : device_(device), workGroupSize_(workGroupSize) {
+    : device_(device), oclgrind_(isOclgrind(device)), workGroupSize_(workGroupSize) {
   if (device.isHost)
     throw InputError("--device host: the host backend renders only (montecl render, conformance); this needs an "
                      "OpenCL device");

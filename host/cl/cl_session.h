@@ -2,8 +2,10 @@
 // (kernels/montecl.cl) built through the program cache, and kernel launches that name the kernel
 // when they fail.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "cl/devices.h"
 #include "cl/program_cache.h"
@@ -40,9 +42,29 @@ class ClSession {
   cl::Buffer buffer(std::size_t count, cl_mem_flags flags = CL_MEM_READ_WRITE) const {
     return cl::Buffer(context_, flags, std::max<std::size_t>(1, count) * sizeof(T));
   }
+  // A buffer that kernels write and later kernels read (rays, hits, queues of a wave), which the
+  // host neither writes nor reads. On a real device it is left uninitialised, like buffer(). On
+  // Oclgrind it is created from a host copy of kScratchCanary words: Oclgrind 21.10's
+  // --uninitialized check keeps the shadow (definedness) memory of a released buffer and hands it,
+  // with the old size, to the next buffer that gets the same slot, so a bigger buffer in a reused
+  // slot reads as uninitialised past the old size (and kernel stores there are lost); one host
+  // write of the whole buffer, at offset 0, resets the shadow to the buffer's size, all defined.
+  // The canary keeps the check's point: a kernel that reads an element no kernel wrote gets a NaN
+  // (the image differs from the host backend's) or, as an index, an address Oclgrind reports as
+  // out of bounds.
+  template <typename T>
+  cl::Buffer scratch(std::size_t count) const {
+    static_assert(sizeof(T) % sizeof(cl_uint) == 0, "scratch: whole 32-bit words");
+    if (!oclgrind_) return buffer<T>(count);
+    std::vector<cl_uint> canary(std::max<std::size_t>(1, count) * sizeof(T) / sizeof(cl_uint), kScratchCanary);
+    return upload(canary, CL_MEM_READ_WRITE);
+  }
+  // Oclgrind's scratch fill: a quiet NaN as a float, 2^31 - 2^22 (far out of bounds) as an index.
+  static constexpr cl_uint kScratchCanary = 0x7fc00000u;
 
  private:
   DeviceInfo device_;
+  bool oclgrind_;
   std::size_t workGroupSize_;
   cl::Context context_;
   cl::CommandQueue queue_;

@@ -68,6 +68,8 @@ DeviceInfo describeDevice(const cl::Device& dev) {
 
 }  // namespace
 
+bool isOclgrind(const DeviceInfo& d) { return !d.isHost && d.platformName.find("Oclgrind") != std::string::npos; }
+
 DeviceInfo hostDeviceInfo() {
   DeviceInfo d;
   d.isHost = true;

@@ -45,6 +45,10 @@ DeviceInfo selectDevice(const std::string& spec);
 // command ("--device host: montecl bench needs an OpenCL device").
 DeviceInfo selectOpenClDevice(const std::string& spec, const std::string& command);
 
+// True for the Oclgrind simulator's device (its platform is named "Oclgrind"), which
+// ClSession::scratch treats specially (see there).
+bool isOclgrind(const DeviceInfo& d);
+
 // "P:D", the index form of a device accepted by selectDevice ("host" for the host backend).
 std::string deviceIndexString(const DeviceInfo& d);
 
