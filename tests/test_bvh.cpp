@@ -420,54 +420,6 @@ void checkStructure(const std::vector<SceneTriangle>& tris, const Bvh& bvh, int 
   CHECK(bvh.sahCost == doctest::Approx(cost).epsilon(1e-6));
 }
 
-// ---- Reference builds for SAH quality ---------------------------------------------------------
-
-struct RefPrim {
-  vec3 lo, hi, c;
-};
-
-double boxHalfArea(vec3 lo, vec3 hi) {
-  glm::dvec3 d = glm::dvec3(hi) - glm::dvec3(lo);
-  return d.x * d.y + d.y * d.z + d.z * d.x;
-}
-
-// SAH cost of an object-median build along the widest centroid axis.
-double medianSah(std::vector<RefPrim>& p, std::size_t b, std::size_t e, double rootArea,
-                 const BvhBuildOptions& o) {
-  std::size_t n = e - b;
-  vec3 lo(kInf), hi(-kInf), cl(kInf), ch(-kInf);
-  for (std::size_t i = b; i < e; ++i) {
-    lo = glm::min(lo, p[i].lo);
-    hi = glm::max(hi, p[i].hi);
-    cl = glm::min(cl, p[i].c);
-    ch = glm::max(ch, p[i].c);
-  }
-  double rel = boxHalfArea(lo, hi) / rootArea;
-  if (n <= static_cast<std::size_t>(o.maxLeafSize)) return o.intersectCost * n * rel;
-  vec3 ext = ch - cl;
-  int a = (ext.x >= ext.y && ext.x >= ext.z) ? 0 : (ext.y >= ext.z ? 1 : 2);
-  std::size_t mid = b + n / 2;
-  std::nth_element(p.begin() + b, p.begin() + mid, p.begin() + e,
-                   [a](const RefPrim& x, const RefPrim& y) { return x.c[a] < y.c[a]; });
-  return o.traversalCost * rel + medianSah(p, b, mid, rootArea, o) + medianSah(p, mid, e, rootArea, o);
-}
-
-std::vector<RefPrim> refPrims(const std::vector<SceneTriangle>& tris, double& rootArea) {
-  std::vector<RefPrim> p;
-  vec3 lo(kInf), hi(-kInf);
-  for (const auto& t : tris) {
-    RefPrim r;
-    r.lo = glm::min(glm::min(t.v[0], t.v[1]), t.v[2]);
-    r.hi = glm::max(glm::max(t.v[0], t.v[1]), t.v[2]);
-    r.c = (r.lo + r.hi) * 0.5f;
-    lo = glm::min(lo, r.lo);
-    hi = glm::max(hi, r.hi);
-    p.push_back(r);
-  }
-  rootArea = boxHalfArea(lo, hi);
-  return p;
-}
-
 }  // namespace
 
 // ---- Tests --------------------------------------------------------------------------------------
@@ -667,10 +619,8 @@ TEST_CASE("bvh: binned SAH cost is close to a full-sweep SAH build and beats a m
     CAPTURE(c.name);
     BvhBuildOptions o;
     Bvh bvh = buildBvh(c.tris, o);
-    double rootArea = 0.0;
-    std::vector<RefPrim> p = refPrims(c.tris, rootArea);
     double sweep = fullSweepSahCost(c.tris, o);
-    double median = medianSah(p, 0, p.size(), rootArea, o);
+    double median = medianSplitSahCost(c.tris, o);
     MESSAGE(c.name << " SAH: binned " << bvh.sahCost << ", full sweep " << sweep << ", median "
                    << median);
     CHECK(bvh.sahCost <= c.slack * sweep);

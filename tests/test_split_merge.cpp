@@ -24,6 +24,15 @@ std::vector<std::string> renderArgs(const std::string& out, int spp, int first) 
           "--first-sample", std::to_string(first), "--ao-sampling", "uniform", "-q"};
 }
 
+// Renders the same samples to dir/x<ext> and dir/x.exr; returns the EXR.
+montecl::LayeredImage renderWithExr(const TempDir& dir, const std::string& ext) {
+  std::vector<std::string> args = renderArgs(dir.file("x" + ext), 4, 0);
+  REQUIRE(runMontecl(args).exitCode == 0);
+  args[3] = dir.file("x.exr");
+  REQUIRE(runMontecl(args).exitCode == 0);
+  return montecl::readLayeredImage(dir.file("x.exr"));
+}
+
 }  // namespace
 
 TEST_CASE("a render split with --first-sample and merged equals the single render") {
@@ -62,10 +71,7 @@ TEST_CASE("a render split with --first-sample and merged equals the single rende
 
 TEST_CASE("a .pfm render is a little-endian float map with the image's size and values") {
   TempDir dir;
-  std::vector<std::string> args = renderArgs(dir.file("x.pfm"), 4, 0);
-  REQUIRE(runMontecl(args).exitCode == 0);
-  args[3] = dir.file("x.exr");
-  REQUIRE(runMontecl(args).exitCode == 0);
+  montecl::LayeredImage exr = renderWithExr(dir, ".pfm");
   std::ifstream in(dir.file("x.pfm"), std::ios::binary);
   std::string magic;
   int w = 0, h = 0;
@@ -79,7 +85,6 @@ TEST_CASE("a .pfm render is a little-endian float map with the image's size and 
   std::vector<float> data(std::size_t(w) * h * 3);
   in.read(reinterpret_cast<char*>(data.data()), std::streamsize(data.size() * 4));
   REQUIRE(in);
-  montecl::LayeredImage exr = montecl::readLayeredImage(dir.file("x.exr"));
   // PFM rows run bottom to top; EXR rows top to bottom.
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
@@ -88,12 +93,8 @@ TEST_CASE("a .pfm render is a little-endian float map with the image's size and 
 
 TEST_CASE("a .png render is the sRGB encoding of the same render's EXR means, 8 bits, clamped") {
   TempDir dir;
-  std::vector<std::string> args = renderArgs(dir.file("x.png"), 4, 0);
-  REQUIRE(runMontecl(args).exitCode == 0);
-  args[3] = dir.file("x.exr");
-  REQUIRE(runMontecl(args).exitCode == 0);
+  montecl::LayeredImage exr = renderWithExr(dir, ".png");
   montecl::LayeredImage png = montecl::readLayeredImage(dir.file("x.png"));
-  montecl::LayeredImage exr = montecl::readLayeredImage(dir.file("x.exr"));
   REQUIRE(png.width == 24);
   REQUIRE(png.height == 16);
   REQUIRE(png.channels.size() == 3);

@@ -1,4 +1,4 @@
-// sah_reference.cpp: full-sweep SAH reference build (cost only), in double precision.
+// sah_reference.cpp: full-sweep and object-median SAH reference builds (cost only), in double precision.
 #include "bvh/sah_reference.h"
 
 #include <algorithm>
@@ -60,9 +60,27 @@ double sweep(std::vector<RefPrim>& p, std::size_t b, std::size_t e, double rootA
          sweep(p, b + bestK, e, rootArea, o, rightArea);
 }
 
-}  // namespace
+double median(std::vector<RefPrim>& p, std::size_t b, std::size_t e, double rootArea, const BvhBuildOptions& o) {
+  const std::size_t n = e - b;
+  vec3 lo(kInf), hi(-kInf), cl(kInf), ch(-kInf);
+  for (std::size_t i = b; i < e; ++i) {
+    lo = glm::min(lo, p[i].lo);
+    hi = glm::max(hi, p[i].hi);
+    cl = glm::min(cl, p[i].c);
+    ch = glm::max(ch, p[i].c);
+  }
+  const double rel = boxHalfArea(lo, hi) / rootArea;
+  if (n <= std::size_t(o.maxLeafSize)) return double(o.intersectCost) * double(n) * rel;
+  const vec3 ext = ch - cl;
+  const int a = (ext.x >= ext.y && ext.x >= ext.z) ? 0 : (ext.y >= ext.z ? 1 : 2);
+  const std::size_t mid = b + n / 2;
+  std::nth_element(p.begin() + b, p.begin() + mid, p.begin() + e,
+                   [a](const RefPrim& x, const RefPrim& y) { return x.c[a] < y.c[a]; });
+  return o.traversalCost * rel + median(p, b, mid, rootArea, o) + median(p, mid, e, rootArea, o);
+}
 
-double fullSweepSahCost(const std::vector<SceneTriangle>& tris, const BvhBuildOptions& options) {
+// Bounds and centroids of tris; rootArea = the half area of their union.
+std::vector<RefPrim> refPrims(const std::vector<SceneTriangle>& tris, double& rootArea) {
   std::vector<RefPrim> p;
   p.reserve(tris.size());
   vec3 lo(kInf), hi(-kInf);
@@ -75,9 +93,25 @@ double fullSweepSahCost(const std::vector<SceneTriangle>& tris, const BvhBuildOp
     hi = glm::max(hi, r.hi);
     p.push_back(r);
   }
+  rootArea = boxHalfArea(lo, hi);
+  return p;
+}
+
+}  // namespace
+
+double fullSweepSahCost(const std::vector<SceneTriangle>& tris, const BvhBuildOptions& options) {
+  double rootArea = 0.0;
+  std::vector<RefPrim> p = refPrims(tris, rootArea);
   if (p.empty()) return 0.0;
   std::vector<double> rightArea(p.size() + 1);
-  return sweep(p, 0, p.size(), boxHalfArea(lo, hi), options, rightArea);
+  return sweep(p, 0, p.size(), rootArea, options, rightArea);
+}
+
+double medianSplitSahCost(const std::vector<SceneTriangle>& tris, const BvhBuildOptions& options) {
+  double rootArea = 0.0;
+  std::vector<RefPrim> p = refPrims(tris, rootArea);
+  if (p.empty()) return 0.0;
+  return median(p, 0, p.size(), rootArea, options);
 }
 
 }  // namespace montecl
