@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "bvh/bvh_layout.h"
 #include "kernels/shared/types.h"
 #include "scene/scene.h"
 
@@ -30,9 +31,14 @@ Bvh buildBvh(const std::vector<SceneTriangle>& tris, const BvhBuildOptions& opti
 
 // A wide node whose four slots are empty (no ray enters them): the whole tree of an empty Bvh.
 WideNode emptyWideNode();
+// A binary node with an empty box (no ray enters it): the whole binary tree of an empty Bvh.
+BvhNode emptyBinaryNode();
 
-// Reference traversal on the host.
-Hit intersectClosest(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax);
-bool intersectAny(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax);
+// Reference traversal on the host, of the given layout (Auto: wide). Both layouts give the same
+// hit distance; the triangle can differ only where two triangles tie at that distance.
+Hit intersectClosest(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax,
+                     BvhLayout layout = BvhLayout::Wide);
+bool intersectAny(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax,
+                  BvhLayout layout = BvhLayout::Wide);
 
 }  // namespace montecl

@@ -371,6 +371,16 @@ WideNode emptyWideNode() {
   return w;
 }
 
+BvhNode emptyBinaryNode() {
+  const float inf = std::numeric_limits<float>::infinity();
+  BvhNode n;
+  n.minX = n.minY = n.minZ = inf;
+  n.maxX = n.maxY = n.maxZ = -inf;
+  n.leftFirst = 0;
+  n.triCount = 0;
+  return n;
+}
+
 namespace {
 
 // Collapses the binary tree into 4-wide nodes: each wide node takes the binary node's two children
