@@ -19,7 +19,7 @@ struct BvhBuildOptions {
 
 struct Bvh {
   std::vector<BvhNode> nodes;         // nodes[0] is the root; children of an interior node are adjacent
-  std::vector<WideNode> wide;         // the same tree collapsed 4-wide (wide[0] the root): what is traversed
+  std::vector<WideNode> wide;         // the same tree collapsed 8-wide (wide[0] the root): what is traversed
   std::vector<Triangle> triangles;    // in leaf order, ready for the device
   std::vector<std::uint32_t> order;   // triangles[i] came from input triangle order[i]
   int depth = 0;                      // longest root-to-leaf path (always < MCL_BVH_STACK_SIZE)
@@ -29,7 +29,7 @@ struct Bvh {
 
 Bvh buildBvh(const std::vector<SceneTriangle>& tris, const BvhBuildOptions& options = {});
 
-// A wide node whose four slots are empty (no ray enters them): the whole tree of an empty Bvh.
+// A wide node whose slots are all empty (no ray enters them): the whole tree of an empty Bvh.
 WideNode emptyWideNode();
 // A binary node with an empty box (no ray enters it): the whole binary tree of an empty Bvh.
 BvhNode emptyBinaryNode();

@@ -363,11 +363,9 @@ bool finite(const glm::vec3& v) {
 WideNode emptyWideNode() {
   WideNode w;
   const float inf = std::numeric_limits<float>::infinity();
-  for (int r = 0; r < 6; ++r) w.bounds[r] = glm::vec4((r % 2 == 0) ? inf : -inf);
-  for (int i = 0; i < 4; ++i) {
-    w.child[i] = MCL_WIDE_EMPTY;
-    w.pad[i] = 0;
-  }
+  for (int r = 0; r < 6; ++r)
+    for (int i = 0; i < MCL_WIDE_WIDTH; ++i) w.bounds[r][i] = (r % 2 == 0) ? inf : -inf;
+  for (int i = 0; i < MCL_WIDE_WIDTH; ++i) w.child[i] = MCL_WIDE_EMPTY;
   return w;
 }
 
@@ -383,8 +381,8 @@ BvhNode emptyBinaryNode() {
 
 namespace {
 
-// Collapses the binary tree into 4-wide nodes: each wide node takes the binary node's two children
-// and, while it has fewer than four, replaces its interior child of largest surface area by that
+// Collapses the binary tree into MCL_WIDE_WIDTH-wide nodes: each wide node takes the binary node's
+// two children and, while it has fewer than MCL_WIDE_WIDTH, replaces its interior child of largest surface area by that
 // child's two children. Wide nodes are laid out depth-first; leaves keep their triangle ranges.
 void collapseWide(Bvh& bvh) {
   const std::vector<BvhNode>& nodes = bvh.nodes;
@@ -396,7 +394,7 @@ void collapseWide(Bvh& bvh) {
     float dx = b.maxX - b.minX, dy = b.maxY - b.minY, dz = b.maxZ - b.minZ;
     return dx * dy + dy * dz + dz * dx;
   };
-  wide.reserve(nodes.size() / 2 + 1);
+  wide.reserve(nodes.size() / 4 + 1);
   wide.push_back(emptyWideNode());
   if (nodes.empty()) return;
   struct Item {
@@ -406,7 +404,7 @@ void collapseWide(Bvh& bvh) {
   while (!todo.empty()) {
     Item it = todo.back();
     todo.pop_back();
-    std::uint32_t kids[4];
+    std::uint32_t kids[MCL_WIDE_WIDTH];
     int k = 0;
     const BvhNode& b = nodes[it.binary];
     if (b.triCount > 0) {
@@ -414,7 +412,7 @@ void collapseWide(Bvh& bvh) {
     } else {
       kids[k++] = b.leftFirst;
       kids[k++] = b.leftFirst + 1;
-      while (k < 4) {
+      while (k < MCL_WIDE_WIDTH) {
         int best = -1;
         float bestArea = -1.0f;
         for (int i = 0; i < k; ++i)

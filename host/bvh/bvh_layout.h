@@ -1,5 +1,5 @@
-// bvh_layout.h: which BVH the kernels traverse (--bvh-layout auto|wide|binary). wide: the 4-wide
-// BVH (Bvh::wide, float4 tests of four boxes; best on CPUs); binary: the binary BVH (Bvh::nodes,
+// bvh_layout.h: which BVH the kernels traverse (--bvh-layout auto|wide|binary). wide: the 8-wide
+// BVH (Bvh::wide, float8 tests of eight boxes; best on CPUs); binary: the binary BVH (Bvh::nodes,
 // two child boxes per visit, 64-entry stack; suited to GPUs); auto: binary on GPU devices, wide
 // otherwise. Both layouts give the same hits. Reads and writes nothing.
 #pragma once
