@@ -11,7 +11,7 @@
 namespace montecl {
 
 struct BvhBuildOptions {
-  int bins = 16;            // SAH bins per axis
+  int bins = 32;            // SAH bins per axis
   int maxLeafSize = 4;      // a node with at most this many triangles may become a leaf
   float traversalCost = 1.0f;
   float intersectCost = 1.0f;

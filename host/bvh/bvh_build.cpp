@@ -8,7 +8,7 @@
 // plus sum over leaves of Ci * count(n) * A(n)/A(root).
 //
 // Build. A node of more than 16 triangles bins their bounding-box centroids into `bins` (default
-// 16, 2..256) equal bins along each axis of the centroid bounds and evaluates the bins-1 planes per
+// 32, 2..256) equal bins along each axis of the centroid bounds and evaluates the bins-1 planes per
 // axis; a node of at most 16 sorts its centroids on each axis and evaluates every object split
 // (exact, and cheaper than binning at that size). A node with at most maxLeafSize (default 4,
 // 1..16) triangles becomes a leaf unless its best split is cheaper than the leaf; a larger node is
