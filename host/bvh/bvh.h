@@ -14,7 +14,7 @@ struct BvhBuildOptions {
   int bins = 32;            // SAH bins per axis
   int maxLeafSize = 4;      // a node with at most this many triangles may become a leaf
   float traversalCost = 1.0f;
-  float intersectCost = 1.0f;
+  float intersectCost = 0.5f;  // per triangle; below traversalCost: leaves are tested 4 at a time
 };
 
 struct Bvh {

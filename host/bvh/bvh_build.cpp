@@ -3,9 +3,10 @@
 // Cost model (surface area heuristic). For a node N with half surface area A(N):
 //   cost(leaf with n triangles)  = Ci * n
 //   cost(split into L and R)     = Ct + Ci * (A(L) * n(L) + A(R) * n(R)) / A(N)
-// with Ct = BvhBuildOptions::traversalCost (default 1) and Ci = intersectCost (default 1). The
-// reported Bvh::sahCost is the cost of the whole tree, sum over interior nodes of Ct * A(n)/A(root)
-// plus sum over leaves of Ci * count(n) * A(n)/A(root).
+// with Ct = BvhBuildOptions::traversalCost (default 1) and Ci = intersectCost (default 0.5: the
+// traversal tests a leaf's triangles four at a time). The reported Bvh::sahCost is the cost of the
+// whole tree, sum over interior nodes of Ct * A(n)/A(root) plus sum over leaves of
+// Ci * count(n) * A(n)/A(root).
 //
 // Build. A node of more than 16 triangles bins their bounding-box centroids into `bins` (default
 // 32, 2..256) equal bins along each axis of the centroid bounds and evaluates the bins-1 planes per
