@@ -102,6 +102,19 @@ TEST_CASE("bench on the demo scene at a small resolution") {
   checkBenchJson(readJson(dir.file("demo.json")), 40, 30, /*expectShadow=*/true);  // demo has a lamp
 }
 
+TEST_CASE("bench with the binary BVH layout: all rays match its host reference") {
+  TempDir dir;
+  CliResult r = runMontecl({"bench", MONTECL_SOURCE_DIR "/scenes/demo/scene.json", "--width", "40", "--height", "30",
+                            "--repeat", "1", "--bvh-layout", "binary", "--no-embree", "--json", dir.file("b.json"),
+                            "-q"});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  nlohmann::json j = readJson(dir.file("b.json"));
+  CHECK(j["bvh"]["layout"] == "binary");
+  CHECK(j["mismatches_total"].get<std::size_t>() == 0);
+  CHECK(runMontecl({"bench", MONTECL_SOURCE_DIR "/scenes/demo/scene.json", "--bvh-layout", "quad"}).exitCode == 2);
+}
+
 TEST_CASE("bench bad input exits 2 with one line") {
   TempDir dir;
   CliResult r = runMontecl({"bench", dir.file("missing.json")});

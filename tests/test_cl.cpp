@@ -371,7 +371,6 @@ __kernel void probe(__global uint* out) {
   out[17] = OFF(FrameParams, width);
   out[18] = sizeof(WideNode);
   out[19] = OFF(WideNode, child);
-  out[20] = OFF(WideNode, pad);
 }
 )";
   const std::vector<std::pair<const char*, cl_uint>> host = {
@@ -395,7 +394,6 @@ __kernel void probe(__global uint* out) {
       {"offsetof(FrameParams, width)", offsetof(FrameParams, width)},
       {"sizeof(WideNode)", sizeof(WideNode)},
       {"offsetof(WideNode, child)", offsetof(WideNode, child)},
-      {"offsetof(WideNode, pad)", offsetof(WideNode, pad)},
   };
   DeviceInfo dev = selectDevice("");
   cl::Context context(dev.device);

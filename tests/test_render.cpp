@@ -159,3 +159,19 @@ TEST_CASE("images are bit-identical for the same seed, whatever the wave or work
   s.render.seed = 4;
   CHECK_FALSE(sameFilm(renderScene(s), reference));
 }
+
+TEST_CASE("images are bit-identical with the wide and the binary BVH layout") {
+  Scene wall = wallScene(20, 6);
+  wall.render.aoSampling = "uniform";
+  std::vector<std::string> warnings;
+  Scene demo = loadScene(MONTECL_SOURCE_DIR "/scenes/demo/scene.json", warnings);
+  demo.camera.width = 32;
+  demo.camera.height = 24;
+  demo.render.spp = 4;
+  for (Scene* s : {&wall, &demo}) {
+    RenderOptions wide, binary;
+    wide.bvhLayout = BvhLayout::Wide;
+    binary.bvhLayout = BvhLayout::Binary;
+    CHECK(sameFilm(renderScene(*s, wide), renderScene(*s, binary)));
+  }
+}

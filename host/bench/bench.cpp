@@ -7,7 +7,8 @@
 // JSON (all times in ms, throughput in Mrays/s, computed from the median time):
 // {"scene", "device", "platform", "driver_version", "compute_units", "cpu_model", "threads",
 //  "width", "height", "triangles", "emitters", "repeat", "rel_tolerance", "embree_version",
-//  "bvh": {"build_ms", "nodes", "depth", "sah_cost", "bytes", "bytes_per_triangle",
+//  "bvh": {"layout" (wide | binary), "build_ms", "nodes", "depth", "sah_cost", "bytes",
+//          "bytes_per_triangle", "node_bytes_per_triangle"} (bytes: the traversed layout's),
 //          with --sah-reference also "sweep_sah_cost" and "sah_ratio" (binned / full sweep)},
 //  "embree": {"build_ms"}, "build_ratio" (montecl ms / Embree ms),
 //  "rays": [{"kind", "query", "count", "hits", "median_ms", "min_ms", "mrays_per_s",
@@ -128,6 +129,7 @@ json runBench(const BenchOptions& o, bool verbose) {
   if (o.height) scene.camera.height = *o.height;
   if (scene.triangles.empty()) throwInputError(o.scene, "", "the scene has no triangles");
   DeviceInfo device = selectOpenClDevice(o.device, "bench");
+  BvhLayout layout = resolveBvhLayout(parseBvhLayout(o.bvhLayout), device.isGpu);
   unsigned threads = o.threads ? o.threads : std::max(1u, device.computeUnits);
   auto say = [&](const std::string& s) {
     if (verbose) std::cerr << "montecl bench: " << s << "\n";
@@ -149,15 +151,17 @@ json runBench(const BenchOptions& o, bool verbose) {
 
   say("building the BVH over " + std::to_string(scene.triangles.size()) + " triangles");
   Bvh bvh = buildBvh(scene.triangles);
-  std::size_t bvhBytes = bvh.wide.size() * sizeof(WideNode) + bvh.triangles.size() * sizeof(Triangle);
-  r["bvh"] = {{"build_ms", bvh.buildMs},
+  std::size_t nodeBytes = layout == BvhLayout::Binary ? bvh.nodes.size() * sizeof(BvhNode)
+                                                      : bvh.wide.size() * sizeof(WideNode);
+  std::size_t bvhBytes = nodeBytes + bvh.triangles.size() * sizeof(Triangle);
+  r["bvh"] = {{"layout", bvhLayoutName(layout)},
+              {"build_ms", bvh.buildMs},
               {"nodes", bvh.nodes.size()},
               {"depth", bvh.depth},
               {"sah_cost", bvh.sahCost},
               {"bytes", bvhBytes},
               {"bytes_per_triangle", double(bvhBytes) / double(scene.triangles.size())},
-              {"node_bytes_per_triangle",
-               double(bvh.wide.size() * sizeof(WideNode)) / double(scene.triangles.size())}};
+              {"node_bytes_per_triangle", double(nodeBytes) / double(scene.triangles.size())}};
   r["rss_after_build_mb"] = peakRssMb();
   if (o.sahReference) {
     say("full-sweep SAH reference build");
@@ -167,7 +171,7 @@ json runBench(const BenchOptions& o, bool verbose) {
   }
 
   say("generating rays and host references on " + std::to_string(threads) + " threads");
-  RaySets sets = makeRaySets(scene, bvh, threads);
+  RaySets sets = makeRaySets(scene, bvh, threads, layout);
   r["emitters"] = sets.emitters;
 
   std::unique_ptr<EmbreeTracer> embree;
@@ -181,7 +185,7 @@ json runBench(const BenchOptions& o, bool verbose) {
     r["build_ratio"] = embree->buildMs() > 0.0 ? bvh.buildMs / embree->buildMs() : 0.0;
   }
 
-  ClSession session(device, o.workGroupSize, /*profiling=*/true);
+  ClSession session(device, o.workGroupSize, /*profiling=*/true, layout);
   RayTracer tracer(session, bvh);
   r["local_size"] = session.localSize(session.kernel("intersect"));
   std::size_t total = 0;
@@ -247,7 +251,8 @@ std::string formatBenchTable(const json& r) {
     << "\n";
   s << "cpu       " << r["cpu_model"].get<std::string>() << "; Embree and reference on "
     << r["threads"].get<unsigned>() << " threads\n";
-  s << std::setprecision(1) << "bvh       build " << b["build_ms"].get<double>() << " ms, "
+  s << std::setprecision(1) << "bvh       " << b.value("layout", "wide") << " layout, build "
+    << b["build_ms"].get<double>() << " ms, "
     << b["nodes"].get<std::size_t>() << " nodes, depth " << b["depth"].get<int>() << ", "
     << b["bytes_per_triangle"].get<double>() << " B/triangle (nodes "
     << b["node_bytes_per_triangle"].get<double>() << "), SAH cost " << std::setprecision(2)

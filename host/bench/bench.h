@@ -18,6 +18,7 @@ struct BenchOptions {
   unsigned threads = 0;          // Embree and host reference threads; 0 = the device's compute units
   std::optional<int> width, height;  // override the scene's resolution
   std::size_t workGroupSize = 0; // 0 = ClSession's default
+  std::string bvhLayout = "auto";  // auto | wide | binary (bvh/bvh_layout.h)
   bool embree = true;            // --no-embree skips the comparison
   bool sahReference = false;     // --sah-reference: also the full-sweep SAH cost (slow: seconds)
   double relTolerance = 1e-4;    // a hit distance differing by more than this (relative) mismatches

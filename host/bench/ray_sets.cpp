@@ -38,13 +38,13 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void referenceAny(const Bvh& bvh, RaySet& set, unsigned threads) {
+void referenceAny(const Bvh& bvh, RaySet& set, unsigned threads, BvhLayout layout) {
   set.refOccluded.assign(set.rays.size(), 0);
   auto t0 = std::chrono::steady_clock::now();
   parallelFor(set.rays.size(), threads, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       const Ray& r = set.rays[i];
-      set.refOccluded[i] = intersectAny(bvh, xyz(r.origin), xyz(r.dir), r.dir.w) ? 1 : 0;
+      set.refOccluded[i] = intersectAny(bvh, xyz(r.origin), xyz(r.dir), r.dir.w, layout) ? 1 : 0;
     }
   });
   set.refMs = msSince(t0);
@@ -52,7 +52,7 @@ void referenceAny(const Bvh& bvh, RaySet& set, unsigned threads) {
 
 }  // namespace
 
-RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads) {
+RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads, BvhLayout layout) {
   RaySets s;
   s.primary.kind = "primary";
   s.ao.kind = "ao";
@@ -74,7 +74,7 @@ RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads) {
   parallelFor(pixels, threads, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       const Ray& r = s.primary.rays[i];
-      s.primaryHits[i] = intersectClosest(bvh, xyz(r.origin), xyz(r.dir), r.dir.w);
+      s.primaryHits[i] = intersectClosest(bvh, xyz(r.origin), xyz(r.dir), r.dir.w, layout);
     }
   });
   s.primary.refMs = msSince(t0);
@@ -127,8 +127,8 @@ RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads) {
     r.dir = with_w(d / dist, dist * (1.0f - 1e-3f));  // stop short of the emitter itself
     s.shadow.rays.push_back(r);
   }
-  referenceAny(bvh, s.ao, threads);
-  referenceAny(bvh, s.shadow, threads);
+  referenceAny(bvh, s.ao, threads, layout);
+  referenceAny(bvh, s.shadow, threads, layout);
   return s;
 }
 

@@ -35,8 +35,10 @@ struct RaySets {
 // Primary rays: one per pixel of scene.camera, jittered with the camera RNG dimension of sample 0
 // (seed = scene.render.seed). AO: kAoRaysPerHit cosine-distributed rays per primary hit, tmax =
 // scene.render.aoDistance. Shadow: one ray per primary hit toward an area-weighted random point on
-// an emissive triangle, stopping just short of it. References computed on `threads` threads.
-RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads);
+// an emissive triangle, stopping just short of it. References computed on `threads` threads with
+// the host traversal of `layout` (the one the device runs).
+RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads,
+                    BvhLayout layout = BvhLayout::Wide);
 
 // Runs body(begin, end) over [0, n) in chunks on `threads` std::threads.
 void parallelFor(std::size_t n, unsigned threads, const std::function<void(std::size_t, std::size_t)>& body);

@@ -4,21 +4,22 @@
 #include <cstdint>
 #include <vector>
 
+#include "bvh/bvh_layout.h"
 #include "kernels/shared/types.h"
 #include "scene/scene.h"
 
 namespace montecl {
 
 struct BvhBuildOptions {
-  int bins = 16;            // SAH bins per axis
+  int bins = 32;            // SAH bins per axis
   int maxLeafSize = 4;      // a node with at most this many triangles may become a leaf
   float traversalCost = 1.0f;
-  float intersectCost = 1.0f;
+  float intersectCost = 0.5f;  // per triangle; below traversalCost: leaves are tested 4 at a time
 };
 
 struct Bvh {
   std::vector<BvhNode> nodes;         // nodes[0] is the root; children of an interior node are adjacent
-  std::vector<WideNode> wide;         // the same tree collapsed 4-wide (wide[0] the root): what is traversed
+  std::vector<WideNode> wide;         // the same tree collapsed 8-wide (wide[0] the root): what is traversed
   std::vector<Triangle> triangles;    // in leaf order, ready for the device
   std::vector<std::uint32_t> order;   // triangles[i] came from input triangle order[i]
   int depth = 0;                      // longest root-to-leaf path (always < MCL_BVH_STACK_SIZE)
@@ -28,11 +29,16 @@ struct Bvh {
 
 Bvh buildBvh(const std::vector<SceneTriangle>& tris, const BvhBuildOptions& options = {});
 
-// A wide node whose four slots are empty (no ray enters them): the whole tree of an empty Bvh.
+// A wide node whose slots are all empty (no ray enters them): the whole tree of an empty Bvh.
 WideNode emptyWideNode();
+// A binary node with an empty box (no ray enters it): the whole binary tree of an empty Bvh.
+BvhNode emptyBinaryNode();
 
-// Reference traversal on the host.
-Hit intersectClosest(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax);
-bool intersectAny(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax);
+// Reference traversal on the host, of the given layout (Auto: wide). Both layouts give the same
+// hit distance; the triangle can differ only where two triangles tie at that distance.
+Hit intersectClosest(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax,
+                     BvhLayout layout = BvhLayout::Wide);
+bool intersectAny(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax,
+                  BvhLayout layout = BvhLayout::Wide);
 
 }  // namespace montecl

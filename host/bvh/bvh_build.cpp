@@ -3,14 +3,15 @@
 // Cost model (surface area heuristic). For a node N with half surface area A(N):
 //   cost(leaf with n triangles)  = Ci * n
 //   cost(split into L and R)     = Ct + Ci * (A(L) * n(L) + A(R) * n(R)) / A(N)
-// with Ct = BvhBuildOptions::traversalCost (default 1) and Ci = intersectCost (default 1). The
-// reported Bvh::sahCost is the cost of the whole tree, sum over interior nodes of Ct * A(n)/A(root)
-// plus sum over leaves of Ci * count(n) * A(n)/A(root).
+// with Ct = BvhBuildOptions::traversalCost (default 1) and Ci = intersectCost (default 0.5: the
+// traversal tests a leaf's triangles four at a time). The reported Bvh::sahCost is the cost of the
+// whole tree, sum over interior nodes of Ct * A(n)/A(root) plus sum over leaves of
+// Ci * count(n) * A(n)/A(root).
 //
 // Build. A node of more than 16 triangles bins their bounding-box centroids into `bins` (default
-// 16, 2..256) equal bins along each axis of the centroid bounds and evaluates the bins-1 planes per
-// axis, plus the bins-1 splits of large from small triangles by size class (box area relative to
-// the node's, in powers of two); a node of at most 16 sorts its centroids on each axis and evaluates every object split
+// 32, 2..256) equal bins along each axis of the centroid bounds and evaluates the bins-1 planes per
+// axis, plus the splits of large from small triangles by size class (box area relative to the
+// node's, in powers of two); a node of at most 16 sorts its centroids on each axis and evaluates every object split
 // (exact, and cheaper than binning at that size). A node with at most maxLeafSize (default 4,
 // 1..16) triangles becomes a leaf unless its best split is cheaper than the leaf; a larger node is
 // always split, by its best SAH split even when a leaf would be cheaper, so no leaf ever holds more
@@ -392,18 +393,26 @@ bool finite(const glm::vec3& v) {
 WideNode emptyWideNode() {
   WideNode w;
   const float inf = std::numeric_limits<float>::infinity();
-  for (int r = 0; r < 6; ++r) w.bounds[r] = glm::vec4((r % 2 == 0) ? inf : -inf);
-  for (int i = 0; i < 4; ++i) {
-    w.child[i] = MCL_WIDE_EMPTY;
-    w.pad[i] = 0;
-  }
+  for (int r = 0; r < 6; ++r)
+    for (int i = 0; i < MCL_WIDE_WIDTH; ++i) w.bounds[r][i] = (r % 2 == 0) ? inf : -inf;
+  for (int i = 0; i < MCL_WIDE_WIDTH; ++i) w.child[i] = MCL_WIDE_EMPTY;
   return w;
+}
+
+BvhNode emptyBinaryNode() {
+  const float inf = std::numeric_limits<float>::infinity();
+  BvhNode n;
+  n.minX = n.minY = n.minZ = inf;
+  n.maxX = n.maxY = n.maxZ = -inf;
+  n.leftFirst = 0;
+  n.triCount = 0;
+  return n;
 }
 
 namespace {
 
-// Collapses the binary tree into 4-wide nodes: each wide node takes the binary node's two children
-// and, while it has fewer than four, replaces its interior child of largest surface area by that
+// Collapses the binary tree into MCL_WIDE_WIDTH-wide nodes: each wide node takes the binary node's
+// two children and, while it has fewer than MCL_WIDE_WIDTH, replaces its interior child of largest surface area by that
 // child's two children. Wide nodes are laid out depth-first; leaves keep their triangle ranges.
 void collapseWide(Bvh& bvh) {
   const std::vector<BvhNode>& nodes = bvh.nodes;
@@ -415,7 +424,7 @@ void collapseWide(Bvh& bvh) {
     float dx = b.maxX - b.minX, dy = b.maxY - b.minY, dz = b.maxZ - b.minZ;
     return dx * dy + dy * dz + dz * dx;
   };
-  wide.reserve(nodes.size() / 2 + 1);
+  wide.reserve(nodes.size() / 4 + 1);
   wide.push_back(emptyWideNode());
   if (nodes.empty()) return;
   struct Item {
@@ -425,7 +434,7 @@ void collapseWide(Bvh& bvh) {
   while (!todo.empty()) {
     Item it = todo.back();
     todo.pop_back();
-    std::uint32_t kids[4];
+    std::uint32_t kids[MCL_WIDE_WIDTH];
     int k = 0;
     const BvhNode& b = nodes[it.binary];
     if (b.triCount > 0) {
@@ -433,7 +442,7 @@ void collapseWide(Bvh& bvh) {
     } else {
       kids[k++] = b.leftFirst;
       kids[k++] = b.leftFirst + 1;
-      while (k < 4) {
+      while (k < MCL_WIDE_WIDTH) {
         int best = -1;
         float bestArea = -1.0f;
         for (int i = 0; i < k; ++i)

@@ -9,14 +9,19 @@
 
 namespace montecl {
 
-ClSession::ClSession(const DeviceInfo& device, std::size_t workGroupSize, bool profiling)
-    : device_(device), oclgrind_(isOclgrind(device)), workGroupSize_(workGroupSize) {
+ClSession::ClSession(const DeviceInfo& device, std::size_t workGroupSize, bool profiling,
+                     BvhLayout layout)
+    : device_(device),
+      oclgrind_(isOclgrind(device)),
+      workGroupSize_(workGroupSize),
+      layout_(resolveBvhLayout(layout, device.isGpu)) {
   if (device.isHost)
     throw InputError("--device host: the host backend renders only (montecl render, conformance); this needs an "
                      "OpenCL device");
   context_ = cl::Context(device.device);
   queue_ = cl::CommandQueue(context_, device.device, profiling ? CL_QUEUE_PROFILING_ENABLE : 0);
-  build_ = buildProgramCached(context_, device, expandedKernelSource("montecl.cl"), kKernelBuildOptions);
+  build_ = buildProgramCached(context_, device, expandedKernelSource("montecl.cl"),
+                              kernelBuildOptions(layout_));
 }
 
 cl::Kernel ClSession::kernel(const char* name) const {

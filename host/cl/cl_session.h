@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bvh/bvh_layout.h"
 #include "cl/devices.h"
 #include "cl/program_cache.h"
 
@@ -17,10 +18,13 @@ constexpr const char* kKernelBuildOptions = "-cl-std=CL1.2";
 class ClSession {
  public:
   // workGroupSize 0: min(64, CL_KERNEL_WORK_GROUP_SIZE) per kernel. profiling: the queue is
-  // created with CL_QUEUE_PROFILING_ENABLE (event timings, used by `montecl bench`).
-  explicit ClSession(const DeviceInfo& device, std::size_t workGroupSize = 0, bool profiling = false);
+  // created with CL_QUEUE_PROFILING_ENABLE (event timings, used by `montecl bench`). layout: the
+  // BVH the kernels traverse (Auto: by device type, resolveBvhLayout).
+  explicit ClSession(const DeviceInfo& device, std::size_t workGroupSize = 0, bool profiling = false,
+                     BvhLayout layout = BvhLayout::Auto);
 
   const DeviceInfo& device() const { return device_; }
+  BvhLayout layout() const { return layout_; }  // resolved: Wide or Binary
   const cl::Context& context() const { return context_; }
   cl::CommandQueue& queue() { return queue_; }
   const ProgramBuild& build() const { return build_; }
@@ -66,6 +70,7 @@ class ClSession {
   DeviceInfo device_;
   bool oclgrind_;
   std::size_t workGroupSize_;
+  BvhLayout layout_;
   cl::Context context_;
   cl::CommandQueue queue_;
   ProgramBuild build_;

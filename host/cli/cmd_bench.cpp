@@ -1,6 +1,6 @@
-// cmd_bench.cpp: `montecl bench SCENE [--repeat N] [--json FILE] [--device SPEC] [--threads T]`:
-// runs the traversal benchmark (host/bench/bench.h), prints its table on stdout, optionally writes
-// the JSON atomically. Exit 0 when every ray matches the host reference, 1 otherwise.
+// cmd_bench.cpp: `montecl bench SCENE [--repeat N] [--json FILE] [--device SPEC] [--threads T]
+// [--bvh-layout L]`: runs the traversal benchmark (host/bench/bench.h), prints its table on stdout,
+// optionally writes the JSON atomically. Exit 0 when every ray matches the host reference, 1 otherwise.
 #include <fstream>
 #include <iostream>
 
@@ -31,6 +31,9 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--height", o->height, "Override the scene's image height")->check(CLI::PositiveNumber);
   cmd->add_option("--work-group-size", o->workGroupSize, "Kernel work-group size (default: min(64, kernel max))")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--bvh-layout", o->bvhLayout,
+                  "BVH the kernels traverse: auto (binary on GPUs, wide otherwise) | wide | binary")
+      ->check(CLI::IsMember({"auto", "wide", "binary"}));
   cmd->add_flag("--no-embree", *noEmbree, "Skip the Embree comparison");
   cmd->add_flag("--sah-reference", o->sahReference,
                 "Also compute the SAH cost of a full-sweep build (slow) and the ratio binned / full sweep");

@@ -1,4 +1,4 @@
-// cmd_conformance.cpp: `montecl conformance [--json] [--device SPEC]...`: builds every kernel on
+// cmd_conformance.cpp: `montecl conformance [--json] [--device SPEC]... [--bvh-layout L]`: builds every kernel on
 // each OpenCL device (default: all found), renders the conformance set and compares each image
 // with the host backend's (conformance/conformance.h). Exit 0 when every device passes, else 1.
 #include <iostream>
@@ -11,11 +11,14 @@ namespace montecl {
 
 struct ConformanceArgs {
   ConformanceOptions options;
+  std::string bvhLayout = "auto";
   bool json = false;
 };
 
 int runConformanceCommand(const ConformanceArgs& a) {
-  ConformanceReport report = runConformance(a.options);
+  ConformanceOptions options = a.options;
+  options.bvhLayout = parseBvhLayout(a.bvhLayout);
+  ConformanceReport report = runConformance(options);
   if (a.json)
     std::cout << conformanceJson(report).dump(2) << std::endl;
   else
@@ -42,6 +45,10 @@ void addConformanceCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--device", args->options.deviceSpecs,
                   "Device to check (repeatable): P:D, part of a name, or host; default: every OpenCL device");
   cmd->add_flag("--json", args->json, "Print the report as JSON");
+  cmd->add_option("--bvh-layout", args->bvhLayout,
+                  "BVH the OpenCL devices traverse: auto (binary on GPUs, wide otherwise) | wide | binary; "
+                  "the host backend and its reference images use wide")
+      ->check(CLI::IsMember({"auto", "wide", "binary"}));
   addConformanceOptions(cmd, *args);
   cmd->callback([args, &exitCode]() { exitCode = runConformanceCommand(*args); });
 }

@@ -22,6 +22,7 @@ namespace {
 
 struct RenderArgs {
   std::string scene, output, device, integrator, aoSampling, directSampling;
+  std::string bvhLayout = "auto";
   std::optional<int> spp, width, height, lightSamples;
   std::optional<std::uint32_t> seed;
   std::optional<float> aoDistance;
@@ -109,6 +110,7 @@ int runRender(const RenderArgs& a) {
   if (!a.aovs.empty() && !isExr(output))
     throwInputError(output, "--aov", "AOVs need an .exr output");
   DeviceInfo device = selectDevice(a.device);
+  BvhLayout layout = resolveBvhLayout(parseBvhLayout(a.bvhLayout), device.isGpu);
 
   Bvh bvh = buildBvh(scene.triangles);
   if (scene.render.integrator == "direct" && !hasEmitter(scene))
@@ -120,7 +122,7 @@ int runRender(const RenderArgs& a) {
               << "montecl: BVH built in " << bvh.buildMs << " ms: " << bvh.nodes.size() << " nodes, depth "
               << bvh.depth << ", SAH cost " << bvh.sahCost << "\n"
               << "montecl: device " << device.platformIndex << ":" << device.deviceIndex << " " << device.name
-              << "\n";
+              << ", " << bvhLayoutName(layout) << " BVH layout\n";
   }
   RenderOptions options;
   options.waveSize = a.waveSize;
@@ -132,6 +134,7 @@ int runRender(const RenderArgs& a) {
   options.interrupt = &gInterrupted;
   options.aovs = !a.aovs.empty();
   options.workGroupSize = a.workGroupSize;
+  options.bvhLayout = layout;
   options.verbose = a.verbose;
   WavefrontRenderer renderer(device, options);
   if (a.verbose)
@@ -191,6 +194,9 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--work-group-size", args->workGroupSize, "Work-group size (default: min(64, kernel max))")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--bvh-layout", args->bvhLayout,
+                  "BVH the kernels traverse: auto (binary on GPUs, wide otherwise) | wide | binary")
+      ->check(CLI::IsMember({"auto", "wide", "binary"}));
   cmd->add_option("--target-error", args->targetError,
                   "Adaptive sampling: sample until each pixel's relative standard error (stderr / max(mean "
                   "luminance, 0.01)) is at most this, between --min-spp and --max-spp; ignores --spp")

@@ -96,7 +96,9 @@ ConformanceReport runConformance(const ConformanceOptions& options) {
     r.platform = device.platformName;
     std::unique_ptr<WavefrontRenderer> renderer;
     try {
-      renderer = std::make_unique<WavefrontRenderer>(device, RenderOptions{});
+      RenderOptions ro;
+      ro.bvhLayout = device.isHost ? BvhLayout::Wide : options.bvhLayout;
+      renderer = std::make_unique<WavefrontRenderer>(device, ro);
       r.buildMs = renderer->programBuildMs();
       r.fromCache = renderer->programFromCache();
       if (!device.isHost) buildIntegrateProgram(device, r);

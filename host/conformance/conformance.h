@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bvh/bvh_layout.h"
 #include "conformance/scenes.h"
 
 namespace montecl {
@@ -48,6 +49,7 @@ struct ConformanceReport {
 
 struct ConformanceOptions {
   std::vector<std::string> deviceSpecs;  // empty: every OpenCL device found
+  BvhLayout bvhLayout = BvhLayout::Auto;  // of the OpenCL devices; the host backend runs wide
   ConformanceSetOptions set;
 };
 

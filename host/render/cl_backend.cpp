@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "cl/cl_session.h"
+#include "render/bvh_buffer.h"
 #include "render/stage_runner.h"
 #include "util/errors.h"
 
@@ -20,8 +21,8 @@ void setArgs(cl::Kernel& k, const Args&... args) {
 
 class ClStageRunner final : public StageRunner {
  public:
-  ClStageRunner(const DeviceInfo& device, std::size_t workGroupSize)
-      : cl_(device, workGroupSize), generate_(cl_.kernel("generate")), intersectCamera_(cl_.kernel("intersect")),
+  ClStageRunner(const DeviceInfo& device, std::size_t workGroupSize, BvhLayout layout)
+      : cl_(device, workGroupSize, /*profiling=*/false, layout), generate_(cl_.kernel("generate")), intersectCamera_(cl_.kernel("intersect")),
         intersectBounce_(cl_.kernel("intersect")), shadeAo_(cl_.kernel("shade_ao")),
         shadeDirect_(cl_.kernel("shade_direct")), shadeDirectHit_(cl_.kernel("shade_direct_hit")),
         intersectShadow_(cl_.kernel("intersect_shadow")), accumulate_(cl_.kernel("accumulate")),
@@ -35,7 +36,7 @@ class ClStageRunner final : public StageRunner {
     const std::uint64_t wave = in.wave, slots = in.frame.shadowSlots;
     pixels_ = std::uint64_t(in.frame.width) * in.frame.height;
     frameBuf_ = cl_.upload(std::vector<FrameParams>{in.frame});
-    nodes_ = cl_.upload(in.bvh->wide.empty() ? std::vector<WideNode>{emptyWideNode()} : in.bvh->wide);
+    nodes_ = uploadBvhNodes(cl_, *in.bvh);
     tris_ = cl_.upload(in.bvh->triangles);
     materials_ = cl_.upload(in.materials);
     emitters_ = cl_.upload(in.emitters);
@@ -151,13 +152,19 @@ class ClStageRunner final : public StageRunner {
 
 }  // namespace
 
-std::unique_ptr<StageRunner> makeClStageRunner(const DeviceInfo& device, std::size_t workGroupSize) {
-  return std::make_unique<ClStageRunner>(device, workGroupSize);
+std::unique_ptr<StageRunner> makeClStageRunner(const DeviceInfo& device, std::size_t workGroupSize,
+                                               BvhLayout layout) {
+  return std::make_unique<ClStageRunner>(device, workGroupSize, layout);
 }
 
-std::unique_ptr<StageRunner> makeStageRunner(const DeviceInfo& device, std::size_t workGroupSize) {
-  if (device.isHost) return makeHostStageRunner();
-  return makeClStageRunner(device, workGroupSize);
+std::unique_ptr<StageRunner> makeStageRunner(const DeviceInfo& device, std::size_t workGroupSize,
+                                             BvhLayout layout) {
+  if (device.isHost) {
+    if (layout == BvhLayout::Binary)
+      throw InputError("--bvh-layout binary: the host backend traverses the wide BVH only");
+    return makeHostStageRunner();
+  }
+  return makeClStageRunner(device, workGroupSize, layout);
 }
 
 }  // namespace montecl

@@ -3,10 +3,12 @@
 
 #include <algorithm>
 
+#include "render/bvh_buffer.h"
+
 namespace montecl {
 
 RayTracer::RayTracer(ClSession& session, const Bvh& bvh)
-    : cl_(session), nodes_(session.upload(bvh.wide.empty() ? std::vector<WideNode>{emptyWideNode()} : bvh.wide)), tris_(session.upload(bvh.triangles)),
+    : cl_(session), nodes_(uploadBvhNodes(session, bvh)), tris_(session.upload(bvh.triangles)),
       intersect_(session.kernel("intersect")), intersectShadow_(session.kernel("intersect_shadow")) {}
 
 void RayTracer::run(cl::Kernel& k, std::size_t n, int runs, std::vector<double>* kernelMs) {

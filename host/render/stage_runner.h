@@ -62,10 +62,12 @@ class StageRunner {
 };
 
 // OpenCL kernels on `device` (its kernels built through the program cache).
-std::unique_ptr<StageRunner> makeClStageRunner(const DeviceInfo& device, std::size_t workGroupSize);
+std::unique_ptr<StageRunner> makeClStageRunner(const DeviceInfo& device, std::size_t workGroupSize,
+                                               BvhLayout layout = BvhLayout::Auto);
 // The stage functions compiled as C++, run on `threads` CPU threads (0: hardware concurrency).
 std::unique_ptr<StageRunner> makeHostStageRunner(unsigned threads = 0);
 // The runner for a device: the host backend when device.isHost, else OpenCL.
-std::unique_ptr<StageRunner> makeStageRunner(const DeviceInfo& device, std::size_t workGroupSize);
+std::unique_ptr<StageRunner> makeStageRunner(const DeviceInfo& device, std::size_t workGroupSize,
+                                             BvhLayout layout = BvhLayout::Auto);
 
 }  // namespace montecl

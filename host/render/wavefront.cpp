@@ -27,7 +27,7 @@ std::uint64_t bytesPerItem(std::uint32_t slots, bool bounce, bool aovs) {
 
 struct WavefrontRenderer::Impl {
   Impl(const DeviceInfo& device, const RenderOptions& opts)
-      : options(opts), runner(makeStageRunner(device, opts.workGroupSize)) {}
+      : options(opts), runner(makeStageRunner(device, opts.workGroupSize, opts.bvhLayout)) {}
   RenderOptions options;
   std::unique_ptr<StageRunner> runner;
 };

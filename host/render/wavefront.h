@@ -20,6 +20,7 @@ struct RenderOptions {
   std::uint64_t waveSize = 0;                  // wave items (pixel samples); 0: from memoryBudget
   std::uint64_t memoryBudget = 256ull << 20;   // bytes of per-wave buffers when waveSize is 0
   std::size_t workGroupSize = 0;               // 0: min(CL_KERNEL_WORK_GROUP_SIZE, 64)
+  BvhLayout bvhLayout = BvhLayout::Auto;        // BVH the kernels traverse (bvh/bvh_layout.h)
   std::uint32_t firstSample = 0;               // render sample indices firstSample .. + spp - 1
   bool verbose = false;
   // Stops after the wave during which this many seconds have passed (0: no limit).

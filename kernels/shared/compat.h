@@ -14,6 +14,7 @@
 #define MCL_GLOBAL __global
 #define MCL_CONSTANT __constant
 #define MCL_INLINE inline
+#define MCL_ALWAYS_INLINE inline __attribute__((always_inline))
 #define make_float2(a, b) ((float2)((a), (b)))
 #define make_float3(a, b, c) ((float3)((a), (b), (c)))
 #define make_float4(a, b, c, d) ((float4)((a), (b), (c), (d)))
@@ -57,6 +58,7 @@ using int2 = glm::ivec2;
 #define MCL_GLOBAL
 #define MCL_CONSTANT
 #define MCL_INLINE inline
+#define MCL_ALWAYS_INLINE inline
 #define MCL_STATIC_ASSERT(cond, msg) static_assert(cond, msg)
 #define MCL_ALIGN16 alignas(16)
 inline float2 make_float2(float a, float b) { return float2(a, b); }

@@ -30,7 +30,7 @@ MCL_INLINE void stage_generate(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL con
 }
 
 // intersect: closest hit of ray i.
-MCL_INLINE void stage_intersect(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
+MCL_INLINE void stage_intersect(MCL_GLOBAL const BvhTraversalNode* nodes, MCL_GLOBAL const Triangle* tris,
                                 MCL_GLOBAL const Ray* rays, uint i, MCL_GLOBAL Hit* hits) {
   Ray r = rays[i];
   hits[i] = bvh_closest_hit(nodes, tris, xyz(r.origin), xyz(r.dir), r.dir.w);
@@ -90,7 +90,7 @@ MCL_INLINE void stage_shade_ao(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL con
 }
 
 // intersect_shadow: writes the query's contribution to its slot when nothing blocks the ray.
-MCL_INLINE void stage_intersect_shadow(MCL_GLOBAL const WideNode* nodes,
+MCL_INLINE void stage_intersect_shadow(MCL_GLOBAL const BvhTraversalNode* nodes,
                                        MCL_GLOBAL const Triangle* tris,
                                        MCL_GLOBAL const ShadowWork* queue, uint k,
                                        MCL_GLOBAL float4* shadowContrib) {

@@ -23,19 +23,23 @@ typedef struct MCL_ALIGN16 {
   uint triCount;
 } BvhNode;
 
-// 4-wide BVH node (128 bytes), collapsed from the binary tree, what the kernels traverse. The child
-// boxes are SoA rows (lane i = child i) in the order minX, maxX, minY, maxY, minZ, maxZ, so a ray
-// picks its near/far row per axis by index once. child[i]: an interior child is the index of its
-// wide node; a leaf has MCL_WIDE_LEAF set, its first triangle in bits 4..30 and count - 1 in bits
-// 0..3. An empty slot has an empty box (min +inf, max -inf), which no ray enters. The child refs
-// are uint fields, never float lanes: integer bits through float arithmetic are denormals.
+// 8-wide BVH node (224 bytes), collapsed from the binary tree: what the wide traversal reads. The
+// child boxes are SoA rows (lane i = child i) in the order minX, maxX, minY, maxY, minZ, maxZ, so a
+// ray picks its near/far row per axis by index once and tests all eight boxes with float8
+// arithmetic (one AVX register per row). child[i]: an interior child is the index of its wide
+// node; a leaf has MCL_WIDE_LEAF set, its first triangle in bits 4..30 and count - 1 in bits 0..3.
+// An empty slot has an empty box (min +inf, max -inf), which no ray enters. The child refs are uint
+// fields, never float lanes: integer bits through float arithmetic are denormals. Rows are float
+// arrays (vload8 on the device), so the host needs no float8 type; 224 = 7 * 32 bytes, so with a
+// 32-byte aligned buffer no row straddles a cache line.
+#define MCL_WIDE_WIDTH 8
 #define MCL_WIDE_LEAF 0x80000000u
 #define MCL_WIDE_EMPTY 0xffffffffu
-#define MCL_WIDE_STACK_SIZE 192  // 3 entries per wide level; no leaf is deeper than 63 levels
+// A wide level pushes at most 7 children and visits the eighth; no leaf is deeper than 63 levels.
+#define MCL_WIDE_STACK_SIZE 448
 typedef struct MCL_ALIGN16 {
-  float4 bounds[6];  // minX, maxX, minY, maxY, minZ, maxZ of children 0..3
-  uint child[4];
-  uint pad[4];
+  float bounds[6][8];  // minX, maxX, minY, maxY, minZ, maxZ of children 0..7
+  uint child[8];
 } WideNode;
 
 // Triangle in BVH order, laid out for Moller-Trumbore: v0, e1 = v1 - v0, e2 = v2 - v0.
@@ -103,8 +107,8 @@ typedef struct MCL_ALIGN16 {
 #include <cstddef>
 static_assert(sizeof(BvhNode) == 32, "BvhNode layout");
 static_assert(offsetof(BvhNode, maxX) == 16, "BvhNode layout");
-static_assert(sizeof(WideNode) == 128, "WideNode layout");
-static_assert(offsetof(WideNode, child) == 96, "WideNode layout");
+static_assert(sizeof(WideNode) == 224, "WideNode layout");
+static_assert(offsetof(WideNode, child) == 192, "WideNode layout");
 static_assert(sizeof(Triangle) == 48, "Triangle layout");
 static_assert(sizeof(Material) == 32, "Material layout");
 static_assert(sizeof(Ray) == 32, "Ray layout");

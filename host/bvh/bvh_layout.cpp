@@ -1,0 +1,36 @@
+// bvh_layout.cpp: --bvh-layout names, the auto choice by device type, and the kernel build option
+// that selects the binary traversal (kernels/shared/traverse.h).
+#include "bvh/bvh_layout.h"
+
+#include "cl/cl_session.h"
+#include "util/errors.h"
+
+namespace montecl {
+
+BvhLayout parseBvhLayout(const std::string& name) {
+  if (name == "auto") return BvhLayout::Auto;
+  if (name == "wide") return BvhLayout::Wide;
+  if (name == "binary") return BvhLayout::Binary;
+  throw InputError("--bvh-layout: \"" + name + "\" is not auto, wide or binary");
+}
+
+const char* bvhLayoutName(BvhLayout layout) {
+  switch (layout) {
+    case BvhLayout::Wide: return "wide";
+    case BvhLayout::Binary: return "binary";
+    default: return "auto";
+  }
+}
+
+BvhLayout resolveBvhLayout(BvhLayout layout, bool isGpu) {
+  if (layout != BvhLayout::Auto) return layout;
+  return isGpu ? BvhLayout::Binary : BvhLayout::Wide;
+}
+
+std::string kernelBuildOptions(BvhLayout resolved) {
+  std::string options = kKernelBuildOptions;
+  if (resolved == BvhLayout::Binary) options += " -DMCL_BVH_BINARY=1";
+  return options;
+}
+
+}  // namespace montecl

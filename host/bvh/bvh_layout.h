@@ -1,0 +1,20 @@
+// bvh_layout.h: which BVH the kernels traverse (--bvh-layout auto|wide|binary). wide: the 8-wide
+// BVH (Bvh::wide, float8 tests of eight boxes; best on CPUs); binary: the binary BVH (Bvh::nodes,
+// two child boxes per visit, 64-entry stack; suited to GPUs); auto: binary on GPU devices, wide
+// otherwise. Both layouts give the same hits. Reads and writes nothing.
+#pragma once
+#include <string>
+
+namespace montecl {
+
+enum class BvhLayout { Auto, Wide, Binary };
+
+// "auto" | "wide" | "binary"; throws InputError otherwise.
+BvhLayout parseBvhLayout(const std::string& name);
+const char* bvhLayoutName(BvhLayout layout);
+// Auto becomes Binary on a GPU and Wide elsewhere; Wide and Binary are returned as they are.
+BvhLayout resolveBvhLayout(BvhLayout layout, bool isGpu);
+// The OpenCL build options of montecl's kernel program for a resolved layout.
+std::string kernelBuildOptions(BvhLayout resolved);
+
+}  // namespace montecl

@@ -1,0 +1,112 @@
+// traverse_binary.h: closest-hit and any-hit traversal of the binary BVH (BvhNode, Bvh::nodes)
+// with a short explicit stack: the layout for GPUs (--bvh-layout binary). Reads nodes and
+// triangles; pure, so the host reference traversal is this same code.
+//
+// An interior node's two children are adjacent (leftFirst, leftFirst + 1), so a visit reads their
+// boxes as one 64-byte block, a two-child-box node, and tests both with ray_box. The nearer
+// entered child (the left one on a tie) is visited next and the farther one pushed; closest hit
+// keeps each entry's distance and skips it on pop once a hit is nearer. One entry per level at
+// most: the stack never holds more than the depth (< MCL_BVH_STACK_SIZE). Leaf triangles are
+// tested one by one with ray_triangle, whose operations ray_triangle4 repeats lane-wise, so both
+// layouts compute the same t, u and v for a triangle.
+#pragma once
+#include "geometry.h"
+
+// Entry distance of node n's box (ray_box), INFINITY when missed or entered beyond tmax.
+MCL_INLINE float binary_entry(MCL_GLOBAL const BvhNode* n, float3 org, float3 inv, float tmax) {
+  return ray_box(org, inv, make_float3(n->minX, n->minY, n->minZ),
+                 make_float3(n->maxX, n->maxY, n->maxZ), tmax);
+}
+
+// Closest hit along org + t*dir for t in (0, tmax).
+MCL_INLINE Hit binary_closest_hit(MCL_GLOBAL const BvhNode* nodes, MCL_GLOBAL const Triangle* tris,
+                                  float3 org, float3 dir, float tmax) {
+  Hit hit;
+  hit.t = tmax;
+  hit.tri = MCL_NO_HIT;
+  hit.u = 0.0f;
+  hit.v = 0.0f;
+  float3 inv = safe_inverse(dir);
+  uint stack[MCL_BVH_STACK_SIZE];
+  float stackT[MCL_BVH_STACK_SIZE];  // entry distance of each stacked node
+  uint sp = 0;
+  uint ref = 0;
+  if (binary_entry(&nodes[0], org, inv, tmax) == INFINITY) {
+    hit.t = INFINITY;
+    return hit;
+  }
+  for (;;) {
+    MCL_GLOBAL const BvhNode* n = &nodes[ref];
+    if (n->triCount > 0) {
+      for (uint i = n->leftFirst, end = n->leftFirst + n->triCount; i < end; ++i) {
+        float u = 0.0f, v = 0.0f;
+        float t = ray_triangle(org, dir, xyz(tris[i].v0), xyz(tris[i].e1), xyz(tris[i].e2), hit.t,
+                               &u, &v);
+        if (t < hit.t) {
+          hit.t = t;
+          hit.tri = i;
+          hit.u = u;
+          hit.v = v;
+        }
+      }
+    } else {
+      uint l = n->leftFirst;
+      float dl = binary_entry(&nodes[l], org, inv, hit.t);
+      float dr = binary_entry(&nodes[l + 1u], org, inv, hit.t);
+      int rightFirst = dr < dl;
+      float dNear = rightFirst ? dr : dl, dFar = rightFirst ? dl : dr;
+      if (dNear != INFINITY) {
+        stack[sp] = rightFirst ? l : l + 1u;
+        stackT[sp] = dFar;
+        sp += dFar != INFINITY;
+        ref = rightFirst ? l + 1u : l;
+        continue;
+      }
+    }
+    // Pop the next node the ray still enters before the closest hit so far.
+    for (;;) {
+      if (sp == 0) {
+        if (hit.tri == MCL_NO_HIT) hit.t = INFINITY;
+        return hit;
+      }
+      --sp;
+      if (stackT[sp] <= hit.t) break;
+    }
+    ref = stack[sp];
+  }
+}
+
+// 1 if any triangle intersects org + t*dir for t in (0, tmax), else 0. Stops at the first hit.
+MCL_INLINE int binary_any_hit(MCL_GLOBAL const BvhNode* nodes, MCL_GLOBAL const Triangle* tris,
+                              float3 org, float3 dir, float tmax) {
+  float3 inv = safe_inverse(dir);
+  uint stack[MCL_BVH_STACK_SIZE];
+  uint sp = 0;
+  uint ref = 0;
+  if (binary_entry(&nodes[0], org, inv, tmax) == INFINITY) return 0;
+  for (;;) {
+    MCL_GLOBAL const BvhNode* n = &nodes[ref];
+    if (n->triCount > 0) {
+      for (uint i = n->leftFirst, end = n->leftFirst + n->triCount; i < end; ++i) {
+        float u, v;
+        if (ray_triangle(org, dir, xyz(tris[i].v0), xyz(tris[i].e1), xyz(tris[i].e2), tmax, &u,
+                         &v) < tmax)
+          return 1;
+      }
+    } else {
+      uint l = n->leftFirst;
+      float dl = binary_entry(&nodes[l], org, inv, tmax);
+      float dr = binary_entry(&nodes[l + 1u], org, inv, tmax);
+      int rightFirst = dr < dl;
+      float dNear = rightFirst ? dr : dl, dFar = rightFirst ? dl : dr;
+      if (dNear != INFINITY) {
+        stack[sp] = rightFirst ? l : l + 1u;
+        sp += dFar != INFINITY;
+        ref = rightFirst ? l + 1u : l;
+        continue;
+      }
+    }
+    if (sp == 0) return 0;
+    ref = stack[--sp];
+  }
+}

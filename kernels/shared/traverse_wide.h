@@ -1,0 +1,296 @@
+// traverse_wide.h: closest-hit and any-hit traversal of the 8-wide BVH (WideNode, Bvh::wide) with
+// an explicit stack: the layout for CPUs (--bvh-layout wide). Reads nodes and triangles; pure, so
+// the host reference traversal is this same code.
+//
+// Speed notes (the kernels run one scalar work item per ray on CPU OpenCL, and PoCL cannot
+// vectorise across work items because traversal diverges): a node's eight child boxes are tested
+// at once with float8 arithmetic inside the work item (one AVX register per row; an 8-wide tree
+// visits about 35% fewer nodes than a 4-wide one); the near and far rows per axis are picked once
+// per ray as row indices instead of per node. The entered children come back as a bit mask with
+// their distances: none entered pops the stack, one is visited without touching the stack, two
+// are ordered by one compare (the farther pushed), more are pushed and insertion-sorted so the
+// nearest is on top. Closest hit keeps each pushed entry's distance and skips it on pop once a hit
+// is nearer; any-hit returns at the first hit. Leaf triangles are tested four at a time. Child refs
+// live in uint fields, never in float lanes.
+#pragma once
+#include "geometry.h"
+
+#ifdef MCL_OPENCL
+// t where ray_triangle's tests pass (the same comparisons, NaNs included), else INFINITY. The
+// relational built-ins, not the operators: Oclgrind (21.10) got the operator form of these masks
+// wrong (shadow rays at a light's distance disagreed with PoCL and the host); same code on PoCL.
+MCL_INLINE float4 mcl_tri_t4(float4 det, float4 u, float4 v, float4 t, float tmax) {
+  const float4 zero = (float4)(0.0f), one = (float4)(1.0f);
+  int4 bad = isless(fabs(det), (float4)(1e-30f)) | isless(u, zero) | isgreater(u, one) |
+             isless(v, zero) | isgreater(u + v, one);
+  int4 ok = ~bad & isgreater(t, zero) & isless(t, (float4)(tmax));
+  return select((float4)(INFINITY), t, ok);
+}
+#else
+inline float mcl_tri_t1(float det, float u, float v, float t, float tmax) {
+  bool bad = fabs(det) < 1e-30f || u < 0.0f || u > 1.0f || v < 0.0f || u + v > 1.0f;
+  return (!bad && t > 0.0f && t < tmax) ? t : INFINITY;
+}
+inline float4 mcl_tri_t4(float4 det, float4 u, float4 v, float4 t, float tmax) {
+  return float4(mcl_tri_t1(det.x, u.x, v.x, t.x, tmax), mcl_tri_t1(det.y, u.y, v.y, t.y, tmax),
+                mcl_tri_t1(det.z, u.z, v.z, t.z, tmax), mcl_tri_t1(det.w, u.w, v.w, t.w, tmax));
+}
+#endif
+
+// Per-ray constants of the eight-box slab test: origin and inverse direction (splatted on the
+// device), and the WideNode::bounds row of each axis's near and far plane (the max row where the
+// direction is negative, -0 included, as in ray_box).
+typedef struct {
+#ifdef MCL_OPENCL
+  float8 ox, oy, oz;
+  float8 ix, iy, iz;
+#else
+  float ox, oy, oz;
+  float ix, iy, iz;
+#endif
+  uint nearX, farX, nearY, farY, nearZ, farZ;
+} RayBoxCtx;
+
+MCL_INLINE RayBoxCtx make_ray_box_ctx(float3 org, float3 dir) {
+  RayBoxCtx c;
+  float3 inv = safe_inverse(dir);
+#ifdef MCL_OPENCL
+  c.ox = (float8)(org.x);
+  c.oy = (float8)(org.y);
+  c.oz = (float8)(org.z);
+  c.ix = (float8)(inv.x);
+  c.iy = (float8)(inv.y);
+  c.iz = (float8)(inv.z);
+#else
+  c.ox = org.x;
+  c.oy = org.y;
+  c.oz = org.z;
+  c.ix = inv.x;
+  c.iy = inv.y;
+  c.iz = inv.z;
+#endif
+  c.nearX = inv.x < 0.0f ? 1u : 0u;
+  c.farX = 1u - c.nearX;
+  c.nearY = inv.y < 0.0f ? 3u : 2u;
+  c.farY = 5u - c.nearY;
+  c.nearZ = inv.z < 0.0f ? 5u : 4u;
+  c.farZ = 9u - c.nearZ;
+  return c;
+}
+
+// Entry distances of the eight children of n into dist[0..7] (the same planes, operations and
+// results as ray_box per child; INFINITY for a child the ray misses or enters beyond tmax).
+// Returns the mask of entered children (bit i: child i).
+#ifdef MCL_OPENCL
+// Lane-wise mcl_max_nan1 / mcl_min_nan1 (a NaN in the first operand yields the second).
+MCL_INLINE float8 mcl_max8_nan1(float8 a, float8 b) { return select(b, a, a > b); }
+MCL_INLINE float8 mcl_min8_nan1(float8 a, float8 b) { return select(b, a, a < b); }
+MCL_ALWAYS_INLINE uint wide_entry(MCL_GLOBAL const WideNode* n, const RayBoxCtx* c, float tmax,
+                                  float* dist) {
+  float8 tnx = (vload8(0, n->bounds[c->nearX]) - c->ox) * c->ix;
+  float8 tfx = (vload8(0, n->bounds[c->farX]) - c->ox) * c->ix;
+  float8 tny = (vload8(0, n->bounds[c->nearY]) - c->oy) * c->iy;
+  float8 tfy = (vload8(0, n->bounds[c->farY]) - c->oy) * c->iy;
+  float8 tnz = (vload8(0, n->bounds[c->nearZ]) - c->oz) * c->iz;
+  float8 tfz = (vload8(0, n->bounds[c->farZ]) - c->oz) * c->iz;
+  float8 tmin = mcl_max8_nan1(tnx, mcl_max8_nan1(tny, mcl_max8_nan1(tnz, (float8)(0.0f))));
+  float8 tmx = mcl_min8_nan1(tfx, mcl_min8_nan1(tfy, mcl_min8_nan1(tfz, (float8)(tmax))));
+  int8 in = isless(tmin, tmx) | isequal(tmin, tmx);  // tmin <= tmx (false on NaN)
+  vstore8(select((float8)(INFINITY), tmin, in), 0, dist);
+#if defined(__AVX__) && defined(__has_builtin)
+#if __has_builtin(__builtin_ia32_movmskps256)
+  return (uint)__builtin_ia32_movmskps256(as_float8(in));  // one vmovmskps on x86 with AVX
+#define MCL_WIDE_MOVMSK 1
+#endif
+#endif
+#ifndef MCL_WIDE_MOVMSK
+  int8 bit = in & (int8)(1, 2, 4, 8, 16, 32, 64, 128);
+  int4 b4 = bit.lo | bit.hi;
+  int2 b2 = b4.lo | b4.hi;
+  return (uint)(b2.x | b2.y);
+#endif
+}
+// Index of the lowest set bit of x (x != 0).
+MCL_INLINE uint mcl_ctz(uint x) { return 31u - clz(x & (0u - x)); }
+#else
+inline uint wide_entry(const WideNode* n, const RayBoxCtx* c, float tmax, float* dist) {
+  uint bits = 0;
+  for (int i = 0; i < MCL_WIDE_WIDTH; ++i) {
+    float tnx = (n->bounds[c->nearX][i] - c->ox) * c->ix;
+    float tfx = (n->bounds[c->farX][i] - c->ox) * c->ix;
+    float tny = (n->bounds[c->nearY][i] - c->oy) * c->iy;
+    float tfy = (n->bounds[c->farY][i] - c->oy) * c->iy;
+    float tnz = (n->bounds[c->nearZ][i] - c->oz) * c->iz;
+    float tfz = (n->bounds[c->farZ][i] - c->oz) * c->iz;
+    dist[i] = slab_entry(tnx, tny, tnz, tfx, tfy, tfz, tmax);
+    bits |= dist[i] != INFINITY ? 1u << i : 0u;
+  }
+  return bits;
+}
+inline uint mcl_ctz(uint x) { return static_cast<uint>(__builtin_ctz(x)); }
+#endif
+
+// Visits interior node n: returns the entered child to visit next (the nearest; the lower child on
+// a tie) and pushes the other entered ones with their distances, farthest deepest; returns
+// MCL_WIDE_EMPTY when the ray enters no child.
+MCL_ALWAYS_INLINE uint wide_visit(MCL_GLOBAL const WideNode* n, const RayBoxCtx* c, float tmax,
+                                  uint* stack, float* stackT, uint* sp) {
+  float dist[MCL_WIDE_WIDTH];
+  uint bits = wide_entry(n, c, tmax, dist);
+  if (bits == 0u) return MCL_WIDE_EMPTY;
+  uint i = mcl_ctz(bits);
+  bits &= bits - 1u;
+  if (bits == 0u) return n->child[i];
+  uint j = mcl_ctz(bits);
+  bits &= bits - 1u;
+  if (bits == 0u) {
+    int jFirst = dist[j] < dist[i];
+    uint far = jFirst ? i : j;
+    stack[*sp] = n->child[far];
+    stackT[*sp] = dist[far];
+    *sp += 1u;
+    return n->child[jFirst ? j : i];
+  }
+  // Three or more: push them all in child order, then insertion-sort the run by decreasing
+  // distance (stable, so on a tie the lower child ends up nearer the top) and pop the top.
+  uint base = *sp, top = base;
+  stack[top] = n->child[i];
+  stackT[top++] = dist[i];
+  stack[top] = n->child[j];
+  stackT[top++] = dist[j];
+  while (bits != 0u) {
+    uint k = mcl_ctz(bits);
+    bits &= bits - 1u;
+    stack[top] = n->child[k];
+    stackT[top++] = dist[k];
+  }
+  for (uint a = base + 1u; a < top; ++a) {
+    float dk = stackT[a];
+    uint rk = stack[a];
+    uint b = a;
+    for (; b > base && stackT[b - 1u] <= dk; --b) {
+      stackT[b] = stackT[b - 1u];
+      stack[b] = stack[b - 1u];
+    }
+    stackT[b] = dk;
+    stack[b] = rk;
+  }
+  *sp = top - 1u;
+  return stack[top - 1u];
+}
+
+// Moller-Trumbore (ray_triangle's operations in the same order, lane-wise) against triangles
+// tris[first + i], i < 4, the indices clamped to last (a repeated triangle repeats its t in a later
+// lane, which never wins a tie). Returns t per lane (INFINITY on a miss); u, v through the pointers.
+MCL_INLINE float4 ray_triangle4(MCL_GLOBAL const Triangle* tris, uint first, uint last, float3 org,
+                                float3 dir, float tmax, float4* uOut, float4* vOut) {
+  uint i1 = first + 1u < last ? first + 1u : last, i2 = first + 2u < last ? first + 2u : last;
+  uint i3 = first + 3u < last ? first + 3u : last;
+  float4 a0 = tris[first].v0, a1 = tris[i1].v0, a2 = tris[i2].v0, a3 = tris[i3].v0;
+  float4 b0 = tris[first].e1, b1 = tris[i1].e1, b2 = tris[i2].e1, b3 = tris[i3].e1;
+  float4 c0 = tris[first].e2, c1 = tris[i1].e2, c2 = tris[i2].e2, c3 = tris[i3].e2;
+  float4 v0x = make_float4(a0.x, a1.x, a2.x, a3.x), v0y = make_float4(a0.y, a1.y, a2.y, a3.y),
+         v0z = make_float4(a0.z, a1.z, a2.z, a3.z);
+  float4 e1x = make_float4(b0.x, b1.x, b2.x, b3.x), e1y = make_float4(b0.y, b1.y, b2.y, b3.y),
+         e1z = make_float4(b0.z, b1.z, b2.z, b3.z);
+  float4 e2x = make_float4(c0.x, c1.x, c2.x, c3.x), e2y = make_float4(c0.y, c1.y, c2.y, c3.y),
+         e2z = make_float4(c0.z, c1.z, c2.z, c3.z);
+  float4 px = dir.y * e2z - e2y * dir.z;  // cross(dir, e2)
+  float4 py = dir.z * e2x - e2z * dir.x;
+  float4 pz = dir.x * e2y - e2x * dir.y;
+  float4 det = e1x * px + e1y * py + e1z * pz;
+  float4 inv = 1.0f / det;
+  float4 sx = org.x - v0x, sy = org.y - v0y, sz = org.z - v0z;
+  float4 u = (sx * px + sy * py + sz * pz) * inv;
+  float4 qx = sy * e1z - e1y * sz;  // cross(s, e1)
+  float4 qy = sz * e1x - e1z * sx;
+  float4 qz = sx * e1y - e1x * sy;
+  float4 v = (dir.x * qx + dir.y * qy + dir.z * qz) * inv;
+  float4 t = (e2x * qx + e2y * qy + e2z * qz) * inv;
+  *uOut = u;
+  *vOut = v;
+  return mcl_tri_t4(det, u, v, t, tmax);
+}
+
+MCL_INLINE uint wide_leaf_first(uint ref) { return (ref & ~MCL_WIDE_LEAF) >> 4; }
+MCL_INLINE uint wide_leaf_count(uint ref) { return (ref & 15u) + 1u; }
+
+// Closest hit along org + t*dir for t in (0, tmax).
+MCL_INLINE Hit wide_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
+                                float3 org, float3 dir, float tmax) {
+  Hit hit;
+  hit.t = tmax;
+  hit.tri = MCL_NO_HIT;
+  hit.u = 0.0f;
+  hit.v = 0.0f;
+  RayBoxCtx ctx = make_ray_box_ctx(org, dir);
+  uint stack[MCL_WIDE_STACK_SIZE];
+  float stackT[MCL_WIDE_STACK_SIZE];  // entry distance of each stacked child
+  uint sp = 0;
+  uint ref = 0;  // the root is wide node 0
+  for (;;) {
+    if (ref & MCL_WIDE_LEAF) {
+      uint first = wide_leaf_first(ref), last = first + wide_leaf_count(ref) - 1u;
+      for (uint b = first; b <= last; b += 4u) {
+        float4 u, v;
+        float4 t = ray_triangle4(tris, b, last, org, dir, hit.t, &u, &v);
+        // The nearest lane, the lowest on a tie (as the triangles one by one would find it).
+        float bt = t.x, bu = u.x, bv = v.x;
+        uint bi = b;
+        if (t.y < bt) { bt = t.y; bu = u.y; bv = v.y; bi = b + 1u; }
+        if (t.z < bt) { bt = t.z; bu = u.z; bv = v.z; bi = b + 2u; }
+        if (t.w < bt) { bt = t.w; bu = u.w; bv = v.w; bi = b + 3u; }
+        if (bt < hit.t) {
+          hit.t = bt;
+          hit.tri = bi;
+          hit.u = bu;
+          hit.v = bv;
+        }
+      }
+    } else {
+      uint next = wide_visit(&nodes[ref], &ctx, hit.t, stack, stackT, &sp);
+      if (next != MCL_WIDE_EMPTY) {
+        ref = next;
+        continue;
+      }
+    }
+    // Pop the next child the ray still enters before the closest hit so far.
+    for (;;) {
+      if (sp == 0) {
+        if (hit.tri == MCL_NO_HIT) hit.t = INFINITY;
+        return hit;
+      }
+      --sp;
+      if (stackT[sp] <= hit.t) break;
+    }
+    ref = stack[sp];
+  }
+}
+
+// 1 if any triangle intersects org + t*dir for t in (0, tmax), else 0. Stops at the first hit.
+MCL_INLINE int wide_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
+                            float3 org, float3 dir, float tmax) {
+  RayBoxCtx ctx = make_ray_box_ctx(org, dir);
+  uint stack[MCL_WIDE_STACK_SIZE];
+  float stackT[MCL_WIDE_STACK_SIZE];  // distances, for ordering the children of one node
+  uint sp = 0;
+  uint ref = 0;
+  for (;;) {
+    if (ref & MCL_WIDE_LEAF) {
+      uint first = wide_leaf_first(ref), last = first + wide_leaf_count(ref) - 1u;
+      for (uint b = first; b <= last; b += 4u) {
+        float4 u, v;
+        float4 t = ray_triangle4(tris, b, last, org, dir, tmax, &u, &v);
+        if (t.x < tmax || t.y < tmax || t.z < tmax || t.w < tmax) return 1;
+      }
+    } else {
+      uint next = wide_visit(&nodes[ref], &ctx, tmax, stack, stackT, &sp);
+      if (next != MCL_WIDE_EMPTY) {
+        ref = next;
+        continue;
+      }
+    }
+    if (sp == 0) return 0;
+    ref = stack[--sp];
+  }
+}
