@@ -11,6 +11,7 @@
 // layouts compute the same t, u and v for a triangle.
 #pragma once
 #include "geometry.h"
+#include "traverse_stack.h"
 
 // Entry distance of node n's box (ray_box), INFINITY when missed or entered beyond tmax.
 MCL_INLINE float binary_entry(MCL_GLOBAL const BvhNode* n, float3 org, float3 inv, float tmax) {
@@ -63,16 +64,10 @@ MCL_INLINE Hit binary_closest_hit(MCL_GLOBAL const BvhNode* nodes, MCL_GLOBAL co
         continue;
       }
     }
-    // Pop the next node the ray still enters before the closest hit so far.
-    for (;;) {
-      if (sp == 0) {
-        if (hit.tri == MCL_NO_HIT) hit.t = INFINITY;
-        return hit;
-      }
-      --sp;
-      if (stackT[sp] <= hit.t) break;
+    if (!pop_entered(stack, stackT, &sp, hit.t, &ref)) {
+      if (hit.tri == MCL_NO_HIT) hit.t = INFINITY;
+      return hit;
     }
-    ref = stack[sp];
   }
 }
 

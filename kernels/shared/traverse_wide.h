@@ -14,6 +14,7 @@
 // live in uint fields, never in float lanes.
 #pragma once
 #include "geometry.h"
+#include "traverse_stack.h"
 
 #ifdef MCL_OPENCL
 // t where ray_triangle's tests pass (the same comparisons, NaNs included), else INFINITY. The
@@ -254,16 +255,10 @@ MCL_INLINE Hit wide_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL con
         continue;
       }
     }
-    // Pop the next child the ray still enters before the closest hit so far.
-    for (;;) {
-      if (sp == 0) {
-        if (hit.tri == MCL_NO_HIT) hit.t = INFINITY;
-        return hit;
-      }
-      --sp;
-      if (stackT[sp] <= hit.t) break;
+    if (!pop_entered(stack, stackT, &sp, hit.t, &ref)) {
+      if (hit.tri == MCL_NO_HIT) hit.t = INFINITY;
+      return hit;
     }
-    ref = stack[sp];
   }
 }
 
