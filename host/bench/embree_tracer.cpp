@@ -144,23 +144,6 @@ EmbreeTracer::EmbreeTracer(const std::vector<SceneTriangle>&, unsigned threads) 
 EmbreeTracer::~EmbreeTracer() = default;
 bool EmbreeTracer::available() { return false; }
 std::string EmbreeTracer::version() { return ""; }
-namespace {
-
-// montecl's Ray (origin, dir with dir.w = tmax) as an Embree ray from t = 0.
-RTCRay toEmbreeRay(const Ray& r) {
-  RTCRay ray;
-  ray.org_x = r.origin.x; ray.org_y = r.origin.y; ray.org_z = r.origin.z;
-  ray.dir_x = r.dir.x; ray.dir_y = r.dir.y; ray.dir_z = r.dir.z;
-  ray.tnear = 0.0f;
-  ray.tfar = r.dir.w;
-  ray.time = 0.0f;
-  ray.mask = ~0u;
-  ray.id = 0;
-  ray.flags = 0;
-  return ray;
-}
-
-}  // namespace
 
 double EmbreeTracer::closest(const std::vector<Ray>&, std::vector<float>&) const { return 0.0; }
 double EmbreeTracer::occluded(const std::vector<Ray>&, std::vector<std::uint8_t>&) const { return 0.0; }
