@@ -151,8 +151,7 @@ json runBench(const BenchOptions& o, bool verbose) {
 
   say("building the BVH over " + std::to_string(scene.triangles.size()) + " triangles");
   Bvh bvh = buildBvh(scene.triangles);
-  std::size_t nodeBytes = layout == BvhLayout::Binary ? bvh.nodes.size() * sizeof(BvhNode)
-                                                      : bvh.wide.size() * sizeof(WideNode);
+  std::size_t nodeBytes = bvhNodeBytes(bvh, layout);
   std::size_t bvhBytes = nodeBytes + bvh.triangles.size() * sizeof(Triangle);
   r["bvh"] = {{"layout", bvhLayoutName(layout)},
               {"build_ms", bvh.buildMs},

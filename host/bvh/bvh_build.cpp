@@ -49,8 +49,9 @@ constexpr int kMaxLeafCap = 16;
 constexpr int kMaxBins = 256;
 constexpr int kSplitAxes = 4;    // x, y, z centroid bins and the size-class bins
 // Size classes: 6 beat 2, 4, 8 and 12 on the SAH cost of the shared scenes (bunny 3.25, Sibenik
-// 47.99, Sponza 72.26 with 16 bins; full sweep 3.83, 47.40, 75.66; without size classes 4.92,
-// 48.10, 79.13). More classes offer more splits, yet the greedy top-down choice does worse.
+// 47.99, Sponza 72.26 with 16 bins and C_isect 1; full sweep 3.83, 47.40, 75.66; without size
+// classes 4.92, 48.10, 79.13). More classes offer more splits, yet the greedy top-down choice does
+// worse.
 constexpr int kSizeClasses = 6;
 constexpr std::size_t kSweepMax = 16;  // nodes this small evaluate every object split exactly
 constexpr std::size_t kParallelMin = std::size_t(1) << 16;  // smallest subtree given its own thread
@@ -130,7 +131,7 @@ struct Builder {
   // centroids along x, y, z; "axis" 3 bins the triangles by size class (sizeBinOf) and splits the
   // large ones from the small: it isolates a large triangle (a floor under a scanned model) whose
   // centroid lies among many small ones, which no centroid plane can (found on the bunny scene:
-  // SAH cost 4.92 against 3.83 for a full sweep, with 16 or 128 bins alike).
+  // SAH cost 4.92 against 3.83 for a full sweep, with 16 or 128 bins alike, C_isect 1).
   Split findSahSplit(std::size_t begin, std::size_t end, const Box& bounds, const Box& cbounds) const {
     Split best;
     float area = bounds.halfArea();

@@ -2,6 +2,7 @@
 // that selects the binary traversal (kernels/shared/traverse.h).
 #include "bvh/bvh_layout.h"
 
+#include "bvh/bvh.h"
 #include "cl/cl_session.h"
 #include "util/errors.h"
 
@@ -31,6 +32,10 @@ std::string kernelBuildOptions(BvhLayout resolved) {
   std::string options = kKernelBuildOptions;
   if (resolved == BvhLayout::Binary) options += " -DMCL_BVH_BINARY=1";
   return options;
+}
+
+std::size_t bvhNodeBytes(const Bvh& bvh, BvhLayout resolved) {
+  return resolved == BvhLayout::Binary ? bvh.nodes.size() * sizeof(BvhNode) : bvh.wide.size() * sizeof(WideNode);
 }
 
 }  // namespace montecl

@@ -3,9 +3,12 @@
 // two child boxes per visit, 64-entry stack; suited to GPUs); auto: binary on GPU devices, wide
 // otherwise. Both layouts give the same hits. Reads and writes nothing.
 #pragma once
+#include <cstddef>
 #include <string>
 
 namespace montecl {
+
+struct Bvh;
 
 enum class BvhLayout { Auto, Wide, Binary };
 
@@ -16,5 +19,7 @@ const char* bvhLayoutName(BvhLayout layout);
 BvhLayout resolveBvhLayout(BvhLayout layout, bool isGpu);
 // The OpenCL build options of montecl's kernel program for a resolved layout.
 std::string kernelBuildOptions(BvhLayout resolved);
+// Bytes of the node array a resolved layout traverses (Bvh::wide or Bvh::nodes).
+std::size_t bvhNodeBytes(const Bvh& bvh, BvhLayout resolved);
 
 }  // namespace montecl

@@ -12,13 +12,6 @@
 namespace montecl {
 namespace {
 
-// Sets consecutive kernel arguments starting at index 0.
-template <typename... Args>
-void setArgs(cl::Kernel& k, const Args&... args) {
-  cl_uint index = 0;
-  (k.setArg(index++, args), ...);
-}
-
 class ClStageRunner final : public StageRunner {
  public:
   ClStageRunner(const DeviceInfo& device, std::size_t workGroupSize, BvhLayout layout)
@@ -29,6 +22,7 @@ class ClStageRunner final : public StageRunner {
         recordAov_(cl_.kernel("record_aov")), accumulateAov_(cl_.kernel("accumulate_aov")) {}
 
   std::uint64_t maxAllocBytes() const override { return cl_.device().maxAllocBytes; }
+  BvhLayout bvhLayout() const override { return cl_.layout(); }
   bool programFromCache() const override { return cl_.build().fromCache; }
   double programBuildMs() const override { return cl_.build().buildMs; }
 

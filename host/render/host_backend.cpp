@@ -25,6 +25,7 @@ class HostStageRunner final : public StageRunner {
       : threads_(threads ? threads : std::max(1u, std::thread::hardware_concurrency())) {}
 
   std::uint64_t maxAllocBytes() const override { return std::numeric_limits<std::uint64_t>::max() / 4; }
+  BvhLayout bvhLayout() const override { return BvhLayout::Wide; }
 
   void setup(const StageInputs& in) override {
     frame_ = in.frame;

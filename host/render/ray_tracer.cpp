@@ -26,11 +26,7 @@ std::vector<Hit> RayTracer::closest(const std::vector<Ray>& rays, int runs, std:
   cl::Buffer rayBuf = cl_.upload(rays);
   cl::Buffer count = cl_.upload(std::vector<cl_uint>{cl_uint(rays.size())});
   cl::Buffer hitBuf = cl_.buffer<Hit>(rays.size());
-  intersect_.setArg(0, nodes_);
-  intersect_.setArg(1, tris_);
-  intersect_.setArg(2, rayBuf);
-  intersect_.setArg(3, count);
-  intersect_.setArg(4, hitBuf);
+  setArgs(intersect_, nodes_, tris_, rayBuf, count, hitBuf);
   run(intersect_, rays.size(), runs, kernelMs);
   cl_.queue().enqueueReadBuffer(hitBuf, CL_TRUE, 0, hits.size() * sizeof(Hit), hits.data());
   return hits;
@@ -50,11 +46,7 @@ std::vector<int> RayTracer::occluded(const std::vector<Ray>& rays, int runs, std
   cl::Buffer count = cl_.upload(std::vector<cl_uint>{cl_uint(rays.size())});
   std::vector<cl_float4> contrib(rays.size(), cl_float4{{0.0f, 0.0f, 0.0f, 0.0f}});
   cl::Buffer contribBuf = cl_.upload(contrib, CL_MEM_READ_WRITE);
-  intersectShadow_.setArg(0, nodes_);
-  intersectShadow_.setArg(1, tris_);
-  intersectShadow_.setArg(2, workBuf);
-  intersectShadow_.setArg(3, count);
-  intersectShadow_.setArg(4, contribBuf);
+  setArgs(intersectShadow_, nodes_, tris_, workBuf, count, contribBuf);
   run(intersectShadow_, rays.size(), runs, kernelMs);
   cl_.queue().enqueueReadBuffer(contribBuf, CL_TRUE, 0, contrib.size() * sizeof(cl_float4), contrib.data());
   for (std::size_t k = 0; k < rays.size(); ++k) result[k] = contrib[k].s[0] == 1.0f ? 0 : 1;

@@ -31,6 +31,8 @@ class StageRunner {
 
   // Largest single buffer the backend can allocate (wave sizing and the clear "does not fit" error).
   virtual std::uint64_t maxAllocBytes() const = 0;
+  // The BVH layout the stages traverse, resolved (Wide or Binary).
+  virtual BvhLayout bvhLayout() const = 0;
   virtual bool programFromCache() const { return false; }
   virtual double programBuildMs() const { return 0.0; }
 

@@ -70,7 +70,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   wave = std::min<std::uint64_t>(wave, maxAlloc / (slots * sizeof(ShadowWork)));
   wave = std::min<std::uint64_t>(wave, 0xffffffffull / slots);
   wave = std::max<std::uint64_t>(1, std::min(wave, total));
-  for (std::uint64_t bytes : {pixels * sizeof(float4), bvh.wide.size() * sizeof(WideNode),
+  for (std::uint64_t bytes : {pixels * sizeof(float4), std::uint64_t(bvhNodeBytes(bvh, run.bvhLayout())),
                               bvh.triangles.size() * sizeof(Triangle)})
     if (bytes > maxAlloc)
       throw RuntimeError("a buffer of " + std::to_string(bytes) + " bytes does not fit the device's maximum "
