@@ -59,9 +59,9 @@ float bruteClosest(const std::vector<SceneTriangle>& tris, const Ray& r) {
 void checkAgainstBruteForce(const std::vector<SceneTriangle>& tris, const std::vector<Ray>& rays,
                             double minHitFraction = 0.02) {
   static const DeviceInfo device = selectDevice("");
-  static ClSession session(device);
+  static StageProgram program(device);
   Bvh bvh = buildBvh(tris);
-  RayTracer tracer(session, bvh);
+  RayTracer tracer(program, bvh);
   std::vector<Hit> hits = tracer.closest(rays);
   std::vector<int> occ = tracer.occluded(rays);
   int hitCount = 0, mismatches = 0;

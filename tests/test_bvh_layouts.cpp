@@ -123,8 +123,8 @@ TEST_CASE("bvh layouts: wide and binary traversals give the same hits on the sha
 
 TEST_CASE("bvh layouts: the binary kernels equal the wide kernels and the host reference") {
   const DeviceInfo device = selectDevice("");
-  ClSession wideSession(device, 0, false, BvhLayout::Wide);
-  ClSession binarySession(device, 0, false, BvhLayout::Binary);
+  StageProgram wideSession(device, BvhLayout::Wide);
+  StageProgram binarySession(device, BvhLayout::Binary);
   CHECK(wideSession.layout() == BvhLayout::Wide);
   CHECK(binarySession.layout() == BvhLayout::Binary);
   std::vector<SceneTriangle> tris = soup(3000, 21u, 0.3f);
@@ -162,6 +162,17 @@ TEST_CASE("bvh layouts: names and the auto choice") {
   CHECK(resolveBvhLayout(BvhLayout::Auto, false) == BvhLayout::Wide);
   CHECK(resolveBvhLayout(BvhLayout::Wide, true) == BvhLayout::Wide);
   CHECK(resolveBvhLayout(BvhLayout::Binary, false) == BvhLayout::Binary);
-  CHECK(kernelBuildOptions(BvhLayout::Binary).find("-DMCL_BVH_BINARY") != std::string::npos);
-  CHECK(kernelBuildOptions(BvhLayout::Wide).find("MCL_BVH_BINARY") == std::string::npos);
+  CHECK(stageBuildOptions(BvhLayout::Binary).find("-DMCL_BVH_BINARY") != std::string::npos);
+  CHECK(stageBuildOptions(BvhLayout::Wide).find("MCL_BVH_BINARY") == std::string::npos);
+}
+
+TEST_CASE("bvh layouts: the host backend traverses the wide layout only (the one layout rule)") {
+  const DeviceInfo host = selectDevice("host");
+  CHECK(resolveStageLayout(BvhLayout::Auto, host) == BvhLayout::Wide);
+  CHECK(resolveStageLayout(BvhLayout::Wide, host) == BvhLayout::Wide);
+  CHECK_THROWS_AS(resolveStageLayout(BvhLayout::Binary, host), InputError);
+  DeviceInfo gpu;
+  gpu.isGpu = true;
+  CHECK(resolveStageLayout(BvhLayout::Auto, gpu) == BvhLayout::Binary);
+  CHECK(resolveStageLayout(BvhLayout::Wide, gpu) == BvhLayout::Wide);
 }

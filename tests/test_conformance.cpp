@@ -56,7 +56,7 @@ TEST_CASE("host backend: selected by --device host, needs no OpenCL context") {
   DeviceInfo host = selectDevice("host");
   REQUIRE(host.isHost);
   Scene s = floorScene({0, 0, 0}, 1.0f, 60.0f, 8, 4);
-  s.render.aoSampling = "cosine";
+  s.render.aoSampling = montecl::AoSampling::Cosine;
   Film f = render(host, s);
   for (std::size_t p = 0; p < f.sum.size(); ++p) {
     REQUIRE(f.sum[p].w == 4.0f);
@@ -67,7 +67,7 @@ TEST_CASE("host backend: selected by --device host, needs no OpenCL context") {
 TEST_CASE("host backend: bit-identical across wave sizes (one thread or several)") {
   const DeviceInfo host = hostDeviceInfo();
   Scene s = wallScene(48, 4);  // 9216 items: the default wave runs on several threads
-  s.render.aoSampling = "uniform";
+  s.render.aoSampling = montecl::AoSampling::Uniform;
   s.render.seed = 3;
   Film reference = render(host, s);
   for (std::uint64_t wave : {1000ull, 4096ull + 17}) {

@@ -21,8 +21,8 @@ namespace {
 
 Film renderDirect(Scene scene, const std::string& strategy, int lightSamples = 1) {
   static const DeviceInfo device = selectDevice("");
-  scene.render.integrator = "direct";
-  scene.render.directSampling = strategy;
+  scene.render.integrator = montecl::Integrator::Direct;
+  scene.render.directSampling = directSamplingNames().at(strategy);
   scene.render.lightSamples = lightSamples;
   Bvh bvh = buildBvh(scene.triangles);
   WavefrontRenderer renderer(device, {});

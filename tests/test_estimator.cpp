@@ -17,7 +17,7 @@
 #include "cl/devices.h"
 #include "cli_runner.h"
 #include "image/exr_layers.h"
-#include "kernels/shared/stages.h"
+#include "kernels/stages/stages.h"
 #include "render/wavefront.h"
 #include "stats.h"
 #include "test_scenes.h"
@@ -44,7 +44,7 @@ Scene easyAndHardScene(int size) {
   s.camera.target = {-1.2f, 0.0f, 0.0f};
   s.camera.fovY = 60.0f;
   s.render.aoDistance = 1.0f;
-  s.render.aoSampling = "cosine";
+  s.render.aoSampling = montecl::AoSampling::Cosine;
   return s;
 }
 
@@ -52,7 +52,7 @@ Scene easyAndHardScene(int size) {
 
 TEST_CASE("the estimated standard error matches the spread over 40 seeds within 10%") {
   Scene s = wallScene(8, 16);
-  s.render.aoSampling = "uniform";
+  s.render.aoSampling = montecl::AoSampling::Uniform;
   const int seeds = 40;
   const std::size_t pixels = 64;
   std::vector<RunningStats> spread(pixels);
@@ -229,7 +229,16 @@ TEST_CASE("accumulate keeps the variance of samples with a large mean (Welford, 
       radiance[i] = float4(v, v, v, 0.0f);
       exact.add(v);
     }
-    stage_accumulate(&f, active, start, wave, 0, radiance.data(), shadow.data(), &mean, &m2);
+    accumulate_args args{};
+    args.frame = &f;
+    args.waveStart = start;
+    args.waveCount = wave;
+    args.active = active;
+    args.radiance = radiance.data();
+    args.shadowContrib = shadow.data();
+    args.mean = &mean;
+    args.m2 = &m2;
+    stage_accumulate(&args, 0);
   }
   CHECK(mean.w == 100000.0f);
   CHECK(mean.x == doctest::Approx(exact.mean).epsilon(1e-6));

@@ -57,7 +57,7 @@ bool sameFilm(const Film& a, const Film& b) {
 
 TEST_CASE("AO of an open plane is exactly 1 with cosine sampling") {
   Scene s = floorScene({0, 0, 0}, 1.0f, 60.0f, 32, 16);
-  s.render.aoSampling = "cosine";
+  s.render.aoSampling = montecl::AoSampling::Cosine;
   Film f = renderScene(s);
   for (std::size_t p = 0; p < f.sum.size(); ++p) {
     REQUIRE(f.sum[p].w == 16.0f);
@@ -69,7 +69,7 @@ TEST_CASE("AO of an open plane is exactly 1 with cosine sampling") {
 
 TEST_CASE("AO of an open plane is 1 within 4 standard errors with uniform sampling") {
   Scene s = floorScene({0, 0, 0}, 1.0f, 60.0f, 32, 64);
-  s.render.aoSampling = "uniform";
+  s.render.aoSampling = montecl::AoSampling::Uniform;
   Film f = renderScene(s);
   ImageEstimate e = imageEstimate(f);
   INFO("mean " << e.mean << " +- " << e.standardError);
@@ -91,9 +91,9 @@ TEST_CASE("AO of an open plane is 1 within 4 standard errors with uniform sampli
 
 TEST_CASE("AO beside an infinite wall is 1/2 for both samplings, and they agree per pixel") {
   Scene s = wallScene(24, 256);
-  s.render.aoSampling = "uniform";
+  s.render.aoSampling = montecl::AoSampling::Uniform;
   Film uni = renderScene(s);
-  s.render.aoSampling = "cosine";
+  s.render.aoSampling = montecl::AoSampling::Cosine;
   Film cos = renderScene(s);
   for (const Film* f : {&uni, &cos}) {
     ImageEstimate e = imageEstimate(*f);
@@ -117,7 +117,7 @@ TEST_CASE("AO beside an infinite wall is 1/2 for both samplings, and they agree 
 
 TEST_CASE("ao_distance shorter than the wall's distance gives exactly 1 with cosine sampling") {
   Scene s = wallScene(16, 8);
-  s.render.aoSampling = "cosine";
+  s.render.aoSampling = montecl::AoSampling::Cosine;
   s.render.aoDistance = 0.2f;  // the floor seen lies 0.3 .. 0.7 from the wall
   s.camera.fovY = 20.0f;
   Film f = renderScene(s);
@@ -140,7 +140,7 @@ TEST_CASE("a camera ray that hits nothing gives the background") {
 
 TEST_CASE("images are bit-identical for the same seed, whatever the wave or work-group size") {
   Scene s = wallScene(20, 6);
-  s.render.aoSampling = "uniform";
+  s.render.aoSampling = montecl::AoSampling::Uniform;
   s.render.seed = 3;
   Film reference = renderScene(s);
   for (std::uint64_t wave : {1ull, 97ull, 400ull, 1000ull, 20ull * 20 * 6}) {
@@ -162,7 +162,7 @@ TEST_CASE("images are bit-identical for the same seed, whatever the wave or work
 
 TEST_CASE("images are bit-identical with the wide and the binary BVH layout") {
   Scene wall = wallScene(20, 6);
-  wall.render.aoSampling = "uniform";
+  wall.render.aoSampling = montecl::AoSampling::Uniform;
   std::vector<std::string> warnings;
   Scene demo = loadScene(MONTECL_SOURCE_DIR "/scenes/demo/scene.json", warnings);
   demo.camera.width = 32;

@@ -117,13 +117,13 @@ TEST_CASE("scene file: every camera and render value is parsed") {
   CHECK(scene.camera.fovY == doctest::Approx(33.5));
   CHECK(scene.camera.width == 320);
   CHECK(scene.camera.height == 200);
-  CHECK(scene.render.integrator == "direct");
+  CHECK(scene.render.integrator == montecl::Integrator::Direct);
   CHECK(scene.render.spp == 7);
   CHECK(scene.render.seed == 4000000000u);
   CHECK(scene.render.aoDistance == doctest::Approx(2.5));
-  CHECK(scene.render.aoSampling == "uniform");
+  CHECK(scene.render.aoSampling == montecl::AoSampling::Uniform);
   CHECK(scene.render.background == glm::vec3(0.1f, 0.2f, 0.3f));
-  CHECK(scene.render.directSampling == "brdf");
+  CHECK(scene.render.directSampling == montecl::DirectSampling::Brdf);
   CHECK(scene.render.lightSamples == 3);
   REQUIRE(scene.triangles.size() == 1);
   CHECK(scene.boundsMin == glm::vec3(0, 0, 0));
@@ -143,7 +143,7 @@ TEST_CASE("scene file: up and render are optional with the documented defaults")
   CHECK(scene.render.aoDistance == defaults.aoDistance);
   CHECK(scene.render.aoSampling == defaults.aoSampling);
   CHECK(scene.render.background == defaults.background);
-  CHECK(scene.render.directSampling == "mis");
+  CHECK(scene.render.directSampling == montecl::DirectSampling::Mis);
   CHECK(scene.render.lightSamples == 1);
 }
 

@@ -33,6 +33,7 @@
 #include "bvh/bvh.h"
 #include "bvh/sah_reference.h"
 #include "render/ray_tracer.h"
+#include "render/stage_program.h"
 #include "cl/cl_errors.h"
 #include "cl/cl_session.h"
 #include "cl/devices.h"
@@ -129,7 +130,7 @@ json runBench(const BenchOptions& o, bool verbose) {
   if (o.height) scene.camera.height = *o.height;
   if (scene.triangles.empty()) throwInputError(o.scene, "", "the scene has no triangles");
   DeviceInfo device = selectOpenClDevice(o.device, "bench");
-  BvhLayout layout = resolveBvhLayout(parseBvhLayout(o.bvhLayout), device.isGpu);
+  BvhLayout layout = resolveStageLayout(parseBvhLayout(o.bvhLayout), device);
   unsigned threads = o.threads ? o.threads : std::max(1u, device.computeUnits);
   auto say = [&](const std::string& s) {
     if (verbose) std::cerr << "montecl bench: " << s << "\n";
@@ -184,8 +185,9 @@ json runBench(const BenchOptions& o, bool verbose) {
     r["build_ratio"] = embree->buildMs() > 0.0 ? bvh.buildMs / embree->buildMs() : 0.0;
   }
 
-  ClSession session(device, o.workGroupSize, /*profiling=*/true, layout);
-  RayTracer tracer(session, bvh);
+  StageProgram program(device, layout, o.workGroupSize, /*profiling=*/true);
+  ClSession& session = program.session();
+  RayTracer tracer(program, bvh);
   r["local_size"] = session.localSize(session.kernel("intersect"));
   std::size_t total = 0;
   json rays = json::array();

@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "kernels/shared/camera.h"
-#include "kernels/shared/stages.h"
+#include "kernels/stages/stage_common.h"
 #include "render/frame_params.h"
 
 namespace montecl {

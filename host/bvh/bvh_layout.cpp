@@ -1,9 +1,7 @@
-// bvh_layout.cpp: --bvh-layout names, the auto choice by device type, and the kernel build option
-// that selects the binary traversal (kernels/shared/traverse.h).
+// bvh_layout.cpp: --bvh-layout names, the auto choice by device type, and node bytes per layout.
 #include "bvh/bvh_layout.h"
 
 #include "bvh/bvh.h"
-#include "cl/cl_session.h"
 #include "util/errors.h"
 
 namespace montecl {
@@ -26,12 +24,6 @@ const char* bvhLayoutName(BvhLayout layout) {
 BvhLayout resolveBvhLayout(BvhLayout layout, bool isGpu) {
   if (layout != BvhLayout::Auto) return layout;
   return isGpu ? BvhLayout::Binary : BvhLayout::Wide;
-}
-
-std::string kernelBuildOptions(BvhLayout resolved) {
-  std::string options = kKernelBuildOptions;
-  if (resolved == BvhLayout::Binary) options += " -DMCL_BVH_BINARY=1";
-  return options;
 }
 
 std::size_t bvhNodeBytes(const Bvh& bvh, BvhLayout resolved) {

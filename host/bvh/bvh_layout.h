@@ -17,8 +17,6 @@ BvhLayout parseBvhLayout(const std::string& name);
 const char* bvhLayoutName(BvhLayout layout);
 // Auto becomes Binary on a GPU and Wide elsewhere; Wide and Binary are returned as they are.
 BvhLayout resolveBvhLayout(BvhLayout layout, bool isGpu);
-// The OpenCL build options of montecl's kernel program for a resolved layout.
-std::string kernelBuildOptions(BvhLayout resolved);
 // Bytes of the node array a resolved layout traverses (Bvh::wide or Bvh::nodes).
 std::size_t bvhNodeBytes(const Bvh& bvh, BvhLayout resolved);
 

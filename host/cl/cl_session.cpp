@@ -10,18 +10,16 @@
 namespace montecl {
 
 ClSession::ClSession(const DeviceInfo& device, std::size_t workGroupSize, bool profiling,
-                     BvhLayout layout)
-    : device_(device),
-      oclgrind_(isOclgrind(device)),
-      workGroupSize_(workGroupSize),
-      layout_(resolveBvhLayout(layout, device.isGpu)) {
+                     const std::string& extraOptions, const std::string& programFile)
+    : device_(device), oclgrind_(isOclgrind(device)), workGroupSize_(workGroupSize) {
   if (device.isHost)
     throw InputError("--device host: the host backend renders only (montecl render, conformance); this needs an "
                      "OpenCL device");
   context_ = cl::Context(device.device);
   queue_ = cl::CommandQueue(context_, device.device, profiling ? CL_QUEUE_PROFILING_ENABLE : 0);
-  build_ = buildProgramCached(context_, device, expandedKernelSource("montecl.cl"),
-                              kernelBuildOptions(layout_));
+  std::string options = kKernelBuildOptions;
+  if (!extraOptions.empty()) options += " " + extraOptions;
+  build_ = buildProgramCached(context_, device, expandedKernelSource(programFile), options);
 }
 
 cl::Kernel ClSession::kernel(const char* name) const {

@@ -1,13 +1,12 @@
-// cl_session.h: one OpenCL context + in-order queue on a device, with montecl's kernel program
-// (kernels/montecl.cl) built through the program cache, and kernel launches that name the kernel
-// when they fail.
+// cl_session.h: one OpenCL context + in-order queue on a device, with one kernel program (a file
+// under kernels/, expanded, plus extra build options) built through the program cache, and kernel
+// launches that name the kernel when they fail. Knows nothing of what the program computes.
 #pragma once
 #include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "bvh/bvh_layout.h"
 #include "cl/devices.h"
 #include "cl/program_cache.h"
 
@@ -24,14 +23,13 @@ constexpr const char* kKernelBuildOptions = "-cl-std=CL1.2";
 
 class ClSession {
  public:
+  // Builds kernels/<programFile> with kKernelBuildOptions + " " + extraOptions (e.g. defines).
   // workGroupSize 0: min(64, CL_KERNEL_WORK_GROUP_SIZE) per kernel. profiling: the queue is
-  // created with CL_QUEUE_PROFILING_ENABLE (event timings, used by `montecl bench`). layout: the
-  // BVH the kernels traverse (Auto: by device type, resolveBvhLayout).
+  // created with CL_QUEUE_PROFILING_ENABLE (event timings, used by `montecl bench`).
   explicit ClSession(const DeviceInfo& device, std::size_t workGroupSize = 0, bool profiling = false,
-                     BvhLayout layout = BvhLayout::Auto);
+                     const std::string& extraOptions = "", const std::string& programFile = "montecl.cl");
 
   const DeviceInfo& device() const { return device_; }
-  BvhLayout layout() const { return layout_; }  // resolved: Wide or Binary
   const cl::Context& context() const { return context_; }
   cl::CommandQueue& queue() { return queue_; }
   const ProgramBuild& build() const { return build_; }
@@ -77,7 +75,6 @@ class ClSession {
   DeviceInfo device_;
   bool oclgrind_;
   std::size_t workGroupSize_;
-  BvhLayout layout_;
   cl::Context context_;
   cl::CommandQueue queue_;
   ProgramBuild build_;

@@ -13,6 +13,7 @@
 #include "image/exr_layers.h"
 #include "image/image_io.h"
 #include "render/progress.h"
+#include "render/stage_program.h"
 #include "render/wavefront.h"
 #include "scene/scene.h"
 #include "util/errors.h"
@@ -21,7 +22,10 @@ namespace montecl {
 namespace {
 
 struct RenderArgs {
-  std::string scene, output, device, integrator, aoSampling, directSampling;
+  std::string scene, output, device;
+  std::optional<Integrator> integrator;
+  std::optional<AoSampling> aoSampling;
+  std::optional<DirectSampling> directSampling;
   std::string bvhLayout = "auto";
   std::optional<int> spp, width, height, lightSamples;
   std::optional<std::uint32_t> seed;
@@ -41,10 +45,10 @@ void applyOverrides(const RenderArgs& a, Scene& scene) {
   if (a.seed) r.seed = *a.seed;
   if (a.width) scene.camera.width = *a.width;
   if (a.height) scene.camera.height = *a.height;
-  if (!a.integrator.empty()) r.integrator = a.integrator;
-  if (!a.aoSampling.empty()) r.aoSampling = a.aoSampling;
+  if (a.integrator) r.integrator = *a.integrator;
+  if (a.aoSampling) r.aoSampling = *a.aoSampling;
   if (a.aoDistance) r.aoDistance = *a.aoDistance;
-  if (!a.directSampling.empty()) r.directSampling = a.directSampling;
+  if (a.directSampling) r.directSampling = *a.directSampling;
   if (a.lightSamples) r.lightSamples = *a.lightSamples;
 }
 
@@ -110,10 +114,10 @@ int runRender(const RenderArgs& a) {
   if (!a.aovs.empty() && !isExr(output))
     throwInputError(output, "--aov", "AOVs need an .exr output");
   DeviceInfo device = selectDevice(a.device);
-  BvhLayout layout = resolveBvhLayout(parseBvhLayout(a.bvhLayout), device.isGpu);
+  BvhLayout layout = resolveStageLayout(parseBvhLayout(a.bvhLayout), device);
 
   Bvh bvh = buildBvh(scene.triangles);
-  if (scene.render.integrator == "direct" && !hasEmitter(scene))
+  if (scene.render.integrator == Integrator::Direct && !hasEmitter(scene))
     std::cerr << "montecl: warning: " << scene.path << ": integrator direct but nothing emits (no Ke, no mesh "
               << "\"emission\"): the image is black\n";
   if (a.verbose) {
@@ -180,13 +184,14 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--width", args->width, "Image width in pixels")->check(CLI::PositiveNumber);
   cmd->add_option("--height", args->height, "Image height in pixels")->check(CLI::PositiveNumber);
   cmd->add_option("--integrator", args->integrator, "ao (ambient occlusion) | direct (area lights)")
-      ->check(CLI::IsMember({"ao", "direct"}));
-  cmd->add_option("--direct-sampling", args->directSampling, "Direct lighting: light | brdf | mis")
-      ->check(CLI::IsMember({"light", "brdf", "mis"}));
+      ->transform(CLI::CheckedTransformer(integratorNames()));
+  cmd->add_option("--direct-sampling", args->directSampling,
+                  "Direct lighting: " + choiceList(directSamplingNames(), false))
+      ->transform(CLI::CheckedTransformer(directSamplingNames()));
   cmd->add_option("--light-samples", args->lightSamples, "Light samples per camera sample (direct)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--ao-sampling", args->aoSampling, "AO directions: uniform | cosine")
-      ->check(CLI::IsMember({"uniform", "cosine"}));
+  cmd->add_option("--ao-sampling", args->aoSampling, "AO directions: " + choiceList(aoSamplingNames(), false))
+      ->transform(CLI::CheckedTransformer(aoSamplingNames()));
   cmd->add_option("--ao-distance", args->aoDistance, "Occluders farther than this are ignored")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--device", args->device, "OpenCL device: P:D, part of the device or platform name, or host (CPU, no OpenCL)");

@@ -97,7 +97,9 @@ ConformanceReport runConformance(const ConformanceOptions& options) {
     std::unique_ptr<WavefrontRenderer> renderer;
     try {
       RenderOptions ro;
-      ro.bvhLayout = device.isHost ? BvhLayout::Wide : options.bvhLayout;
+      // --bvh-layout is for the OpenCL devices under test; the host backend, the reference, runs
+      // its own (default) layout.
+      ro.bvhLayout = device.isHost ? BvhLayout::Auto : options.bvhLayout;
       renderer = std::make_unique<WavefrontRenderer>(device, ro);
       r.buildMs = renderer->programBuildMs();
       r.fromCache = renderer->programFromCache();
@@ -111,7 +113,7 @@ ConformanceReport runConformance(const ConformanceOptions& options) {
     r.pass = r.buildOk;
     if (renderer) {
       // Warm-up, untimed: PoCL specialises each kernel on its first launch.
-      for (const char* integrator : {"ao", "direct"}) {
+      for (Integrator integrator : {Integrator::Ao, Integrator::Direct}) {
         Scene tiny = cases.front().scene;
         tiny.camera.width = tiny.camera.height = 2;
         tiny.render.spp = 1;

@@ -42,19 +42,19 @@ Scene polygonLightScene(int size, int spp) {
   s.render.spp = spp;
   s.render.seed = 5;
   s.render.background = {0.1f, 0.2f, 0.3f};  // the far horizon is a miss
-  s.render.integrator = "direct";
+  s.render.integrator = Integrator::Direct;
   finishScene(s);
   return s;
 }
 
-Scene withAo(Scene s, const char* sampling) {
-  s.render.integrator = "ao";
+Scene withAo(Scene s, AoSampling sampling) {
+  s.render.integrator = Integrator::Ao;
   s.render.aoSampling = sampling;
   return s;
 }
 
-Scene withDirect(Scene s, const char* strategy, int lightSamples) {
-  s.render.integrator = "direct";
+Scene withDirect(Scene s, DirectSampling strategy, int lightSamples) {
+  s.render.integrator = Integrator::Direct;
   s.render.directSampling = strategy;
   s.render.lightSamples = lightSamples;
   return s;
@@ -69,16 +69,16 @@ std::string defaultCornellPath() {
 std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std::vector<std::string>& skipped) {
   std::vector<ConformanceCase> cases;
   const Scene wall = seededWallScene(o.size, o.spp);
-  cases.push_back({"wall/ao-uniform", withAo(wall, "uniform")});
-  cases.push_back({"wall/ao-cosine", withAo(wall, "cosine")});
-  Scene shortAo = withAo(wall, "uniform");
+  cases.push_back({"wall/ao-uniform", withAo(wall, AoSampling::Uniform)});
+  cases.push_back({"wall/ao-cosine", withAo(wall, AoSampling::Cosine)});
+  Scene shortAo = withAo(wall, AoSampling::Uniform);
   shortAo.render.aoDistance = 0.3f;
   cases.push_back({"wall/ao-uniform-distance-0.3", shortAo});
   const Scene light = polygonLightScene(o.size, o.spp);
-  cases.push_back({"polygon-light/direct-light", withDirect(light, "light", 1)});
-  cases.push_back({"polygon-light/direct-brdf", withDirect(light, "brdf", 1)});
-  cases.push_back({"polygon-light/direct-mis", withDirect(light, "mis", 2)});
-  cases.push_back({"polygon-light/ao-cosine", withAo(light, "cosine")});
+  cases.push_back({"polygon-light/direct-light", withDirect(light, DirectSampling::Light, 1)});
+  cases.push_back({"polygon-light/direct-brdf", withDirect(light, DirectSampling::Brdf, 1)});
+  cases.push_back({"polygon-light/direct-mis", withDirect(light, DirectSampling::Mis, 2)});
+  cases.push_back({"polygon-light/ao-cosine", withAo(light, AoSampling::Cosine)});
 
   const std::string path = o.cornellPath.empty() ? defaultCornellPath() : o.cornellPath;
   if (!std::ifstream(path)) {
@@ -90,9 +90,9 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   cornell.camera.width = cornell.camera.height = o.cornellSize;
   cornell.render.spp = o.cornellSpp;
   cornell.render.seed = 9;
-  cases.push_back({"cornell-box/direct-light", withDirect(cornell, "light", 1)});
-  cases.push_back({"cornell-box/direct-mis", withDirect(cornell, "mis", 1)});
-  cases.push_back({"cornell-box/ao-cosine", withAo(cornell, "cosine")});
+  cases.push_back({"cornell-box/direct-light", withDirect(cornell, DirectSampling::Light, 1)});
+  cases.push_back({"cornell-box/direct-mis", withDirect(cornell, DirectSampling::Mis, 1)});
+  cases.push_back({"cornell-box/ao-cosine", withAo(cornell, AoSampling::Cosine)});
   return cases;
 }
 

@@ -24,15 +24,14 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
   f.width = uint(camera.width);
   f.height = uint(camera.height);
   f.seed = settings.seed;
-  f.integrator = settings.integrator == "direct" ? MCL_INTEGRATOR_DIRECT : MCL_INTEGRATOR_AO;
-  f.aoSampling = settings.aoSampling == "uniform" ? MCL_AO_UNIFORM : MCL_AO_COSINE;
+  f.aoSampling = settings.aoSampling == AoSampling::Uniform ? MCL_AO_UNIFORM : MCL_AO_COSINE;
   f.aoDistance = settings.aoDistance;
   f.shadowSlots = shadowSlots;
   f.activeCount = f.width * f.height;
   f.lightSamples = uint(settings.lightSamples);
-  f.directSampling = settings.directSampling == "light"  ? MCL_DIRECT_LIGHT
-                     : settings.directSampling == "brdf" ? MCL_DIRECT_BRDF
-                                                         : MCL_DIRECT_MIS;
+  f.directSampling = settings.directSampling == DirectSampling::Light  ? MCL_DIRECT_LIGHT
+                     : settings.directSampling == DirectSampling::Brdf ? MCL_DIRECT_BRDF
+                                                                       : MCL_DIRECT_MIS;
   return f;
 }
 

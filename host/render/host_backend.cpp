@@ -1,16 +1,14 @@
-// host_backend.cpp: the host backend (`--device host`): the same stage_* functions the OpenCL
-// kernels wrap (kernels/shared/stages*.h, compiled here as C++ through compat.h) run as loops over
-// the wave's items on the CPU, without any OpenCL driver. Items are split into contiguous chunks
-// over a few std::threads; every item writes only its own outputs and every occlusion query its
-// own slot, so the image does not depend on the thread count or on the shadow queue's order.
-// Compiled with -ffp-contract=off (CMakeLists.txt), matching `#pragma OPENCL FP_CONTRACT OFF` in
-// the kernels.
+// host_backend.cpp: the host backend (`--device host`): the same stage bodies the OpenCL kernels
+// run (kernels/stages/*.h, compiled here as C++ through compat.h), as loops over a launch's items
+// on the CPU, without any OpenCL driver; arguments come by name from HostBindings
+// (render/stage_bindings.h). Items are split into contiguous chunks over a few std::threads; every
+// item writes only its own outputs and every occlusion query its own slot, so the image does not
+// depend on the thread count or on the shadow queue's order. Compiled with -ffp-contract=off
+// (CMakeLists.txt), matching `#pragma OPENCL FP_CONTRACT OFF` in the kernels.
 #include <algorithm>
 #include <limits>
 #include <thread>
 
-#include "kernels/shared/stages_aov.h"
-#include "kernels/shared/stages_direct.h"
 #include "render/stage_runner.h"
 
 namespace montecl {
@@ -21,8 +19,7 @@ constexpr std::uint64_t kMinItemsPerThread = 2048;
 
 class HostStageRunner final : public StageRunner {
  public:
-  explicit HostStageRunner(unsigned threads)
-      : threads_(threads ? threads : std::max(1u, std::thread::hardware_concurrency())) {}
+  HostStageRunner() : threads_(std::max(1u, std::thread::hardware_concurrency())) {}
 
   std::uint64_t maxAllocBytes() const override { return std::numeric_limits<std::uint64_t>::max() / 4; }
   BvhLayout bvhLayout() const override { return BvhLayout::Wide; }
@@ -35,6 +32,7 @@ class HostStageRunner final : public StageRunner {
     emitters_ = in.emitters;
     if (materials_.empty()) materials_.resize(1);
     if (emitters_.empty()) emitters_.resize(1);
+    if (tris_.empty()) tris_.resize(1);
     if (nodes_.empty()) nodes_.push_back(emptyWideNode());  // an empty BVH: one node of empty slots, as on the device
     const std::uint64_t wave = std::max<std::uint64_t>(1, in.wave), slots = frame_.shadowSlots;
     rays_.assign(wave, Ray{});
@@ -50,83 +48,70 @@ class HostStageRunner final : public StageRunner {
     aovs_ = in.aovs;
     aov_.assign(in.aovs ? 2 * wave : 1, float4(0.0f));
     aovSum_.assign(in.aovs ? 2 * pixels : 1, float4(0.0f));
-    sum_.assign(pixels, float4(0.0f));
-    sumSq_.assign(pixels, float4(0.0f));
+    mean_.assign(pixels, float4(0.0f));
+    m2_.assign(pixels, float4(0.0f));
+    bind();
   }
 
   void setActivePixels(const std::vector<std::uint32_t>& pixels) override {
     active_ = pixels;
     if (active_.empty()) active_.resize(1);
     frame_.activeCount = uint(pixels.size());
+    bind();
   }
 
   void beginWave(std::uint64_t waveStart, std::uint32_t count) override {
-    waveStart_ = waveStart;
-    count_ = count;
+    bindings_.waveStart = waveStart;
+    bindings_.waveCount = count;
+    rayCount_ = count;
     queueCount_ = 0;
   }
 
-  void generate() override {
-    parallelFor(count_, [&](uint i) { stage_generate(&frame_, active_.data(), waveStart_, i, rays_.data()); });
-  }
-  void intersectCamera() override {
-    parallelFor(count_, [&](uint i) { stage_intersect(nodes_.data(), tris_.data(), rays_.data(), i, hits_.data()); });
-  }
-  void intersectBounce() override {
-    parallelFor(count_, [&](uint i) {
-      stage_intersect(nodes_.data(), tris_.data(), bounce_.data(), i, bounceHits_.data());
+  void launch(Stage s, std::uint64_t items, RayInput rays) override {
+    withHostStageArgs(s, bindings_.forRays(rays), [&](const auto& args) {
+      // The stage body for this args type, found by overload resolution (stage_<name>(&args, i)).
+      parallelFor(items, [&](uint i) { runStage(&args, i); });
     });
   }
-  void shadeAo() override {
-    parallelFor(count_, [&](uint i) {
-      stage_shade_ao(&frame_, active_.data(), waveStart_, tris_.data(), rays_.data(), hits_.data(), i, radiance_.data(),
-                     shadowContrib_.data(), queue_.data(), &queueCount_);
-    });
-  }
-  void shadeDirect() override {
-    parallelFor(count_, [&](uint i) {
-      stage_shade_direct(&frame_, active_.data(), waveStart_, tris_.data(), materials_.data(), emitters_.data(), rays_.data(),
-                         hits_.data(), i, radiance_.data(), shadowContrib_.data(), queue_.data(), &queueCount_,
-                         bounce_.data());
-    });
-  }
-  void shadeDirectHit() override {
-    parallelFor(count_, [&](uint i) {
-      stage_shade_direct_hit(&frame_, tris_.data(), materials_.data(), rays_.data(), hits_.data(), bounce_.data(),
-                             bounceHits_.data(), i, shadowContrib_.data());
-    });
-  }
-  void intersectShadow(std::uint64_t maxQueries) override {
-    const std::uint64_t n = std::min<std::uint64_t>(maxQueries, queueCount_);
-    parallelFor(n, [&](uint k) {
-      stage_intersect_shadow(nodes_.data(), tris_.data(), queue_.data(), k, shadowContrib_.data());
-    });
-  }
-  void accumulate(std::uint64_t pixelsTouched) override {
-    parallelFor(pixelsTouched, [&](uint j) {
-      stage_accumulate(&frame_, active_.data(), waveStart_, count_, j, radiance_.data(), shadowContrib_.data(), sum_.data(),
-                       sumSq_.data());
-    });
-  }
-  void recordAov() override {
-    parallelFor(count_, [&](uint i) {
-      stage_record_aov(tris_.data(), materials_.data(), rays_.data(), hits_.data(), i, aov_.data());
-    });
-  }
-  void accumulateAov(std::uint64_t pixelsTouched) override {
-    parallelFor(pixelsTouched, [&](uint j) {
-      stage_accumulate_aov(&frame_, active_.data(), waveStart_, count_, j, aov_.data(), aovSum_.data());
-    });
-  }
+
   std::uint32_t finishWave() override { return queueCount_; }
 
   void readFilm(Film& film) override {
-    film.mean.assign(sum_.begin(), sum_.end());
-    film.m2.assign(sumSq_.begin(), sumSq_.end());
+    film.mean.assign(mean_.begin(), mean_.end());
+    film.m2.assign(m2_.begin(), m2_.end());
     if (aovs_) film.aovSum.assign(aovSum_.begin(), aovSum_.end());
   }
 
  private:
+#define MCL_HOST_RUN_STAGE(stage) \
+  static void runStage(const stage##_args* a, uint i) { stage_##stage(a, i); }
+  MCL_STAGES(MCL_HOST_RUN_STAGE)
+#undef MCL_HOST_RUN_STAGE
+
+  // Points the bindings at the vectors (after any of them may have moved).
+  void bind() {
+    HostBindings& b = bindings_;
+    b.frame = &frame_;
+    b.nodes = nodes_.data();
+    b.tris = tris_.data();
+    b.materials = materials_.data();
+    b.emitters = emitters_.data();
+    b.active = active_.data();
+    b.rays = rays_.data();
+    b.bounce = bounce_.data();
+    b.hits = hits_.data();
+    b.bounceHits = bounceHits_.data();
+    b.radiance = radiance_.data();
+    b.shadowContrib = shadowContrib_.data();
+    b.aov = aov_.data();
+    b.queue = queue_.data();
+    b.rayCount = &rayCount_;
+    b.queueCount = &queueCount_;
+    b.mean = mean_.data();
+    b.m2 = m2_.data();
+    b.aovSum = aovSum_.data();
+  }
+
   // Runs body(i) for i in [0, n): contiguous chunks on up to threads_ threads.
   template <typename Body>
   void parallelFor(std::uint64_t n, const Body& body) {
@@ -146,6 +131,7 @@ class HostStageRunner final : public StageRunner {
   }
 
   unsigned threads_;
+  HostBindings bindings_;
   FrameParams frame_{};
   bool aovs_ = false;
   std::vector<float4> aov_, aovSum_;
@@ -156,17 +142,14 @@ class HostStageRunner final : public StageRunner {
   std::vector<Emitter> emitters_;
   std::vector<Ray> rays_, bounce_;
   std::vector<Hit> hits_, bounceHits_;
-  std::vector<float4> radiance_, shadowContrib_, sum_, sumSq_;
+  std::vector<float4> radiance_, shadowContrib_, mean_, m2_;
   std::vector<ShadowWork> queue_;
-  std::uint64_t waveStart_ = 0;
-  std::uint32_t count_ = 0;
-  volatile uint queueCount_ = 0;
+  uint rayCount_ = 0;
+  uint queueCount_ = 0;  // incremented atomically by the shade stages
 };
 
 }  // namespace
 
-std::unique_ptr<StageRunner> makeHostStageRunner(unsigned threads) {
-  return std::make_unique<HostStageRunner>(threads);
-}
+std::unique_ptr<StageRunner> makeHostStageRunner() { return std::make_unique<HostStageRunner>(); }
 
 }  // namespace montecl

@@ -1,16 +1,17 @@
-// ray_tracer.h: traces arbitrary batches of rays through the device's intersect (closest hit) and
-// intersect_shadow (any hit) kernels, for tests and benchmarks of the traversal on its own.
+// ray_tracer.h: traces arbitrary batches of rays through the stage program's intersect (closest
+// hit) and intersect_shadow (any hit) kernels, for tests and benchmarks of the traversal on its own.
 #pragma once
 #include <vector>
 
 #include "bvh/bvh.h"
-#include "cl/cl_session.h"
+#include "render/stage_bindings.h"
+#include "render/stage_program.h"
 
 namespace montecl {
 
 class RayTracer {
  public:
-  RayTracer(ClSession& session, const Bvh& bvh);
+  RayTracer(StageProgram& program, const Bvh& bvh);
 
   // Closest hit of each ray (dir.w = tmax). With kernelMs (the session must profile), the kernel
   // runs `runs` times and each run's execution time is appended (benchmarks).
@@ -18,12 +19,11 @@ class RayTracer {
   // 1 where something blocks the ray before dir.w, else 0; runs and kernelMs as above.
   std::vector<int> occluded(const std::vector<Ray>& rays, int runs = 1, std::vector<double>* kernelMs = nullptr);
 
-
  private:
-  void run(cl::Kernel& k, std::size_t n, int runs, std::vector<double>* kernelMs);
+  void run(Stage stage, std::size_t n, int runs, std::vector<double>* kernelMs);
 
   ClSession& cl_;
-  cl::Buffer nodes_, tris_;
+  ClBindings bindings_;  // frame (unused by the traversal stages), nodes and tris; the rest per call
   cl::Kernel intersect_, intersectShadow_;
 };
 

@@ -1,7 +1,8 @@
 // stage_runner.h: the backend interface of the wave loop. One loop (wavefront.cpp) drives every
 // backend through these calls, stage by stage; a backend owns the per-render buffers and runs the
-// shared stage_* functions (kernels/shared/stages*.h) either as OpenCL kernels (cl_backend.cpp)
-// or as plain C++ loops on the CPU (host_backend.cpp, `--device host`).
+// stage bodies (kernels/stages/*.h, named by the stage table) either as OpenCL kernels
+// (cl_backend.cpp) or as plain C++ loops on the CPU (host_backend.cpp, `--device host`). Both bind
+// a stage's arguments by name from StageBindings (render/stage_bindings.h).
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -10,7 +11,7 @@
 #include "bvh/bvh.h"
 #include "cl/devices.h"
 #include "image/film.h"
-#include "kernels/shared/types.h"
+#include "render/stage_bindings.h"
 
 namespace montecl {
 
@@ -41,22 +42,12 @@ class StageRunner {
   // Replaces the active-pixel list the waves walk (setup starts with every pixel, in order) and
   // sets FrameParams::activeCount to its size.
   virtual void setActivePixels(const std::vector<std::uint32_t>& pixels) = 0;
-  // Starts a wave of `count` items from global sample index waveStart: resets the ray count to
-  // `count` and the shadow queue count to 0.
+  // Starts a wave of `count` items from global sample index waveStart: sets the bindings'
+  // waveStart and waveCount, resets the ray count to `count` and the shadow queue count to 0.
   virtual void beginWave(std::uint64_t waveStart, std::uint32_t count) = 0;
-  virtual void generate() = 0;
-  virtual void intersectCamera() = 0;
-  virtual void shadeAo() = 0;
-  virtual void shadeDirect() = 0;
-  virtual void intersectBounce() = 0;
-  virtual void shadeDirectHit() = 0;
-  // Runs intersect_shadow over up to maxQueries queue entries (the queue's own count bounds it).
-  virtual void intersectShadow(std::uint64_t maxQueries) = 0;
-  // Runs accumulate over the `pixelsTouched` pixels of the wave.
-  virtual void accumulate(std::uint64_t pixelsTouched) = 0;
-  // AOVs (only when StageInputs::aovs): per item, then per touched pixel.
-  virtual void recordAov() = 0;
-  virtual void accumulateAov(std::uint64_t pixelsTouched) = 0;
+  // Runs stage s over `items` work items (its body bounds them by its own count), reading the
+  // camera or the bounce rays (RayInput). Stages run in launch order.
+  virtual void launch(Stage s, std::uint64_t items, RayInput rays = RayInput::Camera) = 0;
   // Waits for the wave; returns the number of occlusion queries it traced.
   virtual std::uint32_t finishWave() = 0;
   // Reads the accumulated statistics (film.mean, film.m2, film.aovSum; the caller sets the size).
@@ -66,8 +57,8 @@ class StageRunner {
 // OpenCL kernels on `device` (its kernels built through the program cache).
 std::unique_ptr<StageRunner> makeClStageRunner(const DeviceInfo& device, std::size_t workGroupSize,
                                                BvhLayout layout = BvhLayout::Auto);
-// The stage functions compiled as C++, run on `threads` CPU threads (0: hardware concurrency).
-std::unique_ptr<StageRunner> makeHostStageRunner(unsigned threads = 0);
+// The stage functions compiled as C++, run on the CPU's threads.
+std::unique_ptr<StageRunner> makeHostStageRunner();
 // The runner for a device: the host backend when device.isHost, else OpenCL.
 std::unique_ptr<StageRunner> makeStageRunner(const DeviceInfo& device, std::size_t workGroupSize,
                                              BvhLayout layout = BvhLayout::Auto);

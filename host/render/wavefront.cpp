@@ -54,7 +54,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
                                const ProgressFn& progress) {
   Impl& m = *impl_;
   StageRunner& run = *m.runner;
-  const bool direct = scene.render.integrator == "direct";
+  const bool direct = scene.render.integrator == Integrator::Direct;
   const std::uint32_t slots = direct ? std::uint32_t(scene.render.lightSamples) + 1 : 1;
   FrameParams frame = makeFrameParams(scene.camera, scene.render, slots);
   const EmitterTable emitters = direct ? buildEmitterTable(bvh, scene.materials) : EmitterTable{};
@@ -107,20 +107,21 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
     for (std::uint64_t done = 0; done < count;) {
       const std::uint32_t n = std::uint32_t(std::min(wave, count - done));
       run.beginWave(first + done, n);
-      run.generate();
-      run.intersectCamera();
+      run.launch(Stage::generate, n);
+      run.launch(Stage::intersect, n);
       if (direct) {
-        run.shadeDirect();
-        run.intersectBounce();
-        run.shadeDirectHit();
+        run.launch(Stage::shade_direct, n);
+        run.launch(Stage::intersect, n, RayInput::Bounce);
+        run.launch(Stage::shade_direct_hit, n);
       } else {
-        run.shadeAo();
+        run.launch(Stage::shade_ao, n);
       }
-      run.intersectShadow(std::uint64_t(n) * slots);
-      run.accumulate(std::min<std::uint64_t>(n, activeCount));
+      run.launch(Stage::intersect_shadow, std::uint64_t(n) * slots);
+      const std::uint64_t touched = std::min<std::uint64_t>(n, activeCount);  // pixels in the wave
+      run.launch(Stage::accumulate, touched);
       if (m.options.aovs) {
-        run.recordAov();
-        run.accumulateAov(std::min<std::uint64_t>(n, activeCount));
+        run.launch(Stage::record_aov, n);
+        run.launch(Stage::accumulate_aov, touched);
       }
       const std::uint32_t shadowCount = run.finishWave();
 
@@ -129,7 +130,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
       stats.samples += n;
       stats.cameraRays += n;
       stats.shadowRays += shadowCount;
-      if (direct && scene.render.directSampling != "light") stats.cameraRays += n;  // BRDF rays
+      if (direct && scene.render.directSampling != DirectSampling::Light) stats.cameraRays += n;  // BRDF rays
       stats.seconds = elapsed();
       if (progress) progress(stats.samples, std::max(expected, stats.samples), stats);
       if (done < count && mustStop()) return false;

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/render_choices.h"
+
 namespace montecl {
 
 struct Camera {
@@ -18,13 +20,13 @@ struct Camera {
 };
 
 struct RenderSettings {
-  std::string integrator = "ao";  // "ao" (issue 2); "direct" later
+  Integrator integrator = Integrator::Ao;
   int spp = 64;
   std::uint32_t seed = 0;
   float aoDistance = 1e30f;         // occluders farther than this do not count
-  std::string aoSampling = "cosine";  // "uniform" | "cosine"
+  AoSampling aoSampling = AoSampling::Cosine;
   glm::vec3 background{0.0f};
-  std::string directSampling = "mis";  // "light" | "brdf" | "mis" (integrator "direct")
+  DirectSampling directSampling = DirectSampling::Mis;  // (integrator direct)
   int lightSamples = 1;                // light samples per shading point (integrator "direct")
 };
 

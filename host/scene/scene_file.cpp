@@ -140,15 +140,13 @@ glm::vec3 getColor(const Ctx& ctx, const json& v, const std::string& where) {
   return c;
 }
 
-std::string getChoice(const Ctx& ctx, const json& v, const std::string& where,
-                      std::initializer_list<const char*> choices) {
-  std::string list;
-  for (const char* c : choices) list += std::string(list.empty() ? "" : ", ") + "\"" + c + "\"";
+template <class E>
+E getChoice(const Ctx& ctx, const json& v, const std::string& where, const ChoiceNames<E>& names) {
+  const std::string list = choiceList(names, /*quoted=*/true);
   if (!v.is_string()) fail(ctx, where, "expected one of " + list + ", got " + v.type_name());
-  std::string s = v.get<std::string>();
-  if (std::none_of(choices.begin(), choices.end(), [&](const char* c) { return s == c; }))
-    fail(ctx, where, "expected one of " + list + ", got " + v.dump());
-  return s;
+  auto it = names.find(v.get<std::string>());
+  if (it == names.end()) fail(ctx, where, "expected one of " + list + ", got " + v.dump());
+  return it->second;
 }
 
 // ---- camera ---------------------------------------------------------------------------------
@@ -188,7 +186,7 @@ RenderSettings parseRender(const Ctx& ctx, const json& root) {
                   {"integrator", "spp", "seed", "ao_distance", "ao_sampling", "background", "direct_sampling",
                    "light_samples"});
   const int intMax = std::numeric_limits<int>::max();
-  if (const json* v = optionalKey(j, "integrator")) r.integrator = getChoice(ctx, *v, "render.integrator", {"ao", "direct"});
+  if (const json* v = optionalKey(j, "integrator")) r.integrator = getChoice(ctx, *v, "render.integrator", integratorNames());
   if (const json* v = optionalKey(j, "spp")) r.spp = getPositiveInt(ctx, *v, "render.spp", intMax);
   if (const json* v = optionalKey(j, "seed"))
     r.seed = static_cast<std::uint32_t>(getInteger(ctx, *v, "render.seed", 0, 0xffffffffLL, "an integer in [0, 4294967295]"));
@@ -196,10 +194,10 @@ RenderSettings parseRender(const Ctx& ctx, const json& root) {
     r.aoDistance = getFloat(ctx, *v, "render.ao_distance");
     if (!(r.aoDistance > 0.0f)) fail(ctx, "render.ao_distance", "must be > 0");
   }
-  if (const json* v = optionalKey(j, "ao_sampling")) r.aoSampling = getChoice(ctx, *v, "render.ao_sampling", {"uniform", "cosine"});
+  if (const json* v = optionalKey(j, "ao_sampling")) r.aoSampling = getChoice(ctx, *v, "render.ao_sampling", aoSamplingNames());
   if (const json* v = optionalKey(j, "background")) r.background = getColor(ctx, *v, "render.background");
   if (const json* v = optionalKey(j, "direct_sampling"))
-    r.directSampling = getChoice(ctx, *v, "render.direct_sampling", {"light", "brdf", "mis"});
+    r.directSampling = getChoice(ctx, *v, "render.direct_sampling", directSamplingNames());
   if (const json* v = optionalKey(j, "light_samples")) r.lightSamples = getPositiveInt(ctx, *v, "render.light_samples", intMax);
   return r;
 }

@@ -6,8 +6,6 @@
 
 #define MCL_NO_HIT 0xffffffffu
 #define MCL_BVH_STACK_SIZE 64
-#define MCL_INTEGRATOR_AO 0u
-#define MCL_INTEGRATOR_DIRECT 1u
 #define MCL_AO_UNIFORM 0u
 #define MCL_AO_COSINE 1u
 #define MCL_DIRECT_LIGHT 0u
@@ -83,7 +81,8 @@ typedef struct MCL_ALIGN16 {
   float4 camDx;       // step of one pixel to the right
   float4 camDy;       // step of one pixel down
   float4 background;  // radiance of camera rays that hit nothing
-  uint width, height, seed, integrator;
+  uint width, height, seed;
+  uint pad0;          // explicit padding
   uint aoSampling;
   float aoDistance;
   uint shadowSlots;   // shadow contributions per sample (AO: 1; direct: lightSamples + 1)

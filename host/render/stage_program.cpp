@@ -1,0 +1,32 @@
+// stage_program.cpp: the layout rule and the stage program built for it (see stage_program.h).
+#include "render/stage_program.h"
+
+#include "util/errors.h"
+
+namespace montecl {
+
+BvhLayout resolveStageLayout(BvhLayout requested, const DeviceInfo& device) {
+  if (device.isHost) {
+    if (requested == BvhLayout::Binary)
+      throw InputError("--bvh-layout binary: the host backend traverses the wide BVH only");
+    return BvhLayout::Wide;
+  }
+  return resolveBvhLayout(requested, device.isGpu);
+}
+
+std::string stageBuildOptions(BvhLayout resolved) {
+  return resolved == BvhLayout::Binary ? "-DMCL_BVH_BINARY=1" : "";
+}
+
+StageProgram::StageProgram(const DeviceInfo& device, BvhLayout layout, std::size_t workGroupSize,
+                           bool profiling)
+    : layout_(resolveStageLayout(layout, device)),
+      session_(device, workGroupSize, profiling, stageBuildOptions(layout_)) {}
+
+cl::Buffer StageProgram::uploadNodes(const Bvh& bvh) const {
+  if (layout_ == BvhLayout::Binary)
+    return session_.upload(bvh.nodes.empty() ? std::vector<BvhNode>{emptyBinaryNode()} : bvh.nodes);
+  return session_.upload(bvh.wide.empty() ? std::vector<WideNode>{emptyWideNode()} : bvh.wide);
+}
+
+}  // namespace montecl

@@ -1,0 +1,22 @@
+// render_choices.cpp: the names of the render settings' choices (see render_choices.h).
+#include "scene/render_choices.h"
+
+namespace montecl {
+
+const ChoiceNames<Integrator>& integratorNames() {
+  static const ChoiceNames<Integrator> names{{"ao", Integrator::Ao}, {"direct", Integrator::Direct}};
+  return names;
+}
+
+const ChoiceNames<AoSampling>& aoSamplingNames() {
+  static const ChoiceNames<AoSampling> names{{"uniform", AoSampling::Uniform}, {"cosine", AoSampling::Cosine}};
+  return names;
+}
+
+const ChoiceNames<DirectSampling>& directSamplingNames() {
+  static const ChoiceNames<DirectSampling> names{
+      {"light", DirectSampling::Light}, {"brdf", DirectSampling::Brdf}, {"mis", DirectSampling::Mis}};
+  return names;
+}
+
+}  // namespace montecl

@@ -1,0 +1,82 @@
+// stage_table.h: every wavefront stage and its kernel arguments, declared once (X-macros, as
+// Cycles declares its kernel state once). Reads and writes nothing. From this table come:
+// - the stage's argument struct <stage>_args (below), the one parameter of its body
+//   stage_<stage>(const <stage>_args* a, uint item) in kernels/stages/<stage>.h;
+// - the OpenCL kernel signature and the struct it builds (kernels/montecl.cl);
+// - the OpenCL argument binding and the host backend's call (host/render/stage_bindings.h), both
+//   by name from StageBindings, so a table name that no binding has does not compile.
+// Every stage also receives `frame` (the render's FrameParams) as its first argument.
+// Adding a stage: write kernels/stages/<stage>.h, add STAGE(<stage>) to MCL_STAGES and its
+// MCL_ARGS_<stage> list here, and launch it from the wave loop (host/render/wavefront.cpp).
+#pragma once
+#include "traverse.h"  // BvhTraversalNode: the node type of the layout the program is built for
+
+#define MCL_STAGES(STAGE)                                                                          \
+  STAGE(generate)                                                                                  \
+  STAGE(intersect)                                                                                 \
+  STAGE(shade_ao)                                                                                  \
+  STAGE(shade_direct)                                                                              \
+  STAGE(shade_direct_hit)                                                                          \
+  STAGE(intersect_shadow)                                                                          \
+  STAGE(accumulate)                                                                                \
+  STAGE(record_aov)                                                                                \
+  STAGE(accumulate_aov)
+
+// ARG(type, name): the names are StageBindings' members (host/render/stage_bindings.h).
+#define MCL_ARGS_generate(ARG)                                                                     \
+  ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
+  ARG(MCL_GLOBAL Ray*, rays)
+
+#define MCL_ARGS_intersect(ARG)                                                                    \
+  ARG(MCL_GLOBAL const BvhTraversalNode*, nodes) ARG(MCL_GLOBAL const Triangle*, tris)             \
+  ARG(MCL_GLOBAL const Ray*, rays) ARG(MCL_GLOBAL const uint*, rayCount) ARG(MCL_GLOBAL Hit*, hits)
+
+#define MCL_ARGS_shade_ao(ARG)                                                                     \
+  ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
+  ARG(MCL_GLOBAL const Triangle*, tris) ARG(MCL_GLOBAL const Ray*, rays)                           \
+  ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL float4*, radiance)                               \
+  ARG(MCL_GLOBAL float4*, shadowContrib) ARG(MCL_GLOBAL ShadowWork*, queue)                        \
+  ARG(MCL_GLOBAL volatile uint*, queueCount)
+
+#define MCL_ARGS_shade_direct(ARG)                                                                 \
+  ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
+  ARG(MCL_GLOBAL const Triangle*, tris) ARG(MCL_GLOBAL const Material*, materials)                 \
+  ARG(MCL_GLOBAL const Emitter*, emitters) ARG(MCL_GLOBAL const Ray*, rays)                        \
+  ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL float4*, radiance)                               \
+  ARG(MCL_GLOBAL float4*, shadowContrib) ARG(MCL_GLOBAL ShadowWork*, queue)                        \
+  ARG(MCL_GLOBAL volatile uint*, queueCount) ARG(MCL_GLOBAL Ray*, bounce)
+
+#define MCL_ARGS_shade_direct_hit(ARG)                                                             \
+  ARG(uint, waveCount) ARG(MCL_GLOBAL const Triangle*, tris)                                       \
+  ARG(MCL_GLOBAL const Material*, materials) ARG(MCL_GLOBAL const Ray*, rays)                      \
+  ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL const Ray*, bounce)                              \
+  ARG(MCL_GLOBAL const Hit*, bounceHits) ARG(MCL_GLOBAL float4*, shadowContrib)
+
+#define MCL_ARGS_intersect_shadow(ARG)                                                             \
+  ARG(MCL_GLOBAL const BvhTraversalNode*, nodes) ARG(MCL_GLOBAL const Triangle*, tris)             \
+  ARG(MCL_GLOBAL const ShadowWork*, queue) ARG(MCL_GLOBAL const uint*, queueCount)                 \
+  ARG(MCL_GLOBAL float4*, shadowContrib)
+
+#define MCL_ARGS_accumulate(ARG)                                                                   \
+  ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
+  ARG(MCL_GLOBAL const float4*, radiance) ARG(MCL_GLOBAL const float4*, shadowContrib)             \
+  ARG(MCL_GLOBAL float4*, mean) ARG(MCL_GLOBAL float4*, m2)
+
+#define MCL_ARGS_record_aov(ARG)                                                                   \
+  ARG(uint, waveCount) ARG(MCL_GLOBAL const Triangle*, tris)                                       \
+  ARG(MCL_GLOBAL const Material*, materials) ARG(MCL_GLOBAL const Ray*, rays)                      \
+  ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL float4*, aov)
+
+#define MCL_ARGS_accumulate_aov(ARG)                                                               \
+  ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
+  ARG(MCL_GLOBAL const float4*, aov) ARG(MCL_GLOBAL float4*, aovSum)
+
+// <stage>_args: frame, then the table's arguments, as fields of the same names.
+#define MCL_ARG_FIELD(type, name) type name;
+#define MCL_STAGE_ARGS_STRUCT(stage)                                                               \
+  typedef struct {                                                                                 \
+    MCL_CONSTANT const FrameParams* frame;                                                         \
+    MCL_ARGS_##stage(MCL_ARG_FIELD)                                                                \
+  } stage##_args;
+
+MCL_STAGES(MCL_STAGE_ARGS_STRUCT)

@@ -1,0 +1,42 @@
+// shade_ao: reads camera rays and their hits; writes radiance (background on a miss, else 0),
+// clears the item's shadow slots, and pushes one AO occlusion query per hit onto the shadow queue
+// (atomic counter) whose unoccluded value is the AO estimate V cos(theta) / (pi p(w)): 1 for
+// cosine sampling, 2 cos(theta) for uniform sampling.
+#pragma once
+#include "stage_common.h"
+
+MCL_INLINE void stage_shade_ao(const shade_ao_args* a, uint i) {
+  if (i >= a->waveCount) return;
+  MCL_CONSTANT const FrameParams* f = a->frame;
+  Hit h = a->hits[i];
+  for (uint k = 0; k < f->shadowSlots; ++k)
+    a->shadowContrib[i * f->shadowSlots + k] = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
+  if (h.tri == MCL_NO_HIT) {
+    a->radiance[i] = f->background;
+    return;
+  }
+  a->radiance[i] = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
+  float3 dir = xyz(a->rays[i].dir);
+  MCL_GLOBAL const Triangle* tri = &a->tris[h.tri];
+  float3 n = facing_normal(tri, dir);
+  float4 u = rng_uniform4(f->seed, item_pixel(f, a->active, a->waveStart, i),
+                          item_sample(f, a->waveStart, i), MCL_DIM_AO);
+  float3 dirLocal;
+  float weight;
+  if (f->aoSampling == MCL_AO_COSINE) {
+    dirLocal = sample_cosine_hemisphere(u.x, u.y);
+    weight = 1.0f;  // cos / (pi * cos / pi)
+  } else {
+    dirLocal = sample_uniform_hemisphere(u.x, u.y);
+    weight = 2.0f * dirLocal.z;  // cos / (pi / (2 pi))
+  }
+  if (!(weight > 0.0f)) return;
+  ShadowWork w;
+  w.ray.origin = with_w(offset_ray_origin(hit_position(tri, h), n), 0.0f);
+  w.ray.dir = with_w(to_world(dirLocal, n), f->aoDistance);
+  w.r = weight;
+  w.g = weight;
+  w.b = weight;
+  w.slot = i * f->shadowSlots;
+  a->queue[MCL_ATOMIC_INC(a->queueCount)] = w;
+}

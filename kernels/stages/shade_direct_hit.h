@@ -1,0 +1,30 @@
+// shade_direct_hit: reads each item's BRDF ray (bounce) and its closest hit (bounceHits), the
+// camera hit and materials; when the BRDF ray reached an emitter's front face, writes
+// Kd * Le * w_brdf (f cos / p = Kd for cosine sampling; w_brdf the MIS weight under mis) to the
+// item's BRDF shadow slot, K.
+#pragma once
+#include "stage_common.h"
+
+MCL_INLINE void stage_shade_direct_hit(const shade_direct_hit_args* a, uint i) {
+  if (i >= a->waveCount) return;
+  MCL_CONSTANT const FrameParams* f = a->frame;
+  Hit bh = a->bounceHits[i];
+  if (bh.tri == MCL_NO_HIT || !(a->bounce[i].dir.w > 0.0f)) return;
+  MCL_GLOBAL const Material* materials = a->materials;
+  float3 wi = xyz(a->bounce[i].dir);
+  MCL_GLOBAL const Triangle* lt = &a->tris[bh.tri];
+  float3 le = emitted_toward(lt, materials, wi);
+  if (!(le.x > 0.0f || le.y > 0.0f || le.z > 0.0f)) return;
+  MCL_GLOBAL const Triangle* tri = &a->tris[a->hits[i].tri];
+  float3 n = facing_normal(tri, xyz(a->rays[i].dir));
+  float3 albedo = xyz(materials[triangle_material(tri)].albedo);
+  float weight = 1.0f;
+  if (f->directSampling == MCL_DIRECT_MIS && f->emitterCount > 0) {
+    float area = triangle_area(lt);
+    float cosLight = -dot(normalize(cross(xyz(lt->e1), xyz(lt->e2))), wi);
+    float pick = emitter_pick_probability(area, xyz(materials[triangle_material(lt)].emission), f->emitterPower);
+    float pdfLight = area_to_solid_angle(pick / area, bh.t * bh.t, cosLight);
+    weight = power_heuristic(1.0f, pdf_cosine_hemisphere(dot(n, wi)), (float)f->lightSamples, pdfLight);
+  }
+  a->shadowContrib[i * f->shadowSlots + f->lightSamples] = with_w(albedo * le * weight, 0.0f);
+}

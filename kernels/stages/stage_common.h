@@ -1,0 +1,41 @@
+// stage_common.h: what several stage bodies share: the pixel and sample of a wave item, and the
+// geometry of a hit (facing normal, position, light emitted toward a direction). Pure functions of
+// their arguments; compiled by the kernels and by the host backend.
+// A wave holds `waveCount` consecutive indices g = waveStart + i into the active-pixel list,
+// sample-major: pixel = active[g % activeCount], sample = g / activeCount, so a pixel's samples
+// are always accumulated in sample order whatever the wave size. Without adaptive sampling the list
+// holds every pixel in order.
+#pragma once
+#include "../shared/camera.h"
+#include "../shared/lights.h"
+#include "../shared/rng.h"
+#include "../shared/sampling.h"
+#include "../shared/stage_table.h"
+
+// The pixel and the sample index of wave item i.
+MCL_INLINE uint item_pixel(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const uint* active,
+                           ulong waveStart, uint i) {
+  return active[(uint)((waveStart + i) % f->activeCount)];
+}
+MCL_INLINE uint item_sample(MCL_CONSTANT const FrameParams* f, ulong waveStart, uint i) {
+  return (uint)((waveStart + i) / f->activeCount);
+}
+
+// Geometric normal of a hit triangle, flipped to face the incoming direction.
+MCL_INLINE float3 facing_normal(MCL_GLOBAL const Triangle* tri, float3 incoming) {
+  float3 n = normalize(cross(xyz(tri->e1), xyz(tri->e2)));
+  return dot(n, incoming) > 0.0f ? -n : n;
+}
+
+// Hit position from barycentrics (more accurate than org + t * dir).
+MCL_INLINE float3 hit_position(MCL_GLOBAL const Triangle* tri, Hit h) {
+  return xyz(tri->v0) + xyz(tri->e1) * h.u + xyz(tri->e2) * h.v;
+}
+
+// Le leaving tri toward the viewer moving along dir (0 from the back face): emitters emit Ke from
+// their front face (the side of cross(e1, e2)).
+MCL_INLINE float3 emitted_toward(MCL_GLOBAL const Triangle* tri, MCL_GLOBAL const Material* materials,
+                                 float3 dir) {
+  float3 e = xyz(materials[triangle_material(tri)].emission);
+  return dot(cross(xyz(tri->e1), xyz(tri->e2)), dir) < 0.0f ? e : make_float3(0.0f, 0.0f, 0.0f);
+}
