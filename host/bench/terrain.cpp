@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "kernels/shared/rng.h"
+#include "scene/render_choices.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
@@ -110,7 +111,7 @@ void writeTerrainScene(const std::string& scenePath, const std::string& objPath,
         {"width", width},
         {"height", height}}},
       {"meshes", {{{"file", objRel.string()}}, {{"file", lightPath.filename().string()}, {"emission", {20, 20, 20}}}}},
-      {"render", {{"integrator", "ao"}, {"spp", 16}, {"seed", opt.seed}, {"ao_distance", s / 20.0f}}}};
+      {"render", {{"integrator", choiceName(Integrator::Ao)}, {"spp", 16}, {"seed", opt.seed}, {"ao_distance", s / 20.0f}}}};
   writeText(scenePath, j.dump(2) + "\n");
 }
 
