@@ -1,4 +1,4 @@
-// test_cli_errors.cpp: end-to-end bad-input tests through the real command line: every case under
+// test_cli_render.cpp: end-to-end bad-input tests through the real command line: every case under
 // scenes/test/bad/ (and a missing scene file, a bad --device) makes `montecl render` exit with 2,
 // print exactly one stderr line naming the file and key/line, and create no output file.
 #include <doctest/doctest.h>

@@ -1,4 +1,4 @@
-// test_bvh_kernels.cpp: the intersect and intersect_shadow kernels on the default OpenCL device
+// test_ray_tracer.cpp: the intersect and intersect_shadow kernels on the default OpenCL device
 // against brute force over every triangle, on random soups and on a real mesh.
 #include <doctest/doctest.h>
 

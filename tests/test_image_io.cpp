@@ -1,4 +1,4 @@
-// test_split_merge.cpp: through the real command line, a render split with --first-sample into
+// test_image_io.cpp: through the real command line, a render split with --first-sample into
 // two runs and combined by `montecl merge` equals one run of all the samples (float rounding),
 // and its EXR carries the sample count and variance channels.
 #include <doctest/doctest.h>
