@@ -13,6 +13,7 @@
 #include "render/wavefront.h"
 #include "stats.h"
 #include "test_scenes.h"
+#include "skip.h"
 
 using namespace montecl;
 using namespace montecl_test;
@@ -90,7 +91,7 @@ std::vector<glm::vec3> square(glm::vec3 c, glm::vec3 normal, float size) {
 
 }  // namespace
 
-TEST_CASE("direct lighting matches the polygon form factor for light, brdf and mis sampling") {
+TEST_CASE("direct lighting matches the polygon form factor for light, brdf and mis sampling" * doctest::test_suite("opencl")) {
   struct Config {
     const char* name;
     std::vector<glm::vec3> poly;
@@ -128,7 +129,7 @@ TEST_CASE("direct lighting matches the polygon form factor for light, brdf and m
   }
 }
 
-TEST_CASE("an emitter seen from the front gives exactly Le, from the back only reflected light") {
+TEST_CASE("an emitter seen from the front gives exactly Le, from the back only reflected light" * doctest::test_suite("opencl")) {
   Scene s;
   s.path = "<emitter>";
   s.materials = {MaterialDesc{"light", glm::vec3(0.8f), kLe}};
@@ -152,7 +153,7 @@ TEST_CASE("an emitter seen from the front gives exactly Le, from the back only r
   }
 }
 
-TEST_CASE("with brdf sampling, an emitter's back face reflects exactly like a non-emitting one") {
+TEST_CASE("with brdf sampling, an emitter's back face reflects exactly like a non-emitting one" * doctest::test_suite("opencl")) {
   // A faces the camera with its back; B lights A's back. Same seed, brdf sampling: bit-identical.
   Scene s;
   s.path = "<two quads>";
@@ -175,12 +176,9 @@ TEST_CASE("with brdf sampling, an emitter's back face reflects exactly like a no
   CHECK(imageMean(emitting, 0).mean > 0.0);
 }
 
-TEST_CASE("Cornell box: light, brdf and mis agree per pixel; light sampling has lower variance") {
-  std::string path = std::string(MONTECL_SHARED_SCENES) + "/cornell-box/scene.json";
-  if (!std::ifstream(path)) {
-    MESSAGE("skipping: " << path << " not found (the shared scenes are not beside this checkout)");
-    return;
-  }
+TEST_CASE("Cornell box: light, brdf and mis agree per pixel; light sampling has lower variance" * doctest::test_suite("opencl shared-scenes slow")) {
+  std::string path = sharedScenes() + "/cornell-box/scene.json";
+  MCL_SKIP_UNLESS(std::ifstream(path), path << " not found (the shared scenes are not beside this checkout)");
   std::vector<std::string> warnings;
   Scene s = loadScene(path, warnings);
   s.camera.width = s.camera.height = 24;

@@ -55,7 +55,7 @@ bool sameFilm(const Film& a, const Film& b) {
 
 }  // namespace
 
-TEST_CASE("AO of an open plane is exactly 1 with cosine sampling") {
+TEST_CASE("AO of an open plane is exactly 1 with cosine sampling" * doctest::test_suite("opencl")) {
   Scene s = floorScene({0, 0, 0}, 1.0f, 60.0f, 32, 16);
   s.render.aoSampling = "cosine";
   Film f = renderScene(s);
@@ -67,7 +67,7 @@ TEST_CASE("AO of an open plane is exactly 1 with cosine sampling") {
   }
 }
 
-TEST_CASE("AO of an open plane is 1 within 4 standard errors with uniform sampling") {
+TEST_CASE("AO of an open plane is 1 within 4 standard errors with uniform sampling" * doctest::test_suite("opencl")) {
   Scene s = floorScene({0, 0, 0}, 1.0f, 60.0f, 32, 64);
   s.render.aoSampling = "uniform";
   Film f = renderScene(s);
@@ -89,7 +89,7 @@ TEST_CASE("AO of an open plane is 1 within 4 standard errors with uniform sampli
   CHECK(std::fabs(zSum / f.sum.size()) < 0.2);
 }
 
-TEST_CASE("AO beside an infinite wall is 1/2 for both samplings, and they agree per pixel") {
+TEST_CASE("AO beside an infinite wall is 1/2 for both samplings, and they agree per pixel" * doctest::test_suite("opencl")) {
   Scene s = wallScene(24, 256);
   s.render.aoSampling = "uniform";
   Film uni = renderScene(s);
@@ -115,7 +115,7 @@ TEST_CASE("AO beside an infinite wall is 1/2 for both samplings, and they agree 
   CHECK(std::fabs(zSum / uni.sum.size()) < 0.25);
 }
 
-TEST_CASE("ao_distance shorter than the wall's distance gives exactly 1 with cosine sampling") {
+TEST_CASE("ao_distance shorter than the wall's distance gives exactly 1 with cosine sampling" * doctest::test_suite("opencl")) {
   Scene s = wallScene(16, 8);
   s.render.aoSampling = "cosine";
   s.render.aoDistance = 0.2f;  // the floor seen lies 0.3 .. 0.7 from the wall
@@ -124,7 +124,7 @@ TEST_CASE("ao_distance shorter than the wall's distance gives exactly 1 with cos
   for (std::size_t p = 0; p < f.sum.size(); ++p) REQUIRE(f.sum[p].x == f.sum[p].w);
 }
 
-TEST_CASE("a camera ray that hits nothing gives the background") {
+TEST_CASE("a camera ray that hits nothing gives the background" * doctest::test_suite("opencl")) {
   Scene s = floorScene({0, 0, 0}, 1.0f, 60.0f, 8, 4);
   s.camera.target = s.camera.position + glm::vec3(0, 1, 0);  // look up, away from the floor
   s.camera.up = {0, 0, 1};
@@ -138,7 +138,7 @@ TEST_CASE("a camera ray that hits nothing gives the background") {
   }
 }
 
-TEST_CASE("images are bit-identical for the same seed, whatever the wave or work-group size") {
+TEST_CASE("images are bit-identical for the same seed, whatever the wave or work-group size" * doctest::test_suite("opencl")) {
   Scene s = wallScene(20, 6);
   s.render.aoSampling = "uniform";
   s.render.seed = 3;
@@ -160,7 +160,7 @@ TEST_CASE("images are bit-identical for the same seed, whatever the wave or work
   CHECK_FALSE(sameFilm(renderScene(s), reference));
 }
 
-TEST_CASE("images are bit-identical with the wide and the binary BVH layout") {
+TEST_CASE("images are bit-identical with the wide and the binary BVH layout" * doctest::test_suite("opencl")) {
   Scene wall = wallScene(20, 6);
   wall.render.aoSampling = "uniform";
   std::vector<std::string> warnings;

@@ -16,6 +16,7 @@
 #include "cli_runner.h"
 #include "scene/scene.h"
 #include "util/errors.h"
+#include "skip.h"
 
 using montecl::Camera;
 using montecl::InputError;
@@ -97,7 +98,7 @@ bool containsWarning(const std::vector<std::string>& warnings, const std::string
 
 }  // namespace
 
-TEST_CASE("scene file: every camera and render value is parsed") {
+TEST_CASE("scene file: every camera and render value is parsed" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("tri.obj", kTriangleObj);
   json s = baseScene("tri.obj");
@@ -130,7 +131,7 @@ TEST_CASE("scene file: every camera and render value is parsed") {
   CHECK(scene.boundsMax == glm::vec3(1, 1, 0));
 }
 
-TEST_CASE("scene file: up and render are optional with the documented defaults") {
+TEST_CASE("scene file: up and render are optional with the documented defaults" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("tri.obj", kTriangleObj);
   dir.write("scene.json", baseScene("tri.obj").dump());
@@ -147,7 +148,7 @@ TEST_CASE("scene file: up and render are optional with the documented defaults")
   CHECK(scene.render.lightSamples == 1);
 }
 
-TEST_CASE("scene file: mesh paths are relative to the scene file's folder") {
+TEST_CASE("scene file: mesh paths are relative to the scene file's folder" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("meshes/far.obj", "v 5 0 0\nv 6 0 0\nv 5 1 0\nf 1 2 3\n");
   dir.write("scenes/a/sub/near.obj", "v 0 0 -2\nv 1 0 -2\nv 0 1 -2\nf 1 2 3\n");
@@ -163,7 +164,7 @@ TEST_CASE("scene file: mesh paths are relative to the scene file's folder") {
   CHECK(scene.boundsMax == glm::vec3(6, 1, 0));
 }
 
-TEST_CASE("OBJ: MTL Kd and Ke are read, and each OBJ's materials get their own indices") {
+TEST_CASE("OBJ: MTL Kd and Ke are read, and each OBJ's materials get their own indices" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("a.mtl", "newmtl paint\nKd 0.1 0.2 0.3\n\nnewmtl lamp\nKd 0 0 0\nKe 4 5 6\n");
   dir.write("a.obj", "mtllib a.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl paint\nf 1 2 3\nusemtl lamp\nf 1 3 2\n");
@@ -185,7 +186,7 @@ TEST_CASE("OBJ: MTL Kd and Ke are read, and each OBJ's materials get their own i
   CHECK(distinct.size() == 3);
 }
 
-TEST_CASE("OBJ: faces without a material share one 0.5 grey default material") {
+TEST_CASE("OBJ: faces without a material share one 0.5 grey default material" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("plain.obj", kTriangleObj);
   dir.write("mixed.mtl", "newmtl red\nKd 1 0 0\n");
@@ -202,7 +203,7 @@ TEST_CASE("OBJ: faces without a material share one 0.5 grey default material") {
   CHECK(montecl::defaultMaterialIndex(scene) == scene.triangles[0].material);
 }
 
-TEST_CASE("OBJ: quads and polygons are triangulated, negative indices resolved") {
+TEST_CASE("OBJ: quads and polygons are triangulated, negative indices resolved" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("poly.obj",
             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"
@@ -217,7 +218,7 @@ TEST_CASE("OBJ: quads and polygons are triangulated, negative indices resolved")
   for (const auto& t : scene.triangles) CHECK(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]).z > 0);
 }
 
-TEST_CASE("OBJ: CRLF line ends, a byte order mark, tabs and comments are accepted") {
+TEST_CASE("OBJ: CRLF line ends, a byte order mark, tabs and comments are accepted" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("dos.obj", "\xEF\xBB\xBFv 0 0 0\r\n# comment\r\n\tv\t1 0 0\r\nv 0 1 0 1.0\r\n\r\nf 1 2 3\r\n");
   std::vector<std::string> warnings;
@@ -229,7 +230,7 @@ TEST_CASE("OBJ: CRLF line ends, a byte order mark, tabs and comments are accepte
   CHECK(scene.triangles[0].v[2] == glm::vec3(0, 1, 0));
 }
 
-TEST_CASE("OBJ: degenerate triangles are dropped and counted, and do not grow the bounds") {
+TEST_CASE("OBJ: degenerate triangles are dropped and counted, and do not grow the bounds" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("degenerate.obj",
             "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 100 100 100\nv 200 200 200\nv 300 300 300\n"
@@ -244,7 +245,7 @@ TEST_CASE("OBJ: degenerate triangles are dropped and counted, and do not grow th
   CHECK(scene.boundsMax == glm::vec3(1, 1, 0));
 }
 
-TEST_CASE("scene file: a mesh's emission makes all its triangles emitters") {
+TEST_CASE("scene file: a mesh's emission makes all its triangles emitters" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("lamp.mtl", "newmtl shade\nKd 0.2 0.3 0.4\n");
   dir.write("lamp.obj", "mtllib lamp.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl shade\nf 1 2 3\n");
@@ -264,7 +265,7 @@ TEST_CASE("scene file: a mesh's emission makes all its triangles emitters") {
   CHECK(materialOf(scene, 2).emission == glm::vec3(0.0f));     // non-emissive
 }
 
-TEST_CASE("bare OBJ: default camera and render settings, camera frames the bounding box") {
+TEST_CASE("bare OBJ: default camera and render settings, camera frames the bounding box" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("Shape.OBJ", "v -3 10 2\nv 5 10 2\nv 5 14 -7\nf 1 2 3\n");
   Scene scene = load(dir.file("Shape.OBJ"));
@@ -277,7 +278,7 @@ TEST_CASE("bare OBJ: default camera and render settings, camera frames the bound
   checkFramed(scene.camera, scene.boundsMin, scene.boundsMax);
 }
 
-TEST_CASE("defaultCamera frames boxes of any shape for any aspect ratio") {
+TEST_CASE("defaultCamera frames boxes of any shape for any aspect ratio" * doctest::test_suite("cpu")) {
   const std::vector<std::pair<glm::vec3, glm::vec3>> boxes = {
       {{-1, -1, -1}, {1, 1, 1}},     {{0, 0, 0}, {100, 1, 1}},      {{0, 0, 0}, {1, 100, 1}},
       {{0, 0, 0}, {1, 1, 100}},      {{1000, 2000, -500}, {1001, 2000.5f, -499}}, {{0, 0, 0}, {1e-3f, 2e-3f, 0}}};
@@ -298,7 +299,7 @@ TEST_CASE("defaultCamera frames boxes of any shape for any aspect ratio") {
   }
 }
 
-TEST_CASE("scene file: unknown keys are warnings naming the file and the key") {
+TEST_CASE("scene file: unknown keys are warnings naming the file and the key" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("tri.obj", kTriangleObj);
   json s = baseScene("tri.obj");
@@ -317,7 +318,7 @@ TEST_CASE("scene file: unknown keys are warnings naming the file and the key") {
   }
 }
 
-TEST_CASE("OBJ: missing MTL and unknown statements are warnings, not errors") {
+TEST_CASE("OBJ: missing MTL and unknown statements are warnings, not errors" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("m.obj", "mtllib nowhere.mtl\nusemtl stone\nv 0 0 0\nv 1 0 0\nfrobnicate 3\nv 0 1 0\nf 1 2 3\n");
   std::vector<std::string> warnings;
@@ -336,7 +337,7 @@ TEST_CASE("OBJ: missing MTL and unknown statements are warnings, not errors") {
   for (const std::string& w : warnings) CHECK(w.find('\n') == std::string::npos);
 }
 
-TEST_CASE("bad input: every case under scenes/test/bad throws one InputError line naming file and key") {
+TEST_CASE("bad input: every case under scenes/test/bad throws one InputError line naming file and key" * doctest::test_suite("cpu")) {
   std::vector<fs::path> cases;
   for (const auto& entry : fs::directory_iterator(kBadCases)) cases.push_back(entry.path());
   std::sort(cases.begin(), cases.end());
@@ -353,7 +354,7 @@ TEST_CASE("bad input: every case under scenes/test/bad throws one InputError lin
   }
 }
 
-TEST_CASE("bad input: missing and unreadable files name the file") {
+TEST_CASE("bad input: missing and unreadable files name the file" * doctest::test_suite("cpu")) {
   TempDir dir;
   std::string message = loadError(dir.file("no-such-scene.json"));
   CHECK(message.find("no-such-scene.json") != std::string::npos);
@@ -372,7 +373,7 @@ TEST_CASE("bad input: missing and unreadable files name the file") {
   CHECK(message.find("Permission denied") != std::string::npos);
 }
 
-TEST_CASE("demo scene: loads without warnings and has an emitter") {
+TEST_CASE("demo scene: loads without warnings and has an emitter" * doctest::test_suite("cpu")) {
   std::vector<std::string> warnings;
   Scene scene = montecl::loadScene(std::string(MONTECL_SOURCE_DIR) + "/scenes/demo/scene.json", warnings);
   CHECK(warnings.empty());
@@ -384,12 +385,9 @@ TEST_CASE("demo scene: loads without warnings and has an emitter") {
   CHECK(emitters == 2);  // the light quad
 }
 
-TEST_CASE("shared scenes: all load, fast enough to report") {
-  const fs::path root = MONTECL_SHARED_SCENES;
-  if (!fs::is_directory(root)) {
-    MESSAGE("shared scenes skipping: " << root.string() << " not found");
-    return;
-  }
+TEST_CASE("shared scenes: all load, fast enough to report" * doctest::test_suite("cpu shared-scenes")) {
+  const fs::path root = montecl_test::sharedScenes();
+  MCL_SKIP_UNLESS(fs::is_directory(root), root.string() << " not found (the shared scenes are not beside this checkout)");
   int loaded = 0;
   for (const char* name : {"cornell-box", "bunny", "sibenik", "sponza"}) {
     fs::path file = root / name / "scene.json";
