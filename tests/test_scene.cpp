@@ -4,10 +4,14 @@
 // loading of the shared scenes (skipped when ../shared/scenes is absent).
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
+#include <grp.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -50,6 +54,49 @@ std::string loadError(const std::string& path) {
     return e.what();
   }
   return "";
+}
+
+// loadError of each path in a forked child that is not root (it drops to the user nobody when
+// run as root, so file permissions apply); failure says why the child could not run.
+struct UnprivilegedLoad {
+  std::vector<std::string> messages;
+  std::string failure;
+};
+UnprivilegedLoad loadErrorsUnprivileged(const std::vector<std::string>& paths) {
+  UnprivilegedLoad out;
+  int fds[2];
+  if (::pipe(fds) != 0) {
+    out.failure = "pipe failed";
+    return out;
+  }
+  pid_t pid = ::fork();
+  if (pid == 0) {  // child: no doctest macros here
+    ::close(fds[0]);
+    std::string reply;
+    if (::geteuid() == 0 && (::setgroups(0, nullptr) != 0 || ::setgid(65534) != 0 || ::setuid(65534) != 0))
+      reply = std::string("!cannot drop root: ") + std::strerror(errno);
+    else if (::geteuid() == 0)
+      reply = "!still root";
+    else
+      for (const std::string& p : paths) reply += loadError(p) + '\n';
+    ssize_t unused = ::write(fds[1], reply.data(), reply.size());
+    (void)unused;
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  std::string reply;
+  char buf[4096];
+  for (ssize_t n; (n = ::read(fds[0], buf, sizeof buf)) > 0;) reply.append(buf, std::size_t(n));
+  ::close(fds[0]);
+  int status = 0;
+  if (pid < 0 || ::waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    out.failure = "child process failed";
+  else if (!reply.empty() && reply[0] == '!')
+    out.failure = reply.substr(1);
+  else
+    for (std::size_t a = 0, b; (b = reply.find('\n', a)) != std::string::npos; a = b + 1)
+      out.messages.push_back(reply.substr(a, b - a));
+  return out;
 }
 
 // Pixel coordinates of p seen through cam (pinhole, fovY vertical); z <= 0 means behind it.
@@ -362,13 +409,21 @@ TEST_CASE("bad input: missing and unreadable files name the file" * doctest::tes
   message = loadError(dir.file("no-such-mesh.obj"));
   CHECK(message.find("no-such-mesh.obj") != std::string::npos);
   CHECK(loadError(dir.path).find("directory") != std::string::npos);
-  if (::geteuid() == 0) {
-    MESSAGE("unreadable-file case skipping: running as root, permissions are not enforced");
-    return;
-  }
+  // A file with no permissions, in a folder anyone may enter, read by an unprivileged process:
+  // under root (as CI runs) a child process drops to the user nobody first, since root reads
+  // any file. A readable scene beside it must load in that same process.
+  dir.write("tri.obj", kTriangleObj);
+  dir.write("open.json", baseScene("tri.obj").dump());
   dir.write("locked.json", baseScene("tri.obj").dump());
+  fs::permissions(dir.path, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                                fs::perms::others_read | fs::perms::others_exec);
   fs::permissions(dir.file("locked.json"), fs::perms::none);
-  message = loadError(dir.file("locked.json"));
+  UnprivilegedLoad r = loadErrorsUnprivileged({dir.file("open.json"), dir.file("locked.json")});
+  INFO("child: " << r.failure);
+  REQUIRE(r.failure.empty());
+  REQUIRE(r.messages.size() == 2);
+  CHECK(r.messages[0] == "");
+  message = r.messages[1];
   CHECK(message.find("locked.json") != std::string::npos);
   CHECK(message.find("Permission denied") != std::string::npos);
 }
