@@ -32,10 +32,10 @@ TEST_CASE("AOVs: first-hit albedo, facing normal and depth of a floor seen from 
   o.aovs = true;
   RenderStats stats;
   Film f = render(s, o, stats);
-  REQUIRE(f.aovSum.size() == 2 * f.sum.size());
+  REQUIRE(f.aovSum.size() == 2 * f.mean.size());
   const float maxDepth = 2.0f / std::cos(glm::radians(20.0f * std::sqrt(2.0f)));
-  for (std::size_t p = 0; p < f.sum.size(); ++p) {
-    const float n = f.sum[p].w;
+  for (std::size_t p = 0; p < f.mean.size(); ++p) {
+    const float n = f.mean[p].w;
     REQUIRE(f.aovSum[2 * p].x / n == 0.25f);
     REQUIRE(f.aovSum[2 * p].y / n == 0.5f);
     REQUIRE(f.aovSum[2 * p].z / n == 0.75f);
@@ -48,7 +48,7 @@ TEST_CASE("AOVs: first-hit albedo, facing normal and depth of a floor seen from 
   RenderStats plain;
   Film g = render(s, {}, plain);
   CHECK(g.aovSum.empty());
-  CHECK(g.sum == f.sum);
+  CHECK(g.mean == f.mean);
 }
 
 TEST_CASE("--aov all writes named albedo, normal and depth channels; --aov with .png is bad input" * doctest::test_suite("cli")) {

@@ -51,8 +51,8 @@ TEST_CASE("the estimated standard error matches the spread over 40 seeds within 
     RenderStats stats;
     Film f = render(s, {}, stats);
     for (std::size_t p = 0; p < pixels; ++p) {
-      double n = f.sum[p].w, m = f.sum[p].x / n;
-      double var = (f.sumSq[p].x / n - m * m) * n / (n - 1);
+      double n = f.mean[p].w, m = f.mean[p].x;
+      double var = f.variance(p, 0);
       spread[p].add(m);
       estimatedVar[p] += var / n / seeds;  // mean over seeds of the estimated variance of the mean
     }
@@ -79,26 +79,26 @@ TEST_CASE("adaptive sampling meets its target on 99% of pixels with fewer sample
   std::size_t met = 0, easy = 0;
   float mostSamples = 0;
   double worstConverged = 0;
-  for (std::size_t p = 0; p < f.sum.size(); ++p) {
+  for (std::size_t p = 0; p < f.mean.size(); ++p) {
     double e = relativeStandardError(f, p, o.errorFloor);
     met += e <= o.targetError;
     if (e <= o.targetError) worstConverged = std::max(worstConverged, e);
-    easy += f.sum[p].w == float(o.minSpp);
-    mostSamples = std::max(mostSamples, f.sum[p].w);
+    easy += f.mean[p].w == float(o.minSpp);
+    mostSamples = std::max(mostSamples, f.mean[p].w);
   }
-  INFO("met " << met << " of " << f.sum.size() << ", easy " << easy << ", most samples " << mostSamples
+  INFO("met " << met << " of " << f.mean.size() << ", easy " << easy << ", most samples " << mostSamples
               << ", total " << stats.samples << ", rounds " << stats.rounds);
-  CHECK(met >= f.sum.size() * 99 / 100);
+  CHECK(met >= f.mean.size() * 99 / 100);
   CHECK(stats.converged == met);
   CHECK(easy > 0);
-  CHECK(easy < f.sum.size());
+  CHECK(easy < f.mean.size());
   CHECK(worstConverged <= o.targetError);
   // Uniform sampling needs the hardest pixel's count everywhere for the same worst-pixel error.
-  std::uint64_t uniformSamples = std::uint64_t(mostSamples) * f.sum.size();
+  std::uint64_t uniformSamples = std::uint64_t(mostSamples) * f.mean.size();
   CHECK(stats.samples < uniformSamples);
   // The counts in the film are the samples done.
   double total = 0;
-  for (const auto& v : f.sum) total += v.w;
+  for (const auto& v : f.mean) total += v.w;
   CHECK(total == double(stats.samples));
   MESSAGE("adaptive: " << stats.samples << " samples against " << uniformSamples << " uniform ("
                        << double(uniformSamples) / stats.samples << "x)");
@@ -106,8 +106,8 @@ TEST_CASE("adaptive sampling meets its target on 99% of pixels with fewer sample
   // Deterministic: the same again.
   RenderStats again;
   Film g = render(s, o, again);
-  CHECK(g.sum == f.sum);
-  CHECK(g.sumSq == f.sumSq);
+  CHECK(g.mean == f.mean);
+  CHECK(g.m2 == f.m2);
 }
 
 TEST_CASE("accumulate keeps the variance of samples with a large mean (Welford, no cancellation)" * doctest::test_suite("cpu")) {

@@ -27,9 +27,9 @@ TEST_CASE("host backend: selected by --device host, needs no OpenCL context" * d
   Scene s = floorScene({0, 0, 0}, 1.0f, 60.0f, 8, 4);
   s.render.aoSampling = "cosine";
   Film f = render(host, s);
-  for (std::size_t p = 0; p < f.sum.size(); ++p) {
-    REQUIRE(f.sum[p].w == 4.0f);
-    REQUIRE(f.sum[p].x == 4.0f);
+  for (std::size_t p = 0; p < f.mean.size(); ++p) {
+    REQUIRE(f.mean[p].w == 4.0f);
+    REQUIRE(f.mean[p].x == 1.0f);
   }
 }
 
@@ -44,7 +44,7 @@ TEST_CASE("host backend: bit-identical across wave sizes (one thread or several)
     o.waveSize = wave;
     CAPTURE(wave);
     Film f = render(host, s, o);
-    CHECK(f.sum == reference.sum);
-    CHECK(f.sumSq == reference.sumSq);
+    CHECK(f.mean == reference.mean);
+    CHECK(f.m2 == reference.m2);
   }
 }

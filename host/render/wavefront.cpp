@@ -171,7 +171,6 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
     stats.stoppedEarly = !going;
   }
   run.readFilm(film);
-  film.deriveSums();
   if (m.options.targetError > 0.0)
     for (std::uint64_t p = 0; p < pixels; ++p)
       stats.converged += relativeStandardError(film, p, m.options.errorFloor) <= m.options.targetError;
