@@ -131,3 +131,12 @@ TEST_CASE("SIGINT finishes the wave, writes a valid image with its true sample c
   // The mean is finite everywhere a sample was taken.
   for (float v : *img.find("R")) REQUIRE(std::isfinite(v));
 }
+
+TEST_CASE("cli: --min-spp above --max-spp exits 2 before any work" * doctest::test_suite("cli")) {
+  // Checked first: the scene is missing and the device bad too, yet the error is about --min-spp.
+  TempDir dir;
+  std::string err = renderExpectingBadInput(dir.file("no-such-scene.json"), {"--target-error", "0.1", "--min-spp",
+                                                                             "64", "--max-spp", "8", "--device", "9:9"});
+  CHECK(err.find("--min-spp") != std::string::npos);
+  CHECK(err.find("--max-spp (8)") != std::string::npos);
+}

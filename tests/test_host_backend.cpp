@@ -48,3 +48,15 @@ TEST_CASE("host backend: bit-identical across wave sizes (one thread or several)
     CHECK(f.m2 == reference.m2);
   }
 }
+
+TEST_CASE("adaptive sampling with minSpp above maxSpp is an error, not a clamp" * doctest::test_suite("cpu")) {
+  Scene s = floorScene({0, 0, 0}, 1.0f, 60.0f, 4, 4);
+  RenderOptions o;
+  o.targetError = 0.05;
+  o.minSpp = 64;
+  o.maxSpp = 8;
+  CHECK_THROWS_AS(render(hostDeviceInfo(), s, o), std::invalid_argument);
+  o.maxSpp = 64;  // equal is fine
+  Film f = render(hostDeviceInfo(), s, o);
+  CHECK(f.mean[0].w == 64.0f);
+}
