@@ -67,7 +67,7 @@ void checkBenchJson(const nlohmann::json& r, int width, int height, bool expectS
 
 }  // namespace
 
-TEST_CASE("generate terrain writes exactly the requested triangle count") {
+TEST_CASE("generate terrain writes exactly the requested triangle count" * doctest::test_suite("cli")) {
   TempDir dir;
   for (int n : {1, 2, 7, 1000, 1001, 4096}) {
     INFO("triangles " << n);
@@ -78,7 +78,7 @@ TEST_CASE("generate terrain writes exactly the requested triangle count") {
   }
 }
 
-TEST_CASE("bench on a generated 1k-triangle terrain: all rays match, counts as specified") {
+TEST_CASE("bench on a generated 1k-triangle terrain: all rays match, counts as specified" * doctest::test_suite("cli")) {
   TempDir dir;
   CliResult g = runMontecl({"generate", "terrain", "--triangles", "1000", "-o", dir.file("terrain.obj"), "--scene",
                             dir.file("terrain.json"), "--width", "32", "--height", "24"});
@@ -93,7 +93,7 @@ TEST_CASE("bench on a generated 1k-triangle terrain: all rays match, counts as s
   checkBenchJson(j, 32, 24, /*expectShadow=*/true);
 }
 
-TEST_CASE("bench on the demo scene at a small resolution") {
+TEST_CASE("bench on the demo scene at a small resolution" * doctest::test_suite("cli")) {
   TempDir dir;
   CliResult r = runMontecl({"bench", MONTECL_SOURCE_DIR "/scenes/demo/scene.json", "--width", "40", "--height", "30",
                             "--repeat", "1", "--threads", "2", "--json", dir.file("demo.json"), "-q"});
@@ -102,7 +102,7 @@ TEST_CASE("bench on the demo scene at a small resolution") {
   checkBenchJson(readJson(dir.file("demo.json")), 40, 30, /*expectShadow=*/true);  // demo has a lamp
 }
 
-TEST_CASE("bench with the binary BVH layout: all rays match its host reference") {
+TEST_CASE("bench with the binary BVH layout: all rays match its host reference" * doctest::test_suite("cli")) {
   TempDir dir;
   CliResult r = runMontecl({"bench", MONTECL_SOURCE_DIR "/scenes/demo/scene.json", "--width", "40", "--height", "30",
                             "--repeat", "1", "--bvh-layout", "binary", "--no-embree", "--json", dir.file("b.json"),
@@ -115,7 +115,7 @@ TEST_CASE("bench with the binary BVH layout: all rays match its host reference")
   CHECK(runMontecl({"bench", MONTECL_SOURCE_DIR "/scenes/demo/scene.json", "--bvh-layout", "quad"}).exitCode == 2);
 }
 
-TEST_CASE("bench bad input exits 2 with one line") {
+TEST_CASE("bench bad input exits 2 with one line" * doctest::test_suite("cli")) {
   TempDir dir;
   CliResult r = runMontecl({"bench", dir.file("missing.json")});
   CHECK(r.exitCode == 2);

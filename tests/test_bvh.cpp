@@ -23,9 +23,13 @@
 #include "bvh/bvh_internal.h"
 #include "bvh/sah_reference.h"
 #include "kernels/shared/geometry.h"
+#include "soups.h"
+#include "skip.h"
 
 using namespace montecl;
 using glm::vec3;
+using montecl_test::BruteForce;
+using montecl_test::RefHit;
 
 namespace {
 
@@ -148,32 +152,7 @@ std::vector<SceneTriangle> loadObjTriangles(const std::string& path) {
   return out;
 }
 
-// ---- Reference intersection -------------------------------------------------------------------
-
-struct RefHit {
-  float t = kInf;
-  std::uint32_t tri = MCL_NO_HIT;  // input index
-};
-
-// Every triangle in input order, (v0, e1, e2) computed as the builder does.
-struct BruteTri {
-  vec3 v0, e1, e2;
-};
-
-RefHit bruteClosest(const std::vector<BruteTri>& tris, vec3 o, vec3 d, float tmax) {
-  RefHit h;
-  float best = tmax;
-  for (std::uint32_t i = 0; i < tris.size(); ++i) {
-    float u, v;
-    float t = ray_triangle(o, d, tris[i].v0, tris[i].e1, tris[i].e2, best, &u, &v);
-    if (t < best) {
-      best = t;
-      h.t = t;
-      h.tri = i;
-    }
-  }
-  return h;
-}
+// ---- Reference intersection: BruteForce (soups.h) ---------------------------------------------
 
 struct TestRay {
   vec3 o, d;
@@ -266,11 +245,10 @@ struct CompareStats {
 // Brute force over all rays, split across two threads (no doctest macros inside).
 std::vector<RefHit> bruteForceAll(const std::vector<SceneTriangle>& tris,
                                   const std::vector<TestRay>& rays) {
-  std::vector<BruteTri> bt;
-  for (const auto& t : tris) bt.push_back({t.v[0], t.v[1] - t.v[0], t.v[2] - t.v[0]});
+  const BruteForce brute(tris);
   std::vector<RefHit> out(rays.size());
   auto work = [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i) out[i] = bruteClosest(bt, rays[i].o, rays[i].d, rays[i].tmax);
+    for (std::size_t i = b; i < e; ++i) out[i] = brute.closest(rays[i].o, rays[i].d, rays[i].tmax);
   };
   std::size_t half = rays.size() / 2;
   auto other = std::async(std::launch::async, work, half, rays.size());
@@ -424,7 +402,7 @@ void checkStructure(const std::vector<SceneTriangle>& tris, const Bvh& bvh, int 
 
 // ---- Tests --------------------------------------------------------------------------------------
 
-TEST_CASE("bvh: rejects empty input, bad options and non-finite vertices") {
+TEST_CASE("bvh: rejects empty input, bad options and non-finite vertices" * doctest::test_suite("cpu")) {
   std::vector<SceneTriangle> none;
   CHECK_THROWS_AS(buildBvh(none), std::invalid_argument);
   std::vector<SceneTriangle> one{makeTri(vec3(0), vec3(1, 0, 0), vec3(0, 1, 0))};
@@ -445,7 +423,7 @@ TEST_CASE("bvh: rejects empty input, bad options and non-finite vertices") {
   CHECK_NOTHROW(buildBvh(one));
 }
 
-TEST_CASE("bvh: a single triangle is a root leaf") {
+TEST_CASE("bvh: a single triangle is a root leaf" * doctest::test_suite("cpu")) {
   std::vector<SceneTriangle> tris{makeTri(vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0), 5)};
   Bvh bvh = buildBvh(tris);
   REQUIRE(bvh.nodes.size() == 1);
@@ -466,7 +444,7 @@ TEST_CASE("bvh: a single triangle is a root leaf") {
   CHECK_FALSE(intersectAny(bvh, vec3(0.25f, 0.25f, -2.0f), vec3(0, 0, 1), 1.9f));
 }
 
-TEST_CASE("bvh: structure invariants on random soups") {
+TEST_CASE("bvh: structure invariants on random soups" * doctest::test_suite("cpu")) {
   std::mt19937 rng(1);
   for (std::size_t n : {2u, 3u, 5u, 17u, 100u, 1000u, 5000u}) {
     for (int leaf : {1, 4, 16}) {
@@ -493,7 +471,7 @@ TEST_CASE("bvh: structure invariants on random soups") {
                               << a.sahCost << ", " << a.buildMs << " ms");
 }
 
-TEST_CASE("bvh: closest and any hit equal brute force on random soups") {
+TEST_CASE("bvh: closest and any hit equal brute force on random soups" * doctest::test_suite("cpu")) {
   std::mt19937 rng(7);
   struct Case {
     std::string name;
@@ -520,13 +498,10 @@ TEST_CASE("bvh: closest and any hit equal brute force on random soups") {
   CHECK(total >= 100000);
 }
 
-TEST_CASE("bvh: closest and any hit equal brute force on the Stanford bunny") {
-  std::string path = MONTECL_SHARED_SCENES "/bunny/bunny.obj";
+TEST_CASE("bvh: closest and any hit equal brute force on the Stanford bunny" * doctest::test_suite("cpu shared-scenes slow")) {
+  std::string path = montecl_test::sharedScenes() + "/bunny/bunny.obj";
+  MCL_SKIP_UNLESS(std::ifstream(path), path << " not found (the shared scenes are not beside this checkout)");
   std::vector<SceneTriangle> tris = loadObjTriangles(path);
-  if (tris.empty()) {
-    MESSAGE("skipped: " << path << " not found");
-    return;
-  }
   CHECK(tris.size() > 60000);
   Bvh bvh = buildBvh(tris);
   checkStructure(tris, bvh, 4);
@@ -536,7 +511,7 @@ TEST_CASE("bvh: closest and any hit equal brute force on the Stanford bunny") {
   checkAgainstBruteForce(tris, bvh, makeRays(tris, 2000, rng));
 }
 
-TEST_CASE("bvh: 10k triangles sharing one centroid") {
+TEST_CASE("bvh: 10k triangles sharing one centroid" * doctest::test_suite("cpu")) {
   std::mt19937 rng(11);
   // Exact duplicates: every centroid is the same point, so binning cannot split anything.
   std::vector<SceneTriangle> dup(10000, makeTri(vec3(-1, -1, 0), vec3(1, -1, 0), vec3(0, 1, 0.5f)));
@@ -558,7 +533,7 @@ TEST_CASE("bvh: 10k triangles sharing one centroid") {
   }
 }
 
-TEST_CASE("bvh: depth stays within the cap") {
+TEST_CASE("bvh: depth stays within the cap" * doctest::test_suite("cpu")) {
   // Nested squares (two triangles each) growing by 2x: binned SAH peels off the largest few
   // squares at every level, so the uncapped tree is far deeper than a balanced one. Capping its
   // depth below that exercises the guard that keeps every build under 64 levels.
@@ -596,7 +571,7 @@ TEST_CASE("bvh: depth stays within the cap") {
   }
 }
 
-TEST_CASE("bvh: binned SAH cost is close to a full-sweep SAH build and beats a median build") {
+TEST_CASE("bvh: binned SAH cost is close to a full-sweep SAH build and beats a median build" * doctest::test_suite("cpu")) {
   std::mt19937 rng(13);
   struct Case {
     std::string name;

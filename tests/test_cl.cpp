@@ -1,6 +1,6 @@
-// test_cl.cpp: the OpenCL layer and its small utilities: device listing and --device selection,
-// error names, kernel-source include expansion, the on-disk program cache (hit, miss, fallback,
-// build errors), the host/device struct layout probe, FNV hashing and atomic file writes.
+// test_cl.cpp: the OpenCL layer (host/cl): device listing and --device selection, error names,
+// kernel-source include expansion, the on-disk program cache (hit, miss, fallback, build errors),
+// and the host/device struct layout probe.
 #include <doctest/doctest.h>
 #include <unistd.h>
 
@@ -20,9 +20,7 @@
 #include "cl/kernel_source.h"
 #include "cl/program_cache.h"
 #include "kernels/shared/types.h"
-#include "util/atomic_file.h"
 #include "util/errors.h"
-#include "util/hash.h"
 
 namespace fs = std::filesystem;
 using namespace montecl;
@@ -118,7 +116,7 @@ __kernel void twice(__global uint* out) {
 
 // --- devices ------------------------------------------------------------------------------------
 
-TEST_CASE("cl: listDevices finds a usable device") {
+TEST_CASE("cl: listDevices finds a usable device" * doctest::test_suite("opencl")) {
   DeviceList list = listDevices();
   for (const auto& e : list.platformErrors) MESSAGE("platform error: " << e);
   REQUIRE(!list.devices.empty());
@@ -133,7 +131,7 @@ TEST_CASE("cl: listDevices finds a usable device") {
   }
 }
 
-TEST_CASE("cl: selectDevice by default, index, and name") {
+TEST_CASE("cl: selectDevice by default, index, and name" * doctest::test_suite("opencl")) {
   DeviceInfo def = selectDevice("");
   CHECK(!def.name.empty());
 
@@ -158,7 +156,7 @@ TEST_CASE("cl: selectDevice by default, index, and name") {
          lower(byPlatform.platformName).find(lower(plat)) != std::string::npos));
 }
 
-TEST_CASE("cl: selectDevice rejects specs that match nothing") {
+TEST_CASE("cl: selectDevice rejects specs that match nothing" * doctest::test_suite("opencl")) {
   CHECK_THROWS_AS(selectDevice("nonexistent-xyz"), InputError);
   CHECK(thrownMessage([] { selectDevice("nonexistent-xyz"); }) ==
         "--device: no OpenCL device matches \"nonexistent-xyz\" (run 'montecl devices' to list "
@@ -166,7 +164,7 @@ TEST_CASE("cl: selectDevice rejects specs that match nothing") {
   CHECK_THROWS_AS(selectDevice("9:9"), InputError);
 }
 
-TEST_CASE("cl: selectDevice(\"host\") is the host backend, whatever the case") {
+TEST_CASE("cl: selectDevice(\"host\") is the host backend, whatever the case" * doctest::test_suite("opencl")) {
   for (const char* spec : {"host", "Host", " HOST "}) {
     DeviceInfo d = selectDevice(spec);
     CHECK(d.isHost);
@@ -175,7 +173,7 @@ TEST_CASE("cl: selectDevice(\"host\") is the host backend, whatever the case") {
   CHECK_FALSE(selectDevice("").isHost);
 }
 
-TEST_CASE("cl: formatBytes") {
+TEST_CASE("cl: formatBytes" * doctest::test_suite("cpu")) {
   CHECK(formatBytes(512) == "512 B");
   CHECK(formatBytes(1536) == "1.5 KiB");
   CHECK(formatBytes(1073741824ull) == "1.0 GiB");
@@ -184,7 +182,7 @@ TEST_CASE("cl: formatBytes") {
 
 // --- error names --------------------------------------------------------------------------------
 
-TEST_CASE("cl: error names") {
+TEST_CASE("cl: error names" * doctest::test_suite("cpu")) {
   CHECK(std::string(clErrorName(0)) == "CL_SUCCESS");
   CHECK(std::string(clErrorName(-5)) == "CL_OUT_OF_RESOURCES");
   CHECK(std::string(clErrorName(-11)) == "CL_BUILD_PROGRAM_FAILURE");
@@ -198,7 +196,7 @@ TEST_CASE("cl: error names") {
 
 // --- kernel sources -----------------------------------------------------------------------------
 
-TEST_CASE("cl: kernelFile reads the embedded copy, or MONTECL_KERNEL_DIR") {
+TEST_CASE("cl: kernelFile reads the embedded copy, or MONTECL_KERNEL_DIR" * doctest::test_suite("cpu")) {
   {
     ScopedEnv env("MONTECL_KERNEL_DIR", nullptr);
     CHECK(kernelFile("shared/types.h").find("BvhNode") != std::string::npos);
@@ -212,7 +210,7 @@ TEST_CASE("cl: kernelFile reads the embedded copy, or MONTECL_KERNEL_DIR") {
   CHECK(msg.find(dir.path + "/missing.cl") != std::string::npos);
 }
 
-TEST_CASE("cl: expandedKernelSource expands includes once, relative to the including file") {
+TEST_CASE("cl: expandedKernelSource expands includes once, relative to the including file" * doctest::test_suite("cpu")) {
   ScratchDir dir;
   dir.write("main.cl",
             "#include \"shared/a.h\"\n"
@@ -251,7 +249,7 @@ TEST_CASE("cl: expandedKernelSource expands includes once, relative to the inclu
 
 // --- program cache ------------------------------------------------------------------------------
 
-TEST_CASE("cl: program cache hits, misses, falls back, and runs the cached program") {
+TEST_CASE("cl: program cache hits, misses, falls back, and runs the cached program" * doctest::test_suite("opencl")) {
   ScratchDir dir;
   ScopedEnv env("MONTECL_CACHE_DIR", (dir.path + "/cache").c_str());
   CHECK(programCacheDir() == dir.path + "/cache");
@@ -300,7 +298,7 @@ TEST_CASE("cl: program cache hits, misses, falls back, and runs the cached progr
   CHECK_FALSE(buildProgramCached(context, dev, kDoubleKernel, opts).fromCache);
 }
 
-TEST_CASE("cl: program cache never fails a build when the folder is unusable") {
+TEST_CASE("cl: program cache never fails a build when the folder is unusable" * doctest::test_suite("opencl")) {
   ScratchDir dir;
   dir.write("not-a-folder", "x");
   ScopedEnv env("MONTECL_CACHE_DIR", (dir.path + "/not-a-folder/cache").c_str());
@@ -312,7 +310,7 @@ TEST_CASE("cl: program cache never fails a build when the folder is unusable") {
   CHECK(b.program() != nullptr);
 }
 
-TEST_CASE("cl: a kernel build error carries the build log") {
+TEST_CASE("cl: a kernel build error carries the build log" * doctest::test_suite("opencl")) {
   ScratchDir dir;
   ScopedEnv env("MONTECL_CACHE_DIR", dir.path.c_str());
   DeviceInfo dev = selectDevice("");
@@ -344,7 +342,7 @@ TEST_CASE("cl: a kernel build error carries the build log") {
 
 // --- struct layout ------------------------------------------------------------------------------
 
-TEST_CASE("cl: shared struct layout matches between host and device") {
+TEST_CASE("cl: shared struct layout matches between host and device" * doctest::test_suite("opencl")) {
   ScratchDir dir;
   ScopedEnv cache("MONTECL_CACHE_DIR", dir.path.c_str());
   ScopedEnv kdir("MONTECL_KERNEL_DIR", nullptr);  // the embedded (real) headers
@@ -409,68 +407,4 @@ __kernel void probe(__global uint* out) {
     CAPTURE(host[i].first);
     CHECK(device[i] == host[i].second);
   }
-}
-
-// --- hashing and atomic writes ------------------------------------------------------------------
-
-TEST_CASE("util: fnv1a64 and hex64") {
-  CHECK(fnv1a64("") == 0xcbf29ce484222325ull);
-  CHECK(fnv1a64("a") == 0xaf63dc4c8601ec8cull);
-  CHECK(fnv1a64("foobar") == 0x85944171f73967e8ull);
-  CHECK(fnv1a64("a") != fnv1a64("b"));
-  CHECK(fnv1a64("a", 1) != fnv1a64("a"));
-  CHECK(hex64(0x1234) == "0000000000001234");
-  CHECK(hex64(0xaf63dc4c8601ec8cull) == "af63dc4c8601ec8c");
-}
-
-TEST_CASE("util: writeAtomically renames on success and cleans up on failure") {
-  ScratchDir dir;
-  const std::string target = dir.file("out.png");
-
-  std::string seenTmp;
-  writeAtomically(target, [&](const std::string& tmp) {
-    seenTmp = tmp;
-    CHECK(tmp != target);
-    CHECK(fs::path(tmp).parent_path() == fs::path(target).parent_path());
-    CHECK(fs::path(tmp).extension() == ".png");
-    std::ofstream(tmp) << "new";
-  });
-  CHECK(readAll(target) == "new");
-  CHECK_FALSE(fs::exists(seenTmp));
-  CHECK(dir.entries() == std::vector<std::string>{"out.png"});
-
-  // Two writes get different temporary names.
-  std::string secondTmp;
-  writeAtomically(target, [&](const std::string& tmp) {
-    secondTmp = tmp;
-    std::ofstream(tmp) << "newer";
-  });
-  CHECK(secondTmp != seenTmp);
-  CHECK(readAll(target) == "newer");
-
-  // A failing writer leaves an existing target untouched and no temporary behind.
-  CHECK_THROWS_WITH(writeAtomically(target,
-                                    [&](const std::string& tmp) {
-                                      std::ofstream(tmp) << "partial";
-                                      throw std::runtime_error("writer failed");
-                                    }),
-                    "writer failed");
-  CHECK(readAll(target) == "newer");
-  CHECK(dir.entries() == std::vector<std::string>{"out.png"});
-
-  // ... and creates nothing when there was no target.
-  const std::string fresh = dir.file("fresh.exr");
-  CHECK_THROWS_AS(writeAtomically(fresh,
-                                  [&](const std::string& tmp) {
-                                    std::ofstream(tmp) << "partial";
-                                    throw RuntimeError("disk full");
-                                  }),
-                  RuntimeError);
-  CHECK_FALSE(fs::exists(fresh));
-  CHECK(dir.entries() == std::vector<std::string>{"out.png"});
-
-  // A writer that produces no file is an error, not a silent success.
-  CHECK_THROWS_AS(writeAtomically(dir.file("never.txt"), [](const std::string&) {}),
-                  RuntimeError);
-  CHECK(dir.entries() == std::vector<std::string>{"out.png"});
 }

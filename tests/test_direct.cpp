@@ -11,8 +11,10 @@
 #include "bvh/bvh.h"
 #include "cl/devices.h"
 #include "render/wavefront.h"
+#include "film_stats.h"
 #include "stats.h"
 #include "test_scenes.h"
+#include "skip.h"
 
 using namespace montecl;
 using namespace montecl_test;
@@ -40,21 +42,6 @@ double formFactor(const std::vector<glm::dvec3>& poly, glm::dvec3 x, glm::dvec3 
     sum += angle * glm::dot(n, glm::normalize(glm::cross(a, b)));
   }
   return std::fabs(sum) / (2.0 * M_PI);
-}
-
-struct Estimate {
-  double mean, standardError;
-};
-Estimate imageMean(const Film& f, int c) {
-  RunningStats total;
-  double n = 0, s = 0, q = 0;
-  for (std::size_t p = 0; p < f.sum.size(); ++p) {
-    n += f.sum[p].w;
-    s += f.sum[p][c];
-    q += f.sumSq[p][c];
-  }
-  double mean = s / n, var = std::max(0.0, (q / n - mean * mean) * n / (n - 1));
-  return {mean, std::sqrt(var / n)};
 }
 
 const glm::vec3 kAlbedo(0.5f, 0.6f, 0.7f);
@@ -90,7 +77,7 @@ std::vector<glm::vec3> square(glm::vec3 c, glm::vec3 normal, float size) {
 
 }  // namespace
 
-TEST_CASE("direct lighting matches the polygon form factor for light, brdf and mis sampling") {
+TEST_CASE("direct lighting matches the polygon form factor for light, brdf and mis sampling" * doctest::test_suite("opencl")) {
   struct Config {
     const char* name;
     std::vector<glm::vec3> poly;
@@ -117,7 +104,7 @@ TEST_CASE("direct lighting matches the polygon form factor for light, brdf and m
       Film f = renderDirect(s, strategy);
       for (int c = 0; c < 3; ++c) {
         double expected = kAlbedo[c] * kLe[c] * F;
-        Estimate e = imageMean(f, c);
+        ImageEstimate e = imageEstimate(f, c);
         INFO(cfg.name << ", " << strategy);
         CAPTURE(c);
         INFO("expected " << expected << " (F = " << F << "), got " << e.mean << " +- " << e.standardError);
@@ -128,7 +115,7 @@ TEST_CASE("direct lighting matches the polygon form factor for light, brdf and m
   }
 }
 
-TEST_CASE("an emitter seen from the front gives exactly Le, from the back only reflected light") {
+TEST_CASE("an emitter seen from the front gives exactly Le, from the back only reflected light" * doctest::test_suite("opencl")) {
   Scene s;
   s.path = "<emitter>";
   s.materials = {MaterialDesc{"light", glm::vec3(0.8f), kLe}};
@@ -152,7 +139,7 @@ TEST_CASE("an emitter seen from the front gives exactly Le, from the back only r
   }
 }
 
-TEST_CASE("with brdf sampling, an emitter's back face reflects exactly like a non-emitting one") {
+TEST_CASE("with brdf sampling, an emitter's back face reflects exactly like a non-emitting one" * doctest::test_suite("opencl")) {
   // A faces the camera with its back; B lights A's back. Same seed, brdf sampling: bit-identical.
   Scene s;
   s.path = "<two quads>";
@@ -171,16 +158,13 @@ TEST_CASE("with brdf sampling, an emitter's back face reflects exactly like a no
   Scene plain = s;
   plain.materials[0].emission = glm::vec3(0.0f);
   Film reflecting = renderDirect(plain, "brdf");
-  CHECK(emitting.sum == reflecting.sum);
-  CHECK(imageMean(emitting, 0).mean > 0.0);
+  CHECK(emitting.mean == reflecting.mean);
+  CHECK(imageEstimate(emitting, 0).mean > 0.0);
 }
 
-TEST_CASE("Cornell box: light, brdf and mis agree per pixel; light sampling has lower variance") {
-  std::string path = std::string(MONTECL_SHARED_SCENES) + "/cornell-box/scene.json";
-  if (!std::ifstream(path)) {
-    MESSAGE("skipping: " << path << " not found (the shared scenes are not beside this checkout)");
-    return;
-  }
+TEST_CASE("Cornell box: light, brdf and mis agree per pixel; light sampling has lower variance" * doctest::test_suite("opencl shared-scenes slow")) {
+  std::string path = sharedScenes() + "/cornell-box/scene.json";
+  MCL_SKIP_UNLESS(std::ifstream(path), path << " not found (the shared scenes are not beside this checkout)");
   std::vector<std::string> warnings;
   Scene s = loadScene(path, warnings);
   s.camera.width = s.camera.height = 24;
@@ -192,12 +176,6 @@ TEST_CASE("Cornell box: light, brdf and mis agree per pixel; light sampling has 
   Film brdf = renderDirect(s, "brdf");
   s.render.seed = 13;
   Film mis = renderDirect(s, "mis");
-  auto meanVar = [](const Film& f, std::size_t p, int c, double& mean, double& varOfMean, double& var) {
-    double n = f.sum[p].w;
-    mean = f.sum[p][c] / n;
-    var = std::max(0.0, (f.sumSq[p][c] / n - mean * mean) * n / (n - 1));
-    varOfMean = var / n;
-  };
   // Per-pixel z-scores need the central limit theorem. Light and mis sampling satisfy it in every
   // lit pixel, so they are compared pixel by pixel: |z| > 4 in at most 0.1% of pixels, mean z
   // within +-0.1. BRDF sampling of this small light often has only a handful of non-zero samples
@@ -205,17 +183,15 @@ TEST_CASE("Cornell box: light, brdf and mis agree per pixel; light sampling has 
   // only where both images have an effective sample count (sum^2 / sum of squares) of at least
   // 30, for outliers, and over the whole image for its mean: choosing pixels by their own sample
   // counts biases their mean z, so that criterion uses all pixels in aggregate instead.
-  auto ess = [](const Film& f, std::size_t p) {
-    return f.sumSq[p].y > 0 ? double(f.sum[p].y) * f.sum[p].y / f.sumSq[p].y : 0.0;
-  };
+  auto ess = [](const Film& f, std::size_t p) { return effectiveSamples(f, p, 1); };
   for (const Film* other : {&mis, &brdf}) {
     const bool perPixelMean = other == &mis;
     int outliers = 0, compared = 0;
     double zSum = 0, totalDiff = 0, totalVar = 0;
-    for (std::size_t p = 0; p < light.sum.size(); ++p) {
+    for (std::size_t p = 0; p < light.mean.size(); ++p) {
       double ml, vl, sl, mo, vo, so;
-      meanVar(light, p, 1, ml, vl, sl);
-      meanVar(*other, p, 1, mo, vo, so);
+      pixelMeanVar(light, p, 1, ml, vl, sl);
+      pixelMeanVar(*other, p, 1, mo, vo, so);
       totalDiff += ml - mo;
       totalVar += vl + vo;
       if (vl + vo == 0.0) {
@@ -231,20 +207,20 @@ TEST_CASE("Cornell box: light, brdf and mis agree per pixel; light sampling has 
     INFO((perPixelMean ? "mis" : "brdf") << ": outliers " << outliers << " of " << compared << ", mean z "
                                          << zSum / compared << "; whole image: difference " << totalDiff << " +- "
                                          << std::sqrt(totalVar));
-    CHECK(compared > int(light.sum.size()) / (perPixelMean ? 2 : 5));
+    CHECK(compared > int(light.mean.size()) / (perPixelMean ? 2 : 5));
     CHECK(outliers <= compared / 1000);
     if (perPixelMean) CHECK(std::fabs(zSum / compared) < 0.1);
     CHECK(std::fabs(totalDiff) <= 4.0 * std::sqrt(totalVar));
   }
   double varLight = 0, varBrdf = 0;
-  for (std::size_t p = 0; p < light.sum.size(); ++p) {
+  for (std::size_t p = 0; p < light.mean.size(); ++p) {
     double m, vm, v;
-    meanVar(light, p, 1, m, vm, v);
+    pixelMeanVar(light, p, 1, m, vm, v);
     varLight += v;
-    meanVar(brdf, p, 1, m, vm, v);
+    pixelMeanVar(brdf, p, 1, m, vm, v);
     varBrdf += v;
   }
-  MESSAGE("Cornell box mean per-pixel variance (G): light " << varLight / light.sum.size() << ", brdf "
-                                                              << varBrdf / light.sum.size());
+  MESSAGE("Cornell box mean per-pixel variance (G): light " << varLight / light.mean.size() << ", brdf "
+                                                              << varBrdf / light.mean.size());
   CHECK(varLight < varBrdf);
 }

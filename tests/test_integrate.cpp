@@ -37,7 +37,7 @@ double simpson2d(F f, double a, double b, int m) {
 
 }  // namespace
 
-TEST_CASE("integrate: smooth2d's exact value matches a fine host quadrature") {
+TEST_CASE("integrate: smooth2d's exact value matches a fine host quadrature" * doctest::test_suite("cpu")) {
   double quad = simpson2d(smooth2dF, -0.1, 1.2, 1200);
   double exact = exactIntegral(Integrand::Smooth2d);
   INFO("exact " << exact << " quadrature " << quad);
@@ -54,7 +54,7 @@ TEST_CASE("integrate: smooth2d's exact value matches a fine host quadrature") {
   }
 }
 
-TEST_CASE("integrate: the shared float integrand matches the double reference") {
+TEST_CASE("integrate: the shared float integrand matches the double reference" * doctest::test_suite("cpu")) {
   for (int i = 0; i <= 20; ++i)
     for (int j = 0; j <= 20; ++j) {
       double x = -0.1 + 1.3 * i / 20.0, y = -0.1 + 1.3 * j / 20.0;
@@ -62,7 +62,7 @@ TEST_CASE("integrate: the shared float integrand matches the double reference") 
     }
 }
 
-TEST_CASE("integrate: the importance samplers invert their CDFs") {
+TEST_CASE("integrate: the importance samplers invert their CDFs" * doctest::test_suite("cpu")) {
   for (int i = 0; i <= 100; ++i) {
     float u = std::min(0.999999f, i / 100.0f);
     float t = mcl_sine_sample_phase(u);
@@ -87,7 +87,7 @@ TEST_CASE("integrate: the importance samplers invert their CDFs") {
   CHECK(sumLin * 1.3 / 100000.0 == doctest::Approx(1.0).epsilon(1e-5));
 }
 
-TEST_CASE("integrate: the kernel computes the same terms as the shared host code") {
+TEST_CASE("integrate: the kernel computes the same terms as the shared host code" * doctest::test_suite("opencl")) {
   for (Integrand in : {Integrand::Sine, Integrand::Smooth2d})
     for (Estimator e : {Estimator::Rectangle, Estimator::McUniform, Estimator::McImportance}) {
       std::uint32_t n = 1024, gx = in == Integrand::Smooth2d && e == Estimator::Rectangle ? 32 : 1;
@@ -101,7 +101,7 @@ TEST_CASE("integrate: the kernel computes the same terms as the shared host code
     }
 }
 
-TEST_CASE("integrate: Monte Carlo errors agree with their estimated standard deviations") {
+TEST_CASE("integrate: Monte Carlo errors agree with their estimated standard deviations" * doctest::test_suite("opencl")) {
   const int runs = 256;
   for (Integrand in : {Integrand::Sine, Integrand::Smooth2d})
     for (Estimator e : {Estimator::McUniform, Estimator::McImportance}) {
@@ -125,7 +125,7 @@ TEST_CASE("integrate: Monte Carlo errors agree with their estimated standard dev
     }
 }
 
-TEST_CASE("integrate: the rectangle rule aliases on the sine; MC does not") {
+TEST_CASE("integrate: the rectangle rule aliases on the sine; MC does not" * doctest::test_suite("opencl")) {
   const std::uint32_t n = 4096;
   Estimate rect = estimator().estimate(Integrand::Sine, Estimator::Rectangle, n, 0);
   Estimate mc = estimator().estimate(Integrand::Sine, Estimator::McUniform, n, 0);
@@ -144,7 +144,7 @@ TEST_CASE("integrate: the rectangle rule aliases on the sine; MC does not") {
   CHECK(std::abs(near.error) > 0.9);
 }
 
-TEST_CASE("integrate: importance sampling has lower variance than uniform Monte Carlo") {
+TEST_CASE("integrate: importance sampling has lower variance than uniform Monte Carlo" * doctest::test_suite("opencl")) {
   for (Integrand in : {Integrand::Sine, Integrand::Smooth2d}) {
     Estimate uni = estimator().estimate(in, Estimator::McUniform, 4096, 3);
     Estimate imp = estimator().estimate(in, Estimator::McImportance, 4096, 3);
@@ -154,7 +154,7 @@ TEST_CASE("integrate: importance sampling has lower variance than uniform Monte 
   }
 }
 
-TEST_CASE("integrate: 2D rectangle grid and its small error on the smooth function") {
+TEST_CASE("integrate: 2D rectangle grid and its small error on the smooth function" * doctest::test_suite("opencl")) {
   std::uint32_t gx = 0, gy = 0;
   rectangleGrid(Integrand::Smooth2d, 4096, gx, gy);
   CHECK(gx == 64);
@@ -169,7 +169,7 @@ TEST_CASE("integrate: 2D rectangle grid and its small error on the smooth functi
   CHECK(std::abs(coarse.error) > std::abs(rect.error));
 }
 
-TEST_CASE("integrate: summaries of terms in double") {
+TEST_CASE("integrate: summaries of terms in double" * doctest::test_suite("cpu")) {
   Estimate e;
   summariseTerms({1.0f, 2.0f, 3.0f, 4.0f}, 2.0, true, e);
   CHECK(e.n == 4);
@@ -182,7 +182,7 @@ TEST_CASE("integrate: summaries of terms in double") {
   CHECK(e.stdDev == 0.0);
 }
 
-TEST_CASE("cli: montecl integrate --runs 4 prints every estimator") {
+TEST_CASE("cli: montecl integrate --runs 4 prints every estimator" * doctest::test_suite("cli")) {
   montecl_test::CliResult r = montecl_test::runMontecl({"integrate", "--runs", "4"});
   INFO("stderr: " << r.err << "\nstdout: " << r.out);
   REQUIRE(r.exitCode == 0);
@@ -194,7 +194,7 @@ TEST_CASE("cli: montecl integrate --runs 4 prints every estimator") {
   CHECK(runLines >= 2 * 4);  // four runs for each integrand (plus avg and spread lines)
 }
 
-TEST_CASE("cli: montecl integrate --json and bad options") {
+TEST_CASE("cli: montecl integrate --json and bad options" * doctest::test_suite("cli")) {
   montecl_test::CliResult r = montecl_test::runMontecl({"integrate", "--integrand", "sine", "--n", "1000", "--runs",
                                                         "3", "--json"});
   INFO("stderr: " << r.err);

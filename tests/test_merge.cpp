@@ -1,6 +1,8 @@
-// test_merge.cpp: named-channel EXR round trips, the film -> AOV conversion, the exact merge math
-// (split per-pixel sample sets merge to the statistics of the whole set), and `montecl merge`
-// through the real command line, including its bad-input errors (exit 2, one line naming the file).
+// test_merge.cpp: host/image/exr_layers and `montecl merge`: named-channel EXR round trips, the
+// film -> AOV conversion, the exact merge math (split per-pixel sample sets merge to the statistics
+// of the whole set), and through the real command line: a render split with --first-sample and
+// merged equals the single render, merged seeds have the combined error, bad inputs exit 2 with one
+// line naming the file.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -16,6 +18,8 @@
 
 using namespace montecl;
 using montecl_test::CliResult;
+using montecl_test::demoRenderArgs;
+using montecl_test::demoScene;
 using montecl_test::runMontecl;
 using montecl_test::TempDir;
 namespace fs = std::filesystem;
@@ -108,7 +112,7 @@ void checkOneLineNaming(const CliResult& r, const std::string& file) {
 
 }  // namespace
 
-TEST_CASE("merge: channel names and values round-trip through the EXR writer and reader") {
+TEST_CASE("merge: channel names and values round-trip through the EXR writer and reader" * doctest::test_suite("cpu")) {
   TempDir dir;
   LayeredImage im;
   im.width = 5;
@@ -132,7 +136,7 @@ TEST_CASE("merge: channel names and values round-trip through the EXR writer and
   CHECK_THROWS_AS(readLayeredImage(dir.file("missing.exr")), InputError);
 }
 
-TEST_CASE("merge: layersFromFilm gives mean, count and the unbiased variance of one sample") {
+TEST_CASE("merge: layersFromFilm gives mean, count and the unbiased variance of one sample" * doctest::test_suite("cpu")) {
   Film film;
   film.width = 2;
   film.height = 1;
@@ -151,7 +155,7 @@ TEST_CASE("merge: layersFromFilm gives mean, count and the unbiased variance of 
   CHECK((*im.find("samples"))[1] == 0.0f);
 }
 
-TEST_CASE("merge: combineStats equals the statistics of the combined sample set") {
+TEST_CASE("merge: combineStats equals the statistics of the combined sample set" * doctest::test_suite("cpu")) {
   std::mt19937 rng(11);
   std::normal_distribution<double> value(3.0, 2.0);
   std::vector<SampleStats> parts;
@@ -175,7 +179,7 @@ TEST_CASE("merge: combineStats equals the statistics of the combined sample set"
   CHECK(one.variance == 0.0);
 }
 
-TEST_CASE("merge: split sample sets merge to the statistics of the whole set") {
+TEST_CASE("merge: split sample sets merge to the statistics of the whole set" * doctest::test_suite("cli")) {
   PixelSets a, b, all;
   makeSplitSets(7, 5, a, b, all, 42);
   LayeredImage ia = statsImage(7, 5, a), ib = statsImage(7, 5, b), want = statsImage(7, 5, all);
@@ -202,7 +206,7 @@ TEST_CASE("merge: split sample sets merge to the statistics of the whole set") {
   }
 }
 
-TEST_CASE("merge: three renders merge like the whole set") {
+TEST_CASE("merge: three renders merge like the whole set" * doctest::test_suite("cpu")) {
   PixelSets a, b, all, c, unusedD, unusedCd;
   makeSplitSets(4, 4, a, b, all, 1);
   makeSplitSets(4, 4, c, unusedD, unusedCd, 2);  // c: a third part; all = a + b + c
@@ -211,7 +215,7 @@ TEST_CASE("merge: three renders merge like the whole set") {
   checkPlanesClose(got, statsImage(4, 4, all));
 }
 
-TEST_CASE("merge: bad inputs exit 2 with one line naming the file") {
+TEST_CASE("merge: bad inputs exit 2 with one line naming the file" * doctest::test_suite("cli")) {
   TempDir dir;
   PixelSets a, b, all;
   makeSplitSets(4, 3, a, b, all, 5);
@@ -240,4 +244,79 @@ TEST_CASE("merge: bad inputs exit 2 with one line naming the file") {
   CHECK(!fs::exists(dir.file("out.png")));
   CHECK(entriesIn(dir.path) == 4);  // the inputs only: no partial or temporary outputs
   CHECK(runMontecl({"merge", "-o", out}).exitCode == 2);  // no inputs
+}
+
+TEST_CASE("a render split with --first-sample and merged equals the single render" * doctest::test_suite("cli")) {
+  TempDir dir;
+  REQUIRE(runMontecl(demoRenderArgs(dir.file("all.exr"), 16, 0)).exitCode == 0);
+  REQUIRE(runMontecl(demoRenderArgs(dir.file("a.exr"), 6, 0)).exitCode == 0);
+  REQUIRE(runMontecl(demoRenderArgs(dir.file("b.exr"), 10, 6)).exitCode == 0);
+  CliResult merged = runMontecl({"merge", dir.file("a.exr"), dir.file("b.exr"), "-o", dir.file("m.exr")});
+  INFO(merged.err);
+  REQUIRE(merged.exitCode == 0);
+
+  montecl::LayeredImage all = montecl::readLayeredImage(dir.file("all.exr"));
+  montecl::LayeredImage m = montecl::readLayeredImage(dir.file("m.exr"));
+  montecl::LayeredImage a = montecl::readLayeredImage(dir.file("a.exr"));
+  REQUIRE(all.width == 24);
+  REQUIRE(m.width == all.width);
+  REQUIRE(m.height == all.height);
+  for (const char* name : {"R", "G", "B", "samples", "var.R"}) {
+    CAPTURE(name);
+    REQUIRE(all.find(name) != nullptr);
+    REQUIRE(m.find(name) != nullptr);
+    const std::vector<float>& x = *all.find(name);
+    const std::vector<float>& y = *m.find(name);
+    double worst = 0.0;
+    for (std::size_t p = 0; p < x.size(); ++p)
+      worst = std::max(worst, std::fabs(double(x[p]) - y[p]) / std::max(1e-3, std::fabs(double(x[p]))));
+    CHECK(worst < 1e-4);
+  }
+  CHECK((*all.find("samples"))[0] == 16.0f);
+  CHECK((*a.find("samples"))[0] == 6.0f);
+  // The split really rendered different samples: the halves differ from each other.
+  const std::vector<float>& ar = *a.find("R");
+  const std::vector<float>& br = *montecl::readLayeredImage(dir.file("b.exr")).find("R");
+  CHECK(ar != br);
+}
+
+TEST_CASE("merging renders with different seeds has the error of the combined sample count" * doctest::test_suite("cli")) {
+  // Two 8 spp renders (seeds 1, 2) merged, against an independent 512 spp render (seed 3): per
+  // pixel, z = (merged - reference) / sqrt(var/16 + var_ref/512) from the files' own variances.
+  TempDir dir;
+  auto args = [&](const std::string& out, int spp, int seed) {
+    return std::vector<std::string>{"render", demoScene(), "-o", out, "--width", "24", "--height", "16", "--spp",
+                                    std::to_string(spp), "--seed", std::to_string(seed), "--ao-sampling",
+                                    "uniform", "-q"};
+  };
+  REQUIRE(runMontecl(args(dir.file("s1.exr"), 8, 1)).exitCode == 0);
+  REQUIRE(runMontecl(args(dir.file("s2.exr"), 8, 2)).exitCode == 0);
+  REQUIRE(runMontecl(args(dir.file("ref.exr"), 512, 3)).exitCode == 0);
+  REQUIRE(runMontecl({"merge", dir.file("s1.exr"), dir.file("s2.exr"), "-o", dir.file("m.exr"), "-q"}).exitCode == 0);
+  montecl::LayeredImage m = montecl::readLayeredImage(dir.file("m.exr"));
+  montecl::LayeredImage ref = montecl::readLayeredImage(dir.file("ref.exr"));
+  const auto& mr = *m.find("G");
+  const auto& mv = *m.find("var.G");
+  const auto& mn = *m.find("samples");
+  const auto& rr = *ref.find("G");
+  const auto& rv = *ref.find("var.G");
+  int compared = 0, outliers = 0;
+  double zSum = 0.0, zSq = 0.0;
+  for (std::size_t p = 0; p < mr.size(); ++p) {
+    REQUIRE(mn[p] == 16.0f);
+    double var = mv[p] / 16.0 + rv[p] / 512.0;
+    if (var <= 0.0) continue;  // e.g. background: both exact
+    double z = (mr[p] - rr[p]) / std::sqrt(var);
+    ++compared;
+    zSum += z;
+    zSq += z * z;
+    outliers += std::fabs(z) > 4.0;
+  }
+  double meanZ = zSum / compared, rmsZ = std::sqrt(zSq / compared);
+  INFO("compared " << compared << ", mean z " << meanZ << ", rms z " << rmsZ);
+  REQUIRE(compared > 100);
+  CHECK(outliers <= 2);
+  CHECK(std::fabs(meanZ) < 0.3);
+  CHECK(rmsZ > 0.7);  // an error far below the combined count's would mean the variance is wrong
+  CHECK(rmsZ < 1.4);
 }

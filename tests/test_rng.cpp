@@ -9,7 +9,7 @@
 #include "kernels/shared/rng.h"
 #include "stats.h"
 
-TEST_CASE("rng is a pure function of (seed, pixel, sample, group)") {
+TEST_CASE("rng is a pure function of (seed, pixel, sample, group)" * doctest::test_suite("cpu")) {
   for (uint i = 0; i < 1000; ++i) {
     float4 a = rng_uniform4(5u, i, i * 7u, 2u);
     float4 b = rng_uniform4(5u, i, i * 7u, 2u);
@@ -17,7 +17,7 @@ TEST_CASE("rng is a pure function of (seed, pixel, sample, group)") {
   }
 }
 
-TEST_CASE("pcg4d is injective on a grid of inputs") {
+TEST_CASE("pcg4d is injective on a grid of inputs" * doctest::test_suite("cpu")) {
   std::set<std::tuple<uint, uint, uint, uint>> seen;
   for (uint p = 0; p < 64; ++p)
     for (uint s = 0; s < 64; ++s)
@@ -29,7 +29,7 @@ TEST_CASE("pcg4d is injective on a grid of inputs") {
   CHECK(seen.size() == 64u * 64u * 4u * 4u);
 }
 
-TEST_CASE("rng numbers are uniform on the unit interval in every component") {
+TEST_CASE("rng numbers are uniform on the unit interval in every component" * doctest::test_suite("cpu")) {
   const int bins = 64, n = 200000;
   std::vector<std::vector<double>> counts(4, std::vector<double>(bins, 0.0));
   for (int i = 0; i < n; ++i) {
@@ -48,7 +48,7 @@ TEST_CASE("rng numbers are uniform on the unit interval in every component") {
   }
 }
 
-TEST_CASE("neighbouring pixels, samples, groups and seeds are uncorrelated") {
+TEST_CASE("neighbouring pixels, samples, groups and seeds are uncorrelated" * doctest::test_suite("cpu")) {
   // Pearson correlation of u(x) with u(x + 1) along each input; |r| must be small (n = 1e5).
   const int n = 100000;
   for (int axis = 0; axis < 4; ++axis) {

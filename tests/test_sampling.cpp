@@ -59,14 +59,14 @@ ChiSquare chiSquareHemisphere(const std::function<float3(float, float)>& warp,
 
 }  // namespace
 
-TEST_CASE("hemisphere pdfs integrate to one over the sphere") {
+TEST_CASE("hemisphere pdfs integrate to one over the sphere" * doctest::test_suite("cpu")) {
   CHECK(integrateOverSphere([](double z) { return z >= 0 ? double(pdf_uniform_hemisphere()) : 0.0; }) ==
         doctest::Approx(1.0).epsilon(1e-6));
   CHECK(integrateOverSphere([](double z) { return double(pdf_cosine_hemisphere(float(z))); }) ==
         doctest::Approx(1.0).epsilon(1e-4));
 }
 
-TEST_CASE("uniform hemisphere samples pass a chi-square test against p = 1/(2 pi)") {
+TEST_CASE("uniform hemisphere samples pass a chi-square test against p = 1/(2 pi)" * doctest::test_suite("cpu")) {
   ChiSquare cs = chiSquareHemisphere(sample_uniform_hemisphere, [](double a, double b) { return b - a; }, 400000);
   INFO("chi2 = " << cs.statistic << " dof = " << cs.dof);
   CHECK(cs.statistic < chiSquareCritical(cs.dof));
@@ -75,7 +75,7 @@ TEST_CASE("uniform hemisphere samples pass a chi-square test against p = 1/(2 pi
   CHECK(wrong.statistic > chiSquareCritical(wrong.dof));
 }
 
-TEST_CASE("cosine hemisphere samples pass a chi-square test against p = cos/pi") {
+TEST_CASE("cosine hemisphere samples pass a chi-square test against p = cos/pi" * doctest::test_suite("cpu")) {
   ChiSquare cs = chiSquareHemisphere(sample_cosine_hemisphere, [](double a, double b) { return b * b - a * a; }, 400000);
   INFO("chi2 = " << cs.statistic << " dof = " << cs.dof);
   CHECK(cs.statistic < chiSquareCritical(cs.dof));
@@ -83,7 +83,7 @@ TEST_CASE("cosine hemisphere samples pass a chi-square test against p = cos/pi")
   CHECK(wrong.statistic > chiSquareCritical(wrong.dof));
 }
 
-TEST_CASE("warped directions are unit vectors") {
+TEST_CASE("warped directions are unit vectors" * doctest::test_suite("cpu")) {
   for (int i = 0; i < 10000; ++i) {
     float4 u = rng_uniform4(1u, uint(i), 2u, 3u);
     CHECK(glm::length(sample_uniform_hemisphere(u.x, u.y)) == doctest::Approx(1.0f).epsilon(1e-5));
@@ -91,7 +91,7 @@ TEST_CASE("warped directions are unit vectors") {
   }
 }
 
-TEST_CASE("make_basis gives a right-handed orthonormal frame, also at the poles") {
+TEST_CASE("make_basis gives a right-handed orthonormal frame, also at the poles" * doctest::test_suite("cpu")) {
   std::vector<float3> normals = {float3(0, 0, 1), float3(0, 0, -1), float3(1, 0, 0), float3(0, -1, 0)};
   for (int i = 0; i < 1000; ++i) {
     float4 u = rng_uniform4(3u, uint(i), 0u, 0u);

@@ -4,10 +4,14 @@
 // loading of the shared scenes (skipped when ../shared/scenes is absent).
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
+#include <grp.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +20,7 @@
 #include "cli_runner.h"
 #include "scene/scene.h"
 #include "util/errors.h"
+#include "skip.h"
 
 using montecl::Camera;
 using montecl::InputError;
@@ -49,6 +54,49 @@ std::string loadError(const std::string& path) {
     return e.what();
   }
   return "";
+}
+
+// loadError of each path in a forked child that is not root (it drops to the user nobody when
+// run as root, so file permissions apply); failure says why the child could not run.
+struct UnprivilegedLoad {
+  std::vector<std::string> messages;
+  std::string failure;
+};
+UnprivilegedLoad loadErrorsUnprivileged(const std::vector<std::string>& paths) {
+  UnprivilegedLoad out;
+  int fds[2];
+  if (::pipe(fds) != 0) {
+    out.failure = "pipe failed";
+    return out;
+  }
+  pid_t pid = ::fork();
+  if (pid == 0) {  // child: no doctest macros here
+    ::close(fds[0]);
+    std::string reply;
+    if (::geteuid() == 0 && (::setgroups(0, nullptr) != 0 || ::setgid(65534) != 0 || ::setuid(65534) != 0))
+      reply = std::string("!cannot drop root: ") + std::strerror(errno);
+    else if (::geteuid() == 0)
+      reply = "!still root";
+    else
+      for (const std::string& p : paths) reply += loadError(p) + '\n';
+    ssize_t unused = ::write(fds[1], reply.data(), reply.size());
+    (void)unused;
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  std::string reply;
+  char buf[4096];
+  for (ssize_t n; (n = ::read(fds[0], buf, sizeof buf)) > 0;) reply.append(buf, std::size_t(n));
+  ::close(fds[0]);
+  int status = 0;
+  if (pid < 0 || ::waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    out.failure = "child process failed";
+  else if (!reply.empty() && reply[0] == '!')
+    out.failure = reply.substr(1);
+  else
+    for (std::size_t a = 0, b; (b = reply.find('\n', a)) != std::string::npos; a = b + 1)
+      out.messages.push_back(reply.substr(a, b - a));
+  return out;
 }
 
 // Pixel coordinates of p seen through cam (pinhole, fovY vertical); z <= 0 means behind it.
@@ -97,7 +145,7 @@ bool containsWarning(const std::vector<std::string>& warnings, const std::string
 
 }  // namespace
 
-TEST_CASE("scene file: every camera and render value is parsed") {
+TEST_CASE("scene file: every camera and render value is parsed" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("tri.obj", kTriangleObj);
   json s = baseScene("tri.obj");
@@ -130,7 +178,7 @@ TEST_CASE("scene file: every camera and render value is parsed") {
   CHECK(scene.boundsMax == glm::vec3(1, 1, 0));
 }
 
-TEST_CASE("scene file: up and render are optional with the documented defaults") {
+TEST_CASE("scene file: up and render are optional with the documented defaults" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("tri.obj", kTriangleObj);
   dir.write("scene.json", baseScene("tri.obj").dump());
@@ -147,7 +195,7 @@ TEST_CASE("scene file: up and render are optional with the documented defaults")
   CHECK(scene.render.lightSamples == 1);
 }
 
-TEST_CASE("scene file: mesh paths are relative to the scene file's folder") {
+TEST_CASE("scene file: mesh paths are relative to the scene file's folder" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("meshes/far.obj", "v 5 0 0\nv 6 0 0\nv 5 1 0\nf 1 2 3\n");
   dir.write("scenes/a/sub/near.obj", "v 0 0 -2\nv 1 0 -2\nv 0 1 -2\nf 1 2 3\n");
@@ -163,7 +211,7 @@ TEST_CASE("scene file: mesh paths are relative to the scene file's folder") {
   CHECK(scene.boundsMax == glm::vec3(6, 1, 0));
 }
 
-TEST_CASE("OBJ: MTL Kd and Ke are read, and each OBJ's materials get their own indices") {
+TEST_CASE("OBJ: MTL Kd and Ke are read, and each OBJ's materials get their own indices" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("a.mtl", "newmtl paint\nKd 0.1 0.2 0.3\n\nnewmtl lamp\nKd 0 0 0\nKe 4 5 6\n");
   dir.write("a.obj", "mtllib a.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl paint\nf 1 2 3\nusemtl lamp\nf 1 3 2\n");
@@ -185,7 +233,7 @@ TEST_CASE("OBJ: MTL Kd and Ke are read, and each OBJ's materials get their own i
   CHECK(distinct.size() == 3);
 }
 
-TEST_CASE("OBJ: faces without a material share one 0.5 grey default material") {
+TEST_CASE("OBJ: faces without a material share one 0.5 grey default material" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("plain.obj", kTriangleObj);
   dir.write("mixed.mtl", "newmtl red\nKd 1 0 0\n");
@@ -202,7 +250,7 @@ TEST_CASE("OBJ: faces without a material share one 0.5 grey default material") {
   CHECK(montecl::defaultMaterialIndex(scene) == scene.triangles[0].material);
 }
 
-TEST_CASE("OBJ: quads and polygons are triangulated, negative indices resolved") {
+TEST_CASE("OBJ: quads and polygons are triangulated, negative indices resolved" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("poly.obj",
             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"
@@ -217,7 +265,7 @@ TEST_CASE("OBJ: quads and polygons are triangulated, negative indices resolved")
   for (const auto& t : scene.triangles) CHECK(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]).z > 0);
 }
 
-TEST_CASE("OBJ: CRLF line ends, a byte order mark, tabs and comments are accepted") {
+TEST_CASE("OBJ: CRLF line ends, a byte order mark, tabs and comments are accepted" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("dos.obj", "\xEF\xBB\xBFv 0 0 0\r\n# comment\r\n\tv\t1 0 0\r\nv 0 1 0 1.0\r\n\r\nf 1 2 3\r\n");
   std::vector<std::string> warnings;
@@ -229,7 +277,7 @@ TEST_CASE("OBJ: CRLF line ends, a byte order mark, tabs and comments are accepte
   CHECK(scene.triangles[0].v[2] == glm::vec3(0, 1, 0));
 }
 
-TEST_CASE("OBJ: degenerate triangles are dropped and counted, and do not grow the bounds") {
+TEST_CASE("OBJ: degenerate triangles are dropped and counted, and do not grow the bounds" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("degenerate.obj",
             "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 100 100 100\nv 200 200 200\nv 300 300 300\n"
@@ -244,7 +292,7 @@ TEST_CASE("OBJ: degenerate triangles are dropped and counted, and do not grow th
   CHECK(scene.boundsMax == glm::vec3(1, 1, 0));
 }
 
-TEST_CASE("scene file: a mesh's emission makes all its triangles emitters") {
+TEST_CASE("scene file: a mesh's emission makes all its triangles emitters" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("lamp.mtl", "newmtl shade\nKd 0.2 0.3 0.4\n");
   dir.write("lamp.obj", "mtllib lamp.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl shade\nf 1 2 3\n");
@@ -264,7 +312,7 @@ TEST_CASE("scene file: a mesh's emission makes all its triangles emitters") {
   CHECK(materialOf(scene, 2).emission == glm::vec3(0.0f));     // non-emissive
 }
 
-TEST_CASE("bare OBJ: default camera and render settings, camera frames the bounding box") {
+TEST_CASE("bare OBJ: default camera and render settings, camera frames the bounding box" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("Shape.OBJ", "v -3 10 2\nv 5 10 2\nv 5 14 -7\nf 1 2 3\n");
   Scene scene = load(dir.file("Shape.OBJ"));
@@ -277,7 +325,7 @@ TEST_CASE("bare OBJ: default camera and render settings, camera frames the bound
   checkFramed(scene.camera, scene.boundsMin, scene.boundsMax);
 }
 
-TEST_CASE("defaultCamera frames boxes of any shape for any aspect ratio") {
+TEST_CASE("defaultCamera frames boxes of any shape for any aspect ratio" * doctest::test_suite("cpu")) {
   const std::vector<std::pair<glm::vec3, glm::vec3>> boxes = {
       {{-1, -1, -1}, {1, 1, 1}},     {{0, 0, 0}, {100, 1, 1}},      {{0, 0, 0}, {1, 100, 1}},
       {{0, 0, 0}, {1, 1, 100}},      {{1000, 2000, -500}, {1001, 2000.5f, -499}}, {{0, 0, 0}, {1e-3f, 2e-3f, 0}}};
@@ -298,7 +346,7 @@ TEST_CASE("defaultCamera frames boxes of any shape for any aspect ratio") {
   }
 }
 
-TEST_CASE("scene file: unknown keys are warnings naming the file and the key") {
+TEST_CASE("scene file: unknown keys are warnings naming the file and the key" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("tri.obj", kTriangleObj);
   json s = baseScene("tri.obj");
@@ -317,7 +365,7 @@ TEST_CASE("scene file: unknown keys are warnings naming the file and the key") {
   }
 }
 
-TEST_CASE("OBJ: missing MTL and unknown statements are warnings, not errors") {
+TEST_CASE("OBJ: missing MTL and unknown statements are warnings, not errors" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("m.obj", "mtllib nowhere.mtl\nusemtl stone\nv 0 0 0\nv 1 0 0\nfrobnicate 3\nv 0 1 0\nf 1 2 3\n");
   std::vector<std::string> warnings;
@@ -336,7 +384,7 @@ TEST_CASE("OBJ: missing MTL and unknown statements are warnings, not errors") {
   for (const std::string& w : warnings) CHECK(w.find('\n') == std::string::npos);
 }
 
-TEST_CASE("bad input: every case under scenes/test/bad throws one InputError line naming file and key") {
+TEST_CASE("bad input: every case under scenes/test/bad throws one InputError line naming file and key" * doctest::test_suite("cpu")) {
   std::vector<fs::path> cases;
   for (const auto& entry : fs::directory_iterator(kBadCases)) cases.push_back(entry.path());
   std::sort(cases.begin(), cases.end());
@@ -353,7 +401,7 @@ TEST_CASE("bad input: every case under scenes/test/bad throws one InputError lin
   }
 }
 
-TEST_CASE("bad input: missing and unreadable files name the file") {
+TEST_CASE("bad input: missing and unreadable files name the file" * doctest::test_suite("cpu")) {
   TempDir dir;
   std::string message = loadError(dir.file("no-such-scene.json"));
   CHECK(message.find("no-such-scene.json") != std::string::npos);
@@ -361,18 +409,26 @@ TEST_CASE("bad input: missing and unreadable files name the file") {
   message = loadError(dir.file("no-such-mesh.obj"));
   CHECK(message.find("no-such-mesh.obj") != std::string::npos);
   CHECK(loadError(dir.path).find("directory") != std::string::npos);
-  if (::geteuid() == 0) {
-    MESSAGE("unreadable-file case skipping: running as root, permissions are not enforced");
-    return;
-  }
+  // A file with no permissions, in a folder anyone may enter, read by an unprivileged process:
+  // under root (as CI runs) a child process drops to the user nobody first, since root reads
+  // any file. A readable scene beside it must load in that same process.
+  dir.write("tri.obj", kTriangleObj);
+  dir.write("open.json", baseScene("tri.obj").dump());
   dir.write("locked.json", baseScene("tri.obj").dump());
+  fs::permissions(dir.path, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                                fs::perms::others_read | fs::perms::others_exec);
   fs::permissions(dir.file("locked.json"), fs::perms::none);
-  message = loadError(dir.file("locked.json"));
+  UnprivilegedLoad r = loadErrorsUnprivileged({dir.file("open.json"), dir.file("locked.json")});
+  INFO("child: " << r.failure);
+  REQUIRE(r.failure.empty());
+  REQUIRE(r.messages.size() == 2);
+  CHECK(r.messages[0] == "");
+  message = r.messages[1];
   CHECK(message.find("locked.json") != std::string::npos);
   CHECK(message.find("Permission denied") != std::string::npos);
 }
 
-TEST_CASE("demo scene: loads without warnings and has an emitter") {
+TEST_CASE("demo scene: loads without warnings and has an emitter" * doctest::test_suite("cpu")) {
   std::vector<std::string> warnings;
   Scene scene = montecl::loadScene(std::string(MONTECL_SOURCE_DIR) + "/scenes/demo/scene.json", warnings);
   CHECK(warnings.empty());
@@ -384,12 +440,9 @@ TEST_CASE("demo scene: loads without warnings and has an emitter") {
   CHECK(emitters == 2);  // the light quad
 }
 
-TEST_CASE("shared scenes: all load, fast enough to report") {
-  const fs::path root = MONTECL_SHARED_SCENES;
-  if (!fs::is_directory(root)) {
-    MESSAGE("shared scenes skipping: " << root.string() << " not found");
-    return;
-  }
+TEST_CASE("shared scenes: all load, fast enough to report" * doctest::test_suite("cpu shared-scenes")) {
+  const fs::path root = montecl_test::sharedScenes();
+  MCL_SKIP_UNLESS(fs::is_directory(root), root.string() << " not found (the shared scenes are not beside this checkout)");
   int loaded = 0;
   for (const char* name : {"cornell-box", "bunny", "sibenik", "sponza"}) {
     fs::path file = root / name / "scene.json";

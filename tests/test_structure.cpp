@@ -47,7 +47,7 @@ std::vector<fs::path> sourcesUnder(const fs::path& root) {
 
 }  // namespace
 
-TEST_CASE("structure: every host include goes to a lower layer (or the kernels), none back up") {
+TEST_CASE("structure: every host include goes to a lower layer (or the kernels), none back up" * doctest::test_suite("cpu")) {
   const fs::path host = fs::path(MONTECL_SOURCE_DIR) / "host";
   int files = 0, violations = 0;
   for (const fs::path& file : sourcesUnder(host)) {
@@ -71,7 +71,7 @@ TEST_CASE("structure: every host include goes to a lower layer (or the kernels),
   CHECK(violations == 0);
 }
 
-TEST_CASE("structure: kernels/shared never includes the stage bodies") {
+TEST_CASE("structure: kernels/shared never includes the stage bodies" * doctest::test_suite("cpu")) {
   const fs::path shared = fs::path(MONTECL_SOURCE_DIR) / "kernels" / "shared";
   int violations = 0;
   for (const fs::path& file : sourcesUnder(shared)) {
@@ -86,7 +86,7 @@ TEST_CASE("structure: kernels/shared never includes the stage bodies") {
   CHECK(violations == 0);
 }
 
-TEST_CASE("structure: no host source file is over 450 lines") {
+TEST_CASE("structure: no host source file is over 450 lines" * doctest::test_suite("cpu")) {
   const fs::path host = fs::path(MONTECL_SOURCE_DIR) / "host";
   int longFiles = 0;
   for (const fs::path& file : sourcesUnder(host)) {

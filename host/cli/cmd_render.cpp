@@ -104,6 +104,9 @@ bool hasEmitter(const Scene& scene) {
 }
 
 int runRender(const RenderArgs& a) {
+  // Option rules first, before any file is read or kernel built.
+  if (a.targetError > 0.0 && a.minSpp > a.maxSpp)
+    throwInputError("--min-spp", "", "must not exceed --max-spp (" + std::to_string(a.maxSpp) + ")");
   std::vector<std::string> warnings;
   Scene scene = loadScene(a.scene, warnings);
   for (const std::string& w : warnings) std::cerr << "montecl: warning: " << w << "\n";
@@ -145,8 +148,6 @@ int runRender(const RenderArgs& a) {
     std::cerr << "montecl: kernels " << (renderer.programFromCache() ? "loaded from cache" : "compiled") << " in "
               << renderer.programBuildMs() << " ms\n";
 
-  if (a.targetError > 0.0 && a.minSpp > a.maxSpp)
-    throwInputError("--min-spp", "", "must not exceed --max-spp (" + std::to_string(a.maxSpp) + ")");
   RenderStats stats;
   ProgressBar bar(!a.quiet);
   InterruptGuard guard;

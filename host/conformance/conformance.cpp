@@ -42,8 +42,8 @@ void compare(const Film& ref, const Film& dev, ImageComparison& c) {
     c.maxRelDiff = std::max(c.maxRelDiff, diff / std::max(scale, kAbsFloor));
     if (!(diff <= std::max(kRelTolerance * scale, kAbsFloor))) ++c.failingValues;  // NaN fails
   }
-  for (std::size_t p = 0; p < ref.sum.size(); ++p)
-    if (ref.sum[p].w != dev.sum[p].w) ++c.failingValues;  // sample counts must match exactly
+  for (std::size_t p = 0; p < ref.mean.size(); ++p)
+    if (ref.mean[p].w != dev.mean[p].w) ++c.failingValues;  // sample counts must match exactly
   c.meanAbsDiff = a.empty() ? 0.0 : sumAbs / double(a.size());
   c.pass = c.failingValues == 0;
 }

@@ -1,6 +1,6 @@
 // film.h: per-pixel statistics read back from the device: the running mean (rgb, w = sample count)
-// and M2 (rgb: sum of squared deviations from the mean, Welford) the accumulate kernel keeps, the
-// sums derived from them in double, and the AOV sums. Row 0 at the top.
+// and M2 (rgb: sum of squared deviations from the mean, Welford) the accumulate kernel keeps, and
+// the AOV sums. Row 0 at the top.
 #pragma once
 #include <glm/glm.hpp>
 #include <algorithm>
@@ -12,25 +12,8 @@ struct Film {
   int width = 0, height = 0;
   std::vector<glm::vec4> mean;   // rgb: mean of the sample values; w: number of samples n
   std::vector<glm::vec4> m2;     // rgb: sum over samples of (x - mean)^2
-  std::vector<glm::vec4> sum;    // derived by deriveSums(): rgb n * mean; w: n
-  std::vector<glm::vec4> sumSq;  // derived by deriveSums(): rgb m2 + n * mean^2
   // With AOVs: 2 per pixel, sums over samples of (albedo, depth) and (normal, 0); else empty.
   std::vector<glm::vec4> aovSum;
-
-  // Fills sum and sumSq from mean and m2 (in double, then rounded to float).
-  void deriveSums() {
-    sum.resize(mean.size());
-    sumSq.resize(mean.size());
-    for (size_t p = 0; p < mean.size(); ++p) {
-      const double n = mean[p].w;
-      for (int c = 0; c < 3; ++c) {
-        sum[p][c] = float(n * mean[p][c]);
-        sumSq[p][c] = float(double(m2[p][c]) + n * double(mean[p][c]) * mean[p][c]);
-      }
-      sum[p].w = mean[p].w;
-      sumSq[p].w = 0.0f;
-    }
-  }
 
   // Unbiased variance of one sample of channel c (0 below two samples).
   double variance(size_t p, int c) const {

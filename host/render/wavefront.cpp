@@ -149,7 +149,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
     // Adaptive: all pixels share a sample count n while active, so the active list's items map to
     // sample indices n .. n + k - 1 of each pixel; the rounds are deterministic.
     std::uint64_t n = std::uint64_t(m.options.minSpp);
-    const std::uint64_t maxSpp = std::uint64_t(std::max(m.options.maxSpp, m.options.minSpp));
+    const std::uint64_t maxSpp = m.options.minSpp <= m.options.maxSpp ? std::uint64_t(m.options.maxSpp) : throw std::invalid_argument("minSpp > maxSpp");
     expected = pixels * n;
     bool going = runSamples(base, n);
     stats.rounds = 1;
@@ -172,7 +172,6 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
     stats.stoppedEarly = !going;
   }
   run.readFilm(film);
-  film.deriveSums();
   if (m.options.targetError > 0.0)
     for (std::uint64_t p = 0; p < pixels; ++p)
       stats.converged += relativeStandardError(film, p, m.options.errorFloor) <= m.options.targetError;

@@ -1,0 +1,103 @@
+// test_ray_tracer.cpp: host/render/ray_tracer: the intersect and intersect_shadow kernels on the
+// default OpenCL device against brute force over every triangle, on random soups and on a real
+// mesh, and the binary-layout kernels against the wide-layout kernels and the host traversal.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <fstream>
+#include <vector>
+
+#include "bvh/bvh.h"
+#include "bvh/bvh_layout.h"
+#include "cl/devices.h"
+#include "kernels/shared/geometry.h"
+#include "render/ray_tracer.h"
+#include "scene/scene.h"
+#include "soups.h"
+#include "skip.h"
+
+using namespace montecl;
+using namespace montecl_test;
+
+namespace {
+
+std::vector<SceneTriangle> randomSoup(int n, uint seed) { return seededSoup(n, seed, 3.0f, 0.3f, 0.01f); }
+
+std::vector<Ray> randomRays(int n, uint seed, glm::vec3 lo, glm::vec3 hi) {
+  return seededRays(n, seed, lo, hi, 0.5f, 4.0f);
+}
+
+void checkAgainstBruteForce(const std::vector<SceneTriangle>& tris, const std::vector<Ray>& rays,
+                            double minHitFraction = 0.02) {
+  static const DeviceInfo device = selectDevice("");
+  static StageProgram program(device);
+  Bvh bvh = buildBvh(tris);
+  RayTracer tracer(program, bvh);
+  std::vector<Hit> hits = tracer.closest(rays);
+  std::vector<int> occ = tracer.occluded(rays);
+  int hitCount = 0, mismatches = 0;
+  BruteForce brute(tris);
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    float expected = brute.closest(xyz(rays[i].origin), xyz(rays[i].dir), rays[i].dir.w).t;
+    bool expectHit = expected != INFINITY;
+    hitCount += expectHit;
+    bool ok = (hits[i].tri != MCL_NO_HIT) == expectHit && occ[i] == int(expectHit);
+    if (ok && expectHit) ok = std::fabs(hits[i].t - expected) <= 1e-5f * std::max(1.0f, expected);
+    if (!ok && mismatches++ < 5)
+      MESSAGE("ray " << i << ": expected t " << expected << ", kernel t " << hits[i].t << " tri " << hits[i].tri
+                     << " occluded " << occ[i]);
+  }
+  CHECK(mismatches == 0);
+  CHECK(hitCount > minHitFraction * rays.size());  // the rays do hit things
+  CHECK(hitCount < int(rays.size()));       // and miss some
+}
+
+}  // namespace
+
+TEST_CASE("OpenCL closest-hit and any-hit equal brute force on random soups" * doctest::test_suite("opencl")) {
+  checkAgainstBruteForce(randomSoup(1, 1), randomRays(20000, 2, glm::vec3(-6), glm::vec3(6)), 1e-4);
+  checkAgainstBruteForce(randomSoup(300, 3), randomRays(50000, 4, glm::vec3(-6), glm::vec3(6)));
+  checkAgainstBruteForce(randomSoup(3000, 5), randomRays(50000, 6, glm::vec3(-6), glm::vec3(6)));
+}
+
+TEST_CASE("OpenCL closest-hit and any-hit equal brute force on the Stanford bunny" * doctest::test_suite("opencl shared-scenes")) {
+  std::string path = sharedScenes() + "/bunny/scene.json";
+  MCL_SKIP_UNLESS(std::ifstream(path), path << " not found (the shared scenes are not beside this checkout)");
+  std::vector<std::string> warnings;
+  Scene scene = loadScene(path, warnings);
+  // Rays from around the bunny's bounds; brute force over 69k triangles, so keep the count modest.
+  glm::vec3 ext = scene.boundsMax - scene.boundsMin;
+  checkAgainstBruteForce(scene.triangles,
+                         randomRays(3000, 7, scene.boundsMin - 0.2f * ext, scene.boundsMax + 0.2f * ext));
+}
+
+TEST_CASE("bvh layouts: the binary kernels equal the wide kernels and the host reference" * doctest::test_suite("opencl")) {
+  const DeviceInfo device = selectDevice("");
+  StageProgram wideSession(device, BvhLayout::Wide);
+  StageProgram binarySession(device, BvhLayout::Binary);
+  CHECK(wideSession.layout() == BvhLayout::Wide);
+  CHECK(binarySession.layout() == BvhLayout::Binary);
+  std::vector<SceneTriangle> tris = seededSoup(3000, 21u, 3.0f, 0.3f, 0.3f * 0.05f);
+  Bvh bvh = buildBvh(tris);
+  std::vector<Ray> rs = seededRays(30000, 22u, glm::vec3(-6.0f), glm::vec3(6.0f), 0.05f, glm::length(glm::vec3(12.0f)));
+  RayTracer wide(wideSession, bvh), binary(binarySession, bvh);
+  std::vector<Hit> hw = wide.closest(rs), hb = binary.closest(rs);
+  std::vector<int> ow = wide.occluded(rs), ob = binary.occluded(rs);
+  int bad = 0;
+  for (std::size_t i = 0; i < rs.size(); ++i) {
+    Hit ref = intersectClosest(bvh, xyz(rs[i].origin), xyz(rs[i].dir), rs[i].dir.w, BvhLayout::Binary);
+    bool ok = sameHit(bvh, rs[i], hw[i], hb[i]) && hb[i].tri == ref.tri && sameBits(hb[i].t, ref.t) &&
+              sameBits(hb[i].u, ref.u) && sameBits(hb[i].v, ref.v) && ow[i] == ob[i] &&
+              ob[i] == int(ref.tri != MCL_NO_HIT);
+    if (!ok && bad++ < 5)
+      MESSAGE("ray " << i << ": wide kernel t " << hw[i].t << " tri " << hw[i].tri << ", binary kernel t " << hb[i].t
+                     << " tri " << hb[i].tri << ", host binary t " << ref.t << " tri " << ref.tri);
+  }
+  CHECK(bad == 0);
+
+  // An empty BVH (no triangles): one node no ray enters, in either layout.
+  Bvh empty;
+  RayTracer emptyBinary(binarySession, empty);
+  std::vector<Hit> none = emptyBinary.closest(std::vector<Ray>(rs.begin(), rs.begin() + 100));
+  for (const Hit& h : none) CHECK(h.tri == MCL_NO_HIT);
+}
