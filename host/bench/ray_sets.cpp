@@ -4,33 +4,15 @@
 #include "bench/ray_sets.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <chrono>
-#include <thread>
 
 #include "kernels/shared/camera.h"
 #include "kernels/shared/stages.h"
 #include "render/frame_params.h"
+#include "util/parallel_for.h"
 
 namespace montecl {
-
-void parallelFor(std::size_t n, unsigned threads, const std::function<void(std::size_t, std::size_t)>& body) {
-  threads = std::max(1u, threads);
-  const std::size_t chunk = 1024;
-  std::atomic<std::size_t> next{0};
-  auto worker = [&]() {
-    for (;;) {
-      std::size_t b = next.fetch_add(chunk);
-      if (b >= n) return;
-      body(b, std::min(n, b + chunk));
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
-}
 
 namespace {
 
@@ -41,12 +23,12 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 void referenceAny(const Bvh& bvh, RaySet& set, unsigned threads, BvhLayout layout) {
   set.refOccluded.assign(set.rays.size(), 0);
   auto t0 = std::chrono::steady_clock::now();
-  parallelFor(set.rays.size(), threads, [&](std::size_t b, std::size_t e) {
+  parallelChunks(set.rays.size(), threads, kRayGrain, [&](std::size_t, std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       const Ray& r = set.rays[i];
       set.refOccluded[i] = intersectAny(bvh, xyz(r.origin), xyz(r.dir), r.dir.w, layout) ? 1 : 0;
     }
-  });
+  }, kRayGrain);
   set.refMs = msSince(t0);
 }
 
@@ -71,12 +53,12 @@ RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads, BvhLay
   }
   s.primaryHits.resize(pixels);
   auto t0 = std::chrono::steady_clock::now();
-  parallelFor(pixels, threads, [&](std::size_t b, std::size_t e) {
+  parallelChunks(pixels, threads, kRayGrain, [&](std::size_t, std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       const Ray& r = s.primary.rays[i];
       s.primaryHits[i] = intersectClosest(bvh, xyz(r.origin), xyz(r.dir), r.dir.w, layout);
     }
-  });
+  }, kRayGrain);
   s.primary.refMs = msSince(t0);
   s.primary.refT.resize(pixels);
   for (uint p = 0; p < pixels; ++p) s.primary.refT[p] = s.primaryHits[p].t;

@@ -3,7 +3,6 @@
 // host reference traversal (intersectClosest / intersectAny) to check every result against.
 #pragma once
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -13,6 +12,9 @@
 namespace montecl {
 
 constexpr int kAoRaysPerHit = 8;
+// The host references and Embree trace rays in chunks of this many, handed out dynamically
+// (parallelChunks' grain: a ray's cost varies).
+constexpr std::size_t kRayGrain = 1024;
 
 enum class RayKind { Closest, Any };  // traced by `intersect` / `intersect_shadow`
 
@@ -39,8 +41,5 @@ struct RaySets {
 // the host traversal of `layout` (the one the device runs).
 RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads,
                     BvhLayout layout = BvhLayout::Wide);
-
-// Runs body(begin, end) over [0, n) in chunks on `threads` std::threads.
-void parallelFor(std::size_t n, unsigned threads, const std::function<void(std::size_t, std::size_t)>& body);
 
 }  // namespace montecl

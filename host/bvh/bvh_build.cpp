@@ -40,6 +40,7 @@
 
 #include "bvh/bvh.h"
 #include "bvh/bvh_internal.h"
+#include "util/parallel_for.h"
 
 namespace montecl {
 namespace {
@@ -55,6 +56,7 @@ constexpr int kSplitAxes = 4;    // x, y, z centroid bins and the size-class bin
 constexpr int kSizeClasses = 6;
 constexpr std::size_t kSweepMax = 16;  // nodes this small evaluate every object split exactly
 constexpr std::size_t kParallelMin = std::size_t(1) << 16;  // smallest subtree given its own thread
+constexpr std::size_t kMinPrimsPerThread = std::size_t(1) << 13;  // per-triangle passes: inline below
 
 struct Box {
   glm::vec3 lo{std::numeric_limits<float>::infinity()};
@@ -372,18 +374,6 @@ struct Builder {
   }
 };
 
-// Runs fn(chunk, begin, end) over [0, n) in up to `threads` contiguous chunks (chunk < threads);
-// exceptions propagate.
-template <class Fn>
-void parallelChunks(std::size_t n, int threads, Fn fn) {
-  std::size_t chunks = (threads > 1 && n >= kParallelMin) ? static_cast<std::size_t>(threads) : 1;
-  std::vector<std::future<void>> rest;
-  for (std::size_t c = 1; c < chunks; ++c)
-    rest.push_back(std::async(std::launch::async, fn, c, n * c / chunks, n * (c + 1) / chunks));
-  fn(std::size_t(0), std::size_t(0), n / chunks);
-  for (auto& f : rest) f.get();
-}
-
 bool finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
@@ -519,7 +509,7 @@ Bvh buildBvhCapped(const std::vector<SceneTriangle>& tris, const BvhBuildOptions
     {
       std::vector<Box> partB(threads), partC(threads);
       std::vector<std::size_t> bad(threads, n);
-      parallelChunks(n, threads, [&](std::size_t slot, std::size_t b, std::size_t e) {
+      parallelChunks(n, unsigned(threads), kMinPrimsPerThread, [&](std::size_t slot, std::size_t b, std::size_t e) {
         Box box, cbox;
         for (std::size_t i = b; i < e; ++i) {
           const SceneTriangle& t = tris[i];
@@ -557,14 +547,12 @@ Bvh buildBvhCapped(const std::vector<SceneTriangle>& tris, const BvhBuildOptions
   if (bvh.nodes.capacity() > bvh.nodes.size() + bvh.nodes.size() / 4) bvh.nodes.shrink_to_fit();
 
   bvh.triangles.resize(n);
-  parallelChunks(n, threads, [&](std::size_t, std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i) {
-      const SceneTriangle& t = tris[bvh.order[i]];
-      Triangle& o = bvh.triangles[i];
-      o.v0 = glm::vec4(t.v[0], as_float(t.material));
-      o.e1 = glm::vec4(t.v[1] - t.v[0], as_float(bvh.order[i]));
-      o.e2 = glm::vec4(t.v[2] - t.v[0], 0.0f);
-    }
+  parallelFor(n, unsigned(threads), kMinPrimsPerThread, [&](std::size_t i) {
+    const SceneTriangle& t = tris[bvh.order[i]];
+    Triangle& o = bvh.triangles[i];
+    o.v0 = glm::vec4(t.v[0], as_float(t.material));
+    o.e1 = glm::vec4(t.v[1] - t.v[0], as_float(bvh.order[i]));
+    o.e2 = glm::vec4(t.v[2] - t.v[0], 0.0f);
   });
 
   auto halfArea = [](const BvhNode& b) {
