@@ -35,7 +35,7 @@ std::string kernelBuildOptions(BvhLayout resolved) {
 }
 
 std::size_t bvhNodeBytes(const Bvh& bvh, BvhLayout resolved) {
-  return resolved == BvhLayout::Binary ? bvh.nodes.size() * sizeof(BvhNode) : bvh.wide.size() * sizeof(WideNode);
+  return resolved == BvhLayout::Binary ? bvh.nodes.size() * sizeof(BvhNode) : bvh.wideNodes().size() * sizeof(WideNode);
 }
 
 }  // namespace montecl

@@ -6,7 +6,7 @@ namespace montecl {
 cl::Buffer uploadBvhNodes(const ClSession& session, const Bvh& bvh) {
   if (session.layout() == BvhLayout::Binary)
     return session.upload(bvh.nodes.empty() ? std::vector<BvhNode>{emptyBinaryNode()} : bvh.nodes);
-  return session.upload(bvh.wide.empty() ? std::vector<WideNode>{emptyWideNode()} : bvh.wide);
+  return session.upload(bvh.wideNodes());  // never empty
 }
 
 }  // namespace montecl

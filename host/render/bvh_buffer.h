@@ -1,4 +1,4 @@
-// bvh_buffer.h: uploads the nodes of the BVH layout a session's kernels traverse (Bvh::wide or
+// bvh_buffer.h: uploads the nodes of the BVH layout a session's kernels traverse (Bvh::wideNodes() or
 // Bvh::nodes, ClSession::layout) into a read-only device buffer.
 #pragma once
 #include "bvh/bvh.h"

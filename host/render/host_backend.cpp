@@ -29,7 +29,7 @@ class HostStageRunner final : public StageRunner {
 
   void setup(const StageInputs& in) override {
     frame_ = in.frame;
-    nodes_ = in.bvh->wide;
+    nodes_ = in.bvh->wideNodes();
     tris_ = in.bvh->triangles;
     materials_ = in.materials;
     emitters_ = in.emitters;
