@@ -9,6 +9,7 @@
 
 #include "bench/ray_sets.h"
 #include "util/errors.h"
+#include "util/parallel_for.h"
 
 #ifdef MONTECL_HAVE_EMBREE
 #include <embree3/rtcore.h>
@@ -104,7 +105,7 @@ double EmbreeTracer::closest(const std::vector<Ray>& rays, std::vector<float>& t
   t.assign(rays.size(), INFINITY);
   RTCScene scene = impl_->scene;
   auto t0 = std::chrono::steady_clock::now();
-  parallelFor(rays.size(), threads_, [&](std::size_t b, std::size_t e) {
+  parallelChunks(rays.size(), threads_, kRayGrain, [&](std::size_t, std::size_t b, std::size_t e) {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     for (std::size_t i = b; i < e; ++i) {
@@ -115,7 +116,7 @@ double EmbreeTracer::closest(const std::vector<Ray>& rays, std::vector<float>& t
       rtcIntersect1(scene, &ctx, &rh);
       if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) t[i] = rh.ray.tfar;
     }
-  });
+  }, kRayGrain);
   return msSince(t0);
 }
 
@@ -123,7 +124,7 @@ double EmbreeTracer::occluded(const std::vector<Ray>& rays, std::vector<std::uin
   occ.assign(rays.size(), 0);
   RTCScene scene = impl_->scene;
   auto t0 = std::chrono::steady_clock::now();
-  parallelFor(rays.size(), threads_, [&](std::size_t b, std::size_t e) {
+  parallelChunks(rays.size(), threads_, kRayGrain, [&](std::size_t, std::size_t b, std::size_t e) {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     for (std::size_t i = b; i < e; ++i) {
@@ -131,7 +132,7 @@ double EmbreeTracer::occluded(const std::vector<Ray>& rays, std::vector<std::uin
       rtcOccluded1(scene, &ctx, &ray);
       occ[i] = ray.tfar == -INFINITY ? 1 : 0;
     }
-  });
+  }, kRayGrain);
   return msSince(t0);
 }
 

@@ -1,36 +1,20 @@
 // ray_sets.cpp: seeded primary / AO / shadow ray generation for the bench (same camera, RNG,
-// hemisphere sampling, facing normal and origin offset as the render stages) and the parallel
-// host reference traversal of every ray.
+// hemisphere sampling, facing normal, origin offset, emitter table and light sampling as the
+// render stages) and the parallel host reference traversal of every ray.
 #include "bench/ray_sets.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <chrono>
-#include <thread>
 
 #include "kernels/shared/camera.h"
+#include "kernels/shared/lights.h"
 #include "kernels/stages/stage_common.h"
+#include "render/emitters.h"
 #include "render/frame_params.h"
+#include "util/parallel_for.h"
 
 namespace montecl {
-
-void parallelFor(std::size_t n, unsigned threads, const std::function<void(std::size_t, std::size_t)>& body) {
-  threads = std::max(1u, threads);
-  const std::size_t chunk = 1024;
-  std::atomic<std::size_t> next{0};
-  auto worker = [&]() {
-    for (;;) {
-      std::size_t b = next.fetch_add(chunk);
-      if (b >= n) return;
-      body(b, std::min(n, b + chunk));
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
-}
 
 namespace {
 
@@ -41,12 +25,12 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 void referenceAny(const Bvh& bvh, RaySet& set, unsigned threads, BvhLayout layout) {
   set.refOccluded.assign(set.rays.size(), 0);
   auto t0 = std::chrono::steady_clock::now();
-  parallelFor(set.rays.size(), threads, [&](std::size_t b, std::size_t e) {
+  parallelChunks(set.rays.size(), threads, kRayGrain, [&](std::size_t, std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       const Ray& r = set.rays[i];
       set.refOccluded[i] = intersectAny(bvh, xyz(r.origin), xyz(r.dir), r.dir.w, layout) ? 1 : 0;
     }
-  });
+  }, kRayGrain);
   set.refMs = msSince(t0);
 }
 
@@ -71,32 +55,20 @@ RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads, BvhLay
   }
   s.primaryHits.resize(pixels);
   auto t0 = std::chrono::steady_clock::now();
-  parallelFor(pixels, threads, [&](std::size_t b, std::size_t e) {
+  parallelChunks(pixels, threads, kRayGrain, [&](std::size_t, std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       const Ray& r = s.primary.rays[i];
       s.primaryHits[i] = intersectClosest(bvh, xyz(r.origin), xyz(r.dir), r.dir.w, layout);
     }
-  });
+  }, kRayGrain);
   s.primary.refMs = msSince(t0);
   s.primary.refT.resize(pixels);
   for (uint p = 0; p < pixels; ++p) s.primary.refT[p] = s.primaryHits[p].t;
 
-  // Emitters (BVH order, so sampled points lie on the very triangles the kernels see), with an
-  // area CDF for choosing one.
-  std::vector<uint> emitters;
-  std::vector<double> cdf;
-  double area = 0.0;
-  for (uint i = 0; i < bvh.triangles.size(); ++i) {
-    uint input = bvh.order[i];
-    const MaterialDesc& m = scene.materials[scene.triangles[input].material];
-    if (m.emission.x > 0.0f || m.emission.y > 0.0f || m.emission.z > 0.0f) {
-      const Triangle& t = bvh.triangles[i];
-      area += 0.5 * glm::length(glm::cross(xyz(t.e1), xyz(t.e2)));
-      emitters.push_back(i);
-      cdf.push_back(area);
-    }
-  }
-  s.emitters = emitters.size();
+  // Emitters: the renderer's table (BVH order, weighted by area * luminance(Ke)).
+  const EmitterTable lights = buildEmitterTable(bvh, scene.materials);
+  const uint emitterCount = uint(lights.emitters.size());
+  s.emitters = emitterCount;
 
   for (uint p = 0; p < pixels; ++p) {
     const Hit& h = s.primaryHits[p];
@@ -111,20 +83,21 @@ RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads, BvhLay
       r.dir = with_w(to_world(sample_cosine_hemisphere(u.x, u.y), n), scene.render.aoDistance);
       s.ao.rays.push_back(r);
     }
-    if (emitters.empty()) continue;
+    if (emitterCount == 0) continue;
+    // The first light sample of the direct integrator's sample 0 (stage_shade_direct in
+    // kernels/shared/stages_direct.h): same emitter pick, point, skip rule and shortened tmax.
     float4 u = rng_uniform4(seed, p, 0, MCL_DIM_LIGHT);
-    double pick = double(u.x) * area;
-    std::size_t e = std::min<std::size_t>(std::upper_bound(cdf.begin(), cdf.end(), pick) - cdf.begin(),
-                                          emitters.size() - 1);
-    const Triangle& lt = bvh.triangles[emitters[e]];
-    float su = std::sqrt(u.y);  // uniform point on the triangle
-    float3 target = xyz(lt.v0) + xyz(lt.e1) * (su * (1.0f - u.z)) + xyz(lt.e2) * (su * u.z);
-    float3 d = target - org;
-    float dist = glm::length(d);
-    if (!(dist > 1e-6f)) continue;
+    const Emitter& em = lights.emitters[pick_emitter(lights.emitters.data(), emitterCount, u.x)];
+    const Triangle* lt = &bvh.triangles[em.tri];
+    float3 target = sample_triangle(xyz(lt->v0), xyz(lt->e1), xyz(lt->e2), u.y, u.z);
+    float3 toLight = target - org;
+    float dist = sqrt(dot(toLight, toLight));
+    float3 wi = toLight / dist;
+    float cosLight = -dot(normalize(cross(xyz(lt->e1), xyz(lt->e2))), wi);
+    if (!(cosLight > 0.0f && dot(n, wi) > 0.0f && dist > 0.0f)) continue;
     Ray r;
     r.origin = with_w(org, 0.0f);
-    r.dir = with_w(d / dist, dist * (1.0f - 1e-3f));  // stop short of the emitter itself
+    r.dir = with_w(wi, dist * (1.0f - 1e-4f));  // stop short of the emitter, as the stage does
     s.shadow.rays.push_back(r);
   }
   referenceAny(bvh, s.ao, threads, layout);

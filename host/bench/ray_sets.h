@@ -3,7 +3,6 @@
 // host reference traversal (intersectClosest / intersectAny) to check every result against.
 #pragma once
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -13,6 +12,9 @@
 namespace montecl {
 
 constexpr int kAoRaysPerHit = 8;
+// The host references and Embree trace rays in chunks of this many, handed out dynamically
+// (parallelChunks' grain: a ray's cost varies).
+constexpr std::size_t kRayGrain = 1024;
 
 enum class RayKind { Closest, Any };  // traced by `intersect` / `intersect_shadow`
 
@@ -29,18 +31,16 @@ struct RaySet {
 struct RaySets {
   RaySet primary, ao, shadow;  // shadow.rays is empty when the scene has no emitters
   std::vector<Hit> primaryHits;  // host reference closest hits of the primary rays
-  std::size_t emitters = 0;      // triangles whose material emits
+  std::size_t emitters = 0;      // emitting triangles (render/emitters.h: area * luminance(Ke) > 0)
 };
 
 // Primary rays: one per pixel of scene.camera, jittered with the camera RNG dimension of sample 0
 // (seed = scene.render.seed). AO: kAoRaysPerHit cosine-distributed rays per primary hit, tmax =
-// scene.render.aoDistance. Shadow: one ray per primary hit toward an area-weighted random point on
-// an emissive triangle, stopping just short of it. References computed on `threads` threads with
-// the host traversal of `layout` (the one the device runs).
+// scene.render.aoDistance. Shadow: per primary hit, the shadow ray of the direct integrator's
+// first light sample of sample 0 (emitter picked by area * luminance, uniform point on it, none
+// when the light or the surface faces away), stopping just short of the light. References
+// computed on `threads` threads with the host traversal of `layout` (the one the device runs).
 RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads,
                     BvhLayout layout = BvhLayout::Wide);
-
-// Runs body(begin, end) over [0, n) in chunks on `threads` std::threads.
-void parallelFor(std::size_t n, unsigned threads, const std::function<void(std::size_t, std::size_t)>& body);
 
 }  // namespace montecl

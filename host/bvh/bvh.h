@@ -1,10 +1,12 @@
-// bvh.h: binned-SAH BVH over a triangle soup, flattened depth-first into 32-byte BvhNodes, and the
-// host reference traversal (the same code the kernels run, from kernels/shared/traverse.h).
+// bvh.h: binned-SAH BVH over a triangle soup, flattened depth-first into 32-byte BvhNodes, its
+// 8-wide form made on demand (bvh_wide.h), and the host reference traversal (the same code the
+// kernels run, from kernels/shared/traverse.h).
 #pragma once
 #include <cstdint>
 #include <vector>
 
 #include "bvh/bvh_layout.h"
+#include "bvh/bvh_wide.h"
 #include "kernels/shared/types.h"
 #include "scene/scene.h"
 
@@ -19,18 +21,22 @@ struct BvhBuildOptions {
 
 struct Bvh {
   std::vector<BvhNode> nodes;         // nodes[0] is the root; children of an interior node are adjacent
-  std::vector<WideNode> wide;         // the same tree collapsed 8-wide (wide[0] the root): what is traversed
   std::vector<Triangle> triangles;    // in leaf order, ready for the device
   std::vector<std::uint32_t> order;   // triangles[i] came from input triangle order[i]
   int depth = 0;                      // longest root-to-leaf path (always < MCL_BVH_STACK_SIZE)
   double sahCost = 0.0;               // SAH cost of the tree (traversalCost/intersectCost weighted)
-  double buildMs = 0.0;
+  double buildMs = 0.0;               // of the binary tree (the wide collapse is not built here)
+
+  // The same tree collapsed 8-wide (collapseWide, element 0 the root): what the wide layout
+  // traverses. Collapsed on the first call (thread-safe) and kept; never empty. Do not change
+  // nodes after the first call. Throws std::invalid_argument above 2^27 triangles.
+  const std::vector<WideNode>& wideNodes() const;
+
+  WideCache wideCache;                // behind wideNodes()
 };
 
 Bvh buildBvh(const std::vector<SceneTriangle>& tris, const BvhBuildOptions& options = {});
 
-// A wide node whose slots are all empty (no ray enters them): the whole tree of an empty Bvh.
-WideNode emptyWideNode();
 // A binary node with an empty box (no ray enters it): the whole binary tree of an empty Bvh.
 BvhNode emptyBinaryNode();
 

@@ -27,7 +27,7 @@ BvhLayout resolveBvhLayout(BvhLayout layout, bool isGpu) {
 }
 
 std::size_t bvhNodeBytes(const Bvh& bvh, BvhLayout resolved) {
-  return resolved == BvhLayout::Binary ? bvh.nodes.size() * sizeof(BvhNode) : bvh.wide.size() * sizeof(WideNode);
+  return resolved == BvhLayout::Binary ? bvh.nodes.size() * sizeof(BvhNode) : bvh.wideNodes().size() * sizeof(WideNode);
 }
 
 }  // namespace montecl

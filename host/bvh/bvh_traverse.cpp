@@ -9,7 +9,7 @@ namespace montecl {
 
 Hit intersectClosest(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax,
                      BvhLayout layout) {
-  if (bvh.wide.empty() || bvh.nodes.empty()) {
+  if (bvh.nodes.empty()) {
     Hit miss;
     miss.t = INFINITY;
     miss.tri = MCL_NO_HIT;
@@ -18,15 +18,15 @@ Hit intersectClosest(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir,
   }
   if (layout == BvhLayout::Binary)
     return binary_closest_hit(bvh.nodes.data(), bvh.triangles.data(), org, dir, tmax);
-  return wide_closest_hit(bvh.wide.data(), bvh.triangles.data(), org, dir, tmax);
+  return wide_closest_hit(bvh.wideNodes().data(), bvh.triangles.data(), org, dir, tmax);
 }
 
 bool intersectAny(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax,
                   BvhLayout layout) {
-  if (bvh.wide.empty() || bvh.nodes.empty()) return false;
+  if (bvh.nodes.empty()) return false;
   if (layout == BvhLayout::Binary)
     return binary_any_hit(bvh.nodes.data(), bvh.triangles.data(), org, dir, tmax) != 0;
-  return wide_any_hit(bvh.wide.data(), bvh.triangles.data(), org, dir, tmax) != 0;
+  return wide_any_hit(bvh.wideNodes().data(), bvh.triangles.data(), org, dir, tmax) != 0;
 }
 
 }  // namespace montecl

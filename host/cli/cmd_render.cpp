@@ -12,6 +12,7 @@
 #include "cli/commands.h"
 #include "image/exr_layers.h"
 #include "image/image_io.h"
+#include "render/emitters.h"
 #include "render/progress.h"
 #include "render/stage_program.h"
 #include "render/wavefront.h"
@@ -95,12 +96,6 @@ LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs
     for (int c = 0; c < 3; ++c) img.set(std::string("N.") + "XYZ"[c], plane(1, c));
   if (wants("depth")) img.set("Z", plane(0, 3));
   return img;
-}
-
-bool hasEmitter(const Scene& scene) {
-  for (const MaterialDesc& m : scene.materials)
-    if (m.emission.x > 0.0f || m.emission.y > 0.0f || m.emission.z > 0.0f) return true;
-  return false;
 }
 
 int runRender(const RenderArgs& a) {

@@ -6,6 +6,10 @@
 
 namespace montecl {
 
+double emitterWeight(float area, const glm::vec3& emission) {
+  return double(area) * double(luminance(emission));
+}
+
 EmitterTable buildEmitterTable(const Bvh& bvh, const std::vector<MaterialDesc>& materials) {
   EmitterTable table;
   std::vector<double> power;
@@ -14,7 +18,7 @@ EmitterTable buildEmitterTable(const Bvh& bvh, const std::vector<MaterialDesc>& 
     const Triangle& t = bvh.triangles[i];
     const glm::vec3 le = materials[triangle_material(&t)].emission;
     float area = triangle_area(&t);
-    double p = double(area) * double(luminance(le));
+    double p = emitterWeight(area, le);
     if (!(p > 0.0)) continue;
     Emitter e{};
     e.tri = uint(i);
@@ -31,6 +35,15 @@ EmitterTable buildEmitterTable(const Bvh& bvh, const std::vector<MaterialDesc>& 
   if (!table.emitters.empty()) table.emitters.back().cdf = 1.0f;
   table.totalPower = float(total);
   return table;
+}
+
+bool hasEmitter(const Scene& scene) {
+  for (const SceneTriangle& t : scene.triangles) {
+    const glm::vec3 e1 = t.v[1] - t.v[0], e2 = t.v[2] - t.v[0];  // as Bvh::triangles holds them
+    if (emitterWeight(0.5f * glm::length(glm::cross(e1, e2)), scene.materials[t.material].emission) > 0.0)
+      return true;
+  }
+  return false;
 }
 
 }  // namespace montecl

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "render/stage_runner.h"
+#include "util/parallel_for.h"
 
 namespace montecl {
 namespace {
@@ -26,14 +27,13 @@ class HostStageRunner final : public StageRunner {
 
   void setup(const StageInputs& in) override {
     frame_ = in.frame;
-    nodes_ = in.bvh->wide;
+    nodes_ = in.bvh->wideNodes();
     tris_ = in.bvh->triangles;
     materials_ = in.materials;
     emitters_ = in.emitters;
     if (materials_.empty()) materials_.resize(1);
     if (emitters_.empty()) emitters_.resize(1);
     if (tris_.empty()) tris_.resize(1);
-    if (nodes_.empty()) nodes_.push_back(emptyWideNode());  // an empty BVH: one node of empty slots, as on the device
     const std::uint64_t wave = std::max<std::uint64_t>(1, in.wave), slots = frame_.shadowSlots;
     rays_.assign(wave, Ray{});
     hits_.assign(wave, Hit{});
@@ -70,7 +70,7 @@ class HostStageRunner final : public StageRunner {
   void launch(Stage s, std::uint64_t items, RayInput rays) override {
     withHostStageArgs(s, bindings_.forRays(rays), [&](const auto& args) {
       // The stage body for this args type, found by overload resolution (stage_<name>(&args, i)).
-      parallelFor(items, [&](uint i) { runStage(&args, i); });
+      parallelFor(items, threads_, kMinItemsPerThread, [&](std::size_t i) { runStage(&args, uint(i)); });
     });
   }
 
@@ -110,24 +110,6 @@ class HostStageRunner final : public StageRunner {
     b.mean = mean_.data();
     b.m2 = m2_.data();
     b.aovSum = aovSum_.data();
-  }
-
-  // Runs body(i) for i in [0, n): contiguous chunks on up to threads_ threads.
-  template <typename Body>
-  void parallelFor(std::uint64_t n, const Body& body) {
-    const std::uint64_t threads = std::min<std::uint64_t>(threads_, n / kMinItemsPerThread);
-    if (threads <= 1) {
-      for (std::uint64_t i = 0; i < n; ++i) body(uint(i));
-      return;
-    }
-    std::vector<std::thread> pool;
-    const std::uint64_t chunk = (n + threads - 1) / threads;
-    for (std::uint64_t t = 1; t < threads; ++t)
-      pool.emplace_back([&, t] {
-        for (std::uint64_t i = t * chunk; i < std::min(n, (t + 1) * chunk); ++i) body(uint(i));
-      });
-    for (std::uint64_t i = 0; i < std::min(n, chunk); ++i) body(uint(i));
-    for (std::thread& th : pool) th.join();
   }
 
   unsigned threads_;

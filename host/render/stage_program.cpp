@@ -26,7 +26,7 @@ StageProgram::StageProgram(const DeviceInfo& device, BvhLayout layout, std::size
 cl::Buffer StageProgram::uploadNodes(const Bvh& bvh) const {
   if (layout_ == BvhLayout::Binary)
     return session_.upload(bvh.nodes.empty() ? std::vector<BvhNode>{emptyBinaryNode()} : bvh.nodes);
-  return session_.upload(bvh.wide.empty() ? std::vector<WideNode>{emptyWideNode()} : bvh.wide);
+  return session_.upload(bvh.wideNodes());  // never empty: an empty Bvh has one node of empty slots
 }
 
 }  // namespace montecl

@@ -1,0 +1,83 @@
+// bvh_flatten.cpp: the builder's recursion. Each node picks its split (bvh_binning.cpp, or
+// bvh_sweep.cpp for small nodes), and the tree is written depth-first into one BvhNode array with
+// the two children of a node adjacent. Near the root, the right subtree of a large node is built
+// on another thread into its own vector and appended, giving the single-threaded layout.
+#include <algorithm>
+#include <future>
+
+#include "bvh/bvh_builder.h"
+
+namespace montecl {
+namespace bvhbuild {
+namespace {
+
+void writeBox(BvhNode& n, const Box& b) {
+  n.minX = b.lo.x; n.minY = b.lo.y; n.minZ = b.lo.z;
+  n.maxX = b.hi.x; n.maxY = b.hi.y; n.maxZ = b.hi.z;
+}
+
+}  // namespace
+
+int Builder::build(std::vector<BvhNode>& out, std::size_t idx, std::size_t begin, std::size_t end,
+                 const Box& bounds, const Box& cbounds, int depth, int parallelLevels) const {
+  writeBox(out[idx], bounds);
+  std::size_t n = end - begin;
+  bool mustSplit = n > static_cast<std::size_t>(maxLeaf);
+  Box child[2], childC[2];
+  std::size_t mid = 0;
+  bool split = false;
+  if (n > 1) {
+    bool small = n <= kSweepMax;
+    Split s = small ? findSweepSplit(begin, end, bounds) : findSahSplit(begin, end, bounds, cbounds);
+    bool useSah = s.axis >= 0 && (mustSplit || s.cost < ci * static_cast<float>(n));
+    if (useSah && depth + 1 + medianHeight(std::max(s.nLeft, n - s.nLeft)) > maxDepth) {
+      useSah = false;  // that child could not be finished within the stack; split at the median
+      mustSplit = true;
+    }
+    if (useSah) {
+      mid = small ? partitionSweep(begin, end, s, child, childC)
+                  : partitionSah(begin, end, bounds, cbounds, s, child, childC);
+      split = true;
+    } else if (mustSplit) {
+      mid = partitionMedian(begin, end, cbounds, child, childC);
+      split = true;
+    }
+  }
+  if (!split) {
+    out[idx].leftFirst = static_cast<std::uint32_t>(begin);
+    out[idx].triCount = static_cast<std::uint32_t>(n);
+    return depth;
+  }
+  std::size_t childBase = out.size();
+  out[idx].leftFirst = static_cast<std::uint32_t>(childBase);
+  out[idx].triCount = 0;
+  out.emplace_back();
+  out.emplace_back();
+  if (parallelLevels > 0 && n >= kParallelMin) {
+    // The right subtree is built on another thread into its own vector while this thread builds
+    // the left one in place; the right one is then appended, giving the sequential layout:
+    // [left, right, left's descendants, right's descendants].
+    std::vector<BvhNode> vr;
+    auto right = std::async(std::launch::async, [&, depth, parallelLevels] {
+      vr.reserve(2 * (end - mid) - 1);
+      vr.emplace_back();
+      return build(vr, 0, mid, end, child[1], childC[1], depth + 1, parallelLevels - 1);
+    });
+    int dl = build(out, childBase, begin, mid, child[0], childC[0], depth + 1, parallelLevels - 1);
+    int dr = right.get();
+    std::size_t offset = out.size() - 1;  // vr[k] (k >= 1) lands at out[offset + k]
+    auto remap = [offset](BvhNode node) {
+      if (node.triCount == 0) node.leftFirst = static_cast<std::uint32_t>(node.leftFirst + offset);
+      return node;
+    };
+    out[childBase + 1] = remap(vr[0]);
+    for (std::size_t k = 1; k < vr.size(); ++k) out.push_back(remap(vr[k]));
+    return std::max(dl, dr);
+  }
+  int dl = build(out, childBase, begin, mid, child[0], childC[0], depth + 1, parallelLevels);
+  int dr = build(out, childBase + 1, mid, end, child[1], childC[1], depth + 1, parallelLevels);
+  return std::max(dl, dr);
+}
+
+}  // namespace bvhbuild
+}  // namespace montecl

@@ -1,0 +1,100 @@
+// bvh_wide.cpp: the MCL_WIDE_WIDTH-wide collapse of the binary BVH (see bvh_wide.h), made on
+// demand by Bvh::wideNodes().
+#include "bvh/bvh_wide.h"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+#include "bvh/bvh.h"
+
+namespace montecl {
+
+WideNode emptyWideNode() {
+  WideNode w;
+  const float inf = std::numeric_limits<float>::infinity();
+  for (int r = 0; r < 6; ++r)
+    for (int i = 0; i < MCL_WIDE_WIDTH; ++i) w.bounds[r][i] = (r % 2 == 0) ? inf : -inf;
+  for (int i = 0; i < MCL_WIDE_WIDTH; ++i) w.child[i] = MCL_WIDE_EMPTY;
+  return w;
+}
+
+std::vector<WideNode> collapseWide(const std::vector<BvhNode>& nodes, std::size_t triangleCount) {
+  std::vector<WideNode> wide;
+  if (triangleCount > (std::size_t(1) << 27))
+    throw std::invalid_argument("collapseWide: the wide BVH holds at most 2^27 triangles");
+  auto area = [](const BvhNode& b) {
+    float dx = b.maxX - b.minX, dy = b.maxY - b.minY, dz = b.maxZ - b.minZ;
+    return dx * dy + dy * dz + dz * dx;
+  };
+  wide.reserve(nodes.size() / 4 + 1);
+  wide.push_back(emptyWideNode());
+  if (nodes.empty()) return wide;
+  struct Item {
+    std::uint32_t binary, wide;
+  };
+  std::vector<Item> todo{{0u, 0u}};
+  while (!todo.empty()) {
+    Item it = todo.back();
+    todo.pop_back();
+    std::uint32_t kids[MCL_WIDE_WIDTH];
+    int k = 0;
+    const BvhNode& b = nodes[it.binary];
+    if (b.triCount > 0) {
+      kids[k++] = it.binary;  // a leaf root: one child, the whole tree
+    } else {
+      kids[k++] = b.leftFirst;
+      kids[k++] = b.leftFirst + 1;
+      while (k < MCL_WIDE_WIDTH) {
+        int best = -1;
+        float bestArea = -1.0f;
+        for (int i = 0; i < k; ++i)
+          if (nodes[kids[i]].triCount == 0 && area(nodes[kids[i]]) > bestArea) {
+            best = i;
+            bestArea = area(nodes[kids[i]]);
+          }
+        if (best < 0) break;
+        std::uint32_t c = nodes[kids[best]].leftFirst;
+        for (int i = k; i > best + 1; --i) kids[i] = kids[i - 1];  // keep left-to-right order
+        kids[best] = c;
+        kids[best + 1] = c + 1;
+        ++k;
+      }
+    }
+    std::uint32_t pendingFrom = static_cast<std::uint32_t>(todo.size());
+    for (int i = 0; i < k; ++i) {
+      const BvhNode& c = nodes[kids[i]];
+      WideNode& w = wide[it.wide];
+      w.bounds[0][i] = c.minX;
+      w.bounds[1][i] = c.maxX;
+      w.bounds[2][i] = c.minY;
+      w.bounds[3][i] = c.maxY;
+      w.bounds[4][i] = c.minZ;
+      w.bounds[5][i] = c.maxZ;
+      if (c.triCount > 0) {
+        w.child[i] = MCL_WIDE_LEAF | (c.leftFirst << 4) | (c.triCount - 1);
+      } else {
+        std::uint32_t idx = static_cast<std::uint32_t>(wide.size());
+        wide[it.wide].child[i] = idx;
+        wide.push_back(emptyWideNode());  // may reallocate: w is not used after this
+        todo.push_back({kids[i], idx});
+      }
+    }
+    std::reverse(todo.begin() + pendingFrom, todo.end());  // depth-first, left child first
+  }
+  return wide;
+}
+
+const std::vector<WideNode>& WideCache::get(const std::vector<BvhNode>& nodes,
+                                            std::size_t triangleCount) const {
+  if (!state_) {  // a moved-from Bvh (its nodes are gone too)
+    static const std::vector<WideNode> empty{emptyWideNode()};
+    return empty;
+  }
+  std::call_once(state_->once, [&] { state_->wide = collapseWide(nodes, triangleCount); });
+  return state_->wide;
+}
+
+const std::vector<WideNode>& Bvh::wideNodes() const { return wideCache.get(nodes, triangles.size()); }
+
+}  // namespace montecl
