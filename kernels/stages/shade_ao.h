@@ -9,12 +9,7 @@ MCL_INLINE void stage_shade_ao(const shade_ao_args* a, uint i) {
   if (i >= a->waveCount) return;
   MCL_CONSTANT const FrameParams* f = a->frame;
   Hit h = a->hits[i];
-  for (uint k = 0; k < f->shadowSlots; ++k)
-    a->shadowContrib[i * f->shadowSlots + k] = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
-  if (h.tri == MCL_NO_HIT) {
-    a->radiance[i] = f->background;
-    return;
-  }
+  if (!shade_begin(f, h, i, a->radiance, a->shadowContrib)) return;
   a->radiance[i] = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
   float3 dir = xyz(a->rays[i].dir);
   MCL_GLOBAL const Triangle* tri = &a->tris[h.tri];

@@ -11,14 +11,9 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   if (i >= a->waveCount) return;
   MCL_CONSTANT const FrameParams* f = a->frame;
   Hit h = a->hits[i];
-  for (uint k = 0; k < f->shadowSlots; ++k)
-    a->shadowContrib[i * f->shadowSlots + k] = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
   a->bounce[i].origin = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
-  a->bounce[i].dir = make_float4(0.0f, 0.0f, 1.0f, -1.0f);
-  if (h.tri == MCL_NO_HIT) {
-    a->radiance[i] = f->background;
-    return;
-  }
+  a->bounce[i].dir = make_float4(0.0f, 0.0f, 1.0f, -1.0f);  // no BRDF ray unless written below
+  if (!shade_begin(f, h, i, a->radiance, a->shadowContrib)) return;
   MCL_GLOBAL const Triangle* tris = a->tris;
   MCL_GLOBAL const Material* materials = a->materials;
   float3 dir = xyz(a->rays[i].dir);
