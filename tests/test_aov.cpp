@@ -35,7 +35,7 @@ TEST_CASE("AOVs: first-hit albedo, facing normal and depth of a floor seen from 
   REQUIRE(f.aovSum.size() == 2 * f.mean.size());
   const float maxDepth = 2.0f / std::cos(glm::radians(20.0f * std::sqrt(2.0f)));
   for (std::size_t p = 0; p < f.mean.size(); ++p) {
-    const float n = f.mean[p].w;
+    const float n = double(f.count[p]);
     REQUIRE(f.aovSum[2 * p].x / n == 0.25f);
     REQUIRE(f.aovSum[2 * p].y / n == 0.5f);
     REQUIRE(f.aovSum[2 * p].z / n == 0.75f);

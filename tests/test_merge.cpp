@@ -143,8 +143,11 @@ TEST_CASE("merge: layersFromFilm gives mean, count and the unbiased variance of 
   // pixel 0: samples 1, 2, 4 in R (G = 2x, B = 0); pixel 1: no samples
   // mean (rgb, n) and M2 = sum of squared deviations: R: mean 7/3, M2 = 21 - 49/3; G = 2R.
   const float m2R = float(21.0 - 49.0 / 3.0);
-  film.mean = {glm::vec4(7.0f / 3.0f, 14.0f / 3.0f, 0, 3), glm::vec4(0)};
+  film.mean = {glm::vec4(7.0f / 3.0f, 14.0f / 3.0f, 0, 0), glm::vec4(0)};
+  film.meanLo = {glm::vec4(0), glm::vec4(0)};
   film.m2 = {glm::vec4(m2R, 4.0f * m2R, 0, 0), glm::vec4(0)};
+  film.m2Lo = {glm::vec4(0), glm::vec4(0)};
+  film.count = {3, 0};
   LayeredImage im = layersFromFilm(film);
   CHECK((*im.find("R"))[0] == doctest::Approx(7.0 / 3.0));
   CHECK((*im.find("samples"))[0] == 3.0f);

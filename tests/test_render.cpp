@@ -43,7 +43,7 @@ TEST_CASE("AO of an open plane is exactly 1 with cosine sampling" * doctest::tes
   s.render.aoSampling = montecl::AoSampling::Cosine;
   Film f = renderScene(s);
   for (std::size_t p = 0; p < f.mean.size(); ++p) {
-    REQUIRE(f.mean[p].w == 16.0f);
+    REQUIRE(double(f.count[p]) == 16.0f);
     REQUIRE(f.mean[p].x == 1.0f);
     REQUIRE(f.mean[p].y == 1.0f);
     REQUIRE(f.mean[p].z == 1.0f);

@@ -87,7 +87,7 @@ LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs
   auto plane = [&](int vec, int comp) {
     std::vector<float> out(pixels, 0.0f);
     for (std::size_t p = 0; p < pixels; ++p)
-      if (film.mean[p].w > 0) out[p] = film.aovSum[2 * p + vec][comp] / film.mean[p].w;
+      if (double(film.count[p]) > 0) out[p] = film.aovSum[2 * p + vec][comp] / double(film.count[p]);
     return out;
   };
   if (wants("albedo"))

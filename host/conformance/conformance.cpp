@@ -43,7 +43,7 @@ void compare(const Film& ref, const Film& dev, ImageComparison& c) {
     if (!(diff <= std::max(kRelTolerance * scale, kAbsFloor))) ++c.failingValues;  // NaN fails
   }
   for (std::size_t p = 0; p < ref.mean.size(); ++p)
-    if (ref.mean[p].w != dev.mean[p].w) ++c.failingValues;  // sample counts must match exactly
+    if (ref.count[p] != dev.count[p]) ++c.failingValues;  // sample counts must match exactly
   c.meanAbsDiff = a.empty() ? 0.0 : sumAbs / double(a.size());
   c.pass = c.failingValues == 0;
 }

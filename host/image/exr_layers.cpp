@@ -78,7 +78,7 @@ LayeredImage layersFromFilm(const Film& film) {
     var[c].assign(count, 0.0f);
   }
   for (std::size_t p = 0; p < count; ++p) {
-    double n = film.mean[p].w;
+    double n = double(film.count[p]);
     samples[p] = float(n);
     if (n <= 0.0) continue;
     for (int c = 0; c < 3; ++c) {

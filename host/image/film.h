@@ -1,32 +1,54 @@
-// film.h: per-pixel statistics read back from the device: the running mean (rgb, w = sample count)
-// and M2 (rgb: sum of squared deviations from the mean, Welford) the accumulate kernel keeps, and
-// the AOV sums. Row 0 at the top.
+// film.h: per-pixel statistics read back from the device: the exact state the accumulate kernel
+// keeps (kernels/stages/accumulate.h): the running mean and M2 (rgb: sum of squared deviations
+// from the mean, Welford) each as a float-float pair hi + lo, and the 64-bit sample count; and
+// the AOV sums. mean[p] (the hi part) is the mean correctly rounded to float. Row 0 at the top.
 #pragma once
 #include <glm/glm.hpp>
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace montecl {
 
 struct Film {
   int width = 0, height = 0;
-  std::vector<glm::vec4> mean;   // rgb: mean of the sample values; w: number of samples n
-  std::vector<glm::vec4> m2;     // rgb: sum over samples of (x - mean)^2
+  std::vector<glm::vec4> mean, meanLo;  // rgb: mean of the sample values = mean + meanLo; w: 0
+  std::vector<glm::vec4> m2, m2Lo;      // rgb: sum over samples of (x - mean)^2 = m2 + m2Lo; w: 0
+  std::vector<std::uint64_t> count;     // samples per pixel
   // With AOVs: 2 per pixel, sums over samples of (albedo, depth) and (normal, 0); else empty.
   std::vector<glm::vec4> aovSum;
 
+  std::size_t pixelCount() const { return count.size(); }
+  // Mean of channel c in double (hi + lo).
+  double meanOf(std::size_t p, int c) const { return double(mean[p][c]) + double(meanLo[p][c]); }
+  // M2 of channel c in double (hi + lo).
+  double m2Of(std::size_t p, int c) const { return double(m2[p][c]) + double(m2Lo[p][c]); }
   // Unbiased variance of one sample of channel c (0 below two samples).
-  double variance(size_t p, int c) const {
-    const double n = mean[p].w;
-    return n > 1.0 ? std::max(0.0, double(m2[p][c]) / (n - 1.0)) : 0.0;
+  double variance(std::size_t p, int c) const {
+    const double n = double(count[p]);
+    return n > 1.0 ? std::max(0.0, m2Of(p, c) / (n - 1.0)) : 0.0;
   }
 
   // Mean radiance per pixel, interleaved RGB (0 where a pixel has no samples).
   std::vector<float> meanRgb() const {
     std::vector<float> rgb(mean.size() * 3, 0.0f);
-    for (size_t p = 0; p < mean.size(); ++p)
-      for (int c = 0; c < 3; ++c) rgb[3 * p + c] = mean[p].w > 0.0f ? mean[p][c] : 0.0f;
+    for (std::size_t p = 0; p < mean.size(); ++p)
+      for (int c = 0; c < 3; ++c) rgb[3 * p + c] = count[p] > 0 ? mean[p][c] : 0.0f;
     return rgb;
+  }
+
+  // Splits device film words into this film's fields: mean.w / meanLo.w carry the count's low and
+  // high 32 bits (as float bit patterns), which become count[] while the w lanes are zeroed.
+  void unpackCounts() {
+    count.resize(mean.size());
+    for (std::size_t p = 0; p < mean.size(); ++p) {
+      std::uint32_t lo, hi;
+      std::memcpy(&lo, &mean[p].w, 4);
+      std::memcpy(&hi, &meanLo[p].w, 4);
+      count[p] = std::uint64_t(lo) | (std::uint64_t(hi) << 32);
+      mean[p].w = meanLo[p].w = 0.0f;
+    }
   }
 };
 

@@ -51,12 +51,14 @@ class ClStageRunner final : public StageRunner {
     b.aov = {cl_.scratch<cl_float4>(in.aovs ? 2 * wave : 1)};
     b.aovSum = {cl_.buffer<cl_float4>(in.aovs ? 2 * pixels_ : 1)};
     b.mean = {cl_.buffer<cl_float4>(pixels_)};
+    b.meanLo = {cl_.buffer<cl_float4>(pixels_)};
     b.m2 = {cl_.buffer<cl_float4>(pixels_)};
+    b.m2Lo = {cl_.buffer<cl_float4>(pixels_)};
     // Cleared by writes, not clEnqueueFillBuffer: Oclgrind's uninitialised-memory check does not
     // count a fill as initialising memory, and a write costs the same here.
     const std::vector<cl_float4> zeros((aovs_ ? 2 : 1) * pixels_, cl_float4{{0.0f, 0.0f, 0.0f, 0.0f}});
-    cl_.queue().enqueueWriteBuffer(b.mean.buffer, CL_TRUE, 0, pixels_ * sizeof(cl_float4), zeros.data());
-    cl_.queue().enqueueWriteBuffer(b.m2.buffer, CL_TRUE, 0, pixels_ * sizeof(cl_float4), zeros.data());
+    for (const cl::Buffer* film : {&b.mean.buffer, &b.meanLo.buffer, &b.m2.buffer, &b.m2Lo.buffer})
+      cl_.queue().enqueueWriteBuffer(*film, CL_TRUE, 0, pixels_ * sizeof(cl_float4), zeros.data());
     if (aovs_)
       cl_.queue().enqueueWriteBuffer(b.aovSum.buffer, CL_TRUE, 0, 2 * pixels_ * sizeof(cl_float4), zeros.data());
   }
@@ -94,10 +96,14 @@ class ClStageRunner final : public StageRunner {
   }
 
   void readFilm(Film& film) override {
-    film.mean.resize(pixels_);
-    film.m2.resize(pixels_);
-    cl_.queue().enqueueReadBuffer(bindings_.mean.buffer, CL_FALSE, 0, pixels_ * sizeof(cl_float4), film.mean.data());
-    cl_.queue().enqueueReadBuffer(bindings_.m2.buffer, CL_TRUE, 0, pixels_ * sizeof(cl_float4), film.m2.data());
+    const std::pair<const ClArray<float4>*, std::vector<glm::vec4>*> parts[] = {
+        {&bindings_.mean, &film.mean}, {&bindings_.meanLo, &film.meanLo}, {&bindings_.m2, &film.m2},
+        {&bindings_.m2Lo, &film.m2Lo}};
+    for (const auto& [device, host] : parts) {
+      host->resize(pixels_);
+      cl_.queue().enqueueReadBuffer(device->buffer, CL_TRUE, 0, pixels_ * sizeof(cl_float4), host->data());
+    }
+    film.unpackCounts();
     if (aovs_) {
       film.aovSum.resize(2 * pixels_);
       cl_.queue().enqueueReadBuffer(bindings_.aovSum.buffer, CL_TRUE, 0, 2 * pixels_ * sizeof(cl_float4),

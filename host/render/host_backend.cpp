@@ -48,8 +48,7 @@ class HostStageRunner final : public StageRunner {
     aovs_ = in.aovs;
     aov_.assign(in.aovs ? 2 * wave : 1, float4(0.0f));
     aovSum_.assign(in.aovs ? 2 * pixels : 1, float4(0.0f));
-    mean_.assign(pixels, float4(0.0f));
-    m2_.assign(pixels, float4(0.0f));
+    for (std::vector<float4>* film : {&mean_, &meanLo_, &m2_, &m2Lo_}) film->assign(pixels, float4(0.0f));
     bind();
   }
 
@@ -77,8 +76,11 @@ class HostStageRunner final : public StageRunner {
   std::uint32_t finishWave() override { return queueCount_; }
 
   void readFilm(Film& film) override {
-    film.mean.assign(mean_.begin(), mean_.end());
-    film.m2.assign(m2_.begin(), m2_.end());
+    film.mean = mean_;
+    film.meanLo = meanLo_;
+    film.m2 = m2_;
+    film.m2Lo = m2Lo_;
+    film.unpackCounts();
     if (aovs_) film.aovSum.assign(aovSum_.begin(), aovSum_.end());
   }
 
@@ -108,7 +110,9 @@ class HostStageRunner final : public StageRunner {
     b.rayCount = &rayCount_;
     b.queueCount = &queueCount_;
     b.mean = mean_.data();
+    b.meanLo = meanLo_.data();
     b.m2 = m2_.data();
+    b.m2Lo = m2Lo_.data();
     b.aovSum = aovSum_.data();
   }
 
@@ -124,7 +128,7 @@ class HostStageRunner final : public StageRunner {
   std::vector<Emitter> emitters_;
   std::vector<Ray> rays_, bounce_;
   std::vector<Hit> hits_, bounceHits_;
-  std::vector<float4> radiance_, shadowContrib_, mean_, m2_;
+  std::vector<float4> radiance_, shadowContrib_, mean_, meanLo_, m2_, m2Lo_;
   std::vector<ShadowWork> queue_;
   uint rayCount_ = 0;
   uint queueCount_ = 0;  // incremented atomically by the shade stages

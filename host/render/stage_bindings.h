@@ -51,8 +51,8 @@ struct StageBindings {
   Array<float4> radiance, shadowContrib, aov;
   Array<ShadowWork> queue;
   Array<uint> rayCount, queueCount;
-  // Per pixel: the film.
-  Array<float4> mean, m2, aovSum;
+  // Per pixel: the film (kernels/stages/accumulate.h: float-float mean and M2, 64-bit count).
+  Array<float4> mean, meanLo, m2, m2Lo, aovSum;
   // Per wave.
   ulong waveStart = 0;
   uint waveCount = 0;

@@ -158,7 +158,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
       run.readFilm(film);
       active.clear();
       for (std::uint32_t p = 0; p < pixels; ++p)
-        if (film.mean[p].w == float(n) && relativeStandardError(film, p, m.options.errorFloor) > m.options.targetError)
+        if (film.count[p] == n && relativeStandardError(film, p, m.options.errorFloor) > m.options.targetError)
           active.push_back(p);
       if (active.empty()) break;
       const std::uint64_t k = std::min(n, maxSpp - n);
@@ -180,7 +180,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
 }
 
 double relativeStandardError(const Film& film, std::size_t p, double errorFloor) {
-  const double n = film.mean[p].w;
+  const double n = double(film.count[p]);
   if (n < 2.0) return INFINITY;
   const glm::dvec3 w(0.2126, 0.7152, 0.0722);
   // Luminance of each sample is a linear combination of its channels; its variance needs the

@@ -60,7 +60,8 @@
 #define MCL_ARGS_accumulate(ARG)                                                                   \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
   ARG(MCL_GLOBAL const float4*, radiance) ARG(MCL_GLOBAL const float4*, shadowContrib)             \
-  ARG(MCL_GLOBAL float4*, mean) ARG(MCL_GLOBAL float4*, m2)
+  ARG(MCL_GLOBAL float4*, mean) ARG(MCL_GLOBAL float4*, meanLo) ARG(MCL_GLOBAL float4*, m2)          \
+  ARG(MCL_GLOBAL float4*, m2Lo)
 
 #define MCL_ARGS_record_aov(ARG)                                                                   \
   ARG(uint, waveCount) ARG(MCL_GLOBAL const Triangle*, tris)                                       \

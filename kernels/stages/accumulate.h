@@ -1,32 +1,40 @@
 // accumulate: reads each wave item's radiance and shadow slots and the active-pixel list; for the
 // j-th pixel touched by the wave, adds each of its samples in the wave, in sample order, to the
-// pixel's running mean (rgb, w = sample count n) and M2 (rgb: sum of squared deviations from the
-// mean), by Welford's update: no cancellation when the variance is small against the mean.
-// One work item per touched pixel.
+// pixel's running mean and M2 (sum of squared deviations from the mean) by Welford's update, in
+// float-float arithmetic (shared/ffloat.h, ~48 bits), with a 64-bit integer sample count: the
+// mean does not drift however many samples (a float32 mean stops moving once delta/n is below half
+// an ulp, near 2^24 samples), and the result is the same for any wave size, since every pixel's
+// samples are added one by one in sample order. One work item per touched pixel.
+// Film state per pixel (four float4): mean = rgb hi part, w = count bits 0..31 (as_float);
+// meanLo = rgb lo part, w = count bits 32..63; m2, m2Lo = M2's hi and lo parts, w = 0.
 #pragma once
+#include "../shared/ffloat.h"
 #include "stage_common.h"
 
 MCL_INLINE void stage_accumulate(const accumulate_args* a, uint j) {
   MCL_CONSTANT const FrameParams* f = a->frame;
   if (j >= a->waveCount || j >= f->activeCount) return;  // j < pixels touched by the wave
   uint pixel = item_pixel(f, a->active, a->waveStart, j);
-  float4 m = a->mean[pixel];
-  float4 q = a->m2[pixel];
-  // float4 throughout (w lanes zeroed): no float3, whose padding lane simulators flag as undefined.
+  float4 zero = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
+  ffloat4 mean = ff_make(a->mean[pixel], a->meanLo[pixel]);
+  ffloat4 m2 = ff_make(a->m2[pixel], a->m2Lo[pixel]);
+  ulong n = (ulong)as_uint(mean.hi.w) | ((ulong)as_uint(mean.lo.w) << 32);
+  // The w lanes compute like the others: zero them (a count's bits as a float may be a denormal).
+  mean.hi.w = 0.0f;
+  mean.lo.w = 0.0f;
   for (uint i = j; i < a->waveCount; i += f->activeCount) {
     float4 value = a->radiance[i];
     for (uint k = 0; k < f->shadowSlots; ++k) value += a->shadowContrib[i * f->shadowSlots + k];
     value.w = 0.0f;
-    float n = m.w + 1.0f;
-    float4 delta = value - m;
-    delta.w = 0.0f;
-    float4 updated = m + delta / n;
-    updated.w = n;
-    float4 spread = delta * (value - updated);
-    spread.w = 0.0f;
-    m = updated;
-    q += spread;
+    n += 1;
+    ffloat4 delta = ff_add(ff_make(value, zero), ff_neg(mean));
+    mean = ff_add(mean, ff_div(delta, ff_from_count(n)));
+    m2 = ff_add(m2, ff_mul(delta, ff_add(ff_make(value, zero), ff_neg(mean))));
   }
-  a->mean[pixel] = m;
-  a->m2[pixel] = q;
+  mean.hi.w = as_float((uint)(n & 0xfffffffful));
+  mean.lo.w = as_float((uint)(n >> 32));
+  a->mean[pixel] = mean.hi;
+  a->meanLo[pixel] = mean.lo;
+  a->m2[pixel] = m2.hi;
+  a->m2Lo[pixel] = m2.lo;
 }
