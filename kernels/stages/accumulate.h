@@ -1,10 +1,12 @@
 // accumulate: reads each wave item's radiance and shadow slots and the active-pixel list; for the
 // j-th pixel touched by the wave, adds each of its samples in the wave, in sample order, to the
-// pixel's running mean and M2 (sum of squared deviations from the mean) by Welford's update, in
-// float-float arithmetic (shared/ffloat.h, ~48 bits), with a 64-bit integer sample count: the
-// mean does not drift however many samples (a float32 mean stops moving once delta/n is below half
-// an ulp, near 2^24 samples), and the result is the same for any wave size, since every pixel's
-// samples are added one by one in sample order. One work item per touched pixel.
+// pixel's running mean and M2 (sum of squared deviations from the mean) by Welford's update,
+// compensated: mean and M2 are float-float pairs hi + lo (shared/ffloat.h), each update's
+// increment (delta / n, delta * (x - mean')) is a float whose own rounding is relative to the
+// increment, and its addition is exact; the sample count is a 64-bit integer. So the mean does not
+// drift however many samples (a float32 mean stops moving once delta/n is below half an ulp, near
+// 2^24 samples) and the count is exact past 2^32; the result is the same for any wave size, since
+// every pixel's samples are added one by one in sample order. One work item per touched pixel.
 // Film state per pixel (four float4): mean = rgb hi part, w = count bits 0..31 (as_float);
 // meanLo = rgb lo part, w = count bits 32..63; m2, m2Lo = M2's hi and lo parts, w = 0.
 #pragma once
@@ -15,7 +17,6 @@ MCL_INLINE void stage_accumulate(const accumulate_args* a, uint j) {
   MCL_CONSTANT const FrameParams* f = a->frame;
   if (j >= a->waveCount || j >= f->activeCount) return;  // j < pixels touched by the wave
   uint pixel = item_pixel(f, a->active, a->waveStart, j);
-  float4 zero = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
   ffloat4 mean = ff_make(a->mean[pixel], a->meanLo[pixel]);
   ffloat4 m2 = ff_make(a->m2[pixel], a->m2Lo[pixel]);
   ulong n = (ulong)as_uint(mean.hi.w) | ((ulong)as_uint(mean.lo.w) << 32);
@@ -27,9 +28,9 @@ MCL_INLINE void stage_accumulate(const accumulate_args* a, uint j) {
     for (uint k = 0; k < f->shadowSlots; ++k) value += a->shadowContrib[i * f->shadowSlots + k];
     value.w = 0.0f;
     n += 1;
-    ffloat4 delta = ff_add(ff_make(value, zero), ff_neg(mean));
-    mean = ff_add(mean, ff_div(delta, ff_from_count(n)));
-    m2 = ff_add(m2, ff_mul(delta, ff_add(ff_make(value, zero), ff_neg(mean))));
+    float4 delta = (value - mean.hi) - mean.lo;
+    mean = ff_add_float(mean, delta / (float)n);
+    m2 = ff_add_float(m2, delta * ((value - mean.hi) - mean.lo));
   }
   mean.hi.w = as_float((uint)(n & 0xfffffffful));
   mean.lo.w = as_float((uint)(n >> 32));
