@@ -51,6 +51,7 @@ struct StageBindings {
   Array<float4> radiance, shadowContrib, aov;
   Array<ShadowWork> queue;
   Array<uint> rayCount, queueCount;
+  Array<uint> nanRays;  // rays the intersect stages met with a NaN/inf origin or direction
   // Per pixel: the film.
   Array<float4> mean, m2, aovSum;
   // Per wave.

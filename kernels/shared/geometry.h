@@ -53,6 +53,16 @@ MCL_INLINE float ray_triangle(float3 org, float3 dir, float3 v0, float3 e1, floa
 }
 
 // Reciprocal of a direction with signed infinities for zero components (no division by zero).
+// 1 when every coordinate of the ray's origin and direction is finite. A NaN or infinite ray
+// defeats the slab test (its NaN distances are dropped by mcl_min_nan1/mcl_max_nan1, so it
+// "enters" every box): the traversals treat it as a miss and the intersect stages count it.
+// x - x is 0 for a finite x and NaN for inf or NaN (no fast-math anywhere, in either language).
+MCL_INLINE int ray_is_finite(float3 org, float3 dir) {
+  float z = (org.x - org.x) + (org.y - org.y) + (org.z - org.z) + (dir.x - dir.x) +
+            (dir.y - dir.y) + (dir.z - dir.z);
+  return z == 0.0f;
+}
+
 MCL_INLINE float3 safe_inverse(float3 d) {
   return make_float3(d.x != 0.0f ? 1.0f / d.x : copysign(INFINITY, d.x),
                      d.y != 0.0f ? 1.0f / d.y : copysign(INFINITY, d.y),
