@@ -113,3 +113,61 @@ TEST_CASE("the renderer refuses a camera whose float basis is NaN, naming the ke
     CHECK(std::string(e.what()).find("code.json: camera.up:") == 0);
   }
 }
+
+namespace {
+// A corner (floor and two walls) with a block on the floor, all within [-0.9, 0.9] (offsetScale 1),
+// scaled by k: positions, camera and ao_distance.
+Scene cornerScene(float k) {
+  Scene s;
+  s.path = "<corner scene>";
+  const float r = 0.9f * k, b = 0.2f * k;
+  addQuad(s, {-r, 0, -r}, {-r, 0, r}, {r, 0, r}, {r, 0, -r});    // floor
+  addQuad(s, {-r, 0, -r}, {-r, r, -r}, {-r, r, r}, {-r, 0, r});  // wall x = -r
+  addQuad(s, {-r, 0, -r}, {r, 0, -r}, {r, r, -r}, {-r, r, -r});  // wall z = -r
+  addQuad(s, {-b, 2 * b, -b}, {b, 2 * b, -b}, {b, 2 * b, b}, {-b, 2 * b, b});  // block top
+  addQuad(s, {-b, 0, b}, {b, 0, b}, {b, 2 * b, b}, {-b, 2 * b, b});              // block front
+  addQuad(s, {b, 0, -b}, {b, 2 * b, -b}, {b, 2 * b, b}, {b, 0, b});              // block side
+  s.camera.position = glm::vec3(0.6f, 0.7f, 0.8f) * k;
+  s.camera.target = glm::vec3(-0.2f, 0.1f, -0.2f) * k;
+  s.camera.fovY = 60.0f;
+  s.camera.width = s.camera.height = 24;
+  s.render.spp = 16;
+  s.render.aoDistance = 0.5f * k;
+  s.render.aoSampling = montecl::AoSampling::Uniform;
+  finishScene(s);
+  return s;
+}
+}  // namespace
+
+TEST_CASE("tiny scenes: a scene scaled by 2^-20 or 2^-40 renders the same AO bits, by 1e-6 or 1e-12 the same image within statistics (issue 14)" * doctest::test_suite("cpu")) {
+  // Without scale-aware offsets the absolute 1/65536 offset throws AO rays of a 1e-6 scene far off
+  // the surface (AO near 1 everywhere), and at 1e-12 cross(e1, e2) underflows: NaN normals.
+  const DeviceInfo host = hostDeviceInfo();
+  Film unit = render(host, cornerScene(1.0f));
+  double unitSum = 0.0;
+  for (const glm::vec4& m : unit.mean) unitSum += m.x;
+  CHECK(unitSum > 0.2 * double(unit.mean.size()));
+  CHECK(unitSum < 0.95 * double(unit.mean.size()));  // the corner and block occlude
+  for (int e : {-20, -40}) {
+    CAPTURE(e);
+    Film f = render(host, cornerScene(std::ldexp(1.0f, e)));
+    CHECK(f.mean == unit.mean);
+    CHECK(f.m2 == unit.m2);
+  }
+  for (float k : {1e-6f, 1e-12f}) {
+    CAPTURE(k);
+    Film f = render(host, cornerScene(k));
+    // Per pixel: the difference of two independent means, within 5 standard errors (or equal).
+    int bad = 0;
+    double sum = 0.0;
+    for (std::size_t p = 0; p < f.mean.size(); ++p) {
+      const double n = f.mean[p].w, d = double(f.mean[p].x) - unit.mean[p].x;
+      const double se = std::sqrt((f.variance(p, 0) + unit.variance(p, 0)) / n);
+      sum += f.mean[p].x;
+      CHECK(std::isfinite(f.mean[p].x));
+      bad += std::abs(d) > 5.0 * se + 1e-6;
+    }
+    CHECK(bad <= 2);
+    CHECK(std::abs(sum - unitSum) < 0.02 * unitSum);
+  }
+}

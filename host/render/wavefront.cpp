@@ -61,6 +61,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   const CameraProblem cameraProblem = cameraBasisProblem(scene.camera);
   if (!cameraProblem.empty()) throwInputError(scene.path, cameraProblem.key, cameraProblem.problem);
   FrameParams frame = makeFrameParams(scene.camera, scene.render, slots);
+  frame.offsetScale = offsetScaleFor(scene.triangles);
   const EmitterTable emitters = direct ? buildEmitterTable(bvh, scene.materials) : EmitterTable{};
   frame.emitterCount = uint(emitters.emitters.size());
   frame.emitterPower = emitters.totalPower;
