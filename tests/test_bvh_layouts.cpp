@@ -121,3 +121,60 @@ TEST_CASE("bvh layouts: the host backend traverses the wide layout only (the one
   CHECK(resolveStageLayout(BvhLayout::Auto, gpu) == BvhLayout::Binary);
   CHECK(resolveStageLayout(BvhLayout::Wide, gpu) == BvhLayout::Wide);
 }
+
+// Non-finite rays (issue 14): a NaN ray "entered" every child through the NaN-dropping slab test,
+// and an empty wide slot (0xffffffff, leaf bit set) was read as a leaf with a huge first index:
+// without the fix this case dies with SIGSEGV in wide_closest_hit (ray_triangle4).
+TEST_CASE("bvh layouts: a ray with a NaN or infinite origin or direction is a miss in both layouts" * doctest::test_suite("cpu")) {
+  Bvh bvh = buildBvh(soup(300, 7u, 1.0f));
+  const float nan = std::nanf(""), inf = INFINITY;
+  const glm::vec3 origins[] = {{0, 0, -8}, {nan, 0, -8}, {0, inf, -8}, {-inf, 0, 0}};
+  const glm::vec3 dirs[] = {{0, 0, 1}, {0, nan, 1}, {inf, 0, 1}, {nan, nan, nan}, {0, 0, -inf}};
+  int cases = 0;
+  for (const glm::vec3& o : origins)
+    for (const glm::vec3& d : dirs) {
+      if (o == origins[0] && d == dirs[0]) continue;  // the finite ray
+      for (BvhLayout layout : {BvhLayout::Wide, BvhLayout::Binary}) {
+        CAPTURE(int(layout));
+        CAPTURE(++cases);
+        for (float tmax : {INFINITY, 100.0f}) {
+          Hit h = intersectClosest(bvh, o, d, tmax, layout);
+          CHECK(h.tri == MCL_NO_HIT);
+          CHECK(h.t == INFINITY);
+          CHECK_FALSE(intersectAny(bvh, o, d, tmax, layout));
+        }
+      }
+    }
+  CHECK(ray_is_finite(glm::vec3(0, 0, -8), glm::vec3(0, 0, 1)));
+  CHECK(ray_is_finite(glm::vec3(3e38f), glm::vec3(-3e38f)));
+  CHECK_FALSE(ray_is_finite(glm::vec3(0, 0, nan), glm::vec3(0, 0, 1)));
+  CHECK_FALSE(ray_is_finite(glm::vec3(0), glm::vec3(0, -inf, 1)));
+}
+
+// Whatever the ray and whatever an empty slot's box, the wide traversal never reads triangles
+// through an empty slot: here every empty slot's box is made to cover everything (so finite rays
+// enter them) and the hits must not change. Without the guard this reads tris[0x7ffffff] (SIGSEGV
+// or garbage hits).
+TEST_CASE("bvh layouts: the wide traversal never reads an empty slot, whatever its box" * doctest::test_suite("cpu")) {
+  Bvh bvh = buildBvh(soup(300, 9u, 1.0f));
+  Bvh broken = bvh;
+  int emptySlots = 0;
+  // The test edits the collapsed nodes in place (its own copy: a copied Bvh collapses anew).
+  auto& brokenWide = const_cast<std::vector<WideNode>&>(broken.wideNodes());
+  for (WideNode& n : brokenWide)
+    for (int i = 0; i < MCL_WIDE_WIDTH; ++i)
+      if (n.child[i] == MCL_WIDE_EMPTY) {
+        ++emptySlots;
+        for (int row = 0; row < 6; ++row) n.bounds[row][i] = row % 2 == 0 ? -1e30f : 1e30f;
+      }
+  REQUIRE(emptySlots > 0);
+  std::vector<Ray> rs = rays(3000, 10u, glm::vec3(-6.0f), glm::vec3(6.0f));
+  int bad = 0;
+  for (const Ray& r : rs) {
+    const glm::vec3 o = xyz(r.origin), d = xyz(r.dir);
+    Hit a = intersectClosest(bvh, o, d, r.dir.w), b = intersectClosest(broken, o, d, r.dir.w);
+    bad += a.tri != b.tri || !(a.t == b.t) ||
+           intersectAny(bvh, o, d, r.dir.w) != intersectAny(broken, o, d, r.dir.w);
+  }
+  CHECK(bad == 0);
+}

@@ -6,6 +6,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -18,6 +19,7 @@
 #include <thread>
 
 #include "cli_runner.h"
+#include "skip.h"
 #include "image/exr_layers.h"
 
 extern char** environ;
@@ -139,4 +141,69 @@ TEST_CASE("cli: --min-spp above --max-spp exits 2 before any work" * doctest::te
                                                                              "64", "--max-spp", "8", "--device", "9:9"});
   CHECK(err.find("--min-spp") != std::string::npos);
   CHECK(err.find("--max-spp (8)") != std::string::npos);
+}
+
+// Program cache robustness (issue 14). Each case fails without the fix: a truncated or
+// byte-flipped cache file crashed PoCL (exit 139) on every later run, a FIFO blocked (timeout), and
+// XDG_CACHE_HOME under a regular file made PoCL report "no OpenCL device found" (exit 1).
+TEST_CASE("cli: a damaged, odd or unwritable program cache never crashes, hangs or hides the device" * doctest::test_suite("cli")) {
+  namespace fs = std::filesystem;
+  TempDir dir;
+  const std::string cache = dir.file("cache");
+  const std::vector<std::string> env = {"MONTECL_CACHE_DIR=" + cache, "POCL_CACHE_DIR=" + dir.file("pocl")};
+  const auto render = [&](const std::vector<std::string>& e) {
+    return runMontecl(montecl_test::demoRenderArgs(dir.file("out.png"), 1, 0), e);
+  };
+  CliResult first = render(env);
+  REQUIRE(first.exitCode == 0);
+  std::vector<fs::path> bins;
+  for (const auto& entry : fs::directory_iterator(cache)) bins.push_back(entry.path());
+  REQUIRE(bins.size() == 1);
+  const fs::path bin = bins[0];
+  const auto size = fs::file_size(bin);
+  REQUIRE(size > 1000);
+  // Truncated, then one flipped byte in the middle: rebuilt and rewritten whole.
+  fs::resize_file(bin, size / 2);
+  CliResult truncated = render(env);
+  CHECK(truncated.exitCode == 0);
+  CHECK(fs::file_size(bin) > size / 2);  // rewritten whole (PoCL binaries vary a little in size)
+  {
+    std::fstream f(bin, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(std::streamoff(size / 2));
+    f.put(char(0x5a ^ 0xff));
+    f.seekp(std::streamoff(size * 3 / 4));
+    f.put(char(0x00));
+  }
+  CliResult flipped = render(env);
+  CHECK(flipped.exitCode == 0);
+  CHECK(flipped.err.find("warning") == std::string::npos);
+  // The cache file is a folder, a FIFO, /dev/zero: skipped with one warning.
+  for (const std::string kind : {"directory", "FIFO", "/dev/zero"}) {
+    CAPTURE(kind);
+    fs::remove_all(bin);
+    if (kind == "directory") fs::create_directory(bin);
+    else if (kind == "FIFO") REQUIRE(::mkfifo(bin.c_str(), 0600) == 0);
+    else fs::create_symlink("/dev/zero", bin);
+    CliResult r = render(env);
+    CHECK(r.exitCode == 0);
+    CHECK(r.err.find("warning: program cache") != std::string::npos);
+  }
+  // XDG_CACHE_HOME (PoCL's cache and ours) below a regular file: renders, says where PoCL's went.
+  CliResult ro = render({"XDG_CACHE_HOME=/etc/hostname/x", "MONTECL_CACHE_DIR=", "POCL_CACHE_DIR="});
+  CHECK(ro.exitCode == 0);
+  CHECK(ro.err.find("PoCL's kernel cache is in") != std::string::npos);
+}
+
+// Oclgrind (issue 14): montecl adds -cl-opt-disable itself on the Oclgrind platform. Without it
+// Debian's Oclgrind 21.10 aborts (SIGSEGV) on LLVM `freeze` in the optimised kernels unless the
+// user sets OCLGRIND_BUILD_OPTIONS=-cl-opt-disable.
+TEST_CASE("cli: oclgrind montecl render --device oclgrind works without OCLGRIND_BUILD_OPTIONS" * doctest::test_suite("cli")) {
+  MCL_SKIP_UNLESS(std::ifstream("/usr/bin/oclgrind").good(), "oclgrind is not installed");
+  TempDir dir;
+  CliResult r = montecl_test::runProgram(
+      {"oclgrind", MONTECL_EXE, "render", std::string(MONTECL_SOURCE_DIR) + "/scenes/test/good/scene.json", "--device",
+       "oclgrind", "--spp", "1", "--width", "8", "--height", "6", "--quiet", "-o", dir.file("o.png")},
+      {"OCLGRIND_BUILD_OPTIONS=", "MONTECL_CACHE_DIR=" + dir.file("cache")});
+  INFO(r.err);
+  CHECK(r.exitCode == 0);
 }

@@ -8,6 +8,8 @@
 
 #include "bvh/bvh.h"
 #include "cl/devices.h"
+#include "render/frame_params.h"
+#include "render/stage_runner.h"
 #include "render/wavefront.h"
 #include "film_stats.h"
 #include "stats.h"
@@ -30,6 +32,28 @@ Film renderScene(const Scene& scene, RenderOptions options = {}) {
 void pixelMeanVar(const Film& f, std::size_t p, double& mean, double& varOfMean) {
   double var;
   montecl_test::pixelMeanVar(f, p, 0, mean, varOfMean, var);
+}
+
+// One AO wave of `n` items through a runner whose camera rays are all NaN (a FrameParams no scene
+// load lets through, issue 14): the NaN rays are misses (background, no shadow rays) and the wave
+// counts every one. Returns the counts; film through *film.
+WaveCounts nanCameraWave(StageRunner& run, const Scene& scene, std::uint32_t n, Film* film) {
+  Bvh bvh = buildBvh(scene.triangles);
+  StageInputs in;
+  in.frame = makeFrameParams(scene.camera, scene.render, 1);
+  in.frame.camTopLeft = glm::vec4(std::nanf(""), 0.0f, 1.0f, 0.0f);
+  in.bvh = &bvh;
+  in.materials = std::vector<Material>(1);
+  in.wave = n;
+  run.setup(in);
+  run.beginWave(0, n);
+  for (Stage s : {Stage::generate, Stage::intersect, Stage::shade_ao, Stage::intersect_shadow, Stage::accumulate})
+    run.launch(s, n);
+  WaveCounts c = run.finishWave();
+  film->width = int(in.frame.width);
+  film->height = int(in.frame.height);
+  run.readFilm(*film);
+  return c;
 }
 
 bool sameFilm(const Film& a, const Film& b) {
@@ -156,5 +180,23 @@ TEST_CASE("images are bit-identical with the wide and the binary BVH layout" * d
     wide.bvhLayout = BvhLayout::Wide;
     binary.bvhLayout = BvhLayout::Binary;
     CHECK(sameFilm(renderScene(*s, wide), renderScene(*s, binary)));
+  }
+}
+
+TEST_CASE("NaN camera rays are misses and every one is counted, in both BVH layouts (issue 14)" * doctest::test_suite("opencl")) {
+  // Without the fix there is no count, and the wide kernel read an empty slot (SIGSEGV in PoCL).
+  Scene s = floorScene({0, 0, 0}, 1.0f, 60.0f, 16, 1);
+  s.render.background = glm::vec3(0.25f);
+  for (BvhLayout layout : {BvhLayout::Wide, BvhLayout::Binary}) {
+    CAPTURE(int(layout));
+    std::unique_ptr<StageRunner> run = makeClStageRunner(selectDevice(""), 0, layout);
+    Film film;
+    WaveCounts c = nanCameraWave(*run, s, 256, &film);
+    CHECK(c.nanRays == 256);
+    CHECK(c.shadowRays == 0);
+    for (std::size_t p = 0; p < film.mean.size(); ++p) {
+      CHECK(film.mean[p] == glm::vec4(0.25f, 0.25f, 0.25f, 0.0f));
+      CHECK(film.count[p] == 1u);
+    }
   }
 }

@@ -70,12 +70,13 @@ RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads, BvhLay
   const uint emitterCount = uint(lights.emitters.size());
   s.emitters = emitterCount;
 
+  const float offsetScale = offsetScaleFor(scene.triangles);  // as the renderer's FrameParams
   for (uint p = 0; p < pixels; ++p) {
     const Hit& h = s.primaryHits[p];
     if (h.tri == MCL_NO_HIT) continue;
     const Triangle* tri = &bvh.triangles[h.tri];
     float3 n = facing_normal(tri, xyz(s.primary.rays[p].dir));
-    float3 org = offset_ray_origin(hit_position(tri, h), n);
+    float3 org = offset_ray_origin(hit_position(tri, h), n, offsetScale);
     for (uint k = 0; k < kAoRaysPerHit; ++k) {
       float4 u = rng_uniform4(seed, p, k, MCL_DIM_AO);
       Ray r;

@@ -19,6 +19,8 @@ ClSession::ClSession(const DeviceInfo& device, std::size_t workGroupSize, bool p
   queue_ = cl::CommandQueue(context_, device.device, profiling ? CL_QUEUE_PROFILING_ENABLE : 0);
   std::string options = kKernelBuildOptions;
   if (!extraOptions.empty()) options += " " + extraOptions;
+  // Oclgrind 21.10 (Debian) aborts on the LLVM `freeze` instructions of optimised kernels.
+  if (oclgrind_) options += " -cl-opt-disable";
   build_ = buildProgramCached(context_, device, expandedKernelSource(programFile), options);
 }
 

@@ -4,8 +4,12 @@
 #include "cl/devices.h"
 
 #include <algorithm>
+#include <unistd.h>
+
 #include <cctype>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <regex>
 #include <thread>
 
@@ -103,9 +107,47 @@ std::string formatBytes(std::uint64_t bytes) {
   return buf;
 }
 
+// PoCL keeps its own kernel cache under $POCL_CACHE_DIR, else $XDG_CACHE_HOME/pocl, else
+// ~/.cache/pocl, and when it cannot create it reports no devices at all ("no OpenCL device
+// found"). Before the first OpenCL call: if that folder cannot be created and written, point
+// POCL_CACHE_DIR at a fresh folder under the temporary directory and say so once.
+static void ensureWritablePoclCache() {
+  static bool done = false;
+  if (done) return;
+  done = true;
+  namespace fs = std::filesystem;
+  std::string dir;
+  if (const char* v = std::getenv("POCL_CACHE_DIR"); v && *v) dir = v;
+  else if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) dir = std::string(x) + "/pocl";
+  else if (const char* h = std::getenv("HOME"); h && *h) dir = std::string(h) + "/.cache/pocl";
+  if (dir.empty()) return;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  bool writable = !ec && fs::is_directory(dir, ec);
+  if (writable) {
+    const std::string probe = dir + "/.montecl-probe-" + std::to_string(::getpid());
+    std::FILE* f = std::fopen(probe.c_str(), "w");
+    writable = f != nullptr;
+    if (f) std::fclose(f);
+    std::remove(probe.c_str());
+  }
+  if (writable) return;
+  std::string tmpl = (fs::temp_directory_path(ec).string().empty() ? std::string("/tmp") : fs::temp_directory_path(ec).string()) +
+                     "/montecl-pocl-XXXXXX";
+  if (::mkdtemp(&tmpl[0]) == nullptr) {
+    std::fprintf(stderr, "montecl: warning: %s is not a writable folder and no temporary folder could be made: "
+                 "PoCL may find no devices; set POCL_CACHE_DIR to a writable folder\n", dir.c_str());
+    return;
+  }
+  ::setenv("POCL_CACHE_DIR", tmpl.c_str(), 1);
+  std::fprintf(stderr, "montecl: warning: %s is not a writable folder; PoCL's kernel cache is in %s for this run\n",
+               dir.c_str(), tmpl.c_str());
+}
+
 DeviceList listDevices() {
   DeviceList list;
   std::vector<cl::Platform> platforms;
+  ensureWritablePoclCache();
   try {
     cl::Platform::get(&platforms);
   } catch (const cl::Error& e) {

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <iterator>
 #include <vector>
 
@@ -23,8 +24,11 @@ namespace fs = std::filesystem;
 namespace {
 
 // Cache file: 8-byte magic, 8-byte second hash of the key (a collision guard for the 64-bit file
-// name), then the program binary as returned by CL_PROGRAM_BINARIES.
-constexpr char kMagic[8] = {'M', 'C', 'L', 'P', 'R', 'G', '0', '1'};
+// name), 8-byte binary size, 8-byte FNV-1a of the binary, then the program binary as returned by
+// CL_PROGRAM_BINARIES. A truncated or corrupted binary crashed PoCL on load (issue 14), so the size
+// and checksum are verified before the driver sees it; any mismatch rebuilds and overwrites it.
+constexpr char kMagic[8] = {'M', 'C', 'L', 'P', 'R', 'G', '0', '2'};
+constexpr std::size_t kHeader = 32;
 constexpr std::uint64_t kCheckSeed = 0x84222325cbf29ce4ull;
 
 std::string envOr(const char* name) {
@@ -59,26 +63,50 @@ std::vector<unsigned char> programBinary(const cl::Program& program, cl_device_i
   return {};
 }
 
+std::uint64_t readU64(const std::vector<unsigned char>& data, std::size_t at) {
+  std::uint64_t v = 0;
+  for (int i = 0; i < 8; ++i) v |= std::uint64_t(data[at + i]) << (8 * i);
+  return v;
+}
+void putU64(unsigned char* out, std::uint64_t v) {
+  for (int i = 0; i < 8; ++i) out[i] = static_cast<unsigned char>(v >> (8 * i));
+}
+std::uint64_t binaryChecksum(const unsigned char* p, std::size_t n) {
+  return fnv1a64(std::string(reinterpret_cast<const char*>(p), n));
+}
+
 bool readCacheFile(const std::string& path, std::uint64_t check, std::vector<unsigned char>& bin) {
   std::ifstream f(path, std::ios::binary);
   if (!f) return false;
   std::vector<unsigned char> data((std::istreambuf_iterator<char>(f)),
                                   std::istreambuf_iterator<char>());
-  if (data.size() <= 16 || std::memcmp(data.data(), kMagic, 8) != 0) return false;
-  std::uint64_t stored = 0;
-  for (int i = 0; i < 8; ++i) stored |= std::uint64_t(data[8 + i]) << (8 * i);
-  if (stored != check) return false;
-  bin.assign(data.begin() + 16, data.end());
+  if (data.size() <= kHeader || std::memcmp(data.data(), kMagic, 8) != 0) return false;
+  if (readU64(data, 8) != check || readU64(data, 16) != data.size() - kHeader) return false;
+  if (readU64(data, 24) != binaryChecksum(data.data() + kHeader, data.size() - kHeader)) return false;
+  bin.assign(data.begin() + kHeader, data.end());
   return true;
+}
+
+// Empty when path is absent or a regular file; else what it is (the cache is then skipped: a
+// folder, a FIFO (which would block the read) or a device such as /dev/zero (endless)).
+std::string notRegularFile(const std::string& path) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (ec || !fs::exists(st) || fs::is_regular_file(st)) return "";
+  if (fs::is_directory(st)) return "a directory";
+  if (fs::is_fifo(st)) return "a FIFO";
+  return "not a regular file";
 }
 
 void writeCacheFile(const std::string& path, std::uint64_t check,
                     const std::vector<unsigned char>& bin) {
   writeAtomically(path, [&](const std::string& tmp) {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    unsigned char header[16];
+    unsigned char header[kHeader];
     std::memcpy(header, kMagic, 8);
-    for (int i = 0; i < 8; ++i) header[8 + i] = static_cast<unsigned char>(check >> (8 * i));
+    putU64(header + 8, check);
+    putU64(header + 16, bin.size());
+    putU64(header + 24, binaryChecksum(bin.data(), bin.size()));
     f.write(reinterpret_cast<const char*>(header), sizeof header);
     f.write(reinterpret_cast<const char*>(bin.data()), static_cast<std::streamsize>(bin.size()));
     f.close();
@@ -150,6 +178,12 @@ ProgramBuild buildProgramCached(const cl::Context& context, const DeviceInfo& de
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (!ec && fs::is_directory(dir, ec)) cachePath = dir + "/" + hex64(fnv1a64(key)) + ".bin";
+    const std::string what = cachePath.empty() ? std::string() : notRegularFile(cachePath);
+    if (!what.empty()) {
+      std::cerr << "montecl: warning: program cache " << cachePath << " is " << what
+                << "; building the kernels without the cache\n";
+      cachePath.clear();
+    }
   }
 
   if (!cachePath.empty()) {

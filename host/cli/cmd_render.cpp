@@ -150,6 +150,9 @@ int runRender(const RenderArgs& a) {
     bar.update(done, total, s);
   });
   bar.finish();
+  if (stats.nanRays > 0)
+    std::cerr << "montecl: warning: " << stats.nanRays
+              << " rays with NaN/inf origin or direction were treated as misses\n";
   if (isExr(output))
     writeLayeredExr(output, renderLayers(film, a.aovs));
   else

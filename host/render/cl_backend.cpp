@@ -48,6 +48,7 @@ class ClStageRunner final : public StageRunner {
     b.queue = {cl_.scratch<ShadowWork>(wave * slots)};
     b.rayCount = {cl_.buffer<cl_uint>(1)};
     b.queueCount = {cl_.buffer<cl_uint>(1)};
+    b.nanRays = {cl_.buffer<cl_uint>(1)};
     b.aov = {cl_.scratch<cl_float4>(in.aovs ? 2 * wave : 1)};
     b.aovSum = {cl_.buffer<cl_float4>(in.aovs ? 2 * pixels_ : 1)};
     b.mean = {cl_.buffer<cl_float4>(pixels_)};
@@ -79,6 +80,7 @@ class ClStageRunner final : public StageRunner {
     counters_[1] = 0;
     cl_.queue().enqueueWriteBuffer(bindings_.rayCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &counters_[0]);
     cl_.queue().enqueueWriteBuffer(bindings_.queueCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &counters_[1]);
+    cl_.queue().enqueueWriteBuffer(bindings_.nanRays.buffer, CL_FALSE, 0, sizeof(cl_uint), &counters_[1]);
   }
 
   // Arguments are set at every launch (a handful of clSetKernelArg calls per stage and wave): the
@@ -89,10 +91,11 @@ class ClStageRunner final : public StageRunner {
     cl_.launch(k, items);
   }
 
-  std::uint32_t finishWave() override {
-    cl_uint shadowCount = 0;
+  WaveCounts finishWave() override {
+    cl_uint shadowCount = 0, nanRays = 0;
+    cl_.queue().enqueueReadBuffer(bindings_.nanRays.buffer, CL_FALSE, 0, sizeof(cl_uint), &nanRays);
     cl_.queue().enqueueReadBuffer(bindings_.queueCount.buffer, CL_TRUE, 0, sizeof(cl_uint), &shadowCount);
-    return shadowCount;
+    return WaveCounts{shadowCount, nanRays};
   }
 
   void readFilm(Film& film) override {

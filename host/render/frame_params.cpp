@@ -1,26 +1,22 @@
 // frame_params.cpp: pinhole camera basis and render settings packed for the kernels.
 #include "render/frame_params.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include "scene/camera_basis.h"
 
 namespace montecl {
 
 FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings, uint shadowSlots) {
-  glm::vec3 forward = glm::normalize(camera.target - camera.position);
-  glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
-  glm::vec3 up = glm::cross(right, forward);
-  float tanHalf = std::tan(glm::radians(camera.fovY) * 0.5f);
-  float aspect = float(camera.width) / float(camera.height);
-  glm::vec3 topLeft = forward - right * (tanHalf * aspect) + up * tanHalf;
-  glm::vec3 dx = right * (2.0f * tanHalf * aspect / float(camera.width));
-  glm::vec3 dy = -up * (2.0f * tanHalf / float(camera.height));
-
+  const CameraBasis b = cameraBasis(camera);  // validated at scene load (cameraBasisProblem)
   FrameParams f{};
   f.camOrigin = glm::vec4(camera.position, 0.0f);
-  f.camTopLeft = glm::vec4(topLeft, 0.0f);
-  f.camDx = glm::vec4(dx, 0.0f);
-  f.camDy = glm::vec4(dy, 0.0f);
+  f.camTopLeft = glm::vec4(b.topLeft, 0.0f);
+  f.camDx = glm::vec4(b.dx, 0.0f);
+  f.camDy = glm::vec4(b.dy, 0.0f);
   f.background = glm::vec4(settings.background, 0.0f);
+  f.offsetScale = 1.0f;
   f.width = uint(camera.width);
   f.height = uint(camera.height);
   f.seed = settings.seed;
@@ -33,6 +29,17 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
                      : settings.directSampling == DirectSampling::Brdf ? MCL_DIRECT_BRDF
                                                                        : MCL_DIRECT_MIS;
   return f;
+}
+
+float offsetScaleFor(const std::vector<SceneTriangle>& triangles) {
+  float maxAbs = 0.0f;
+  for (const SceneTriangle& t : triangles)
+    for (const glm::vec3& v : t.v)
+      maxAbs = std::max({maxAbs, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  if (!(maxAbs > 0.0f) || maxAbs >= 1.0f) return 1.0f;
+  int e = 0;
+  const float m = std::frexp(maxAbs, &e);  // maxAbs = m * 2^e, m in [0.5, 1)
+  return std::ldexp(1.0f, m == 0.5f ? e - 1 : e);
 }
 
 }  // namespace montecl

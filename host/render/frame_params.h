@@ -9,4 +9,9 @@ namespace montecl {
 // shadowSlots: occlusion queries per pixel sample (1 for AO).
 FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings, uint shadowSlots);
 
+// FrameParams::offsetScale for these triangles: the smallest power of two at or above their largest
+// absolute coordinate, at most 1 (scenes of unit size or larger keep the unit offsets; a scene
+// scaled down by 2^-k gets offsets scaled by exactly 2^-k).
+float offsetScaleFor(const std::vector<SceneTriangle>& triangles);
+
 }  // namespace montecl

@@ -64,6 +64,7 @@ class HostStageRunner final : public StageRunner {
     bindings_.waveCount = count;
     rayCount_ = count;
     queueCount_ = 0;
+    nanRays_ = 0;
   }
 
   void launch(Stage s, std::uint64_t items, RayInput rays) override {
@@ -73,7 +74,7 @@ class HostStageRunner final : public StageRunner {
     });
   }
 
-  std::uint32_t finishWave() override { return queueCount_; }
+  WaveCounts finishWave() override { return WaveCounts{queueCount_, nanRays_}; }
 
   void readFilm(Film& film) override {
     film.mean = mean_;
@@ -109,6 +110,7 @@ class HostStageRunner final : public StageRunner {
     b.queue = queue_.data();
     b.rayCount = &rayCount_;
     b.queueCount = &queueCount_;
+    b.nanRays = &nanRays_;
     b.mean = mean_.data();
     b.meanLo = meanLo_.data();
     b.m2 = m2_.data();
@@ -132,6 +134,7 @@ class HostStageRunner final : public StageRunner {
   std::vector<ShadowWork> queue_;
   uint rayCount_ = 0;
   uint queueCount_ = 0;  // incremented atomically by the shade stages
+  uint nanRays_ = 0;     // incremented atomically by the intersect stages
 };
 
 }  // namespace

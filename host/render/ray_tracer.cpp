@@ -13,6 +13,7 @@ RayTracer::RayTracer(StageProgram& program, const Bvh& bvh)
   bindings_.frame = {cl_.upload(std::vector<FrameParams>{FrameParams{}})};
   bindings_.nodes = {program.uploadNodes(bvh)};
   bindings_.tris = {cl_.upload(bvh.triangles)};
+  bindings_.nanRays = {cl_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE)};
 }
 
 void RayTracer::run(Stage stage, std::size_t n, int runs, std::vector<double>* kernelMs) {
@@ -56,6 +57,12 @@ std::vector<int> RayTracer::occluded(const std::vector<Ray>& rays, int runs, std
                                 contrib.data());
   for (std::size_t k = 0; k < rays.size(); ++k) result[k] = contrib[k].s[0] == 1.0f ? 0 : 1;
   return result;
+}
+
+std::uint32_t RayTracer::nanRays() {
+  cl_uint n = 0;
+  cl_.queue().enqueueReadBuffer(bindings_.nanRays.buffer, CL_TRUE, 0, sizeof(cl_uint), &n);
+  return n;
 }
 
 }  // namespace montecl

@@ -18,6 +18,9 @@ class RayTracer {
   std::vector<Hit> closest(const std::vector<Ray>& rays, int runs = 1, std::vector<double>* kernelMs = nullptr);
   // 1 where something blocks the ray before dir.w, else 0; runs and kernelMs as above.
   std::vector<int> occluded(const std::vector<Ray>& rays, int runs = 1, std::vector<double>* kernelMs = nullptr);
+  // Rays with a NaN/inf origin or direction met so far (every run counts; they are misses, and a
+  // non-finite occlusion query is reported occluded: its light is dropped).
+  std::uint32_t nanRays();
 
  private:
   void run(Stage stage, std::size_t n, int runs, std::vector<double>* kernelMs);

@@ -51,6 +51,7 @@ struct StageBindings {
   Array<float4> radiance, shadowContrib, aov;
   Array<ShadowWork> queue;
   Array<uint> rayCount, queueCount;
+  Array<uint> nanRays;  // rays the intersect stages met with a NaN/inf origin or direction
   // Per pixel: the film (kernels/stages/accumulate.h: float-float mean and M2, 64-bit count).
   Array<float4> mean, meanLo, m2, m2Lo, aovSum;
   // Per wave.

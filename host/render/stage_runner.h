@@ -26,6 +26,12 @@ struct StageInputs {
   bool aovs = false;         // record first-hit albedo, normal and depth (record_aov, accumulate_aov)
 };
 
+// What a wave counted on the device.
+struct WaveCounts {
+  std::uint32_t shadowRays = 0;  // occlusion queries traced
+  std::uint32_t nanRays = 0;     // rays with a NaN/inf origin or direction (treated as misses)
+};
+
 class StageRunner {
  public:
   virtual ~StageRunner() = default;
@@ -48,8 +54,8 @@ class StageRunner {
   // Runs stage s over `items` work items (its body bounds them by its own count), reading the
   // camera or the bounce rays (RayInput). Stages run in launch order.
   virtual void launch(Stage s, std::uint64_t items, RayInput rays = RayInput::Camera) = 0;
-  // Waits for the wave; returns the number of occlusion queries it traced.
-  virtual std::uint32_t finishWave() = 0;
+  // Waits for the wave; returns the number of occlusion queries it traced and of non-finite rays.
+  virtual WaveCounts finishWave() = 0;
   // Reads the accumulated statistics (film.mean, film.m2, film.aovSum; the caller sets the size).
   virtual void readFilm(Film& film) = 0;
 };

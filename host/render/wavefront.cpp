@@ -12,6 +12,7 @@
 #include "render/stage_runner.h"
 #include "render/emitters.h"
 #include "render/frame_params.h"
+#include "scene/camera_basis.h"
 #include "util/errors.h"
 
 namespace montecl {
@@ -56,7 +57,11 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   StageRunner& run = *m.runner;
   const bool direct = scene.render.integrator == Integrator::Direct;
   const std::uint32_t slots = direct ? std::uint32_t(scene.render.lightSamples) + 1 : 1;
+  // Scene files are checked at load; a camera set in code is checked here (never NaN camera rays).
+  const CameraProblem cameraProblem = cameraBasisProblem(scene.camera);
+  if (!cameraProblem.empty()) throwInputError(scene.path, cameraProblem.key, cameraProblem.problem);
   FrameParams frame = makeFrameParams(scene.camera, scene.render, slots);
+  frame.offsetScale = offsetScaleFor(scene.triangles);
   const EmitterTable emitters = direct ? buildEmitterTable(bvh, scene.materials) : EmitterTable{};
   frame.emitterCount = uint(emitters.emitters.size());
   frame.emitterPower = emitters.totalPower;
@@ -123,13 +128,14 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
         run.launch(Stage::record_aov, n);
         run.launch(Stage::accumulate_aov, touched);
       }
-      const std::uint32_t shadowCount = run.finishWave();
+      const WaveCounts counts = run.finishWave();
 
       done += n;
       stats.waves++;
       stats.samples += n;
       stats.cameraRays += n;
-      stats.shadowRays += shadowCount;
+      stats.shadowRays += counts.shadowRays;
+      stats.nanRays += counts.nanRays;
       if (direct && scene.render.directSampling != DirectSampling::Light) stats.cameraRays += n;  // BRDF rays
       stats.seconds = elapsed();
       if (progress) progress(stats.samples, std::max(expected, stats.samples), stats);

@@ -44,6 +44,7 @@ struct RenderStats {
   double seconds = 0.0;         // wall time of the wave loop (kernels + transfers)
   std::uint64_t cameraRays = 0;
   std::uint64_t shadowRays = 0;
+  std::uint64_t nanRays = 0;      // rays with a NaN/inf origin or direction, treated as misses
   std::uint64_t waves = 0;
   std::uint64_t waveSize = 0;
   std::uint64_t samples = 0;      // pixel samples rendered

@@ -14,6 +14,7 @@
 #include <initializer_list>
 #include <limits>
 
+#include "scene/camera_basis.h"
 #include "scene/scene.h"
 #include "util/errors.h"
 
@@ -158,6 +159,8 @@ void validateCamera(const Ctx& ctx, const Camera& cam) {
   if (cam.up == glm::vec3(0.0f)) fail(ctx, "camera.up", "must not be the zero vector");
   glm::dvec3 d = glm::normalize(glm::dvec3(dir)), u = glm::normalize(glm::dvec3(cam.up));
   if (glm::length(glm::cross(d, u)) < 1e-5) fail(ctx, "camera.up", "parallel to the view direction");
+  const CameraProblem p = cameraBasisProblem(cam);  // the float basis the renderer builds
+  if (!p.empty()) fail(ctx, p.key, p.problem);
 }
 
 Camera parseCamera(const Ctx& ctx, const json& root) {
@@ -281,6 +284,11 @@ Scene loadBareObj(const std::string& path, std::vector<std::string>& warnings) {
   scene.path = path;
   loadObjInto(path, scene, &warnings);
   scene.camera = defaultCamera(scene.boundsMin, scene.boundsMax, 512, 512);
+  const CameraProblem p = cameraBasisProblem(scene.camera);
+  if (!p.empty())
+    throwInputError(oneLine(path), "automatic camera",
+                    "cannot frame the model: " + p.key + " " + p.problem +
+                        "; write a scene file with a camera for it");
   return scene;
 }
 

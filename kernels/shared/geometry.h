@@ -53,6 +53,16 @@ MCL_INLINE float ray_triangle(float3 org, float3 dir, float3 v0, float3 e1, floa
 }
 
 // Reciprocal of a direction with signed infinities for zero components (no division by zero).
+// 1 when every coordinate of the ray's origin and direction is finite. A NaN or infinite ray
+// defeats the slab test (its NaN distances are dropped by mcl_min_nan1/mcl_max_nan1, so it
+// "enters" every box): the traversals treat it as a miss and the intersect stages count it.
+// x - x is 0 for a finite x and NaN for inf or NaN (no fast-math anywhere, in either language).
+MCL_INLINE int ray_is_finite(float3 org, float3 dir) {
+  float z = (org.x - org.x) + (org.y - org.y) + (org.z - org.z) + (dir.x - dir.x) +
+            (dir.y - dir.y) + (dir.z - dir.z);
+  return z == 0.0f;
+}
+
 MCL_INLINE float3 safe_inverse(float3 d) {
   return make_float3(d.x != 0.0f ? 1.0f / d.x : copysign(INFINITY, d.x),
                      d.y != 0.0f ? 1.0f / d.y : copysign(INFINITY, d.y),
@@ -61,13 +71,32 @@ MCL_INLINE float3 safe_inverse(float3 d) {
 
 // Moves p off its surface along the normal n so that a ray leaving it does not hit the same
 // triangle again: integer ULP offsets far from the origin, a small absolute one near it
-// (Waechter and Binder, "A Fast and Robust Method for Avoiding Self-Intersection", 2019).
-MCL_INLINE float offset_coord(float p, float n) {
+// (Waechter and Binder, "A Fast and Robust Method for Avoiding Self-Intersection", 2019). "Near"
+// and "small" are relative to `scale` (FrameParams::offsetScale: 1 for scenes of unit size or
+// larger, the power of two above the scene's largest coordinate for smaller ones), so a scene
+// scaled by a power of two gets offsets scaled by exactly that power: tiny scenes are valid scenes.
+MCL_INLINE float offset_coord(float p, float n, float scale) {
   const float origin = 1.0f / 32.0f, floatScale = 1.0f / 65536.0f, intScale = 256.0f;
   int of = (int)(intScale * n);
   float pi = as_float((uint)((int)as_uint(p) + ((p < 0.0f) ? -of : of)));
-  return fabs(p) < origin ? p + floatScale * n : pi;
+  return fabs(p) < origin * scale ? p + floatScale * scale * n : pi;
 }
-MCL_INLINE float3 offset_ray_origin(float3 p, float3 n) {
-  return make_float3(offset_coord(p.x, n.x), offset_coord(p.y, n.y), offset_coord(p.z, n.z));
+MCL_INLINE float3 offset_ray_origin(float3 p, float3 n, float scale) {
+  return make_float3(offset_coord(p.x, n.x, scale), offset_coord(p.y, n.y, scale),
+                     offset_coord(p.z, n.z, scale));
+}
+
+// cross(a, b) of a and b each divided by its largest absolute component: of order 1 for any
+// non-degenerate triangle's edges, however small (cross(e1, e2) of edges ~1e-15 underflows its
+// squared length, and normalize gives NaN). a, b must be non-zero; a scene scaled by a power of
+// two gives the very same bits.
+MCL_INLINE float mcl_max_abs3(float3 v) { return fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z))); }
+MCL_INLINE float3 scaled_cross(float3 a, float3 b) {
+  return cross(a * (1.0f / mcl_max_abs3(a)), b * (1.0f / mcl_max_abs3(b)));
+}
+// Unit normal of the triangle with edges e1, e2 (the direction of cross(e1, e2)), at any scale.
+MCL_INLINE float3 triangle_unit_normal(float3 e1, float3 e2) { return normalize(scaled_cross(e1, e2)); }
+// Area of the triangle with edges e1, e2, at any scale the result itself can hold.
+MCL_INLINE float triangle_area_of(float3 e1, float3 e2) {
+  return 0.5f * length(scaled_cross(e1, e2)) * mcl_max_abs3(e1) * mcl_max_abs3(e2);
 }

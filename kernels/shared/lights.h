@@ -2,14 +2,14 @@
 // a uniform point on it, converting its area pdf to solid angle, and the power heuristic. Pure;
 // compiled by the kernels and by the host tests.
 #pragma once
-#include "types.h"
+#include "geometry.h"
 
 MCL_INLINE float luminance(float3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 MCL_INLINE uint triangle_material(MCL_GLOBAL const Triangle* t) { return as_uint(t->v0.w); }
 
 MCL_INLINE float triangle_area(MCL_GLOBAL const Triangle* t) {
-  return 0.5f * length(cross(xyz(t->e1), xyz(t->e2)));
+  return triangle_area_of(xyz(t->e1), xyz(t->e2));
 }
 
 // Index of the first emitter whose cdf exceeds u (binary search); count > 0.

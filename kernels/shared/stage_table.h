@@ -29,7 +29,8 @@
 
 #define MCL_ARGS_intersect(ARG)                                                                    \
   ARG(MCL_GLOBAL const BvhTraversalNode*, nodes) ARG(MCL_GLOBAL const Triangle*, tris)             \
-  ARG(MCL_GLOBAL const Ray*, rays) ARG(MCL_GLOBAL const uint*, rayCount) ARG(MCL_GLOBAL Hit*, hits)
+  ARG(MCL_GLOBAL const Ray*, rays) ARG(MCL_GLOBAL const uint*, rayCount) ARG(MCL_GLOBAL Hit*, hits) \
+  ARG(MCL_GLOBAL volatile uint*, nanRays)
 
 #define MCL_ARGS_shade_ao(ARG)                                                                     \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
@@ -55,7 +56,7 @@
 #define MCL_ARGS_intersect_shadow(ARG)                                                             \
   ARG(MCL_GLOBAL const BvhTraversalNode*, nodes) ARG(MCL_GLOBAL const Triangle*, tris)             \
   ARG(MCL_GLOBAL const ShadowWork*, queue) ARG(MCL_GLOBAL const uint*, queueCount)                 \
-  ARG(MCL_GLOBAL float4*, shadowContrib)
+  ARG(MCL_GLOBAL float4*, shadowContrib) ARG(MCL_GLOBAL volatile uint*, nanRays)
 
 #define MCL_ARGS_accumulate(ARG)                                                                   \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \

@@ -32,7 +32,8 @@ MCL_INLINE Hit binary_closest_hit(MCL_GLOBAL const BvhNode* nodes, MCL_GLOBAL co
   float stackT[MCL_BVH_STACK_SIZE];  // entry distance of each stacked node
   uint sp = 0;
   uint ref = 0;
-  if (binary_entry(&nodes[0], org, inv, tmax) == INFINITY) {
+  // A non-finite ray (ray_is_finite) is a miss: it would "enter" every box.
+  if (!ray_is_finite(org, dir) || binary_entry(&nodes[0], org, inv, tmax) == INFINITY) {
     hit.t = INFINITY;
     return hit;
   }
@@ -78,7 +79,7 @@ MCL_INLINE int binary_any_hit(MCL_GLOBAL const BvhNode* nodes, MCL_GLOBAL const 
   uint stack[MCL_BVH_STACK_SIZE];
   uint sp = 0;
   uint ref = 0;
-  if (binary_entry(&nodes[0], org, inv, tmax) == INFINITY) return 0;
+  if (!ray_is_finite(org, dir) || binary_entry(&nodes[0], org, inv, tmax) == INFINITY) return 0;
   for (;;) {
     MCL_GLOBAL const BvhNode* n = &nodes[ref];
     if (n->triCount > 0) {

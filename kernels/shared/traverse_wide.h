@@ -228,9 +228,13 @@ MCL_INLINE Hit wide_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL con
   uint stack[MCL_WIDE_STACK_SIZE];
   float stackT[MCL_WIDE_STACK_SIZE];  // entry distance of each stacked child
   uint sp = 0;
-  uint ref = 0;  // the root is wide node 0
+  // The root is wide node 0; a non-finite ray (ray_is_finite) starts at an empty slot: a miss.
+  uint ref = ray_is_finite(org, dir) ? 0u : MCL_WIDE_EMPTY;
   for (;;) {
-    if (ref & MCL_WIDE_LEAF) {
+    if (ref == MCL_WIDE_EMPTY) {
+      // An empty slot (leaf bit set) is no leaf: whatever the ray, traversal never reads
+      // triangles through it (no finite ray enters its empty box; a non-finite ray starts here).
+    } else if (ref & MCL_WIDE_LEAF) {
       uint first = wide_leaf_first(ref), last = first + wide_leaf_count(ref) - 1u;
       for (uint b = first; b <= last; b += 4u) {
         float4 u, v;
@@ -269,9 +273,11 @@ MCL_INLINE int wide_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const T
   uint stack[MCL_WIDE_STACK_SIZE];
   float stackT[MCL_WIDE_STACK_SIZE];  // distances, for ordering the children of one node
   uint sp = 0;
-  uint ref = 0;
+  uint ref = ray_is_finite(org, dir) ? 0u : MCL_WIDE_EMPTY;
   for (;;) {
-    if (ref & MCL_WIDE_LEAF) {
+    if (ref == MCL_WIDE_EMPTY) {
+      // An empty slot, or a non-finite ray: nothing to test (as in wide_closest_hit).
+    } else if (ref & MCL_WIDE_LEAF) {
       uint first = wide_leaf_first(ref), last = first + wide_leaf_count(ref) - 1u;
       for (uint b = first; b <= last; b += 4u) {
         float4 u, v;

@@ -82,7 +82,7 @@ typedef struct MCL_ALIGN16 {
   float4 camDy;       // step of one pixel down
   float4 background;  // radiance of camera rays that hit nothing
   uint width, height, seed;
-  uint pad0;          // explicit padding
+  float offsetScale;  // scene size for ray-origin offsets (offset_ray_origin): min(1, 2^k >= max |coord|)
   uint aoSampling;
   float aoDistance;
   uint shadowSlots;   // shadow contributions per sample (AO: 1; direct: lightSamples + 1)

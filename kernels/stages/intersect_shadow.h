@@ -1,11 +1,17 @@
 // intersect_shadow: reads queue[0 .. *queueCount) of occlusion queries and the BVH; writes the
-// contribution of each unblocked query to its shadow slot (any hit, up to the query's tmax).
+// contribution of each unblocked query to its shadow slot (any hit, up to the query's tmax). A
+// query with a NaN or infinite origin or direction is blocked (its contribution stays 0) and
+// counted in *nanRays.
 #pragma once
 #include "stage_common.h"
 
 MCL_INLINE void stage_intersect_shadow(const intersect_shadow_args* a, uint k) {
   if (k >= *a->queueCount) return;
   ShadowWork w = a->queue[k];
+  if (!ray_is_finite(xyz(w.ray.origin), xyz(w.ray.dir))) {
+    MCL_ATOMIC_INC(a->nanRays);
+    return;
+  }
   if (!bvh_any_hit(a->nodes, a->tris, xyz(w.ray.origin), xyz(w.ray.dir), w.ray.dir.w))
     a->shadowContrib[w.slot] = make_float4(w.r, w.g, w.b, 0.0f);
 }

@@ -27,7 +27,7 @@ MCL_INLINE void stage_shade_ao(const shade_ao_args* a, uint i) {
   }
   if (!(weight > 0.0f)) return;
   ShadowWork w;
-  w.ray.origin = with_w(offset_ray_origin(hit_position(tri, h), n), 0.0f);
+  w.ray.origin = with_w(offset_ray_origin(hit_position(tri, h), n, f->offsetScale), 0.0f);
   w.ray.dir = with_w(to_world(dirLocal, n), f->aoDistance);
   w.r = weight;
   w.g = weight;

@@ -21,7 +21,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   a->radiance[i] = with_w(emitted_toward(tri, materials, dir), 0.0f);
   float3 n = facing_normal(tri, dir);
   float3 albedo = xyz(materials[triangle_material(tri)].albedo);
-  float3 origin = offset_ray_origin(hit_position(tri, h), n);
+  float3 origin = offset_ray_origin(hit_position(tri, h), n, f->offsetScale);
   uint pixel = item_pixel(f, a->active, a->waveStart, i), sample = item_sample(f, a->waveStart, i);
   float nLight = (float)f->lightSamples;
   bool useLight = f->directSampling != MCL_DIRECT_BRDF && f->emitterCount > 0;
@@ -37,8 +37,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
     float dist2 = dot(toLight, toLight);
     float dist = sqrt(dist2);
     float3 wi = toLight / dist;
-    float3 lightN = cross(xyz(lt->e1), xyz(lt->e2));
-    float cosLight = -dot(normalize(lightN), wi);
+    float cosLight = -dot(triangle_unit_normal(xyz(lt->e1), xyz(lt->e2)), wi);
     float cosSurf = dot(n, wi);
     if (!(cosLight > 0.0f && cosSurf > 0.0f && dist > 0.0f)) continue;
     float pick = emitter_pick_probability(em->area, le, f->emitterPower);

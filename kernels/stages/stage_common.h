@@ -21,9 +21,10 @@ MCL_INLINE uint item_sample(MCL_CONSTANT const FrameParams* f, ulong waveStart, 
   return (uint)((waveStart + i) / f->activeCount);
 }
 
-// Geometric normal of a hit triangle, flipped to face the incoming direction.
+// Geometric normal of a hit triangle, flipped to face the incoming direction; finite at any scale
+// (triangle_unit_normal).
 MCL_INLINE float3 facing_normal(MCL_GLOBAL const Triangle* tri, float3 incoming) {
-  float3 n = normalize(cross(xyz(tri->e1), xyz(tri->e2)));
+  float3 n = triangle_unit_normal(xyz(tri->e1), xyz(tri->e2));
   return dot(n, incoming) > 0.0f ? -n : n;
 }
 

@@ -1,0 +1,30 @@
+// camera_basis.h: the pinhole camera's basis in the precision the renderer uses (float), and the
+// check that it is usable. The kernels get exactly this basis (render/frame_params.cpp), so a
+// camera that passes here yields finite camera rays; one that does not is bad input, caught at
+// scene load with the key to fix, not a NaN image or a crash later.
+#pragma once
+#include <string>
+
+#include "scene/scene.h"
+
+namespace montecl {
+
+struct CameraBasis {
+  glm::vec3 forward, right, up;  // orthonormal (for a valid camera)
+  glm::vec3 topLeft;             // direction through the top-left corner of pixel (0, 0)
+  glm::vec3 dx, dy;              // steps of one pixel right and down
+};
+
+// The float basis of camera (the same operations, in the same order, as the kernels have always
+// been given).
+CameraBasis cameraBasis(const Camera& camera);
+
+// Why camera's float basis is unusable, or empty when it is fine: `key` is the camera key to
+// change (camera.position, camera.target, camera.up or camera.fov_y), `problem` one line.
+struct CameraProblem {
+  std::string key, problem;
+  bool empty() const { return key.empty(); }
+};
+CameraProblem cameraBasisProblem(const Camera& camera);
+
+}  // namespace montecl
