@@ -4,6 +4,7 @@
 
 #include "cl/cl_errors.h"
 #include "cli/commands.h"
+#include "dist/mpi.h"
 #include "util/errors.h"
 
 int main(int argc, char** argv) {
@@ -25,13 +26,13 @@ int main(int argc, char** argv) {
     return code == 0 ? kExitOk : kExitBadInput;
   } catch (const InputError& e) {
     std::cerr << "montecl: error: " << e.what() << "\n";
-    return kExitBadInput;
+    return dist::failed(kExitBadInput);  // under MPI: MPI_Abort, the whole job ends
   } catch (const cl::Error& e) {
     std::cerr << "montecl: error: " << describeClError(e) << "\n";
-    return kExitRuntime;
+    return dist::failed(kExitRuntime);
   } catch (const std::exception& e) {
     std::cerr << "montecl: error: " << e.what() << "\n";
-    return kExitRuntime;
+    return dist::failed(kExitRuntime);
   }
   return exitCode;
 }
