@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <iostream>
 
 #include "cl/devices.h"
 #include "dist/mpi.h"
@@ -168,7 +169,17 @@ Film Job::render(WavefrontRenderer& renderer, const Scene& scene, const Bvh& bvh
     localExpected_ = total;
   });
   localExpected_ = local_.samples;
+  const double busy = now() - started_;  // this rank's own work (render), before waiting for the others
   while (!allFinished_) exchange(true, [&] { return mine; });
+  std::vector<std::uint64_t> busyUs(std::size_t(w.size), 0);
+  busyUs[std::size_t(w.rank)] = std::uint64_t(busy * 1e6);
+  allreduceSum(busyUs);
+  if (w.rank == 0) {
+    double sum = 0.0, most = 0.0;
+    for (std::uint64_t us : busyUs) sum += double(us) * 1e-6, most = std::max(most, double(us) * 1e-6);
+    std::cout << "mpi: " << w.size << " ranks, busy " << sum / w.size << " s mean, " << most
+              << " s slowest: imbalance (slowest / mean) " << (sum > 0.0 ? most * w.size / sum : 1.0) << "\n";
+  }
   Film full = gather(mine);
   stats = local_;
   stats.samples = global_.samples;
