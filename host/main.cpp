@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     int code = app.exit(e);
-    return code == 0 ? kExitOk : kExitBadInput;
+    return code == 0 ? kExitOk : dist::failed(kExitBadInput);
   } catch (const InputError& e) {
     std::cerr << "montecl: error: " << e.what() << "\n";
     return dist::failed(kExitBadInput);  // under MPI: MPI_Abort, the whole job ends
