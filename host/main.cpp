@@ -4,6 +4,7 @@
 
 #include "cl/cl_errors.h"
 #include "cli/commands.h"
+#include "dist/mpi.h"
 #include "util/errors.h"
 
 int main(int argc, char** argv) {
@@ -22,16 +23,16 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     int code = app.exit(e);
-    return code == 0 ? kExitOk : kExitBadInput;
+    return code == 0 ? kExitOk : dist::failed(kExitBadInput);
   } catch (const InputError& e) {
     std::cerr << "montecl: error: " << e.what() << "\n";
-    return kExitBadInput;
+    return dist::failed(kExitBadInput);  // under MPI: MPI_Abort, the whole job ends
   } catch (const cl::Error& e) {
     std::cerr << "montecl: error: " << describeClError(e) << "\n";
-    return kExitRuntime;
+    return dist::failed(kExitRuntime);
   } catch (const std::exception& e) {
     std::cerr << "montecl: error: " << e.what() << "\n";
-    return kExitRuntime;
+    return dist::failed(kExitRuntime);
   }
   return exitCode;
 }

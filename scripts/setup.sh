@@ -9,6 +9,7 @@ packages=(
   libglm-dev libtinyobjloader-dev libopenimageio-dev openimageio-tools libpng-dev
   doctest-dev nlohmann-json3-dev libcli11-dev
   libembree-dev jq
+  openmpi-bin libopenmpi-dev
 )
 
 # Only the plotting scripts need matplotlib: `setup.sh --plots` adds it.

@@ -10,6 +10,7 @@
 #include "bvh/bvh.h"
 #include "cl/devices.h"
 #include "cli/commands.h"
+#include "dist/job.h"
 #include "image/exr_layers.h"
 #include "image/image_io.h"
 #include "render/emitters.h"
@@ -38,6 +39,7 @@ struct RenderArgs {
   std::vector<std::string> aovs;
   std::size_t workGroupSize = 0;
   bool quiet = false, verbose = false;
+  dist::JobArgs job;  // MPI split, --checkpoint, --resume (dist/job.h)
 };
 
 void applyOverrides(const RenderArgs& a, Scene& scene) {
@@ -111,7 +113,7 @@ int runRender(const RenderArgs& a) {
   checkOutputPath(output);
   if (!a.aovs.empty() && !isExr(output))
     throwInputError(output, "--aov", "AOVs need an .exr output");
-  DeviceInfo device = selectDevice(a.device);
+  DeviceInfo device = selectDevice(dist::deviceSpec(a.device));
   BvhLayout layout = resolveStageLayout(parseBvhLayout(a.bvhLayout), device);
 
   Bvh bvh = buildBvh(scene.triangles);
@@ -138,6 +140,7 @@ int runRender(const RenderArgs& a) {
   options.workGroupSize = a.workGroupSize;
   options.bvhLayout = layout;
   options.verbose = a.verbose;
+  dist::Job job(a.job, scene, options);
   WavefrontRenderer renderer(device, options);
   if (a.verbose)
     std::cerr << "montecl: kernels " << (renderer.programFromCache() ? "loaded from cache" : "compiled") << " in "
@@ -146,13 +149,14 @@ int runRender(const RenderArgs& a) {
   RenderStats stats;
   ProgressBar bar(!a.quiet);
   InterruptGuard guard;
-  Film film = renderer.render(scene, bvh, stats, [&](std::uint64_t done, std::uint64_t total, const RenderStats& s) {
+  Film film = job.render(renderer, scene, bvh, stats, [&](std::uint64_t done, std::uint64_t total, const RenderStats& s) {
     bar.update(done, total, s);
   });
   bar.finish();
-  if (stats.nanRays > 0)
+  if (stats.nanRays > 0)  // each rank of an MPI job warns about its own pixels
     std::cerr << "montecl: warning: " << stats.nanRays
               << " rays with NaN/inf origin or direction were treated as misses\n";
+  if (!job.writesImage()) return kExitOk;
   if (isExr(output))
     writeLayeredExr(output, renderLayers(film, a.aovs));
   else
@@ -219,6 +223,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::IsMember({"albedo", "normal", "depth", "all"}));
   cmd->add_option("--first-sample", args->firstSample,
                   "Render sample indices K .. K+spp-1 of the deterministic sequence (split renders, then merge)");
+  dist::addJobOptions(cmd, args->job);
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar");
   cmd->add_flag("-v,--verbose", args->verbose, "Scene, BVH, device and wave details on stderr");
   cmd->callback([args, &exitCode]() { exitCode = runRender(*args); });

@@ -40,6 +40,17 @@ struct Film {
 
   // Splits device film words into this film's fields: mean.w / meanLo.w carry the count's low and
   // high 32 bits (as float bit patterns), which become count[] while the w lanes are zeroed.
+  // The inverse of unpackCounts: the device film words of mean and meanLo, count bits in w.
+  void packCounts(std::vector<glm::vec4>& meanWords, std::vector<glm::vec4>& meanLoWords) const {
+    meanWords = mean;
+    meanLoWords = meanLo;
+    for (std::size_t p = 0; p < mean.size(); ++p) {
+      const std::uint32_t lo = std::uint32_t(count[p]), hi = std::uint32_t(count[p] >> 32);
+      std::memcpy(&meanWords[p].w, &lo, 4);
+      std::memcpy(&meanLoWords[p].w, &hi, 4);
+    }
+  }
+
   void unpackCounts() {
     count.resize(mean.size());
     for (std::size_t p = 0; p < mean.size(); ++p) {

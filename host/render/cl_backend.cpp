@@ -58,10 +58,21 @@ class ClStageRunner final : public StageRunner {
     // Cleared by writes, not clEnqueueFillBuffer: Oclgrind's uninitialised-memory check does not
     // count a fill as initialising memory, and a write costs the same here.
     const std::vector<cl_float4> zeros((aovs_ ? 2 : 1) * pixels_, cl_float4{{0.0f, 0.0f, 0.0f, 0.0f}});
-    for (const cl::Buffer* film : {&b.mean.buffer, &b.meanLo.buffer, &b.m2.buffer, &b.m2Lo.buffer})
-      cl_.queue().enqueueWriteBuffer(*film, CL_TRUE, 0, pixels_ * sizeof(cl_float4), zeros.data());
+    const void* words[5] = {zeros.data(), zeros.data(), zeros.data(), zeros.data(), zeros.data()};
+    std::vector<glm::vec4> meanWords, meanLoWords;
+    if (const Film* f = in.initialFilm) {
+      f->packCounts(meanWords, meanLoWords);
+      words[0] = meanWords.data();
+      words[1] = meanLoWords.data();
+      words[2] = f->m2.data();
+      words[3] = f->m2Lo.data();
+      if (aovs_) words[4] = f->aovSum.data();
+    }
+    const cl::Buffer* films[] = {&b.mean.buffer, &b.meanLo.buffer, &b.m2.buffer, &b.m2Lo.buffer};
+    for (int i = 0; i < 4; ++i)
+      cl_.queue().enqueueWriteBuffer(*films[i], CL_TRUE, 0, pixels_ * sizeof(cl_float4), words[i]);
     if (aovs_)
-      cl_.queue().enqueueWriteBuffer(b.aovSum.buffer, CL_TRUE, 0, 2 * pixels_ * sizeof(cl_float4), zeros.data());
+      cl_.queue().enqueueWriteBuffer(b.aovSum.buffer, CL_TRUE, 0, 2 * pixels_ * sizeof(cl_float4), words[4]);
   }
 
   void setActivePixels(const std::vector<std::uint32_t>& pixels) override {

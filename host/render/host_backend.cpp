@@ -49,6 +49,19 @@ class HostStageRunner final : public StageRunner {
     aov_.assign(in.aovs ? 2 * wave : 1, float4(0.0f));
     aovSum_.assign(in.aovs ? 2 * pixels : 1, float4(0.0f));
     for (std::vector<float4>* film : {&mean_, &meanLo_, &m2_, &m2Lo_}) film->assign(pixels, float4(0.0f));
+    if (const Film* f = in.initialFilm) {  // a resumed film: its words, count bits in the w lanes
+      std::vector<glm::vec4> meanWords, meanLoWords;
+      f->packCounts(meanWords, meanLoWords);
+      const auto load = [](std::vector<float4>& to, const std::vector<glm::vec4>& from) {
+        for (std::size_t i = 0; i < to.size() && i < from.size(); ++i)
+          to[i] = float4(from[i].x, from[i].y, from[i].z, from[i].w);
+      };
+      load(mean_, meanWords);
+      load(meanLo_, meanLoWords);
+      load(m2_, f->m2);
+      load(m2Lo_, f->m2Lo);
+      if (aovs_) load(aovSum_, f->aovSum);
+    }
     bind();
   }
 

@@ -24,6 +24,8 @@ struct StageInputs {
   std::uint64_t wave = 0;    // wave items (pixel samples) per wave
   bool direct = false;       // direct lighting: bounce buffers are needed
   bool aovs = false;         // record first-hit albedo, normal and depth (record_aov, accumulate_aov)
+  // The film state the render starts from (a resumed checkpoint); null: a cleared film.
+  const Film* initialFilm = nullptr;
 };
 
 // What a wave counted on the device.
@@ -43,7 +45,8 @@ class StageRunner {
   virtual bool programFromCache() const { return false; }
   virtual double programBuildMs() const { return 0.0; }
 
-  // Allocates the wave buffers and uploads frame, BVH, materials and emitters; clears the film.
+  // Allocates the wave buffers and uploads frame, BVH, materials and emitters; clears the film
+  // (or loads in.initialFilm).
   virtual void setup(const StageInputs& in) = 0;
   // Replaces the active-pixel list the waves walk (setup starts with every pixel, in order) and
   // sets FrameParams::activeCount to its size.

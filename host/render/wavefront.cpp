@@ -91,6 +91,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   inputs.wave = wave;
   inputs.direct = direct;
   inputs.aovs = m.options.aovs;
+  inputs.initialFilm = m.options.initialFilm;
   run.setup(inputs);
 
   if (m.options.verbose)
@@ -139,6 +140,13 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
       if (direct && scene.render.directSampling != DirectSampling::Light) stats.cameraRays += n;  // BRDF rays
       stats.seconds = elapsed();
       if (progress) progress(stats.samples, std::max(expected, stats.samples), stats);
+      if (m.options.afterWave) m.options.afterWave([&] {
+        Film f;
+        f.width = int(frame.width);
+        f.height = int(frame.height);
+        run.readFilm(f);
+        return f;
+      });
       if (done < count && mustStop()) return false;
     }
     return !mustStop();
@@ -147,37 +155,62 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   Film film;
   film.width = int(frame.width);
   film.height = int(frame.height);
+  if (m.options.initialFilm) film = *m.options.initialFilm;
+  std::vector<std::uint32_t> mine = m.options.pixels;
+  if (mine.empty())
+    for (std::uint64_t p = 0; p < pixels; ++p) mine.push_back(std::uint32_t(p));
+  std::vector<std::uint64_t> counts(pixels, 0);
+  if (m.options.initialFilm) counts = m.options.initialFilm->count;
+  // Each pixel's schedule depends only on its own count and state: without adaptive sampling it
+  // needs samples up to spp; with it, rounds end at minSpp, 2 minSpp, 4 minSpp ... maxSpp, and at
+  // each round's end the pixel goes on while its relative error exceeds the target. nextTarget:
+  // the count the pixel renders to next (0: done). A fresh render is one round (or the adaptive
+  // rounds); a resumed film (pixels at different counts) first brings the lowest counts up.
+  const bool adaptive = m.options.targetError > 0.0;
+  const std::uint64_t minSpp = std::uint64_t(m.options.minSpp), maxSpp = std::uint64_t(m.options.maxSpp);
+  if (adaptive && minSpp > maxSpp) throw std::invalid_argument("minSpp > maxSpp");
+  const auto nextTarget = [&](std::uint32_t p) -> std::uint64_t {
+    const std::uint64_t c = counts[p];
+    if (!adaptive) return c < std::uint64_t(scene.render.spp) ? std::uint64_t(scene.render.spp) : 0;
+    if (c < minSpp) return minSpp;
+    std::uint64_t bound = minSpp;
+    while (bound < c) bound = std::min(2 * bound, maxSpp);
+    if (bound > c) return bound;  // within a round
+    if (c >= maxSpp || relativeStandardError(film, p, m.options.errorFloor) <= m.options.targetError) return 0;
+    return std::min(2 * c, maxSpp);
+  };
   const std::uint64_t base = m.options.firstSample;
-  if (m.options.targetError <= 0.0) {
-    stats.rounds = 1;
-    stats.stoppedEarly = !runSamples(base, std::uint64_t(scene.render.spp)) && stats.samples < total;
-  } else {
-    // Adaptive: all pixels share a sample count n while active, so the active list's items map to
-    // sample indices n .. n + k - 1 of each pixel; the rounds are deterministic.
-    std::uint64_t n = std::uint64_t(m.options.minSpp);
-    const std::uint64_t maxSpp = m.options.minSpp <= m.options.maxSpp ? std::uint64_t(m.options.maxSpp) : throw std::invalid_argument("minSpp > maxSpp");
-    expected = pixels * n;
-    bool going = runSamples(base, n);
-    stats.rounds = 1;
-    std::vector<std::uint32_t> active;
-    while (going && n < maxSpp) {
-      run.readFilm(film);
-      active.clear();
-      for (std::uint32_t p = 0; p < pixels; ++p)
-        if (film.count[p] == n && relativeStandardError(film, p, m.options.errorFloor) > m.options.targetError)
-          active.push_back(p);
-      if (active.empty()) break;
-      const std::uint64_t k = std::min(n, maxSpp - n);
-      activeCount = active.size();
-      expected = stats.samples + activeCount * k;
-      run.setActivePixels(active);
-      going = runSamples(base + n, k);
-      n += k;
-      stats.rounds++;
+  bool going = true, filmCurrent = true;  // film: the initial state (or unused: all counts 0)
+  std::vector<std::uint64_t> target(pixels, 0);
+  std::vector<std::uint32_t> active;
+  while (going) {
+    if (adaptive && !filmCurrent) run.readFilm(film);
+    filmCurrent = false;
+    std::uint64_t low = UINT64_MAX, remaining = 0;
+    for (std::uint32_t p : mine) {
+      target[p] = nextTarget(p);
+      if (target[p]) low = std::min(low, counts[p]), remaining += target[p] - counts[p];
     }
-    stats.stoppedEarly = !going;
+    if (low == UINT64_MAX) break;
+    std::uint64_t upTo = UINT64_MAX;  // the lowest group's target, or the next count above it
+    active.clear();
+    for (std::uint32_t p : mine) {
+      if (!target[p]) continue;
+      if (counts[p] == low) active.push_back(p), upTo = std::min(upTo, target[p]);
+      else upTo = std::min(upTo, counts[p]);
+    }
+    activeCount = active.size();
+    expected = stats.samples + remaining;
+    run.setActivePixels(active);
+    going = runSamples(base + low, upTo - low);
+    for (std::uint32_t p : active) counts[p] = upTo;
+    stats.rounds++;
   }
   run.readFilm(film);
+  if (!going) {  // stopped: was anything left?
+    for (std::uint32_t p : mine) counts[p] = film.count[p];
+    stats.stoppedEarly = std::any_of(mine.begin(), mine.end(), [&](std::uint32_t p) { return nextTarget(p) != 0; });
+  }
   if (m.options.targetError > 0.0)
     for (std::uint64_t p = 0; p < pixels; ++p)
       stats.converged += relativeStandardError(film, p, m.options.errorFloor) <= m.options.targetError;

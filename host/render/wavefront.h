@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "bvh/bvh.h"
 #include "cl/devices.h"
@@ -35,6 +36,14 @@ struct RenderOptions {
   int maxSpp = 1024;
   double errorFloor = 0.01;
   bool aovs = false;  // also accumulate first-hit albedo, normal and depth (Film::aovSum)
+  // The pixels to render, ascending (empty: all): one rank's share of an MPI job (dist/job.h).
+  // Each pixel's result depends only on its own samples, so any subset renders bit-identically.
+  std::vector<std::uint32_t> pixels;
+  // Film state to continue from (a checkpoint, render/checkpoint.h): every pixel resumes at its
+  // own count, so the result is bit-identical to a render that never stopped. Null: a clear film.
+  const Film* initialFilm = nullptr;
+  // Called after every wave's progress callback; readFilm() reads the film state as of that wave.
+  std::function<void(const std::function<Film()>& readFilm)> afterWave;
 };
 
 // Relative standard error of pixel p's mean luminance (infinite below 2 samples).

@@ -1,0 +1,140 @@
+// checkpoint.cpp: render/checkpoint.h's binary film file.
+#include "render/checkpoint.h"
+
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include "render/frame_params.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
+#include "util/hash.h"
+
+namespace montecl {
+namespace {
+
+constexpr char kMagic[8] = {'M', 'C', 'L', 'C', 'K', 'P', 'T', '1'};
+constexpr std::uint32_t kVersion = 1;
+
+struct Header {
+  char magic[8];
+  std::uint32_t version, headerBytes;
+  std::uint64_t key;
+  std::uint32_t width, height, aovs, seed, spp, firstSample, integrator, minSpp, maxSpp, pad;
+  double targetError;
+  std::uint64_t samplesDone, payloadHash;
+};
+static_assert(sizeof(Header) == 88, "checkpoint header layout");
+
+template <class T>
+void append(std::string& out, const T* data, std::size_t n) {
+  out.append(reinterpret_cast<const char*>(data), n * sizeof(T));
+}
+
+std::string payloadOf(const Film& film, bool aovs) {
+  std::string out;
+  const std::size_t n = film.pixelCount();
+  for (const auto* v : {&film.mean, &film.meanLo, &film.m2, &film.m2Lo}) append(out, v->data(), n);
+  append(out, film.count.data(), n);
+  if (aovs) append(out, film.aovSum.data(), 2 * n);
+  return out;
+}
+
+}  // namespace
+
+std::uint64_t renderKey(const Scene& scene, const RenderOptions& o) {
+  const bool direct = scene.render.integrator == Integrator::Direct;
+  FrameParams f = makeFrameParams(scene.camera, scene.render, direct ? scene.render.lightSamples + 1 : 1);
+  f.activeCount = 0;
+  std::string bytes;
+  append(bytes, &f, 1);
+  append(bytes, scene.triangles.data(), scene.triangles.size());
+  for (const MaterialDesc& m : scene.materials) append(bytes, &m.albedo[0], 3), append(bytes, &m.emission[0], 3);
+  const std::uint32_t ints[] = {std::uint32_t(scene.render.integrator), std::uint32_t(scene.render.spp),
+                                o.firstSample, std::uint32_t(o.minSpp), std::uint32_t(o.maxSpp), o.aovs};
+  append(bytes, ints, 6);
+  const double reals[] = {o.targetError > 0.0 ? o.targetError : 0.0, o.targetError > 0.0 ? o.errorFloor : 0.0};
+  append(bytes, reals, 2);
+  return fnv1a64(bytes);
+}
+
+CheckpointInfo checkpointInfo(const Scene& scene, const RenderOptions& options) {
+  CheckpointInfo info;
+  info.key = renderKey(scene, options);
+  info.seed = scene.render.seed;
+  info.spp = std::uint32_t(scene.render.spp);
+  info.firstSample = options.firstSample;
+  info.aovs = options.aovs;
+  return info;
+}
+
+void writeCheckpoint(const std::string& path, const CheckpointInfo& info, const Film& film) {
+  Header h{};
+  std::memcpy(h.magic, kMagic, 8);
+  h.version = kVersion;
+  h.headerBytes = sizeof(Header);
+  h.key = info.key;
+  h.width = std::uint32_t(film.width);
+  h.height = std::uint32_t(film.height);
+  h.aovs = info.aovs;
+  h.seed = info.seed;
+  h.spp = info.spp;
+  h.firstSample = info.firstSample;
+  for (std::uint64_t c : film.count) h.samplesDone += c;
+  const std::string payload = payloadOf(film, info.aovs);
+  h.payloadHash = fnv1a64(payload);
+  writeAtomically(path, [&](const std::string& tmp) {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(&h), sizeof h);
+    out.write(payload.data(), std::streamsize(payload.size()));
+    out.flush();
+    if (!out) throw RuntimeError("cannot write checkpoint " + path);
+  });
+}
+
+Film readCheckpoint(const std::string& path, const CheckpointInfo& expected, int width, int height) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throwInputError(path, "--resume", "cannot open the checkpoint");
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  Header h{};
+  if (bytes.size() < sizeof h) throwInputError(path, "--resume", "not a montecl checkpoint (too short)");
+  std::memcpy(&h, bytes.data(), sizeof h);
+  if (std::memcmp(h.magic, kMagic, 8) != 0) throwInputError(path, "--resume", "not a montecl checkpoint");
+  if (h.version != kVersion || h.headerBytes != sizeof h)
+    throwInputError(path, "--resume", "checkpoint version " + std::to_string(h.version) + ", expected " +
+                                           std::to_string(kVersion));
+  const auto refuse = [&](const std::string& what) {
+    throwInputError(path, "--resume", "checkpoint of another render (" + what + "): refusing to resume");
+  };
+  if (int(h.width) != width || int(h.height) != height)
+    refuse(std::to_string(h.width) + "x" + std::to_string(h.height) + " image, this render is " +
+           std::to_string(width) + "x" + std::to_string(height));
+  if (h.seed != expected.seed) refuse("seed " + std::to_string(h.seed) + ", this render's is " + std::to_string(expected.seed));
+  if (h.spp != expected.spp) refuse("spp " + std::to_string(h.spp) + ", this render's is " + std::to_string(expected.spp));
+  if (h.firstSample != expected.firstSample) refuse("first sample " + std::to_string(h.firstSample));
+  if (bool(h.aovs) != expected.aovs) refuse(h.aovs ? "with AOVs" : "without AOVs");
+  if (h.key != expected.key) refuse("other scene or settings: key " + hex64(h.key) + ", this render's is " + hex64(expected.key));
+  Film film;
+  film.width = width;
+  film.height = height;
+  const std::size_t n = std::size_t(width) * height;
+  const std::size_t need = sizeof h + n * (4 * 16 + 8) + (h.aovs ? 2 * n * 16 : 0);
+  if (bytes.size() != need) throwInputError(path, "--resume", "damaged checkpoint (wrong size)");
+  const char* at = bytes.data() + sizeof h;
+  if (fnv1a64(std::string(at, bytes.size() - sizeof h)) != h.payloadHash)
+    throwInputError(path, "--resume", "damaged checkpoint (payload hash)");
+  const auto take = [&](auto& v, std::size_t count) {
+    v.resize(count);
+    std::memcpy(v.data(), at, count * sizeof(v[0]));
+    at += count * sizeof(v[0]);
+  };
+  take(film.mean, n);
+  take(film.meanLo, n);
+  take(film.m2, n);
+  take(film.m2Lo, n);
+  take(film.count, n);
+  if (h.aovs) take(film.aovSum, 2 * n);
+  return film;
+}
+
+}  // namespace montecl
