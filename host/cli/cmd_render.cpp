@@ -5,11 +5,13 @@
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <optional>
 
 #include "bvh/bvh.h"
 #include "cl/devices.h"
 #include "cli/commands.h"
+#include "cli/validators.h"
 #include "image/exr_layers.h"
 #include "image/image_io.h"
 #include "render/progress.h"
@@ -180,40 +182,40 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("-o,--output", args->output,
                   "Output image: .png (8-bit sRGB), .pfm (linear float), .exr (linear float with channels R, G, B, "
                   "samples, var.R, var.G, var.B); default: <scene name>.png");
-  cmd->add_option("--spp", args->spp, "Samples per pixel")->check(CLI::PositiveNumber);
+  cmd->add_option("--spp", args->spp, "Samples per pixel")->check(positiveInteger());
   cmd->add_option("--seed", args->seed, "Random seed");
-  cmd->add_option("--width", args->width, "Image width in pixels")->check(CLI::PositiveNumber);
-  cmd->add_option("--height", args->height, "Image height in pixels")->check(CLI::PositiveNumber);
+  cmd->add_option("--width", args->width, "Image width in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
+  cmd->add_option("--height", args->height, "Image height in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
   cmd->add_option("--integrator", args->integrator, "ao (ambient occlusion) | direct (area lights)")
       ->transform(CLI::CheckedTransformer(integratorNames()));
   cmd->add_option("--direct-sampling", args->directSampling,
                   "Direct lighting: " + choiceList(directSamplingNames(), false))
       ->transform(CLI::CheckedTransformer(directSamplingNames()));
-  cmd->add_option("--light-samples", args->lightSamples, "Light samples per camera sample (direct)")
-      ->check(CLI::PositiveNumber);
+  cmd->add_option("--light-samples", args->lightSamples, "Light samples per camera sample (direct; up to 1024)")
+      ->check(positiveInteger(kMaxLightSamples));
   cmd->add_option("--ao-sampling", args->aoSampling, "AO directions: " + choiceList(aoSamplingNames(), false))
       ->transform(CLI::CheckedTransformer(aoSamplingNames()));
   cmd->add_option("--ao-distance", args->aoDistance, "Occluders farther than this are ignored")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber(std::numeric_limits<float>::max()));
   cmd->add_option("--device", args->device, "OpenCL device: P:D, part of the device or platform name, or host (CPU, no OpenCL)");
   cmd->add_option("--wave-size", args->waveSize, "Pixel samples per wave (default: from a 256 MiB budget)")
-      ->check(CLI::PositiveNumber);
+      ->check(integerIn(1, std::numeric_limits<long long>::max(), "a positive integer"));
   cmd->add_option("--work-group-size", args->workGroupSize, "Work-group size (default: min(64, kernel max))")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveInteger());
   cmd->add_option("--bvh-layout", args->bvhLayout,
                   "BVH the kernels traverse: auto (binary on GPUs, wide otherwise) | wide | binary")
       ->check(CLI::IsMember({"auto", "wide", "binary"}));
   cmd->add_option("--target-error", args->targetError,
                   "Adaptive sampling: sample until each pixel's relative standard error (stderr / max(mean "
                   "luminance, 0.01)) is at most this, between --min-spp and --max-spp; ignores --spp")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   cmd->add_option("--min-spp", args->minSpp, "Adaptive sampling: samples every pixel gets first (default 16)")
-      ->check(CLI::Range(2, 1 << 24));
+      ->check(integerIn(2, 1 << 24, "an integer from 2 to 16777216"));
   cmd->add_option("--max-spp", args->maxSpp, "Adaptive sampling: most samples a pixel gets (default 1024)")
-      ->check(CLI::Range(2, 1 << 24));
+      ->check(integerIn(2, 1 << 24, "an integer from 2 to 16777216"));
   cmd->add_option("--time", args->timeLimit,
                   "Stop after the wave that crosses this many seconds and write the image so far")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   cmd->add_option("--aov", args->aovs,
                   "Extra EXR channels, comma-separated: albedo (albedo.R/G/B), normal (N.X/Y/Z), depth (Z), "
                   "or all; averaged over each pixel's samples")

@@ -10,6 +10,10 @@
 
 namespace montecl {
 
+// Limits shared by scene files and the command line (one rule for both).
+constexpr int kMaxImageSide = 16384;    // camera.width / camera.height, --width / --height
+constexpr int kMaxLightSamples = 1024;  // render.light_samples, --light-samples
+
 struct Camera {
   glm::vec3 position{0.0f, 0.0f, 1.0f};
   glm::vec3 target{0.0f};

@@ -22,8 +22,6 @@ namespace {
 
 using nlohmann::json;
 
-constexpr int kMaxImageSide = 16384;
-
 std::string oneLine(const std::string& s) {
   std::string out = s;
   for (char& c : out)
@@ -168,7 +166,8 @@ Camera parseCamera(const Ctx& ctx, const json& root) {
   cam.target = getVec3(ctx, requireKey(ctx, j, "camera", "target"), "camera.target");
   if (const json* up = optionalKey(j, "up")) cam.up = getVec3(ctx, *up, "camera.up");
   cam.fovY = getFloat(ctx, requireKey(ctx, j, "camera", "fov_y"), "camera.fov_y");
-  const char* side = "a positive integer up to 16384";
+  const std::string sideRule = "a positive integer up to " + std::to_string(kMaxImageSide);
+  const char* side = sideRule.c_str();
   cam.width = getPositiveInt(ctx, requireKey(ctx, j, "camera", "width"), "camera.width", kMaxImageSide, side);
   cam.height = getPositiveInt(ctx, requireKey(ctx, j, "camera", "height"), "camera.height", kMaxImageSide, side);
   validateCamera(ctx, cam);
@@ -198,7 +197,10 @@ RenderSettings parseRender(const Ctx& ctx, const json& root) {
   if (const json* v = optionalKey(j, "background")) r.background = getColor(ctx, *v, "render.background");
   if (const json* v = optionalKey(j, "direct_sampling"))
     r.directSampling = getChoice(ctx, *v, "render.direct_sampling", directSamplingNames());
-  if (const json* v = optionalKey(j, "light_samples")) r.lightSamples = getPositiveInt(ctx, *v, "render.light_samples", intMax);
+  if (const json* v = optionalKey(j, "light_samples")) {
+    const std::string rule = "a positive integer up to " + std::to_string(kMaxLightSamples);
+    r.lightSamples = getPositiveInt(ctx, *v, "render.light_samples", kMaxLightSamples, rule.c_str());
+  }
   return r;
 }
 
