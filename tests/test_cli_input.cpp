@@ -2,11 +2,17 @@
 // numeric option is checked before any work, with a short message (no 300-digit bounds), NaN and
 // infinity are refused, and the image size and light samples follow the scene file's limits.
 #include <doctest/doctest.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cctype>
 #include <filesystem>
 #include <regex>
+#include <thread>
 
 #include "cli_runner.h"
 
@@ -62,4 +68,36 @@ TEST_CASE("cli: --width/--height follow the scene file's 16384 cap; --light-samp
                             "1", "--spp", "1", "--integrator", "direct", "--light-samples", "1024"});
   INFO("stderr: " << r.err);
   CHECK(r.exitCode == 0);
+}
+
+TEST_CASE("cli: an mtllib that is a FIFO is refused at once, not opened (which would block)" * doctest::test_suite("cli")) {
+  TempDir dir;
+  REQUIRE(::mkfifo(dir.file("fifo.mtl").c_str(), 0600) == 0);
+  dir.write("model.obj", "mtllib fifo.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  // A montecl that opens the FIFO blocks until a writer comes: this thread is that writer after
+  // 5 s (then the reader sees an empty file and renders), so the test ends either way.
+  std::atomic<bool> done{false};
+  std::thread writer([&] {
+    auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    while (!done && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    while (!done) {
+      int fd = ::open(dir.file("fifo.mtl").c_str(), O_WRONLY | O_NONBLOCK);
+      if (fd >= 0) {
+        ::close(fd);
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  });
+  const auto start = std::chrono::steady_clock::now();
+  CliResult r = runMontecl({"render", dir.file("model.obj"), "-q", "--spp", "1", "--width", "8", "--height", "8",
+                            "-o", dir.file("out.png")});
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  done = true;
+  writer.join();
+  INFO("stderr: " << r.err);
+  CHECK(r.exitCode == 2);
+  CHECK(seconds < 5.0);
+  CHECK(r.err.find("fifo.mtl': not a regular file") != std::string::npos);
+  CHECK(!fs::exists(dir.file("out.png")));
 }

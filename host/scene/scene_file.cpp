@@ -63,6 +63,71 @@ std::string readSceneText(const Ctx& ctx) {
   return text;
 }
 
+// Walks the JSON with nlohmann's SAX interface to find where parsing stops: the key path of the
+// value being read ("camera.position[0]") and the byte position. Used after json::parse() threw an
+// error that carries no position (out_of_range.406, a number overflowing a double).
+class ErrorLocator : public nlohmann::json_sax<json> {
+ public:
+  std::string path() const {
+    std::string out;
+    for (const Frame& f : frames_)
+      out += f.array ? "[" + std::to_string(f.index) + "]" : (out.empty() ? "" : ".") + f.key;
+    return out;
+  }
+  std::size_t position = std::string::npos;
+  std::string token;
+
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t&) override { return value(); }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override { return open(false); }
+  bool key(string_t& k) override {
+    frames_.back().key = k;
+    return true;
+  }
+  bool end_object() override { return close(); }
+  bool start_array(std::size_t) override { return open(true); }
+  bool end_array() override { return close(); }
+  bool parse_error(std::size_t pos, const std::string& last, const nlohmann::detail::exception&) override {
+    position = pos;
+    token = last;
+    return false;
+  }
+
+ private:
+  struct Frame {
+    bool array = false;
+    std::string key;
+    std::size_t index = 0;
+  };
+  bool value() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+    return true;
+  }
+  bool open(bool array) {
+    frames_.push_back({array, "", 0});
+    return true;
+  }
+  bool close() {
+    frames_.pop_back();
+    return value();
+  }
+  std::vector<Frame> frames_;
+};
+
+// "line L, column C" of the byte at offset in text (1-based).
+std::string lineColumn(const std::string& text, std::size_t offset) {
+  offset = std::min(offset, text.size());
+  std::size_t line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + offset, '\n'));
+  std::size_t lineStart = text.rfind('\n', offset == 0 ? 0 : offset - 1);
+  std::size_t column = offset - (lineStart == std::string::npos || offset == 0 ? 0 : lineStart + 1) + 1;
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
 // nlohmann's message "[json.exception.parse_error.101] parse error at line 3, column 5: syntax
 // error ..." becomes where = "line 3, column 5", problem = "malformed JSON: syntax error ...".
 json parseJson(const Ctx& ctx, const std::string& text) {
@@ -74,6 +139,16 @@ json parseJson(const Ctx& ctx, const std::string& text) {
     std::size_t colon = at == std::string::npos ? at : what.find(": ", at);
     if (colon == std::string::npos) fail(ctx, "byte " + std::to_string(e.byte), "malformed JSON: " + what);
     fail(ctx, what.substr(at + 4, colon - at - 4), "malformed JSON: " + what.substr(colon + 2));
+  } catch (const json::exception& e) {  // out_of_range.406: "number overflow parsing '1e400'"
+    ErrorLocator where;
+    json::sax_parse(text, &where);
+    std::string problem = e.what();
+    std::size_t close = problem.find("] ");
+    if (close != std::string::npos) problem = problem.substr(close + 2);
+    if (where.position == std::string::npos) fail(ctx, "(top level)", problem);
+    const std::size_t start = where.position - std::min(where.position, where.token.size());
+    const std::string key = where.path().empty() ? "(top level)" : where.path();
+    fail(ctx, key, problem + " (" + lineColumn(text, start) + ")");
   }
 }
 
