@@ -15,6 +15,8 @@
 #include <thread>
 
 #include "cli_runner.h"
+#include "render/memory_check.h"
+#include "util/errors.h"
 
 using montecl_test::CliResult;
 using montecl_test::runMontecl;
@@ -100,4 +102,48 @@ TEST_CASE("cli: an mtllib that is a FIFO is refused at once, not opened (which w
   CHECK(seconds < 5.0);
   CHECK(r.err.find("fifo.mtl': not a regular file") != std::string::npos);
   CHECK(!fs::exists(dir.file("out.png")));
+}
+
+TEST_CASE("cli: an image too large for memory is refused before allocating, saying how much it needs" * doctest::test_suite("cli")) {
+  TempDir dir;
+  // 8192x8192 needs several GiB; the machine is declared to have 1 GB. Without the check the
+  // render starts (and --time stops it after one wave, exit 0).
+  CliResult r = runMontecl({"render", kGoodScene, "-q", "--device", "host", "--spp", "1", "--time", "0.01",
+                            "--width", "8192", "--height", "8192", "-o", dir.file("out.png")},
+                           {"MONTECL_MEMORY_LIMIT=1000000000"});
+  INFO("stderr: " << r.err);
+  CHECK(r.exitCode == 2);
+  CHECK(r.err.find("image 8192x8192: needs about") != std::string::npos);
+  CHECK(r.err.find("GiB") != std::string::npos);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK(!fs::exists(dir.file("out.png")));
+}
+
+TEST_CASE("cli: running out of memory is one clear line and exit 1, never a bare std::bad_alloc" * doctest::test_suite("cli")) {
+  TempDir dir;
+  // Address space capped at 400 MB and the memory check told there is plenty: the allocation fails.
+  const std::string cmd = "ulimit -v 400000; exec \"$0\" render \"$1\" -q --device host --spp 1 --width 8192 "
+                          "--height 8192 -o \"$2\"";
+  CliResult r = montecl_test::runProgram({"sh", "-c", cmd, MONTECL_EXE, kGoodScene, dir.file("out.png")},
+                                         {"MONTECL_MEMORY_LIMIT=100000000000000"});
+  INFO("stderr: " << r.err);
+  CHECK(r.exitCode == 1);
+  CHECK(r.err == "montecl: error: out of memory: the scene or image is too large for this machine\n");
+}
+
+TEST_CASE("memory check: an OpenCL device's global memory bounds the film; the host adds its copies" * doctest::test_suite("cpu")) {
+  montecl::DeviceInfo dev;
+  dev.name = "Small GPU";
+  dev.globalMemBytes = 1ull << 30;
+  const montecl::ImageMemory need = montecl::imageMemoryNeed(4096ull * 4096, false, 256ull << 20);
+  CHECK(need.device == 4096ull * 4096 * 36 + (256ull << 20));
+  CHECK(need.host > 4096ull * 4096 * 32);
+  CHECK_NOTHROW(montecl::checkImageMemory(dev, "s.json", 1024, 1024, true, 256ull << 20));
+  try {
+    montecl::checkImageMemory(dev, "s.json", 8192, 4096, false, 256ull << 20);
+    FAIL("no error for a film of 1.1 GiB on a 1 GiB device");
+  } catch (const montecl::InputError& e) {
+    CHECK(std::string(e.what()) == "s.json: image 8192x4096: needs about 1.4 GiB of device memory (film and output "
+                                   "image), Small GPU has 1.0 GiB; use a smaller --width/--height");
+  }
 }

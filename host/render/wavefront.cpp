@@ -12,6 +12,7 @@
 #include "render/stage_runner.h"
 #include "render/emitters.h"
 #include "render/frame_params.h"
+#include "render/memory_check.h"
 #include "util/errors.h"
 
 namespace montecl {
@@ -27,8 +28,9 @@ std::uint64_t bytesPerItem(std::uint32_t slots, bool bounce, bool aovs) {
 
 struct WavefrontRenderer::Impl {
   Impl(const DeviceInfo& device, const RenderOptions& opts)
-      : options(opts), runner(makeStageRunner(device, opts.workGroupSize, opts.bvhLayout)) {}
+      : options(opts), device(device), runner(makeStageRunner(device, opts.workGroupSize, opts.bvhLayout)) {}
   RenderOptions options;
+  DeviceInfo device;
   std::unique_ptr<StageRunner> runner;
 };
 
@@ -70,6 +72,8 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   wave = std::min<std::uint64_t>(wave, maxAlloc / (slots * sizeof(ShadowWork)));
   wave = std::min<std::uint64_t>(wave, 0xffffffffull / slots);
   wave = std::max<std::uint64_t>(1, std::min(wave, total));
+  checkImageMemory(m.device, scene.path, scene.camera.width, scene.camera.height, m.options.aovs,
+                   wave * bytesPerItem(slots, direct, m.options.aovs));
   for (std::uint64_t bytes : {pixels * sizeof(float4), std::uint64_t(bvhNodeBytes(bvh, run.bvhLayout())),
                               bvh.triangles.size() * sizeof(Triangle)})
     if (bytes > maxAlloc)
