@@ -147,3 +147,24 @@ TEST_CASE("memory check: an OpenCL device's global memory bounds the film; the h
                                    "image), Small GPU has 1.0 GiB; use a smaller --width/--height");
   }
 }
+
+TEST_CASE("cli: direct render of emitters facing away from everything warns; two_sided_emission lights it" * doctest::test_suite("cli")) {
+  TempDir dir;
+  // Floor at y = 0; a light quad at y = 1 whose front face (counter-clockwise) looks up, away.
+  dir.write("floor.obj", "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nf 1 4 3 2\n");
+  dir.write("light.obj", "v -0.5 1 -0.5\nv 0.5 1 -0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\nf 1 4 3 2\n");
+  const std::string cam = R"("camera": {"position": [0, 0.5, 4], "target": [0, 0, 0], "fov_y": 40, "width": 16, "height": 16})";
+  const std::string render = R"("render": {"integrator": "direct", "spp": 4})";
+  dir.write("away.json", "{" + cam + ", " + render + R"(, "meshes": [{"file": "floor.obj"}, {"file": "light.obj", "emission": [5, 5, 5]}]})");
+  dir.write("two.json", "{" + cam + ", " + render +
+                            R"(, "meshes": [{"file": "floor.obj"}, {"file": "light.obj", "emission": [5, 5, 5], "two_sided_emission": true}]})");
+  CliResult away = runMontecl({"render", dir.file("away.json"), "-q", "-o", dir.file("away.png")});
+  INFO("stderr: " << away.err);
+  CHECK(away.exitCode == 0);
+  CHECK(away.err.find("away.json: no emitter's front face faces any surface") != std::string::npos);
+  CHECK(away.err.find("two_sided_emission") != std::string::npos);
+  CliResult two = runMontecl({"render", dir.file("two.json"), "-q", "-o", dir.file("two.png")});
+  INFO("stderr: " << two.err);
+  CHECK(two.exitCode == 0);
+  CHECK(two.err.empty());
+}

@@ -125,6 +125,10 @@ int runRender(const RenderArgs& a) {
   if (scene.render.integrator == Integrator::Direct && !hasEmitter(scene))
     std::cerr << "montecl: warning: " << scene.path << ": integrator direct but nothing emits (no Ke, no mesh "
               << "\"emission\"): the image is black\n";
+  else if (scene.render.integrator == Integrator::Direct && !emittersFaceAnything(scene))
+    std::cerr << "montecl: warning: " << scene.path << ": no emitter's front face faces any surface (emitters "
+              << "light from the side of cross(v1 - v0, v2 - v0)): only the emitters will show; flip their "
+              << "winding or set \"two_sided_emission\": true on the mesh\n";
   if (a.verbose) {
     std::cerr << "montecl: " << scene.triangles.size() << " triangles (" << scene.degenerateDropped
               << " degenerate dropped), " << scene.materials.size() << " materials\n"

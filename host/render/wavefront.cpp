@@ -46,7 +46,7 @@ namespace {
 
 std::vector<Material> deviceMaterials(const std::vector<MaterialDesc>& materials) {
   std::vector<Material> out;
-  for (const MaterialDesc& m : materials) out.push_back({glm::vec4(m.albedo, 0.0f), glm::vec4(m.emission, 0.0f)});
+  for (const MaterialDesc& m : materials) out.push_back({glm::vec4(m.albedo, 0.0f), glm::vec4(m.emission, m.twoSidedEmission ? 1.0f : 0.0f)});
   return out;
 }
 

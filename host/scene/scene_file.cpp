@@ -286,6 +286,7 @@ struct MeshEntry {
   std::string where;  // "meshes[i].file"
   bool hasEmission = false;
   glm::vec3 emission{0.0f};
+  bool twoSided = false;  // "two_sided_emission": both faces of the mesh's emitters emit
 };
 
 std::string resolvePath(const std::string& sceneFile, const std::string& file) {
@@ -295,7 +296,7 @@ std::string resolvePath(const std::string& sceneFile, const std::string& file) {
 
 MeshEntry parseMeshEntry(const Ctx& ctx, const json& j, const std::string& prefix) {
   requireObject(ctx, j, prefix);
-  warnUnknownKeys(ctx, j, prefix, {"file", "emission"});
+  warnUnknownKeys(ctx, j, prefix, {"file", "emission", "two_sided_emission"});
   MeshEntry m;
   m.where = prefix + ".file";
   const json& file = requireKey(ctx, j, prefix, "file");
@@ -305,6 +306,10 @@ MeshEntry parseMeshEntry(const Ctx& ctx, const json& j, const std::string& prefi
   if (const json* e = optionalKey(j, "emission")) {
     m.hasEmission = true;
     m.emission = getColor(ctx, *e, prefix + ".emission");
+  }
+  if (const json* t = optionalKey(j, "two_sided_emission")) {
+    if (!t->is_boolean()) fail(ctx, prefix + ".two_sided_emission", std::string("expected true or false, got ") + t->dump());
+    m.twoSided = t->get<bool>();
   }
   return m;
 }
@@ -323,15 +328,17 @@ std::vector<MeshEntry> parseMeshes(const Ctx& ctx, const json& root) {
   return meshes;
 }
 
-// Gives triangles [firstTri, end) emissive copies of their materials (Kd kept, Ke = emission).
-void applyEmission(Scene& scene, std::size_t firstTri, const glm::vec3& emission) {
+// Gives triangles [firstTri, end) copies of their materials with the mesh's overrides (Kd kept;
+// Ke = emission when given; two-sided emission when asked).
+void applyMeshOverrides(Scene& scene, std::size_t firstTri, const MeshEntry& mesh) {
   std::vector<std::int64_t> copyOf(scene.materials.size(), -1);
   for (std::size_t t = firstTri; t < scene.triangles.size(); ++t) {
     std::uint32_t& m = scene.triangles[t].material;
     if (copyOf[m] < 0) {
       MaterialDesc d = scene.materials[m];
       d.name += " (emission override)";
-      d.emission = emission;
+      if (mesh.hasEmission) d.emission = mesh.emission;
+      d.twoSidedEmission = mesh.twoSided;
       copyOf[m] = static_cast<std::int64_t>(scene.materials.size());
       scene.materials.push_back(d);
     }
@@ -343,7 +350,7 @@ void loadMeshes(const std::vector<MeshEntry>& meshes, Scene& scene, std::vector<
   for (const MeshEntry& m : meshes) {
     std::size_t firstTri = scene.triangles.size();
     loadObjInto(m.path, scene, &warnings);
-    if (m.hasEmission) applyEmission(scene, firstTri, m.emission);
+    if (m.hasEmission || m.twoSided) applyMeshOverrides(scene, firstTri, m);
   }
 }
 
