@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cctype>
 #include <filesystem>
+#include <fstream>
 #include <regex>
 #include <thread>
 
@@ -167,4 +168,72 @@ TEST_CASE("cli: direct render of emitters facing away from everything warns; two
   INFO("stderr: " << two.err);
   CHECK(two.exitCode == 0);
   CHECK(two.err.empty());
+}
+
+namespace {
+
+// `cd folder && montecl args...`
+CliResult runIn(const std::string& folder, std::vector<std::string> args) {
+  std::vector<std::string> argv{"sh", "-c", "cd \"$0\" && exec \"$@\"", folder, MONTECL_EXE};
+  argv.insert(argv.end(), args.begin(), args.end());
+  // sh -c CMD $0 $1...: $0 is the folder, "$@" montecl and its arguments.
+  return montecl_test::runProgram(argv);
+}
+
+std::string fileText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+TEST_CASE("cli: the default output of a scene.json is named after its folder and never replaces a file" * doctest::test_suite("cli")) {
+  TempDir dir;
+  fs::create_directories(dir.file("cornell-box"));
+  fs::create_directories(dir.file("work"));
+  const std::string quad = std::string(MONTECL_SOURCE_DIR) + "/scenes/test/good/quad.obj";
+  dir.write("cornell-box/scene.json", R"({"camera": {"position": [0, 0, 2], "target": [0, 0, 0], "fov_y": 45, "width": 8, "height": 8},
+    "meshes": [{"file": ")" + quad + R"("}], "render": {"spp": 1}})");
+  const std::string scene = dir.file("cornell-box/scene.json"), work = dir.file("work");
+  CliResult first = runIn(work, {"render", scene, "-q"});
+  INFO("stderr: " << first.err << " stdout: " << first.out);
+  REQUIRE(first.exitCode == 0);
+  CHECK(first.out.rfind("wrote cornell-box.png: ", 0) == 0);
+  CHECK(fs::exists(dir.file("work/cornell-box.png")));
+  CHECK(!fs::exists(dir.file("work/scene.png")));
+
+  dir.write("work/cornell-box.png", "keep me");
+  CliResult second = runIn(work, {"render", scene, "-q"});
+  INFO("second: " << second.err << " " << second.out);
+  CHECK(second.exitCode == 0);
+  CHECK(fileText(dir.file("work/cornell-box.png")) == "keep me");
+  CHECK(fs::exists(dir.file("work/cornell-box-1.png")));
+  CHECK(second.out.rfind("wrote cornell-box-1.png: ", 0) == 0);
+  CHECK(second.out.find("cornell-box.png exists and was kept; --overwrite replaces it") != std::string::npos);
+  CHECK(runIn(work, {"render", scene, "-q"}).out.rfind("wrote cornell-box-2.png: ", 0) == 0);
+
+  CliResult over = runIn(work, {"render", scene, "-q", "--overwrite"});
+  CHECK(over.exitCode == 0);
+  CHECK(over.out.rfind("wrote cornell-box.png: ", 0) == 0);
+  CHECK(fileText(dir.file("work/cornell-box.png")) != "keep me");
+  // An explicit -o replaces as before.
+  CHECK(runIn(work, {"render", scene, "-q", "-o", "cornell-box-1.png"}).out.rfind("wrote cornell-box-1.png: ", 0) == 0);
+  CHECK(!fs::exists(dir.file("work/cornell-box-3.png")));
+}
+
+TEST_CASE("cli: -v prints the camera as scene JSON; pasted into a scene file it renders the same image" * doctest::test_suite("cli")) {
+  TempDir dir;
+  const std::string obj = std::string(MONTECL_SOURCE_DIR) + "/scenes/test/good/quad.obj";
+  CliResult bare = runMontecl({"render", obj, "-v", "-q", "--width", "12", "--height", "10", "--spp", "2", "--device",
+                               "host", "-o", dir.file("bare.pfm")});
+  INFO("stderr: " << bare.err);
+  REQUIRE(bare.exitCode == 0);
+  const std::size_t at = bare.err.find("montecl: \"camera\": {");
+  REQUIRE(at != std::string::npos);
+  const std::string camera = bare.err.substr(at + 9, bare.err.find('\n', at) - at - 9);
+  dir.write("scene.json", "{" + camera + R"(, "meshes": [{"file": ")" + obj + R"("}], "render": {"spp": 2}})");
+  CliResult scene = runMontecl({"render", dir.file("scene.json"), "-q", "--device", "host", "-o", dir.file("scene.pfm")});
+  INFO("scene stderr: " << scene.err << " camera: " << camera);
+  REQUIRE(scene.exitCode == 0);
+  CHECK(fileText(dir.file("bare.pfm")) == fileText(dir.file("scene.pfm")));
 }

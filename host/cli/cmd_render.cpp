@@ -2,6 +2,8 @@
 // BVH, render on the chosen OpenCL device and write the image atomically.
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
+#include <cstdlib>
 #include <csignal>
 #include <filesystem>
 #include <iostream>
@@ -38,7 +40,7 @@ struct RenderArgs {
   int minSpp = 16, maxSpp = 1024;
   std::vector<std::string> aovs;
   std::size_t workGroupSize = 0;
-  bool quiet = false, verbose = false;
+  bool quiet = false, verbose = false, overwrite = false;
 };
 
 void applyOverrides(const RenderArgs& a, Scene& scene) {
@@ -99,6 +101,50 @@ LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs
   return img;
 }
 
+// Shortest decimal that reads back as the same float ("0.3", not "0.300000012").
+std::string shortFloat(float v) {
+  char buf[32];
+  for (int precision = 6; precision <= 9; ++precision) {
+    std::snprintf(buf, sizeof buf, "%.*g", precision, double(v));
+    if (std::strtof(buf, nullptr) == v) break;
+  }
+  return buf;
+}
+
+std::string vec3Json(const glm::vec3& v) {
+  return "[" + shortFloat(v.x) + ", " + shortFloat(v.y) + ", " + shortFloat(v.z) + "]";
+}
+
+// The camera as a scene-file "camera" entry, to copy into a scene file (-v).
+std::string cameraJson(const Camera& c) {
+  return "\"camera\": {\"position\": " + vec3Json(c.position) + ", \"target\": " + vec3Json(c.target) +
+         ", \"up\": " + vec3Json(c.up) + ", \"fov_y\": " + shortFloat(c.fovY) + ", \"width\": " +
+         std::to_string(c.width) + ", \"height\": " + std::to_string(c.height) + "}";
+}
+
+// The default output: <stem>.png in the current folder, named after the scene's folder when the
+// file is scene.json (every shared scene is). An existing file is never replaced without
+// --overwrite: the first free <name>-N.png is used instead, and `note` says so.
+std::string defaultOutput(const std::string& scenePath, bool overwrite, std::string& note) {
+  namespace fs = std::filesystem;
+  fs::path scene(scenePath);
+  std::string stem = scene.stem().string();
+  if (scene.filename() == "scene.json") {
+    std::string folder = fs::absolute(scene).lexically_normal().parent_path().filename().string();
+    if (!folder.empty()) stem = folder;
+  }
+  const std::string name = stem + ".png";
+  std::error_code ec;
+  if (overwrite || !fs::exists(fs::symlink_status(name, ec))) return name;
+  for (int n = 1;; ++n) {
+    std::string numbered = stem + "-" + std::to_string(n) + ".png";
+    if (!fs::exists(fs::symlink_status(numbered, ec))) {
+      note = " (" + name + " exists and was kept; --overwrite replaces it)";
+      return numbered;
+    }
+  }
+}
+
 bool hasEmitter(const Scene& scene) {
   for (const MaterialDesc& m : scene.materials)
     if (m.emission.x > 0.0f || m.emission.y > 0.0f || m.emission.z > 0.0f) return true;
@@ -114,7 +160,8 @@ int runRender(const RenderArgs& a) {
   for (const std::string& w : warnings) std::cerr << "montecl: warning: " << w << "\n";
   applyOverrides(a, scene);
   std::string output = a.output;
-  if (output.empty()) output = std::filesystem::path(a.scene).stem().string() + ".png";
+  std::string outputNote;
+  if (output.empty()) output = defaultOutput(a.scene, a.overwrite, outputNote);
   checkOutputPath(output);
   if (!a.aovs.empty() && !isExr(output))
     throwInputError(output, "--aov", "AOVs need an .exr output");
@@ -135,7 +182,8 @@ int runRender(const RenderArgs& a) {
               << "montecl: BVH built in " << bvh.buildMs << " ms: " << bvh.nodes.size() << " nodes, depth "
               << bvh.depth << ", SAH cost " << bvh.sahCost << "\n"
               << "montecl: device " << device.platformIndex << ":" << device.deviceIndex << " " << device.name
-              << ", " << bvhLayoutName(layout) << " BVH layout\n";
+              << ", " << bvhLayoutName(layout) << " BVH layout\n"
+              << "montecl: " << cameraJson(scene.camera) << "\n";
   }
   RenderOptions options;
   options.waveSize = a.waveSize;
@@ -165,7 +213,8 @@ int runRender(const RenderArgs& a) {
     writeLayeredExr(output, renderLayers(film, a.aovs));
   else
     writeRgbImage(output, film.width, film.height, film.meanRgb());
-  std::cout << "wrote " << output << ": " << summaryLine(film.width, film.height, scene.render.spp, stats) << "\n";
+  std::cout << "wrote " << output << ": " << summaryLine(film.width, film.height, scene.render.spp, stats) << outputNote
+            << "\n";
   const std::uint64_t pixels = std::uint64_t(film.width) * film.height;
   if (a.targetError > 0.0)
     std::cout << "adaptive: " << stats.converged << " of " << pixels << " pixels within relative error "
@@ -185,7 +234,9 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("scene", args->scene, "Scene file (.json) or OBJ mesh")->required();
   cmd->add_option("-o,--output", args->output,
                   "Output image: .png (8-bit sRGB), .pfm (linear float), .exr (linear float with channels R, G, B, "
-                  "samples, var.R, var.G, var.B); default: <scene name>.png");
+                  "samples, var.R, var.G, var.B); default: <scene name>.png in the current folder (<folder "
+                  "name>.png for a scene.json), never replacing a file: <name>-1.png, ... unless --overwrite");
+  cmd->add_flag("--overwrite", args->overwrite, "Let the default output name replace an existing file");
   cmd->add_option("--spp", args->spp, "Samples per pixel")->check(positiveInteger());
   cmd->add_option("--seed", args->seed, "Random seed");
   cmd->add_option("--width", args->width, "Image width in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
