@@ -1,6 +1,7 @@
 // main.cpp: montecl's entry point: parses the command line and maps failures to exit codes.
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <new>
 
 #include "cl/cl_errors.h"
 #include "cli/commands.h"
@@ -29,6 +30,9 @@ int main(int argc, char** argv) {
     return dist::failed(kExitBadInput);  // under MPI: MPI_Abort, the whole job ends
   } catch (const cl::Error& e) {
     std::cerr << "montecl: error: " << describeClError(e) << "\n";
+    return dist::failed(kExitRuntime);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "montecl: error: out of memory: the scene or image is too large for this machine\n";
     return dist::failed(kExitRuntime);
   } catch (const std::exception& e) {
     std::cerr << "montecl: error: " << e.what() << "\n";

@@ -162,6 +162,52 @@ TEST_CASE("with brdf sampling, an emitter's back face reflects exactly like a no
   CHECK(imageEstimate(emitting, 0).mean > 0.0);
 }
 
+TEST_CASE("a two-sided emitter seen from the back gives exactly Le, like its front" * doctest::test_suite("opencl")) {
+  Scene s;
+  s.path = "<two-sided emitter>";
+  s.materials = {MaterialDesc{"light", glm::vec3(0.8f), kLe}};
+  s.materials[0].twoSidedEmission = true;
+  std::vector<glm::vec3> q = square({0, 0, 0}, {0, 0, 1}, 2.0f);  // front face toward +z
+  addQuad(s, q[0], q[1], q[2], q[3], 0);
+  s.camera.position = {0.1f, 0.2f, -3.0f};  // behind it
+  s.camera.target = {0.1f, 0.2f, 0.0f};
+  s.camera.fovY = 10.0f;
+  s.camera.width = s.camera.height = 8;
+  s.render.spp = 8;
+  finishScene(s);
+  for (const char* strategy : {"light", "brdf", "mis"}) {
+    INFO(strategy);
+    std::vector<float> rgb = renderDirect(s, strategy).meanRgb();
+    for (std::size_t p = 0; p < rgb.size() / 3; ++p)
+      for (int c = 0; c < 3; ++c) REQUIRE(rgb[3 * p + c] == kLe[c]);
+  }
+}
+
+TEST_CASE("a two-sided emitter lights a plane behind it exactly as its front face does (form factor)" * doctest::test_suite("opencl")) {
+  // The square above the floor faces up, away from it: one-sided the floor is black; two-sided it
+  // gets albedo * Le * F for light, brdf and mis sampling, as with the square flipped toward it.
+  const std::vector<glm::vec3> up = square({0.2f, 1, 0.1f}, {0, 1, 0}, 1.0f);
+  std::vector<glm::dvec3> poly;
+  for (glm::vec3 v : up) poly.push_back(glm::dvec3(v));
+  const double F = formFactor(poly, glm::dvec3(0), glm::dvec3(0, 1, 0));
+  Scene oneSided = polygonLightScene(up, 4096);
+  Scene twoSided = oneSided;
+  twoSided.materials[1].twoSidedEmission = true;
+  for (const char* strategy : {"light", "brdf", "mis"}) {
+    INFO(strategy);
+    CHECK(imageEstimate(renderDirect(oneSided, strategy), 0).mean == 0.0);
+    Film f = renderDirect(twoSided, strategy);
+    for (int c = 0; c < 3; ++c) {
+      double expected = kAlbedo[c] * kLe[c] * F;
+      ImageEstimate e = imageEstimate(f, c);
+      CAPTURE(c);
+      INFO("expected " << expected << " (F = " << F << "), got " << e.mean << " +- " << e.standardError);
+      CHECK(e.standardError > 0.0);
+      CHECK(std::fabs(e.mean - expected) < 4.0 * e.standardError + 1e-4 * expected);
+    }
+  }
+}
+
 TEST_CASE("Cornell box: light, brdf and mis agree per pixel; light sampling has lower variance" * doctest::test_suite("opencl shared-scenes slow")) {
   std::string path = sharedScenes() + "/cornell-box/scene.json";
   MCL_SKIP_UNLESS(std::ifstream(path), path << " not found (the shared scenes are not beside this checkout)");

@@ -466,3 +466,37 @@ TEST_CASE("shared scenes: all load, fast enough to report" * doctest::test_suite
   }
   CHECK(loaded > 0);
 }
+
+TEST_CASE("emittersFaceAnything: false only when every emitter's emitting side faces away from all geometry" * doctest::test_suite("cpu")) {
+  using namespace montecl;
+  Scene s;
+  s.materials = {MaterialDesc{"floor", glm::vec3(0.5f), glm::vec3(0.0f)}, MaterialDesc{"light", glm::vec3(0.0f), glm::vec3(1.0f)}};
+  s.triangles.push_back({{{-1, 0, -1}, {1, 0, -1}, {0, 0, 1}}, 0});  // floor at y = 0
+  // Light at y = 1 wound so that cross(v1 - v0, v2 - v0) points up (+y): away from the floor.
+  s.triangles.push_back({{{-1, 1, -1}, {0, 1, 1}, {1, 1, -1}}, 1});
+  REQUIRE(glm::cross(s.triangles[1].v[1] - s.triangles[1].v[0], s.triangles[1].v[2] - s.triangles[1].v[0]).y > 0);
+  CHECK_FALSE(emittersFaceAnything(s));
+  s.materials[1].twoSidedEmission = true;
+  CHECK(emittersFaceAnything(s));
+  s.materials[1].twoSidedEmission = false;
+  std::swap(s.triangles[1].v[1], s.triangles[1].v[2]);  // now facing down, toward the floor
+  CHECK(emittersFaceAnything(s));
+}
+
+TEST_CASE("scene file: two_sided_emission true marks the mesh's emitters two-sided; absent, nothing changes" * doctest::test_suite("cpu")) {
+  using namespace montecl;
+  montecl_test::TempDir dir;
+  const std::string quad = std::string(MONTECL_SOURCE_DIR) + "/scenes/test/good/quad.obj";
+  const std::string cam = R"("camera": {"position": [0, 0, 2], "target": [0, 0, 0], "fov_y": 45, "width": 8, "height": 8})";
+  dir.write("two.json", "{" + cam + R"(, "meshes": [{"file": ")" + quad + R"(", "emission": [1, 2, 3], "two_sided_emission": true}]})");
+  dir.write("one.json", "{" + cam + R"(, "meshes": [{"file": ")" + quad + R"(", "emission": [1, 2, 3]}]})");
+  std::vector<std::string> warnings;
+  Scene two = loadScene(dir.file("two.json"), warnings);
+  Scene one = loadScene(dir.file("one.json"), warnings);
+  CHECK(warnings.empty());
+  for (const SceneTriangle& t : two.triangles) {
+    CHECK(two.materials[t.material].twoSidedEmission);
+    CHECK(two.materials[t.material].emission == glm::vec3(1, 2, 3));
+  }
+  for (const SceneTriangle& t : one.triangles) CHECK_FALSE(one.materials[t.material].twoSidedEmission);
+}

@@ -3,9 +3,12 @@
 // optionally writes the JSON atomically. Exit 0 when every ray matches the host reference, 1 otherwise.
 #include <fstream>
 #include <iostream>
+#include <limits>
 
 #include "bench/bench.h"
 #include "cli/commands.h"
+#include "cli/validators.h"
+#include "scene/scene.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
@@ -20,17 +23,17 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                "reference and Embree");
   cmd->add_option("scene", o->scene, "Scene file (.json) or OBJ mesh")->required();
   cmd->add_option("--repeat", o->repeat, "Timed repetitions per kernel (median and minimum reported)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--warmup", o->warmup, "Untimed runs before the timed ones")->check(CLI::NonNegativeNumber);
+      ->check(positiveInteger());
+  cmd->add_option("--warmup", o->warmup, "Untimed runs before the timed ones")->check(integerIn(0, std::numeric_limits<int>::max(), "a non-negative integer"));
   cmd->add_option("--json", o->jsonPath, "Write every result to this JSON file");
   cmd->add_option("--device", o->device, "OpenCL device: P:D, or part of the device or platform name");
   cmd->add_option("--threads", o->threads, "Embree and host reference threads (default: the device's compute units)")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveInteger());
   cmd->add_option("--width", o->width, "Override the scene's image width (primary rays = width x height)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--height", o->height, "Override the scene's image height")->check(CLI::PositiveNumber);
+      ->check(positiveInteger(kMaxImageSide));
+  cmd->add_option("--height", o->height, "Override the scene's image height")->check(positiveInteger(kMaxImageSide));
   cmd->add_option("--work-group-size", o->workGroupSize, "Kernel work-group size (default: min(64, kernel max))")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveInteger());
   cmd->add_option("--bvh-layout", o->bvhLayout,
                   "BVH the kernels traverse: auto (binary on GPUs, wide otherwise) | wide | binary")
       ->check(CLI::IsMember({"auto", "wide", "binary"}));

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "cli/commands.h"
+#include "cli/validators.h"
 #include "conformance/conformance.h"
 #include "util/errors.h"
 
@@ -28,12 +29,12 @@ int runConformanceCommand(const ConformanceArgs& a) {
 
 void addConformanceOptions(CLI::App* cmd, ConformanceArgs& a) {
   cmd->add_option("--size", a.options.set.size, "Width and height of the analytic scenes' images")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--spp", a.options.set.spp, "Samples per pixel of the analytic scenes")->check(CLI::PositiveNumber);
+      ->check(positiveInteger());
+  cmd->add_option("--spp", a.options.set.spp, "Samples per pixel of the analytic scenes")->check(positiveInteger());
   cmd->add_option("--cornell-size", a.options.set.cornellSize, "Width and height of the Cornell box images")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveInteger());
   cmd->add_option("--cornell-spp", a.options.set.cornellSpp, "Samples per pixel of the Cornell box")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveInteger());
   cmd->add_option("--cornell", a.options.set.cornellPath,
                   "Cornell box scene.json (default: <source>/../shared/scenes/cornell-box/scene.json)");
 }

@@ -4,6 +4,8 @@
 
 #include "bench/terrain.h"
 #include "cli/commands.h"
+#include "cli/validators.h"
+#include "scene/scene.h"
 #include "util/errors.h"
 
 namespace montecl {
@@ -24,8 +26,8 @@ void addGenerateCommand(CLI::App& app, int& exitCode) {
   t->add_option("-o,--output", a->output, "Output OBJ file")->required();
   t->add_option("--seed", a->terrain.seed, "Random seed of the height field");
   t->add_option("--scene", a->scene, "Also write a scene file (.json) framing the terrain, with an emissive quad");
-  t->add_option("--width", a->width, "Image width in the scene file")->check(CLI::PositiveNumber);
-  t->add_option("--height", a->height, "Image height in the scene file")->check(CLI::PositiveNumber);
+  t->add_option("--width", a->width, "Image width in the scene file")->check(positiveInteger(kMaxImageSide));
+  t->add_option("--height", a->height, "Image height in the scene file")->check(positiveInteger(kMaxImageSide));
   t->callback([a, &exitCode]() {
     std::uint64_t n = writeTerrainObj(a->output, a->terrain);
     if (!a->scene.empty()) writeTerrainScene(a->scene, a->output, a->terrain, a->width, a->height);

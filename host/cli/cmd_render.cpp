@@ -2,15 +2,19 @@
 // BVH, render on the chosen OpenCL device and write the image atomically.
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
+#include <cstdlib>
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <optional>
 
 #include "bvh/bvh.h"
 #include "cl/devices.h"
 #include "cli/commands.h"
 #include "dist/job.h"
+#include "cli/validators.h"
 #include "image/exr_layers.h"
 #include "image/image_io.h"
 #include "render/emitters.h"
@@ -38,7 +42,7 @@ struct RenderArgs {
   int minSpp = 16, maxSpp = 1024;
   std::vector<std::string> aovs;
   std::size_t workGroupSize = 0;
-  bool quiet = false, verbose = false;
+  bool quiet = false, verbose = false, overwrite = false;
   dist::JobArgs job;  // MPI split, --checkpoint, --resume (dist/job.h)
 };
 
@@ -100,6 +104,50 @@ LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs
   return img;
 }
 
+// Shortest decimal that reads back as the same float ("0.3", not "0.300000012").
+std::string shortFloat(float v) {
+  char buf[32];
+  for (int precision = 6; precision <= 9; ++precision) {
+    std::snprintf(buf, sizeof buf, "%.*g", precision, double(v));
+    if (std::strtof(buf, nullptr) == v) break;
+  }
+  return buf;
+}
+
+std::string vec3Json(const glm::vec3& v) {
+  return "[" + shortFloat(v.x) + ", " + shortFloat(v.y) + ", " + shortFloat(v.z) + "]";
+}
+
+// The camera as a scene-file "camera" entry, to copy into a scene file (-v).
+std::string cameraJson(const Camera& c) {
+  return "\"camera\": {\"position\": " + vec3Json(c.position) + ", \"target\": " + vec3Json(c.target) +
+         ", \"up\": " + vec3Json(c.up) + ", \"fov_y\": " + shortFloat(c.fovY) + ", \"width\": " +
+         std::to_string(c.width) + ", \"height\": " + std::to_string(c.height) + "}";
+}
+
+// The default output: <stem>.png in the current folder, named after the scene's folder when the
+// file is scene.json (every shared scene is). An existing file is never replaced without
+// --overwrite: the first free <name>-N.png is used instead, and `note` says so.
+std::string defaultOutput(const std::string& scenePath, bool overwrite, std::string& note) {
+  namespace fs = std::filesystem;
+  fs::path scene(scenePath);
+  std::string stem = scene.stem().string();
+  if (scene.filename() == "scene.json") {
+    std::string folder = fs::absolute(scene).lexically_normal().parent_path().filename().string();
+    if (!folder.empty()) stem = folder;
+  }
+  const std::string name = stem + ".png";
+  std::error_code ec;
+  if (overwrite || !fs::exists(fs::symlink_status(name, ec))) return name;
+  for (int n = 1;; ++n) {
+    std::string numbered = stem + "-" + std::to_string(n) + ".png";
+    if (!fs::exists(fs::symlink_status(numbered, ec))) {
+      note = " (" + name + " exists and was kept; --overwrite replaces it)";
+      return numbered;
+    }
+  }
+}
+
 int runRender(const RenderArgs& a) {
   // Option rules first, before any file is read or kernel built.
   if (a.targetError > 0.0 && a.minSpp > a.maxSpp)
@@ -109,7 +157,8 @@ int runRender(const RenderArgs& a) {
   for (const std::string& w : warnings) std::cerr << "montecl: warning: " << w << "\n";
   applyOverrides(a, scene);
   std::string output = a.output;
-  if (output.empty()) output = std::filesystem::path(a.scene).stem().string() + ".png";
+  std::string outputNote;
+  if (output.empty()) output = defaultOutput(a.scene, a.overwrite, outputNote);
   checkOutputPath(output);
   if (!a.aovs.empty() && !isExr(output))
     throwInputError(output, "--aov", "AOVs need an .exr output");
@@ -120,13 +169,18 @@ int runRender(const RenderArgs& a) {
   if (scene.render.integrator == Integrator::Direct && !hasEmitter(scene))
     std::cerr << "montecl: warning: " << scene.path << ": integrator direct but nothing emits (no Ke, no mesh "
               << "\"emission\"): the image is black\n";
+  else if (scene.render.integrator == Integrator::Direct && !emittersFaceAnything(scene))
+    std::cerr << "montecl: warning: " << scene.path << ": no emitter's front face faces any surface (emitters "
+              << "light from the side of cross(v1 - v0, v2 - v0)): only the emitters will show; flip their "
+              << "winding or set \"two_sided_emission\": true on the mesh\n";
   if (a.verbose) {
     std::cerr << "montecl: " << scene.triangles.size() << " triangles (" << scene.degenerateDropped
               << " degenerate dropped), " << scene.materials.size() << " materials\n"
               << "montecl: BVH built in " << bvh.buildMs << " ms: " << bvh.nodes.size() << " nodes, depth "
               << bvh.depth << ", SAH cost " << bvh.sahCost << "\n"
               << "montecl: device " << device.platformIndex << ":" << device.deviceIndex << " " << device.name
-              << ", " << bvhLayoutName(layout) << " BVH layout\n";
+              << ", " << bvhLayoutName(layout) << " BVH layout\n"
+              << "montecl: " << cameraJson(scene.camera) << "\n";
   }
   RenderOptions options;
   options.waveSize = a.waveSize;
@@ -161,7 +215,8 @@ int runRender(const RenderArgs& a) {
     writeLayeredExr(output, renderLayers(film, a.aovs));
   else
     writeRgbImage(output, film.width, film.height, film.meanRgb());
-  std::cout << "wrote " << output << ": " << summaryLine(film.width, film.height, scene.render.spp, stats) << "\n";
+  std::cout << "wrote " << output << ": " << summaryLine(film.width, film.height, scene.render.spp, stats) << outputNote
+            << "\n";
   const std::uint64_t pixels = std::uint64_t(film.width) * film.height;
   if (a.targetError > 0.0)
     std::cout << "adaptive: " << stats.converged << " of " << pixels << " pixels within relative error "
@@ -181,41 +236,43 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("scene", args->scene, "Scene file (.json) or OBJ mesh")->required();
   cmd->add_option("-o,--output", args->output,
                   "Output image: .png (8-bit sRGB), .pfm (linear float), .exr (linear float with channels R, G, B, "
-                  "samples, var.R, var.G, var.B); default: <scene name>.png");
-  cmd->add_option("--spp", args->spp, "Samples per pixel")->check(CLI::PositiveNumber);
+                  "samples, var.R, var.G, var.B); default: <scene name>.png in the current folder (<folder "
+                  "name>.png for a scene.json), never replacing a file: <name>-1.png, ... unless --overwrite");
+  cmd->add_flag("--overwrite", args->overwrite, "Let the default output name replace an existing file");
+  cmd->add_option("--spp", args->spp, "Samples per pixel")->check(positiveInteger());
   cmd->add_option("--seed", args->seed, "Random seed");
-  cmd->add_option("--width", args->width, "Image width in pixels")->check(CLI::PositiveNumber);
-  cmd->add_option("--height", args->height, "Image height in pixels")->check(CLI::PositiveNumber);
+  cmd->add_option("--width", args->width, "Image width in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
+  cmd->add_option("--height", args->height, "Image height in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
   cmd->add_option("--integrator", args->integrator, "ao (ambient occlusion) | direct (area lights)")
       ->transform(CLI::CheckedTransformer(integratorNames()));
   cmd->add_option("--direct-sampling", args->directSampling,
                   "Direct lighting: " + choiceList(directSamplingNames(), false))
       ->transform(CLI::CheckedTransformer(directSamplingNames()));
-  cmd->add_option("--light-samples", args->lightSamples, "Light samples per camera sample (direct)")
-      ->check(CLI::PositiveNumber);
+  cmd->add_option("--light-samples", args->lightSamples, "Light samples per camera sample (direct; up to 1024)")
+      ->check(positiveInteger(kMaxLightSamples));
   cmd->add_option("--ao-sampling", args->aoSampling, "AO directions: " + choiceList(aoSamplingNames(), false))
       ->transform(CLI::CheckedTransformer(aoSamplingNames()));
   cmd->add_option("--ao-distance", args->aoDistance, "Occluders farther than this are ignored")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber(std::numeric_limits<float>::max()));
   cmd->add_option("--device", args->device, "OpenCL device: P:D, part of the device or platform name, or host (CPU, no OpenCL)");
   cmd->add_option("--wave-size", args->waveSize, "Pixel samples per wave (default: from a 256 MiB budget)")
-      ->check(CLI::PositiveNumber);
+      ->check(integerIn(1, std::numeric_limits<long long>::max(), "a positive integer"));
   cmd->add_option("--work-group-size", args->workGroupSize, "Work-group size (default: min(64, kernel max))")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveInteger());
   cmd->add_option("--bvh-layout", args->bvhLayout,
                   "BVH the kernels traverse: auto (binary on GPUs, wide otherwise) | wide | binary")
       ->check(CLI::IsMember({"auto", "wide", "binary"}));
   cmd->add_option("--target-error", args->targetError,
                   "Adaptive sampling: sample until each pixel's relative standard error (stderr / max(mean "
                   "luminance, 0.01)) is at most this, between --min-spp and --max-spp; ignores --spp")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   cmd->add_option("--min-spp", args->minSpp, "Adaptive sampling: samples every pixel gets first (default 16)")
-      ->check(CLI::Range(2, 1 << 24));
+      ->check(integerIn(2, 1 << 24, "an integer from 2 to 16777216"));
   cmd->add_option("--max-spp", args->maxSpp, "Adaptive sampling: most samples a pixel gets (default 1024)")
-      ->check(CLI::Range(2, 1 << 24));
+      ->check(integerIn(2, 1 << 24, "an integer from 2 to 16777216"));
   cmd->add_option("--time", args->timeLimit,
                   "Stop after the wave that crosses this many seconds and write the image so far")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   cmd->add_option("--aov", args->aovs,
                   "Extra EXR channels, comma-separated: albedo (albedo.R/G/B), normal (N.X/Y/Z), depth (Z), "
                   "or all; averaged over each pixel's samples")

@@ -12,6 +12,7 @@
 #include "render/stage_runner.h"
 #include "render/emitters.h"
 #include "render/frame_params.h"
+#include "render/memory_check.h"
 #include "scene/camera_basis.h"
 #include "util/errors.h"
 
@@ -28,8 +29,9 @@ std::uint64_t bytesPerItem(std::uint32_t slots, bool bounce, bool aovs) {
 
 struct WavefrontRenderer::Impl {
   Impl(const DeviceInfo& device, const RenderOptions& opts)
-      : options(opts), runner(makeStageRunner(device, opts.workGroupSize, opts.bvhLayout)) {}
+      : options(opts), device(device), runner(makeStageRunner(device, opts.workGroupSize, opts.bvhLayout)) {}
   RenderOptions options;
+  DeviceInfo device;
   std::unique_ptr<StageRunner> runner;
 };
 
@@ -45,7 +47,7 @@ namespace {
 
 std::vector<Material> deviceMaterials(const std::vector<MaterialDesc>& materials) {
   std::vector<Material> out;
-  for (const MaterialDesc& m : materials) out.push_back({glm::vec4(m.albedo, 0.0f), glm::vec4(m.emission, 0.0f)});
+  for (const MaterialDesc& m : materials) out.push_back({glm::vec4(m.albedo, 0.0f), glm::vec4(m.emission, m.twoSidedEmission ? 1.0f : 0.0f)});
   return out;
 }
 
@@ -75,6 +77,8 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   wave = std::min<std::uint64_t>(wave, maxAlloc / (slots * sizeof(ShadowWork)));
   wave = std::min<std::uint64_t>(wave, 0xffffffffull / slots);
   wave = std::max<std::uint64_t>(1, std::min(wave, total));
+  checkImageMemory(m.device, scene.path, scene.camera.width, scene.camera.height, m.options.aovs,
+                   wave * bytesPerItem(slots, direct, m.options.aovs));
   for (std::uint64_t bytes : {pixels * sizeof(float4), std::uint64_t(bvhNodeBytes(bvh, run.bvhLayout())),
                               bvh.triangles.size() * sizeof(Triangle)})
     if (bytes > maxAlloc)

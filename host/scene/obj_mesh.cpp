@@ -225,6 +225,16 @@ class MtlReader : public tinyobj::MaterialReader {
   bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                   std::map<std::string, int>* matMap, std::string* warn, std::string* err) override {
     std::string path = (name.empty() || name[0] == '/' || dir_.empty()) ? name : dir_ + "/" + name;
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) {
+      missing.push_back(path);
+      return false;
+    }
+    // Only regular files: a FIFO would block the open, /dev/zero would be read until memory runs out.
+    if (!S_ISREG(st.st_mode)) {
+      if (notRegular.empty()) notRegular = path + "': " + (S_ISDIR(st.st_mode) ? "is a directory" : "not a regular file");
+      return false;
+    }
     std::ifstream in(path);
     if (!in) {
       missing.push_back(path);
@@ -234,6 +244,7 @@ class MtlReader : public tinyobj::MaterialReader {
     return true;
   }
   std::vector<std::string> missing;
+  std::string notRegular;  // "<path>': <why>" of the first mtllib that exists but is not a regular file
 
  private:
   std::string dir_;
@@ -279,6 +290,8 @@ ObjData parseWithTinyObj(const std::string& file, std::string& text, std::vector
   std::string warn, err;
   bool ok = tinyobj::LoadObj(&data.attrib, &data.shapes, &data.materials, &warn, &err, &in, &mtl,
                              /*triangulate=*/true, /*default_vcols_fallback=*/false);
+  if (!mtl.notRegular.empty())
+    fail(file, "mtllib", "cannot open '" + mtl.notRegular);
   if (!ok) fail(file, "", "cannot parse OBJ: " + err.substr(0, err.find('\n')));
   if (warnings) {
     for (const std::string& m : mtl.missing)

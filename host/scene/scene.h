@@ -10,6 +10,10 @@
 
 namespace montecl {
 
+// Limits shared by scene files and the command line (one rule for both).
+constexpr int kMaxImageSide = 16384;    // camera.width / camera.height, --width / --height
+constexpr int kMaxLightSamples = 1024;  // render.light_samples, --light-samples
+
 struct Camera {
   glm::vec3 position{0.0f, 0.0f, 1.0f};
   glm::vec3 target{0.0f};
@@ -34,6 +38,7 @@ struct MaterialDesc {
   std::string name;
   glm::vec3 albedo{0.5f};    // Kd
   glm::vec3 emission{0.0f};  // Ke
+  bool twoSidedEmission = false;  // both faces emit Ke (scene key "two_sided_emission"), else the front only
 };
 
 struct SceneTriangle {
@@ -65,6 +70,11 @@ void loadObjInto(const std::string& objPath, Scene& scene,
 // Index of the scene's one shared default material (albedo 0.5 grey, no emission), added to
 // scene.materials on first use. Faces without a material use it.
 std::uint32_t defaultMaterialIndex(Scene& scene);
+
+// False when the scene has emitters and non-emitting geometry but no emitter's emitting side
+// (the front, or either face with twoSidedEmission) faces any of that geometry: a direct render
+// is then black but for the emitters themselves. Exact for small scenes, bounding-box based above.
+bool emittersFaceAnything(const Scene& scene);
 
 // A camera looking at the bounding box from the +z side (tilted down a little), framing all of it.
 Camera defaultCamera(const glm::vec3& boundsMin, const glm::vec3& boundsMax, int width, int height);

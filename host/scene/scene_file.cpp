@@ -23,8 +23,6 @@ namespace {
 
 using nlohmann::json;
 
-constexpr int kMaxImageSide = 16384;
-
 std::string oneLine(const std::string& s) {
   std::string out = s;
   for (char& c : out)
@@ -66,6 +64,71 @@ std::string readSceneText(const Ctx& ctx) {
   return text;
 }
 
+// Walks the JSON with nlohmann's SAX interface to find where parsing stops: the key path of the
+// value being read ("camera.position[0]") and the byte position. Used after json::parse() threw an
+// error that carries no position (out_of_range.406, a number overflowing a double).
+class ErrorLocator : public nlohmann::json_sax<json> {
+ public:
+  std::string path() const {
+    std::string out;
+    for (const Frame& f : frames_)
+      out += f.array ? "[" + std::to_string(f.index) + "]" : (out.empty() ? "" : ".") + f.key;
+    return out;
+  }
+  std::size_t position = std::string::npos;
+  std::string token;
+
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t&) override { return value(); }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override { return open(false); }
+  bool key(string_t& k) override {
+    frames_.back().key = k;
+    return true;
+  }
+  bool end_object() override { return close(); }
+  bool start_array(std::size_t) override { return open(true); }
+  bool end_array() override { return close(); }
+  bool parse_error(std::size_t pos, const std::string& last, const nlohmann::detail::exception&) override {
+    position = pos;
+    token = last;
+    return false;
+  }
+
+ private:
+  struct Frame {
+    bool array = false;
+    std::string key;
+    std::size_t index = 0;
+  };
+  bool value() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+    return true;
+  }
+  bool open(bool array) {
+    frames_.push_back({array, "", 0});
+    return true;
+  }
+  bool close() {
+    frames_.pop_back();
+    return value();
+  }
+  std::vector<Frame> frames_;
+};
+
+// "line L, column C" of the byte at offset in text (1-based).
+std::string lineColumn(const std::string& text, std::size_t offset) {
+  offset = std::min(offset, text.size());
+  std::size_t line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + offset, '\n'));
+  std::size_t lineStart = text.rfind('\n', offset == 0 ? 0 : offset - 1);
+  std::size_t column = offset - (lineStart == std::string::npos || offset == 0 ? 0 : lineStart + 1) + 1;
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
 // nlohmann's message "[json.exception.parse_error.101] parse error at line 3, column 5: syntax
 // error ..." becomes where = "line 3, column 5", problem = "malformed JSON: syntax error ...".
 json parseJson(const Ctx& ctx, const std::string& text) {
@@ -77,6 +140,16 @@ json parseJson(const Ctx& ctx, const std::string& text) {
     std::size_t colon = at == std::string::npos ? at : what.find(": ", at);
     if (colon == std::string::npos) fail(ctx, "byte " + std::to_string(e.byte), "malformed JSON: " + what);
     fail(ctx, what.substr(at + 4, colon - at - 4), "malformed JSON: " + what.substr(colon + 2));
+  } catch (const json::exception& e) {  // out_of_range.406: "number overflow parsing '1e400'"
+    ErrorLocator where;
+    json::sax_parse(text, &where);
+    std::string problem = e.what();
+    std::size_t close = problem.find("] ");
+    if (close != std::string::npos) problem = problem.substr(close + 2);
+    if (where.position == std::string::npos) fail(ctx, "(top level)", problem);
+    const std::size_t start = where.position - std::min(where.position, where.token.size());
+    const std::string key = where.path().empty() ? "(top level)" : where.path();
+    fail(ctx, key, problem + " (" + lineColumn(text, start) + ")");
   }
 }
 
@@ -171,7 +244,8 @@ Camera parseCamera(const Ctx& ctx, const json& root) {
   cam.target = getVec3(ctx, requireKey(ctx, j, "camera", "target"), "camera.target");
   if (const json* up = optionalKey(j, "up")) cam.up = getVec3(ctx, *up, "camera.up");
   cam.fovY = getFloat(ctx, requireKey(ctx, j, "camera", "fov_y"), "camera.fov_y");
-  const char* side = "a positive integer up to 16384";
+  const std::string sideRule = "a positive integer up to " + std::to_string(kMaxImageSide);
+  const char* side = sideRule.c_str();
   cam.width = getPositiveInt(ctx, requireKey(ctx, j, "camera", "width"), "camera.width", kMaxImageSide, side);
   cam.height = getPositiveInt(ctx, requireKey(ctx, j, "camera", "height"), "camera.height", kMaxImageSide, side);
   validateCamera(ctx, cam);
@@ -201,7 +275,10 @@ RenderSettings parseRender(const Ctx& ctx, const json& root) {
   if (const json* v = optionalKey(j, "background")) r.background = getColor(ctx, *v, "render.background");
   if (const json* v = optionalKey(j, "direct_sampling"))
     r.directSampling = getChoice(ctx, *v, "render.direct_sampling", directSamplingNames());
-  if (const json* v = optionalKey(j, "light_samples")) r.lightSamples = getPositiveInt(ctx, *v, "render.light_samples", intMax);
+  if (const json* v = optionalKey(j, "light_samples")) {
+    const std::string rule = "a positive integer up to " + std::to_string(kMaxLightSamples);
+    r.lightSamples = getPositiveInt(ctx, *v, "render.light_samples", kMaxLightSamples, rule.c_str());
+  }
   return r;
 }
 
@@ -212,6 +289,7 @@ struct MeshEntry {
   std::string where;  // "meshes[i].file"
   bool hasEmission = false;
   glm::vec3 emission{0.0f};
+  bool twoSided = false;  // "two_sided_emission": both faces of the mesh's emitters emit
 };
 
 std::string resolvePath(const std::string& sceneFile, const std::string& file) {
@@ -221,7 +299,7 @@ std::string resolvePath(const std::string& sceneFile, const std::string& file) {
 
 MeshEntry parseMeshEntry(const Ctx& ctx, const json& j, const std::string& prefix) {
   requireObject(ctx, j, prefix);
-  warnUnknownKeys(ctx, j, prefix, {"file", "emission"});
+  warnUnknownKeys(ctx, j, prefix, {"file", "emission", "two_sided_emission"});
   MeshEntry m;
   m.where = prefix + ".file";
   const json& file = requireKey(ctx, j, prefix, "file");
@@ -231,6 +309,10 @@ MeshEntry parseMeshEntry(const Ctx& ctx, const json& j, const std::string& prefi
   if (const json* e = optionalKey(j, "emission")) {
     m.hasEmission = true;
     m.emission = getColor(ctx, *e, prefix + ".emission");
+  }
+  if (const json* t = optionalKey(j, "two_sided_emission")) {
+    if (!t->is_boolean()) fail(ctx, prefix + ".two_sided_emission", std::string("expected true or false, got ") + t->dump());
+    m.twoSided = t->get<bool>();
   }
   return m;
 }
@@ -249,15 +331,17 @@ std::vector<MeshEntry> parseMeshes(const Ctx& ctx, const json& root) {
   return meshes;
 }
 
-// Gives triangles [firstTri, end) emissive copies of their materials (Kd kept, Ke = emission).
-void applyEmission(Scene& scene, std::size_t firstTri, const glm::vec3& emission) {
+// Gives triangles [firstTri, end) copies of their materials with the mesh's overrides (Kd kept;
+// Ke = emission when given; two-sided emission when asked).
+void applyMeshOverrides(Scene& scene, std::size_t firstTri, const MeshEntry& mesh) {
   std::vector<std::int64_t> copyOf(scene.materials.size(), -1);
   for (std::size_t t = firstTri; t < scene.triangles.size(); ++t) {
     std::uint32_t& m = scene.triangles[t].material;
     if (copyOf[m] < 0) {
       MaterialDesc d = scene.materials[m];
       d.name += " (emission override)";
-      d.emission = emission;
+      if (mesh.hasEmission) d.emission = mesh.emission;
+      d.twoSidedEmission = mesh.twoSided;
       copyOf[m] = static_cast<std::int64_t>(scene.materials.size());
       scene.materials.push_back(d);
     }
@@ -269,7 +353,7 @@ void loadMeshes(const std::vector<MeshEntry>& meshes, Scene& scene, std::vector<
   for (const MeshEntry& m : meshes) {
     std::size_t firstTri = scene.triangles.size();
     loadObjInto(m.path, scene, &warnings);
-    if (m.hasEmission) applyEmission(scene, firstTri, m.emission);
+    if (m.hasEmission || m.twoSided) applyMeshOverrides(scene, firstTri, m);
   }
 }
 

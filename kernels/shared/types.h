@@ -50,7 +50,7 @@ typedef struct MCL_ALIGN16 {
 
 typedef struct MCL_ALIGN16 {
   float4 albedo;    // rgb: Kd; w unused
-  float4 emission;  // rgb: Ke; w unused
+  float4 emission;  // rgb: Ke; w: 1 when both faces emit ("two_sided_emission"), else 0 (front only)
 } Material;
 
 // A ray: origin.w unused (0), dir.w = tmax.

@@ -37,7 +37,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
     float dist2 = dot(toLight, toLight);
     float dist = sqrt(dist2);
     float3 wi = toLight / dist;
-    float cosLight = -dot(triangle_unit_normal(xyz(lt->e1), xyz(lt->e2)), wi);
+    float cosLight = emitter_cosine(lt, materials, wi);
     float cosSurf = dot(n, wi);
     if (!(cosLight > 0.0f && cosSurf > 0.0f && dist > 0.0f)) continue;
     float pick = emitter_pick_probability(em->area, le, f->emitterPower);

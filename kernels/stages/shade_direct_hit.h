@@ -21,7 +21,7 @@ MCL_INLINE void stage_shade_direct_hit(const shade_direct_hit_args* a, uint i) {
   float weight = 1.0f;
   if (f->directSampling == MCL_DIRECT_MIS && f->emitterCount > 0) {
     float area = triangle_area(lt);
-    float cosLight = -dot(triangle_unit_normal(xyz(lt->e1), xyz(lt->e2)), wi);
+    float cosLight = emitter_cosine(lt, materials, wi);
     float pick = emitter_pick_probability(area, xyz(materials[triangle_material(lt)].emission), f->emitterPower);
     float pdfLight = area_to_solid_angle(pick / area, bh.t * bh.t, cosLight);
     weight = power_heuristic(1.0f, pdf_cosine_hemisphere(dot(n, wi)), (float)f->lightSamples, pdfLight);

@@ -34,11 +34,19 @@ MCL_INLINE float3 hit_position(MCL_GLOBAL const Triangle* tri, Hit h) {
 }
 
 // Le leaving tri toward the viewer moving along dir (0 from the back face): emitters emit Ke from
-// their front face (the side of cross(e1, e2)).
+// their front face (the side of cross(e1, e2)), or from both faces when emission.w is set.
 MCL_INLINE float3 emitted_toward(MCL_GLOBAL const Triangle* tri, MCL_GLOBAL const Material* materials,
                                  float3 dir) {
-  float3 e = xyz(materials[triangle_material(tri)].emission);
-  return dot(cross(xyz(tri->e1), xyz(tri->e2)), dir) < 0.0f ? e : make_float3(0.0f, 0.0f, 0.0f);
+  float4 e = materials[triangle_material(tri)].emission;
+  bool front = dot(scaled_cross(xyz(tri->e1), xyz(tri->e2)), dir) < 0.0f;  // any scale
+  return front || e.w != 0.0f ? xyz(e) : make_float3(0.0f, 0.0f, 0.0f);
+}
+
+// Cosine at the emitter for a direction wi from the shading point toward it: positive when wi
+// reaches the emitting side (either side for a two-sided emitter).
+MCL_INLINE float emitter_cosine(MCL_GLOBAL const Triangle* lt, MCL_GLOBAL const Material* materials, float3 wi) {
+  float c = -dot(triangle_unit_normal(xyz(lt->e1), xyz(lt->e2)), wi);
+  return materials[triangle_material(lt)].emission.w != 0.0f ? fabs(c) : c;
 }
 
 // The start of every shade stage: clears item i's shadow slots (a strategy leaves the slots it does
