@@ -9,6 +9,7 @@
 #include "cli/commands.h"
 #include "image/exr_layers.h"
 #include "image/image_io.h"
+#include "util/atomic_file.h"
 #include "util/errors.h"
 
 namespace montecl {
@@ -25,6 +26,7 @@ int runMerge(const MergeArgs& a) {
   std::string ext = std::filesystem::path(a.output).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   if (ext != ".exr") throwInputError(a.output, "", "merge writes OpenEXR only (use .exr)");
+  checkWritableTarget(a.output);
   std::vector<LayeredImage> images;
   for (const std::string& path : a.inputs) images.push_back(readLayeredImage(path));
   LayeredImage merged = mergeLayeredImages(images, a.inputs);
