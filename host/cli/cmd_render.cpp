@@ -9,16 +9,19 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <sstream>
 
 #include "bvh/bvh.h"
 #include "cl/devices.h"
 #include "cli/commands.h"
 #include "image/exr_layers.h"
 #include "image/image_io.h"
+#include "image/provenance.h"
 #include "render/progress.h"
 #include "render/stage_program.h"
 #include "render/wavefront.h"
 #include "scene/scene.h"
+#include "scene/scene_digest.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
@@ -149,6 +152,25 @@ LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs
   return img;
 }
 
+// What `montecl merge` checks before combining this render with others (image/provenance.h).
+Provenance provenanceOf(const RenderArgs& a, const Scene& scene) {
+  Provenance p;
+  p.version = MONTECL_VERSION;
+  p.scene = sceneDigest(scene);
+  p.settings = integratorSettings(scene.render);
+  const bool adaptive = a.targetError > 0.0;
+  if (adaptive) {
+    std::ostringstream s;
+    s << "target_error=" << a.targetError << " min_spp=" << a.minSpp << " max_spp=" << a.maxSpp;
+    p.adaptive = s.str();
+  } else {
+    p.adaptive = "off";
+  }
+  const std::uint64_t count = adaptive ? std::uint64_t(a.maxSpp) : std::uint64_t(scene.render.spp);
+  p.samples = {{scene.render.seed, a.firstSample, std::uint64_t(a.firstSample) + count}};
+  return p;
+}
+
 bool hasEmitter(const Scene& scene) {
   for (const MaterialDesc& m : scene.materials)
     if (m.emission.x > 0.0f || m.emission.y > 0.0f || m.emission.z > 0.0f) return true;
@@ -214,6 +236,7 @@ int runRender(const RenderArgs& a) {
   LayeredImage img;
   if (isExr(output)) {
     img = renderLayers(film, a.aovs);
+    setProvenance(img, provenanceOf(a, scene));
   } else {
     img.width = film.width;
     img.height = film.height;
