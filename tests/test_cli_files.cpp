@@ -32,8 +32,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Starts montecl with args (stdout and stderr to /dev/null); returns its PID.
-pid_t spawnMontecl(const std::vector<std::string>& args) {
+// Starts montecl with args (stdout to /dev/null, stderr to errFile or /dev/null); returns its PID.
+pid_t spawnMontecl(const std::vector<std::string>& args, const std::string& errFile = "/dev/null") {
   std::vector<std::string> all = {MONTECL_EXE};
   all.insert(all.end(), args.begin(), args.end());
   std::vector<char*> argv;
@@ -42,7 +42,7 @@ pid_t spawnMontecl(const std::vector<std::string>& args) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   pid_t pid = 0;
   int rc = posix_spawn(&pid, MONTECL_EXE, &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
@@ -102,9 +102,14 @@ bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size
 }  // namespace
 
 TEST_CASE("cli: SIGTERM finishes the wave, writes the image so far, exits 143" * doctest::test_suite("cli slow")) {
-  TempDir dir;
-  pid_t pid = spawnMontecl(longRender(dir.file("t.exr")));
-  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+  TempDir dir, log;
+  std::vector<std::string> args = longRender(dir.file("t.exr"));
+  args.push_back("-v");
+  pid_t pid = spawnMontecl(args, log.file("err.txt"));
+  // The waves have begun once -v has printed the wave size (kernels built, handler installed).
+  for (int i = 0; i < 1200 && readAll(log.file("err.txt")).find("montecl: wave of") == std::string::npos; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
   kill(pid, SIGTERM);
   CHECK(waitFor(pid) == 143);
   checkPartialImage(dir.file("t.exr"));
@@ -135,15 +140,16 @@ TEST_CASE("cli: an inherited SIG_IGN for SIGINT stays ignored (background jobs)"
 
 TEST_CASE("cli: a SIGINT while a complete render is being written exits 0 with the full image" * doctest::test_suite("cli slow")) {
   // A big EXR with every AOV takes a while to compress and write; the render itself is short. The
-  // signal is sent as soon as the temporary file appears, i.e. after the last wave.
+  // signal is sent as soon as the temporary file has data, i.e. after the last wave.
   TempDir dir;
   const std::string out = dir.file("w.exr");
   pid_t pid = spawnMontecl({"render", montecl_test::demoScene(), "-o", out, "--width", "1600", "--height", "1200",
                             "--spp", "1", "--aov", "all", "-q"});
   bool sent = false;
   for (int i = 0; i < 60000 && !sent; ++i) {
-    for (const std::string& name : entries(dir.path))
-      if (name.rfind(".w.exr.tmp", 0) == 0) {
+    std::error_code ec;
+    for (const std::string& name : entries(dir.path))  // an empty one may be the writability probe
+      if (name.rfind(".w.exr.tmp", 0) == 0 && fs::file_size(dir.file(name), ec) > 0 && !ec) {
         kill(pid, SIGINT);
         sent = true;
         break;
