@@ -11,6 +11,7 @@
 int main(int argc, char** argv) {
   using namespace montecl;
   CLI::App app{"montecl: Monte Carlo rendering with OpenCL"};
+  app.set_version_flag("--version", MONTECL_VERSION);
   app.require_subcommand(1);
   int exitCode = kExitOk;
   addDevicesCommand(app, exitCode);

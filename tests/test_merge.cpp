@@ -12,6 +12,7 @@
 
 #include "cli_runner.h"
 #include "image/exr_layers.h"
+#include "image/provenance.h"
 #include "image/film.h"
 #include "stats.h"
 #include "util/errors.h"
@@ -193,6 +194,11 @@ TEST_CASE("merge: split sample sets merge to the statistics of the whole set" * 
   }
   SUBCASE("through montecl merge and EXR files") {
     TempDir dir;
+    // Renders of one scene with disjoint samples, as montecl render would label them.
+    montecl::Provenance pa{"0.14.0", "0123456789abcdef", "integrator=ao", "off", {{0, 0, 16}}}, pb = pa;
+    pb.samples = {{0, 16, 32}};
+    montecl::setProvenance(ia, pa);
+    montecl::setProvenance(ib, pb);
     writeLayeredExr(dir.file("a.exr"), ia);
     writeLayeredExr(dir.file("b.exr"), ib);
     CliResult r = runMontecl({"merge", dir.file("a.exr"), dir.file("b.exr"), "-o", dir.file("out.exr")});

@@ -1,14 +1,18 @@
 // cmd_merge.cpp: `montecl merge a.exr b.exr ... -o out.exr`: combines AOV renders of one scene
 // (channels R, G, B, samples, var.R/G/B and optional AOVs; see image/exr_layers.h) weighted by
 // their per-pixel sample counts, with the variances combined exactly, and writes the result
-// atomically. Bad inputs (unreadable, wrong size, missing channels) are InputErrors naming the file.
+// atomically. Inputs must carry a provenance (image/provenance.h) saying they show the same scene
+// with the same settings and disjoint samples (--force skips the check); the output carries the union. Bad inputs (unreadable, wrong size, missing channels) are InputErrors naming the file.
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "cli/commands.h"
 #include "image/exr_layers.h"
 #include "image/image_io.h"
+#include "image/provenance.h"
+#include "util/atomic_file.h"
 #include "util/errors.h"
 
 namespace montecl {
@@ -17,7 +21,7 @@ namespace {
 struct MergeArgs {
   std::vector<std::string> inputs;
   std::string output;
-  bool quiet = false;
+  bool quiet = false, force = false;
 };
 
 int runMerge(const MergeArgs& a) {
@@ -25,9 +29,13 @@ int runMerge(const MergeArgs& a) {
   std::string ext = std::filesystem::path(a.output).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   if (ext != ".exr") throwInputError(a.output, "", "merge writes OpenEXR only (use .exr)");
+  checkWritableTarget(a.output);
   std::vector<LayeredImage> images;
   for (const std::string& path : a.inputs) images.push_back(readLayeredImage(path));
-  LayeredImage merged = mergeLayeredImages(images, a.inputs);
+  LayeredImage merged = mergeLayeredImages(images, a.inputs);  // sizes and channels first
+  std::optional<Provenance> provenance = mergeProvenance(images, a.inputs, a.force);
+  merged.attributes.clear();
+  if (provenance) setProvenance(merged, *provenance);
   writeLayeredExr(a.output, merged);
   if (!a.quiet) {
     const std::vector<float>& n = *merged.find(channel::kSamples);
@@ -48,6 +56,9 @@ void addMergeCommand(CLI::App& app, int& exitCode) {
       ->required();
   cmd->add_option("-o,--output", args->output, "Output .exr")->required();
   cmd->add_flag("-q,--quiet", args->quiet, "No summary line");
+  cmd->add_flag("--force", args->force,
+                "Merge even renders whose provenance (EXR header: scene hash, settings, seed and sample range) "
+                "says they must not be merged, or that have none (older renders)");
   cmd->callback([args, &exitCode]() { exitCode = runMerge(*args); });
 }
 

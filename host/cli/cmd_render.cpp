@@ -1,7 +1,10 @@
 // cmd_render.cpp: `montecl render SCENE`: load the scene, apply command-line overrides, build the
 // BVH, render on the chosen OpenCL device and write the image atomically.
+#include <signal.h>
+
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <csignal>
@@ -9,6 +12,7 @@
 #include <iostream>
 #include <limits>
 #include <optional>
+#include <sstream>
 
 #include "bvh/bvh.h"
 #include "cl/devices.h"
@@ -18,10 +22,13 @@
 #include "image/exr_layers.h"
 #include "image/image_io.h"
 #include "render/emitters.h"
+#include "image/provenance.h"
 #include "render/progress.h"
 #include "render/stage_program.h"
 #include "render/wavefront.h"
 #include "scene/scene.h"
+#include "scene/scene_digest.h"
+#include "util/atomic_file.h"
 #include "util/errors.h"
 
 namespace montecl {
@@ -59,25 +66,73 @@ void applyOverrides(const RenderArgs& a, Scene& scene) {
   if (a.lightSamples) r.lightSamples = *a.lightSamples;
 }
 
-// Set by SIGINT while rendering: the wave loop stops after the current wave and the image so far
-// is written (exit 130). A second SIGINT kills the process as usual.
+// Set by SIGINT or SIGTERM while rendering (to the signal number): the wave loop stops after the
+// current wave and the image so far is written; the exit status is then 128 + signal (130 for
+// SIGINT, 143 for SIGTERM) if the render stopped early, 0 if every wave had already completed. A
+// second signal of the same kind kills the process as usual (during the image write it is deferred
+// until the file is complete: util/atomic_file.h). A signal the parent ignored (SIG_IGN, e.g. a
+// background job of a script) stays ignored.
 volatile int gInterrupted = 0;
 
-void onInterrupt(int) {
-  gInterrupted = 1;
-  std::signal(SIGINT, SIG_DFL);
+void onInterrupt(int sig) {
+  if (!gInterrupted) gInterrupted = sig;
+  std::signal(sig, SIG_DFL);
 }
 
+bool ignored(int sig) {
+  struct sigaction sa {};
+  return sigaction(sig, nullptr, &sa) == 0 && !(sa.sa_flags & SA_SIGINFO) && sa.sa_handler == SIG_IGN;
+}
+
+// The dispositions montecl inherited, read before main(): OpenCL implementations (PoCL's LLVM)
+// install their own SIGINT/SIGTERM handlers when they load, replacing an inherited SIG_IGN.
+const bool kInheritedIgnore[2] = {ignored(SIGINT), ignored(SIGTERM)};
+
 struct InterruptGuard {
-  InterruptGuard() { previous = std::signal(SIGINT, onInterrupt); }
-  ~InterruptGuard() { std::signal(SIGINT, previous); }
-  void (*previous)(int);
+  static constexpr int kSignals[2] = {SIGINT, SIGTERM};
+  InterruptGuard() {
+    for (int i = 0; i < 2; ++i) {
+      installed[i] = false;
+      if (sigaction(kSignals[i], nullptr, &previous[i]) != 0) continue;
+      struct sigaction sa {};
+      sa.sa_handler = kInheritedIgnore[i] ? SIG_IGN : onInterrupt;
+      sigemptyset(&sa.sa_mask);
+      sa.sa_flags = SA_RESTART;
+      installed[i] = sigaction(kSignals[i], &sa, nullptr) == 0;
+    }
+  }
+  ~InterruptGuard() {
+    for (int i = 0; i < 2; ++i)
+      if (installed[i]) sigaction(kSignals[i], &previous[i], nullptr);
+  }
+  struct sigaction previous[2];
+  bool installed[2];
 };
+
+// Refuses an output that is one of the files the render reads (the scene, an OBJ, an MTL).
+void checkOutputIsNoInput(const std::string& output, const Scene& scene) {
+  for (const std::string& in : scene.inputFiles) {
+    std::error_code ec;
+    if (std::filesystem::equivalent(output, in, ec) && !ec)
+      throwInputError(output, "", "the output is an input of the render ('" + in + "'): refusing to overwrite it");
+  }
+}
 
 bool isExr(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   return ext == ".exr";
+}
+
+// The number of pixels with a NaN or infinite value in any plane (values that overflowed a float).
+std::size_t nonFinitePixels(const LayeredImage& img) {
+  std::size_t bad = 0;
+  for (std::size_t p = 0; p < img.pixelCount(); ++p) {
+    bool finite = true;
+    for (const std::vector<float>& plane : img.planes) finite = finite && std::isfinite(plane[p]);
+    bad += !finite;
+  }
+  return bad;
 }
 
 // The EXR layers: R, G, B, samples, var.R/G/B, and the AOVs asked for, averaged over samples:
@@ -148,6 +203,25 @@ std::string defaultOutput(const std::string& scenePath, bool overwrite, std::str
   }
 }
 
+// What `montecl merge` checks before combining this render with others (image/provenance.h).
+Provenance provenanceOf(const RenderArgs& a, const Scene& scene) {
+  Provenance p;
+  p.version = MONTECL_VERSION;
+  p.scene = sceneDigest(scene);
+  p.settings = integratorSettings(scene.render);
+  const bool adaptive = a.targetError > 0.0;
+  if (adaptive) {
+    std::ostringstream s;
+    s << "target_error=" << a.targetError << " min_spp=" << a.minSpp << " max_spp=" << a.maxSpp;
+    p.adaptive = s.str();
+  } else {
+    p.adaptive = "off";
+  }
+  const std::uint64_t count = adaptive ? std::uint64_t(a.maxSpp) : std::uint64_t(scene.render.spp);
+  p.samples = {{scene.render.seed, a.firstSample, std::uint64_t(a.firstSample) + count}};
+  return p;
+}
+
 int runRender(const RenderArgs& a) {
   // Option rules first, before any file is read or kernel built.
   if (a.targetError > 0.0 && a.minSpp > a.maxSpp)
@@ -162,6 +236,8 @@ int runRender(const RenderArgs& a) {
   checkOutputPath(output);
   if (!a.aovs.empty() && !isExr(output))
     throwInputError(output, "--aov", "AOVs need an .exr output");
+  checkOutputIsNoInput(output, scene);
+  checkWritableTarget(output);
   DeviceInfo device = selectDevice(dist::deviceSpec(a.device));
   BvhLayout layout = resolveStageLayout(parseBvhLayout(a.bvhLayout), device);
 
@@ -211,8 +287,28 @@ int runRender(const RenderArgs& a) {
     std::cerr << "montecl: warning: " << stats.nanRays
               << " rays with NaN/inf origin or direction were treated as misses\n";
   if (!job.writesImage()) return kExitOk;
+  const bool interrupted = gInterrupted && stats.stoppedEarly;  // a signal after the last wave changes nothing
+  // The image as written: every EXR plane, or the mean for PNG/PFM; refused if a value overflowed.
+  LayeredImage img;
+  if (isExr(output)) {
+    img = renderLayers(film, a.aovs);
+    setProvenance(img, provenanceOf(a, scene));
+  } else {
+    img.width = film.width;
+    img.height = film.height;
+    std::vector<float> rgb = film.meanRgb();
+    for (int c = 0; c < 3; ++c) {
+      std::vector<float> plane(img.pixelCount());
+      for (std::size_t p = 0; p < plane.size(); ++p) plane[p] = rgb[3 * p + c];
+      img.set(channel::kMean[c], std::move(plane));
+    }
+  }
+  if (std::size_t bad = nonFinitePixels(img))
+    throw RuntimeError(std::to_string(bad) + " of " + std::to_string(img.pixelCount()) +
+                       " pixels hold NaN or infinite values (radiance overflows a float: check emission and camera); " +
+                       output + " was not written");
   if (isExr(output))
-    writeLayeredExr(output, renderLayers(film, a.aovs));
+    writeLayeredExr(output, img);
   else
     writeRgbImage(output, film.width, film.height, film.meanRgb());
   std::cout << "wrote " << output << ": " << summaryLine(film.width, film.height, scene.render.spp, stats) << outputNote
@@ -223,9 +319,10 @@ int runRender(const RenderArgs& a) {
               << a.targetError << ", " << stats.samples << " samples (" << double(stats.samples) / pixels
               << " per pixel) in " << stats.rounds << " rounds\n";
   if (stats.stoppedEarly)
-    std::cout << (gInterrupted ? "interrupted" : "time limit reached") << ": " << stats.samples
+    std::cout << (interrupted ? "interrupted" : "time limit reached") << ": " << stats.samples
               << " pixel samples done; the image holds each pixel's own sample count\n";
-  return gInterrupted ? kExitInterrupted : kExitOk;
+  if (!interrupted) return kExitOk;
+  return gInterrupted == SIGTERM ? kExitTerminated : kExitInterrupted;
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // layout of montecl's renders; and the per-pixel merge of several renders of one scene weighted
 // by their sample counts (exact parallel-variance combination).
 #pragma once
+#include <map>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,9 @@ struct LayeredImage {
   int width = 0, height = 0;
   std::vector<std::string> channels;
   std::vector<std::vector<float>> planes;  // planes[c] belongs to channels[c]
+  // String header attributes written with the image and read back (only names starting with
+  // "montecl:" are read): the render's provenance (image/provenance.h).
+  std::map<std::string, std::string> attributes;
 
   std::size_t pixelCount() const { return std::size_t(width) * std::size_t(height); }
   // The plane named name, or nullptr.

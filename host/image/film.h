@@ -24,10 +24,13 @@ struct Film {
   double meanOf(std::size_t p, int c) const { return double(mean[p][c]) + double(meanLo[p][c]); }
   // M2 of channel c in double (hi + lo).
   double m2Of(std::size_t p, int c) const { return double(m2[p][c]) + double(m2Lo[p][c]); }
-  // Unbiased variance of one sample of channel c (0 below two samples).
+  // Unbiased variance of one sample of channel c (0 below two samples). Rounding can leave M2 a
+  // hair below 0 (clamped); a NaN or infinite M2 (an overflowed sample) stays NaN or infinite.
   double variance(std::size_t p, int c) const {
     const double n = double(count[p]);
-    return n > 1.0 ? std::max(0.0, m2Of(p, c) / (n - 1.0)) : 0.0;
+    if (!(n > 1.0)) return 0.0;
+    const double v = m2Of(p, c) / (n - 1.0);
+    return v < 0.0 ? 0.0 : v;
   }
 
   // Mean radiance per pixel, interleaved RGB (0 where a pixel has no samples).

@@ -35,6 +35,7 @@ int writeImage(const char* path, const montecl::LayeredImage& image, char* err, 
   for (std::size_t c = 0; c < nch; ++c)
     if (image.channels[c] == "Z") spec.z_channel = int(c);
   spec.attribute("compression", "zip");
+  for (const auto& [name, value] : image.attributes) spec.attribute(name, value);
   auto out = ImageOutput::create(path);
   if (!out) return fail(err, errSize, OIIO::geterror());
   if (!out->open(path, spec) || !out->write_image(TypeDesc::FLOAT, pixels.data()) || !out->close())
@@ -55,6 +56,10 @@ int readImage(const char* path, montecl::LayeredImage& image, char* err, std::si
   in->close();
   image.channels.clear();
   image.planes.clear();
+  image.attributes.clear();
+  for (const ParamValue& p : spec.extra_attribs)
+    if (p.type() == TypeDesc::STRING && p.name().string().rfind("montecl:", 0) == 0)
+      image.attributes[p.name().string()] = p.get_string();
   for (std::size_t c = 0; c < nch; ++c) {
     std::vector<float> plane(count);
     for (std::size_t p = 0; p < count; ++p) plane[p] = pixels[p * nch + c];

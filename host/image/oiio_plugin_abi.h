@@ -13,10 +13,12 @@ struct LayeredImage;
 
 extern "C" {
 // Writes every plane of image as a 32-bit float channel (zip-compressed for EXR) to path, whose
-// extension picks the format. A channel named "Z" is marked as the depth channel.
+// extension picks the format. A channel named "Z" is marked as the depth channel. Every entry of
+// image->attributes is written as a string header attribute of that name.
 typedef int (*MonteclOiioWriteFn)(const char* path, const montecl::LayeredImage* image, char* err,
                                   std::size_t errSize);
-// Reads every channel of path as float planes, channel names as stored.
+// Reads every channel of path as float planes, channel names as stored, and every string header
+// attribute whose name starts with "montecl:" into image->attributes.
 typedef int (*MonteclOiioReadFn)(const char* path, montecl::LayeredImage* image, char* err,
                                  std::size_t errSize);
 }

@@ -240,10 +240,11 @@ class MtlReader : public tinyobj::MaterialReader {
       missing.push_back(path);
       return false;
     }
+    found.push_back(path);
     tinyobj::LoadMtl(matMap, materials, &in, warn, err);
     return true;
   }
-  std::vector<std::string> missing;
+  std::vector<std::string> missing, found;
   std::string notRegular;  // "<path>': <why>" of the first mtllib that exists but is not a regular file
 
  private:
@@ -259,6 +260,7 @@ struct ObjData {
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
+  std::vector<std::string> mtlFiles;  // the MTL files read
 };
 
 std::string folderOf(const std::string& path) {
@@ -293,6 +295,7 @@ ObjData parseWithTinyObj(const std::string& file, std::string& text, std::vector
   if (!mtl.notRegular.empty())
     fail(file, "mtllib", "cannot open '" + mtl.notRegular);
   if (!ok) fail(file, "", "cannot parse OBJ: " + err.substr(0, err.find('\n')));
+  data.mtlFiles = mtl.found;
   if (warnings) {
     for (const std::string& m : mtl.missing)
       warnings->push_back(oneLine(file) + ": material file '" + oneLine(m) + "' not found, using default material");
@@ -413,6 +416,8 @@ void loadObjInto(const std::string& objPath, Scene& scene, std::vector<std::stri
                              ? " (" + std::to_string(scan.unknownStatements - 1) + " more unknown statements)"
                              : std::string()));
   ObjData data = parseWithTinyObj(objPath, text, warnings);
+  scene.inputFiles.push_back(objPath);
+  scene.inputFiles.insert(scene.inputFiles.end(), data.mtlFiles.begin(), data.mtlFiles.end());
   std::size_t trianglesBefore = scene.triangles.size();
   std::size_t droppedBefore = scene.degenerateDropped;
   std::uint32_t materialBase = appendMaterials(objPath, data.materials, scene);

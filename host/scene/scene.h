@@ -48,6 +48,7 @@ struct SceneTriangle {
 
 struct Scene {
   std::string path;  // the file it was loaded from
+  std::vector<std::string> inputFiles;  // every file read: the scene file, OBJs, MTLs (as opened)
   Camera camera;
   RenderSettings render;
   std::vector<MaterialDesc> materials;

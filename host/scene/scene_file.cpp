@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -363,6 +364,29 @@ bool hasObjExtension(const std::string& path) {
   return ext == ".obj";
 }
 
+// Light selection weighs each emitting triangle by area * luminance(Le) in float, and the renderer
+// sums those weights in float: an emission whose weight (or whose sum) overflows gives NaN and
+// infinite pixels, so it is refused here, naming the material.
+void checkEmissionPower(const Scene& scene) {
+  float total = 0.0f;
+  for (const SceneTriangle& t : scene.triangles) {
+    const MaterialDesc& m = scene.materials[t.material];
+    const glm::vec3& le = m.emission;
+    if (le == glm::vec3(0.0f)) continue;
+    const float lum = 0.2126f * le.x + 0.7152f * le.y + 0.0722f * le.z;
+    const float area = 0.5f * glm::length(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]));
+    const float power = lum * area;
+    total += power;
+    if (!std::isfinite(lum) || !std::isfinite(power) || !std::isfinite(total))
+    {
+      char value[96];
+      std::snprintf(value, sizeof value, "%g, %g, %g", double(le.x), double(le.y), double(le.z));
+      throwInputError(scene.path, "material '" + m.name + "'",
+                      std::string("emission [") + value + "] too large: luminance x triangle area overflows a float");
+    }
+  }
+}
+
 Scene loadBareObj(const std::string& path, std::vector<std::string>& warnings) {
   Scene scene;
   scene.path = path;
@@ -373,6 +397,7 @@ Scene loadBareObj(const std::string& path, std::vector<std::string>& warnings) {
     throwInputError(oneLine(path), "automatic camera",
                     "cannot frame the model: " + p.key + " " + p.problem +
                         "; write a scene file with a camera for it");
+  checkEmissionPower(scene);
   return scene;
 }
 
@@ -386,9 +411,11 @@ Scene loadScene(const std::string& path, std::vector<std::string>& warnings) {
   warnUnknownKeys(ctx, root, "", {"camera", "meshes", "render"});
   Scene scene;
   scene.path = path;
+  scene.inputFiles.push_back(path);
   scene.camera = parseCamera(ctx, root);
   scene.render = parseRender(ctx, root);
   loadMeshes(parseMeshes(ctx, root), scene, warnings);
+  checkEmissionPower(scene);
   return scene;
 }
 

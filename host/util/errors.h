@@ -8,7 +8,8 @@ namespace montecl {
 constexpr int kExitOk = 0;
 constexpr int kExitRuntime = 1;
 constexpr int kExitBadInput = 2;
-constexpr int kExitInterrupted = 130;
+constexpr int kExitInterrupted = 130;  // SIGINT stopped a render early (128 + 2)
+constexpr int kExitTerminated = 143;   // SIGTERM stopped a render early (128 + 15)
 
 // Bad input from the user (files, options). what() is one line: "<file>: <key or line N>: <problem>".
 class InputError : public std::runtime_error {

@@ -1,0 +1,60 @@
+// scene_digest.cpp: the scene content hash and the integrator settings string of a render's provenance.
+#include "scene/scene_digest.h"
+
+#include <cstdio>
+#include <cstring>
+
+#include "util/hash.h"
+
+namespace montecl {
+namespace {
+
+void append(std::string& bytes, const void* data, std::size_t size) {
+  bytes.append(static_cast<const char*>(data), size);
+}
+
+void appendVec(std::string& bytes, const glm::vec3& v) {
+  const float f[3] = {v.x, v.y, v.z};
+  append(bytes, f, sizeof f);
+}
+
+std::string num(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+}  // namespace
+
+std::string sceneDigest(const Scene& scene) {
+  std::string bytes;
+  bytes.reserve(scene.triangles.size() * 40 + scene.materials.size() * 24 + 64);
+  for (const SceneTriangle& t : scene.triangles) {
+    for (const glm::vec3& v : t.v) appendVec(bytes, v);
+    append(bytes, &t.material, sizeof t.material);
+  }
+  bytes += "materials";
+  for (const MaterialDesc& m : scene.materials) {
+    appendVec(bytes, m.albedo);
+    appendVec(bytes, m.emission);
+  }
+  bytes += "camera";
+  appendVec(bytes, scene.camera.position);
+  appendVec(bytes, scene.camera.target);
+  appendVec(bytes, scene.camera.up);
+  append(bytes, &scene.camera.fovY, sizeof scene.camera.fovY);
+  return hex64(fnv1a64(bytes));
+}
+
+std::string integratorSettings(const RenderSettings& r) {
+  std::string s;
+  if (r.integrator == Integrator::Direct) {
+    s = "integrator=direct direct_sampling=" + choiceName(r.directSampling) +
+        " light_samples=" + std::to_string(r.lightSamples);
+  } else {
+    s = "integrator=ao ao_sampling=" + choiceName(r.aoSampling) + " ao_distance=" + num(r.aoDistance);
+  }
+  return s + " background=" + num(r.background.x) + "," + num(r.background.y) + "," + num(r.background.z);
+}
+
+}  // namespace montecl
