@@ -9,9 +9,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <vector>
 
+#include "cl/cache_entry.h"
 #include "cl/cl_errors.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
@@ -22,9 +22,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Cache file: 8-byte magic, 8-byte second hash of the key (a collision guard for the 64-bit file
-// name), then the program binary as returned by CL_PROGRAM_BINARIES.
-constexpr char kMagic[8] = {'M', 'C', 'L', 'P', 'R', 'G', '0', '1'};
+// Cache file format: cl/cache_entry.h.
 constexpr std::uint64_t kCheckSeed = 0x84222325cbf29ce4ull;
 
 std::string envOr(const char* name) {
@@ -59,28 +57,12 @@ std::vector<unsigned char> programBinary(const cl::Program& program, cl_device_i
   return {};
 }
 
-bool readCacheFile(const std::string& path, std::uint64_t check, std::vector<unsigned char>& bin) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) return false;
-  std::vector<unsigned char> data((std::istreambuf_iterator<char>(f)),
-                                  std::istreambuf_iterator<char>());
-  if (data.size() <= 16 || std::memcmp(data.data(), kMagic, 8) != 0) return false;
-  std::uint64_t stored = 0;
-  for (int i = 0; i < 8; ++i) stored |= std::uint64_t(data[8 + i]) << (8 * i);
-  if (stored != check) return false;
-  bin.assign(data.begin() + 16, data.end());
-  return true;
-}
-
 void writeCacheFile(const std::string& path, std::uint64_t check,
                     const std::vector<unsigned char>& bin) {
+  const std::vector<unsigned char> data = encodeCacheEntry(check, bin);
   writeAtomically(path, [&](const std::string& tmp) {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    unsigned char header[16];
-    std::memcpy(header, kMagic, 8);
-    for (int i = 0; i < 8; ++i) header[8 + i] = static_cast<unsigned char>(check >> (8 * i));
-    f.write(reinterpret_cast<const char*>(header), sizeof header);
-    f.write(reinterpret_cast<const char*>(bin.data()), static_cast<std::streamsize>(bin.size()));
+    f.write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size()));
     f.close();
     if (!f) throw RuntimeError(tmp + ": write failed");
   });
@@ -154,7 +136,7 @@ ProgramBuild buildProgramCached(const cl::Context& context, const DeviceInfo& de
 
   if (!cachePath.empty()) {
     std::vector<unsigned char> bin;
-    if (readCacheFile(cachePath, check, bin)) {
+    if (readCacheEntryFile(cachePath, check, bin)) {
       cl::Program program = fromBinary(context, dev, bin, options);
       if (program() != nullptr) {
         result.program = program;
