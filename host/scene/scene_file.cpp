@@ -76,6 +76,12 @@ json parseJson(const Ctx& ctx, const std::string& text) {
     std::size_t colon = at == std::string::npos ? at : what.find(": ", at);
     if (colon == std::string::npos) fail(ctx, "byte " + std::to_string(e.byte), "malformed JSON: " + what);
     fail(ctx, what.substr(at + 4, colon - at - 4), "malformed JSON: " + what.substr(colon + 2));
+  } catch (const json::exception& e) {
+    // Not a syntax error but a value the parser cannot hold (e.g. 406: number overflow parsing
+    // '1e400'): still bad input, never an exception of another type.
+    std::string what = e.what();
+    std::size_t close = what.find("] ");
+    fail(ctx, "", "malformed JSON: " + (close == std::string::npos ? what : what.substr(close + 2)));
   }
 }
 
