@@ -12,10 +12,10 @@ constexpr std::size_t kHeader = 16;
 }  // namespace
 
 std::vector<unsigned char> encodeCacheEntry(std::uint64_t check, const std::vector<unsigned char>& bin) {
-  std::vector<unsigned char> data(kHeader);
+  std::vector<unsigned char> data(kHeader + bin.size());
   std::memcpy(data.data(), kMagic, 8);
   for (int i = 0; i < 8; ++i) data[8 + i] = static_cast<unsigned char>(check >> (8 * i));
-  data.insert(data.end(), bin.begin(), bin.end());
+  if (!bin.empty()) std::memcpy(data.data() + kHeader, bin.data(), bin.size());
   return data;
 }
 
