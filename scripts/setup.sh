@@ -12,8 +12,15 @@ packages=(
   openmpi-bin libopenmpi-dev
 )
 
-# Only the plotting scripts need matplotlib: `setup.sh --plots` adds it.
-if [ "${1:-}" = "--plots" ]; then packages+=(python3-matplotlib); fi
+# Only the plotting scripts need matplotlib: `setup.sh --plots` adds it. Only the libFuzzer
+# harnesses (scripts/fuzz.sh, cmake -DMONTECL_FUZZ=ON) need clang and its fuzzer/sanitizer
+# runtimes: `setup.sh --fuzz` adds them (the ASan/UBSan build of the suite uses g++'s libasan).
+for arg in "$@"; do
+  case "$arg" in
+    --plots) packages+=(python3-matplotlib) ;;
+    --fuzz) packages+=(clang-14 libclang-rt-14-dev) ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do

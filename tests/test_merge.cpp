@@ -285,7 +285,11 @@ TEST_CASE("a render split with --first-sample and merged equals the single rende
   CHECK((*a.find("samples"))[0] == 6.0f);
   // The split really rendered different samples: the halves differ from each other.
   const std::vector<float>& ar = *a.find("R");
-  const std::vector<float>& br = *montecl::readLayeredImage(dir.file("b.exr")).find("R");
+  // Keep the image alive: a reference into the temporary readLayeredImage() returns would dangle
+  // (ASan: heap-use-after-free).
+  const montecl::LayeredImage b = montecl::readLayeredImage(dir.file("b.exr"));
+  REQUIRE(b.find("R") != nullptr);
+  const std::vector<float>& br = *b.find("R");
   CHECK(ar != br);
 }
 

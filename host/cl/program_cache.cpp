@@ -13,6 +13,7 @@
 #include <iterator>
 #include <vector>
 
+#include "cl/cache_entry.h"
 #include "cl/cl_errors.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
@@ -23,12 +24,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Cache file: 8-byte magic, 8-byte second hash of the key (a collision guard for the 64-bit file
-// name), 8-byte binary size, 8-byte FNV-1a of the binary, then the program binary as returned by
-// CL_PROGRAM_BINARIES. A truncated or corrupted binary crashed PoCL on load (issue 14), so the size
-// and checksum are verified before the driver sees it; any mismatch rebuilds and overwrites it.
-constexpr char kMagic[8] = {'M', 'C', 'L', 'P', 'R', 'G', '0', '2'};
-constexpr std::size_t kHeader = 32;
+// The entry format (magic, key check, size, checksum, binary) is in cl/cache_entry.h.
 constexpr std::uint64_t kCheckSeed = 0x84222325cbf29ce4ull;
 
 std::string envOr(const char* name) {
@@ -63,30 +59,6 @@ std::vector<unsigned char> programBinary(const cl::Program& program, cl_device_i
   return {};
 }
 
-std::uint64_t readU64(const std::vector<unsigned char>& data, std::size_t at) {
-  std::uint64_t v = 0;
-  for (int i = 0; i < 8; ++i) v |= std::uint64_t(data[at + i]) << (8 * i);
-  return v;
-}
-void putU64(unsigned char* out, std::uint64_t v) {
-  for (int i = 0; i < 8; ++i) out[i] = static_cast<unsigned char>(v >> (8 * i));
-}
-std::uint64_t binaryChecksum(const unsigned char* p, std::size_t n) {
-  return fnv1a64(std::string(reinterpret_cast<const char*>(p), n));
-}
-
-bool readCacheFile(const std::string& path, std::uint64_t check, std::vector<unsigned char>& bin) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) return false;
-  std::vector<unsigned char> data((std::istreambuf_iterator<char>(f)),
-                                  std::istreambuf_iterator<char>());
-  if (data.size() <= kHeader || std::memcmp(data.data(), kMagic, 8) != 0) return false;
-  if (readU64(data, 8) != check || readU64(data, 16) != data.size() - kHeader) return false;
-  if (readU64(data, 24) != binaryChecksum(data.data() + kHeader, data.size() - kHeader)) return false;
-  bin.assign(data.begin() + kHeader, data.end());
-  return true;
-}
-
 // Empty when path is absent or a regular file; else what it is (the cache is then skipped: a
 // folder, a FIFO (which would block the read) or a device such as /dev/zero (endless)).
 std::string notRegularFile(const std::string& path) {
@@ -100,15 +72,10 @@ std::string notRegularFile(const std::string& path) {
 
 void writeCacheFile(const std::string& path, std::uint64_t check,
                     const std::vector<unsigned char>& bin) {
+  const std::vector<unsigned char> entry = encodeCacheEntry(check, bin);
   writeAtomically(path, [&](const std::string& tmp) {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    unsigned char header[kHeader];
-    std::memcpy(header, kMagic, 8);
-    putU64(header + 8, check);
-    putU64(header + 16, bin.size());
-    putU64(header + 24, binaryChecksum(bin.data(), bin.size()));
-    f.write(reinterpret_cast<const char*>(header), sizeof header);
-    f.write(reinterpret_cast<const char*>(bin.data()), static_cast<std::streamsize>(bin.size()));
+    f.write(reinterpret_cast<const char*>(entry.data()), static_cast<std::streamsize>(entry.size()));
     f.close();
     if (!f) throw RuntimeError(tmp + ": write failed");
   });
@@ -188,7 +155,7 @@ ProgramBuild buildProgramCached(const cl::Context& context, const DeviceInfo& de
 
   if (!cachePath.empty()) {
     std::vector<unsigned char> bin;
-    if (readCacheFile(cachePath, check, bin)) {
+    if (readCacheEntryFile(cachePath, check, bin)) {
       cl::Program program = fromBinary(context, dev, bin, options);
       if (program() != nullptr) {
         result.program = program;

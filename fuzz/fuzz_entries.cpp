@@ -1,0 +1,242 @@
+// fuzz_entries.cpp: the loaders' fuzz entry points and their seed inputs (see fuzz_entries.h).
+#include "fuzz_entries.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <regex>
+#include <stdexcept>
+
+#include "cl/cache_entry.h"
+#include "image/exr_layers.h"
+#include "scene/scene.h"
+#include "util/errors.h"
+
+namespace montecl_fuzz {
+namespace fs = std::filesystem;
+
+const char* const kMtlSeparator = "\n#--mtl--\n";
+
+namespace {
+
+std::string readFile(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  if (!in) throw std::runtime_error("fuzz: cannot read " + p.string());
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+void writeFile(const fs::path& p, const char* data, std::size_t size) {
+  std::ofstream out(p, std::ios::binary | std::ios::trunc);
+  out.write(data, static_cast<std::streamsize>(size));
+  out.close();
+  if (!out) throw std::runtime_error("fuzz: cannot write " + p.string());
+}
+
+void writeFile(const fs::path& p, const std::string& s) { writeFile(p, s.data(), s.size()); }
+
+fs::path sourceDir() { return fs::path(MONTECL_SOURCE_DIR); }
+
+struct Sandbox {
+  std::string dir;
+  Sandbox() {
+    const char* tmp = std::getenv("TMPDIR");
+    std::string templ = std::string(tmp && *tmp ? tmp : "/tmp") + "/montecl-fuzz-XXXXXX";
+    if (!mkdtemp(&templ[0])) throw std::runtime_error("fuzz: cannot create a temporary folder");
+    dir = templ;
+    const fs::path good = sourceDir() / "scenes/test/good", demo = sourceDir() / "scenes/demo";
+    for (const char* f : {"quad.obj", "quad.mtl"}) fs::copy_file(good / f, fs::path(dir) / f);
+    for (const char* f : {"demo.obj", "demo.mtl"}) fs::copy_file(demo / f, fs::path(dir) / f);
+  }
+  ~Sandbox() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+};
+
+// Runs f, mapping montecl's own ways of refusing an input to Rejected; anything else propagates.
+template <class F>
+Outcome guarded(F&& f) {
+  try {
+    return f() ? Outcome::Loaded : Outcome::Rejected;
+  } catch (const montecl::InputError&) {
+    return Outcome::Rejected;
+  } catch (const montecl::RuntimeError&) {
+    return Outcome::Rejected;
+  }
+}
+
+std::vector<fs::path> filesNamed(const fs::path& root, const std::string& ext) {
+  std::vector<fs::path> out;
+  for (const auto& e : fs::recursive_directory_iterator(root))
+    if (e.is_regular_file() && e.path().extension() == ext) out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<fs::path> seedRoots() {
+  return {sourceDir() / "scenes/test/good", sourceDir() / "scenes/test/bad", sourceDir() / "scenes/demo"};
+}
+
+std::vector<std::string> sceneSeeds() {
+  std::vector<std::string> seeds;
+  // Mesh references become the sandbox's quad.obj (or demo.obj).
+  const std::regex mesh(R"re("file"\s*:\s*"[^"]*\.obj")re");
+  for (const fs::path& root : seedRoots())
+    for (const fs::path& p : filesNamed(root, ".json")) {
+      std::string text = readFile(p);
+      const bool demo = p.parent_path().filename() == "demo";
+      seeds.push_back(std::regex_replace(text, mesh, demo ? R"("file": "demo.obj")" : R"("file": "quad.obj")"));
+    }
+  return seeds;
+}
+
+std::vector<std::string> objSeeds() {
+  std::vector<std::string> seeds;
+  const std::regex mtllib(R"(mtllib[^\n]*)");
+  for (const fs::path& root : seedRoots())
+    for (const fs::path& p : filesNamed(root, ".obj")) {
+      std::string text = readFile(p), mtl;
+      std::smatch m;
+      if (std::regex_search(text, m, mtllib)) {
+        std::string name = m.str().substr(6);
+        name.erase(0, name.find_first_not_of(" \t"));
+        while (!name.empty() && (name.back() == '\r' || name.back() == ' ')) name.pop_back();
+        std::error_code ec;
+        if (fs::is_regular_file(p.parent_path() / name, ec)) mtl = readFile(p.parent_path() / name);
+        text = std::regex_replace(text, mtllib, "mtllib fuzz.mtl");
+      }
+      seeds.push_back(mtl.empty() ? text : text + kMtlSeparator + mtl);
+    }
+  return seeds;
+}
+
+std::vector<std::string> exrSeeds() {
+  using montecl::LayeredImage;
+  std::vector<std::string> seeds;
+  auto add = [&](int w, int h, const std::vector<std::string>& channels) {
+    LayeredImage img;
+    img.width = w;
+    img.height = h;
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+      std::vector<float> plane(img.pixelCount());
+      for (std::size_t p = 0; p < plane.size(); ++p) plane[p] = channels[c] == "samples" ? 4.0f : 0.1f * float(p + c);
+      img.set(channels[c], plane);
+    }
+    const fs::path p = fs::path(sandboxDir()) / "seed.exr";
+    montecl::writeLayeredExr(p.string(), img);
+    seeds.push_back(readFile(p));
+    fs::remove(p);
+  };
+  add(4, 3, {"R", "G", "B", "samples", "var.R", "var.G", "var.B"});
+  add(2, 2, {"R", "G", "B", "samples", "var.R", "var.G", "var.B", "albedo.R", "albedo.G", "albedo.B", "Z"});
+  add(3, 1, {"R", "G", "B"});
+  add(1, 1, {"R", "G", "B", "samples"});
+  return seeds;
+}
+
+std::vector<std::string> cacheSeeds() {
+  std::vector<std::string> seeds;
+  auto add = [&](std::uint64_t check, const std::string& bin) {
+    std::vector<unsigned char> b(bin.begin(), bin.end());
+    std::vector<unsigned char> e = montecl::encodeCacheEntry(check, b);
+    seeds.emplace_back(e.begin(), e.end());
+  };
+  add(kFuzzCacheCheck, std::string("\x7f" "ELF\x02\x01\x01\0\0\0\0\0\0\0\0\0", 16) + "program binary");
+  add(kFuzzCacheCheck, "x");
+  add(kFuzzCacheCheck ^ 1, "a binary under another key");
+  seeds.push_back("MCLPRG01");
+  seeds.push_back("");
+  return seeds;
+}
+
+}  // namespace
+
+const char* loaderName(Loader l) {
+  switch (l) {
+    case Loader::Scene: return "scene";
+    case Loader::Obj: return "obj";
+    case Loader::Exr: return "exr";
+    case Loader::Cache: return "cache";
+  }
+  return "?";
+}
+
+const std::string& sandboxDir() {
+  static Sandbox sandbox;
+  return sandbox.dir;
+}
+
+Outcome fuzzScene(const std::uint8_t* data, std::size_t size) {
+  const fs::path p = fs::path(sandboxDir()) / "scene.json";
+  writeFile(p, reinterpret_cast<const char*>(data), size);
+  return guarded([&] {
+    std::vector<std::string> warnings;
+    montecl::loadScene(p.string(), warnings);
+    return true;
+  });
+}
+
+Outcome fuzzObj(const std::uint8_t* data, std::size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  const std::size_t sep = text.find(kMtlSeparator);
+  const fs::path obj = fs::path(sandboxDir()) / "fuzz.obj", mtl = fs::path(sandboxDir()) / "fuzz.mtl";
+  std::error_code ec;
+  fs::remove(mtl, ec);
+  if (sep == std::string::npos) {
+    writeFile(obj, text);
+  } else {
+    writeFile(obj, text.substr(0, sep));
+    writeFile(mtl, text.substr(sep + std::char_traits<char>::length(kMtlSeparator)));
+  }
+  return guarded([&] {
+    montecl::Scene scene;
+    std::vector<std::string> warnings;
+    montecl::loadObjInto(obj.string(), scene, &warnings);
+    return true;
+  });
+}
+
+Outcome fuzzExr(const std::uint8_t* data, std::size_t size) {
+  const fs::path p = fs::path(sandboxDir()) / "in.exr";
+  writeFile(p, reinterpret_cast<const char*>(data), size);
+  return guarded([&] {
+    montecl::LayeredImage img = montecl::readLayeredImage(p.string());
+    montecl::mergeLayeredImages({img, img}, {"a.exr", "b.exr"});
+    return true;
+  });
+}
+
+Outcome fuzzCache(const std::uint8_t* data, std::size_t size) {
+  const fs::path p = fs::path(sandboxDir()) / "entry.bin";
+  writeFile(p, reinterpret_cast<const char*>(data), size);
+  return guarded([&] {
+    std::vector<unsigned char> bin;
+    return montecl::readCacheEntryFile(p.string(), kFuzzCacheCheck, bin);
+  });
+}
+
+Outcome runEntry(Loader l, const std::uint8_t* data, std::size_t size) {
+  switch (l) {
+    case Loader::Scene: return fuzzScene(data, size);
+    case Loader::Obj: return fuzzObj(data, size);
+    case Loader::Exr: return fuzzExr(data, size);
+    case Loader::Cache: return fuzzCache(data, size);
+  }
+  throw std::logic_error("unknown loader");
+}
+
+std::vector<std::string> seedInputs(Loader l) {
+  switch (l) {
+    case Loader::Scene: return sceneSeeds();
+    case Loader::Obj: return objSeeds();
+    case Loader::Exr: return exrSeeds();
+    case Loader::Cache: return cacheSeeds();
+  }
+  return {};
+}
+
+}  // namespace montecl_fuzz

@@ -1,0 +1,52 @@
+// fuzz_entries.h: one fuzz entry point per input loader of montecl, shared by the libFuzzer
+// harnesses (fuzz/fuzz_*.cpp, cmake -DMONTECL_FUZZ=ON) and the seeded mutation loop of the test
+// suite (tests/test_fuzz.cpp).
+//
+// Each entry takes the bytes of one input, writes them to files in a private temporary folder as
+// the loader needs, and runs the loader. It returns Loaded, or Rejected when the loader refused
+// the input the way montecl reports bad input (InputError, RuntimeError, or a cache entry that
+// does not verify). Any other exception propagates: to the caller that is a finding, as is a
+// crash, a sanitizer report or a hang.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace montecl_fuzz {
+
+enum class Outcome { Loaded, Rejected };
+
+enum class Loader { Scene, Obj, Exr, Cache };
+constexpr Loader kLoaders[] = {Loader::Scene, Loader::Obj, Loader::Exr, Loader::Cache};
+const char* loaderName(Loader l);  // "scene", "obj", "exr", "cache"
+
+// Scene JSON: the bytes are <sandbox>/scene.json, loaded by loadScene(). The sandbox folder also
+// holds quad.obj/quad.mtl (scenes/test/good) and demo.obj/demo.mtl (scenes/demo), so that mesh
+// references of the seeds resolve.
+Outcome fuzzScene(const std::uint8_t* data, std::size_t size);
+
+// OBJ + MTL: the bytes up to the first line "#--mtl--" are <sandbox>/fuzz.obj, the rest (if any)
+// <sandbox>/fuzz.mtl (the seeds say `mtllib fuzz.mtl`); loaded by loadObjInto().
+Outcome fuzzObj(const std::uint8_t* data, std::size_t size);
+extern const char* const kMtlSeparator;  // "\n#--mtl--\n"
+
+// EXR input of `montecl merge`: the bytes are <sandbox>/in.exr, read by readLayeredImage() (the
+// OpenImageIO module) and, when that succeeds, merged with itself by mergeLayeredImages().
+Outcome fuzzExr(const std::uint8_t* data, std::size_t size);
+
+// Program-cache entry: the bytes are <sandbox>/entry.bin, read and verified by
+// readCacheEntryFile() against kFuzzCacheCheck.
+Outcome fuzzCache(const std::uint8_t* data, std::size_t size);
+constexpr std::uint64_t kFuzzCacheCheck = 0x0123456789abcdefull;
+
+Outcome runEntry(Loader l, const std::uint8_t* data, std::size_t size);
+
+// Seed inputs of a loader, from the source tree (scenes/test/good, scenes/test/bad, scenes/demo);
+// the EXR seeds are written here through the OpenImageIO module (small AOV images).
+std::vector<std::string> seedInputs(Loader l);
+
+// The private temporary folder of this process (created on first use, removed at exit).
+const std::string& sandboxDir();
+
+}  // namespace montecl_fuzz
