@@ -50,6 +50,20 @@ TEST_CASE("cli: integer options out of range say 'must be a positive integer'" *
     }
 }
 
+TEST_CASE("cli: choice options take their names only, not the enum's numbers" * doctest::test_suite("cli")) {
+  const std::string scene = MONTECL_SOURCE_DIR "/scenes/demo/scene.json";
+  TempDir dir;
+  for (const char* option : {"--integrator", "--ao-sampling", "--direct-sampling"})
+    for (const char* value : {"0", "1", "Direct", "pathtrace"}) {
+      CliResult r = runMontecl({"render", scene, option, value, "--width", "8", "--height", "8", "--spp", "1",
+                                "-q", "-o", dir.file("x.png")});
+      CAPTURE(option);
+      CAPTURE(value);
+      CHECK(r.exitCode == 2);
+      CHECK(r.err.find(option) != std::string::npos);
+    }
+}
+
 TEST_CASE("cli: float options refuse zero, NaN and infinity: 'must be a positive number'" * doctest::test_suite("cli")) {
   for (const char* opt : {"--ao-distance", "--target-error", "--time"})
     for (const char* value : {"0", "-1", "nan", "NaN", "inf", "-inf", "1e999"}) {

@@ -340,15 +340,12 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--seed", args->seed, "Random seed");
   cmd->add_option("--width", args->width, "Image width in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
   cmd->add_option("--height", args->height, "Image height in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
-  cmd->add_option("--integrator", args->integrator, "ao (ambient occlusion) | direct (area lights)")
-      ->transform(CLI::CheckedTransformer(integratorNames()));
-  cmd->add_option("--direct-sampling", args->directSampling,
-                  "Direct lighting: " + choiceList(directSamplingNames(), false))
-      ->transform(CLI::CheckedTransformer(directSamplingNames()));
+  addChoiceOption(cmd, "--integrator", args->integrator, integratorNames(),
+                  "ao (ambient occlusion) or direct (area lights)");
+  addChoiceOption(cmd, "--direct-sampling", args->directSampling, directSamplingNames(), "Direct lighting");
   cmd->add_option("--light-samples", args->lightSamples, "Light samples per camera sample (direct; up to 1024)")
       ->check(positiveInteger(kMaxLightSamples));
-  cmd->add_option("--ao-sampling", args->aoSampling, "AO directions: " + choiceList(aoSamplingNames(), false))
-      ->transform(CLI::CheckedTransformer(aoSamplingNames()));
+  addChoiceOption(cmd, "--ao-sampling", args->aoSampling, aoSamplingNames(), "AO directions");
   cmd->add_option("--ao-distance", args->aoDistance, "Occluders farther than this are ignored")
       ->check(positiveNumber(std::numeric_limits<float>::max()));
   cmd->add_option("--device", args->device, "OpenCL device: P:D, part of the device or platform name, or host (CPU, no OpenCL)");

@@ -9,7 +9,11 @@
 #include <cstdlib>
 #include <limits>
 #include <sstream>
+#include <optional>
 #include <string>
+#include <vector>
+
+#include "scene/render_choices.h"
 
 namespace montecl {
 
@@ -48,6 +52,21 @@ inline CLI::Validator positiveNumber(double hi = std::numeric_limits<double>::ma
         return number && v > 0.0 ? std::string() : "must be a positive number, got '" + text + "'";
       },
       "a positive number");
+}
+
+// An option whose value is one of a choice's names (scene/render_choices.h), stored as the enum:
+// only the names are accepted (not the enum's numbers), and help and errors list them.
+template <class E>
+CLI::Option* addChoiceOption(CLI::App* cmd, const std::string& name, std::optional<E>& target,
+                             const ChoiceNames<E>& names, const std::string& help) {
+  std::vector<std::string> keys;
+  for (const auto& entry : names) keys.push_back(entry.first);
+  return cmd
+      ->add_option_function<std::string>(
+          name, [&target, &names](const std::string& v) { target = names.at(v); },
+          help + ": " + choiceList(names, /*quoted=*/false))
+      ->check(CLI::IsMember(keys))
+      ->type_name("NAME");
 }
 
 }  // namespace montecl
