@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_runner.h"
 #include "cl/cl_errors.h"
 #include "cl/devices.h"
 #include "cl/kernel_source.h"
@@ -25,34 +26,11 @@
 namespace fs = std::filesystem;
 using namespace montecl;
 
+using montecl_test::readAll;
+using montecl_test::TempDir;
+
 namespace {
 
-// A fresh temporary folder, removed with everything in it at the end of the test.
-struct ScratchDir {
-  std::string path;
-  ScratchDir() {
-    std::string tmpl = (fs::temp_directory_path() / "montecl_test_cl_XXXXXX").string();
-    std::vector<char> buf(tmpl.begin(), tmpl.end());
-    buf.push_back('\0');
-    REQUIRE(::mkdtemp(buf.data()) != nullptr);
-    path = buf.data();
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string file(const std::string& name) const { return path + "/" + name; }
-  void write(const std::string& name, const std::string& text) const {
-    fs::create_directories(fs::path(file(name)).parent_path());
-    std::ofstream(file(name), std::ios::binary) << text;
-  }
-  std::vector<std::string> entries() const {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(path)) names.push_back(e.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
-};
 
 // Sets (or unsets, with nullptr) an environment variable for the lifetime of the object.
 struct ScopedEnv {
@@ -77,12 +55,6 @@ struct ScopedEnv {
   }
 };
 
-std::string readAll(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
 
 std::size_t count(const std::string& hay, const std::string& needle) {
   std::size_t n = 0;
@@ -202,7 +174,7 @@ TEST_CASE("cl: kernelFile reads the embedded copy, or MONTECL_KERNEL_DIR" * doct
     CHECK(kernelFile("shared/types.h").find("BvhNode") != std::string::npos);
     CHECK_THROWS_AS(kernelFile("no/such/file.cl"), RuntimeError);
   }
-  ScratchDir dir;
+  TempDir dir;
   dir.write("k.cl", "hello kernel\n");
   ScopedEnv env("MONTECL_KERNEL_DIR", dir.path.c_str());
   CHECK(kernelFile("k.cl") == "hello kernel\n");
@@ -211,7 +183,7 @@ TEST_CASE("cl: kernelFile reads the embedded copy, or MONTECL_KERNEL_DIR" * doct
 }
 
 TEST_CASE("cl: expandedKernelSource expands includes once, relative to the including file" * doctest::test_suite("cpu")) {
-  ScratchDir dir;
+  TempDir dir;
   dir.write("main.cl",
             "#include \"shared/a.h\"\n"
             "#include \"shared/b.h\"\n"
@@ -250,7 +222,7 @@ TEST_CASE("cl: expandedKernelSource expands includes once, relative to the inclu
 // --- program cache ------------------------------------------------------------------------------
 
 TEST_CASE("cl: program cache hits, misses, falls back, and runs the cached program" * doctest::test_suite("opencl")) {
-  ScratchDir dir;
+  TempDir dir;
   ScopedEnv env("MONTECL_CACHE_DIR", (dir.path + "/cache").c_str());
   CHECK(programCacheDir() == dir.path + "/cache");
   DeviceInfo dev = selectDevice("");
@@ -299,7 +271,7 @@ TEST_CASE("cl: program cache hits, misses, falls back, and runs the cached progr
 }
 
 TEST_CASE("cl: program cache never fails a build when the folder is unusable" * doctest::test_suite("opencl")) {
-  ScratchDir dir;
+  TempDir dir;
   dir.write("not-a-folder", "x");
   ScopedEnv env("MONTECL_CACHE_DIR", (dir.path + "/not-a-folder/cache").c_str());
   DeviceInfo dev = selectDevice("");
@@ -311,7 +283,7 @@ TEST_CASE("cl: program cache never fails a build when the folder is unusable" * 
 }
 
 TEST_CASE("cl: a kernel build error carries the build log" * doctest::test_suite("opencl")) {
-  ScratchDir dir;
+  TempDir dir;
   ScopedEnv env("MONTECL_CACHE_DIR", dir.path.c_str());
   DeviceInfo dev = selectDevice("");
   cl::Context context(dev.device);
@@ -324,7 +296,7 @@ TEST_CASE("cl: a kernel build error carries the build log" * doctest::test_suite
   CHECK(dir.entries().empty());  // nothing cached for a failed build
 
   // With expanded sources the log names the original file, thanks to the #line directives.
-  ScratchDir kernels;
+  TempDir kernels;
   kernels.write("main.cl", "#include \"shared/oops.h\"\n__kernel void k() {}\n");
   kernels.write("shared/oops.h", "#pragma once\n\nint f() { return missing_in_header_abc; }\n");
   ScopedEnv kenv("MONTECL_KERNEL_DIR", kernels.path.c_str());
@@ -343,7 +315,7 @@ TEST_CASE("cl: a kernel build error carries the build log" * doctest::test_suite
 // --- struct layout ------------------------------------------------------------------------------
 
 TEST_CASE("cl: shared struct layout matches between host and device" * doctest::test_suite("opencl")) {
-  ScratchDir dir;
+  TempDir dir;
   ScopedEnv cache("MONTECL_CACHE_DIR", dir.path.c_str());
   ScopedEnv kdir("MONTECL_KERNEL_DIR", nullptr);  // the embedded (real) headers
   std::string src = expandedKernelSource("shared/types.h") + R"(

@@ -28,6 +28,8 @@ using montecl::readLayeredImage;
 using montecl_test::CliResult;
 using montecl_test::runMontecl;
 using montecl_test::TempDir;
+using montecl_test::readAll;
+const auto& entries = montecl_test::folderEntries;
 namespace fs = std::filesystem;
 
 namespace {
@@ -60,20 +62,6 @@ int waitFor(pid_t pid) {
 std::vector<std::string> longRender(const std::string& out) {
   return {"render", montecl_test::demoScene(), "-o", out, "--width", "64", "--height", "48", "--spp", "1000000",
           "--wave-size", "20000", "-q"};
-}
-
-std::vector<std::string> entries(const std::string& folder) {
-  std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(folder)) names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
-std::string readAll(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
 }
 
 void checkPartialImage(const std::string& path) {

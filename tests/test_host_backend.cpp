@@ -10,6 +10,7 @@
 #include "render/stage_runner.h"
 #include "render/wavefront.h"
 #include "util/errors.h"
+#include "nan_wave.h"
 #include "test_scenes.h"
 
 using namespace montecl;
@@ -24,27 +25,6 @@ Film render(const DeviceInfo& device, const Scene& scene, RenderOptions options 
   return renderer.render(scene, bvh, stats);
 }
 
-// One AO wave of `n` items through a runner whose camera rays are all NaN (a FrameParams no scene
-// load lets through, issue 14): the NaN rays are misses (background, no shadow rays) and the wave
-// counts every one. Returns the counts; film through *film.
-WaveCounts nanCameraWave(StageRunner& run, const Scene& scene, std::uint32_t n, Film* film) {
-  Bvh bvh = buildBvh(scene.triangles);
-  StageInputs in;
-  in.frame = makeFrameParams(scene.camera, scene.render, 1);
-  in.frame.camTopLeft = glm::vec4(std::nanf(""), 0.0f, 1.0f, 0.0f);
-  in.bvh = &bvh;
-  in.materials = std::vector<Material>(1);
-  in.wave = n;
-  run.setup(in);
-  run.beginWave(0, n);
-  for (Stage s : {Stage::generate, Stage::intersect, Stage::shade_ao, Stage::intersect_shadow, Stage::accumulate})
-    run.launch(s, n);
-  WaveCounts c = run.finishWave();
-  film->width = int(in.frame.width);
-  film->height = int(in.frame.height);
-  run.readFilm(*film);
-  return c;
-}
 
 }  // namespace
 

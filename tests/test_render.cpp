@@ -13,6 +13,7 @@
 #include "render/wavefront.h"
 #include "film_stats.h"
 #include "stats.h"
+#include "nan_wave.h"
 #include "test_scenes.h"
 
 using namespace montecl;
@@ -34,27 +35,6 @@ void pixelMeanVar(const Film& f, std::size_t p, double& mean, double& varOfMean)
   montecl_test::pixelMeanVar(f, p, 0, mean, varOfMean, var);
 }
 
-// One AO wave of `n` items through a runner whose camera rays are all NaN (a FrameParams no scene
-// load lets through, issue 14): the NaN rays are misses (background, no shadow rays) and the wave
-// counts every one. Returns the counts; film through *film.
-WaveCounts nanCameraWave(StageRunner& run, const Scene& scene, std::uint32_t n, Film* film) {
-  Bvh bvh = buildBvh(scene.triangles);
-  StageInputs in;
-  in.frame = makeFrameParams(scene.camera, scene.render, 1);
-  in.frame.camTopLeft = glm::vec4(std::nanf(""), 0.0f, 1.0f, 0.0f);
-  in.bvh = &bvh;
-  in.materials = std::vector<Material>(1);
-  in.wave = n;
-  run.setup(in);
-  run.beginWave(0, n);
-  for (Stage s : {Stage::generate, Stage::intersect, Stage::shade_ao, Stage::intersect_shadow, Stage::accumulate})
-    run.launch(s, n);
-  WaveCounts c = run.finishWave();
-  film->width = int(in.frame.width);
-  film->height = int(in.frame.height);
-  run.readFilm(*film);
-  return c;
-}
 
 bool sameFilm(const Film& a, const Film& b) {
   return a.mean == b.mean && a.m2 == b.m2;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_runner.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 #include "util/hash.h"
@@ -19,37 +20,12 @@
 namespace fs = std::filesystem;
 using namespace montecl;
 
+using montecl_test::readAll;
+using montecl_test::TempDir;
+
 namespace {
 
-// A fresh temporary folder, removed with everything in it at the end of the test.
-struct ScratchDir {
-  std::string path;
-  ScratchDir() {
-    std::string tmpl = (fs::temp_directory_path() / "montecl_test_cl_XXXXXX").string();
-    std::vector<char> buf(tmpl.begin(), tmpl.end());
-    buf.push_back('\0');
-    REQUIRE(::mkdtemp(buf.data()) != nullptr);
-    path = buf.data();
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string file(const std::string& name) const { return path + "/" + name; }
-  std::vector<std::string> entries() const {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(path)) names.push_back(e.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
-};
 
-std::string readAll(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
 
 }  // namespace
 
@@ -64,7 +40,7 @@ TEST_CASE("util: fnv1a64 and hex64" * doctest::test_suite("cpu")) {
 }
 
 TEST_CASE("util: writeAtomically renames on success and cleans up on failure" * doctest::test_suite("cpu")) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string target = dir.file("out.png");
 
   std::string seenTmp;
@@ -119,7 +95,7 @@ TEST_CASE("util: writeAtomically defers SIGTERM/SIGINT until the file is complet
   // A child process is signalled in the middle of its write (default dispositions: the signal
   // kills it). The signal must land only after the rename: the target complete, no temporary.
   for (int sig : {SIGTERM, SIGINT}) {
-    ScratchDir dir;
+    TempDir dir;
     const std::string target = dir.file("out.png");
     pid_t pid = ::fork();
     REQUIRE(pid >= 0);
@@ -142,7 +118,7 @@ TEST_CASE("util: writeAtomically defers SIGTERM/SIGINT until the file is complet
 }
 
 TEST_CASE("util: writeAtomically removes temporaries of its target left by dead processes, nothing else" * doctest::test_suite("cpu")) {
-  ScratchDir dir;
+  TempDir dir;
   pid_t dead = ::fork();
   REQUIRE(dead >= 0);
   if (dead == 0) ::_exit(0);
@@ -165,7 +141,7 @@ TEST_CASE("util: writeAtomically removes temporaries of its target left by dead 
 }
 
 TEST_CASE("util: temporary names fit NAME_MAX; checkWritableTarget refuses what cannot be written" * doctest::test_suite("cpu")) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string longName = std::string(250, 'a') + ".png";  // 254 bytes: legal
   CHECK(tempFileName(longName, 4194304, 123456).size() <= 255);
   CHECK(fs::path(tempFileName(longName, 4194304, 123456)).extension() == ".png");
