@@ -35,12 +35,22 @@ namespace {
 const std::vector<std::string> kMpiEnv{"OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1",
                                        "OMPI_MCA_btl_vader_single_copy_mechanism=none", "OMPI_MCA_rmaps_base_oversubscribe=1"};
 
+#if defined(__SANITIZE_ADDRESS__)
+// Under ASan (build-asan): Open MPI dlcloses its MCA components in MPI_Finalize, so what they keep
+// for the process lifetime is reported as leaks with unknown frames that no library-name
+// suppression can match. Leak checking is off for the ranks; ASan's memory-error checks stay on.
+const std::vector<std::string> kSanitizerEnv{"ASAN_OPTIONS=detect_leaks=0"};
+#else
+const std::vector<std::string> kSanitizerEnv{};
+#endif
+
 bool haveMpirun() { return runProgram({"mpirun", "--version"}, kMpiEnv).exitCode == 0; }
 
 CliResult mpirun(int ranks, const std::vector<std::string>& args, std::vector<std::string> env = {}) {
   std::vector<std::string> argv{"mpirun", "--oversubscribe", "--bind-to", "none", "-np", std::to_string(ranks), MONTECL_EXE};
   argv.insert(argv.end(), args.begin(), args.end());
   env.insert(env.end(), kMpiEnv.begin(), kMpiEnv.end());
+  env.insert(env.end(), kSanitizerEnv.begin(), kSanitizerEnv.end());
   return runProgram(argv, env);
 }
 
