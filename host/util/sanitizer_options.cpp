@@ -23,7 +23,8 @@ __attribute__((visibility("default"), used)) const char* __ubsan_default_options
 // use_tls=0: LeakSanitizer (GCC 12's) crashes in its stop-the-world tracer ("Tracer caught signal
 // 11") while scanning the dynamic TLS blocks of the dlopened OpenImageIO module's dependencies;
 // pointers held only in thread-local storage are then not seen as roots (montecl keeps none).
-__attribute__((visibility("default"), used)) const char* __lsan_default_options() { return "use_tls=0"; }
+// print_suppressions=0: the suppression statistics would add lines to the one-line errors.
+__attribute__((visibility("default"), used)) const char* __lsan_default_options() { return "use_tls=0:print_suppressions=0"; }
 
 __attribute__((visibility("default"), used)) const char* __lsan_default_suppressions() {
   return "leak:libpocl.so\n"
