@@ -41,6 +41,7 @@ __attribute__((visibility("default"), used)) const char* __lsan_default_suppress
          "leak:libIlmThread\n"
          "leak:libtbb\n"
          "leak:libglib-2.0\n"
+         "leak:libboost_thread\n"
          // glibc's dynamic-loader and dlerror state, referenced from thread-local storage only
          // (reported because use_tls=0, below):
          "leak:_dl_resize_dtv\n"
