@@ -1,0 +1,112 @@
+// render_output.cpp: the output side of `montecl render` (see render_output.h).
+#include "cli/render_output.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "util/errors.h"
+
+namespace montecl {
+namespace {
+
+// Shortest decimal that reads back as the same float ("0.3", not "0.300000012").
+std::string shortFloat(float v) {
+  char buf[32];
+  for (int precision = 6; precision <= 9; ++precision) {
+    std::snprintf(buf, sizeof buf, "%.*g", precision, double(v));
+    if (std::strtof(buf, nullptr) == v) break;
+  }
+  return buf;
+}
+
+std::string vec3Json(const glm::vec3& v) {
+  return "[" + shortFloat(v.x) + ", " + shortFloat(v.y) + ", " + shortFloat(v.z) + "]";
+}
+
+}  // namespace
+
+// Refuses an output that is one of the files the render reads (the scene, an OBJ, an MTL).
+void checkOutputIsNoInput(const std::string& output, const Scene& scene) {
+  for (const std::string& in : scene.inputFiles) {
+    std::error_code ec;
+    if (std::filesystem::equivalent(output, in, ec) && !ec)
+      throwInputError(output, "", "the output is an input of the render ('" + in + "'): refusing to overwrite it");
+  }
+}
+
+bool isExr(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".exr";
+}
+
+// The number of pixels with a NaN or infinite value in any plane (values that overflowed a float).
+std::size_t nonFinitePixels(const LayeredImage& img) {
+  std::size_t bad = 0;
+  for (std::size_t p = 0; p < img.pixelCount(); ++p) {
+    bool finite = true;
+    for (const std::vector<float>& plane : img.planes) finite = finite && std::isfinite(plane[p]);
+    bad += !finite;
+  }
+  return bad;
+}
+
+// The EXR layers: R, G, B, samples, var.R/G/B, and the AOVs asked for, averaged over samples:
+// albedo.R/G/B, N.X/Y/Z (facing geometric normal), Z (distance along the camera ray).
+LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs) {
+  LayeredImage img = layersFromFilm(film);
+  if (aovs.empty()) return img;
+  auto wants = [&](const char* name) {
+    return std::find(aovs.begin(), aovs.end(), name) != aovs.end() ||
+           std::find(aovs.begin(), aovs.end(), "all") != aovs.end();
+  };
+  const std::size_t pixels = film.mean.size();
+  auto plane = [&](int vec, int comp) {
+    std::vector<float> out(pixels, 0.0f);
+    for (std::size_t p = 0; p < pixels; ++p)
+      if (double(film.count[p]) > 0) out[p] = film.aovSum[2 * p + vec][comp] / double(film.count[p]);
+    return out;
+  };
+  if (wants("albedo"))
+    for (int c = 0; c < 3; ++c) img.set(std::string("albedo.") + "RGB"[c], plane(0, c));
+  if (wants("normal"))
+    for (int c = 0; c < 3; ++c) img.set(std::string("N.") + "XYZ"[c], plane(1, c));
+  if (wants("depth")) img.set("Z", plane(0, 3));
+  return img;
+}
+
+// The camera as a scene-file "camera" entry, to copy into a scene file (-v).
+std::string cameraJson(const Camera& c) {
+  return "\"camera\": {\"position\": " + vec3Json(c.position) + ", \"target\": " + vec3Json(c.target) +
+         ", \"up\": " + vec3Json(c.up) + ", \"fov_y\": " + shortFloat(c.fovY) + ", \"width\": " +
+         std::to_string(c.width) + ", \"height\": " + std::to_string(c.height) + "}";
+}
+
+// The default output: <stem>.png in the current folder, named after the scene's folder when the
+// file is scene.json (every shared scene is). An existing file is never replaced without
+// --overwrite: the first free <name>-N.png is used instead, and `note` says so.
+std::string defaultOutput(const std::string& scenePath, bool overwrite, std::string& note) {
+  namespace fs = std::filesystem;
+  fs::path scene(scenePath);
+  std::string stem = scene.stem().string();
+  if (scene.filename() == "scene.json") {
+    std::string folder = fs::absolute(scene).lexically_normal().parent_path().filename().string();
+    if (!folder.empty()) stem = folder;
+  }
+  const std::string name = stem + ".png";
+  std::error_code ec;
+  if (overwrite || !fs::exists(fs::symlink_status(name, ec))) return name;
+  for (int n = 1;; ++n) {
+    std::string numbered = stem + "-" + std::to_string(n) + ".png";
+    if (!fs::exists(fs::symlink_status(numbered, ec))) {
+      note = " (" + name + " exists and was kept; --overwrite replaces it)";
+      return numbered;
+    }
+  }
+}
+
+}  // namespace montecl

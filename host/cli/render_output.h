@@ -1,0 +1,32 @@
+// render_output.h: what `montecl render` does around its output image: the default name, the
+// checks before rendering (the output is not an input), the EXR layers of a film, the count of
+// non-finite pixels that refuses a write, and the camera as scene JSON for -v. Reads and writes no
+// file except what defaultOutput looks at (whether names exist).
+#pragma once
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "image/exr_layers.h"
+#include "image/film.h"
+#include "scene/scene.h"
+
+namespace montecl {
+
+// Refuses (InputError) an output that is one of the files the render reads (scene, OBJ, MTL).
+void checkOutputIsNoInput(const std::string& output, const Scene& scene);
+// Whether path ends in .exr (any case).
+bool isExr(const std::string& path);
+// The number of pixels with a NaN or infinite value in any plane (values that overflowed a float).
+std::size_t nonFinitePixels(const LayeredImage& img);
+// The EXR layers: R, G, B, samples, var.R/G/B, and the AOVs asked for, averaged over samples:
+// albedo.R/G/B, N.X/Y/Z (facing geometric normal), Z (distance along the camera ray).
+LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs);
+// The camera as a scene-file "camera" entry, to copy into a scene file (-v).
+std::string cameraJson(const Camera& c);
+// The default output: <stem>.png in the current folder, named after the scene's folder when the
+// file is scene.json (every shared scene is). An existing file is never replaced without
+// --overwrite: the first free <name>-N.png is used instead, and `note` says so.
+std::string defaultOutput(const std::string& scenePath, bool overwrite, std::string& note);
+
+}  // namespace montecl
