@@ -75,6 +75,24 @@ std::vector<glm::vec3> square(glm::vec3 c, glm::vec3 normal, float size) {
   return v;
 }
 
+// A 2x2 emitting quad at z = 0, front face toward +z (albedo 0.8, Le = kLe), seen through a narrow
+// field of view by an 8x8 camera at z = cameraZ (in front: > 0, behind: < 0).
+Scene emitterQuadScene(float cameraZ, bool twoSided) {
+  Scene s;
+  s.path = "<emitter>";
+  s.materials = {MaterialDesc{"light", glm::vec3(0.8f), kLe}};
+  s.materials[0].twoSidedEmission = twoSided;
+  std::vector<glm::vec3> q = square({0, 0, 0}, {0, 0, 1}, 2.0f);
+  addQuad(s, q[0], q[1], q[2], q[3], 0);
+  s.camera.position = {0.1f, 0.2f, cameraZ};
+  s.camera.target = {0.1f, 0.2f, 0.0f};
+  s.camera.fovY = 10.0f;
+  s.camera.width = s.camera.height = 8;
+  s.render.spp = 8;
+  finishScene(s);
+  return s;
+}
+
 }  // namespace
 
 TEST_CASE("direct lighting matches the polygon form factor for light, brdf and mis sampling" * doctest::test_suite("opencl")) {
@@ -116,25 +134,13 @@ TEST_CASE("direct lighting matches the polygon form factor for light, brdf and m
 }
 
 TEST_CASE("an emitter seen from the front gives exactly Le, from the back only reflected light" * doctest::test_suite("opencl")) {
-  Scene s;
-  s.path = "<emitter>";
-  s.materials = {MaterialDesc{"light", glm::vec3(0.8f), kLe}};
-  std::vector<glm::vec3> q = square({0, 0, 0}, {0, 0, 1}, 2.0f);  // front face toward +z
-  addQuad(s, q[0], q[1], q[2], q[3], 0);
-  s.camera.position = {0.1f, 0.2f, 3.0f};
-  s.camera.target = {0.1f, 0.2f, 0.0f};
-  s.camera.fovY = 10.0f;
-  s.camera.width = s.camera.height = 8;
-  s.render.spp = 8;
-  finishScene(s);
+  Scene s = emitterQuadScene(3.0f, false);
   for (const char* strategy : {"light", "brdf", "mis"}) {
     INFO(strategy);
     std::vector<float> front = renderDirect(s, strategy).meanRgb();
     for (std::size_t p = 0; p < front.size() / 3; ++p)
       for (int c = 0; c < 3; ++c) REQUIRE(front[3 * p + c] == kLe[c]);
-    Scene back = s;
-    back.camera.position.z = -3.0f;
-    std::vector<float> rgb = renderDirect(back, strategy).meanRgb();
+    std::vector<float> rgb = renderDirect(emitterQuadScene(-3.0f, false), strategy).meanRgb();
     for (float v : rgb) REQUIRE(v == 0.0f);
   }
 }
@@ -163,18 +169,7 @@ TEST_CASE("with brdf sampling, an emitter's back face reflects exactly like a no
 }
 
 TEST_CASE("a two-sided emitter seen from the back gives exactly Le, like its front" * doctest::test_suite("opencl")) {
-  Scene s;
-  s.path = "<two-sided emitter>";
-  s.materials = {MaterialDesc{"light", glm::vec3(0.8f), kLe}};
-  s.materials[0].twoSidedEmission = true;
-  std::vector<glm::vec3> q = square({0, 0, 0}, {0, 0, 1}, 2.0f);  // front face toward +z
-  addQuad(s, q[0], q[1], q[2], q[3], 0);
-  s.camera.position = {0.1f, 0.2f, -3.0f};  // behind it
-  s.camera.target = {0.1f, 0.2f, 0.0f};
-  s.camera.fovY = 10.0f;
-  s.camera.width = s.camera.height = 8;
-  s.render.spp = 8;
-  finishScene(s);
+  Scene s = emitterQuadScene(-3.0f, true);  // seen from behind
   for (const char* strategy : {"light", "brdf", "mis"}) {
     INFO(strategy);
     std::vector<float> rgb = renderDirect(s, strategy).meanRgb();

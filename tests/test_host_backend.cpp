@@ -70,17 +70,8 @@ TEST_CASE("adaptive sampling with minSpp above maxSpp is an error, not a clamp" 
 
 TEST_CASE("host backend: NaN camera rays are misses and every one is counted (issue 14)" * doctest::test_suite("cpu")) {
   // Without the fix there is no count (WaveCounts), and the traversal read an empty slot (SIGSEGV).
-  Scene s = floorScene({0, 0, 0}, 1.0f, 60.0f, 16, 1);
-  s.render.background = glm::vec3(0.25f);
   std::unique_ptr<StageRunner> run = makeHostStageRunner();
-  Film film;
-  WaveCounts c = nanCameraWave(*run, s, 256, &film);
-  CHECK(c.nanRays == 256);
-  CHECK(c.shadowRays == 0);
-  for (std::size_t p = 0; p < film.mean.size(); ++p) {
-    CHECK(film.mean[p] == glm::vec4(0.25f, 0.25f, 0.25f, 0.0f));
-    CHECK(film.count[p] == 1u);
-  }
+  checkNanCameraWave(*run, floorScene({0, 0, 0}, 1.0f, 60.0f, 16, 1));
 }
 
 TEST_CASE("the renderer refuses a camera whose float basis is NaN, naming the key (issue 14)" * doctest::test_suite("cpu")) {

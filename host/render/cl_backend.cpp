@@ -113,9 +113,11 @@ class ClStageRunner final : public StageRunner {
     const std::pair<const ClArray<float4>*, std::vector<glm::vec4>*> parts[] = {
         {&bindings_.mean, &film.mean}, {&bindings_.meanLo, &film.meanLo}, {&bindings_.m2, &film.m2},
         {&bindings_.m2Lo, &film.m2Lo}};
-    for (const auto& [device, host] : parts) {
+    for (const auto& [device, host] : parts) {  // one wait, at the last read (in-order queue)
       host->resize(pixels_);
-      cl_.queue().enqueueReadBuffer(device->buffer, CL_TRUE, 0, pixels_ * sizeof(cl_float4), host->data());
+      const bool last = host == &film.m2Lo;
+      cl_.queue().enqueueReadBuffer(device->buffer, last ? CL_TRUE : CL_FALSE, 0, pixels_ * sizeof(cl_float4),
+                                    host->data());
     }
     film.unpackCounts();
     if (aovs_) {

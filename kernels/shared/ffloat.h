@@ -29,6 +29,3 @@ MCL_INLINE ffloat4 ff_add_float(ffloat4 x, float4 t) {
   ffloat4 s = ff_two_sum(x.hi, t);
   return ff_two_sum(s.hi, s.lo + x.lo);
 }
-
-// x as one float, correctly rounded when x is normalised.
-MCL_INLINE float4 ff_value(ffloat4 x) { return x.hi + x.lo; }
