@@ -28,6 +28,8 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
   f.directSampling = settings.directSampling == DirectSampling::Light  ? MCL_DIRECT_LIGHT
                      : settings.directSampling == DirectSampling::Brdf ? MCL_DIRECT_BRDF
                                                                        : MCL_DIRECT_MIS;
+  f.maxDepth = -1;
+  f.rrDepth = 5;
   return f;
 }
 

@@ -47,7 +47,15 @@ namespace {
 
 std::vector<Material> deviceMaterials(const std::vector<MaterialDesc>& materials) {
   std::vector<Material> out;
-  for (const MaterialDesc& m : materials) out.push_back({glm::vec4(m.albedo, 0.0f), glm::vec4(m.emission, m.twoSidedEmission ? 1.0f : 0.0f)});
+  const float noTexture = glm::uintBitsToFloat(MCL_NO_TEXTURE);
+  for (const MaterialDesc& m : materials) {
+    Material d{};
+    d.albedo = glm::vec4(m.albedo, noTexture);
+    d.emission = glm::vec4(m.emission, m.twoSidedEmission ? 1.0f : 0.0f);
+    d.specular = glm::vec4(0.0f);
+    d.alpha = glm::vec4(noTexture, m.alphaCutoff, glm::uintBitsToFloat(0u), 0.0f);
+    out.push_back(d);
+  }
   return out;
 }
 

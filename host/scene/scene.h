@@ -4,6 +4,7 @@
 #include <glm/glm.hpp>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "scene/render_choices.h"
@@ -35,15 +36,33 @@ struct RenderSettings {
 };
 
 struct MaterialDesc {
+  MaterialDesc() = default;
+  MaterialDesc(std::string name_, glm::vec3 albedo_, glm::vec3 emission_ = glm::vec3(0.0f))
+      : name(std::move(name_)), albedo(albedo_), emission(emission_) {}
   std::string name;
-  glm::vec3 albedo{0.5f};    // Kd
+  glm::vec3 albedo{0.5f};    // Kd (multiplies albedoTexture when there is one)
   glm::vec3 emission{0.0f};  // Ke
   bool twoSidedEmission = false;  // both faces emit Ke (scene key "two_sided_emission"), else the front only
+  // Textures: paths as opened (resolved against the file that named them); empty = none. Texture
+  // coordinates everywhere follow OBJ's convention (v = 0 at the image's bottom row): loaders of
+  // top-origin formats (glTF) flip v when they read it.
+  std::string albedoTexture;  // map_Kd, glTF baseColorTexture (8-bit: sRGB-encoded)
+  std::string alphaTexture;   // map_d, or the albedo texture's alpha (glTF MASK); empty: opaque
+  float alphaCutoff = 0.5f;   // a hit whose alpha is below this does not exist for any ray
+  glm::vec3 specular{0.0f};   // Ks (glossy lobe, issue 12), 0: Lambertian only
+  float specularExponent = 0.0f;  // Ns
 };
+
+// Per-corner attributes of a triangle (SceneTriangle::attributes says which are present).
+constexpr std::uint8_t kHasNormals = 1;  // n[] holds the file's vertex normals (unit length)
+constexpr std::uint8_t kHasUv = 2;       // uv[] holds texture coordinates
 
 struct SceneTriangle {
   glm::vec3 v[3];
   std::uint32_t material;  // index into Scene::materials
+  glm::vec3 n[3]{};        // shading normals per corner (kHasNormals), already transformed
+  glm::vec2 uv[3]{};       // texture coordinates per corner (kHasUv)
+  std::uint8_t attributes = 0;
 };
 
 struct Scene {

@@ -48,9 +48,13 @@ typedef struct MCL_ALIGN16 {
   float4 e2;
 } Triangle;
 
+#define MCL_NO_TEXTURE 0xffffffffu
 typedef struct MCL_ALIGN16 {
-  float4 albedo;    // rgb: Kd; w unused
+  float4 albedo;    // rgb: Kd; w: albedo texture index (as_float bits), MCL_NO_TEXTURE for none
   float4 emission;  // rgb: Ke; w: 1 when both faces emit ("two_sided_emission"), else 0 (front only)
+  float4 specular;  // rgb: Ks (glossy lobe); w: GGX roughness alpha (unused while Ks is 0)
+  float4 alpha;     // x: alpha texture index (as_float bits, MCL_NO_TEXTURE: opaque); y: cutoff;
+                    // z: channel of that texture holding alpha (as_float bits); w unused
 } Material;
 
 // A ray: origin.w unused (0), dir.w = tmax.
@@ -91,6 +95,15 @@ typedef struct MCL_ALIGN16 {
   uint lightSamples;    // direct lighting: light samples per camera sample
   uint directSampling;  // MCL_DIRECT_LIGHT | MCL_DIRECT_BRDF | MCL_DIRECT_MIS
   float emitterPower;   // sum over emitters of area * luminance(Le): the light-selection normaliser
+  int maxDepth;         // path integrator (Mitsuba's convention): -1 unlimited, 1 emitters seen, 2 direct
+  uint rrDepth;         // path integrator: Russian roulette from this depth on
+  float lensRadius;     // thin lens: aperture radius, 0 = pinhole
+  float focusDistance;  // thin lens: distance of the plane in focus along the view direction
+  float4 environment;   // rgb: constant environment radiance (times the map when there is one);
+                        // w: 1 when an environment lights the scene, else 0
+  uint envWidth, envHeight;  // environment map size, 0 x 0 for a constant environment
+  float envRotateY;          // environment rotation about +y, radians
+  uint textureCount;         // entries of the texture table
 } FrameParams;
 
 // One emitting triangle. It is picked with probability area * luminance(Le) / emitterPower;
@@ -109,11 +122,11 @@ static_assert(offsetof(BvhNode, maxX) == 16, "BvhNode layout");
 static_assert(sizeof(WideNode) == 224, "WideNode layout");
 static_assert(offsetof(WideNode, child) == 192, "WideNode layout");
 static_assert(sizeof(Triangle) == 48, "Triangle layout");
-static_assert(sizeof(Material) == 32, "Material layout");
+static_assert(sizeof(Material) == 64, "Material layout");
 static_assert(sizeof(Ray) == 32, "Ray layout");
 static_assert(sizeof(Hit) == 16, "Hit layout");
 static_assert(sizeof(ShadowWork) == 48, "ShadowWork layout");
-static_assert(sizeof(FrameParams) == 128, "FrameParams layout");
+static_assert(sizeof(FrameParams) == 176, "FrameParams layout");
 static_assert(sizeof(Emitter) == 16, "Emitter layout");
 static_assert(offsetof(FrameParams, width) == 80, "FrameParams layout");
 #endif
