@@ -1,0 +1,260 @@
+// gltf_mesh.cpp: loadGltfInto(): a glTF 2.0 scene (gltf_model.h) into a Scene. Walks the default
+// scene's node hierarchy (TRS or matrix transforms); TRIANGLES primitives (indexed or not) give
+// triangles with POSITION, NORMAL (kHasNormals) and TEXCOORD_0 (kHasUv, v flipped to OBJ's
+// convention: v = 1 - v_gltf). Materials: baseColorFactor x baseColorTexture -> albedo and
+// albedoTexture; alphaMode MASK (+ alphaCutoff) -> alphaTexture = the base colour texture, BLEND
+// treated as MASK with a warning; emissiveFactor x KHR_materials_emissive_strength -> emission
+// (two-sided when doubleSided). The first perspective camera met in the hierarchy is returned.
+// Everything else the file uses is one warning per kind.
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "scene/gltf_model.h"
+#include "scene/load_util.h"
+#include "scene/mesh_loaders.h"
+
+namespace montecl {
+namespace {
+
+using tinygltf::Model;
+
+struct Loader {
+  const std::string& file;
+  const Model& m;
+  Scene& scene;
+  KindWarnings unused;
+  std::vector<std::int64_t> materialIndex;  // glTF material -> scene material (-1: not yet)
+  bool hasCamera = false;
+  Camera camera;
+
+  std::uint32_t material(int index);
+  void primitive(const tinygltf::Primitive& p, const glm::dmat4& world, const std::string& where);
+  void takeCamera(int index, const glm::dmat4& world);
+};
+
+std::string itemWhere(const char* kind, std::size_t i) { return std::string(kind) + "[" + std::to_string(i) + "]"; }
+
+glm::dmat4 localTransform(const std::string& file, const tinygltf::Node& n, const std::string& where) {
+  if (n.matrix.size() == 16) {
+    glm::dmat4 t;
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) t[c][r] = n.matrix[std::size_t(4 * c + r)];  // column-major, as glm
+    return t;
+  }
+  if (!n.matrix.empty()) loadFail(file, where + ".matrix", "expected 16 numbers");
+  glm::dmat4 t(1.0);
+  if (n.translation.size() == 3) t = glm::translate(t, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
+  if (n.rotation.size() == 4) {
+    glm::dquat q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);  // glTF: x y z w
+    if (glm::length(q) == 0.0) loadFail(file, where + ".rotation", "zero quaternion");
+    t = t * glm::mat4_cast(glm::normalize(q));
+  }
+  if (n.scale.size() == 3) t = glm::scale(t, glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
+  return t;
+}
+
+glm::vec3 factor3(const std::vector<double>& f, double scale) {
+  return f.size() >= 3 ? glm::vec3(float(f[0] * scale), float(f[1] * scale), float(f[2] * scale)) : glm::vec3(0.0f);
+}
+
+std::uint32_t Loader::material(int index) {
+  if (index < 0 || static_cast<std::size_t>(index) >= m.materials.size()) return defaultMaterialIndex(scene);
+  const std::size_t i = static_cast<std::size_t>(index);
+  if (materialIndex[i] >= 0) return static_cast<std::uint32_t>(materialIndex[i]);
+  const tinygltf::Material& g = m.materials[i];
+  const std::string where = itemWhere("materials", i);
+  MaterialDesc d;
+  d.name = g.name.empty() ? where : g.name;
+  const auto& pbr = g.pbrMetallicRoughness;
+  d.albedo = factor3(pbr.baseColorFactor, 1.0);
+  double strength = 1.0;
+  for (const auto& ext : g.extensions) {
+    if (ext.first == "KHR_materials_emissive_strength" && ext.second.Has("emissiveStrength"))
+      strength = ext.second.Get("emissiveStrength").GetNumberAsDouble();
+    else unused.add("extension " + ext.first, where, "material extension '" + oneLine(ext.first, 60) + "' not used by montecl, ignored");
+  }
+  d.emission = factor3(g.emissiveFactor, strength);
+  d.twoSidedEmission = g.doubleSided;
+  for (int c = 0; c < 3; ++c) {
+    if (!std::isfinite(d.albedo[c]) || d.albedo[c] < 0) loadFail(file, where, "baseColorFactor must be finite and >= 0");
+    if (!std::isfinite(d.emission[c]) || d.emission[c] < 0) loadFail(file, where, "emissiveFactor x emissiveStrength must be finite and >= 0");
+  }
+  const int tex = pbr.baseColorTexture.index;
+  if (tex >= 0) {
+    if (static_cast<std::size_t>(tex) >= m.textures.size()) loadFail(file, where, "baseColorTexture index out of range");
+    const tinygltf::Texture& t = m.textures[static_cast<std::size_t>(tex)];
+    const std::string path = gltfImagePath(file, m, t.source);
+    if (t.source < 0 || static_cast<std::size_t>(t.source) >= m.images.size())
+      loadFail(file, itemWhere("textures", std::size_t(tex)), "source image missing or out of range");
+    if (path.empty()) {
+      unused.add("embedded image", itemWhere("images", std::size_t(t.source)),
+                 "embedded image (data URI or buffer) cannot be opened by path: texture skipped, the material is untextured");
+    } else {
+      const std::string problem = fileProblem(path);
+      if (!problem.empty()) loadFail(file, itemWhere("images", std::size_t(t.source)), "cannot open '" + path + "': " + problem);
+      d.albedoTexture = path;
+      scene.inputFiles.push_back(path);
+    }
+    if (pbr.baseColorTexture.texCoord != 0) unused.add("texCoord", where, "texCoord other than 0 not used by montecl (TEXCOORD_0 used)");
+    if (t.sampler >= 0 && static_cast<std::size_t>(t.sampler) < m.samplers.size()) {
+      const tinygltf::Sampler& s = m.samplers[static_cast<std::size_t>(t.sampler)];
+      if (s.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT || s.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT)
+        unused.add("wrap", itemWhere("samplers", std::size_t(t.sampler)), "wrap modes other than REPEAT not used by montecl (it repeats)");
+    }
+  }
+  if (g.alphaMode == "MASK" || g.alphaMode == "BLEND") {
+    if (g.alphaMode == "BLEND") unused.add("BLEND", where, "alphaMode BLEND treated as MASK (cut-out at alphaCutoff)");
+    d.alphaCutoff = static_cast<float>(g.alphaCutoff);
+    if (!(d.alphaCutoff >= 0.0f && d.alphaCutoff <= 1.0f)) loadFail(file, where, "alphaCutoff must be in [0, 1]");
+    d.alphaTexture = d.albedoTexture;
+    if (d.alphaTexture.empty()) unused.add("constant alpha", where, "alphaMode " + g.alphaMode + " without a usable base colour texture: no cut-out");
+  }
+  if (pbr.metallicRoughnessTexture.index >= 0 || pbr.metallicFactor != 1.0 || pbr.roughnessFactor != 1.0)
+    unused.add("metallicRoughness", where, "metallic/roughness not used by montecl (Lambertian), ignored");
+  if (g.normalTexture.index >= 0) unused.add("normalTexture", where, "normalTexture not used by montecl, ignored");
+  if (g.occlusionTexture.index >= 0) unused.add("occlusionTexture", where, "occlusionTexture not used by montecl, ignored");
+  if (g.emissiveTexture.index >= 0) unused.add("emissiveTexture", where, "emissiveTexture not used by montecl (emissiveFactor only), ignored");
+  materialIndex[i] = static_cast<std::int64_t>(scene.materials.size());
+  scene.materials.push_back(d);
+  return static_cast<std::uint32_t>(materialIndex[i]);
+}
+
+void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, const std::string& where) {
+  if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != -1) {
+    unused.add("mode " + std::to_string(p.mode), where, "primitive mode " + std::to_string(p.mode) + " (not TRIANGLES) skipped");
+    return;
+  }
+  auto attr = [&](const char* name) {
+    auto it = p.attributes.find(name);
+    return it == p.attributes.end() ? -1 : it->second;
+  };
+  for (const auto& a : p.attributes)
+    if (a.first != "POSITION" && a.first != "NORMAL" && a.first != "TEXCOORD_0")
+      unused.add("attribute " + a.first, where, "attribute " + oneLine(a.first, 40) + " not used by montecl, ignored");
+  if (!p.targets.empty()) unused.add("morph", where, "morph targets not used by montecl (the base mesh is rendered)");
+  if (attr("POSITION") < 0) loadFail(file, where, "primitive without POSITION");
+  const std::vector<float> pos = readFloatAccessor(file, m, attr("POSITION"), 3, where + ".POSITION");
+  const std::size_t n = pos.size() / 3;
+  std::vector<float> nor, uv;
+  if (attr("NORMAL") >= 0) nor = readFloatAccessor(file, m, attr("NORMAL"), 3, where + ".NORMAL");
+  if (attr("TEXCOORD_0") >= 0) uv = readFloatAccessor(file, m, attr("TEXCOORD_0"), 2, where + ".TEXCOORD_0");
+  if ((!nor.empty() && nor.size() / 3 != n) || (!uv.empty() && uv.size() / 2 != n))
+    loadFail(file, where, "attributes have different counts");
+  std::vector<std::uint32_t> idx;
+  if (p.indices >= 0) idx = readIndexAccessor(file, m, p.indices, where + ".indices");
+  const std::size_t corners = p.indices >= 0 ? idx.size() : n;
+  if (corners % 3 != 0) loadFail(file, where, std::to_string(corners) + " vertices do not make whole triangles");
+  const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(world)));
+  const bool mirror = glm::determinant(glm::dmat3(world)) < 0.0;
+  const std::uint32_t mat = material(p.material);
+  for (std::size_t c = 0; c < corners; c += 3) {
+    SceneTriangle t{};
+    bool normals = !nor.empty();
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t v = p.indices >= 0 ? idx[c + std::size_t(k)] : c + std::size_t(k);
+      if (v >= n) loadFail(file, where + ".indices", "index " + std::to_string(v) + " out of range (" + std::to_string(n) + " vertices)");
+      const int kk = mirror && k > 0 ? 3 - k : k;  // a mirroring transform swaps corners 1 and 2
+      t.v[kk] = glm::vec3(world * glm::dvec4(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2], 1.0));
+      if (!nor.empty()) {
+        const glm::dvec3 nn = normalMatrix * glm::dvec3(nor[3 * v], nor[3 * v + 1], nor[3 * v + 2]);
+        const double len = glm::length(nn);
+        normals = normals && len > 0.0 && std::isfinite(len);
+        t.n[kk] = normals ? glm::vec3(nn / len) : glm::vec3(0.0f);
+      }
+      if (!uv.empty()) t.uv[kk] = glm::vec2(uv[2 * v], 1.0f - uv[2 * v + 1]);
+    }
+    if (!normals)
+      for (glm::vec3& x : t.n) x = glm::vec3(0.0f);
+    t.attributes = static_cast<std::uint8_t>((normals ? kHasNormals : 0) | (uv.empty() ? 0 : kHasUv));
+    t.material = mat;
+    for (const glm::vec3& x : t.v)
+      if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z))
+        loadFail(file, where, "a node transform moves vertices out of float range");
+    appendTriangle(scene, t);
+  }
+}
+
+void Loader::takeCamera(int index, const glm::dmat4& world) {
+  if (index < 0 || static_cast<std::size_t>(index) >= m.cameras.size()) return;
+  const tinygltf::Camera& c = m.cameras[static_cast<std::size_t>(index)];
+  if (c.type != "perspective") {
+    unused.add("camera " + c.type, itemWhere("cameras", std::size_t(index)), "camera type '" + oneLine(c.type, 20) + "' not used by montecl");
+    return;
+  }
+  if (hasCamera) {
+    unused.add("more cameras", itemWhere("cameras", std::size_t(index)), "only the first perspective camera is used");
+    return;
+  }
+  Camera cam;
+  cam.position = glm::vec3(world * glm::dvec4(0, 0, 0, 1));
+  cam.target = cam.position + glm::vec3(glm::normalize(glm::dmat3(world) * glm::dvec3(0, 0, -1)));
+  cam.up = glm::vec3(glm::normalize(glm::dmat3(world) * glm::dvec3(0, 1, 0)));
+  cam.fovY = static_cast<float>(glm::degrees(c.perspective.yfov));
+  const double aspect = c.perspective.aspectRatio;
+  cam.height = 512;
+  cam.width = aspect > 0.0 && aspect < 32.0 ? std::max(1, static_cast<int>(std::lround(512.0 * aspect))) : 512;
+  hasCamera = true;
+  camera = cam;
+}
+
+}  // namespace
+
+bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string>* warnings, Camera* camera) {
+  const Model m = readGltfModel(path, warnings);
+  scene.inputFiles.push_back(path);
+  for (const tinygltf::Buffer& b : m.buffers)
+    if (!b.uri.empty() && b.uri.compare(0, 5, "data:") != 0) scene.inputFiles.push_back(besideFile(path, b.uri));
+  Loader l{path, m, scene, KindWarnings(path), std::vector<std::int64_t>(m.materials.size(), -1), false, Camera{}};
+  for (const std::string& e : m.extensionsUsed)
+    if (e != "KHR_materials_emissive_strength")
+      l.unused.add("extension " + e, "extensionsUsed", "extension '" + oneLine(e, 60) + "' not used by montecl, ignored");
+  if (!m.animations.empty()) l.unused.add("animations", "animations", "animations not used by montecl (the rest pose is rendered)");
+  if (!m.skins.empty()) l.unused.add("skins", "skins", "skins not used by montecl (the rest pose is rendered)");
+  // Roots: the default scene's nodes (scene 0 when none is named; every parentless node when the file has no scene).
+  std::vector<int> roots;
+  if (!m.scenes.empty()) {
+    const std::size_t s = m.defaultScene >= 0 && static_cast<std::size_t>(m.defaultScene) < m.scenes.size() ? std::size_t(m.defaultScene) : 0;
+    roots = m.scenes[s].nodes;
+  } else {
+    std::vector<bool> child(m.nodes.size(), false);
+    for (const tinygltf::Node& n : m.nodes)
+      for (int c : n.children)
+        if (c >= 0 && static_cast<std::size_t>(c) < m.nodes.size()) child[std::size_t(c)] = true;
+    for (std::size_t i = 0; i < m.nodes.size(); ++i)
+      if (!child[i]) roots.push_back(static_cast<int>(i));
+  }
+  const std::size_t before = scene.triangles.size(), droppedBefore = scene.degenerateDropped;
+  std::vector<bool> visited(m.nodes.size(), false);
+  std::vector<std::pair<int, glm::dmat4>> stack;
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, glm::dmat4(1.0));
+  while (!stack.empty()) {
+    const auto [index, parent] = stack.back();
+    stack.pop_back();
+    if (index < 0 || static_cast<std::size_t>(index) >= m.nodes.size()) loadFail(path, "nodes", "node index " + std::to_string(index) + " out of range");
+    const std::size_t i = static_cast<std::size_t>(index);
+    if (visited[i]) loadFail(path, itemWhere("nodes", i), "node reached twice (a cycle, or a node with two parents)");
+    visited[i] = true;
+    const tinygltf::Node& node = m.nodes[i];
+    const glm::dmat4 world = parent * localTransform(path, node, itemWhere("nodes", i));
+    if (node.camera >= 0) l.takeCamera(node.camera, world);
+    if (node.mesh >= 0) {
+      if (static_cast<std::size_t>(node.mesh) >= m.meshes.size()) loadFail(path, itemWhere("nodes", i), "mesh index out of range");
+      const tinygltf::Mesh& mesh = m.meshes[std::size_t(node.mesh)];
+      for (std::size_t p = 0; p < mesh.primitives.size(); ++p)
+        l.primitive(mesh.primitives[p], world, itemWhere("meshes", std::size_t(node.mesh)) + ".primitives[" + std::to_string(p) + "]");
+    }
+    for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.emplace_back(*it, world);
+  }
+  l.unused.flush(warnings);
+  if (scene.triangles.size() == before)
+    loadFail(path, "", "no triangles (" + std::to_string(scene.degenerateDropped - droppedBefore) +
+                           " degenerate triangles dropped)");
+  if (camera && l.hasCamera) *camera = l.camera;
+  return l.hasCamera;
+}
+
+}  // namespace montecl

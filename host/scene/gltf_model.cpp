@@ -1,0 +1,201 @@
+// gltf_model.cpp: tinygltf with montecl's file callbacks, and checked accessor reads (see
+// gltf_model.h).
+#include "scene/gltf_model.h"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "scene/load_util.h"
+
+namespace montecl {
+namespace {
+
+bool fileExists(const std::string& path, void*) { return fileProblem(path).empty(); }
+std::string expandNothing(const std::string& path, void*) { return path; }
+
+bool readFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+  const std::string problem = fileProblem(path);
+  if (!problem.empty()) {
+    if (err) *err += "cannot open '" + path + "': " + problem + "\n";
+    return false;
+  }
+  try {
+    const std::string bytes = readWholeFile(path);
+    out->assign(bytes.begin(), bytes.end());
+  } catch (const std::exception& e) {
+    if (err) *err += std::string(e.what()) + "\n";
+    return false;
+  }
+  return true;
+}
+
+bool writeNothing(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err += "montecl writes no files while loading\n";
+  return false;
+}
+
+// Images are opened later by path: nothing to decode here.
+bool keepImageUndecoded(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
+                        void*) {
+  return true;
+}
+
+std::string firstLine(const std::string& s) {
+  std::string line = s.substr(0, s.find('\n'));
+  return line.empty() ? "cannot parse glTF" : line;
+}
+
+// tinygltf's error line as montecl's "<file>: <where>: <problem>".
+[[noreturn]] void failWith(const std::string& path, std::string err, bool glb) {
+  const std::string json = "[json.exception.parse_error.101] parse error at ", missing = "File not found : ";
+  if (err.compare(0, json.size(), json) == 0) {
+    err.erase(0, json.size());
+    const std::size_t colon = err.find(": ");
+    if (colon != std::string::npos) loadFail(path, err.substr(0, colon), "not valid glTF JSON: " + err.substr(colon + 2));
+  }
+  if (err.compare(0, missing.size(), missing) == 0)
+    loadFail(path, "buffers", "cannot open '" + besideFile(path, err.substr(missing.size())) + "': no such file");
+  if (!err.empty() && err.back() == '.') err.pop_back();
+  loadFail(path, "", (glb ? "not a valid GLB: " : "not a valid glTF: ") + err);
+}
+
+int hexValue(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+std::string percentDecode(const std::string& s) {
+  std::string out;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '%' && i + 2 < s.size() && hexValue(s[i + 1]) >= 0 && hexValue(s[i + 2]) >= 0) {
+      out += static_cast<char>(hexValue(s[i + 1]) * 16 + hexValue(s[i + 2]));
+      i += 2;
+    } else {
+      out += s[i];
+    }
+  }
+  return out;
+}
+
+// The bytes of an accessor's elements, checked to lie inside its buffer: returns a pointer to
+// element 0 and the stride; elementBytes is the size of one element.
+const unsigned char* accessorBytes(const std::string& file, const tinygltf::Model& m, const tinygltf::Accessor& a,
+                                   std::size_t elementBytes, std::size_t& stride, const std::string& where) {
+  if (a.sparse.isSparse) loadFail(file, where, "sparse accessors are not supported");
+  if (a.bufferView < 0 || static_cast<std::size_t>(a.bufferView) >= m.bufferViews.size())
+    loadFail(file, where, "accessor without a valid bufferView");
+  const tinygltf::BufferView& v = m.bufferViews[static_cast<std::size_t>(a.bufferView)];
+  if (v.buffer < 0 || static_cast<std::size_t>(v.buffer) >= m.buffers.size())
+    loadFail(file, where, "bufferView " + std::to_string(a.bufferView) + " names no valid buffer");
+  const std::vector<unsigned char>& data = m.buffers[static_cast<std::size_t>(v.buffer)].data;
+  stride = v.byteStride ? v.byteStride : elementBytes;
+  if (stride < elementBytes) loadFail(file, where, "byteStride smaller than one element");
+  const std::size_t viewEnd = v.byteOffset + v.byteLength;
+  if (v.byteOffset > data.size() || v.byteLength > data.size() - v.byteOffset)
+    loadFail(file, where, "bufferView " + std::to_string(a.bufferView) + " runs past the end of its buffer");
+  if (a.count == 0) return data.data();
+  const std::size_t start = v.byteOffset + a.byteOffset;
+  const std::size_t span = (a.count - 1) > (std::numeric_limits<std::size_t>::max() - elementBytes) / stride
+                               ? std::numeric_limits<std::size_t>::max()
+                               : (a.count - 1) * stride + elementBytes;
+  if (a.byteOffset > v.byteLength || span > viewEnd - start)
+    loadFail(file, where, "accessor runs past the end of its bufferView (" + std::to_string(a.count) + " elements)");
+  return data.data() + start;
+}
+
+const tinygltf::Accessor& accessorAt(const std::string& file, const tinygltf::Model& m, int index,
+                                     const std::string& where) {
+  if (index < 0 || static_cast<std::size_t>(index) >= m.accessors.size())
+    loadFail(file, where, "accessor index " + std::to_string(index) + " out of range");
+  return m.accessors[static_cast<std::size_t>(index)];
+}
+
+}  // namespace
+
+tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>* warnings) {
+  const std::string bytes = readWholeFile(path);
+  tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks({&fileExists, &expandNothing, &readFile, &writeNothing, nullptr});
+  loader.SetImageLoader(&keepImageUndecoded, nullptr);
+  tinygltf::Model model;
+  std::string err, warn;
+  const std::string dir = folderOf(path).empty() ? "." : folderOf(path);
+  const bool glb = bytes.compare(0, 4, "glTF") == 0;
+  bool ok = false;
+  if (glb) {
+    ok = loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                     static_cast<unsigned int>(bytes.size()), dir);
+  } else {
+    if (lowerExtension(path) == ".glb") loadFail(path, "", "not a binary glTF (no 'glTF' magic)");
+    ok = loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), dir);
+  }
+  if (!ok || !err.empty()) failWith(path, firstLine(err), glb);
+  if (warnings && !warn.empty()) warnings->push_back(oneLine(path) + ": " + oneLine(firstLine(warn)));
+  return model;
+}
+
+std::vector<float> readFloatAccessor(const std::string& file, const tinygltf::Model& m, int index, int components,
+                                     const std::string& where) {
+  const tinygltf::Accessor& a = accessorAt(file, m, index, where);
+  const int type = components == 2 ? TINYGLTF_TYPE_VEC2 : TINYGLTF_TYPE_VEC3;
+  if (a.type != type) loadFail(file, where, "expected a VEC" + std::to_string(components) + " accessor");
+  const int ct = a.componentType;
+  const bool isFloat = ct == TINYGLTF_COMPONENT_TYPE_FLOAT;
+  const bool isNormInt = a.normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+  if (!isFloat && !isNormInt) loadFail(file, where, "expected FLOAT (or normalized unsigned) components");
+  const std::size_t size = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(ct)));
+  std::size_t stride = 0;
+  const unsigned char* p = accessorBytes(file, m, a, size * components, stride, where);
+  std::vector<float> out(a.count * static_cast<std::size_t>(components));
+  for (std::size_t i = 0; i < a.count; ++i)
+    for (int c = 0; c < components; ++c) {
+      const unsigned char* q = p + i * stride + static_cast<std::size_t>(c) * size;
+      float f = 0.0f;
+      if (isFloat) std::memcpy(&f, q, 4);
+      else if (size == 1) f = *q / 255.0f;
+      else {
+        std::uint16_t u;
+        std::memcpy(&u, q, 2);
+        f = u / 65535.0f;
+      }
+      if (!std::isfinite(f)) loadFail(file, where, "element " + std::to_string(i) + " is not finite");
+      out[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)] = f;
+    }
+  return out;
+}
+
+std::vector<std::uint32_t> readIndexAccessor(const std::string& file, const tinygltf::Model& m, int index,
+                                             const std::string& where) {
+  const tinygltf::Accessor& a = accessorAt(file, m, index, where);
+  if (a.type != TINYGLTF_TYPE_SCALAR) loadFail(file, where, "indices must be a SCALAR accessor");
+  const int ct = a.componentType;
+  std::size_t size = ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ? 1 : ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
+                   : ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT ? 4 : 0;
+  if (size == 0) loadFail(file, where, "indices must be UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT");
+  std::size_t stride = 0;
+  const unsigned char* p = accessorBytes(file, m, a, size, stride, where);
+  std::vector<std::uint32_t> out(a.count);
+  for (std::size_t i = 0; i < a.count; ++i) {
+    std::uint32_t v = 0;
+    if (size == 1) v = p[i * stride];
+    else if (size == 2) {
+      std::uint16_t s;
+      std::memcpy(&s, p + i * stride, 2);
+      v = s;
+    } else std::memcpy(&v, p + i * stride, 4);
+    out[i] = v;
+  }
+  return out;
+}
+
+std::string gltfImagePath(const std::string& file, const tinygltf::Model& m, int index) {
+  if (index < 0 || static_cast<std::size_t>(index) >= m.images.size()) return "";
+  const tinygltf::Image& img = m.images[static_cast<std::size_t>(index)];
+  if (img.uri.empty() || img.uri.compare(0, 5, "data:") == 0 || img.bufferView >= 0) return "";
+  return besideFile(file, percentDecode(img.uri));
+}
+
+}  // namespace montecl

@@ -1,0 +1,32 @@
+// gltf_model.h: reading a glTF 2.0 file (.gltf with external or data-URI buffers, or .glb)
+// through tinygltf, and its accessors as checked arrays. Files are read through montecl's own
+// callbacks (regular files only; nothing expanded, nothing written); images are not decoded here
+// (the textures are opened by path later): an image's bytes are only looked at to know whether it
+// has a file. Errors are InputError "<file>: <where>: <problem>".
+#pragma once
+#include <tiny_gltf.h>
+
+#include <glm/glm.hpp>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace montecl {
+
+// Loads the model; tinygltf's warnings are appended (one line each, naming the file).
+tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>* warnings);
+
+// Accessor `index` as floats with `components` components per element (VEC2: 2, VEC3: 3), from
+// FLOAT data or normalized integer data; where names the attribute for messages.
+std::vector<float> readFloatAccessor(const std::string& file, const tinygltf::Model& m, int index, int components,
+                                     const std::string& where);
+
+// Accessor `index` as vertex indices (SCALAR UNSIGNED_BYTE / SHORT / INT).
+std::vector<std::uint32_t> readIndexAccessor(const std::string& file, const tinygltf::Model& m, int index,
+                                             const std::string& where);
+
+// The file of image `index` when it has one (a URI that is not a data URI), resolved beside the
+// glTF and percent-decoded; "" for an embedded image.
+std::string gltfImagePath(const std::string& file, const tinygltf::Model& m, int index);
+
+}  // namespace montecl
