@@ -67,7 +67,7 @@ struct SceneTriangle {
 
 struct Scene {
   std::string path;  // the file it was loaded from
-  std::vector<std::string> inputFiles;  // every file read: the scene file, OBJs, MTLs (as opened)
+  std::vector<std::string> inputFiles;  // every file read: scene file, meshes, MTLs, buffers, textures (as opened)
   Camera camera;
   RenderSettings render;
   std::vector<MaterialDesc> materials;
@@ -76,7 +76,8 @@ struct Scene {
   glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};
 };
 
-// Loads a scene file (.json) or a bare mesh (.obj, framed by defaultCamera()). Throws InputError
+// Loads a scene file (.json) or a bare mesh (.obj, .ply, .gltf, .glb: framed by defaultCamera()
+// unless a glTF brings a camera; scene-file meshes dispatch on the same extensions). Throws InputError
 // with one line "<file>: <key or line>: <problem>" for any bad input; unknown JSON keys are
 // appended to warnings ("<file>: <key>: unknown key, ignored").
 Scene loadScene(const std::string& path, std::vector<std::string>& warnings);

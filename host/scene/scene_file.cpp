@@ -1,6 +1,7 @@
 // scene_file.cpp: loadScene(): reads a scene file (JSON: camera, meshes, render settings) or a bare
-// OBJ, validates every value, and reports bad input as one InputError line
-// "<file>: <key>: <problem>". Unknown keys become warnings. Meshes are loaded by loadObjInto().
+// mesh (.obj, .ply, .gltf, .glb), validates every value, and reports bad input as one InputError
+// line "<file>: <key>: <problem>". Unknown keys become warnings. Meshes are loaded by
+// loadMeshFile() (mesh_loaders.h), per format by its extension.
 #include <nlohmann/json.hpp>
 
 #include <sys/stat.h>
@@ -19,6 +20,7 @@
 #include "scene/json_fields.h"
 #include "scene/load_util.h"
 #include "scene/mesh_entry.h"
+#include "scene/mesh_loaders.h"
 #include "scene/scene.h"
 #include "util/errors.h"
 
@@ -206,19 +208,27 @@ std::vector<MeshEntry> parseMeshes(const Ctx& ctx, const json& root) {
   return meshes;
 }
 
-void loadMeshes(const Ctx& ctx, const std::vector<MeshEntry>& meshes, Scene& scene) {
+// Loads every mesh (any format, by extension) and applies its entry; returns whether a glTF
+// mesh brought a camera (the first one, moved by its mesh's transform), stored in *camera.
+bool loadMeshes(const Ctx& ctx, const std::vector<MeshEntry>& meshes, Scene& scene, Camera* camera) {
+  bool hasCamera = false;
   for (const MeshEntry& m : meshes) {
     std::size_t firstTri = scene.triangles.size();
-    loadObjInto(m.path, scene, &ctx.warnings);
+    Camera cam;
+    if (loadMeshFile(m.path, scene, &ctx.warnings, &cam) && !hasCamera) {
+      hasCamera = true;
+      const glm::dmat4& t = m.transform;
+      camera->position = glm::vec3(t * glm::dvec4(glm::dvec3(cam.position), 1.0));
+      camera->target = glm::vec3(t * glm::dvec4(glm::dvec3(cam.target), 1.0));
+      camera->up = glm::vec3(glm::dmat3(t) * glm::dvec3(cam.up));
+      camera->fovY = cam.fovY;
+      camera->width = cam.width;
+      camera->height = cam.height;
+    }
     applyMeshEntry(ctx, scene, firstTri, m);
   }
   recomputeBounds(scene);
-}
-
-bool hasObjExtension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext == ".obj";
+  return hasCamera;
 }
 
 // Light selection weighs each emitting triangle by area * luminance(Le) in float, and the renderer
@@ -244,11 +254,23 @@ void checkEmissionPower(const Scene& scene) {
   }
 }
 
-Scene loadBareObj(const std::string& path, std::vector<std::string>& warnings) {
+// A bare mesh file: its own camera (glTF) when it has a usable one, else defaultCamera().
+Scene loadBareMesh(const std::string& path, std::vector<std::string>& warnings) {
   Scene scene;
   scene.path = path;
-  loadObjInto(path, scene, &warnings);
-  scene.camera = defaultCamera(scene.boundsMin, scene.boundsMax, 512, 512);
+  Camera fileCamera;
+  const bool hasCamera = loadMeshFile(path, scene, &warnings, &fileCamera);
+  const CameraProblem fileProblem = hasCamera ? cameraBasisProblem(fileCamera) : CameraProblem{};
+  const bool fovOk = fileCamera.fovY > 0.0f && fileCamera.fovY < 180.0f;
+  if (hasCamera && fileProblem.empty() && fovOk) {
+    scene.camera = fileCamera;
+  } else {
+    if (hasCamera)
+      warnings.push_back(oneLine(path) + ": camera: the file's camera cannot be used (" +
+                         (fovOk ? fileProblem.key + " " + fileProblem.problem : std::string("yfov out of range")) +
+                         "), framing the model instead");
+    scene.camera = defaultCamera(scene.boundsMin, scene.boundsMax, 512, 512);
+  }
   const CameraProblem p = cameraBasisProblem(scene.camera);
   if (!p.empty())
     throwInputError(oneLine(path), "automatic camera",
@@ -261,7 +283,7 @@ Scene loadBareObj(const std::string& path, std::vector<std::string>& warnings) {
 }  // namespace
 
 Scene loadScene(const std::string& path, std::vector<std::string>& warnings) {
-  if (hasObjExtension(path)) return loadBareObj(path, warnings);
+  if (meshFormatOf(path) != MeshFormat::Unknown) return loadBareMesh(path, warnings);
   Ctx ctx{path, warnings};
   json root = parseJson(ctx, readSceneText(ctx));
   requireObject(ctx, root, "(top level)");
@@ -269,9 +291,19 @@ Scene loadScene(const std::string& path, std::vector<std::string>& warnings) {
   Scene scene;
   scene.path = path;
   scene.inputFiles.push_back(path);
-  scene.camera = parseCamera(ctx, root);
+  // The camera is required unless a glTF mesh brings one (the scene file's wins when both are given).
+  const bool hasCamera = optionalKey(root, "camera") != nullptr;
+  if (hasCamera) scene.camera = parseCamera(ctx, root);
   scene.render = parseRender(ctx, root);
-  loadMeshes(ctx, parseMeshes(ctx, root), scene);
+  Camera meshCamera;
+  const bool hasMeshCamera = loadMeshes(ctx, parseMeshes(ctx, root), scene, &meshCamera);
+  if (!hasCamera) {
+    if (!hasMeshCamera) fail(ctx, "camera", "missing required key (and no glTF mesh has a camera)");
+    const CameraProblem p = cameraBasisProblem(meshCamera);
+    if (!p.empty() || !(meshCamera.fovY > 0.0f && meshCamera.fovY < 180.0f))
+      fail(ctx, "camera", "missing, and the glTF mesh's camera cannot be used (" + p.key + " " + p.problem + ")");
+    scene.camera = meshCamera;
+  }
   checkEmissionPower(scene);
   return scene;
 }

@@ -1,0 +1,28 @@
+// mesh_loaders.cpp: the dispatch on a mesh file's extension (see mesh_loaders.h).
+#include "scene/mesh_loaders.h"
+
+#include "scene/load_util.h"
+
+namespace montecl {
+
+MeshFormat meshFormatOf(const std::string& path) {
+  const std::string ext = lowerExtension(path);
+  if (ext == ".obj") return MeshFormat::Obj;
+  if (ext == ".ply") return MeshFormat::Ply;
+  if (ext == ".gltf" || ext == ".glb") return MeshFormat::Gltf;
+  return MeshFormat::Unknown;
+}
+
+bool loadMeshFile(const std::string& path, Scene& scene, std::vector<std::string>* warnings, Camera* camera) {
+  switch (meshFormatOf(path)) {
+    case MeshFormat::Obj: loadObjInto(path, scene, warnings); return false;
+    case MeshFormat::Ply: loadPlyInto(path, scene, warnings); return false;
+    case MeshFormat::Gltf: return loadGltfInto(path, scene, warnings, camera);
+    case MeshFormat::Unknown: break;
+  }
+  const std::string ext = lowerExtension(path);
+  loadFail(path, "", "unknown mesh format '" + (ext.empty() ? std::string("(no extension)") : ext) +
+                         "' (montecl reads .obj, .ply, .gltf and .glb)");
+}
+
+}  // namespace montecl
