@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,8 @@
 
 #include "cl/cache_entry.h"
 #include "image/exr_layers.h"
+#include "mesh_files.h"
+#include "scene/mesh_loaders.h"
 #include "scene/scene.h"
 #include "util/errors.h"
 
@@ -50,6 +53,8 @@ struct Sandbox {
     const fs::path good = sourceDir() / "scenes/test/good", demo = sourceDir() / "scenes/demo";
     for (const char* f : {"quad.obj", "quad.mtl"}) fs::copy_file(good / f, fs::path(dir) / f);
     for (const char* f : {"demo.obj", "demo.mtl"}) fs::copy_file(demo / f, fs::path(dir) / f);
+    writeFile(fs::path(dir) / "tent.bin", montecl_test::gltfBuffer(montecl_test::tentMesh()));
+    writeFile(fs::path(dir) / "wood.png", std::string("not decoded by the loader"));
   }
   ~Sandbox() {
     std::error_code ec;
@@ -114,6 +119,54 @@ std::vector<std::string> objSeeds() {
   return seeds;
 }
 
+std::vector<std::string> filesSeeds(const std::vector<std::string>& extensions) {
+  std::vector<std::string> seeds;
+  for (const fs::path& root : seedRoots())
+    for (const std::string& ext : extensions)
+      for (const fs::path& p : filesNamed(root, ext)) seeds.push_back(readFile(p));
+  return seeds;
+}
+
+std::vector<std::string> plySeeds() {
+  using montecl_test::PlyEncoding;
+  const montecl_test::MeshData tent = montecl_test::tentMesh();
+  std::vector<std::string> seeds = {montecl_test::plyText(tent, PlyEncoding::Ascii, "s t"),
+                                    montecl_test::plyText(tent, PlyEncoding::LittleEndian),
+                                    montecl_test::plyText(tent, PlyEncoding::BigEndian, "texture_u texture_v"),
+                                    "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\n"
+                                    "property double z\nproperty uchar red\nelement tristrips 1\n"
+                                    "property list int int vertex_indices\nelement edge 1\nproperty int a\nend_header\n"
+                                    "0 0 0 1\n1 0 0 2\n0 1 0 3\n1 1 0 4\n5 0 1 2 -1 3\n7\n"};
+  for (const std::string& s : filesSeeds({".ply"})) seeds.push_back(s);
+  return seeds;
+}
+
+std::vector<std::string> gltfSeeds() {
+  const montecl_test::MeshData tent = montecl_test::tentMesh();
+  std::string rich = montecl_test::gltfText(tent, 0.5f, "tent.bin");
+  // Materials, textures, a camera and a node hierarchy, spliced into the tent's JSON.
+  const std::string extra =
+      R"("images":[{"uri":"wood.png"},{"uri":"data:image/png;base64,iVBORw0KGgo="}],"textures":[{"source":0},{"source":1,"sampler":0}],)"
+      R"("samplers":[{"wrapS":33071}],"cameras":[{"type":"perspective","perspective":{"yfov":0.6,"aspectRatio":1.5,"znear":0.1}}],)"
+      R"("extensionsUsed":["KHR_materials_emissive_strength","KHR_lights_punctual"],)";
+  rich.insert(1, extra);
+  const std::string material = R"("materials":[{)";
+  rich.insert(rich.find(material) + material.size(),
+              R"("alphaMode":"MASK","alphaCutoff":0.4,"emissiveFactor":[1,1,1],"extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":3}},)"
+              R"("normalTexture":{"index":1},)");
+  const std::string nodes = R"("nodes":[)";
+  rich.insert(rich.find(nodes) + nodes.size(), R"({"children":[1,2],"rotation":[0,0.7071068,0,0.7071068],"scale":[1,2,1]},)"
+                                                R"({"camera":0,"translation":[0,1,5]},)");
+  const std::string mesh = R"({"mesh":0,"translation":[0,0,0]})";
+  rich.replace(rich.find(mesh), mesh.size(), R"({"mesh":0,"matrix":[-1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]})");
+  const std::string roots = R"("scenes":[{"nodes":[0]}])";
+  (void)roots;
+  std::vector<std::string> seeds = {montecl_test::gltfText(tent, 0.5f, ""), montecl_test::gltfText(tent, 0.25f, "tent.bin"),
+                                    montecl_test::glbBytes(tent, 0.5f), rich};
+  for (const std::string& s : filesSeeds({".gltf", ".glb"})) seeds.push_back(s);
+  return seeds;
+}
+
 std::vector<std::string> exrSeeds() {
   using montecl::LayeredImage;
   std::vector<std::string> seeds;
@@ -161,6 +214,8 @@ const char* loaderName(Loader l) {
     case Loader::Obj: return "obj";
     case Loader::Exr: return "exr";
     case Loader::Cache: return "cache";
+    case Loader::Ply: return "ply";
+    case Loader::Gltf: return "gltf";
   }
   return "?";
 }
@@ -219,12 +274,38 @@ Outcome fuzzCache(const std::uint8_t* data, std::size_t size) {
   });
 }
 
+Outcome fuzzPly(const std::uint8_t* data, std::size_t size) {
+  const fs::path p = fs::path(sandboxDir()) / "fuzz.ply";
+  writeFile(p, reinterpret_cast<const char*>(data), size);
+  return guarded([&] {
+    montecl::Scene scene;
+    std::vector<std::string> warnings;
+    montecl::loadPlyInto(p.string(), scene, &warnings);
+    return true;
+  });
+}
+
+Outcome fuzzGltf(const std::uint8_t* data, std::size_t size) {
+  const bool glb = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
+  const fs::path p = fs::path(sandboxDir()) / (glb ? "fuzz.glb" : "fuzz.gltf");
+  writeFile(p, reinterpret_cast<const char*>(data), size);
+  return guarded([&] {
+    montecl::Scene scene;
+    std::vector<std::string> warnings;
+    montecl::Camera camera;
+    montecl::loadGltfInto(p.string(), scene, &warnings, &camera);
+    return true;
+  });
+}
+
 Outcome runEntry(Loader l, const std::uint8_t* data, std::size_t size) {
   switch (l) {
     case Loader::Scene: return fuzzScene(data, size);
     case Loader::Obj: return fuzzObj(data, size);
     case Loader::Exr: return fuzzExr(data, size);
     case Loader::Cache: return fuzzCache(data, size);
+    case Loader::Ply: return fuzzPly(data, size);
+    case Loader::Gltf: return fuzzGltf(data, size);
   }
   throw std::logic_error("unknown loader");
 }
@@ -235,6 +316,8 @@ std::vector<std::string> seedInputs(Loader l) {
     case Loader::Obj: return objSeeds();
     case Loader::Exr: return exrSeeds();
     case Loader::Cache: return cacheSeeds();
+    case Loader::Ply: return plySeeds();
+    case Loader::Gltf: return gltfSeeds();
   }
   return {};
 }

@@ -17,9 +17,9 @@ namespace montecl_fuzz {
 
 enum class Outcome { Loaded, Rejected };
 
-enum class Loader { Scene, Obj, Exr, Cache };
-constexpr Loader kLoaders[] = {Loader::Scene, Loader::Obj, Loader::Exr, Loader::Cache};
-const char* loaderName(Loader l);  // "scene", "obj", "exr", "cache"
+enum class Loader { Scene, Obj, Exr, Cache, Ply, Gltf };
+constexpr Loader kLoaders[] = {Loader::Scene, Loader::Obj, Loader::Exr, Loader::Cache, Loader::Ply, Loader::Gltf};
+const char* loaderName(Loader l);  // "scene", "obj", "exr", "cache", "ply", "gltf"
 
 // Scene JSON: the bytes are <sandbox>/scene.json, loaded by loadScene(). The sandbox folder also
 // holds quad.obj/quad.mtl (scenes/test/good) and demo.obj/demo.mtl (scenes/demo), so that mesh
@@ -40,10 +40,19 @@ Outcome fuzzExr(const std::uint8_t* data, std::size_t size);
 Outcome fuzzCache(const std::uint8_t* data, std::size_t size);
 constexpr std::uint64_t kFuzzCacheCheck = 0x0123456789abcdefull;
 
+// PLY: the bytes are <sandbox>/fuzz.ply, loaded by loadPlyInto().
+Outcome fuzzPly(const std::uint8_t* data, std::size_t size);
+
+// glTF: the bytes are <sandbox>/fuzz.glb when they start with "glTF", else <sandbox>/fuzz.gltf;
+// loaded by loadGltfInto(). The sandbox also holds tent.bin (the external buffer of a seed) and
+// wood.png (a texture the seeds name).
+Outcome fuzzGltf(const std::uint8_t* data, std::size_t size);
+
 Outcome runEntry(Loader l, const std::uint8_t* data, std::size_t size);
 
 // Seed inputs of a loader, from the source tree (scenes/test/good, scenes/test/bad, scenes/demo);
-// the EXR seeds are written here through the OpenImageIO module (small AOV images).
+// the EXR seeds are written here through the OpenImageIO module (small AOV images), the PLY and
+// glTF seeds also by tests/fixtures/mesh_files.h (the tent model in every encoding).
 std::vector<std::string> seedInputs(Loader l);
 
 // The private temporary folder of this process (created on first use, removed at exit).

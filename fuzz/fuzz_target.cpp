@@ -1,5 +1,6 @@
 // fuzz_target.cpp: the libFuzzer harness of one loader, compiled once per loader with
-// -DMONTECL_FUZZ_LOADER=Scene|Obj|Exr|Cache (fuzz_scene, fuzz_obj, fuzz_exr, fuzz_cache).
+// -DMONTECL_FUZZ_LOADER=Scene|Obj|Exr|Cache|Ply|Gltf (fuzz_scene, fuzz_obj, fuzz_exr, fuzz_cache,
+// fuzz_ply, fuzz_gltf).
 // An input that ends in anything but Loaded/Rejected (another exception, a crash, a sanitizer
 // report, a timeout) is a finding. See docs/fuzzing.md.
 #include <cstddef>

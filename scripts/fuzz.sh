@@ -9,7 +9,7 @@ bash scripts/setup.sh --fuzz
 seconds=${1:-300}
 shift || true
 loaders=("$@")
-[ ${#loaders[@]} -gt 0 ] || loaders=(scene obj exr cache)
+[ ${#loaders[@]} -gt 0 ] || loaders=(scene obj exr cache ply gltf)
 CC=clang-14 CXX=clang++-14 cmake -S . -B build-fuzz -DMONTECL_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 cmake --build build-fuzz -j"$(nproc)" --target fuzz
 build-fuzz/fuzz_seeds build-fuzz/seeds

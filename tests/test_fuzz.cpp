@@ -158,3 +158,9 @@ TEST_CASE("fuzz: 10k mutated EXR inputs of merge load or fail with InputError" *
 TEST_CASE("fuzz: 10k mutated program-cache entries verify or are refused" * doctest::test_suite("cpu")) {
   fuzzLoop(Loader::Cache);
 }
+TEST_CASE("fuzz: 10k mutated PLY files (ASCII and binary) load or fail with InputError" * doctest::test_suite("cpu slow")) {
+  fuzzLoop(Loader::Ply);
+}
+TEST_CASE("fuzz: 10k mutated glTF files (.gltf and .glb) load or fail with InputError" * doctest::test_suite("cpu slow")) {
+  fuzzLoop(Loader::Gltf);
+}
