@@ -243,3 +243,28 @@ TEST_CASE("glTF: malformed files are one InputError line naming the file and whe
     CHECK(message.find("malformed JSON") == std::string::npos);
   }
 }
+
+TEST_CASE("glTF: a scene file without a camera takes the glTF mesh's, moved by the mesh's transform" *
+          doctest::test_suite("cpu")) {
+  TempDir dir;
+  json g = tentGltf();
+  g["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}}};
+  g["nodes"].push_back({{"camera", 0}, {"translation", {0, 1, 5}}});
+  g["scenes"][0]["nodes"] = {0, 1};
+  dir.write("cam.gltf", g.dump());
+  dir.write("tent.obj", montecl_test::objText(montecl_test::tentMesh()));
+  dir.write("scene.json", json{{"meshes", {{{"file", "tent.obj"}}, {{"file", "cam.gltf"}, {"transform", {{"translate", {10, 0, 0}}}}}}}}.dump());
+  std::vector<std::string> warnings;
+  Scene s = montecl::loadScene(dir.file("scene.json"), warnings);
+  CHECK(s.camera.position == glm::vec3(10, 1, 5));
+  CHECK(s.camera.target == glm::vec3(10, 1, 4));
+  CHECK(s.camera.width == 512);
+  // Neither the scene file nor a glTF gives a camera: the key is missing.
+  dir.write("nocam.json", json{{"meshes", {{{"file", "tent.obj"}}}}}.dump());
+  try {
+    montecl::loadScene(dir.file("nocam.json"), warnings);
+    FAIL("loaded without a camera");
+  } catch (const montecl::InputError& e) {
+    CHECK(std::string(e.what()).find(dir.file("nocam.json") + ": camera: missing required key (and no glTF mesh has a camera)") == 0);
+  }
+}
