@@ -184,3 +184,25 @@ TEST_CASE("MTL: one warning per kind of unused statement, naming the MTL and the
   loadObj(dir.file("q.obj"), &warnings);
   CHECK(warnings.empty());
 }
+
+TEST_CASE("OBJ: statements montecl does not use are one warning per kind; used ones say nothing" *
+          doctest::test_suite("cpu")) {
+  TempDir dir;
+  dir.write("u.obj",
+            "o thing\ng part\ns 1\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nl 1 2\nl 2 3\np 1\n"
+            "cstype bezier\ncurv 0 1 1 2\nusemap tex\n");
+  std::vector<std::string> warnings;
+  loadObj(dir.file("u.obj"), &warnings);
+  INFO([&] { std::string all; for (auto& w : warnings) all += w + "\n"; return all; }());
+  CHECK(warnings.size() == 5);
+  CHECK(countContaining(warnings, "u.obj: line 8: 'l' (lines) not rendered by montecl, ignored (1 more)") == 1);
+  CHECK(countContaining(warnings, "u.obj: line 10: 'p' (points)") == 1);
+  CHECK(countContaining(warnings, "u.obj: line 11: free-form geometry ('cstype') not rendered by montecl, ignored (1 more)") == 1);
+  CHECK(countContaining(warnings, "u.obj: line 13: 'usemap' not used") == 1);
+  CHECK(countContaining(warnings, "u.obj: line 3: smoothing groups ('s') without vn") == 1);
+  // With vn, smoothing groups say nothing; nor do o, g, s off.
+  dir.write("n.obj", "o a\ng b\ns 1\ns off\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n");
+  warnings.clear();
+  loadObj(dir.file("n.obj"), &warnings);
+  CHECK(warnings.empty());
+}

@@ -174,6 +174,7 @@ void loadObjInto(const std::string& objPath, Scene& scene, std::vector<std::stri
                         (scan.unknownStatements > 1
                              ? " (" + std::to_string(scan.unknownStatements - 1) + " more unknown statements)"
                              : std::string()));
+  scan.unused.flush(warnings);
   if (warnings && scan.badAttributeIndices > 0)
     warnings->push_back(oneLine(objPath) + ": " + scan.firstBadAttribute + ": those faces get no vt/vn" +
                         (scan.badAttributeIndices > 1

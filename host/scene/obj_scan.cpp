@@ -140,6 +140,25 @@ void scanFace(const std::string& file, std::size_t line, Tokens tok, ObjScan& sc
   ++scan.faces;
 }
 
+// Known OBJ statements montecl does not use: one warning per kind (groups, objects, materials
+// and smoothing groups off are used or harmless; `s` on is reported when the file has no vn).
+void noteUnused(const std::string& kw, std::size_t line, Tokens tok, ObjScan& scan) {
+  if (kw == "g" || kw == "o" || kw == "usemtl" || kw == "mtllib") return;
+  if (kw == "s") {
+    const char *b, *e;
+    if (tok.next(b, e) && std::string(b, e) != "off" && std::string(b, e) != "0" && scan.firstSmoothLine == 0)
+      scan.firstSmoothLine = line;
+    return;
+  }
+  const std::string where = lineWhere(line);
+  if (kw == "l" || kw == "p")
+    scan.unused.add(kw, where, "'" + kw + "' (" + (kw == "l" ? "lines" : "points") + ") not rendered by montecl, ignored");
+  else if (kw == "vp" || kw == "cstype" || kw == "curv" || kw == "curv2" || kw == "surf")
+    scan.unused.add("free-form", where, "free-form geometry ('" + kw + "') not rendered by montecl, ignored");
+  else
+    scan.unused.add(kw, where, "'" + kw + "' not used by montecl, ignored");
+}
+
 void scanStatement(const std::string& file, std::size_t line, const char* b, const char* end, ObjScan& scan,
                    MaxIndex* maxIndex) {
   Tokens tok{b, end};
@@ -158,6 +177,8 @@ void scanStatement(const std::string& file, std::size_t line, const char* b, con
       scan.firstUnknown = oneLine(kw, 40);
     }
     return;
+  } else {
+    noteUnused(kw, line, tok, scan);
   }
   ++scan.knownStatements;
 }
@@ -169,7 +190,7 @@ ObjScan scanObjText(const std::string& file, const std::string& text) {
     std::size_t line = 1 + static_cast<std::size_t>(std::count(text.data(), bad, '\n'));
     loadFail(file, lineWhere(line), "not an OBJ file (binary data)");
   }
-  ObjScan scan;
+  ObjScan scan{file};
   MaxIndex maxIndex[3];
   const char* p = text.data();
   const char* end = p + text.size();
@@ -190,6 +211,9 @@ ObjScan scanObjText(const std::string& file, const std::string& text) {
       noteBadAttribute(scan, maxIndex[k].line, problem);
     }
   if (scan.faces == 0) loadFail(file, "", "no triangles (the OBJ has no faces)");
+  if (scan.firstSmoothLine > 0 && scan.count[2] == 0)
+    scan.unused.add("s", lineWhere(scan.firstSmoothLine),
+                    "smoothing groups ('s') without vn: montecl generates no normals, faces are shaded flat");
   return scan;
 }
 

@@ -6,9 +6,14 @@
 #include <cstddef>
 #include <string>
 
+#include "scene/load_util.h"
+
 namespace montecl {
 
 struct ObjScan {
+  explicit ObjScan(const std::string& file) : unused(file) {}
+  KindWarnings unused;  // known statements montecl does not use (l, p, free-form, s without vn, ...)
+  std::size_t firstSmoothLine = 0;
   std::size_t faces = 0, knownStatements = 0;
   std::size_t unknownStatements = 0, firstUnknownLine = 0;
   std::string firstUnknown;
