@@ -5,7 +5,7 @@ renderer), then reports per-pixel agreement (z-scores) and both wall times.
     scripts/vs_mitsuba.py SCENE.json [--spp N] [--width W --height H] [--seed S]
         [--integrator direct|path] [--max-depth D] [--rr-depth R] [--direct-sampling light|brdf|mis]
         [--repeat N] [--ref-factor F] [--ref-seeds K] [--montecl build/montecl] [--variant auto|llvm|scalar]
-        [--montecl-arg ARG]... [--keep DIR] [--json FILE] [--no-agreement] [--no-timing]
+        [--montecl-arg ARG]... [--montecl-scene SCENE] [--keep DIR] [--json FILE] [--no-agreement] [--no-timing]
 
 Mitsuba's scene is built from ours as Python dicts: the pinhole camera from the camera keys
 (look_at, fov_axis 'y', the same width and height), a box pixel filter (a sample counts for its own
@@ -333,6 +333,8 @@ def parse_args(argv):
     p.add_argument("--ref-seeds", type=int, default=16, help="independent Mitsuba renders in the reference")
     p.add_argument("--montecl", default=os.path.join(ROOT, "build", "montecl"))
     p.add_argument("--montecl-arg", action="append", default=[], help="extra montecl render argument")
+    p.add_argument("--montecl-scene", help="render this scene with montecl instead (same camera and size; "
+                   "e.g. a converted model, or a deliberately changed one to see the check fail)")
     p.add_argument("--variant", choices=["auto", "llvm", "scalar"], default="auto")
     p.add_argument("--keep", help="keep the images in this folder")
     p.add_argument("--json", help="write the results to this JSON file")
@@ -379,7 +381,7 @@ def main(argv):
     env = mitsuba_env()
 
     m_exr = os.path.join(work, "montecl.exr")
-    mcl = [a.montecl, "render", a.scene, "--spp", str(spp), "--seed", str(seed), "--width", str(width),
+    mcl = [a.montecl, "render", a.montecl_scene or a.scene, "--spp", str(spp), "--seed", str(seed), "--width", str(width),
            "--height", str(height), "--integrator", integ, "-o", m_exr, "--overwrite", "-q"]
     if integ == "direct":
         mcl += ["--direct-sampling", sampling]
