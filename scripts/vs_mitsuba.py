@@ -39,6 +39,7 @@ import json
 import math
 import os
 import resource
+import shutil
 import statistics
 import subprocess
 import sys
@@ -211,9 +212,7 @@ def worker(spec_path):
         print(f"vs_mitsuba: {variant} unavailable ({e}); using scalar_rgb", file=sys.stderr)
         variant = "scalar_rgb"
         mi.set_variant(variant)
-    scene = load_scene(spec["scene"])
-    cam = scene["camera"]
-    tmp = tempfile.mkdtemp(prefix="vs_mitsuba_")
+    cam = spec["camera"]
     d = {"type": "scene", "integrator": mitsuba_integrator(spec)}
     d["sensor"] = {
         "type": "perspective", "fov": cam["fov_y"], "fov_axis": "y",
@@ -223,18 +222,15 @@ def worker(spec_path):
                  "rfilter": {"type": "box"}, "pixel_format": "rgb", "component_format": "float32"},
         "sampler": {"type": "independent", "sample_count": 1},
     }
-    for sh in scene["shapes"]:
-        ply = os.path.join(tmp, sh["name"] + ".ply")
-        write_ply(ply, sh["P"], sh["F"])
-        s = {"type": "ply", "filename": ply, "face_normals": True,
+    for sh in spec["shapes"]:
+        s = {"type": "ply", "filename": sh["ply"], "face_normals": True,
              "bsdf": {"type": "twosided", "bsdf": {"type": "diffuse",
                                                    "reflectance": {"type": "rgb", "value": sh["Kd"]}}}}
         if any(x > 0 for x in sh["Ke"]):
             s["emitter"] = {"type": "area", "radiance": {"type": "rgb", "value": sh["Ke"]}}
         d[sh["name"]] = s
-    if scene["environment"] is not None:
-        d["environment"] = {"type": "constant",
-                            "radiance": {"type": "rgb", "value": scene["environment"]["radiance"]}}
+    if spec["environment"] is not None:
+        d["environment"] = {"type": "constant", "radiance": {"type": "rgb", "value": spec["environment"]["radiance"]}}
     msc = mi.load_dict(d)
     pixels = spec["width"] * spec["height"]
     images = []
@@ -388,7 +384,14 @@ def main(argv):
     else:
         mcl += ["--max-depth", str(a.max_depth), "--rr-depth", str(a.rr_depth)]
     mcl += a.montecl_arg
-    base = {"scene": os.path.abspath(a.scene), "width": width, "height": height, "variant": variant,
+    # Mitsuba reads the meshes as PLY files written here once (untimed), with its own C++ loader, as
+    # montecl parses the OBJ in its own process.
+    shapes = []
+    for sh in sc["shapes"]:
+        ply = os.path.join(work, sh["name"] + ".ply")
+        write_ply(ply, sh["P"], sh["F"])
+        shapes.append({"name": sh["name"], "ply": ply, "Kd": sh["Kd"], "Ke": list(sh["Ke"])})
+    base = {"camera": cam, "shapes": shapes, "environment": sc["environment"], "width": width, "height": height, "variant": variant,
             "integrator": integ, "direct_sampling": sampling, "light_samples": rnd.get("light_samples", 1),
             "max_depth": a.max_depth, "rr_depth": a.rr_depth}
 
@@ -454,6 +457,8 @@ def main(argv):
     if a.json:
         with open(a.json, "w") as f:
             json.dump(res, f, indent=2)
+    if not a.keep:
+        shutil.rmtree(work, ignore_errors=True)
     return status
 
 
