@@ -445,7 +445,7 @@ def main(argv):
             raise RuntimeError(f"image sizes differ: montecl {m_mean.shape}, Mitsuba {ref['mean'].shape}")
         ag = agreement(m_mean, m_se, ref["mean"], ref["se"])
         ok = ag["frac_abs_z_gt_4"] <= 1e-3 and abs(ag["mean_z"]) <= 0.1
-        ag["pass"] = ok
+        ag["pass"] = bool(ok)
         res["agreement"] = ag
         print(f"agreement vs Mitsuba {res['mitsuba_variant']} ({res['reference_spp']} spp in {a.ref_seeds} "
               f"independent renders): |z| > 4 on {ag['abs_z_gt_4']} of {ag['channels']} pixel channels "
