@@ -214,6 +214,10 @@ def worker(spec_path):
         mi.set_variant(variant)
     cam = spec["camera"]
     d = {"type": "scene", "integrator": mitsuba_integrator(spec)}
+    lens = {}
+    if cam.get("aperture_radius", 0) > 0:  # montecl's thin lens: Mitsuba's thinlens camera
+        lens = {"type": "thinlens", "aperture_radius": cam["aperture_radius"],
+                "focus_distance": cam.get("focus_distance", math.dist(cam["position"], cam["target"]))}
     d["sensor"] = {
         "type": "perspective", "fov": cam["fov_y"], "fov_axis": "y",
         "to_world": mi.ScalarTransform4f().look_at(origin=cam["position"], target=cam["target"],
@@ -222,6 +226,7 @@ def worker(spec_path):
                  "rfilter": {"type": "box"}, "pixel_format": "rgb", "component_format": "float32"},
         "sampler": {"type": "independent", "sample_count": 1},
     }
+    d["sensor"].update(lens)
     for sh in spec["shapes"]:
         s = {"type": "ply", "filename": sh["ply"], "face_normals": True,
              "bsdf": {"type": "twosided", "bsdf": {"type": "diffuse",
@@ -322,8 +327,8 @@ def parse_args(argv):
     p.add_argument("--seed", type=int, default=None)
     p.add_argument("--integrator", choices=["direct", "path"], default=None)
     p.add_argument("--direct-sampling", choices=["light", "brdf", "mis"], default=None)
-    p.add_argument("--max-depth", type=int, default=-1)
-    p.add_argument("--rr-depth", type=int, default=5)
+    p.add_argument("--max-depth", type=int, default=None, help="path: default the scene's max_depth, else -1")
+    p.add_argument("--rr-depth", type=int, default=None, help="path: default the scene's rr_depth, else 5")
     p.add_argument("--repeat", type=int, default=3, help="timed runs of each renderer (median)")
     p.add_argument("--ref-factor", type=int, default=4, help="Mitsuba reference spp = factor x spp")
     p.add_argument("--ref-seeds", type=int, default=16, help="independent Mitsuba renders in the reference")
@@ -344,7 +349,7 @@ def parse_args(argv):
         p.error("a scene file is needed")
     if a.repeat < 1 or a.ref_factor < 1 or a.ref_seeds < 2:
         p.error("--repeat and --ref-factor must be >= 1, --ref-seeds >= 2")
-    if a.max_depth == 0 or a.max_depth < -1 or a.rr_depth < 1:
+    if a.max_depth is not None and (a.max_depth == 0 or a.max_depth < -1) or a.rr_depth is not None and a.rr_depth < 1:
         p.error("--max-depth must be -1 or >= 1, --rr-depth >= 1")
     return a
 
@@ -369,6 +374,8 @@ def main(argv):
     if integ not in ("direct", "path"):
         raise BadInput(f"{a.scene}: render.integrator: {integ}: Mitsuba has no '{integ}' (use --integrator)")
     sampling = a.direct_sampling or rnd.get("direct_sampling", "mis")
+    a.max_depth = a.max_depth if a.max_depth is not None else rnd.get("max_depth", -1)
+    a.rr_depth = a.rr_depth if a.rr_depth is not None else rnd.get("rr_depth", 5)
     variant = {"llvm": "llvm_ad_rgb", "scalar": "scalar_rgb"}[
         a.variant if a.variant != "auto" else ("llvm" if os.path.exists(LLVM19) or
                                                "DRJIT_LIBLLVM_PATH" in os.environ else "scalar")]
