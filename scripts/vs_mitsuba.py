@@ -103,7 +103,9 @@ def read_mtl(path):
 
 
 def read_obj(path):
-    """Returns ({material name: list of (i0, i1, i2)}, positions, materials); polygons as fans."""
+    """Returns ({material name: list of (i0, i1, i2)}, positions, materials), triangulated as
+    montecl's loader (tinyobjloader) does: quads along the shorter diagonal (a non-planar quad's two
+    splits are different surfaces: the Cornell box's boxes have such quads), larger polygons as fans."""
     pos, groups, mats, cur = [], {}, {}, None
     base = os.path.dirname(path)
     with open(path) as f:
@@ -118,8 +120,17 @@ def read_obj(path):
                 for c in t[1:]:
                     i = int(c.split("/")[0])
                     idx.append(i - 1 if i > 0 else len(pos) + i)
-                for k in range(1, len(idx) - 1):
-                    groups.setdefault(cur, []).append((idx[0], idx[k], idx[k + 1]))
+                tris = groups.setdefault(cur, [])
+                if len(idx) == 4:  # as tinyobjloader (montecl's OBJ loader): split along the shorter diagonal
+                    import numpy as np
+                    p4 = [np.asarray(pos[i], dtype=np.float32) for i in idx]
+                    d02, d13 = p4[2] - p4[0], p4[3] - p4[1]
+                    if np.dot(d02, d02) < np.dot(d13, d13):
+                        tris += [(idx[0], idx[1], idx[2]), (idx[0], idx[2], idx[3])]
+                    else:
+                        tris += [(idx[0], idx[1], idx[3]), (idx[1], idx[2], idx[3])]
+                else:  # triangles; larger polygons as fans (tinyobjloader may split non-convex ones otherwise)
+                    tris += [(idx[0], idx[k], idx[k + 1]) for k in range(1, len(idx) - 1)]
             elif t[0] == "usemtl":
                 cur = " ".join(t[1:])
             elif t[0] == "mtllib":
