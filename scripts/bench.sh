@@ -5,6 +5,9 @@
 # Skips with a message (exit 0) when the scenes folder is absent. Exit 1 if any run mismatched.
 # The SAH column gives the binned build's cost and its ratio to a full-sweep build's (--sah-reference).
 # Environment: BUILD_DIR (default build), REPEAT (default 5), DEVICE (--device), THREADS (--threads).
+# Whole renders: when Mitsuba 3's venv exists (scripts/setup.sh --mitsuba), also montecl vs Mitsuba 3
+# wall times (scripts/vs_mitsuba.py, Cornell box 128x128 1024 spp direct MIS, medians of REPEAT
+# alternated whole processes) into bench/vs_mitsuba.json and a second table; VS_MITSUBA=0 skips it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${BUILD_DIR:-build}
@@ -47,7 +50,7 @@ platform=$(jq -r '.platform' "$first")
   echo "Machine: $cpu, $(nproc) cores; OpenCL device $(jq -r '.device' "$first") ($(jq -r '.compute_units' "$first") compute units), driver $pocl ($platform); Embree $(jq -r '.embree_version // "n/a"' "$first") on $(jq -r '.threads' "$first") threads. $(date -u +%Y-%m-%d)."
   echo
   echo "Mrays/s from the median of ${REPEAT:-5} timed kernel runs (OpenCL profiling events) after a warm-up; ratio = montecl / Embree Mrays/s (higher is better);"
-  echo "build ratio = montecl ms / Embree ms (lower is better). Closest hit: primary rays (intersect kernel); any hit: AO (8 cosine rays per primary hit) and shadow rays (intersect_shadow)."
+  echo "build ratio = montecl ms / Embree ms (lower is better). Closest hit (intersect kernel): primary rays and bounce (diffuse bounce: 4 unbounded cosine rays per primary hit, the incoherent continuation rays of path tracing); any hit (intersect_shadow): AO (8 cosine rays per primary hit) and shadow rays."
   echo
   echo "| scene | triangles | BVH ms | Embree build ms | build ratio | nodes | B/tri | SAH (/ full sweep) | kind | rays | Mrays/s (best) | Embree Mrays/s | ratio | mismatches |"
   echo "|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|"
@@ -56,6 +59,22 @@ platform=$(jq -r '.platform' "$first")
       . as $r | .rays[] |
       "| \($name) | \($r.triangles) | \($r.bvh.build_ms * 10 | round / 10) | \(($r.embree.build_ms // 0) * 10 | round / 10) | \(($r.build_ratio // 0) * 100 | round / 100) | \($r.bvh.nodes) | \($r.bvh.bytes_per_triangle * 10 | round / 10) | \($r.bvh.sah_cost * 100 | round / 100) (\(($r.bvh.sah_ratio // 0) * 1000 | round / 1000)) | \(.kind) | \(.count) | \(.mrays_per_s * 100 | round / 100) (\(.best_mrays_per_s * 100 | round / 100)) | \((.embree_mrays_per_s // 0) * 100 | round / 100) | \((.ratio // 0) * 100 | round / 100) | \(.mismatches) |"' "$j"
   done
+  venv=${MONTECL_MITSUBA_VENV:-$HOME/.cache/montecl/mitsuba-venv}
+  if [ "${VS_MITSUBA:-1}" != 0 ] && [ -x "$venv/bin/python" ] && [ -f "$scenes/cornell-box/scene.json" ]; then
+    echo "bench: cornell-box vs Mitsuba 3 (whole renders)" >&2
+    if "$venv/bin/python" scripts/vs_mitsuba.py "$scenes/cornell-box/scene.json" --montecl "$build/montecl" \
+        --width 128 --height 128 --spp 1024 --integrator direct --direct-sampling mis --repeat "${REPEAT:-5}" \
+        --no-agreement --json "$out/vs_mitsuba.json" >&2; then
+      echo
+      echo "Whole renders (scripts/vs_mitsuba.py: whole processes alternated, median of ${REPEAT:-5}; ratio = montecl / Mitsuba wall, lower is better):"
+      echo
+      echo "| scene | size | spp | estimator | montecl s (CPU s) | Mitsuba 3 s (CPU s) | Mitsuba variant | ratio |"
+      echo "|---|---|---:|---|---:|---:|---|---:|"
+      jq -r '"| cornell-box | \(.width)x\(.height) | \(.spp) | \(.integrator) \(.direct_sampling // "") | \(.montecl_wall_s * 100 | round / 100) (\(.montecl_cpu_s * 100 | round / 100)) | \(.mitsuba_wall_s * 100 | round / 100) (\(.mitsuba_cpu_s * 100 | round / 100)) | \(.mitsuba_variant) | \(.wall_ratio * 100 | round / 100) |"' "$out/vs_mitsuba.json"
+    else
+      echo "bench: vs_mitsuba.py failed" >&2; status=1
+    fi
+  fi
 } > "$out/results.md.tmp"
 mv "$out/results.md.tmp" "$out/results.md"
 cat "$out/results.md"

@@ -15,12 +15,30 @@ packages=(
 # Only the plotting scripts need matplotlib: `setup.sh --plots` adds it. Only the libFuzzer
 # harnesses (scripts/fuzz.sh, cmake -DMONTECL_FUZZ=ON) need clang and its fuzzer/sanitizer
 # runtimes: `setup.sh --fuzz` adds them (the ASan/UBSan build of the suite uses g++'s libasan).
+# Only scripts/vs_mitsuba.py (and its test) needs Mitsuba 3: `setup.sh --mitsuba` adds python3-venv
+# and libllvm19 (Mitsuba's llvm_ad_rgb variant needs an LLVM newer than Debian's default) and
+# installs PyPI's mitsuba + numpy into a cached venv, $MONTECL_MITSUBA_VENV or
+# ~/.cache/montecl/mitsuba-venv (about 100 MB; skipped when it already imports mitsuba).
+mitsuba=0
 for arg in "$@"; do
   case "$arg" in
     --plots) packages+=(python3-matplotlib) ;;
     --fuzz) packages+=(clang-14 libclang-rt-14-dev) ;;
+    --mitsuba) packages+=(python3-venv libllvm19); mitsuba=1 ;;
   esac
 done
+
+mitsuba_venv() {
+  [ "$mitsuba" = 1 ] || return 0
+  local venv=${MONTECL_MITSUBA_VENV:-$HOME/.cache/montecl/mitsuba-venv}
+  if [ -x "$venv/bin/python" ] && "$venv/bin/python" -c 'import mitsuba, numpy' 2>/dev/null; then
+    return 0
+  fi
+  echo "setup: installing Mitsuba 3 (PyPI mitsuba, numpy) into $venv" >&2
+  mkdir -p "$(dirname "$venv")"
+  python3 -m venv "$venv"
+  "$venv/bin/pip" install -q --disable-pip-version-check mitsuba numpy >&2
+}
 
 missing=()
 for p in "${packages[@]}"; do
@@ -30,6 +48,7 @@ for p in "${packages[@]}"; do
 done
 
 if [ ${#missing[@]} -eq 0 ]; then
+  mitsuba_venv
   exit 0
 fi
 
@@ -39,3 +58,4 @@ if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
 export DEBIAN_FRONTEND=noninteractive
 "${sudo_cmd[@]}" apt-get update -qq
 "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+mitsuba_venv

@@ -51,6 +51,10 @@ void checkBenchJson(const nlohmann::json& r, int width, int height, bool expectS
   std::size_t hits = (*primary)["hits"].get<std::size_t>();
   CHECK(hits > 0);
   CHECK((*ao)["count"].get<std::size_t>() == 8 * hits);
+  const nlohmann::json* bounce = findKind(r, "bounce");  // the "diffuse bounce" set: closest hit
+  REQUIRE(bounce != nullptr);
+  CHECK((*bounce)["count"].get<std::size_t>() == 4 * hits);
+  CHECK((*bounce)["query"] == "closest");
   CHECK((findKind(r, "shadow") != nullptr) == expectShadow);
   for (const auto& k : r["rays"]) {
     INFO("ray kind " << k["kind"]);

@@ -1,6 +1,6 @@
 // bench.cpp: the body of `montecl bench`. Steps: load the scene, build the BVH (build ms, nodes,
 // bytes per triangle, SAH cost), generate the seeded ray sets with host references (ray_sets.h),
-// time the `intersect` (closest hit: primary) and `intersect_shadow` (any hit: AO, shadow) kernels
+// time the `intersect` (closest hit: primary, diffuse bounce) and `intersect_shadow` (any hit: AO, shadow) kernels
 // with profiling events (warm-up + N repetitions, median and minimum), count mismatches against the
 // reference, then build and trace the same on Embree 3 and compute montecl/Embree ratios.
 //
@@ -12,7 +12,7 @@
 //          "bytes_per_triangle", "node_bytes_per_triangle"} (bytes: the traversed layout's),
 //          with --sah-reference also "sweep_sah_cost" and "sah_ratio" (binned / full sweep)},
 //  "embree": {"build_ms"}, "build_ratio" (montecl ms / Embree ms),
-//  "rays": [{"kind", "query", "count", "hits", "median_ms", "min_ms", "mrays_per_s",
+//  "rays": [{"kind" (primary | ao | shadow | bounce: the "diffuse bounce" set), "query", "count", "hits", "median_ms", "min_ms", "mrays_per_s",
 //            "best_mrays_per_s", "embree_median_ms", "embree_min_ms", "embree_mrays_per_s",
 //            "ratio" (montecl / Embree Mrays/s), "mismatches", "embree_mismatches",
 //            "host_ref_mrays_per_s" (the same traversal code compiled for the host, on T threads, one run)}],
@@ -201,7 +201,7 @@ json runBench(const BenchOptions& o, bool verbose) {
   r["local_size"] = session.localSize(session.kernel("intersect"));
   std::size_t total = 0;
   json rays = json::array();
-  for (RaySet* set : {&sets.primary, &sets.ao, &sets.shadow}) {
+  for (RaySet* set : {&sets.primary, &sets.ao, &sets.shadow, &sets.bounce}) {
     if (set->kind == "shadow" && sets.emitters == 0) continue;  // no emitters: no shadow rays
     say("tracing " + std::to_string(set->rays.size()) + " " + set->kind + " rays");
     std::vector<float> t;
@@ -296,7 +296,7 @@ std::string formatBenchTable(const json& r) {
     s << "\n";
   }
   s << "\nMrays/s from the median of " << r["repeat"].get<int>()
-    << " runs (closest hit: intersect kernel; any hit: intersect_shadow); ratio = montecl/Embree Mrays/s;\n"
+    << " runs (closest hit: intersect kernel, primary and diffuse bounce; any hit: intersect_shadow); ratio = montecl/Embree Mrays/s;\n"
     << "host ref: the same traversal code compiled for the host, one run on the same threads, no warm-up.\n"
     << "mismatch: hit/miss differs from the host reference, or t differs by more than "
     << std::setprecision(0) << std::scientific << r["rel_tolerance"].get<double>() << " relative. "

@@ -1,4 +1,4 @@
-// ray_sets.cpp: seeded primary / AO / shadow ray generation for the bench (same camera, RNG,
+// ray_sets.cpp: seeded primary / AO / shadow / diffuse-bounce ray generation for the bench (same camera, RNG,
 // hemisphere sampling, facing normal, origin offset, emitter table and light sampling as the
 // render stages) and the parallel host reference traversal of every ray.
 #include "bench/ray_sets.h"
@@ -22,6 +22,19 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+void referenceClosest(const Bvh& bvh, RaySet& set, unsigned threads, BvhLayout layout) {
+  set.refT.assign(set.rays.size(), INFINITY);
+  auto t0 = std::chrono::steady_clock::now();
+  parallelChunks(set.rays.size(), threads, kRayGrain, [&](std::size_t, std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      const Ray& r = set.rays[i];
+      Hit h = intersectClosest(bvh, xyz(r.origin), xyz(r.dir), r.dir.w, layout);
+      set.refT[i] = h.tri == MCL_NO_HIT ? INFINITY : h.t;
+    }
+  }, kRayGrain);
+  set.refMs = msSince(t0);
+}
+
 void referenceAny(const Bvh& bvh, RaySet& set, unsigned threads, BvhLayout layout) {
   set.refOccluded.assign(set.rays.size(), 0);
   auto t0 = std::chrono::steady_clock::now();
@@ -43,6 +56,7 @@ RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads, BvhLay
   s.ao.query = RayKind::Any;
   s.shadow.kind = "shadow";
   s.shadow.query = RayKind::Any;
+  s.bounce.kind = "bounce";
   const uint seed = scene.render.seed;
   const FrameParams f = makeFrameParams(scene.camera, scene.render, 1);
   const uint width = f.width, pixels = f.width * f.height;
@@ -84,6 +98,13 @@ RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads, BvhLay
       r.dir = with_w(to_world(sample_cosine_hemisphere(u.x, u.y), n), scene.render.aoDistance);
       s.ao.rays.push_back(r);
     }
+    for (uint k = 0; k < kBounceRaysPerHit; ++k) {
+      float4 u = rng_uniform4(seed, p, k, 3u);  // a group of its own: AO's directions would repeat
+      Ray r;
+      r.origin = with_w(org, 0.0f);
+      r.dir = with_w(to_world(sample_cosine_hemisphere(u.x, u.y), n), INFINITY);
+      s.bounce.rays.push_back(r);
+    }
     if (emitterCount == 0) continue;
     // The first light sample of the direct integrator's sample 0 (stage_shade_direct in
     // kernels/shared/stages_direct.h): same emitter pick, point, skip rule and shortened tmax.
@@ -103,6 +124,7 @@ RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads, BvhLay
   }
   referenceAny(bvh, s.ao, threads, layout);
   referenceAny(bvh, s.shadow, threads, layout);
+  referenceClosest(bvh, s.bounce, threads, layout);
   return s;
 }
 

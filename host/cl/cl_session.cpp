@@ -38,12 +38,12 @@ std::size_t ClSession::localSize(const cl::Kernel& k) const {
   return std::max<std::size_t>(1, std::min(want, maxSize));
 }
 
-void ClSession::launch(cl::Kernel& k, std::uint64_t n) {
+void ClSession::launch(cl::Kernel& k, std::uint64_t n, cl::Event* event) {
   if (n == 0) return;
   std::size_t local = localSize(k);
   std::size_t global = ((n + local - 1) / local) * local;
   try {
-    queue_.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(global), cl::NDRange(local));
+    queue_.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(global), cl::NDRange(local), nullptr, event);
   } catch (const cl::Error& e) {
     throw RuntimeError("kernel " + k.getInfo<CL_KERNEL_FUNCTION_NAME>() + ": " + describeClError(e));
   }

@@ -35,8 +35,9 @@ class ClSession {
   const ProgramBuild& build() const { return build_; }
   cl::Kernel kernel(const char* name) const;
 
-  // Launches k over n work items (global size rounded up to whole work-groups).
-  void launch(cl::Kernel& k, std::uint64_t n);
+  // Launches k over n work items (global size rounded up to whole work-groups); event: receives
+  // the launch's event (left empty when n is 0).
+  void launch(cl::Kernel& k, std::uint64_t n, cl::Event* event = nullptr);
   // Launches k over n work items, waits, and returns its execution time in ms from the event's
   // profiling info (the session must have been created with profiling).
   double launchTimed(cl::Kernel& k, std::uint64_t n);

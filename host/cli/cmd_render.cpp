@@ -50,7 +50,7 @@ struct RenderArgs {
   int minSpp = 16, maxSpp = 1024;
   std::vector<std::string> aovs;
   std::size_t workGroupSize = 0;
-  bool quiet = false, verbose = false, overwrite = false;
+  bool quiet = false, verbose = false, overwrite = false, profile = false;
   dist::JobArgs job;  // MPI split, --checkpoint, --resume (dist/job.h)
 };
 
@@ -177,6 +177,7 @@ int runRender(const RenderArgs& a) {
   options.workGroupSize = a.workGroupSize;
   options.bvhLayout = layout;
   options.verbose = a.verbose;
+  options.profile = a.profile;
   dist::Job job(a.job, scene, options);
   WavefrontRenderer renderer(device, options);
   if (a.verbose)
@@ -190,6 +191,7 @@ int runRender(const RenderArgs& a) {
     bar.update(done, total, s);
   });
   bar.finish();
+  if (a.profile) std::cout << formatProfile(stats.profile, stats.seconds);
   if (stats.nanRays > 0)  // each rank of an MPI job warns about its own pixels
     std::cerr << "montecl: warning: " << stats.nanRays
               << " rays with NaN/inf origin or direction were treated as misses\n";
@@ -284,6 +286,8 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   dist::addJobOptions(cmd, args->job);
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar");
   cmd->add_flag("-v,--verbose", args->verbose, "Scene, BVH, device and wave details on stderr");
+  cmd->add_flag("--profile", args->profile,
+                "Print each stage's share of the render time (OpenCL profiling events; host timers on --device host)");
   cmd->callback([args, &exitCode]() { exitCode = runRender(*args); });
 }
 

@@ -2,7 +2,8 @@
 // the stage kernels built for the BVH layout), the per-render device buffers in ClBindings, and one
 // kernel launch per stage with its arguments bound by name (render/stage_bindings.h). Queue
 // counters are reset on the device; the host never reads a queue count back to size a launch
-// (kernels return past the device-side count), only once per wave for the statistics.
+// (kernels return past the device-side count), only once per wave for the statistics. With a
+// profile (setProfile), each launch keeps its event and finishWave adds the events' times.
 #include <algorithm>
 #include <array>
 
@@ -15,8 +16,8 @@ namespace {
 
 class ClStageRunner final : public StageRunner {
  public:
-  ClStageRunner(const DeviceInfo& device, std::size_t workGroupSize, BvhLayout layout)
-      : program_(device, layout, workGroupSize), cl_(program_.session()) {
+  ClStageRunner(const DeviceInfo& device, std::size_t workGroupSize, BvhLayout layout, bool profiling)
+      : program_(device, layout, workGroupSize, profiling), cl_(program_.session()) {
     for (int s = 0; s < kStageCount; ++s) kernels_[s] = cl_.kernel(stageName(Stage(s)));
   }
 
@@ -99,13 +100,21 @@ class ClStageRunner final : public StageRunner {
   void launch(Stage s, std::uint64_t items, RayInput rays) override {
     cl::Kernel& k = kernels_[int(s)];
     bindStageArgs(k, s, rays == RayInput::Camera ? bindings_ : bindings_.forRays(rays));
-    cl_.launch(k, items);
+    if (!profile_) return cl_.launch(k, items);
+    cl::Event event;
+    cl_.launch(k, items, &event);
+    if (event()) launched_.push_back({stageProfileName(s, rays), event});
   }
 
   WaveCounts finishWave() override {
     cl_uint shadowCount = 0, nanRays = 0;
     cl_.queue().enqueueReadBuffer(bindings_.nanRays.buffer, CL_FALSE, 0, sizeof(cl_uint), &nanRays);
     cl_.queue().enqueueReadBuffer(bindings_.queueCount.buffer, CL_TRUE, 0, sizeof(cl_uint), &shadowCount);
+    for (auto& [name, event] : launched_)  // complete: the blocking read came after them (in order)
+      if (profile_)
+        profile_->add(name, double(event.getProfilingInfo<CL_PROFILING_COMMAND_END>() -
+                                   event.getProfilingInfo<CL_PROFILING_COMMAND_START>()) * 1e-6);
+    launched_.clear();
     return WaveCounts{shadowCount, nanRays};
   }
 
@@ -134,6 +143,7 @@ class ClStageRunner final : public StageRunner {
   ClBindings bindings_;
   bool aovs_ = false;
   cl_uint counters_[2] = {0, 0};
+  std::vector<std::pair<std::string, cl::Event>> launched_;  // this wave's launches (profiling)
   FrameParams frame_{};
   std::uint64_t pixels_ = 0;
 };
@@ -141,17 +151,17 @@ class ClStageRunner final : public StageRunner {
 }  // namespace
 
 std::unique_ptr<StageRunner> makeClStageRunner(const DeviceInfo& device, std::size_t workGroupSize,
-                                               BvhLayout layout) {
-  return std::make_unique<ClStageRunner>(device, workGroupSize, layout);
+                                               BvhLayout layout, bool profiling) {
+  return std::make_unique<ClStageRunner>(device, workGroupSize, layout, profiling);
 }
 
 std::unique_ptr<StageRunner> makeStageRunner(const DeviceInfo& device, std::size_t workGroupSize,
-                                             BvhLayout layout) {
+                                             BvhLayout layout, bool profiling) {
   if (device.isHost) {
     resolveStageLayout(layout, device);  // the host backend's layout rule (Binary is bad input)
     return makeHostStageRunner();
   }
-  return makeClStageRunner(device, workGroupSize, layout);
+  return makeClStageRunner(device, workGroupSize, layout, profiling);
 }
 
 }  // namespace montecl

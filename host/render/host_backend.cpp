@@ -6,6 +6,7 @@
 // depend on the thread count or on the shadow queue's order. Compiled with -ffp-contract=off
 // (CMakeLists.txt), matching `#pragma OPENCL FP_CONTRACT OFF` in the kernels.
 #include <algorithm>
+#include <chrono>
 #include <limits>
 #include <thread>
 
@@ -81,10 +82,14 @@ class HostStageRunner final : public StageRunner {
   }
 
   void launch(Stage s, std::uint64_t items, RayInput rays) override {
+    const auto start = std::chrono::steady_clock::now();  // --profile: host timers
     withHostStageArgs(s, bindings_.forRays(rays), [&](const auto& args) {
       // The stage body for this args type, found by overload resolution (stage_<name>(&args, i)).
       parallelFor(items, threads_, kMinItemsPerThread, [&](std::size_t i) { runStage(&args, uint(i)); });
     });
+    if (profile_)
+      profile_->add(stageProfileName(s, rays),
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   }
 
   WaveCounts finishWave() override { return WaveCounts{queueCount_, nanRays_}; }

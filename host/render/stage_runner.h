@@ -12,6 +12,7 @@
 #include "cl/devices.h"
 #include "image/film.h"
 #include "render/stage_bindings.h"
+#include "render/stage_profile.h"
 
 namespace montecl {
 
@@ -61,15 +62,22 @@ class StageRunner {
   virtual WaveCounts finishWave() = 0;
   // Reads the accumulated statistics (film.mean, film.m2, film.aovSum; the caller sets the size).
   virtual void readFilm(Film& film) = 0;
+  // From now on, adds each launch's execution time to *profile by stageProfileName() (null:
+  // stop), at the latest by the wave's finishWave(). OpenCL: needs a runner made with profiling.
+  void setProfile(StageProfile* profile) { profile_ = profile; }
+
+ protected:
+  StageProfile* profile_ = nullptr;
 };
 
-// OpenCL kernels on `device` (its kernels built through the program cache).
+// OpenCL kernels on `device` (its kernels built through the program cache); profiling: a queue
+// with CL_QUEUE_PROFILING_ENABLE (for setProfile).
 std::unique_ptr<StageRunner> makeClStageRunner(const DeviceInfo& device, std::size_t workGroupSize,
-                                               BvhLayout layout = BvhLayout::Auto);
+                                               BvhLayout layout = BvhLayout::Auto, bool profiling = false);
 // The stage functions compiled as C++, run on the CPU's threads.
 std::unique_ptr<StageRunner> makeHostStageRunner();
 // The runner for a device: the host backend when device.isHost, else OpenCL.
 std::unique_ptr<StageRunner> makeStageRunner(const DeviceInfo& device, std::size_t workGroupSize,
-                                             BvhLayout layout = BvhLayout::Auto);
+                                             BvhLayout layout = BvhLayout::Auto, bool profiling = false);
 
 }  // namespace montecl

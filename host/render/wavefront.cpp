@@ -29,7 +29,7 @@ std::uint64_t bytesPerItem(std::uint32_t slots, bool bounce, bool aovs) {
 
 struct WavefrontRenderer::Impl {
   Impl(const DeviceInfo& device, const RenderOptions& opts)
-      : options(opts), device(device), runner(makeStageRunner(device, opts.workGroupSize, opts.bvhLayout)) {}
+      : options(opts), device(device), runner(makeStageRunner(device, opts.workGroupSize, opts.bvhLayout, opts.profile)) {}
   RenderOptions options;
   DeviceInfo device;
   std::unique_ptr<StageRunner> runner;
@@ -94,6 +94,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
                          "allocation of " + std::to_string(maxAlloc) + " bytes; use a smaller image or scene");
   stats = RenderStats{};
   stats.waveSize = wave;
+  run.setProfile(m.options.profile ? &stats.profile : nullptr);
 
   StageInputs inputs;
   inputs.frame = frame;
@@ -227,6 +228,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
     for (std::uint64_t p = 0; p < pixels; ++p)
       stats.converged += relativeStandardError(film, p, m.options.errorFloor) <= m.options.targetError;
   stats.seconds = elapsed();
+  run.setProfile(nullptr);
   return film;
 }
 

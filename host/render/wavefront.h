@@ -13,6 +13,7 @@
 #include "bvh/bvh.h"
 #include "cl/devices.h"
 #include "image/film.h"
+#include "render/stage_profile.h"
 #include "scene/scene.h"
 
 namespace montecl {
@@ -35,6 +36,7 @@ struct RenderOptions {
   int minSpp = 16;
   int maxSpp = 1024;
   double errorFloor = 0.01;
+  bool profile = false;  // time every stage launch into RenderStats::profile (--profile)
   bool aovs = false;  // also accumulate first-hit albedo, normal and depth (Film::aovSum)
   // The pixels to render, ascending (empty: all): one rank's share of an MPI job (dist/job.h).
   // Each pixel's result depends only on its own samples, so any subset renders bit-identically.
@@ -60,6 +62,7 @@ struct RenderStats {
   std::uint64_t rounds = 0;       // adaptive rounds (1 without adaptive sampling)
   std::uint64_t converged = 0;    // adaptive: pixels that met the target error
   bool stoppedEarly = false;      // the time limit or an interrupt ended the render
+  StageProfile profile;           // with RenderOptions::profile: each stage's summed time
   std::uint64_t raysTraced() const { return cameraRays + shadowRays; }
 };
 

@@ -1,0 +1,488 @@
+#!/usr/bin/env python3
+"""vs_mitsuba.py: renders one montecl scene with montecl and with Mitsuba 3 (an independent
+renderer), then reports per-pixel agreement (z-scores) and both wall times.
+
+    scripts/vs_mitsuba.py SCENE.json [--spp N] [--width W --height H] [--seed S]
+        [--integrator direct|path] [--max-depth D] [--rr-depth R] [--direct-sampling light|brdf|mis]
+        [--repeat N] [--ref-factor F] [--ref-seeds K] [--montecl build/montecl] [--variant auto|llvm|scalar]
+        [--montecl-arg ARG]... [--montecl-scene SCENE] [--keep DIR] [--json FILE] [--no-agreement] [--no-timing]
+
+Mitsuba's scene is built from ours as Python dicts: the pinhole camera from the camera keys
+(look_at, fov_axis 'y', the same width and height), a box pixel filter (a sample counts for its own
+pixel only, as in montecl), an `independent` sampler, one PLY mesh per (mesh, material) with a
+two-sided Lambertian BSDF of albedo Kd (montecl's surfaces are two-sided) and, where Ke (or the
+mesh's "emission") is non-zero, a one-sided `area` emitter (front face = cross(v1-v0, v2-v0), as
+montecl's). Integrators: montecl `--integrator direct --direct-sampling mis` with K light samples
+= Mitsuba `direct` (emitter_samples K, bsdf_samples 1); `light` = (K, 0); `brdf` = (0, 1);
+montecl `--integrator path --max-depth D --rr-depth R` = Mitsuba `path` (max_depth D, rr_depth R):
+the same depth convention.
+
+Agreement: montecl's EXR carries each pixel's mean, sample count and sample variance, so its
+standard error is sqrt(var/n). Mitsuba's pixels are the mean of --ref-seeds independent renders at
+--ref-factor x spp in all; their standard error comes from the spread of those renders. Per pixel
+and channel z = (montecl - Mitsuba) / sqrt(se_montecl^2 + se_mitsuba^2). PASS when |z| > 4 on at
+most 0.1% of pixel channels and |mean z| <= 0.1; pixel channels with zero variance in both must be
+equal (to 1e-5 relative) or count as |z| > 4. Exit 0 PASS, 1 FAIL, 2 bad input, 77 Mitsuba missing.
+
+Timing: whole processes, montecl (`render ... -o X.exr`) and a Mitsuba process (import, scene
+build, JIT, render at spp, EXR write), alternated --repeat times after one untimed warm-up each
+(kernel caches), medians of wall and CPU (user + sys) seconds, ratio montecl / Mitsuba.
+
+Mitsuba comes from PyPI in a venv: `scripts/setup.sh --mitsuba` makes
+~/.cache/montecl/mitsuba-venv ($MONTECL_MITSUBA_VENV overrides). Run with any python3: the script
+re-runs itself with the venv's python. The `llvm_ad_rgb` variant needs Debian's libllvm19
+(DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1, set here when that file exists);
+without it, `scalar_rgb` (much slower).
+"""
+import argparse
+import json
+import math
+import os
+import resource
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+VENV = os.environ.get("MONTECL_MITSUBA_VENV",
+                      os.path.join(os.path.expanduser("~"), ".cache", "montecl", "mitsuba-venv"))
+LLVM19 = "/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1"
+EXIT_FAIL, EXIT_BAD, EXIT_SKIP = 1, 2, 77
+# Mitsuba renders at most this many samples per pass (memory); more spp are averaged passes.
+MAX_LANES = 1 << 24
+
+
+class BadInput(Exception):
+    pass
+
+
+def mitsuba_env():
+    env = dict(os.environ)
+    if "DRJIT_LIBLLVM_PATH" not in env and os.path.exists(LLVM19):
+        env["DRJIT_LIBLLVM_PATH"] = LLVM19
+    return env
+
+
+def ensure_mitsuba():
+    """Imports mitsuba, re-running this script with the venv's python when this one lacks it."""
+    try:
+        import mitsuba  # noqa: F401
+        import numpy  # noqa: F401
+        return
+    except ImportError:
+        pass
+    py = os.path.join(VENV, "bin", "python")
+    if os.path.exists(py) and os.path.realpath(sys.prefix) != os.path.realpath(VENV):
+        os.execve(py, [py, os.path.abspath(__file__)] + sys.argv[1:], mitsuba_env())
+    print(f"vs_mitsuba: Mitsuba 3 is not installed (no venv at {VENV}); run scripts/setup.sh --mitsuba",
+          file=sys.stderr)
+    sys.exit(EXIT_SKIP)
+
+
+# ---------------------------------------------------------------- scene: our JSON + OBJ/MTL
+
+def read_mtl(path):
+    mats, cur = {}, None
+    with open(path) as f:
+        for line in f:
+            t = line.split("#", 1)[0].split()
+            if not t:
+                continue
+            if t[0] == "newmtl":
+                cur = mats.setdefault(" ".join(t[1:]), {"Kd": [0.5] * 3, "Ke": [0.0] * 3, "Ks": [0.0] * 3})
+            elif cur is not None and t[0] in ("Kd", "Ke", "Ks") and len(t) >= 2:
+                v = [float(x) for x in t[1:4]]
+                cur[t[0]] = v if len(v) == 3 else [v[0]] * 3
+            elif cur is not None and t[0].startswith("map_"):
+                cur.setdefault("maps", []).append(t[0])
+    return mats
+
+
+def read_obj(path):
+    """Returns ({material name: list of (i0, i1, i2)}, positions, materials), triangulated as
+    montecl's loader (tinyobjloader) does: quads along the shorter diagonal (a non-planar quad's two
+    splits are different surfaces: the Cornell box's boxes have such quads), larger polygons as fans."""
+    pos, groups, mats, cur = [], {}, {}, None
+    base = os.path.dirname(path)
+    with open(path) as f:
+        for n, line in enumerate(f, 1):
+            t = line.split("#", 1)[0].split()
+            if not t:
+                continue
+            if t[0] == "v":
+                pos.append([float(x) for x in t[1:4]])
+            elif t[0] == "f":
+                idx = []
+                for c in t[1:]:
+                    i = int(c.split("/")[0])
+                    idx.append(i - 1 if i > 0 else len(pos) + i)
+                tris = groups.setdefault(cur, [])
+                if len(idx) == 4:  # as tinyobjloader (montecl's OBJ loader): split along the shorter diagonal
+                    import numpy as np
+                    p4 = [np.asarray(pos[i], dtype=np.float32) for i in idx]
+                    d02, d13 = p4[2] - p4[0], p4[3] - p4[1]
+                    if np.dot(d02, d02) < np.dot(d13, d13):
+                        tris += [(idx[0], idx[1], idx[2]), (idx[0], idx[2], idx[3])]
+                    else:
+                        tris += [(idx[0], idx[1], idx[3]), (idx[1], idx[2], idx[3])]
+                else:  # triangles; larger polygons as fans (tinyobjloader may split non-convex ones otherwise)
+                    tris += [(idx[0], idx[k], idx[k + 1]) for k in range(1, len(idx) - 1)]
+            elif t[0] == "usemtl":
+                cur = " ".join(t[1:])
+            elif t[0] == "mtllib":
+                for name in t[1:]:
+                    mats.update(read_mtl(os.path.join(base, name)))
+    return groups, pos, mats
+
+
+def load_scene(path):
+    import numpy as np
+    if not path.endswith(".json"):
+        raise BadInput(f"{path}: a scene file (.json) is needed (a bare .obj has no camera to share)")
+    with open(path) as f:
+        s = json.load(f)
+    for key in s:
+        if key not in ("camera", "meshes", "render", "environment"):
+            raise BadInput(f"{path}: {key}: not supported by vs_mitsuba.py")
+    cam = s.get("camera")
+    if not cam:
+        raise BadInput(f"{path}: camera: required")
+    shapes = []
+    for mi_, mesh in enumerate(s.get("meshes", [])):
+        for key in mesh:
+            if key not in ("file", "emission", "two_sided_emission"):
+                raise BadInput(f"{path}: meshes[{mi_}].{key}: not supported by vs_mitsuba.py")
+        if mesh.get("two_sided_emission"):
+            raise BadInput(f"{path}: meshes[{mi_}].two_sided_emission: Mitsuba's area emitters are one-sided")
+        obj = os.path.join(os.path.dirname(path), mesh["file"])
+        if not obj.lower().endswith(".obj"):
+            raise BadInput(f"{path}: meshes[{mi_}].file: only OBJ meshes are supported by vs_mitsuba.py")
+        groups, pos, mats = read_obj(obj)
+        P = np.asarray(pos, dtype=np.float32).reshape(-1, 3)
+        for name, faces in groups.items():
+            m = mats.get(name, {"Kd": [0.5] * 3, "Ke": [0.0] * 3, "Ks": [0.0] * 3})
+            if any(m.get("Ks", [0.0])) or m.get("maps"):
+                print(f"vs_mitsuba: warning: {obj}: material {name}: Ks and map_* are ignored (Kd, Ke only)",
+                      file=sys.stderr)
+            ke = mesh.get("emission", m["Ke"])
+            F = np.asarray(faces, dtype=np.int64)
+            # Drop zero-area triangles as montecl does (they cannot be hit or sampled anyway).
+            e1 = P[F[:, 1]] - P[F[:, 0]]
+            e2 = P[F[:, 2]] - P[F[:, 0]]
+            area = np.linalg.norm(np.cross(e1, e2), axis=1)
+            F = F[area > 0]
+            if len(F):
+                shapes.append({"name": f"m{mi_}_{len(shapes)}", "P": P, "F": F, "Kd": m["Kd"], "Ke": ke})
+    env = s.get("environment")
+    if env is not None and ("radiance" not in env or len(env) != 1):
+        raise BadInput(f"{path}: environment: only a constant {{\"radiance\": [r, g, b]}} is supported by vs_mitsuba.py")
+    return {"camera": cam, "shapes": shapes, "render": s.get("render", {}), "environment": env}
+
+
+def write_ply(path, P, F):
+    """Binary PLY with only the vertices F uses (compact), faces as uchar count + int indices."""
+    import numpy as np
+    used, inv = np.unique(F.ravel(), return_inverse=True)
+    V = P[used].astype("<f4")
+    faces = np.zeros(len(F), dtype=[("n", "u1"), ("i", "<i4", (3,))])
+    faces["n"] = 3
+    faces["i"] = inv.reshape(-1, 3)
+    with open(path, "wb") as f:
+        f.write((f"ply\nformat binary_little_endian 1.0\nelement vertex {len(V)}\n"
+                 "property float x\nproperty float y\nproperty float z\n"
+                 f"element face {len(F)}\nproperty list uchar int vertex_indices\nend_header\n").encode())
+        f.write(V.tobytes())
+        f.write(faces.tobytes())
+
+
+# ---------------------------------------------------------------- the Mitsuba worker process
+
+def mitsuba_integrator(spec):
+    if spec["integrator"] == "path":
+        return {"type": "path", "max_depth": spec["max_depth"], "rr_depth": spec["rr_depth"]}
+    k = spec["light_samples"]
+    em, bs = {"mis": (k, 1), "light": (k, 0), "brdf": (0, 1)}[spec["direct_sampling"]]
+    return {"type": "direct", "emitter_samples": em, "bsdf_samples": bs}
+
+
+def worker(spec_path):
+    import numpy as np
+    with open(spec_path) as f:
+        spec = json.load(f)
+    import mitsuba as mi
+    variant = spec["variant"]
+    try:
+        mi.set_variant(variant)
+    except Exception as e:  # llvm without a usable LLVM: fall back
+        if variant == "scalar_rgb":
+            raise
+        print(f"vs_mitsuba: {variant} unavailable ({e}); using scalar_rgb", file=sys.stderr)
+        variant = "scalar_rgb"
+        mi.set_variant(variant)
+    cam = spec["camera"]
+    d = {"type": "scene", "integrator": mitsuba_integrator(spec)}
+    lens = {}
+    if cam.get("aperture_radius", 0) > 0:  # montecl's thin lens: Mitsuba's thinlens camera
+        lens = {"type": "thinlens", "aperture_radius": cam["aperture_radius"],
+                "focus_distance": cam.get("focus_distance", math.dist(cam["position"], cam["target"]))}
+    d["sensor"] = {
+        "type": "perspective", "fov": cam["fov_y"], "fov_axis": "y",
+        "to_world": mi.ScalarTransform4f().look_at(origin=cam["position"], target=cam["target"],
+                                                   up=cam.get("up", [0, 1, 0])),
+        "film": {"type": "hdrfilm", "width": spec["width"], "height": spec["height"],
+                 "rfilter": {"type": "box"}, "pixel_format": "rgb", "component_format": "float32"},
+        "sampler": {"type": "independent", "sample_count": 1},
+    }
+    d["sensor"].update(lens)
+    for sh in spec["shapes"]:
+        s = {"type": "ply", "filename": sh["ply"], "face_normals": True,
+             "bsdf": {"type": "twosided", "bsdf": {"type": "diffuse",
+                                                   "reflectance": {"type": "rgb", "value": sh["Kd"]}}}}
+        if any(x > 0 for x in sh["Ke"]):
+            s["emitter"] = {"type": "area", "radiance": {"type": "rgb", "value": sh["Ke"]}}
+        d[sh["name"]] = s
+    if spec["environment"] is not None:
+        d["environment"] = {"type": "constant", "radiance": {"type": "rgb", "value": spec["environment"]["radiance"]}}
+    msc = mi.load_dict(d)
+    pixels = spec["width"] * spec["height"]
+    images = []
+    for seed in spec["seeds"]:  # one independent render per seed, each at spec["spp"]
+        spp, done, acc = spec["spp"], 0, None
+        per_pass = max(1, min(spp, MAX_LANES // max(1, pixels)))
+        p = 0
+        while done < spp:
+            n = min(per_pass, spp - done)
+            img = np.array(mi.render(msc, seed=seed * 65536 + p, spp=n), dtype=np.float64)[:, :, :3]
+            acc = img * n if acc is None else acc + img * n
+            done += n
+            p += 1
+        images.append(acc / spp)
+    stack = np.stack(images)
+    mean = stack.mean(axis=0)
+    out = {"variant": variant, "mean": mean}
+    if len(images) > 1:
+        out["se"] = stack.std(axis=0, ddof=1) / math.sqrt(len(images))
+    if spec.get("exr"):
+        mi.Bitmap(mean.astype(np.float32)).write(spec["exr"])
+    np.savez(spec["out"], **out)
+
+
+# ---------------------------------------------------------------- driver
+
+def run_timed(cmd, env=None):
+    """Runs cmd to completion; returns (wall s, CPU s of the child)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    r = subprocess.run(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if r.returncode != 0:
+        sys.stderr.write(r.stdout + r.stderr)
+        raise RuntimeError(f"{cmd[0]} exited {r.returncode}")
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return wall, cpu, r
+
+
+def read_montecl_exr(path):
+    """Returns montecl's per-pixel mean and standard error sqrt(var/n) (H x W x 3), by channel name."""
+    import mitsuba as mi
+    import numpy as np
+    bmp = mi.Bitmap(path)
+    names = [bmp.struct_()[i].name for i in range(bmp.channel_count())]
+    data = np.array(bmp, dtype=np.float64).reshape(bmp.height(), bmp.width(), len(names))
+    need = ["R", "G", "B", "samples", "var.R", "var.G", "var.B"]
+    missing = [c for c in need if c not in names]
+    if missing:
+        raise RuntimeError(f"{path}: no channel {', '.join(missing)} (montecl's EXR should have them)")
+    ch = {c: data[:, :, names.index(c)] for c in need}
+    mean = np.stack([ch["R"], ch["G"], ch["B"]], axis=-1)
+    var = np.stack([ch["var.R"], ch["var.G"], ch["var.B"]], axis=-1)
+    n = np.maximum(ch["samples"], 1.0)[:, :, None]
+    return mean, np.sqrt(np.maximum(var, 0.0) / n)
+
+
+def agreement(m_mean, m_se, r_mean, r_se):
+    import numpy as np
+    diff = m_mean - r_mean
+    se = np.sqrt(m_se ** 2 + r_se ** 2)
+    exact = se == 0
+    scale = np.maximum(np.abs(m_mean), np.abs(r_mean))
+    same = np.abs(diff) <= 1e-5 * np.maximum(scale, 1e-30)
+    z = np.where(exact, np.where(same, 0.0, np.inf), diff / np.where(exact, 1.0, se))
+    finite = z[np.isfinite(z) & ~exact]
+    big = np.count_nonzero(np.abs(z) > 4)
+    return {
+        "channels": int(z.size),
+        "zero_variance_channels": int(np.count_nonzero(exact)),
+        "frac_abs_z_gt_4": big / z.size,
+        "abs_z_gt_4": int(big),
+        "mean_z": float(finite.mean()) if finite.size else 0.0,
+        "rms_z": float(np.sqrt((finite ** 2).mean())) if finite.size else 0.0,
+        "max_abs_z": float(np.abs(z).max()),
+        "mean_ratio": float(m_mean.sum() / r_mean.sum()) if r_mean.sum() > 0 else float("nan"),
+        "mean_ratio_se": float(math.sqrt((m_se ** 2).sum() + (r_se ** 2).sum()) / r_mean.sum())
+        if r_mean.sum() > 0 else float("nan"),
+    }
+
+
+def parse_args(argv):
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("scene", nargs="?")
+    p.add_argument("--spp", type=int, default=None, help="samples per pixel (default: the scene's)")
+    p.add_argument("--width", type=int)
+    p.add_argument("--height", type=int)
+    p.add_argument("--seed", type=int, default=None)
+    p.add_argument("--integrator", choices=["direct", "path"], default=None)
+    p.add_argument("--direct-sampling", choices=["light", "brdf", "mis"], default=None)
+    p.add_argument("--max-depth", type=int, default=None, help="path: default the scene's max_depth, else -1")
+    p.add_argument("--rr-depth", type=int, default=None, help="path: default the scene's rr_depth, else 5")
+    p.add_argument("--repeat", type=int, default=3, help="timed runs of each renderer (median)")
+    p.add_argument("--ref-factor", type=int, default=4, help="Mitsuba reference spp = factor x spp")
+    p.add_argument("--ref-seeds", type=int, default=16, help="independent Mitsuba renders in the reference")
+    p.add_argument("--montecl", default=os.path.join(ROOT, "build", "montecl"))
+    p.add_argument("--montecl-arg", action="append", default=[], help="extra montecl render argument")
+    p.add_argument("--montecl-scene", help="render this scene with montecl instead (same camera and size; "
+                   "e.g. a converted model, or a deliberately changed one to see the check fail)")
+    p.add_argument("--variant", choices=["auto", "llvm", "scalar"], default="auto")
+    p.add_argument("--keep", help="keep the images in this folder")
+    p.add_argument("--json", help="write the results to this JSON file")
+    p.add_argument("--no-timing", action="store_true", help="agreement only (one montecl run)")
+    p.add_argument("--no-agreement", action="store_true", help="timing only")
+    p.add_argument("--worker", help=argparse.SUPPRESS)
+    a = p.parse_args(argv)
+    if a.worker:
+        return a
+    if not a.scene:
+        p.error("a scene file is needed")
+    if a.repeat < 1 or a.ref_factor < 1 or a.ref_seeds < 2:
+        p.error("--repeat and --ref-factor must be >= 1, --ref-seeds >= 2")
+    if a.max_depth is not None and (a.max_depth == 0 or a.max_depth < -1) or a.rr_depth is not None and a.rr_depth < 1:
+        p.error("--max-depth must be -1 or >= 1, --rr-depth >= 1")
+    return a
+
+
+def main(argv):
+    a = parse_args(argv)
+    ensure_mitsuba()
+    if a.worker:
+        worker(a.worker)
+        return 0
+    import numpy as np
+    import mitsuba as mi
+    mi.set_variant("scalar_rgb")  # the driver only reads images
+    if not os.path.exists(a.montecl):
+        raise BadInput(f"{a.montecl}: no montecl executable (build it, or pass --montecl)")
+    sc = load_scene(a.scene)  # checks what the worker will do, before any render
+    cam, rnd = sc["camera"], sc["render"]
+    width, height = a.width or cam.get("width", 512), a.height or cam.get("height", 512)
+    spp = a.spp or rnd.get("spp", 64)
+    seed = a.seed if a.seed is not None else rnd.get("seed", 0)
+    integ = a.integrator or rnd.get("integrator", "ao")
+    if integ not in ("direct", "path"):
+        raise BadInput(f"{a.scene}: render.integrator: {integ}: Mitsuba has no '{integ}' (use --integrator)")
+    sampling = a.direct_sampling or rnd.get("direct_sampling", "mis")
+    a.max_depth = a.max_depth if a.max_depth is not None else rnd.get("max_depth", -1)
+    a.rr_depth = a.rr_depth if a.rr_depth is not None else rnd.get("rr_depth", 5)
+    variant = {"llvm": "llvm_ad_rgb", "scalar": "scalar_rgb"}[
+        a.variant if a.variant != "auto" else ("llvm" if os.path.exists(LLVM19) or
+                                               "DRJIT_LIBLLVM_PATH" in os.environ else "scalar")]
+    work = a.keep or tempfile.mkdtemp(prefix="vs_mitsuba_")
+    os.makedirs(work, exist_ok=True)
+    env = mitsuba_env()
+
+    m_exr = os.path.join(work, "montecl.exr")
+    mcl = [a.montecl, "render", a.montecl_scene or a.scene, "--spp", str(spp), "--seed", str(seed), "--width", str(width),
+           "--height", str(height), "--integrator", integ, "-o", m_exr, "--overwrite", "-q"]
+    if integ == "direct":
+        mcl += ["--direct-sampling", sampling]
+    else:
+        mcl += ["--max-depth", str(a.max_depth), "--rr-depth", str(a.rr_depth)]
+    mcl += a.montecl_arg
+    # Mitsuba reads the meshes as PLY files written here once (untimed), with its own C++ loader, as
+    # montecl parses the OBJ in its own process.
+    shapes = []
+    for sh in sc["shapes"]:
+        ply = os.path.join(work, sh["name"] + ".ply")
+        write_ply(ply, sh["P"], sh["F"])
+        shapes.append({"name": sh["name"], "ply": ply, "Kd": sh["Kd"], "Ke": list(sh["Ke"])})
+    base = {"camera": cam, "shapes": shapes, "environment": sc["environment"], "width": width, "height": height, "variant": variant,
+            "integrator": integ, "direct_sampling": sampling, "light_samples": rnd.get("light_samples", 1),
+            "max_depth": a.max_depth, "rr_depth": a.rr_depth}
+
+    def mitsuba_cmd(name, spec):
+        path = os.path.join(work, name + ".json")
+        with open(path, "w") as f:
+            json.dump(dict(base, **spec), f)
+        return [sys.executable, os.path.abspath(__file__), "--worker", path]
+
+    res = {"scene": a.scene, "width": width, "height": height, "spp": spp, "seed": seed, "integrator": integ,
+           "montecl_command": " ".join(mcl)}
+    if integ == "direct":
+        res["direct_sampling"] = sampling
+    else:
+        res.update(max_depth=a.max_depth, rr_depth=a.rr_depth)
+    print(f"vs_mitsuba: {a.scene} {width}x{height}, {spp} spp, {integ}"
+          + (f" ({sampling})" if integ == "direct" else f" (max depth {a.max_depth}, rr depth {a.rr_depth})"))
+
+    if not a.no_timing:
+        timed = mitsuba_cmd("timed", {"spp": spp, "seeds": [seed], "out": os.path.join(work, "timed.npz"),
+                                      "exr": os.path.join(work, "mitsuba.exr")})
+        run_timed(mcl)  # warm-ups: kernel caches (montecl's program cache, Dr.Jit's kernel cache)
+        run_timed(timed, env)
+        times = {"montecl": [], "mitsuba": []}
+        for _ in range(a.repeat):
+            times["montecl"].append(run_timed(mcl)[:2])
+            times["mitsuba"].append(run_timed(timed, env)[:2])
+        res["mitsuba_variant"] = str(np.load(os.path.join(work, "timed.npz"))["variant"])
+        for k, v in times.items():
+            res[k + "_wall_s"] = statistics.median(w for w, _ in v)
+            res[k + "_cpu_s"] = statistics.median(c for _, c in v)
+            res[k + "_wall_all_s"] = [round(w, 3) for w, _ in v]
+        res["wall_ratio"] = res["montecl_wall_s"] / res["mitsuba_wall_s"]
+        print(f"wall (median of {a.repeat}, whole processes, alternated): montecl {res['montecl_wall_s']:.2f} s "
+              f"(CPU {res['montecl_cpu_s']:.2f} s), Mitsuba {res['mitsuba_variant']} {res['mitsuba_wall_s']:.2f} s "
+              f"(CPU {res['mitsuba_cpu_s']:.2f} s): ratio montecl/Mitsuba {res['wall_ratio']:.2f}")
+    status = 0
+    if not a.no_agreement:
+        if a.no_timing:
+            run_timed(mcl)
+        ref_spp = max(1, spp * a.ref_factor // a.ref_seeds)
+        seeds = [1000 + seed * a.ref_seeds + k for k in range(a.ref_seeds)]
+        t0 = time.perf_counter()
+        run_timed(mitsuba_cmd("ref", {"spp": ref_spp, "seeds": seeds, "out": os.path.join(work, "ref.npz")}), env)
+        ref = np.load(os.path.join(work, "ref.npz"))
+        res["mitsuba_variant"] = str(ref["variant"])
+        res["reference_spp"] = ref_spp * a.ref_seeds
+        res["reference_seconds"] = time.perf_counter() - t0
+        m_mean, m_se = read_montecl_exr(m_exr)
+        if m_mean.shape != ref["mean"].shape:
+            raise RuntimeError(f"image sizes differ: montecl {m_mean.shape}, Mitsuba {ref['mean'].shape}")
+        ag = agreement(m_mean, m_se, ref["mean"], ref["se"])
+        ok = ag["frac_abs_z_gt_4"] <= 1e-3 and abs(ag["mean_z"]) <= 0.1
+        ag["pass"] = bool(ok)
+        res["agreement"] = ag
+        print(f"agreement vs Mitsuba {res['mitsuba_variant']} ({res['reference_spp']} spp in {a.ref_seeds} "
+              f"independent renders): |z| > 4 on {ag['abs_z_gt_4']} of {ag['channels']} pixel channels "
+              f"({100 * ag['frac_abs_z_gt_4']:.3f}%, limit 0.1%), mean z {ag['mean_z']:+.3f} (limit 0.1), "
+              f"rms z {ag['rms_z']:.3f}, max |z| {ag['max_abs_z']:.2f}; image mean montecl/Mitsuba "
+              f"{ag['mean_ratio']:.5f} +- {ag['mean_ratio_se']:.5f}")
+        print("PASS" if ok else "FAIL")
+        status = 0 if ok else EXIT_FAIL
+    if a.json:
+        with open(a.json, "w") as f:
+            json.dump(res, f, indent=2)
+    if not a.keep:
+        shutil.rmtree(work, ignore_errors=True)
+    return status
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main(sys.argv[1:]))
+    except (BadInput, FileNotFoundError, KeyError, json.JSONDecodeError) as e:
+        print(f"vs_mitsuba: {e}", file=sys.stderr)
+        sys.exit(EXIT_BAD)

@@ -1,0 +1,112 @@
+// test_profile.cpp: `montecl render --profile` through the real command line: the table names
+// every stage the integrator launches (and only those), each launched once per wave, with a
+// positive time; the stage shares plus the "host (device idle)" row sum to 100% (to the printed
+// rounding) and the host row is not negative (stage times never exceed the render's wall time).
+// On an OpenCL device (profiling events) and on the host backend (host timers).
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli_runner.h"
+
+using montecl_test::CliResult;
+using montecl_test::runMontecl;
+using montecl_test::TempDir;
+
+namespace {
+
+struct Row {
+  double ms = 0.0, share = 0.0;
+  long launches = -1;  // -1: the row has no launch count (host, total)
+};
+
+// The rows of the profile table in montecl's stdout, by name.
+std::map<std::string, Row> parseProfile(const std::string& out) {
+  std::map<std::string, Row> rows;
+  std::istringstream in(out);
+  std::string line;
+  bool inTable = false;
+  while (std::getline(in, line)) {
+    if (line.rfind("profile:", 0) == 0) {
+      inTable = true;
+      std::getline(in, line);  // the header
+      continue;
+    }
+    if (!inTable || line.size() < 2 || line[0] != ' ' || line.find('%') == std::string::npos) continue;
+    // "  name (may have spaces)   ms  share%  [launches]": the name is everything before the first
+    // number column, found from the right.
+    std::istringstream words(line);
+    std::vector<std::string> w;
+    for (std::string t; words >> t;) w.push_back(t);
+    std::size_t pct = 0;
+    while (pct < w.size() && w[pct].back() != '%') pct++;
+    REQUIRE(pct >= 2);
+    REQUIRE(pct < w.size());
+    std::string name;
+    for (std::size_t i = 0; i + 1 < pct; ++i) name += (i ? " " : "") + w[i];
+    Row r;
+    r.ms = std::stod(w[pct - 1]);
+    r.share = std::stod(w[pct].substr(0, w[pct].size() - 1));
+    if (pct + 1 < w.size()) r.launches = std::stol(w[pct + 1]);
+    rows[name] = r;
+  }
+  return rows;
+}
+
+void checkProfile(const CliResult& r, const std::vector<std::string>& stages, long waves) {
+  INFO(r.out << r.err);
+  REQUIRE(r.exitCode == 0);
+  std::map<std::string, Row> rows = parseProfile(r.out);
+  REQUIRE(rows.count("total") == 1);
+  REQUIRE(rows.count("host (device idle)") == 1);
+  CHECK(rows.size() == stages.size() + 2);  // no stage that was not launched
+  double sum = 0.0, stageMs = 0.0;
+  for (const std::string& s : stages) {
+    INFO("stage " << s);
+    REQUIRE(rows.count(s) == 1);
+    CHECK(rows[s].launches == waves);
+    CHECK(rows[s].ms >= 0.0);
+    stageMs += rows[s].ms;
+    sum += rows[s].share;
+  }
+  const Row& host = rows["host (device idle)"];
+  CHECK(stageMs > 0.0);
+  CHECK(host.ms >= 0.0);
+  sum += host.share;
+  CHECK(rows["total"].share == doctest::Approx(100.0));
+  CHECK(std::fabs(sum - 100.0) <= 0.05 * double(stages.size() + 1) + 1e-9);  // each share rounded to 0.1%
+}
+
+}  // namespace
+
+TEST_CASE("render --profile on OpenCL: every direct stage with AOVs, once per wave, shares sum to 100%" *
+          doctest::test_suite("cli")) {
+  TempDir dir;
+  // 24x16 pixels x 8 spp = 3072 samples in waves of 1024: 3 waves.
+  CliResult r = runMontecl({"render", montecl_test::demoScene(), "--width", "24", "--height", "16", "--spp", "8",
+                            "--integrator", "direct", "--aov", "all", "--wave-size", "1024", "--profile", "-q",
+                            "-o", dir.file("p.exr")});
+  checkProfile(r, {"generate", "intersect", "shade_direct", "intersect (bounce rays)", "shade_direct_hit",
+                   "intersect_shadow", "accumulate", "record_aov", "accumulate_aov"},
+               3);
+}
+
+TEST_CASE("render --profile on the host backend: the AO stages, shares sum to 100%" * doctest::test_suite("cli")) {
+  TempDir dir;
+  CliResult r = runMontecl({"render", montecl_test::demoScene(), "--width", "24", "--height", "16", "--spp", "4",
+                            "--integrator", "ao", "--device", "host", "--wave-size", "768", "--profile", "-q", "-o",
+                            dir.file("p.png")});
+  checkProfile(r, {"generate", "intersect", "shade_ao", "intersect_shadow", "accumulate"}, 2);
+}
+
+TEST_CASE("render without --profile prints no profile" * doctest::test_suite("cli")) {
+  TempDir dir;
+  CliResult r = runMontecl({"render", montecl_test::demoScene(), "--width", "8", "--height", "8", "--spp", "1", "-q",
+                            "-o", dir.file("p.png")});
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.out.find("profile:") == std::string::npos);
+}
