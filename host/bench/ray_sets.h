@@ -40,7 +40,8 @@ struct RaySets {
 // first light sample of sample 0 (emitter picked by area * luminance, uniform point on it, none
 // when the light or the surface faces away), stopping just short of the light. References
 // computed on `threads` threads with the host traversal of `layout` (the one the device runs).
+// With alpha, the references apply the cut-outs' alpha test (bvh.triangles flagged).
 RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads,
-                    BvhLayout layout = BvhLayout::Wide);
+                    BvhLayout layout = BvhLayout::Wide, const AlphaScene* alpha = nullptr);
 
 }  // namespace montecl

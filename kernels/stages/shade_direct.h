@@ -1,7 +1,7 @@
 // shade_direct: reads camera rays, hits, materials and the emitter table; for camera item i writes
 // radiance[i] (background, or Le seen directly), pushes K light-sample occlusion queries onto the
 // shadow queue (light / mis) and writes the BRDF ray bounce[i] (brdf / mis; otherwise an empty
-// ray with tmax < 0). Lambertian surfaces (f = Kd / pi), geometric normal facing the incoming ray.
+// ray with tmax < 0). Lambertian surfaces (f = albedo / pi, albedo = Kd x texture, surface_texture.h), geometric normal facing the incoming ray.
 // Shadow slots per sample: [0, K) light samples, K the BRDF sample (shade_direct_hit); each
 // strategy leaves the slots it does not use at 0.
 #pragma once
@@ -20,7 +20,9 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   MCL_GLOBAL const Triangle* tri = &tris[h.tri];
   a->radiance[i] = with_w(emitted_toward(tri, materials, dir), 0.0f);
   float3 n = facing_normal(tri, dir);
-  float3 albedo = xyz(materials[triangle_material(tri)].albedo);
+  float3 albedo = hit_albedo(make_texture_tables(a->textures, a->textureLevels, a->texels),
+                             materials[triangle_material(tri)], tri, &a->shading[h.tri], h, dir,
+                             camera_spread_angle(f) * h.t);
   float3 origin = offset_ray_origin(hit_position(tri, h), n, f->offsetScale);
   uint pixel = item_pixel(f, a->active, a->waveStart, i), sample = item_sample(f, a->waveStart, i);
   float nLight = (float)f->lightSamples;

@@ -1,6 +1,6 @@
 // shade_direct_hit: reads each item's BRDF ray (bounce) and its closest hit (bounceHits), the
 // camera hit and materials; when the BRDF ray reached an emitter's front face, writes
-// Kd * Le * w_brdf (f cos / p = Kd for cosine sampling; w_brdf the MIS weight under mis) to the
+// albedo * Le * w_brdf (albedo = Kd x texture) (f cos / p = Kd for cosine sampling; w_brdf the MIS weight under mis) to the
 // item's BRDF shadow slot, K.
 #pragma once
 #include "stage_common.h"
@@ -17,7 +17,10 @@ MCL_INLINE void stage_shade_direct_hit(const shade_direct_hit_args* a, uint i) {
   if (!(le.x > 0.0f || le.y > 0.0f || le.z > 0.0f)) return;
   MCL_GLOBAL const Triangle* tri = &a->tris[a->hits[i].tri];
   float3 n = facing_normal(tri, xyz(a->rays[i].dir));
-  float3 albedo = xyz(materials[triangle_material(tri)].albedo);
+  Hit h = a->hits[i];
+  float3 albedo = hit_albedo(make_texture_tables(a->textures, a->textureLevels, a->texels),
+                             materials[triangle_material(tri)], tri, &a->shading[h.tri], h, xyz(a->rays[i].dir),
+                             camera_spread_angle(f) * h.t);
   float weight = 1.0f;
   if (f->directSampling == MCL_DIRECT_MIS && f->emitterCount > 0) {
     float area = triangle_area(lt);

@@ -11,6 +11,7 @@
 #include "../shared/rng.h"
 #include "../shared/sampling.h"
 #include "../shared/stage_table.h"
+#include "../shared/surface_texture.h"
 
 // The pixel and the sample index of wave item i.
 MCL_INLINE uint item_pixel(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const uint* active,
