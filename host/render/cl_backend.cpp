@@ -34,6 +34,7 @@ class ClStageRunner final : public StageRunner {
     b.frame = {cl_.upload(std::vector<FrameParams>{in.frame})};
     b.nodes = {program_.uploadNodes(*in.bvh)};
     b.tris = {cl_.upload(in.bvh->triangles)};
+    b.shading = {cl_.upload(in.shading.empty() ? std::vector<TriangleShading>(1) : in.shading)};
     b.materials = {cl_.upload(in.materials)};
     b.emitters = {cl_.upload(in.emitters)};
     std::vector<cl_uint> all(pixels_);

@@ -29,6 +29,8 @@ class HostStageRunner final : public StageRunner {
     frame_ = in.frame;
     nodes_ = in.bvh->wideNodes();
     tris_ = in.bvh->triangles;
+    shading_ = in.shading;
+    if (shading_.empty()) shading_.resize(1);
     materials_ = in.materials;
     emitters_ = in.emitters;
     if (materials_.empty()) materials_.resize(1);
@@ -110,6 +112,7 @@ class HostStageRunner final : public StageRunner {
     b.frame = &frame_;
     b.nodes = nodes_.data();
     b.tris = tris_.data();
+    b.shading = shading_.data();
     b.materials = materials_.data();
     b.emitters = emitters_.data();
     b.active = active_.data();
@@ -139,6 +142,7 @@ class HostStageRunner final : public StageRunner {
   std::vector<uint> active_;
   std::vector<WideNode> nodes_;
   std::vector<Triangle> tris_;
+  std::vector<TriangleShading> shading_;
   std::vector<Material> materials_;
   std::vector<Emitter> emitters_;
   std::vector<Ray> rays_, bounce_;

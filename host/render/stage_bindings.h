@@ -42,6 +42,7 @@ struct StageBindings {
   // Scene, uploaded once.
   Array<BvhTraversalNode> nodes;
   Array<Triangle> tris;
+  Array<TriangleShading> shading;  // per triangle, BVH order (1-entry dummy when none has attributes)
   Array<Material> materials;
   Array<Emitter> emitters;
   Array<uint> active;  // the active-pixel list

@@ -21,6 +21,8 @@ struct StageInputs {
   const Bvh* bvh = nullptr;
   std::vector<Material> materials;
   std::vector<Emitter> emitters;
+  // Per-triangle attributes in BVH order (render/triangle_shading.h); empty: a 1-entry dummy.
+  std::vector<TriangleShading> shading;
   std::uint64_t wave = 0;    // wave items (pixel samples) per wave
   bool direct = false;       // direct lighting: bounce buffers are needed
   bool aovs = false;         // record first-hit albedo, normal and depth (record_aov, accumulate_aov)
@@ -45,7 +47,7 @@ class StageRunner {
   virtual bool programFromCache() const { return false; }
   virtual double programBuildMs() const { return 0.0; }
 
-  // Allocates the wave buffers and uploads frame, BVH, materials and emitters; clears the film
+  // Allocates the wave buffers and uploads frame, BVH, attributes, materials and emitters; clears the film
   // (or loads in.initialFilm).
   virtual void setup(const StageInputs& in) = 0;
   // Replaces the active-pixel list the waves walk (setup starts with every pixel, in order) and

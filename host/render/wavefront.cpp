@@ -13,6 +13,7 @@
 #include "render/emitters.h"
 #include "render/frame_params.h"
 #include "render/memory_check.h"
+#include "render/triangle_shading.h"
 #include "scene/camera_basis.h"
 #include "util/errors.h"
 
@@ -92,12 +93,18 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
     if (bytes > maxAlloc)
       throw RuntimeError("a buffer of " + std::to_string(bytes) + " bytes does not fit the device's maximum "
                          "allocation of " + std::to_string(maxAlloc) + " bytes; use a smaller image or scene");
+  std::vector<TriangleShading> shading = buildTriangleShading(scene.triangles, bvh);
+  if (shading.size() * sizeof(TriangleShading) > maxAlloc)
+    throw RuntimeError("a buffer of " + std::to_string(shading.size() * sizeof(TriangleShading)) +
+                       " bytes does not fit the device's maximum allocation of " + std::to_string(maxAlloc) +
+                       " bytes; use a smaller scene");
   stats = RenderStats{};
   stats.waveSize = wave;
 
   StageInputs inputs;
   inputs.frame = frame;
   inputs.bvh = &bvh;
+  inputs.shading = std::move(shading);
   inputs.materials = deviceMaterials(scene.materials);
   inputs.emitters = emitters.emitters;
   inputs.wave = wave;

@@ -34,14 +34,16 @@
 
 #define MCL_ARGS_shade_ao(ARG)                                                                     \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
-  ARG(MCL_GLOBAL const Triangle*, tris) ARG(MCL_GLOBAL const Ray*, rays)                           \
+  ARG(MCL_GLOBAL const Triangle*, tris) ARG(MCL_GLOBAL const TriangleShading*, shading)            \
+  ARG(MCL_GLOBAL const Ray*, rays)                                                                 \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL float4*, radiance)                               \
   ARG(MCL_GLOBAL float4*, shadowContrib) ARG(MCL_GLOBAL ShadowWork*, queue)                        \
   ARG(MCL_GLOBAL volatile uint*, queueCount)
 
 #define MCL_ARGS_shade_direct(ARG)                                                                 \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
-  ARG(MCL_GLOBAL const Triangle*, tris) ARG(MCL_GLOBAL const Material*, materials)                 \
+  ARG(MCL_GLOBAL const Triangle*, tris) ARG(MCL_GLOBAL const TriangleShading*, shading)            \
+  ARG(MCL_GLOBAL const Material*, materials)                                                       \
   ARG(MCL_GLOBAL const Emitter*, emitters) ARG(MCL_GLOBAL const Ray*, rays)                        \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL float4*, radiance)                               \
   ARG(MCL_GLOBAL float4*, shadowContrib) ARG(MCL_GLOBAL ShadowWork*, queue)                        \
@@ -49,6 +51,7 @@
 
 #define MCL_ARGS_shade_direct_hit(ARG)                                                             \
   ARG(uint, waveCount) ARG(MCL_GLOBAL const Triangle*, tris)                                       \
+  ARG(MCL_GLOBAL const TriangleShading*, shading)                                                  \
   ARG(MCL_GLOBAL const Material*, materials) ARG(MCL_GLOBAL const Ray*, rays)                      \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL const Ray*, bounce)                              \
   ARG(MCL_GLOBAL const Hit*, bounceHits) ARG(MCL_GLOBAL float4*, shadowContrib)
@@ -66,6 +69,7 @@
 
 #define MCL_ARGS_record_aov(ARG)                                                                   \
   ARG(uint, waveCount) ARG(MCL_GLOBAL const Triangle*, tris)                                       \
+  ARG(MCL_GLOBAL const TriangleShading*, shading)                                                  \
   ARG(MCL_GLOBAL const Material*, materials) ARG(MCL_GLOBAL const Ray*, rays)                      \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL float4*, aov)
 

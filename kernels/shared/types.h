@@ -41,12 +41,30 @@ typedef struct MCL_ALIGN16 {
 } WideNode;
 
 // Triangle in BVH order, laid out for Moller-Trumbore: v0, e1 = v1 - v0, e2 = v2 - v0.
-// v0.w holds the material index and e1.w the triangle's index in the input (both as_float bits).
+// v0.w holds the material index, e1.w the triangle's index in the input and e2.w its attribute
+// flags (MCL_ATTR_*; all three as_float bits, never used in arithmetic).
 typedef struct MCL_ALIGN16 {
   float4 v0;
   float4 e1;
   float4 e2;
 } Triangle;
+
+// Attribute flags in Triangle::e2.w (the bits of SceneTriangle::attributes). A triangle without a
+// flag never reads its TriangleShading entry, so a scene where no triangle has attributes binds a
+// 1-entry dummy buffer. The remaining bits are free for later per-triangle flags.
+#define MCL_ATTR_NORMALS 1u
+#define MCL_ATTR_UV 2u
+
+// Per-triangle surface attributes, indexed like the BVH-ordered Triangle array (shading[h.tri]).
+// Corner k (k = 0, 1, 2 at barycentrics (1 - u - v, u, v)) has the unit shading normal nk.xyz
+// (MCL_ATTR_NORMALS; otherwise 0) and texture coordinates (nk.w, tv[k]) (MCL_ATTR_UV; otherwise 0;
+// OBJ's convention, v = 0 at the image's bottom row). Read through shared/shading.h.
+typedef struct MCL_ALIGN16 {
+  float4 n0;  // xyz: normal at v0; w: u of v0
+  float4 n1;  // xyz: normal at v1; w: u of v1
+  float4 n2;  // xyz: normal at v2; w: u of v2
+  float4 tv;  // x, y, z: v of v0, v1, v2; w: 0
+} TriangleShading;
 
 #define MCL_NO_TEXTURE 0xffffffffu
 typedef struct MCL_ALIGN16 {
@@ -122,6 +140,8 @@ static_assert(offsetof(BvhNode, maxX) == 16, "BvhNode layout");
 static_assert(sizeof(WideNode) == 224, "WideNode layout");
 static_assert(offsetof(WideNode, child) == 192, "WideNode layout");
 static_assert(sizeof(Triangle) == 48, "Triangle layout");
+static_assert(sizeof(TriangleShading) == 64, "TriangleShading layout");
+static_assert(offsetof(TriangleShading, tv) == 48, "TriangleShading layout");
 static_assert(sizeof(Material) == 64, "Material layout");
 static_assert(sizeof(Ray) == 32, "Ray layout");
 static_assert(sizeof(Hit) == 16, "Hit layout");
