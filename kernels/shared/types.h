@@ -164,6 +164,8 @@ static_assert(offsetof(BvhNode, maxX) == 16, "BvhNode layout");
 static_assert(sizeof(WideNode) == 224, "WideNode layout");
 static_assert(offsetof(WideNode, child) == 192, "WideNode layout");
 static_assert(sizeof(Triangle) == 48, "Triangle layout");
+static_assert(sizeof(TriangleShading) == 64, "TriangleShading layout");
+static_assert(offsetof(TriangleShading, tv) == 48, "TriangleShading layout");
 static_assert(sizeof(Material) == 64, "Material layout");
 static_assert(sizeof(Ray) == 32, "Ray layout");
 static_assert(sizeof(Hit) == 16, "Hit layout");
