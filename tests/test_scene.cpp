@@ -457,7 +457,12 @@ TEST_CASE("shared scenes: all load, fast enough to report" * doctest::test_suite
     MESSAGE(std::string(name) << ": " << scene.triangles.size() << " triangles, " << scene.degenerateDropped
                  << " degenerate dropped, " << scene.materials.size() << " materials, loaded in " << ms << " ms");
     INFO(std::string(name));
-    CHECK(warnings.empty());
+    // Only the MTL statements montecl does not use (Cornell box: Ka, Ni, illum), one line per kind.
+    for (const std::string& w : warnings) {
+      INFO(w);
+      CHECK(w.find("not used by montecl") != std::string::npos);
+    }
+    CHECK(warnings.size() <= 8);
     CHECK(scene.triangles.size() > 30);
     std::size_t emitters = 0;
     for (const auto& t : scene.triangles) emitters += glm::length(scene.materials[t.material].emission) > 0;

@@ -32,11 +32,20 @@ std::string sceneDigest(const Scene& scene) {
   for (const SceneTriangle& t : scene.triangles) {
     for (const glm::vec3& v : t.v) appendVec(bytes, v);
     append(bytes, &t.material, sizeof t.material);
+    append(bytes, &t.attributes, sizeof t.attributes);
+    if (t.attributes & kHasNormals)
+      for (const glm::vec3& n : t.n) appendVec(bytes, n);
+    if (t.attributes & kHasUv)
+      for (const glm::vec2& uv : t.uv) append(bytes, &uv, sizeof uv);
   }
   bytes += "materials";
   for (const MaterialDesc& m : scene.materials) {
     appendVec(bytes, m.albedo);
     appendVec(bytes, m.emission);
+    appendVec(bytes, m.specular);
+    append(bytes, &m.specularExponent, sizeof m.specularExponent);
+    append(bytes, &m.alphaCutoff, sizeof m.alphaCutoff);
+    bytes += m.albedoTexture + '\0' + m.alphaTexture + '\0' + (m.twoSidedEmission ? '2' : '1');
   }
   bytes += "camera";
   appendVec(bytes, scene.camera.position);

@@ -16,6 +16,9 @@
 #include <limits>
 
 #include "scene/camera_basis.h"
+#include "scene/json_fields.h"
+#include "scene/load_util.h"
+#include "scene/mesh_entry.h"
 #include "scene/scene.h"
 #include "util/errors.h"
 
@@ -24,36 +27,10 @@ namespace {
 
 using nlohmann::json;
 
-std::string oneLine(const std::string& s) {
-  std::string out = s;
-  for (char& c : out)
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  return out;
-}
-
-// The scene file being read, for messages and warnings.
-struct Ctx {
-  std::string file;
-  std::vector<std::string>& warnings;
-};
+using Ctx = JsonCtx;
 
 [[noreturn]] void fail(const Ctx& ctx, const std::string& where, const std::string& problem) {
-  throwInputError(oneLine(ctx.file), oneLine(where), oneLine(problem));
-}
-
-std::string child(const std::string& prefix, const std::string& key) {
-  return prefix.empty() ? key : prefix + "." + key;
-}
-
-// Empty when path is a readable regular file, else why not.
-std::string fileProblem(const std::string& path) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) return std::strerror(errno);
-  if (S_ISDIR(st.st_mode)) return "is a directory";
-  if (!S_ISREG(st.st_mode)) return "not a regular file";
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::strerror(errno);
-  return "";
+  jsonFail(ctx, where, problem);
 }
 
 std::string readSceneText(const Ctx& ctx) {
@@ -154,76 +131,6 @@ json parseJson(const Ctx& ctx, const std::string& text) {
   }
 }
 
-void warnUnknownKeys(const Ctx& ctx, const json& obj, const std::string& prefix,
-                     std::initializer_list<const char*> known) {
-  for (auto it = obj.begin(); it != obj.end(); ++it) {
-    bool isKnown = std::any_of(known.begin(), known.end(), [&](const char* k) { return it.key() == k; });
-    if (!isKnown) ctx.warnings.push_back(oneLine(ctx.file) + ": " + oneLine(child(prefix, it.key())) + ": unknown key, ignored");
-  }
-}
-
-const json& requireObject(const Ctx& ctx, const json& v, const std::string& where) {
-  if (!v.is_object()) fail(ctx, where, std::string("expected an object, got ") + v.type_name());
-  return v;
-}
-
-const json& requireKey(const Ctx& ctx, const json& obj, const std::string& prefix, const char* key) {
-  auto it = obj.find(key);
-  if (it == obj.end()) fail(ctx, child(prefix, key), "missing required key");
-  return *it;
-}
-
-const json* optionalKey(const json& obj, const char* key) {
-  auto it = obj.find(key);
-  return it == obj.end() ? nullptr : &*it;
-}
-
-float getFloat(const Ctx& ctx, const json& v, const std::string& where) {
-  if (!v.is_number()) fail(ctx, where, std::string("expected a number, got ") + v.type_name());
-  float f = v.get<float>();
-  if (!std::isfinite(f)) fail(ctx, where, "number out of float range");
-  return f;
-}
-
-// An integer in [lo, hi] (integral floats like 512.0 are accepted).
-long long getInteger(const Ctx& ctx, const json& v, const std::string& where, long long lo, long long hi,
-                     const char* expected) {
-  if (!v.is_number()) fail(ctx, where, std::string("expected ") + expected + ", got " + v.type_name());
-  double d = v.get<double>();
-  if (d != std::floor(d)) fail(ctx, where, std::string("expected ") + expected + ", got " + v.dump());
-  if (d < static_cast<double>(lo) || d > static_cast<double>(hi))
-    fail(ctx, where, std::string("expected ") + expected + ", got " + v.dump());
-  return static_cast<long long>(d);
-}
-
-int getPositiveInt(const Ctx& ctx, const json& v, const std::string& where, int hi,
-                   const char* expected = "a positive integer") {
-  return static_cast<int>(getInteger(ctx, v, where, 1, hi, expected));
-}
-
-glm::vec3 getVec3(const Ctx& ctx, const json& v, const std::string& where) {
-  if (!v.is_array() || v.size() != 3)
-    fail(ctx, where, std::string("expected an array of 3 numbers, got ") +
-                         (v.is_array() ? "an array of " + std::to_string(v.size()) : std::string(v.type_name())));
-  return glm::vec3(getFloat(ctx, v[0], where + "[0]"), getFloat(ctx, v[1], where + "[1]"),
-                   getFloat(ctx, v[2], where + "[2]"));
-}
-
-glm::vec3 getColor(const Ctx& ctx, const json& v, const std::string& where) {
-  glm::vec3 c = getVec3(ctx, v, where);
-  if (c.x < 0 || c.y < 0 || c.z < 0) fail(ctx, where, "components must be >= 0");
-  return c;
-}
-
-template <class E>
-E getChoice(const Ctx& ctx, const json& v, const std::string& where, const ChoiceNames<E>& names) {
-  const std::string list = choiceList(names, /*quoted=*/true);
-  if (!v.is_string()) fail(ctx, where, "expected one of " + list + ", got " + v.type_name());
-  auto it = names.find(v.get<std::string>());
-  if (it == names.end()) fail(ctx, where, "expected one of " + list + ", got " + v.dump());
-  return it->second;
-}
-
 // ---- camera ---------------------------------------------------------------------------------
 
 void validateCamera(const Ctx& ctx, const Camera& cam) {
@@ -285,39 +192,6 @@ RenderSettings parseRender(const Ctx& ctx, const json& root) {
 
 // ---- meshes ---------------------------------------------------------------------------------
 
-struct MeshEntry {
-  std::string path;  // resolved against the scene file's folder
-  std::string where;  // "meshes[i].file"
-  bool hasEmission = false;
-  glm::vec3 emission{0.0f};
-  bool twoSided = false;  // "two_sided_emission": both faces of the mesh's emitters emit
-};
-
-std::string resolvePath(const std::string& sceneFile, const std::string& file) {
-  std::filesystem::path folder = std::filesystem::path(sceneFile).parent_path();
-  return (folder / file).lexically_normal().string();
-}
-
-MeshEntry parseMeshEntry(const Ctx& ctx, const json& j, const std::string& prefix) {
-  requireObject(ctx, j, prefix);
-  warnUnknownKeys(ctx, j, prefix, {"file", "emission", "two_sided_emission"});
-  MeshEntry m;
-  m.where = prefix + ".file";
-  const json& file = requireKey(ctx, j, prefix, "file");
-  if (!file.is_string()) fail(ctx, m.where, std::string("expected a file name, got ") + file.type_name());
-  if (file.get<std::string>().empty()) fail(ctx, m.where, "empty file name");
-  m.path = resolvePath(ctx.file, file.get<std::string>());
-  if (const json* e = optionalKey(j, "emission")) {
-    m.hasEmission = true;
-    m.emission = getColor(ctx, *e, prefix + ".emission");
-  }
-  if (const json* t = optionalKey(j, "two_sided_emission")) {
-    if (!t->is_boolean()) fail(ctx, prefix + ".two_sided_emission", std::string("expected true or false, got ") + t->dump());
-    m.twoSided = t->get<bool>();
-  }
-  return m;
-}
-
 std::vector<MeshEntry> parseMeshes(const Ctx& ctx, const json& root) {
   const json& list = requireKey(ctx, root, "", "meshes");
   if (!list.is_array()) fail(ctx, "meshes", std::string("expected a list of meshes, got ") + list.type_name());
@@ -332,30 +206,13 @@ std::vector<MeshEntry> parseMeshes(const Ctx& ctx, const json& root) {
   return meshes;
 }
 
-// Gives triangles [firstTri, end) copies of their materials with the mesh's overrides (Kd kept;
-// Ke = emission when given; two-sided emission when asked).
-void applyMeshOverrides(Scene& scene, std::size_t firstTri, const MeshEntry& mesh) {
-  std::vector<std::int64_t> copyOf(scene.materials.size(), -1);
-  for (std::size_t t = firstTri; t < scene.triangles.size(); ++t) {
-    std::uint32_t& m = scene.triangles[t].material;
-    if (copyOf[m] < 0) {
-      MaterialDesc d = scene.materials[m];
-      d.name += " (emission override)";
-      if (mesh.hasEmission) d.emission = mesh.emission;
-      d.twoSidedEmission = mesh.twoSided;
-      copyOf[m] = static_cast<std::int64_t>(scene.materials.size());
-      scene.materials.push_back(d);
-    }
-    m = static_cast<std::uint32_t>(copyOf[m]);
-  }
-}
-
-void loadMeshes(const std::vector<MeshEntry>& meshes, Scene& scene, std::vector<std::string>& warnings) {
+void loadMeshes(const Ctx& ctx, const std::vector<MeshEntry>& meshes, Scene& scene) {
   for (const MeshEntry& m : meshes) {
     std::size_t firstTri = scene.triangles.size();
-    loadObjInto(m.path, scene, &warnings);
-    if (m.hasEmission || m.twoSided) applyMeshOverrides(scene, firstTri, m);
+    loadObjInto(m.path, scene, &ctx.warnings);
+    applyMeshEntry(ctx, scene, firstTri, m);
   }
+  recomputeBounds(scene);
 }
 
 bool hasObjExtension(const std::string& path) {
@@ -414,7 +271,7 @@ Scene loadScene(const std::string& path, std::vector<std::string>& warnings) {
   scene.inputFiles.push_back(path);
   scene.camera = parseCamera(ctx, root);
   scene.render = parseRender(ctx, root);
-  loadMeshes(parseMeshes(ctx, root), scene, warnings);
+  loadMeshes(ctx, parseMeshes(ctx, root), scene);
   checkEmissionPower(scene);
   return scene;
 }

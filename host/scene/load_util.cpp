@@ -1,0 +1,118 @@
+// load_util.cpp: helpers shared by the loaders (see load_util.h).
+#include "scene/load_util.h"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+
+#include "util/errors.h"
+
+namespace montecl {
+
+std::string oneLine(const std::string& s, std::size_t maxLen) {
+  std::string out;
+  for (char c : s) {
+    if (out.size() >= maxLen) {
+      out += "...";
+      break;
+    }
+    out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
+  }
+  return out;
+}
+
+void loadFail(const std::string& file, const std::string& where, const std::string& problem) {
+  throwInputError(oneLine(file, 4096), oneLine(where, 200), oneLine(problem, 1000));
+}
+
+std::string lineWhere(std::size_t line) { return "line " + std::to_string(line); }
+
+std::string fileProblem(const std::string& path) {
+  struct stat st {};
+  if (path.empty()) return "empty file name";
+  if (::stat(path.c_str(), &st) != 0) return std::strerror(errno);
+  if (S_ISDIR(st.st_mode)) return "is a directory";
+  if (!S_ISREG(st.st_mode)) return "not a regular file";
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::strerror(errno);
+  return "";
+}
+
+std::string readWholeFile(const std::string& path) {
+  const std::string problem = fileProblem(path);
+  if (!problem.empty()) loadFail(path, "", "cannot open: " + problem);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) loadFail(path, "", std::string("cannot open: ") + std::strerror(errno));
+  std::string text;
+  char chunk[1 << 16];
+  while (in.read(chunk, sizeof chunk) || in.gcount() > 0) text.append(chunk, static_cast<std::size_t>(in.gcount()));
+  if (in.bad()) loadFail(path, "", "read error");
+  return text;
+}
+
+std::string folderOf(const std::string& path) {
+  std::size_t slash = path.find_last_of('/');
+  if (slash == std::string::npos) return "";
+  return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+std::string besideFile(const std::string& baseFile, const std::string& name) {
+  const std::string dir = folderOf(baseFile);
+  if (name.empty() || name[0] == '/' || dir.empty()) return name;
+  return dir == "/" ? "/" + name : dir + "/" + name;
+}
+
+std::string lowerExtension(const std::string& path) {
+  std::size_t slash = path.find_last_of('/');
+  std::size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = path.substr(dot);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+bool appendTriangle(Scene& scene, const SceneTriangle& t) {
+  const glm::vec3 n = glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]);
+  const bool finite = std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z);
+  if (!finite || (n.x == 0.0f && n.y == 0.0f && n.z == 0.0f)) {
+    ++scene.degenerateDropped;
+    return false;
+  }
+  bool first = scene.triangles.empty();
+  for (const glm::vec3& v : t.v) {
+    scene.boundsMin = first ? v : glm::min(scene.boundsMin, v);
+    scene.boundsMax = first ? v : glm::max(scene.boundsMax, v);
+    first = false;
+  }
+  scene.triangles.push_back(t);
+  return true;
+}
+
+void KindWarnings::add(const std::string& kind, const std::string& where, const std::string& text) {
+  auto it = kinds_.find(kind);
+  if (it != kinds_.end()) {
+    ++it->second.more;
+    return;
+  }
+  Entry e;
+  e.where = where;
+  e.text = text;
+  e.order = kinds_.size();
+  kinds_.emplace(kind, e);
+}
+
+void KindWarnings::flush(std::vector<std::string>* out) const {
+  std::vector<const Entry*> order;
+  for (const auto& k : kinds_) order.push_back(&k.second);
+  std::sort(order.begin(), order.end(), [](const Entry* a, const Entry* b) { return a->order < b->order; });
+  if (out)
+    for (const Entry* e : order)
+      out->push_back(oneLine(file_, 4096) + ": " + (e->where.empty() ? "" : oneLine(e->where) + ": ") +
+                     oneLine(e->text, 400) + (e->more ? " (" + std::to_string(e->more) + " more)" : ""));
+}
+
+}  // namespace montecl

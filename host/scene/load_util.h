@@ -1,0 +1,59 @@
+// load_util.h: helpers shared by the mesh loaders (OBJ/MTL, PLY, glTF) and the scene file: one-line
+// messages, reading a regular file, paths relative to a file, appending a triangle (degenerate ones
+// counted, bounds grown), and warnings collected once per kind.
+#pragma once
+#include <cstddef>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace montecl {
+
+// Replaces control characters so that a message stays on one line; cuts it at maxLen.
+std::string oneLine(const std::string& s, std::size_t maxLen = 200);
+
+// Throws InputError "<file>: <where>: <problem>" (each made one line).
+[[noreturn]] void loadFail(const std::string& file, const std::string& where, const std::string& problem);
+
+std::string lineWhere(std::size_t line);  // "line N"
+
+// Empty when path is a readable regular file, else why not ("No such file or directory", ...).
+std::string fileProblem(const std::string& path);
+
+// Reads a regular file into memory; throws InputError naming the file on failure.
+std::string readWholeFile(const std::string& path);
+
+// The folder of a path ("" for a bare name).
+std::string folderOf(const std::string& path);
+
+// name as opened from the folder of baseFile (name itself when absolute or baseFile has no folder).
+std::string besideFile(const std::string& baseFile, const std::string& name);
+
+// Lower-case extension with the dot (".obj"), "" when none.
+std::string lowerExtension(const std::string& path);
+
+// Appends t unless it has zero (or non-finite) area, which is counted in scene.degenerateDropped
+// instead; grows the scene bounds. Returns whether it was appended.
+bool appendTriangle(Scene& scene, const SceneTriangle& t);
+
+// Warnings collected by kind: the first occurrence of each kind is reported, with the number of
+// further ones, when flushed: "<file>: <where>: <text> (N more)".
+class KindWarnings {
+ public:
+  explicit KindWarnings(std::string file) : file_(std::move(file)) {}
+  void add(const std::string& kind, const std::string& where, const std::string& text);
+  void flush(std::vector<std::string>* out) const;  // appends one line per kind (in first-seen order)
+  bool empty() const { return kinds_.empty(); }
+
+ private:
+  struct Entry {
+    std::string where, text;
+    std::size_t more = 0, order = 0;
+  };
+  std::string file_;
+  std::map<std::string, Entry> kinds_;
+};
+
+}  // namespace montecl

@@ -1,0 +1,202 @@
+// mesh_entry.cpp: parsing and applying a scene file's mesh entry (see mesh_entry.h).
+#include "scene/mesh_entry.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <utility>
+
+#include "scene/load_util.h"
+
+namespace montecl {
+namespace {
+
+using nlohmann::json;
+
+std::string resolvePath(const std::string& sceneFile, const std::string& file) {
+  std::filesystem::path folder = std::filesystem::path(sceneFile).parent_path();
+  return (folder / file).lexically_normal().string();
+}
+
+// A texture named in the scene file: resolved against its folder, and it must exist.
+std::string texturePath(const JsonCtx& ctx, const json& v, const std::string& where) {
+  const std::string path = resolvePath(ctx.file, getString(ctx, v, where, "a file name"));
+  const std::string problem = fileProblem(path);
+  if (!problem.empty()) jsonFail(ctx, where, "cannot open '" + path + "': " + problem);
+  return path;
+}
+
+float getUnit(const JsonCtx& ctx, const json& v, const std::string& where) {
+  const float f = getFloat(ctx, v, where);
+  if (f < 0.0f || f > 1.0f) jsonFail(ctx, where, "must be in [0, 1]");
+  return f;
+}
+
+void parseMaterial(const JsonCtx& ctx, const json& j, const std::string& prefix, MaterialOverride& o) {
+  requireObject(ctx, j, prefix);
+  warnUnknownKeys(ctx, j, prefix,
+                  {"albedo", "albedo_texture", "alpha_texture", "alpha_cutoff", "emission", "two_sided_emission",
+                   "specular", "specular_exponent"});
+  MaterialDesc& d = o.value;
+  if (const json* v = optionalKey(j, "albedo")) o.albedo = true, d.albedo = getColor(ctx, *v, prefix + ".albedo");
+  if (const json* v = optionalKey(j, "albedo_texture"))
+    o.albedoTexture = true, d.albedoTexture = texturePath(ctx, *v, prefix + ".albedo_texture");
+  if (const json* v = optionalKey(j, "alpha_texture"))
+    o.alphaTexture = true, d.alphaTexture = texturePath(ctx, *v, prefix + ".alpha_texture");
+  if (const json* v = optionalKey(j, "alpha_cutoff"))
+    o.alphaCutoff = true, d.alphaCutoff = getUnit(ctx, *v, prefix + ".alpha_cutoff");
+  if (const json* v = optionalKey(j, "emission")) o.emission = true, d.emission = getColor(ctx, *v, prefix + ".emission");
+  if (const json* v = optionalKey(j, "two_sided_emission"))
+    o.twoSided = true, d.twoSidedEmission = getBool(ctx, *v, prefix + ".two_sided_emission");
+  if (const json* v = optionalKey(j, "specular")) {
+    o.specular = true;
+    d.specular = getColor(ctx, *v, prefix + ".specular");
+    if (d.specular.x > 1 || d.specular.y > 1 || d.specular.z > 1) jsonFail(ctx, prefix + ".specular", "components must be in [0, 1]");
+  }
+  if (const json* v = optionalKey(j, "specular_exponent")) {
+    o.specularExponent = true;
+    d.specularExponent = getFloat(ctx, *v, prefix + ".specular_exponent");
+    if (d.specularExponent < 0.0f) jsonFail(ctx, prefix + ".specular_exponent", "must be >= 0");
+  }
+}
+
+glm::dvec3 nonZeroScale(const JsonCtx& ctx, const json& v, const std::string& where) {
+  glm::dvec3 s = v.is_number() ? glm::dvec3(getFloat(ctx, v, where)) : glm::dvec3(getVec3(ctx, v, where));
+  if (s.x == 0.0 || s.y == 0.0 || s.z == 0.0) jsonFail(ctx, where, "must not be 0 (it would flatten the mesh)");
+  return s;
+}
+
+glm::dmat4 parseTransform(const JsonCtx& ctx, const json& j, const std::string& prefix) {
+  requireObject(ctx, j, prefix);
+  warnUnknownKeys(ctx, j, prefix, {"scale", "rotate", "translate", "matrix"});
+  if (const json* m = optionalKey(j, "matrix")) {
+    const std::string where = prefix + ".matrix";
+    for (const char* k : {"scale", "rotate", "translate"})
+      if (optionalKey(j, k)) jsonFail(ctx, childKey(prefix, k), "give either \"matrix\" or scale/rotate/translate, not both");
+    if (!m->is_array() || m->size() != 16)
+      jsonFail(ctx, where, std::string("expected 16 numbers (a row-major 4x4 matrix), got ") +
+                               (m->is_array() ? "an array of " + std::to_string(m->size()) : std::string(m->type_name())));
+    glm::dmat4 t(0.0);
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) t[c][r] = getFloat(ctx, (*m)[std::size_t(4 * r + c)], where + "[" + std::to_string(4 * r + c) + "]");
+    if (t[0][3] != 0.0 || t[1][3] != 0.0 || t[2][3] != 0.0 || t[3][3] != 1.0)
+      jsonFail(ctx, where, "the last row must be 0 0 0 1 (no projective transforms)");
+    if (glm::determinant(glm::dmat3(t)) == 0.0) jsonFail(ctx, where, "singular (it would flatten the mesh)");
+    return t;
+  }
+  glm::dmat4 t(1.0);
+  if (const json* v = optionalKey(j, "translate")) t = glm::translate(t, glm::dvec3(getVec3(ctx, *v, prefix + ".translate")));
+  if (const json* v = optionalKey(j, "rotate")) {
+    const std::string where = prefix + ".rotate";
+    if (!v->is_array() || v->size() != 4) jsonFail(ctx, where, "expected [axis x, axis y, axis z, degrees]");
+    glm::dvec3 axis(getFloat(ctx, (*v)[0], where + "[0]"), getFloat(ctx, (*v)[1], where + "[1]"),
+                    getFloat(ctx, (*v)[2], where + "[2]"));
+    const double degrees = getFloat(ctx, (*v)[3], where + "[3]");
+    if (axis == glm::dvec3(0.0)) jsonFail(ctx, where, "the axis must not be the zero vector");
+    t = glm::rotate(t, glm::radians(degrees), glm::normalize(axis));
+  }
+  if (const json* v = optionalKey(j, "scale")) t = glm::scale(t, nonZeroScale(ctx, *v, prefix + ".scale"));
+  return t;  // translate * rotate * scale: scale first, then rotate, then translate
+}
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+void transformTriangles(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, const MeshEntry& mesh) {
+  const glm::dmat4& m = mesh.transform;
+  const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(m)));
+  const bool mirror = glm::determinant(glm::dmat3(m)) < 0.0;
+  std::size_t out = firstTri;
+  for (std::size_t i = firstTri; i < scene.triangles.size(); ++i) {
+    SceneTriangle t = scene.triangles[i];
+    for (int k = 0; k < 3; ++k) {
+      t.v[k] = glm::vec3(m * glm::dvec4(glm::dvec3(t.v[k]), 1.0));
+      if (!finite(t.v[k])) jsonFail(ctx, mesh.prefix + ".transform", "moves vertices out of float range");
+      if (t.attributes & kHasNormals) t.n[k] = glm::vec3(glm::normalize(normalMatrix * glm::dvec3(t.n[k])));
+    }
+    if (mirror) {  // keep the winding's side: the face normal follows the mirrored surface
+      std::swap(t.v[1], t.v[2]);
+      std::swap(t.n[1], t.n[2]);
+      std::swap(t.uv[1], t.uv[2]);
+    }
+    const glm::vec3 n = glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]);
+    if (!finite(n) || n == glm::vec3(0.0f)) {
+      ++scene.degenerateDropped;
+      continue;
+    }
+    scene.triangles[out++] = t;
+  }
+  scene.triangles.resize(out);
+}
+
+void overrideMaterials(Scene& scene, std::size_t firstTri, const MeshEntry& mesh) {
+  const MaterialOverride& o = mesh.material;
+  std::vector<std::int64_t> copyOf(scene.materials.size(), -1);
+  for (std::size_t t = firstTri; t < scene.triangles.size(); ++t) {
+    std::uint32_t& m = scene.triangles[t].material;
+    if (copyOf[m] < 0) {
+      MaterialDesc d = scene.materials[m];
+      d.name += " (" + mesh.prefix + " override)";
+      if (o.albedo) d.albedo = o.value.albedo;
+      if (o.albedoTexture) {
+        d.albedoTexture = o.value.albedoTexture;
+        if (!o.albedo) d.albedo = glm::vec3(1.0f);  // the texture as it is
+      }
+      if (o.alphaTexture) d.alphaTexture = o.value.alphaTexture;
+      if (o.alphaCutoff) d.alphaCutoff = o.value.alphaCutoff;
+      if (o.emission) d.emission = o.value.emission;
+      if (o.twoSided) d.twoSidedEmission = o.value.twoSidedEmission;
+      if (o.specular) d.specular = o.value.specular;
+      if (o.specularExponent) d.specularExponent = o.value.specularExponent;
+      copyOf[m] = static_cast<std::int64_t>(scene.materials.size());
+      scene.materials.push_back(d);
+    }
+    m = static_cast<std::uint32_t>(copyOf[m]);
+  }
+}
+
+}  // namespace
+
+MeshEntry parseMeshEntry(const JsonCtx& ctx, const json& j, const std::string& prefix) {
+  requireObject(ctx, j, prefix);
+  warnUnknownKeys(ctx, j, prefix, {"file", "emission", "two_sided_emission", "transform", "material"});
+  MeshEntry m;
+  m.prefix = prefix;
+  m.where = prefix + ".file";
+  m.path = resolvePath(ctx.file, getString(ctx, requireKey(ctx, j, prefix, "file"), m.where, "a file name"));
+  if (const json* v = optionalKey(j, "material")) parseMaterial(ctx, *v, prefix + ".material", m.material);
+  if (const json* e = optionalKey(j, "emission")) {
+    if (m.material.emission) jsonFail(ctx, prefix + ".emission", "also given as " + prefix + ".material.emission: give one");
+    m.material.emission = true;
+    m.material.value.emission = getColor(ctx, *e, prefix + ".emission");
+  }
+  if (const json* t = optionalKey(j, "two_sided_emission")) {
+    if (m.material.twoSided)
+      jsonFail(ctx, prefix + ".two_sided_emission", "also given as " + prefix + ".material.two_sided_emission: give one");
+    m.material.twoSided = true;
+    m.material.value.twoSidedEmission = getBool(ctx, *t, prefix + ".two_sided_emission");
+  }
+  if (const json* t = optionalKey(j, "transform")) {
+    m.hasTransform = true;
+    m.transform = parseTransform(ctx, *t, prefix + ".transform");
+  }
+  return m;
+}
+
+void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, const MeshEntry& mesh) {
+  if (mesh.hasTransform) transformTriangles(ctx, scene, firstTri, mesh);
+  if (mesh.material.any()) overrideMaterials(scene, firstTri, mesh);
+}
+
+void recomputeBounds(Scene& scene) {
+  scene.boundsMin = scene.boundsMax = glm::vec3(0.0f);
+  if (scene.triangles.empty()) return;
+  scene.boundsMin = scene.boundsMax = scene.triangles[0].v[0];
+  for (const SceneTriangle& t : scene.triangles)
+    for (const glm::vec3& v : t.v) {
+      scene.boundsMin = glm::min(scene.boundsMin, v);
+      scene.boundsMax = glm::max(scene.boundsMax, v);
+    }
+}
+
+}  // namespace montecl

@@ -1,0 +1,48 @@
+// mesh_entry.h: one entry of a scene file's "meshes" list: the file, its per-mesh transform
+// ("transform": scale, rotate, translate, or a row-major 4x4 "matrix") and material overrides
+// ("material": {...}, plus the older "emission" / "two_sided_emission" at the entry's top level).
+// parseMeshEntry() validates every key (InputError naming the key path); applyMeshEntry()
+// transforms the mesh's triangles (normals by the inverse transpose; a mirroring transform swaps
+// two corners so faces keep their side) and gives them overridden copies of their materials.
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include <glm/glm.hpp>
+#include <cstddef>
+#include <string>
+
+#include "scene/json_fields.h"
+#include "scene/scene.h"
+
+namespace montecl {
+
+// The material fields a scene file sets for one mesh; the others keep the file's values.
+struct MaterialOverride {
+  bool albedo = false, albedoTexture = false, alphaTexture = false, alphaCutoff = false, emission = false,
+       twoSided = false, specular = false, specularExponent = false;
+  MaterialDesc value;
+  bool any() const {
+    return albedo || albedoTexture || alphaTexture || alphaCutoff || emission || twoSided || specular ||
+           specularExponent;
+  }
+};
+
+struct MeshEntry {
+  std::string path;   // resolved against the scene file's folder
+  std::string where;  // "meshes[i].file"
+  std::string prefix;  // "meshes[i]"
+  MaterialOverride material;
+  bool hasTransform = false;
+  glm::dmat4 transform{1.0};  // column vectors (glm): p' = transform * p
+};
+
+MeshEntry parseMeshEntry(const JsonCtx& ctx, const nlohmann::json& j, const std::string& prefix);
+
+// Applies the entry to triangles [firstTri, end) of scene (transform, then material overrides).
+// Triangles that the transform makes degenerate are dropped and counted. Does not update the
+// bounds: call recomputeBounds() when all meshes are in.
+void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, const MeshEntry& mesh);
+
+void recomputeBounds(Scene& scene);
+
+}  // namespace montecl

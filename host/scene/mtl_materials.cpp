@@ -1,0 +1,194 @@
+// mtl_materials.cpp: MTL files for the OBJ loader (see mtl_materials.h): opening, the line scan,
+// conversion to MaterialDesc with validation, texture paths, one warning per unused kind.
+#include "scene/mtl_materials.h"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <set>
+#include <sstream>
+
+#include "scene/load_util.h"
+
+namespace montecl {
+namespace {
+
+bool isBlank(char c) { return c == ' ' || c == '\t'; }
+
+// What montecl reads from an MTL; every other statement is reported once per kind.
+bool isUsed(const std::string& key) {
+  static const std::set<std::string> used = {"newmtl", "Kd", "Ke", "Ks", "Ns", "map_Kd", "map_d"};
+  return used.count(key) > 0;
+}
+
+std::string unusedText(const std::string& key) {
+  static const std::map<std::string, std::string> what = {
+      {"Ka", "ambient colour"},          {"illum", "illumination model"},  {"Ni", "index of refraction"},
+      {"Tf", "transmission filter"},     {"map_Ka", "ambient texture"},    {"map_Ks", "specular texture"},
+      {"map_Ns", "exponent texture"},    {"bump", "bump map"},             {"map_bump", "bump map"},
+      {"map_Bump", "bump map"},          {"disp", "displacement map"},     {"norm", "normal map"},
+      {"refl", "reflection map"},        {"map_Ke", "emission texture"},   {"Pr", "PBR roughness"},
+      {"Pm", "PBR metallic"},            {"map_Pr", "roughness texture"},  {"map_Pm", "metallic texture"}};
+  auto it = what.find(key);
+  return "'" + key + "'" + (it == what.end() ? "" : " (" + it->second + ")") + " not used by montecl, ignored";
+}
+
+// Scans the MTL text the way tinyobjloader splits it (lines end at \n, \r\n or \r; blocks start at
+// `newmtl`; the statements before the first one go to a block that is dropped, unless there is no
+// `newmtl` at all), recording the first line of each statement per block and the unused kinds.
+void scanMtl(const std::string& text, MtlFile& f) {
+  MtlBlock current;
+  bool named = false;
+  std::size_t line = 0;
+  for (std::size_t p = 0; p < text.size();) {
+    std::size_t eol = text.find_first_of("\r\n", p);
+    if (eol == std::string::npos) eol = text.size();
+    std::string s = text.substr(p, eol - p);
+    p = eol + (text.compare(eol, 2, "\r\n") == 0 ? 2 : 1);
+    ++line;
+    std::size_t b = 0;
+    while (b < s.size() && isBlank(s[b])) ++b;
+    while (!s.empty() && isBlank(s.back())) s.pop_back();
+    if (b >= s.size() || s[b] == '#') continue;
+    std::size_t e = b;
+    while (e < s.size() && !isBlank(s[e])) ++e;
+    const std::string key = s.substr(b, e - b);
+    if (key == "newmtl" && e < s.size()) {
+      if (named) f.blocks.push_back(current);
+      current = MtlBlock{};
+      named = true;
+    }
+    current.line.emplace(key, line);
+    const std::string where = lineWhere(line);
+    std::istringstream rest(s.substr(e));
+    if (key == "d" || key == "Tr") {
+      double v = key == "d" ? 1.0 : 0.0;
+      rest >> v;
+      if (v != (key == "d" ? 1.0 : 0.0))
+        f.unused.add("dissolve", where,
+                     "'" + key + "' (constant opacity) not used by montecl: only map_d cuts out, ignored");
+    } else if (!isUsed(key)) {
+      f.unused.add(key, where, unusedText(key));
+    } else if (key == "map_Kd" || key == "map_d") {
+      std::string token;
+      while (rest >> token)
+        if (token.size() > 1 && token[0] == '-') {
+          f.unused.add("texture options", where,
+                       "texture option '" + token + "' not used by montecl (textures repeat, unscaled), ignored");
+          break;
+        }
+    }
+  }
+  f.blocks.push_back(current);
+}
+
+bool validColor(const glm::vec3& c, float hi) {
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(c[k]) || c[k] < 0.0f || c[k] > hi) return false;
+  return true;
+}
+
+glm::vec3 toVec3(const tinyobj::real_t* c) {
+  return glm::vec3(static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2]));
+}
+
+// Where the statements of one material are: the MTL file and, when the scan matches tinyobj's
+// materials, their lines.
+struct MaterialSource {
+  std::string file;
+  const MtlBlock* block = nullptr;
+  std::string name;
+  bool has(const std::string& key) const { return block && block->line.count(key); }
+  std::string where(const std::string& key) const {
+    return has(key) ? lineWhere(block->line.at(key)) : std::string();
+  }
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
+    loadFail(file, where(key), "material '" + oneLine(name, 60) + "': " + problem);
+  }
+};
+
+MaterialSource sourceOf(const std::string& objPath, const std::vector<MtlFile>& files, std::size_t index,
+                        const std::string& name) {
+  for (const MtlFile& f : files)
+    if (index >= f.firstMaterial && index < f.firstMaterial + f.count) {
+      const MtlBlock* b = f.blocks.size() == f.count ? &f.blocks[index - f.firstMaterial] : nullptr;
+      return {f.path, b, name};
+    }
+  return {objPath, nullptr, name};
+}
+
+// A texture named by key, opened beside the MTL; a name written with backslashes (Windows
+// exporters) is tried with slashes when it is not found as written.
+std::string texturePath(const MaterialSource& src, const std::string& key, const std::string& name) {
+  if (name.empty()) src.fail(key, key + " needs a file name");
+  std::string path = besideFile(src.file, name);
+  std::string problem = fileProblem(path);
+  if (!problem.empty() && name.find('\\') != std::string::npos) {
+    std::string slashed = name;
+    std::replace(slashed.begin(), slashed.end(), '\\', '/');
+    if (fileProblem(besideFile(src.file, slashed)).empty()) return besideFile(src.file, slashed);
+  }
+  if (!problem.empty()) src.fail(key, key + " '" + name + "': cannot open '" + path + "': " + problem);
+  return path;
+}
+
+}  // namespace
+
+bool MtlReader::operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                           std::map<std::string, int>* matMap, std::string* warn, std::string* err) {
+  const std::string path = besideFile(objPath_, name);
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) {
+    missing.push_back(path);
+    return false;
+  }
+  // Only regular files: a FIFO would block the open, /dev/zero would be read until memory runs out.
+  if (!S_ISREG(st.st_mode)) {
+    if (notRegular.empty()) notRegular = path + "': " + (S_ISDIR(st.st_mode) ? "is a directory" : "not a regular file");
+    return false;
+  }
+  MtlFile f{path, materials->size(), 0, {}, KindWarnings(path)};
+  const std::string text = readWholeFile(path);
+  scanMtl(text, f);
+  std::istringstream in(text);
+  tinyobj::LoadMtl(matMap, materials, &in, warn, err);
+  f.count = materials->size() - f.firstMaterial;
+  files.push_back(std::move(f));
+  return true;
+}
+
+std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<tinyobj::material_t>& mats,
+                                 const std::vector<MtlFile>& files, Scene& scene,
+                                 std::vector<std::string>* warnings) {
+  for (const MtlFile& f : files) f.unused.flush(warnings);
+  auto base = static_cast<std::uint32_t>(scene.materials.size());
+  std::set<std::string> textures;
+  for (std::size_t i = 0; i < mats.size(); ++i) {
+    const tinyobj::material_t& m = mats[i];
+    const MaterialSource src = sourceOf(objPath, files, i, m.name);
+    MaterialDesc d;
+    d.name = m.name;
+    d.albedo = toVec3(m.diffuse);
+    d.emission = toVec3(m.emission);
+    d.specular = toVec3(m.specular);
+    d.specularExponent = static_cast<float>(m.shininess);
+    if (!validColor(d.albedo, INFINITY)) src.fail("Kd", "Kd must be finite and >= 0");
+    if (!validColor(d.emission, INFINITY)) src.fail("Ke", "Ke must be finite and >= 0");
+    if (!validColor(d.specular, 1.0f)) src.fail("Ks", "Ks components must be in [0, 1]");
+    if (!std::isfinite(d.specularExponent) || d.specularExponent < 0.0f) src.fail("Ns", "Ns must be finite and >= 0");
+    if (src.block && !src.has("Ns")) d.specularExponent = 0.0f;  // tinyobj's default is 1
+    if (!m.diffuse_texname.empty() || src.has("map_Kd")) {
+      d.albedoTexture = texturePath(src, "map_Kd", m.diffuse_texname);
+      if (src.block && !src.has("Kd")) d.albedo = glm::vec3(1.0f);  // the texture as it is (tinyobj: 0.6)
+    }
+    if (!m.alpha_texname.empty() || src.has("map_d")) d.alphaTexture = texturePath(src, "map_d", m.alpha_texname);
+    for (const std::string* t : {&d.albedoTexture, &d.alphaTexture})
+      if (!t->empty() && textures.insert(*t).second) scene.inputFiles.push_back(*t);
+    scene.materials.push_back(d);
+  }
+  return base;
+}
+
+}  // namespace montecl
