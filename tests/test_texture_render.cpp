@@ -5,7 +5,9 @@
 // the AO rays (z-test); a tiny texture budget renders with coarser levels.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "bvh/bvh.h"
 #include "cl/devices.h"
@@ -226,4 +228,31 @@ TEST_CASE("textures: a tiny budget drops fine levels with a warning and the rend
     REQUIRE(a >= 0.0f);
     REQUIRE(a <= 1.0f);
   }
+}
+
+TEST_CASE("textures: montecl render warns once over --texture-budget; a bad texture file is exit 2, one line" * doctest::test_suite("cli")) {
+  TempDir dir;
+  dir.write("quad.obj",
+            "mtllib quad.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+            "usemtl m\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
+  dir.write("quad.mtl", "newmtl m\nKd 1 1 1\nmap_Kd tex.png\n");
+  writeImage8(dir.file("tex.png"), 64, 64, 3, [](int x, int y, int c) { return (x * 4 + y + c) % 256; });
+  const std::vector<std::string> args = {"render", dir.file("quad.obj"), "-o", dir.file("out.png"), "--width", "16",
+                                         "--height", "16", "--spp", "1", "-q", "--overwrite"};
+  std::vector<std::string> tiny = args;
+  tiny.insert(tiny.end(), {"--texture-budget", "0.01"});
+  const CliResult small = runMontecl(tiny);
+  CHECK(small.exitCode == 0);
+  CHECK(small.err.find("texture budget") != std::string::npos);
+  CHECK(small.err.find("tex.png 64x64 -> 16x16") != std::string::npos);
+  const CliResult full = runMontecl(args);
+  CHECK(full.exitCode == 0);
+  CHECK(full.err.find("texture budget") == std::string::npos);
+  std::filesystem::remove(dir.file("out.png"));
+  dir.write("tex.png", "this is not a PNG");
+  const CliResult bad = runMontecl(args);
+  CHECK(bad.exitCode == 2);
+  CHECK(bad.err.find("tex.png: material 'm' map_Kd: cannot read image") != std::string::npos);
+  CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
+  CHECK_FALSE(std::filesystem::exists(dir.file("out.png")));
 }

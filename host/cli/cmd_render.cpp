@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <iostream>
@@ -156,7 +157,10 @@ int runRender(const RenderArgs& a) {
       a.textureBudgetMiB ? std::uint64_t(*a.textureBudgetMiB * double(1 << 20))
                          : (device.isHost ? kDefaultTextureBudget : std::min(kDefaultTextureBudget, device.maxAllocBytes));
   std::vector<std::string> textureWarnings;
+  const auto textureStart = std::chrono::steady_clock::now();
   const SceneTextures textures = loadSceneTextures(scene, textureBudget, textureWarnings);
+  const double textureMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - textureStart).count();
   for (const std::string& w : textureWarnings) std::cerr << "montecl: warning: " << scene.path << ": " << w << "\n";
   Bvh bvh = buildBvh(scene.triangles);
   if (scene.render.integrator == Integrator::Direct && !hasEmitter(scene))
@@ -177,7 +181,7 @@ int runRender(const RenderArgs& a) {
     if (!textures.textures.empty())
       std::cerr << "montecl: " << textures.textures.size() << " textures, " << textures.levels.size()
                 << " mip levels, " << (textures.bytes() >> 20) << " MiB of texels (budget " << (textureBudget >> 20)
-                << " MiB)\n";
+                << " MiB), loaded in " << textureMs << " ms\n";
   }
   RenderOptions options;
   options.waveSize = a.waveSize;

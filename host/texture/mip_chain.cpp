@@ -18,7 +18,31 @@ bool isIntegerImage(const LayeredImage& image) {
   return t.rfind("uint", 0) == 0 || t.rfind("int", 0) == 0;
 }
 
+namespace {
+
+// srgbToLinear of every code of an n-bit integer image (n = 8 or 16), computed once.
+const std::vector<float>& srgbTable(int bits) {
+  static const std::vector<float> t8 = [] {
+    std::vector<float> t(256);
+    for (int i = 0; i < 256; ++i) t[i] = srgbToLinear(float(i) / 255.0f);
+    return t;
+  }();
+  static const std::vector<float> t16 = [] {
+    std::vector<float> t(65536);
+    for (int i = 0; i < 65536; ++i) t[i] = srgbToLinear(float(i) / 65535.0f);
+    return t;
+  }();
+  return bits == 8 ? t8 : t16;
+}
+
+}  // namespace
+
 RgbaImage rgbaFromImage(const LayeredImage& image, bool srgb, bool* hasAlpha) {
+  // Integer codes decode through a table (the value OpenImageIO gives is code / max).
+  const std::string& type = image.pixelType;
+  const int bits = type == "uint8" || type == "int8" ? 8 : type == "uint16" || type == "int16" ? 16 : 0;
+  const std::vector<float>* table = srgb && bits ? &srgbTable(bits) : nullptr;
+  const float maxCode = bits == 8 ? 255.0f : 65535.0f;
   RgbaImage out;
   out.width = image.width;
   out.height = image.height;
@@ -35,7 +59,8 @@ RgbaImage rgbaFromImage(const LayeredImage& image, bool srgb, bool* hasAlpha) {
       for (int c = 0; c < 3; ++c) {
         float v = nch == 0 ? 0.0f : image.planes[grey ? 0 : c][src + x];
         if (!std::isfinite(v)) v = 0.0f;
-        t[c] = srgb ? srgbToLinear(std::clamp(v, 0.0f, 1.0f)) : v;
+        if (table) t[c] = (*table)[std::size_t(std::lround(std::clamp(v, 0.0f, 1.0f) * maxCode))];
+        else t[c] = srgb ? srgbToLinear(std::clamp(v, 0.0f, 1.0f)) : v;
       }
       if (a) t.w = std::isfinite((*a)[src + x]) ? (*a)[src + x] : 0.0f;
     }

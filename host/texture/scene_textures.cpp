@@ -1,6 +1,7 @@
 // scene_textures.cpp: loads, decodes, mip-maps and packs a scene's textures (scene_textures.h).
 #include "texture/scene_textures.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -10,6 +11,7 @@
 #include "texture/mip_chain.h"
 #include "texture/texture_budget.h"
 #include "util/errors.h"
+#include "util/parallel_for.h"
 
 namespace montecl {
 
@@ -63,51 +65,71 @@ void setTextureIndices(std::vector<Material>& materials, const SceneTextures& te
   }
 }
 
-void packTextures(SceneTextures& out, const std::vector<RgbaImage>& images, std::uint64_t budgetBytes,
+namespace {
+
+// Width and height of each mip level of a w x h image (level 0 first), as buildMipChain makes them.
+std::vector<std::pair<int, int>> levelSizes(int w, int h) {
+  std::vector<std::pair<int, int>> sizes{{w, h}};
+  const int count = mipLevelCount(w, h);
+  while (int(sizes.size()) < count) {
+    w = std::max(1, w / 2);
+    h = std::max(1, h / 2);
+    sizes.push_back({w, h});
+  }
+  return sizes;
+}
+
+}  // namespace
+
+void packTextures(SceneTextures& out, std::vector<RgbaImage> images, std::uint64_t budgetBytes,
                   std::vector<std::string>& warnings) {
-  std::vector<std::vector<RgbaImage>> chains;
-  std::vector<std::vector<std::uint64_t>> levelBytes;
-  for (const RgbaImage& image : images) {
-    chains.push_back(buildMipChain(image));
-    levelBytes.emplace_back();
-    for (const RgbaImage& level : chains.back()) levelBytes.back().push_back(level.texels.size() * 8u);
+  const std::size_t count = images.size();
+  std::vector<std::vector<std::pair<int, int>>> sizes(count);
+  std::vector<std::vector<std::uint64_t>> levelBytes(count);
+  std::uint64_t full = 0;
+  for (std::size_t t = 0; t < count; ++t) {
+    sizes[t] = levelSizes(images[t].width, images[t].height);
+    for (const auto& [w, h] : sizes[t]) levelBytes[t].push_back(std::uint64_t(w) * std::uint64_t(h) * 8u);
+    for (std::uint64_t b : levelBytes[t]) full += b;
   }
   const std::vector<int> drop = finestLevelsToDrop(levelBytes, budgetBytes);
-  std::ostringstream dropped;
-  int droppedCount = 0;
-  std::uint64_t texelCount = 0;
-  for (std::size_t t = 0; t < chains.size(); ++t)
-    for (std::size_t k = std::size_t(drop[t]); k < chains[t].size(); ++k) texelCount += chains[t][k].texels.size();
-  if (texelCount > 0xffffffffull) throw RuntimeError("textures: more than 2^32 texels after the texture budget");
-  out.texels.clear();
-  out.texels.reserve(texelCount * 4);
+  // The tables first (offsets known from the sizes), then every texture's kept levels in parallel.
   out.textures.clear();
   out.levels.clear();
-  for (std::size_t t = 0; t < chains.size(); ++t) {
-    const RgbaImage& base = chains[t][0];
+  std::uint64_t texelCount = 0;
+  std::ostringstream dropped;
+  int droppedCount = 0;
+  for (std::size_t t = 0; t < count; ++t) {
     TextureDesc d{};
     d.firstLevel = std::uint32_t(out.levels.size());
-    d.levelCount = std::uint32_t(chains[t].size() - std::size_t(drop[t]));
+    d.levelCount = std::uint32_t(sizes[t].size() - std::size_t(drop[t]));
     d.dropped = std::uint32_t(drop[t]);
-    d.lodBias = 0.5f * float(std::log2(double(base.width) * double(base.height)));
+    d.lodBias = 0.5f * float(std::log2(double(images[t].width) * double(images[t].height)));
     out.textures.push_back(d);
-    for (std::size_t k = std::size_t(drop[t]); k < chains[t].size(); ++k) {
-      const RgbaImage& level = chains[t][k];
-      out.levels.push_back(TextureLevel{std::uint32_t(out.texels.size() / 4), std::uint32_t(level.width),
-                                        std::uint32_t(level.height), 0u});
-      for (const glm::vec4& c : level.texels)
-        for (int i = 0; i < 4; ++i) out.texels.push_back(floatToHalf(c[i]));
+    for (std::size_t k = std::size_t(drop[t]); k < sizes[t].size(); ++k) {
+      if (texelCount + std::uint64_t(sizes[t][k].first) * sizes[t][k].second > 0xffffffffull)
+        throw RuntimeError("textures: more than 2^32 texels after the texture budget; lower --texture-budget");
+      out.levels.push_back(TextureLevel{std::uint32_t(texelCount), std::uint32_t(sizes[t][k].first),
+                                        std::uint32_t(sizes[t][k].second), 0u});
+      texelCount += std::uint64_t(sizes[t][k].first) * sizes[t][k].second;
     }
-    if (drop[t] > 0) {
-      const RgbaImage& kept = chains[t][std::size_t(drop[t])];
+    if (drop[t] > 0)
       dropped << (droppedCount++ ? ", " : "") << (t < out.files.size() ? out.files[t] : "texture " + std::to_string(t))
-              << " " << base.width << "x" << base.height << " -> " << kept.width << "x" << kept.height;
-    }
+              << " " << images[t].width << "x" << images[t].height << " -> " << sizes[t][drop[t]].first << "x"
+              << sizes[t][drop[t]].second;
   }
+  out.texels.assign(texelCount * 4, 0);
+  if (count > 0) parallelFor(count, 0, 1, [&](std::size_t t) {
+    std::vector<RgbaImage> chain = buildMipChain(std::move(images[t]));
+    const TextureDesc& d = out.textures[t];
+    for (std::uint32_t k = 0; k < d.levelCount; ++k) {
+      const RgbaImage& level = chain[d.dropped + k];
+      std::uint16_t* dst = &out.texels[std::size_t(out.levels[d.firstLevel + k].offset) * 4];
+      for (const glm::vec4& c : level.texels)
+        for (int i = 0; i < 4; ++i) *dst++ = floatToHalf(c[i]);
+    }
+  });
   if (droppedCount > 0) {
-    std::uint64_t full = 0;
-    for (const auto& levels : levelBytes)
-      for (std::uint64_t b : levels) full += b;
     std::ostringstream w;
     w << "textures need " << ((full + (1u << 20) - 1) >> 20) << " MiB, over the texture budget of "
       << (budgetBytes >> 20) << " MiB (" << budgetBytes << " bytes): finest mip levels dropped from " << droppedCount
@@ -120,45 +142,80 @@ void packTextures(SceneTextures& out, const std::vector<RgbaImage>& images, std:
 SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, std::vector<std::string>& warnings) {
   SceneTextures out;
   out.materials.resize(scene.materials.size());
-  std::map<std::string, LayeredImage> files;  // each file read once
-  std::map<std::pair<std::string, bool>, std::uint32_t> index;  // (file, sRGB-decoded) -> texture
-  std::vector<RgbaImage> images;
-  const auto read = [&](const MaterialDesc& m, const std::string& path, const char* key) -> const LayeredImage& {
-    auto it = files.find(path);
-    if (it != files.end()) return it->second;
-    try {
-      return files.emplace(path, readLayeredImage(path)).first->second;
-    } catch (const InputError& e) {
-      std::string why = e.what();
-      const std::string prefix = path + ": ";
-      if (why.rfind(prefix, 0) == 0) why = why.substr(prefix.size());
-      throwInputError(path, "material '" + m.name + "' " + key, why);
-    }
+  // Every file once, in first-use order, with the first material and key naming it in errors.
+  struct File {
+    std::string path, material;
+    const char* key = "";
+    bool asColour = false, asAlpha = false;
+    // After reading: the file's textures (sRGB-decoded colour and/or linear alpha; one when they
+    // coincide) and whether it has an alpha channel.
+    std::vector<RgbaImage> images;
+    bool integer = false, hasAlpha = false;
+    std::string error;
   };
-  const auto texture = [&](const MaterialDesc& m, const std::string& path, const char* key, bool srgb) {
-    const LayeredImage& image = read(m, path, key);
-    const bool decode = srgb && isIntegerImage(image);
-    auto [it, added] = index.emplace(std::make_pair(path, decode), std::uint32_t(images.size()));
+  std::vector<File> files;
+  std::map<std::string, std::size_t> fileIndex;
+  const auto use = [&](const MaterialDesc& m, const std::string& path, const char* key, bool colour) {
+    auto [it, added] = fileIndex.emplace(path, files.size());
     if (added) {
-      images.push_back(rgbaFromImage(image, decode));
-      out.files.push_back(path);
+      files.emplace_back();
+      files.back().path = path;
+      files.back().material = m.name;
+      files.back().key = key;
     }
-    return it->second;
+    (colour ? files[it->second].asColour : files[it->second].asAlpha) = true;
   };
+  for (const MaterialDesc& m : scene.materials) {
+    if (!m.albedoTexture.empty()) use(m, m.albedoTexture, "map_Kd", true);
+    if (!m.alphaTexture.empty()) use(m, m.alphaTexture, "map_d", false);
+  }
+  // Read and convert in parallel (one file per task); the pixels as read are dropped at once.
+  if (!files.empty()) parallelChunks(files.size(), 0, 1, [&](std::size_t, std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      File& f = files[i];
+      try {
+        const LayeredImage image = readLayeredImage(f.path);
+        f.integer = isIntegerImage(image);
+        f.hasAlpha = image.planes.size() == 2 || image.planes.size() >= 4;
+        // Colour: sRGB-decoded when integer. Alpha: the alpha channel (shared with the colour
+        // texture), else the first channel, never decoded.
+        const bool colourDecode = f.integer;
+        const bool alphaDecode = f.hasAlpha && f.integer;
+        if (f.asColour || (f.asAlpha && alphaDecode == colourDecode)) f.images.push_back(rgbaFromImage(image, colourDecode));
+        if (f.asAlpha && alphaDecode != colourDecode) f.images.push_back(rgbaFromImage(image, alphaDecode));
+      } catch (const InputError& e) {
+        std::string why = e.what();
+        const std::string prefix = f.path + ": ";
+        f.error = why.rfind(prefix, 0) == 0 ? why.substr(prefix.size()) : why;
+      }
+    }
+  }, 1);
+  for (const File& f : files)
+    if (!f.error.empty()) throwInputError(f.path, "material '" + f.material + "' " + f.key, f.error);
+  // Texture indices in file order.
+  std::vector<RgbaImage> images;
+  std::vector<std::uint32_t> first(files.size());
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    first[i] = std::uint32_t(images.size());
+    for (RgbaImage& im : files[i].images) {
+      images.push_back(std::move(im));
+      out.files.push_back(files[i].path);
+    }
+    files[i].images.clear();
+  }
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
     const MaterialDesc& m = scene.materials[i];
-    if (!m.albedoTexture.empty()) out.materials[i].albedo = texture(m, m.albedoTexture, "map_Kd", true);
+    if (!m.albedoTexture.empty()) out.materials[i].albedo = first[fileIndex.at(m.albedoTexture)];
     if (!m.alphaTexture.empty()) {
-      // Alpha is never sRGB-encoded: the file's alpha channel (shared with its colour texture),
-      // else its first channel, read linear.
-      const LayeredImage& image = read(m, m.alphaTexture, "map_d");
-      const std::size_t nch = image.planes.size();
-      const bool hasAlpha = nch == 2 || nch >= 4;
-      out.materials[i].alpha = texture(m, m.alphaTexture, "map_d", hasAlpha);
-      out.materials[i].alphaChannel = hasAlpha ? 3u : 0u;
+      const std::size_t k = fileIndex.at(m.alphaTexture);
+      const File& f = files[k];
+      // The second texture of a file is its linear alpha variant (see above).
+      const bool second = f.asColour && (f.hasAlpha && f.integer) != f.integer;
+      out.materials[i].alpha = first[k] + (second ? 1u : 0u);
+      out.materials[i].alphaChannel = f.hasAlpha ? 3u : 0u;
     }
   }
-  packTextures(out, images, budgetBytes, warnings);
+  packTextures(out, std::move(images), budgetBytes, warnings);
   return out;
 }
 

@@ -55,7 +55,7 @@ void setTextureIndices(std::vector<Material>& materials, const SceneTextures& te
 // Packs already decoded level-0 images (files names them in messages) the same way: what
 // loadSceneTextures does after reading; for tests.
 struct RgbaImage;
-void packTextures(SceneTextures& out, const std::vector<RgbaImage>& images, std::uint64_t budgetBytes,
+void packTextures(SceneTextures& out, std::vector<RgbaImage> images, std::uint64_t budgetBytes,
                   std::vector<std::string>& warnings);
 
 // Float -> half (round to nearest even) and back, as the device's vload_half reads it.
