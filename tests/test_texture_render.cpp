@@ -2,7 +2,9 @@
 // a textured quad's albedo AOV is the sRGB-decoded texel; a grazing checkerboard at 1 spp has a
 // far field close to the checker mean (mip-mapped ray-cone lookups, no moire); a fully
 // transparent cut-out neither occludes (AO exactly 1) nor shows; a striped cut-out passes half of
-// the AO rays (z-test); a tiny texture budget renders with coarser levels.
+// the AO rays (z-test); a tiny texture budget renders with coarser levels; through the command
+// line (OBJ + MTL map_Kd): one warning over --texture-budget, and a bad texture file is exit 2,
+// one line, no output file.
 #include <doctest/doctest.h>
 
 #include <algorithm>
