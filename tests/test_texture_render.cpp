@@ -26,8 +26,9 @@ using namespace montecl_test;
 
 namespace {
 
-Film render(const Scene& s, RenderOptions o, const SceneTextures* textures = nullptr) {
-  static const DeviceInfo device = selectDevice("");
+Film render(const Scene& s, RenderOptions o, const SceneTextures* textures = nullptr, bool host = false) {
+  static const DeviceInfo defaultDevice = selectDevice("");
+  const DeviceInfo device = host ? hostDeviceInfo() : defaultDevice;
   Bvh bvh = buildBvh(s.triangles);
   o.textures = textures;
   WavefrontRenderer r(device, o);
@@ -205,6 +206,33 @@ TEST_CASE("cut-outs: a striped cut-out lets half of the AO rays through" * docte
   const double z = (mean - 0.5) / se;
   MESSAGE("passed fraction " << mean << " over " << n << " AO rays, z = " << z);
   CHECK(std::fabs(z) < 4.0);
+}
+
+TEST_CASE("textures: a textured cut-out renders bit-identically on the host backend and for any wave size" * doctest::test_suite("opencl")) {
+  TempDir dir;
+  writeImage8(dir.file("leaf.png"), 16, 8, 4, [](int x, int y, int c) { return c == 3 ? ((x + y) % 3 ? 255 : 0) : 40 * c + 7 * x; });
+  Scene s;
+  s.path = "<cut-out leaf>";
+  s.materials = {MaterialDesc("floor", glm::vec3(0.5f)), MaterialDesc("leaf", glm::vec3(0.9f, 0.8f, 0.7f))};
+  s.materials[1].albedoTexture = s.materials[1].alphaTexture = dir.file("leaf.png");
+  addFloor(s, 0);
+  addUvQuad(s, {-1, 0.3f, 1}, {1, 0.3f, 1}, {1, 0.6f, -1}, {-1, 0.6f, -1}, {0, 0}, {2, 0}, {2, 1}, {0, 1}, 1);
+  s.camera.position = {0.2f, 2.0f, 1.5f};
+  s.camera.target = {0.0f, 0.0f, 0.0f};
+  s.camera.fovY = 50.0f;
+  s.camera.width = s.camera.height = 12;
+  s.render.spp = 4;
+  finishScene(s);
+  RenderOptions o;
+  o.aovs = true;
+  const Film cl = render(s, o);
+  const Film host = render(s, o, nullptr, true);
+  o.waveSize = 37;
+  const Film small = render(s, o);
+  CHECK(cl.mean == host.mean);
+  CHECK(cl.aovSum == host.aovSum);
+  CHECK(cl.mean == small.mean);
+  CHECK(cl.aovSum == small.aovSum);
 }
 
 TEST_CASE("textures: a tiny budget drops fine levels with a warning and the render still works" * doctest::test_suite("opencl")) {
