@@ -10,7 +10,7 @@ bool BenchAlpha::exists(std::uint32_t tri, float u, float v) const {
   const SceneTriangle& t = scene->triangles[tri];
   const Material& m = materials[t.material];
   float uu = 0.0f, vv = 0.0f;
-  if (t.attributes & kHasUv) {  // as hit_uv (surface_texture.h)
+  if (t.attributes & kHasUv) {  // as surface_uv (surface_texture.h)
     const float w = 1.0f - u - v;
     uu = t.uv[0].x * w + t.uv[1].x * u + t.uv[2].x * v;
     vv = t.uv[0].y * w + t.uv[1].y * u + t.uv[2].y * v;

@@ -8,7 +8,7 @@
 #include "texture.h"
 
 // Texture coordinates of triangle tri (attributes sh) at barycentrics (u, v) of v1 and v2.
-MCL_INLINE float2 hit_uv(MCL_GLOBAL const Triangle* tri, MCL_GLOBAL const TriangleShading* sh, float u, float v) {
+MCL_INLINE float2 surface_uv(MCL_GLOBAL const Triangle* tri, MCL_GLOBAL const TriangleShading* sh, float u, float v) {
   if (!(as_uint(tri->e2.w) & MCL_ATTR_UV)) return make_float2(0.0f, 0.0f);
   float w = 1.0f - u - v;
   return make_float2(sh->n0.w * w + sh->n1.w * u + sh->n2.w * v, sh->tv.x * w + sh->tv.y * u + sh->tv.z * v);
@@ -28,7 +28,7 @@ MCL_INLINE float3 hit_albedo(TextureTables tt, Material m, MCL_GLOBAL const Tria
   float3 kd = xyz(m.albedo);
   uint tex = as_uint(m.albedo.w);
   if (tex == MCL_NO_TEXTURE) return kd;
-  float2 uv = hit_uv(tri, sh, h.u, h.v);
+  float2 uv = surface_uv(tri, sh, h.u, h.v);
   float3 n = triangle_unit_normal(xyz(tri->e1), xyz(tri->e2));
   float fp = texture_footprint(coneWidth, uv_area(tri, sh), triangle_area_of(xyz(tri->e1), xyz(tri->e2)), dot(n, dir));
   return kd * xyz(texture_sample(tt, tex, uv.x, uv.y, fp));
@@ -64,6 +64,6 @@ MCL_INLINE AlphaScene make_alpha_scene(MCL_GLOBAL const Material* materials, MCL
 MCL_INLINE int alpha_hit_exists(const AlphaScene* a, MCL_GLOBAL const Triangle* tris, uint i, float u, float v) {
   if (!a || !(as_uint(tris[i].e2.w) & MCL_ATTR_ALPHA)) return 1;
   Material m = a->materials[as_uint(tris[i].v0.w)];
-  float2 uv = hit_uv(&tris[i], &a->shading[i], u, v);
+  float2 uv = surface_uv(&tris[i], &a->shading[i], u, v);
   return alpha_value(a->tex, m, uv.x, uv.y) >= m.alpha.y;
 }
