@@ -59,7 +59,7 @@ RgbaImage rgbaFromImage(const LayeredImage& image, bool srgb, bool* hasAlpha) {
       for (int c = 0; c < 3; ++c) {
         float v = nch == 0 ? 0.0f : image.planes[grey ? 0 : c][src + x];
         if (!std::isfinite(v)) v = 0.0f;
-        if (table) t[c] = (*table)[std::size_t(std::lround(std::clamp(v, 0.0f, 1.0f) * maxCode))];
+        if (table) t[c] = (*table)[std::size_t(std::clamp(v, 0.0f, 1.0f) * maxCode + 0.5f)];  // the code
         else t[c] = srgb ? srgbToLinear(std::clamp(v, 0.0f, 1.0f)) : v;
       }
       if (a) t.w = std::isfinite((*a)[src + x]) ? (*a)[src + x] : 0.0f;
