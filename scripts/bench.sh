@@ -4,7 +4,9 @@
 # montecl vs Embree per ray kind with the machine (CPU model, cores, PoCL version).
 # Skips with a message (exit 0) when the scenes folder is absent. Exit 1 if any run mismatched.
 # The SAH column gives the binned build's cost and its ratio to a full-sweep build's (--sah-reference).
-# Environment: BUILD_DIR (default build), REPEAT (default 5), DEVICE (--device), THREADS (--threads).
+# Then sponza-textured's AO and direct render times against sponza's (bench/textures.md).
+# Environment: BUILD_DIR (default build), REPEAT (default 5), DEVICE (--device), THREADS (--threads),
+# TEX_SPP (samples of the texture comparison, default 8).
 # Whole renders: when Mitsuba 3's venv exists (scripts/setup.sh --mitsuba), also montecl vs Mitsuba 3
 # wall times (scripts/vs_mitsuba.py, Cornell box 128x128 1024 spp direct MIS, medians of REPEAT
 # alternated whole processes) into bench/vs_mitsuba.json and a second table; VS_MITSUBA=0 skips it.
@@ -78,4 +80,40 @@ platform=$(jq -r '.platform' "$first")
 } > "$out/results.md.tmp"
 mv "$out/results.md.tmp" "$out/results.md"
 cat "$out/results.md"
+
+# Textures: sponza-textured against the untextured sponza (same triangles, camera and lights) at
+# the same settings, AO and direct, best of 3 alternated runs: the wave loop's time ("wrote ...:
+# N s") and the whole process's wall time (texture loading included) -> bench/textures.md.
+tex_spp=${TEX_SPP:-8}
+if [ -f "$scenes/sponza/scene.json" ] && [ -f "$scenes/sponza-textured/scene.json" ]; then
+  declare -A best_render best_wall
+  for run in 1 2 3; do
+    for name in sponza sponza-textured; do
+      for integ in ao direct; do
+        t0=$(date +%s.%N)
+        line=$("$build/montecl" render "$scenes/$name/scene.json" -o "$out/tex.png" --overwrite -q \
+               --spp "$tex_spp" --integrator "$integ" ${DEVICE:+--device "$DEVICE"} 2>&1 | grep '^wrote')
+        wall=$(echo "$(date +%s.%N) - $t0" | bc)
+        render=$(echo "$line" | sed -E 's/.*spp: ([0-9.]+) s.*/\1/')
+        key="$name/$integ"
+        if [ -z "${best_render[$key]:-}" ] || [ "$(echo "$render < ${best_render[$key]}" | bc)" = 1 ]; then best_render[$key]=$render; fi
+        if [ -z "${best_wall[$key]:-}" ] || [ "$(echo "$wall < ${best_wall[$key]}" | bc)" = 1 ]; then best_wall[$key]=$wall; fi
+      done
+    done
+  done
+  rm -f "$out/tex.png"
+  {
+    echo "# Textures: sponza-textured vs sponza ($tex_spp spp, the scenes' camera, best of 3)"
+    echo
+    echo "| integrator | sponza render s | textured render s | ratio | sponza wall s | textured wall s | ratio |"
+    echo "|---|---:|---:|---:|---:|---:|---:|"
+    for integ in ao direct; do
+      a=${best_render[sponza/$integ]}; b=${best_render[sponza-textured/$integ]}
+      c=${best_wall[sponza/$integ]}; d=${best_wall[sponza-textured/$integ]}
+      printf '| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n' "$integ" "$a" "$b" "$(echo "$b / $a" | bc -l)" \
+        "$c" "$d" "$(echo "$d / $c" | bc -l)"
+    done
+  } > "$out/textures.md"
+  cat "$out/textures.md"
+fi
 exit $status

@@ -8,7 +8,7 @@ packages=(
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo oclgrind
   libglm-dev libtinyobjloader-dev libtinygltf-dev libopenimageio-dev openimageio-tools libpng-dev
   doctest-dev nlohmann-json3-dev libcli11-dev
-  libembree-dev jq
+  libembree-dev jq bc
   openmpi-bin libopenmpi-dev
 )
 

@@ -341,6 +341,8 @@ __kernel void probe(__global uint* out) {
   out[17] = OFF(FrameParams, width);
   out[18] = sizeof(WideNode);
   out[19] = OFF(WideNode, child);
+  out[20] = sizeof(TriangleShading);
+  out[21] = OFF(TriangleShading, tv);
 }
 )";
   const std::vector<std::pair<const char*, cl_uint>> host = {
@@ -364,6 +366,8 @@ __kernel void probe(__global uint* out) {
       {"offsetof(FrameParams, width)", offsetof(FrameParams, width)},
       {"sizeof(WideNode)", sizeof(WideNode)},
       {"offsetof(WideNode, child)", offsetof(WideNode, child)},
+      {"sizeof(TriangleShading)", sizeof(TriangleShading)},
+      {"offsetof(TriangleShading, tv)", offsetof(TriangleShading, tv)},
   };
   DeviceInfo dev = selectDevice("");
   cl::Context context(dev.device);

@@ -30,6 +30,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "bench/bench_alpha.h"
 #include "bench/embree_tracer.h"
 #include "bench/ray_sets.h"
 #include "bvh/bvh.h"
@@ -154,6 +155,14 @@ json runBench(const BenchOptions& o, bool verbose) {
 
   say("building the BVH over " + std::to_string(scene.triangles.size()) + " triangles");
   Bvh bvh = buildBvh(scene.triangles);
+  // Cut-outs: every tracer below applies the same alpha test (bench_alpha.h).
+  std::vector<std::string> textureWarnings;
+  const std::unique_ptr<BenchAlpha> alpha = makeBenchAlpha(scene, bvh, textureWarnings);
+  for (const std::string& w : textureWarnings) std::cerr << "montecl: warning: " << scene.path << ": " << w << "\n";
+  if (alpha) {
+    r["alpha_tested_triangles"] = alpha->testedCount;
+    r["texture_bytes"] = alpha->textures.bytes();
+  }
   auto collapseStart = std::chrono::steady_clock::now();
   std::size_t nodeBytes = bvhNodeBytes(bvh, layout);  // the wide layout collapses the binary tree here
   const double collapseMs =
@@ -181,7 +190,7 @@ json runBench(const BenchOptions& o, bool verbose) {
   }
 
   say("generating rays and host references on " + std::to_string(threads) + " threads");
-  RaySets sets = makeRaySets(scene, bvh, threads, layout);
+  RaySets sets = makeRaySets(scene, bvh, threads, layout, alpha ? &alpha->host : nullptr);
   r["emitters"] = sets.emitters;
 
   std::unique_ptr<EmbreeTracer> embree;
@@ -189,7 +198,10 @@ json runBench(const BenchOptions& o, bool verbose) {
     std::cerr << "montecl: warning: built without Embree (install libembree-dev and reconfigure); no comparison\n";
   if (o.embree && EmbreeTracer::available()) {
     say("building the Embree scene");
-    embree = std::make_unique<EmbreeTracer>(scene.triangles, threads);
+    EmbreeTracer::AlphaTest test;
+    if (alpha) test = [a = alpha.get()](std::uint32_t tri, float u, float v) { return a->exists(tri, u, v); };
+    embree = std::make_unique<EmbreeTracer>(scene.triangles, threads, test,
+                                            alpha ? alpha->tested : std::vector<std::uint8_t>{});
     r["embree_version"] = EmbreeTracer::version();
     r["embree"] = {{"build_ms", embree->buildMs()}};
     r["build_ratio"] = embree->buildMs() > 0.0 ? buildMs / embree->buildMs() : 0.0;
@@ -197,7 +209,7 @@ json runBench(const BenchOptions& o, bool verbose) {
 
   StageProgram program(device, layout, o.workGroupSize, /*profiling=*/true);
   ClSession& session = program.session();
-  RayTracer tracer(program, bvh);
+  RayTracer tracer(program, bvh, alpha ? &scene : nullptr, alpha ? &alpha->textures : nullptr);
   r["local_size"] = session.localSize(session.kernel("intersect"));
   std::size_t total = 0;
   json rays = json::array();

@@ -21,9 +21,27 @@ namespace montecl {
 
 namespace {
 
-RTCScene buildScene(RTCDevice device, const std::vector<SceneTriangle>& tris) {
-  RTCScene scene = rtcNewScene(device);
-  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+// The cut-out geometry's user data: its triangles' input indices and the test.
+struct AlphaFilter {
+  std::vector<std::uint32_t> inputIndex;  // primID -> input triangle
+  EmbreeTracer::AlphaTest test;
+};
+
+// Intersection and occlusion filter of the cut-out geometry: rejects hits whose alpha fails.
+void alphaFilter(const RTCFilterFunctionNArguments* args) {
+  const auto* f = static_cast<const AlphaFilter*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+    if (!f->test(f->inputIndex[prim], RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i)))
+      args->valid[i] = 0;
+  }
+}
+
+void attachTriangles(RTCDevice device, RTCScene scene, const std::vector<SceneTriangle>& all,
+                     const std::vector<std::uint32_t>& pick, AlphaFilter* filter) {
+  std::vector<SceneTriangle> tris;
+  for (std::uint32_t i : pick) tris.push_back(all[i]);
   RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
   auto* v = static_cast<float*>(
@@ -37,9 +55,28 @@ RTCScene buildScene(RTCDevice device, const std::vector<SceneTriangle>& tris) {
       v[9 * i + 3 * k + 2] = tris[i].v[k].z;
       idx[3 * i + k] = unsigned(3 * i + k);
     }
+  if (filter) {
+    rtcSetGeometryUserData(g, filter);
+    rtcSetGeometryIntersectFilterFunction(g, alphaFilter);
+    rtcSetGeometryOccludedFilterFunction(g, alphaFilter);
+  }
   rtcCommitGeometry(g);
   rtcAttachGeometry(scene, g);
   rtcReleaseGeometry(g);
+}
+
+RTCScene buildScene(RTCDevice device, const std::vector<SceneTriangle>& tris, AlphaFilter* filter,
+                    const std::vector<std::uint8_t>& alphaTested) {
+  RTCScene scene = rtcNewScene(device);
+  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+  std::vector<std::uint32_t> opaque, cutout;
+  for (std::uint32_t i = 0; i < tris.size(); ++i)
+    (filter && i < alphaTested.size() && alphaTested[i] ? cutout : opaque).push_back(i);
+  if (!opaque.empty()) attachTriangles(device, scene, tris, opaque, nullptr);
+  if (!cutout.empty()) {
+    filter->inputIndex = cutout;
+    attachTriangles(device, scene, tris, cutout, filter);
+  }
   return scene;
 }
 
@@ -52,21 +89,25 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 struct EmbreeTracer::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
+  AlphaFilter filter;
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
     if (device) rtcReleaseDevice(device);
   }
 };
 
-EmbreeTracer::EmbreeTracer(const std::vector<SceneTriangle>& tris, unsigned threads)
+EmbreeTracer::EmbreeTracer(const std::vector<SceneTriangle>& tris, unsigned threads, AlphaTest alphaTest,
+                           const std::vector<std::uint8_t>& alphaTested)
     : impl_(new Impl), threads_(std::max(1u, threads)) {
+  impl_->filter.test = std::move(alphaTest);
+  AlphaFilter* filter = impl_->filter.test ? &impl_->filter : nullptr;
   std::string config = "threads=" + std::to_string(threads_);
   impl_->device = rtcNewDevice(config.c_str());
   if (!impl_->device) throw RuntimeError("Embree: rtcNewDevice failed (error " +
                                          std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
   for (int pass = 0; pass < 2; ++pass) {  // pass 0 warms up the thread pool and allocator
     if (impl_->scene) rtcReleaseScene(impl_->scene);
-    impl_->scene = buildScene(impl_->device, tris);
+    impl_->scene = buildScene(impl_->device, tris, filter, alphaTested);
     auto t0 = std::chrono::steady_clock::now();
     rtcCommitScene(impl_->scene);
     buildMs_ = msSince(t0);
@@ -139,7 +180,9 @@ double EmbreeTracer::occluded(const std::vector<Ray>& rays, std::vector<std::uin
 #else  // no Embree
 
 struct EmbreeTracer::Impl {};
-EmbreeTracer::EmbreeTracer(const std::vector<SceneTriangle>&, unsigned threads) : threads_(threads) {
+EmbreeTracer::EmbreeTracer(const std::vector<SceneTriangle>&, unsigned threads, AlphaTest,
+                           const std::vector<std::uint8_t>&)
+    : threads_(threads) {
   throw RuntimeError("montecl was built without Embree (install libembree-dev and reconfigure)");
 }
 EmbreeTracer::~EmbreeTracer() = default;

@@ -3,6 +3,7 @@
 // std::threads. Compiled to a stub (available() == false) when Embree was not found at configure.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,9 +15,15 @@ namespace montecl {
 
 class EmbreeTracer {
  public:
+  // Whether a hit at barycentrics (u, v) of input triangle tri exists (the cut-outs' alpha test).
+  using AlphaTest = std::function<bool(std::uint32_t tri, float u, float v)>;
+
   // Builds the scene on `threads` threads; buildMs() is the time of rtcCommitScene (after one
-  // warm-up build that starts Embree's thread pool).
-  EmbreeTracer(const std::vector<SceneTriangle>& tris, unsigned threads);
+  // warm-up build that starts Embree's thread pool). With alphaTest, the triangles where
+  // alphaTested[i] is set form a second geometry whose intersection and occlusion filter
+  // functions reject the hits alphaTest refuses (the others stay filter-free).
+  EmbreeTracer(const std::vector<SceneTriangle>& tris, unsigned threads, AlphaTest alphaTest = {},
+               const std::vector<std::uint8_t>& alphaTested = {});
   ~EmbreeTracer();
   EmbreeTracer(const EmbreeTracer&) = delete;
   EmbreeTracer& operator=(const EmbreeTracer&) = delete;

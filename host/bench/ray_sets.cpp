@@ -22,26 +22,26 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void referenceClosest(const Bvh& bvh, RaySet& set, unsigned threads, BvhLayout layout) {
+void referenceClosest(const Bvh& bvh, RaySet& set, unsigned threads, BvhLayout layout, const AlphaScene* alpha) {
   set.refT.assign(set.rays.size(), INFINITY);
   auto t0 = std::chrono::steady_clock::now();
   parallelChunks(set.rays.size(), threads, kRayGrain, [&](std::size_t, std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       const Ray& r = set.rays[i];
-      Hit h = intersectClosest(bvh, xyz(r.origin), xyz(r.dir), r.dir.w, layout);
+      Hit h = intersectClosest(bvh, xyz(r.origin), xyz(r.dir), r.dir.w, layout, alpha);
       set.refT[i] = h.tri == MCL_NO_HIT ? INFINITY : h.t;
     }
   }, kRayGrain);
   set.refMs = msSince(t0);
 }
 
-void referenceAny(const Bvh& bvh, RaySet& set, unsigned threads, BvhLayout layout) {
+void referenceAny(const Bvh& bvh, RaySet& set, unsigned threads, BvhLayout layout, const AlphaScene* alpha) {
   set.refOccluded.assign(set.rays.size(), 0);
   auto t0 = std::chrono::steady_clock::now();
   parallelChunks(set.rays.size(), threads, kRayGrain, [&](std::size_t, std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       const Ray& r = set.rays[i];
-      set.refOccluded[i] = intersectAny(bvh, xyz(r.origin), xyz(r.dir), r.dir.w, layout) ? 1 : 0;
+      set.refOccluded[i] = intersectAny(bvh, xyz(r.origin), xyz(r.dir), r.dir.w, layout, alpha) ? 1 : 0;
     }
   }, kRayGrain);
   set.refMs = msSince(t0);
@@ -49,7 +49,7 @@ void referenceAny(const Bvh& bvh, RaySet& set, unsigned threads, BvhLayout layou
 
 }  // namespace
 
-RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads, BvhLayout layout) {
+RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads, BvhLayout layout, const AlphaScene* alpha) {
   RaySets s;
   s.primary.kind = "primary";
   s.ao.kind = "ao";
@@ -72,7 +72,7 @@ RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads, BvhLay
   parallelChunks(pixels, threads, kRayGrain, [&](std::size_t, std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       const Ray& r = s.primary.rays[i];
-      s.primaryHits[i] = intersectClosest(bvh, xyz(r.origin), xyz(r.dir), r.dir.w, layout);
+      s.primaryHits[i] = intersectClosest(bvh, xyz(r.origin), xyz(r.dir), r.dir.w, layout, alpha);
     }
   }, kRayGrain);
   s.primary.refMs = msSince(t0);
@@ -122,9 +122,9 @@ RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads, BvhLay
     r.dir = with_w(wi, dist * (1.0f - 1e-4f));  // stop short of the emitter, as the stage does
     s.shadow.rays.push_back(r);
   }
-  referenceAny(bvh, s.ao, threads, layout);
-  referenceAny(bvh, s.shadow, threads, layout);
-  referenceClosest(bvh, s.bounce, threads, layout);
+  referenceAny(bvh, s.ao, threads, layout, alpha);
+  referenceAny(bvh, s.shadow, threads, layout, alpha);
+  referenceClosest(bvh, s.bounce, threads, layout, alpha);
   return s;
 }
 

@@ -47,7 +47,8 @@ struct RaySets {
 // normal (RNG dimension group 3, so not the AO rays' directions), unbounded, traced closest-hit: the
 // continuation rays that dominate path tracing. References
 // computed on `threads` threads with the host traversal of `layout` (the one the device runs).
+// With alpha, the references apply the cut-outs' alpha test (bvh.triangles flagged).
 RaySets makeRaySets(const Scene& scene, const Bvh& bvh, unsigned threads,
-                    BvhLayout layout = BvhLayout::Wide);
+                    BvhLayout layout = BvhLayout::Wide, const AlphaScene* alpha = nullptr);
 
 }  // namespace montecl

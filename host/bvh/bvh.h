@@ -10,6 +10,8 @@
 #include "kernels/shared/types.h"
 #include "scene/scene.h"
 
+struct AlphaScene;  // kernels/shared/surface_texture.h
+
 namespace montecl {
 
 struct BvhBuildOptions {
@@ -41,10 +43,11 @@ Bvh buildBvh(const std::vector<SceneTriangle>& tris, const BvhBuildOptions& opti
 BvhNode emptyBinaryNode();
 
 // Reference traversal on the host, of the given layout (Auto: wide). Both layouts give the same
-// hit distance; the triangle can differ only where two triangles tie at that distance.
+// hit distance; the triangle can differ only where two triangles tie at that distance. With
+// alpha, hits on flagged cut-out triangles (MCL_ATTR_ALPHA) exist only where the alpha test passes.
 Hit intersectClosest(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax,
-                     BvhLayout layout = BvhLayout::Wide);
+                     BvhLayout layout = BvhLayout::Wide, const AlphaScene* alpha = nullptr);
 bool intersectAny(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax,
-                  BvhLayout layout = BvhLayout::Wide);
+                  BvhLayout layout = BvhLayout::Wide, const AlphaScene* alpha = nullptr);
 
 }  // namespace montecl

@@ -146,7 +146,7 @@ Bvh buildBvhCapped(const std::vector<SceneTriangle>& tris, const BvhBuildOptions
     Triangle& o = bvh.triangles[i];
     o.v0 = glm::vec4(t.v[0], as_float(t.material));
     o.e1 = glm::vec4(t.v[1] - t.v[0], as_float(bvh.order[i]));
-    o.e2 = glm::vec4(t.v[2] - t.v[0], 0.0f);
+    o.e2 = glm::vec4(t.v[2] - t.v[0], as_float(std::uint32_t(t.attributes)));
   });
 
   auto halfArea = [](const BvhNode& b) {

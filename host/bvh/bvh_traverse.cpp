@@ -8,7 +8,7 @@
 namespace montecl {
 
 Hit intersectClosest(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax,
-                     BvhLayout layout) {
+                     BvhLayout layout, const AlphaScene* alpha) {
   if (bvh.nodes.empty()) {
     Hit miss;
     miss.t = INFINITY;
@@ -17,16 +17,16 @@ Hit intersectClosest(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir,
     return miss;
   }
   if (layout == BvhLayout::Binary)
-    return binary_closest_hit(bvh.nodes.data(), bvh.triangles.data(), org, dir, tmax);
-  return wide_closest_hit(bvh.wideNodes().data(), bvh.triangles.data(), org, dir, tmax);
+    return binary_closest_hit(bvh.nodes.data(), bvh.triangles.data(), alpha, org, dir, tmax);
+  return wide_closest_hit(bvh.wideNodes().data(), bvh.triangles.data(), alpha, org, dir, tmax);
 }
 
 bool intersectAny(const Bvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax,
-                  BvhLayout layout) {
+                  BvhLayout layout, const AlphaScene* alpha) {
   if (bvh.nodes.empty()) return false;
   if (layout == BvhLayout::Binary)
-    return binary_any_hit(bvh.nodes.data(), bvh.triangles.data(), org, dir, tmax) != 0;
-  return wide_any_hit(bvh.wideNodes().data(), bvh.triangles.data(), org, dir, tmax) != 0;
+    return binary_any_hit(bvh.nodes.data(), bvh.triangles.data(), alpha, org, dir, tmax) != 0;
+  return wide_any_hit(bvh.wideNodes().data(), bvh.triangles.data(), alpha, org, dir, tmax) != 0;
 }
 
 }  // namespace montecl

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <iostream>
@@ -28,6 +29,7 @@
 #include "render/stage_program.h"
 #include "render/wavefront.h"
 #include "scene/scene.h"
+#include "texture/scene_textures.h"
 #include "scene/scene_digest.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
@@ -44,6 +46,7 @@ struct RenderArgs {
   std::optional<int> spp, width, height, lightSamples;
   std::optional<std::uint32_t> seed;
   std::optional<float> aoDistance;
+  std::optional<double> textureBudgetMiB;  // --texture-budget; unset: automatic
   std::uint64_t waveSize = 0;
   std::uint32_t firstSample = 0;
   double targetError = 0.0, timeLimit = 0.0;
@@ -148,6 +151,17 @@ int runRender(const RenderArgs& a) {
   DeviceInfo device = selectDevice(dist::deviceSpec(a.device));
   BvhLayout layout = resolveStageLayout(parseBvhLayout(a.bvhLayout), device);
 
+  // Textures: every file once, under the budget (automatic: 1 GiB, at most the device's largest
+  // allocation); a bad file is an input error before anything renders.
+  const std::uint64_t textureBudget =
+      a.textureBudgetMiB ? std::uint64_t(*a.textureBudgetMiB * double(1 << 20))
+                         : (device.isHost ? kDefaultTextureBudget : std::min(kDefaultTextureBudget, device.maxAllocBytes));
+  std::vector<std::string> textureWarnings;
+  const auto textureStart = std::chrono::steady_clock::now();
+  const SceneTextures textures = loadSceneTextures(scene, textureBudget, textureWarnings);
+  const double textureMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - textureStart).count();
+  for (const std::string& w : textureWarnings) std::cerr << "montecl: warning: " << scene.path << ": " << w << "\n";
   Bvh bvh = buildBvh(scene.triangles);
   if (scene.render.integrator == Integrator::Direct && !hasEmitter(scene))
     std::cerr << "montecl: warning: " << scene.path << ": integrator direct but nothing emits (no Ke, no mesh "
@@ -164,6 +178,10 @@ int runRender(const RenderArgs& a) {
               << "montecl: device " << device.platformIndex << ":" << device.deviceIndex << " " << device.name
               << ", " << bvhLayoutName(layout) << " BVH layout\n"
               << "montecl: " << cameraJson(scene.camera) << "\n";
+    if (!textures.textures.empty())
+      std::cerr << "montecl: " << textures.textures.size() << " textures, " << textures.levels.size()
+                << " mip levels, " << (textures.bytes() >> 20) << " MiB of texels (budget " << (textureBudget >> 20)
+                << " MiB), loaded in " << textureMs << " ms\n";
   }
   RenderOptions options;
   options.waveSize = a.waveSize;
@@ -178,6 +196,7 @@ int runRender(const RenderArgs& a) {
   options.bvhLayout = layout;
   options.verbose = a.verbose;
   options.profile = a.profile;
+  options.textures = &textures;
   dist::Job job(a.job, scene, options);
   WavefrontRenderer renderer(device, options);
   if (a.verbose)
@@ -260,6 +279,10 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--device", args->device, "OpenCL device: P:D, part of the device or platform name, or host (CPU, no OpenCL)");
   cmd->add_option("--wave-size", args->waveSize, "Pixel samples per wave (default: from a 256 MiB budget)")
       ->check(integerIn(1, std::numeric_limits<long long>::max(), "a positive integer"));
+  cmd->add_option("--texture-budget", args->textureBudgetMiB,
+                  "Device memory for textures in MiB (default: 1024, at most the device's largest allocation); "
+                  "over it, the finest mip levels are dropped with a warning")
+      ->check(positiveNumber());
   cmd->add_option("--work-group-size", args->workGroupSize, "Work-group size (default: min(64, kernel max))")
       ->check(positiveInteger());
   cmd->add_option("--bvh-layout", args->bvhLayout,

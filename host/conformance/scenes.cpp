@@ -79,6 +79,13 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   cases.push_back({"polygon-light/direct-brdf", withDirect(light, DirectSampling::Brdf, 1)});
   cases.push_back({"polygon-light/direct-mis", withDirect(light, DirectSampling::Mis, 2)});
   cases.push_back({"polygon-light/ao-cosine", withAo(light, AoSampling::Cosine)});
+  // Shading normals (issue 11): a coarse sphere with exact corner normals beside the occluder.
+  Scene sphere = light;
+  sphere.path = "<smooth sphere scene>";
+  addUvSphere(sphere, {-0.4f, 0.22f, 0.45f}, 0.2f, 8, 16, true, 2);
+  finishScene(sphere);
+  cases.push_back({"smooth-sphere/direct-mis", withDirect(sphere, DirectSampling::Mis, 2)});
+  cases.push_back({"smooth-sphere/ao-uniform", withAo(sphere, AoSampling::Uniform)});
 
   const std::string path = o.cornellPath.empty() ? defaultCornellPath() : o.cornellPath;
   if (!std::ifstream(path)) {

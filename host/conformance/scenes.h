@@ -1,6 +1,7 @@
 // scenes.h: the conformance set: small analytic scenes built in code (an open floor, a floor
-// beside a wall, a tilted polygon light over a floor with an occluder) rendered with every
-// integrator and sampling strategy, plus the Cornell box from the shared scenes when present.
+// beside a wall, a tilted polygon light over a floor with an occluder, the same with a smooth-shaded
+// sphere) rendered with every integrator and sampling strategy, plus the Cornell box from the
+// shared scenes when present.
 // Ported from tests/test_scenes.h and tests/test_direct.cpp so that `montecl conformance` runs
 // without the test sources.
 #pragma once

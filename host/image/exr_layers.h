@@ -31,6 +31,9 @@ struct LayeredImage {
   // String header attributes written with the image and read back (only names starting with
   // "montecl:" are read): the render's provenance (image/provenance.h).
   std::map<std::string, std::string> attributes;
+  // What the file stored, as OpenImageIO names it ("uint8", "uint16", "half", "float", ...): set
+  // by reads only (textures decode integer images as sRGB, float ones as linear).
+  std::string pixelType;
 
   std::size_t pixelCount() const { return std::size_t(width) * std::size_t(height); }
   // The plane named name, or nullptr.

@@ -49,8 +49,10 @@ int readImage(const char* path, montecl::LayeredImage& image, char* err, std::si
   // every other format reader of OpenImageIO in turn on a file its own reader refuses (~10 ms).
   auto in = ImageInput::create(path);
   if (!in) return fail(err, errSize, OIIO::geterror());
-  ImageSpec opened;
-  if (!in->open(path, opened)) return fail(err, errSize, in->geterror());
+  ImageSpec opened, config;
+  // Colour as stored: OpenImageIO would premultiply a PNG's or TGA's unassociated alpha into it.
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  if (!in->open(path, opened, config)) return fail(err, errSize, in->geterror());
   const ImageSpec& spec = in->spec();
   // Sizes are checked before allocating: montecl's renders are at most 16384 x 16384 pixels.
   constexpr int kMaxSide = 16384, kMaxChannels = 1024;
@@ -69,6 +71,7 @@ int readImage(const char* path, montecl::LayeredImage& image, char* err, std::si
   image.channels.clear();
   image.planes.clear();
   image.attributes.clear();
+  image.pixelType = spec.format.c_str();
   for (const ParamValue& p : spec.extra_attribs)
     if (p.type() == TypeDesc::STRING && p.name().string().rfind("montecl:", 0) == 0)
       image.attributes[p.name().string()] = p.get_string();

@@ -34,9 +34,14 @@ class ClStageRunner final : public StageRunner {
     ClBindings& b = bindings_;
     b.frame = {cl_.upload(std::vector<FrameParams>{in.frame})};
     b.nodes = {program_.uploadNodes(*in.bvh)};
-    b.tris = {cl_.upload(in.bvh->triangles)};
+    b.tris = {cl_.upload(in.triangles.empty() ? in.bvh->triangles : in.triangles)};
+    b.shading = {cl_.upload(in.shading.empty() ? std::vector<TriangleShading>(1) : in.shading)};
     b.materials = {cl_.upload(in.materials)};
     b.emitters = {cl_.upload(in.emitters)};
+    const bool tex = in.textures && !in.textures->textures.empty();
+    b.textures = {cl_.upload(tex ? in.textures->textures : std::vector<TextureDesc>(1))};
+    b.textureLevels = {cl_.upload(tex ? in.textures->levels : std::vector<TextureLevel>(1))};
+    b.texels = {cl_.upload(tex ? in.textures->texels : std::vector<std::uint16_t>(4))};
     std::vector<cl_uint> all(pixels_);
     for (std::uint64_t p = 0; p < pixels_; ++p) all[p] = cl_uint(p);
     b.active = {cl_.upload(all, CL_MEM_READ_WRITE)};

@@ -29,11 +29,17 @@ class HostStageRunner final : public StageRunner {
   void setup(const StageInputs& in) override {
     frame_ = in.frame;
     nodes_ = in.bvh->wideNodes();
-    tris_ = in.bvh->triangles;
+    tris_ = in.triangles.empty() ? in.bvh->triangles : in.triangles;
+    shading_ = in.shading;
+    if (shading_.empty()) shading_.resize(1);
     materials_ = in.materials;
     emitters_ = in.emitters;
     if (materials_.empty()) materials_.resize(1);
     if (emitters_.empty()) emitters_.resize(1);
+    const bool tex = in.textures && !in.textures->textures.empty();
+    textures_ = tex ? &in.textures->textures : &noTextures_;
+    textureLevels_ = tex ? &in.textures->levels : &noTextureLevels_;
+    texels_ = tex ? &in.textures->texels : &noTexels_;
     if (tris_.empty()) tris_.resize(1);
     const std::uint64_t wave = std::max<std::uint64_t>(1, in.wave), slots = frame_.shadowSlots;
     rays_.assign(wave, Ray{});
@@ -115,8 +121,13 @@ class HostStageRunner final : public StageRunner {
     b.frame = &frame_;
     b.nodes = nodes_.data();
     b.tris = tris_.data();
+    b.shading = shading_.data();
     b.materials = materials_.data();
     b.emitters = emitters_.data();
+    // Read-only to every stage (const in the stage table); not copied: texels can be large.
+    b.textures = const_cast<TextureDesc*>(textures_->data());
+    b.textureLevels = const_cast<TextureLevel*>(textureLevels_->data());
+    b.texels = const_cast<std::uint16_t*>(texels_->data());
     b.active = active_.data();
     b.rays = rays_.data();
     b.bounce = bounce_.data();
@@ -144,8 +155,16 @@ class HostStageRunner final : public StageRunner {
   std::vector<uint> active_;
   std::vector<WideNode> nodes_;
   std::vector<Triangle> tris_;
+  std::vector<TriangleShading> shading_;
   std::vector<Material> materials_;
   std::vector<Emitter> emitters_;
+  // The scene's texture tables (the caller's, alive during the render) or 1-entry dummies.
+  const std::vector<TextureDesc>* textures_ = nullptr;
+  const std::vector<TextureLevel>* textureLevels_ = nullptr;
+  const std::vector<std::uint16_t>* texels_ = nullptr;
+  std::vector<TextureDesc> noTextures_ = std::vector<TextureDesc>(1);
+  std::vector<TextureLevel> noTextureLevels_ = std::vector<TextureLevel>(1);
+  std::vector<std::uint16_t> noTexels_ = std::vector<std::uint16_t>(4);
   std::vector<Ray> rays_, bounce_;
   std::vector<Hit> hits_, bounceHits_;
   std::vector<float4> radiance_, shadowContrib_, mean_, meanLo_, m2_, m2Lo_;

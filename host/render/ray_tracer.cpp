@@ -4,15 +4,31 @@
 
 #include <algorithm>
 
+#include "render/triangle_shading.h"
+
 namespace montecl {
 
-RayTracer::RayTracer(StageProgram& program, const Bvh& bvh)
+RayTracer::RayTracer(StageProgram& program, const Bvh& bvh, const Scene* scene, const SceneTextures* textures)
     : cl_(program.session()),
       intersect_(cl_.kernel(stageName(Stage::intersect))),
       intersectShadow_(cl_.kernel(stageName(Stage::intersect_shadow))) {
-  bindings_.frame = {cl_.upload(std::vector<FrameParams>{FrameParams{}})};
+  const bool alpha = scene && textures && textures->anyAlpha();
+  FrameParams frame{};
+  frame.textureCount = alpha ? std::uint32_t(textures->textures.size()) : 0u;
+  bindings_.frame = {cl_.upload(std::vector<FrameParams>{frame})};
   bindings_.nodes = {program.uploadNodes(bvh)};
-  bindings_.tris = {cl_.upload(bvh.triangles)};
+  bindings_.tris = {cl_.upload(alpha ? alphaFlaggedTriangles(bvh.triangles, *textures) : bvh.triangles)};
+  // What the alpha test reads (1-entry dummies without cut-outs).
+  std::vector<Material> materials(alpha ? scene->materials.size() : 1, Material{});
+  if (alpha) {
+    for (std::size_t i = 0; i < materials.size(); ++i) materials[i].alpha.y = scene->materials[i].alphaCutoff;
+    setTextureIndices(materials, *textures);
+  }
+  bindings_.materials = {cl_.upload(materials)};
+  bindings_.shading = {cl_.upload(alpha ? buildTriangleShading(scene->triangles, bvh) : std::vector<TriangleShading>(1))};
+  bindings_.textures = {cl_.upload(alpha ? textures->textures : std::vector<TextureDesc>(1))};
+  bindings_.textureLevels = {cl_.upload(alpha ? textures->levels : std::vector<TextureLevel>(1))};
+  bindings_.texels = {cl_.upload(alpha ? textures->texels : std::vector<std::uint16_t>(4))};
   bindings_.nanRays = {cl_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE)};
 }
 

@@ -6,12 +6,16 @@
 #include "bvh/bvh.h"
 #include "render/stage_bindings.h"
 #include "render/stage_program.h"
+#include "texture/scene_textures.h"
 
 namespace montecl {
 
 class RayTracer {
  public:
-  RayTracer(StageProgram& program, const Bvh& bvh);
+  // With a scene and its textures, hits on cut-outs whose alpha is below the cutoff do not exist
+  // (as in renders); without, every triangle is opaque.
+  RayTracer(StageProgram& program, const Bvh& bvh, const Scene* scene = nullptr,
+            const SceneTextures* textures = nullptr);
 
   // Closest hit of each ray (dir.w = tmax). With kernelMs (the session must profile), the kernel
   // runs `runs` times and each run's execution time is appended (benchmarks).

@@ -42,8 +42,13 @@ struct StageBindings {
   // Scene, uploaded once.
   Array<BvhTraversalNode> nodes;
   Array<Triangle> tris;
+  Array<TriangleShading> shading;  // per triangle, BVH order (1-entry dummy when none has attributes)
   Array<Material> materials;
   Array<Emitter> emitters;
+  // Texture tables (host/texture/scene_textures.h); 1-entry dummies in a scene without textures.
+  Array<TextureDesc> textures;
+  Array<TextureLevel> textureLevels;
+  Array<ushort> texels;
   Array<uint> active;  // the active-pixel list
   // Per wave item.
   Array<Ray> rays, bounce;

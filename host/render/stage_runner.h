@@ -13,6 +13,7 @@
 #include "image/film.h"
 #include "render/stage_bindings.h"
 #include "render/stage_profile.h"
+#include "texture/scene_textures.h"
 
 namespace montecl {
 
@@ -22,6 +23,12 @@ struct StageInputs {
   const Bvh* bvh = nullptr;
   std::vector<Material> materials;
   std::vector<Emitter> emitters;
+  // Per-triangle attributes in BVH order (render/triangle_shading.h); empty: a 1-entry dummy.
+  std::vector<TriangleShading> shading;
+  // The scene's texture tables (FrameParams::textureCount entries); null or empty: no textures.
+  const SceneTextures* textures = nullptr;
+  // Triangles to upload instead of bvh->triangles (cut-outs flagged, alphaFlaggedTriangles); empty: those.
+  std::vector<Triangle> triangles;
   std::uint64_t wave = 0;    // wave items (pixel samples) per wave
   bool direct = false;       // direct lighting: bounce buffers are needed
   bool aovs = false;         // record first-hit albedo, normal and depth (record_aov, accumulate_aov)
@@ -46,7 +53,7 @@ class StageRunner {
   virtual bool programFromCache() const { return false; }
   virtual double programBuildMs() const { return 0.0; }
 
-  // Allocates the wave buffers and uploads frame, BVH, materials and emitters; clears the film
+  // Allocates the wave buffers and uploads frame, BVH, attributes, materials and emitters; clears the film
   // (or loads in.initialFilm).
   virtual void setup(const StageInputs& in) = 0;
   // Replaces the active-pixel list the waves walk (setup starts with every pixel, in order) and

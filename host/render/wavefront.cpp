@@ -13,6 +13,7 @@
 #include "render/emitters.h"
 #include "render/frame_params.h"
 #include "render/memory_check.h"
+#include "render/triangle_shading.h"
 #include "scene/camera_basis.h"
 #include "util/errors.h"
 
@@ -92,14 +93,37 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
     if (bytes > maxAlloc)
       throw RuntimeError("a buffer of " + std::to_string(bytes) + " bytes does not fit the device's maximum "
                          "allocation of " + std::to_string(maxAlloc) + " bytes; use a smaller image or scene");
+  std::vector<TriangleShading> shading = buildTriangleShading(scene.triangles, bvh);
+  if (shading.size() * sizeof(TriangleShading) > maxAlloc)
+    throw RuntimeError("a buffer of " + std::to_string(shading.size() * sizeof(TriangleShading)) +
+                       " bytes does not fit the device's maximum allocation of " + std::to_string(maxAlloc) +
+                       " bytes; use a smaller scene");
   stats = RenderStats{};
   stats.waveSize = wave;
   run.setProfile(m.options.profile ? &stats.profile : nullptr);
 
+  // Textures: the caller's (loaded under its budget, warnings shown), else loaded here.
+  SceneTextures ownTextures;
+  const SceneTextures* textures = m.options.textures;
+  if (!textures && sceneHasTextures(scene)) {
+    std::vector<std::string> ignored;
+    ownTextures = loadSceneTextures(scene, std::min<std::uint64_t>(kDefaultTextureBudget, maxAlloc), ignored);
+    textures = &ownTextures;
+  }
+  if (textures && textures->bytes() > maxAlloc)
+    throw RuntimeError("textures of " + std::to_string(textures->bytes()) + " bytes do not fit the device's maximum "
+                       "allocation of " + std::to_string(maxAlloc) + " bytes; lower --texture-budget");
+  frame.textureCount = textures ? std::uint32_t(textures->textures.size()) : 0u;
   StageInputs inputs;
   inputs.frame = frame;
   inputs.bvh = &bvh;
+  inputs.shading = std::move(shading);
   inputs.materials = deviceMaterials(scene.materials);
+  if (textures) {
+    setTextureIndices(inputs.materials, *textures);
+    inputs.textures = textures;
+    inputs.triangles = alphaFlaggedTriangles(bvh.triangles, *textures);
+  }
   inputs.emitters = emitters.emitters;
   inputs.wave = wave;
   inputs.direct = direct;

@@ -18,6 +18,8 @@
 
 namespace montecl {
 
+struct SceneTextures;
+
 struct RenderOptions {
   std::uint64_t waveSize = 0;                  // wave items (pixel samples); 0: from memoryBudget
   std::uint64_t memoryBudget = 256ull << 20;   // bytes of per-wave buffers when waveSize is 0
@@ -38,6 +40,9 @@ struct RenderOptions {
   double errorFloor = 0.01;
   bool profile = false;  // time every stage launch into RenderStats::profile (--profile)
   bool aovs = false;  // also accumulate first-hit albedo, normal and depth (Film::aovSum)
+  // The scene's textures, loaded by the caller (texture/scene_textures.h); null: render() loads
+  // them itself (automatic budget, warnings dropped) when a material names a texture.
+  const SceneTextures* textures = nullptr;
   // The pixels to render, ascending (empty: all): one rank's share of an MPI job (dist/job.h).
   // Each pixel's result depends only on its own samples, so any subset renders bit-identically.
   std::vector<std::uint32_t> pixels;

@@ -1,6 +1,8 @@
 // builtin_scenes.cpp: the analytic scenes of builtin_scenes.h.
 #include "scene/builtin_scenes.h"
 
+#include <cmath>
+
 namespace montecl {
 
 void addQuad(Scene& s, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, std::uint32_t material) {
@@ -16,6 +18,31 @@ void finishScene(Scene& s) {
     for (const auto& v : t.v) {
       s.boundsMin = glm::min(s.boundsMin, v);
       s.boundsMax = glm::max(s.boundsMax, v);
+    }
+}
+
+void addUvSphere(Scene& s, glm::vec3 center, float radius, int rings, int segments, bool withNormals,
+                 std::uint32_t material) {
+  const auto dir = [&](int ring, int seg) {  // unit direction of vertex (ring, seg); ring 0: +y pole
+    const double theta = M_PI * ring / rings, phi = 2.0 * M_PI * (seg % segments) / segments;
+    return glm::vec3(float(std::sin(theta) * std::cos(phi)), float(std::cos(theta)),
+                     float(-std::sin(theta) * std::sin(phi)));
+  };
+  const auto add = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+    SceneTriangle t{{center + radius * a, center + radius * b, center + radius * c}, material};
+    if (withNormals) {
+      t.n[0] = a;
+      t.n[1] = b;
+      t.n[2] = c;
+      t.attributes = kHasNormals;
+    }
+    s.triangles.push_back(t);
+  };
+  for (int r = 0; r < rings; ++r)
+    for (int k = 0; k < segments; ++k) {
+      const glm::vec3 a = dir(r, k), b = dir(r + 1, k), c = dir(r + 1, k + 1), d = dir(r, k + 1);
+      if (r > 0) add(a, b, d);              // not at the top pole (a == d there)
+      if (r < rings - 1) add(b, c, d);      // not at the bottom pole (b == c there)
     }
 }
 

@@ -18,6 +18,12 @@ void finishScene(Scene& s);
 // intersection test is not watertight at a 1e-4 scale), so scenes keep test points away from it.
 void addFloor(Scene& s, std::uint32_t material = 0);
 
+// A UV sphere of `rings` latitude bands and `segments` longitude slices (quads split in two,
+// triangles at the poles), counter-clockwise seen from outside. withNormals: each corner carries the
+// exact sphere normal (kHasNormals), as a file's `vn` would; else flat.
+void addUvSphere(Scene& s, glm::vec3 center, float radius, int rings, int segments, bool withNormals,
+                 std::uint32_t material = 0);
+
 // The floor, seen straight down from `height` above `at`; size x size pixels, spp samples.
 Scene floorScene(glm::vec3 at, float height, float fovY, int size, int spp);
 

@@ -42,6 +42,8 @@ MCL_INLINE float3 mcl_normalize3(float3 v) { return v * (1.0f / sqrt(mcl_dot3(v,
 #define cross(a, b) mcl_cross3(a, b)
 #define length(v) mcl_length3(v)
 #define normalize(v) mcl_normalize3(v)
+// Four half floats (texels: RGBA half) at p + 4 i, as floats; core OpenCL 1.2 (no cl_khr_fp16).
+#define mcl_load_half4(p, i) vload_half4((i), (MCL_GLOBAL const half*)(p))
 #else
 #include <glm/glm.hpp>
 #include <math.h>  // libstdc++'s math.h puts the float overloads of sqrt, fmin, ... in the global namespace
@@ -74,6 +76,20 @@ inline float3 fabs(float3 a) { return glm::abs(a); }
 inline float as_float(uint u) { float f; std::memcpy(&f, &u, 4); return f; }
 inline uint as_uint(float f) { uint u; std::memcpy(&u, &f, 4); return u; }
 inline uint MCL_ATOMIC_INC(volatile uint* p) { return __atomic_fetch_add(p, 1u, __ATOMIC_RELAXED); }
+using ushort = std::uint16_t;
+// IEEE half -> float, exact (what vload_half does on a device).
+inline float mcl_half_to_float(ushort h) {
+  uint sign = uint(h & 0x8000u) << 16, e = (h >> 10) & 0x1fu, m = h & 0x3ffu;
+  if (e == 0) {
+    float f = float(m) * (1.0f / 16777216.0f);
+    return sign ? -f : f;
+  }
+  return as_float(sign | (e == 31 ? 0x7f800000u | (m << 13) : ((e + 112u) << 23) | (m << 13)));
+}
+inline float4 mcl_load_half4(const ushort* p, uint i) {
+  const ushort* q = p + 4 * std::size_t(i);
+  return float4(mcl_half_to_float(q[0]), mcl_half_to_float(q[1]), mcl_half_to_float(q[2]), mcl_half_to_float(q[3]));
+}
 #endif
 
 // Vector helpers that read the same in both languages (no swizzles, which GLM lacks by default).

@@ -22,6 +22,15 @@
   STAGE(record_aov)                                                                                \
   STAGE(accumulate_aov)
 
+// The texture tables (kernels/shared/texture.h): what albedo lookups read.
+#define MCL_TEXTURE_ARGS(ARG)                                                                      \
+  ARG(MCL_GLOBAL const TextureDesc*, textures) ARG(MCL_GLOBAL const TextureLevel*, textureLevels)  \
+  ARG(MCL_GLOBAL const ushort*, texels)
+// What the alpha test of cut-outs reads (surface_texture.h AlphaScene).
+#define MCL_ALPHA_ARGS(ARG)                                                                        \
+  ARG(MCL_GLOBAL const Material*, materials) ARG(MCL_GLOBAL const TriangleShading*, shading)       \
+  MCL_TEXTURE_ARGS(ARG)
+
 // ARG(type, name): the names are StageBindings' members (host/render/stage_bindings.h).
 #define MCL_ARGS_generate(ARG)                                                                     \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
@@ -30,33 +39,40 @@
 #define MCL_ARGS_intersect(ARG)                                                                    \
   ARG(MCL_GLOBAL const BvhTraversalNode*, nodes) ARG(MCL_GLOBAL const Triangle*, tris)             \
   ARG(MCL_GLOBAL const Ray*, rays) ARG(MCL_GLOBAL const uint*, rayCount) ARG(MCL_GLOBAL Hit*, hits) \
-  ARG(MCL_GLOBAL volatile uint*, nanRays)
+  ARG(MCL_GLOBAL volatile uint*, nanRays) \
+  MCL_ALPHA_ARGS(ARG)
 
 #define MCL_ARGS_shade_ao(ARG)                                                                     \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
-  ARG(MCL_GLOBAL const Triangle*, tris) ARG(MCL_GLOBAL const Ray*, rays)                           \
+  ARG(MCL_GLOBAL const Triangle*, tris) ARG(MCL_GLOBAL const TriangleShading*, shading)            \
+  ARG(MCL_GLOBAL const Ray*, rays)                                                                 \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL float4*, radiance)                               \
   ARG(MCL_GLOBAL float4*, shadowContrib) ARG(MCL_GLOBAL ShadowWork*, queue)                        \
   ARG(MCL_GLOBAL volatile uint*, queueCount)
 
 #define MCL_ARGS_shade_direct(ARG)                                                                 \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
-  ARG(MCL_GLOBAL const Triangle*, tris) ARG(MCL_GLOBAL const Material*, materials)                 \
+  ARG(MCL_GLOBAL const Triangle*, tris) ARG(MCL_GLOBAL const TriangleShading*, shading)            \
+  ARG(MCL_GLOBAL const Material*, materials)                                                       \
   ARG(MCL_GLOBAL const Emitter*, emitters) ARG(MCL_GLOBAL const Ray*, rays)                        \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL float4*, radiance)                               \
   ARG(MCL_GLOBAL float4*, shadowContrib) ARG(MCL_GLOBAL ShadowWork*, queue)                        \
-  ARG(MCL_GLOBAL volatile uint*, queueCount) ARG(MCL_GLOBAL Ray*, bounce)
+  ARG(MCL_GLOBAL volatile uint*, queueCount) ARG(MCL_GLOBAL Ray*, bounce) \
+  MCL_TEXTURE_ARGS(ARG)
 
 #define MCL_ARGS_shade_direct_hit(ARG)                                                             \
   ARG(uint, waveCount) ARG(MCL_GLOBAL const Triangle*, tris)                                       \
+  ARG(MCL_GLOBAL const TriangleShading*, shading)                                                  \
   ARG(MCL_GLOBAL const Material*, materials) ARG(MCL_GLOBAL const Ray*, rays)                      \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL const Ray*, bounce)                              \
-  ARG(MCL_GLOBAL const Hit*, bounceHits) ARG(MCL_GLOBAL float4*, shadowContrib)
+  ARG(MCL_GLOBAL const Hit*, bounceHits) ARG(MCL_GLOBAL float4*, shadowContrib) \
+  MCL_TEXTURE_ARGS(ARG)
 
 #define MCL_ARGS_intersect_shadow(ARG)                                                             \
   ARG(MCL_GLOBAL const BvhTraversalNode*, nodes) ARG(MCL_GLOBAL const Triangle*, tris)             \
   ARG(MCL_GLOBAL const ShadowWork*, queue) ARG(MCL_GLOBAL const uint*, queueCount)                 \
-  ARG(MCL_GLOBAL float4*, shadowContrib) ARG(MCL_GLOBAL volatile uint*, nanRays)
+  ARG(MCL_GLOBAL float4*, shadowContrib) ARG(MCL_GLOBAL volatile uint*, nanRays) \
+  MCL_ALPHA_ARGS(ARG)
 
 #define MCL_ARGS_accumulate(ARG)                                                                   \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
@@ -66,8 +82,10 @@
 
 #define MCL_ARGS_record_aov(ARG)                                                                   \
   ARG(uint, waveCount) ARG(MCL_GLOBAL const Triangle*, tris)                                       \
+  ARG(MCL_GLOBAL const TriangleShading*, shading)                                                  \
   ARG(MCL_GLOBAL const Material*, materials) ARG(MCL_GLOBAL const Ray*, rays)                      \
-  ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL float4*, aov)
+  ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL float4*, aov) \
+  MCL_TEXTURE_ARGS(ARG)
 
 #define MCL_ARGS_accumulate_aov(ARG)                                                               \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \

@@ -10,21 +10,21 @@
 #ifdef MCL_BVH_BINARY
 typedef BvhNode BvhTraversalNode;
 MCL_INLINE Hit bvh_closest_hit(MCL_GLOBAL const BvhTraversalNode* nodes,
-                               MCL_GLOBAL const Triangle* tris, float3 org, float3 dir, float tmax) {
-  return binary_closest_hit(nodes, tris, org, dir, tmax);
+                               MCL_GLOBAL const Triangle* tris, const AlphaScene* alpha, float3 org, float3 dir, float tmax) {
+  return binary_closest_hit(nodes, tris, alpha, org, dir, tmax);
 }
 MCL_INLINE int bvh_any_hit(MCL_GLOBAL const BvhTraversalNode* nodes,
-                           MCL_GLOBAL const Triangle* tris, float3 org, float3 dir, float tmax) {
-  return binary_any_hit(nodes, tris, org, dir, tmax);
+                           MCL_GLOBAL const Triangle* tris, const AlphaScene* alpha, float3 org, float3 dir, float tmax) {
+  return binary_any_hit(nodes, tris, alpha, org, dir, tmax);
 }
 #else
 typedef WideNode BvhTraversalNode;
 MCL_INLINE Hit bvh_closest_hit(MCL_GLOBAL const BvhTraversalNode* nodes,
-                               MCL_GLOBAL const Triangle* tris, float3 org, float3 dir, float tmax) {
-  return wide_closest_hit(nodes, tris, org, dir, tmax);
+                               MCL_GLOBAL const Triangle* tris, const AlphaScene* alpha, float3 org, float3 dir, float tmax) {
+  return wide_closest_hit(nodes, tris, alpha, org, dir, tmax);
 }
 MCL_INLINE int bvh_any_hit(MCL_GLOBAL const BvhTraversalNode* nodes,
-                           MCL_GLOBAL const Triangle* tris, float3 org, float3 dir, float tmax) {
-  return wide_any_hit(nodes, tris, org, dir, tmax);
+                           MCL_GLOBAL const Triangle* tris, const AlphaScene* alpha, float3 org, float3 dir, float tmax) {
+  return wide_any_hit(nodes, tris, alpha, org, dir, tmax);
 }
 #endif

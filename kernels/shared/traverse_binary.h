@@ -11,6 +11,7 @@
 // layouts compute the same t, u and v for a triangle.
 #pragma once
 #include "geometry.h"
+#include "surface_texture.h"
 #include "traverse_stack.h"
 
 // Entry distance of node n's box (ray_box), INFINITY when missed or entered beyond tmax.
@@ -19,9 +20,10 @@ MCL_INLINE float binary_entry(MCL_GLOBAL const BvhNode* n, float3 org, float3 in
                  make_float3(n->maxX, n->maxY, n->maxZ), tmax);
 }
 
-// Closest hit along org + t*dir for t in (0, tmax).
+// Closest hit along org + t*dir for t in (0, tmax); alpha (may be null) removes the hits that
+// fail their material's alpha test (surface_texture.h).
 MCL_INLINE Hit binary_closest_hit(MCL_GLOBAL const BvhNode* nodes, MCL_GLOBAL const Triangle* tris,
-                                  float3 org, float3 dir, float tmax) {
+                                  const AlphaScene* alpha, float3 org, float3 dir, float tmax) {
   Hit hit;
   hit.t = tmax;
   hit.tri = MCL_NO_HIT;
@@ -44,7 +46,7 @@ MCL_INLINE Hit binary_closest_hit(MCL_GLOBAL const BvhNode* nodes, MCL_GLOBAL co
         float u = 0.0f, v = 0.0f;
         float t = ray_triangle(org, dir, xyz(tris[i].v0), xyz(tris[i].e1), xyz(tris[i].e2), hit.t,
                                &u, &v);
-        if (t < hit.t) {
+        if (t < hit.t && alpha_hit_exists(alpha, tris, i, u, v)) {
           hit.t = t;
           hit.tri = i;
           hit.u = u;
@@ -72,9 +74,10 @@ MCL_INLINE Hit binary_closest_hit(MCL_GLOBAL const BvhNode* nodes, MCL_GLOBAL co
   }
 }
 
-// 1 if any triangle intersects org + t*dir for t in (0, tmax), else 0. Stops at the first hit.
+// 1 if any triangle intersects org + t*dir for t in (0, tmax) (and passes the alpha test when
+// alpha is not null), else 0. Stops at the first hit.
 MCL_INLINE int binary_any_hit(MCL_GLOBAL const BvhNode* nodes, MCL_GLOBAL const Triangle* tris,
-                              float3 org, float3 dir, float tmax) {
+                              const AlphaScene* alpha, float3 org, float3 dir, float tmax) {
   float3 inv = safe_inverse(dir);
   uint stack[MCL_BVH_STACK_SIZE];
   uint sp = 0;
@@ -86,7 +89,8 @@ MCL_INLINE int binary_any_hit(MCL_GLOBAL const BvhNode* nodes, MCL_GLOBAL const 
       for (uint i = n->leftFirst, end = n->leftFirst + n->triCount; i < end; ++i) {
         float u, v;
         if (ray_triangle(org, dir, xyz(tris[i].v0), xyz(tris[i].e1), xyz(tris[i].e2), tmax, &u,
-                         &v) < tmax)
+                         &v) < tmax &&
+            alpha_hit_exists(alpha, tris, i, u, v))
           return 1;
       }
     } else {

@@ -14,6 +14,7 @@
 // live in uint fields, never in float lanes.
 #pragma once
 #include "geometry.h"
+#include "surface_texture.h"
 #include "traverse_stack.h"
 
 #ifdef MCL_OPENCL
@@ -213,12 +214,25 @@ MCL_INLINE float4 ray_triangle4(MCL_GLOBAL const Triangle* tris, uint first, uin
   return mcl_tri_t4(det, u, v, t, tmax);
 }
 
+// t with the lanes whose hit (t < tmax) fails the alpha test set to INFINITY (alpha not null).
+MCL_INLINE float4 alpha_filter4(const AlphaScene* alpha, MCL_GLOBAL const Triangle* tris, uint first,
+                                uint last, float4 t, float4 u, float4 v, float tmax) {
+  uint i1 = first + 1u < last ? first + 1u : last, i2 = first + 2u < last ? first + 2u : last;
+  uint i3 = first + 3u < last ? first + 3u : last;
+  if (t.x < tmax && !alpha_hit_exists(alpha, tris, first, u.x, v.x)) t.x = INFINITY;
+  if (t.y < tmax && !alpha_hit_exists(alpha, tris, i1, u.y, v.y)) t.y = INFINITY;
+  if (t.z < tmax && !alpha_hit_exists(alpha, tris, i2, u.z, v.z)) t.z = INFINITY;
+  if (t.w < tmax && !alpha_hit_exists(alpha, tris, i3, u.w, v.w)) t.w = INFINITY;
+  return t;
+}
+
 MCL_INLINE uint wide_leaf_first(uint ref) { return (ref & ~MCL_WIDE_LEAF) >> 4; }
 MCL_INLINE uint wide_leaf_count(uint ref) { return (ref & 15u) + 1u; }
 
-// Closest hit along org + t*dir for t in (0, tmax).
+// Closest hit along org + t*dir for t in (0, tmax); alpha (may be null) removes the hits that
+// fail their material's alpha test (surface_texture.h).
 MCL_INLINE Hit wide_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
-                                float3 org, float3 dir, float tmax) {
+                                const AlphaScene* alpha, float3 org, float3 dir, float tmax) {
   Hit hit;
   hit.t = tmax;
   hit.tri = MCL_NO_HIT;
@@ -239,6 +253,7 @@ MCL_INLINE Hit wide_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL con
       for (uint b = first; b <= last; b += 4u) {
         float4 u, v;
         float4 t = ray_triangle4(tris, b, last, org, dir, hit.t, &u, &v);
+        if (alpha) t = alpha_filter4(alpha, tris, b, last, t, u, v, hit.t);
         // The nearest lane, the lowest on a tie (as the triangles one by one would find it).
         float bt = t.x, bu = u.x, bv = v.x;
         uint bi = b;
@@ -266,9 +281,10 @@ MCL_INLINE Hit wide_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL con
   }
 }
 
-// 1 if any triangle intersects org + t*dir for t in (0, tmax), else 0. Stops at the first hit.
+// 1 if any triangle intersects org + t*dir for t in (0, tmax) (and passes the alpha test when
+// alpha is not null), else 0. Stops at the first hit.
 MCL_INLINE int wide_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
-                            float3 org, float3 dir, float tmax) {
+                            const AlphaScene* alpha, float3 org, float3 dir, float tmax) {
   RayBoxCtx ctx = make_ray_box_ctx(org, dir);
   uint stack[MCL_WIDE_STACK_SIZE];
   float stackT[MCL_WIDE_STACK_SIZE];  // distances, for ordering the children of one node
@@ -282,6 +298,7 @@ MCL_INLINE int wide_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const T
       for (uint b = first; b <= last; b += 4u) {
         float4 u, v;
         float4 t = ray_triangle4(tris, b, last, org, dir, tmax, &u, &v);
+        if (alpha) t = alpha_filter4(alpha, tris, b, last, t, u, v, tmax);
         if (t.x < tmax || t.y < tmax || t.z < tmax || t.w < tmax) return 1;
       }
     } else {

@@ -41,12 +41,30 @@ typedef struct MCL_ALIGN16 {
 } WideNode;
 
 // Triangle in BVH order, laid out for Moller-Trumbore: v0, e1 = v1 - v0, e2 = v2 - v0.
-// v0.w holds the material index and e1.w the triangle's index in the input (both as_float bits).
+// v0.w holds the material index, e1.w the triangle's index in the input and e2.w its attribute
+// flags (MCL_ATTR_*; all three as_float bits, never used in arithmetic).
 typedef struct MCL_ALIGN16 {
   float4 v0;
   float4 e1;
   float4 e2;
 } Triangle;
+
+// Attribute flags in Triangle::e2.w (the bits of SceneTriangle::attributes). A triangle without a
+// flag never reads its TriangleShading entry, so a scene where no triangle has attributes binds a
+// 1-entry dummy buffer. The remaining bits are free for later per-triangle flags.
+#define MCL_ATTR_NORMALS 1u
+#define MCL_ATTR_UV 2u
+
+// Per-triangle surface attributes, indexed like the BVH-ordered Triangle array (shading[h.tri]).
+// Corner k (k = 0, 1, 2 at barycentrics (1 - u - v, u, v)) has the unit shading normal nk.xyz
+// (MCL_ATTR_NORMALS; otherwise 0) and texture coordinates (nk.w, tv[k]) (MCL_ATTR_UV; otherwise 0;
+// OBJ's convention, v = 0 at the image's bottom row). Read through shared/shading.h.
+typedef struct MCL_ALIGN16 {
+  float4 n0;  // xyz: normal at v0; w: u of v0
+  float4 n1;  // xyz: normal at v1; w: u of v1
+  float4 n2;  // xyz: normal at v2; w: u of v2
+  float4 tv;  // x, y, z: v of v0, v1, v2; w: 0
+} TriangleShading;
 
 #define MCL_NO_TEXTURE 0xffffffffu
 typedef struct MCL_ALIGN16 {
@@ -115,6 +133,30 @@ typedef struct MCL_ALIGN16 {
   float pad;
 } Emitter;
 
+// Textures (kernels/shared/texture.h, host/texture/): every mip level of every texture is one
+// block of RGBA half-float texels (linear: 8- and 16-bit images were sRGB-decoded before the
+// pyramid was filtered) in one texel buffer, rows bottom to top (row 0 holds v in [0, 1/height)).
+// TextureDesc t's kept levels are levels[firstLevel .. firstLevel + levelCount); level k of the
+// table is mip level dropped + k of the image as loaded (width x height at mip level 0): the
+// texture budget drops the finest levels first.
+typedef struct MCL_ALIGN16 {
+  uint firstLevel;  // into the level table
+  uint levelCount;  // levels kept (>= 1)
+  uint dropped;     // finest levels dropped by the texture budget
+  float lodBias;    // log2 of the loaded level-0 size's geometric mean: lod = log2(footprint) + this
+} TextureDesc;
+
+typedef struct MCL_ALIGN16 {
+  uint offset;  // first texel (RGBA half, 8 bytes) of this level in the texel buffer
+  uint width, height;
+  uint pad;
+} TextureLevel;
+
+// Attribute flag (Triangle::e2.w, SceneTriangle::attributes kAlphaTested): the triangle's material
+// has an alpha texture, so a hit on it exists only where the alpha test passes
+// (surface_texture.h alpha_hit_exists). Opaque triangles never pay for the test.
+#define MCL_ATTR_ALPHA 4u
+
 #ifndef MCL_OPENCL
 #include <cstddef>
 static_assert(sizeof(BvhNode) == 32, "BvhNode layout");
@@ -122,11 +164,15 @@ static_assert(offsetof(BvhNode, maxX) == 16, "BvhNode layout");
 static_assert(sizeof(WideNode) == 224, "WideNode layout");
 static_assert(offsetof(WideNode, child) == 192, "WideNode layout");
 static_assert(sizeof(Triangle) == 48, "Triangle layout");
+static_assert(sizeof(TriangleShading) == 64, "TriangleShading layout");
+static_assert(offsetof(TriangleShading, tv) == 48, "TriangleShading layout");
 static_assert(sizeof(Material) == 64, "Material layout");
 static_assert(sizeof(Ray) == 32, "Ray layout");
 static_assert(sizeof(Hit) == 16, "Hit layout");
 static_assert(sizeof(ShadowWork) == 48, "ShadowWork layout");
 static_assert(sizeof(FrameParams) == 176, "FrameParams layout");
 static_assert(sizeof(Emitter) == 16, "Emitter layout");
+static_assert(sizeof(TextureDesc) == 16, "TextureDesc layout");
+static_assert(sizeof(TextureLevel) == 16, "TextureLevel layout");
 static_assert(offsetof(FrameParams, width) == 80, "FrameParams layout");
 #endif

@@ -1,6 +1,7 @@
 // intersect: reads rays[0 .. *rayCount) and the BVH; writes the closest hit of each to hits.
 // Launched for camera rays and, bound to the bounce buffers, for direct lighting's BRDF rays.
-// A ray with a NaN or infinite origin or direction is a miss and counted in *nanRays.
+// Hits on cut-outs whose alpha is below their cutoff do not exist (surface_texture.h); scenes
+// without textures skip the test. A ray with a NaN or infinite origin or direction is a miss and counted in *nanRays.
 #pragma once
 #include "stage_common.h"
 
@@ -8,5 +9,8 @@ MCL_INLINE void stage_intersect(const intersect_args* a, uint i) {
   if (i >= *a->rayCount) return;
   Ray r = a->rays[i];
   if (!ray_is_finite(xyz(r.origin), xyz(r.dir))) MCL_ATOMIC_INC(a->nanRays);
-  a->hits[i] = bvh_closest_hit(a->nodes, a->tris, xyz(r.origin), xyz(r.dir), r.dir.w);
+  AlphaScene as = make_alpha_scene(a->materials, a->shading,
+                                   make_texture_tables(a->textures, a->textureLevels, a->texels));
+  a->hits[i] = bvh_closest_hit(a->nodes, a->tris, a->frame->textureCount > 0 ? &as : 0, xyz(r.origin),
+                               xyz(r.dir), r.dir.w);
 }

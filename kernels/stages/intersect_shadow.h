@@ -1,5 +1,6 @@
 // intersect_shadow: reads queue[0 .. *queueCount) of occlusion queries and the BVH; writes the
-// contribution of each unblocked query to its shadow slot (any hit, up to the query's tmax). A
+// contribution of each unblocked query to its shadow slot (any hit, up to the query's tmax; cut-outs
+// block only where their alpha passes the cutoff, surface_texture.h). A
 // query with a NaN or infinite origin or direction is blocked (its contribution stays 0) and
 // counted in *nanRays.
 #pragma once
@@ -12,6 +13,9 @@ MCL_INLINE void stage_intersect_shadow(const intersect_shadow_args* a, uint k) {
     MCL_ATOMIC_INC(a->nanRays);
     return;
   }
-  if (!bvh_any_hit(a->nodes, a->tris, xyz(w.ray.origin), xyz(w.ray.dir), w.ray.dir.w))
+  AlphaScene as = make_alpha_scene(a->materials, a->shading,
+                                   make_texture_tables(a->textures, a->textureLevels, a->texels));
+  if (!bvh_any_hit(a->nodes, a->tris, a->frame->textureCount > 0 ? &as : 0, xyz(w.ray.origin), xyz(w.ray.dir),
+                   w.ray.dir.w))
     a->shadowContrib[w.slot] = make_float4(w.r, w.g, w.b, 0.0f);
 }

@@ -1,6 +1,7 @@
 // record_aov: reads camera rays, their hits, triangles and materials; writes each item's
-// first-hit AOVs: aov[2i] = (albedo Kd, depth along the camera ray), aov[2i + 1] = (geometric
-// normal facing the camera, 0); zero where the camera ray hits nothing.
+// first-hit AOVs: aov[2i] = (albedo Kd x texture (camera ray cone footprint), depth along the
+// camera ray), aov[2i + 1] = (shading normal on the camera's side, 0: surface_frame); zero where
+// the camera ray hits nothing.
 #pragma once
 #include "stage_common.h"
 
@@ -13,6 +14,9 @@ MCL_INLINE void stage_record_aov(const record_aov_args* a, uint i) {
     return;
   }
   MCL_GLOBAL const Triangle* tri = &a->tris[h.tri];
-  a->aov[2 * i] = with_w(xyz(a->materials[triangle_material(tri)].albedo), h.t);
-  a->aov[2 * i + 1] = with_w(facing_normal(tri, xyz(a->rays[i].dir)), 0.0f);
+  float3 albedo = hit_albedo(make_texture_tables(a->textures, a->textureLevels, a->texels),
+                             a->materials[triangle_material(tri)], tri, &a->shading[h.tri], h, xyz(a->rays[i].dir),
+                             camera_spread_angle(a->frame) * h.t);
+  a->aov[2 * i] = with_w(albedo, h.t);
+  a->aov[2 * i + 1] = with_w(surface_frame(a->tris, a->shading, h, xyz(a->rays[i].dir)).ns, 0.0f);
 }

@@ -1,7 +1,8 @@
 // shade_ao: reads camera rays and their hits; writes radiance (background on a miss, else 0),
 // clears the item's shadow slots, and pushes one AO occlusion query per hit onto the shadow queue
 // (atomic counter) whose unoccluded value is the AO estimate V cos(theta) / (pi p(w)): 1 for
-// cosine sampling, 2 cos(theta) for uniform sampling.
+// cosine sampling, 2 cos(theta) for uniform sampling. The hemisphere is around the shading normal,
+// a direction below the geometric surface folded above it (shared/shading.h).
 #pragma once
 #include "stage_common.h"
 
@@ -12,8 +13,7 @@ MCL_INLINE void stage_shade_ao(const shade_ao_args* a, uint i) {
   if (!shade_begin(f, h, i, a->radiance, a->shadowContrib)) return;
   a->radiance[i] = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
   float3 dir = xyz(a->rays[i].dir);
-  MCL_GLOBAL const Triangle* tri = &a->tris[h.tri];
-  float3 n = facing_normal(tri, dir);
+  SurfaceFrame sf = surface_frame(a->tris, a->shading, h, dir);
   float4 u = rng_uniform4(f->seed, item_pixel(f, a->active, a->waveStart, i),
                           item_sample(f, a->waveStart, i), MCL_DIM_AO);
   float3 dirLocal;
@@ -27,8 +27,8 @@ MCL_INLINE void stage_shade_ao(const shade_ao_args* a, uint i) {
   }
   if (!(weight > 0.0f)) return;
   ShadowWork w;
-  w.ray.origin = with_w(offset_ray_origin(hit_position(tri, h), n, f->offsetScale), 0.0f);
-  w.ray.dir = with_w(to_world(dirLocal, n), f->aoDistance);
+  w.ray.origin = with_w(offset_ray_origin(sf.p, sf.ng, f->offsetScale), 0.0f);
+  w.ray.dir = with_w(frame_sample_direction(sf, dirLocal), f->aoDistance);
   w.r = weight;
   w.g = weight;
   w.b = weight;

@@ -1,6 +1,6 @@
 // stage_common.h: what several stage bodies share: the pixel and sample of a wave item, and the
-// geometry of a hit (facing normal, position, light emitted toward a direction). Pure functions of
-// their arguments; compiled by the kernels and by the host backend.
+// geometry of a hit (facing normal, position, shading frame, light emitted toward a direction).
+// Pure functions of their arguments; compiled by the kernels and by the host backend.
 // A wave holds `waveCount` consecutive indices g = waveStart + i into the active-pixel list,
 // sample-major: pixel = active[g % activeCount], sample = g / activeCount, so a pixel's samples
 // are always accumulated in sample order whatever the wave size. Without adaptive sampling the list
@@ -10,7 +10,9 @@
 #include "../shared/lights.h"
 #include "../shared/rng.h"
 #include "../shared/sampling.h"
+#include "../shared/shading.h"
 #include "../shared/stage_table.h"
+#include "../shared/surface_texture.h"
 
 // The pixel and the sample index of wave item i.
 MCL_INLINE uint item_pixel(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const uint* active,
@@ -31,6 +33,38 @@ MCL_INLINE float3 facing_normal(MCL_GLOBAL const Triangle* tri, float3 incoming)
 // Hit position from barycentrics (more accurate than org + t * dir).
 MCL_INLINE float3 hit_position(MCL_GLOBAL const Triangle* tri, Hit h) {
   return xyz(tri->v0) + xyz(tri->e1) * h.u + xyz(tri->e2) * h.v;
+}
+
+// The shading frame of hit h on triangle tris[h.tri] for a ray moving along `incoming`: position,
+// geometric normal facing the ray, shading normal (shared/shading.h: interpolated corner normals
+// on the geometric normal's side, read from shading[h.tri] only when the triangle's flags say it
+// has normals; else the geometric normal, smooth = 0). Every shade stage and record_aov use it.
+MCL_INLINE SurfaceFrame surface_frame(MCL_GLOBAL const Triangle* tris, MCL_GLOBAL const TriangleShading* shading,
+                                      Hit h, float3 incoming) {
+  MCL_GLOBAL const Triangle* tri = &tris[h.tri];
+  SurfaceFrame s;
+  s.p = hit_position(tri, h);
+  s.ng = facing_normal(tri, incoming);
+  s.ns = s.ng;
+  s.smooth = 0;
+  if (as_uint(tri->e2.w) & MCL_ATTR_NORMALS) {
+    MCL_GLOBAL const TriangleShading* a = &shading[h.tri];
+    float3 n = interpolate_normal(xyz(a->n0), xyz(a->n1), xyz(a->n2), h.u, h.v);
+    if (dot(n, n) > 0.0f) {
+      s.ns = orient_to(n, s.ng);
+      s.smooth = 1;
+    }
+  }
+  return s;
+}
+
+// Texture coordinates of hit h (OBJ convention, v = 0 at the image's bottom row), read from
+// shading[h.tri] only when the triangle has UVs (MCL_ATTR_UV); (0, 0) otherwise.
+MCL_INLINE float2 hit_uv(MCL_GLOBAL const Triangle* tris, MCL_GLOBAL const TriangleShading* shading, Hit h) {
+  if (!(as_uint(tris[h.tri].e2.w) & MCL_ATTR_UV)) return make_float2(0.0f, 0.0f);
+  MCL_GLOBAL const TriangleShading* a = &shading[h.tri];
+  return interpolate_uv(make_float2(a->n0.w, a->tv.x), make_float2(a->n1.w, a->tv.y),
+                        make_float2(a->n2.w, a->tv.z), h.u, h.v);
 }
 
 // Le leaving tri toward the viewer moving along dir (0 from the back face): emitters emit Ke from

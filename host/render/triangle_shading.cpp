@@ -1,0 +1,36 @@
+// triangle_shading.cpp: fills TriangleShading in BVH order from SceneTriangle::n/uv/attributes.
+#include "render/triangle_shading.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace montecl {
+namespace {
+
+glm::vec3 unitOrZero(const glm::vec3& n) {
+  const float len = glm::length(n);
+  return len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0.0f);
+}
+
+}  // namespace
+
+std::vector<TriangleShading> buildTriangleShading(const std::vector<SceneTriangle>& tris, const Bvh& bvh) {
+  const bool any = std::any_of(bvh.order.begin(), bvh.order.end(),
+                               [&](std::uint32_t k) { return tris[k].attributes != 0; });
+  if (!any) return std::vector<TriangleShading>(1, TriangleShading{});
+  std::vector<TriangleShading> out(bvh.order.size(), TriangleShading{});
+  for (std::size_t i = 0; i < bvh.order.size(); ++i) {
+    const SceneTriangle& t = tris[bvh.order[i]];
+    TriangleShading& s = out[i];
+    glm::vec4* corners[3] = {&s.n0, &s.n1, &s.n2};
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 n = (t.attributes & kHasNormals) ? unitOrZero(t.n[k]) : glm::vec3(0.0f);
+      const float u = (t.attributes & kHasUv) ? t.uv[k].x : 0.0f;
+      *corners[k] = glm::vec4(n, u);
+    }
+    if (t.attributes & kHasUv) s.tv = glm::vec4(t.uv[0].y, t.uv[1].y, t.uv[2].y, 0.0f);
+  }
+  return out;
+}
+
+}  // namespace montecl

@@ -1,0 +1,65 @@
+// scene_textures.h: every texture a scene's materials name, loaded once each through
+// OpenImageIO, sRGB-decoded (integer images), mip-mapped and packed into the device's texture
+// tables (kernels/shared/types.h TextureDesc / TextureLevel, RGBA half texels) under a byte budget.
+// Reads Scene::materials' albedoTexture / alphaTexture; writes SceneTextures.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "kernels/shared/types.h"
+#include "scene/scene.h"
+
+namespace montecl {
+
+// The automatic texture budget (--texture-budget 0): at most this, and at most the device's
+// largest allocation (the texels are one buffer).
+constexpr std::uint64_t kDefaultTextureBudget = 1024ull << 20;
+
+// A material's textures: indices into SceneTextures::textures (MCL_NO_TEXTURE: none) and the
+// channel of the alpha texture holding alpha (3 when the file has an alpha channel, else 0).
+struct MaterialTextures {
+  std::uint32_t albedo = MCL_NO_TEXTURE;
+  std::uint32_t alpha = MCL_NO_TEXTURE;
+  std::uint32_t alphaChannel = 0;
+};
+
+struct SceneTextures {
+  std::vector<TextureDesc> textures;
+  std::vector<TextureLevel> levels;
+  std::vector<std::uint16_t> texels;    // RGBA half floats, 4 per texel
+  std::vector<std::string> files;       // textures[i] was read from files[i]
+  std::vector<MaterialTextures> materials;  // one per Scene::materials entry
+  std::uint64_t bytes() const { return texels.size() * sizeof(std::uint16_t); }
+  bool anyAlpha() const;
+};
+
+// True when a material of scene names a texture.
+bool sceneHasTextures(const Scene& scene);
+
+// Loads the textures of scene's materials. A file used both as colour and as an alpha texture
+// without an alpha channel is loaded twice (sRGB-decoded, and linear for alpha); otherwise once.
+// Over budget, the finest levels are dropped (one warning naming the textures). Throws InputError
+// "<texture file>: material '<name>' <map_Kd|map_d>: cannot read image: <reason>".
+SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes,
+                                std::vector<std::string>& warnings);
+
+// tris (BVH order) with MCL_ATTR_ALPHA set in e2.w on every triangle whose material has an alpha
+// texture (the traversals test only those); empty when no material has one.
+std::vector<Triangle> alphaFlaggedTriangles(const std::vector<Triangle>& tris, const SceneTextures& textures);
+
+// Writes the texture indices and alpha channel of textures.materials[i] into device material i
+// (kernels/shared/types.h Material: albedo.w, alpha.x, alpha.z).
+void setTextureIndices(std::vector<Material>& materials, const SceneTextures& textures);
+
+// Packs already decoded level-0 images (files names them in messages) the same way: what
+// loadSceneTextures does after reading; for tests.
+struct RgbaImage;
+void packTextures(SceneTextures& out, std::vector<RgbaImage> images, std::uint64_t budgetBytes,
+                  std::vector<std::string>& warnings);
+
+// Float -> half (round to nearest even) and back, as the device's vload_half reads it.
+std::uint16_t floatToHalf(float f);
+float halfToFloat(std::uint16_t h);
+
+}  // namespace montecl

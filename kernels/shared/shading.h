@@ -1,0 +1,90 @@
+// shading.h: shading normals and the below-geometric-surface rule (issue 11 §1). Pure functions of
+// their arguments; compiled by the kernels, the host backend and the host tests.
+//
+// At a hit, the geometric normal ng (the triangle's, flipped to face the incoming ray) keeps every
+// geometric job: ray-origin offsets, emitter sides, and the side test below. The shading normal ns
+// is the corner normals interpolated by barycentrics and normalised, flipped onto ng's side (so a
+// file whose normals disagree with its winding shades the same); without normals ns = ng. The rule:
+// - Cosines (Lambert, the AO estimator) are taken against ns; hemispheres (AO uniform and cosine,
+//   BRDF sampling) are built around ns.
+// - A direction below the geometric surface (dot(ng, w) <= 0) would leave through the surface:
+//   a light or emitter direction there contributes zero (no light leaks through a surface).
+// - A sampled direction that falls below the geometric surface is mirrored across the geometric
+//   tangent plane (fold_above), so no sample is lost to the surface it left: a smooth convex object
+//   in open space has AO exactly 1 (no dark rings at shading/geometry mismatch), and every ray that
+//   is traced leaves above the surface (no leaks). The BRDF pdf is that of the folded lobe
+//   (pdf_cosine_folded), so light and BRDF sampling estimate the same integral under MIS.
+// SurfaceFrame bundles a hit's position, ng, ns and whether ns came from normals (`smooth`); the
+// frame_* functions apply the rule, and reduce to the flat formulas exactly when smooth is 0, so
+// scenes without normals render bit-identically to before.
+#pragma once
+#include "sampling.h"
+
+typedef struct {
+  float3 p;    // hit position (barycentric)
+  float3 ng;   // geometric normal facing the incoming ray
+  float3 ns;   // shading normal on ng's side (ng when the triangle has no normals)
+  int smooth;  // 1 when ns came from the triangle's corner normals
+} SurfaceFrame;
+
+// Corner normals n0, n1, n2 at barycentrics (1 - u - v, u, v), normalised; the zero vector when the
+// blend is no usable direction (zero, e.g. opposite corners, or non-finite).
+MCL_INLINE float3 interpolate_normal(float3 n0, float3 n1, float3 n2, float u, float v) {
+  float3 n = n0 * (1.0f - u - v) + n1 * u + n2 * v;
+  float len2 = dot(n, n);
+  if (!(len2 > 1e-20f && len2 < INFINITY)) return make_float3(0.0f, 0.0f, 0.0f);
+  return n * (1.0f / sqrt(len2));
+}
+
+// ns flipped onto the side of ng.
+MCL_INLINE float3 orient_to(float3 ns, float3 ng) { return dot(ns, ng) < 0.0f ? -ns : ns; }
+
+// 1 when w leaves above the geometric surface (strictly).
+MCL_INLINE int above_surface(float3 ng, float3 w) { return dot(ng, w) > 0.0f; }
+
+// w mirrored across the plane of ng when it points below it; unchanged otherwise.
+MCL_INLINE float3 fold_above(float3 w, float3 ng) {
+  float d = dot(w, ng);
+  return d < 0.0f ? w - ng * (2.0f * d) : w;
+}
+
+// The Lambert cosine for direction wi: dot(ns, wi), zero below the geometric surface or below ns.
+MCL_INLINE float shading_cosine(float3 ns, float3 ng, float3 wi) {
+  return above_surface(ng, wi) ? fmax(dot(ns, wi), 0.0f) : 0.0f;
+}
+
+// Solid-angle pdf of wi under cosine sampling around ns folded above ng: the lobe's density at wi
+// plus at wi's mirror image (which folding maps onto wi); zero below the geometric surface.
+MCL_INLINE float pdf_cosine_folded(float3 ns, float3 ng, float3 wi) {
+  if (!above_surface(ng, wi)) return 0.0f;
+  float3 mirror = wi - ng * (2.0f * dot(wi, ng));
+  return pdf_cosine_hemisphere(dot(ns, wi)) + pdf_cosine_hemisphere(dot(ns, mirror));
+}
+
+// Texture coordinates at barycentrics (1 - u - v, u, v) from the corners' (u, v) pairs.
+MCL_INLINE float2 interpolate_uv(float2 t0, float2 t1, float2 t2, float u, float v) {
+  return t0 * (1.0f - u - v) + t1 * u + t2 * v;
+}
+
+// --- the rule on a SurfaceFrame (smooth == 0: exactly the flat formulas) ---------------------
+
+// A direction sampled in the local frame around ns (z along ns), in world space, folded above ng.
+MCL_INLINE float3 frame_sample_direction(SurfaceFrame s, float3 dirLocal) {
+  float3 w = to_world(dirLocal, s.ns);
+  return s.smooth ? fold_above(w, s.ng) : w;
+}
+// The Lambert cosine of wi (may be <= 0 when flat: callers skip non-positive cosines).
+MCL_INLINE float frame_cosine(SurfaceFrame s, float3 wi) {
+  return s.smooth ? shading_cosine(s.ns, s.ng, wi) : dot(s.ng, wi);
+}
+// The pdf of frame_sample_direction(s, sample_cosine_hemisphere(...)) at wi.
+MCL_INLINE float frame_pdf_cosine(SurfaceFrame s, float3 wi) {
+  return s.smooth ? pdf_cosine_folded(s.ns, s.ng, wi) : pdf_cosine_hemisphere(dot(s.ng, wi));
+}
+// f cos / p of a Lambertian surface of albedo 1 for a direction from cosine sampling: 1 when flat;
+// with folding, cos_s(wi) / (pi pdf) <= 1.
+MCL_INLINE float frame_cosine_weight(SurfaceFrame s, float3 wi) {
+  if (!s.smooth) return 1.0f;
+  float pdf = pdf_cosine_folded(s.ns, s.ng, wi);
+  return pdf > 0.0f ? shading_cosine(s.ns, s.ng, wi) * MCL_INV_PI / pdf : 0.0f;
+}

@@ -1,0 +1,69 @@
+// surface_texture.h: textures at a triangle hit: its UVs (the per-triangle attribute buffer,
+// TriangleShading, when the triangle has MCL_ATTR_UV; (0, 0) otherwise), the albedo Kd x texture
+// with a ray-cone footprint, and the alpha test of cut-out materials that every traversal applies
+// (a hit whose alpha is below the material's cutoff does not exist). Pure; compiled by the kernels,
+// the host backend and the host tests.
+#pragma once
+#include "geometry.h"
+#include "texture.h"
+
+// Texture coordinates of triangle tri (attributes sh) at barycentrics (u, v) of v1 and v2.
+MCL_INLINE float2 surface_uv(MCL_GLOBAL const Triangle* tri, MCL_GLOBAL const TriangleShading* sh, float u, float v) {
+  if (!(as_uint(tri->e2.w) & MCL_ATTR_UV)) return make_float2(0.0f, 0.0f);
+  float w = 1.0f - u - v;
+  return make_float2(sh->n0.w * w + sh->n1.w * u + sh->n2.w * v, sh->tv.x * w + sh->tv.y * u + sh->tv.z * v);
+}
+
+// Area of the triangle's UV image (0 without UVs).
+MCL_INLINE float uv_area(MCL_GLOBAL const Triangle* tri, MCL_GLOBAL const TriangleShading* sh) {
+  if (!(as_uint(tri->e2.w) & MCL_ATTR_UV)) return 0.0f;
+  float a = (sh->n1.w - sh->n0.w) * (sh->tv.z - sh->tv.x) - (sh->n2.w - sh->n0.w) * (sh->tv.y - sh->tv.x);
+  return 0.5f * fabs(a);
+}
+
+// Albedo at a hit seen along unit direction dir by a ray cone of width coneWidth there:
+// Kd x the albedo texture's colour (trilinear, footprint from the cone), or Kd without one.
+MCL_INLINE float3 hit_albedo(TextureTables tt, Material m, MCL_GLOBAL const Triangle* tri,
+                             MCL_GLOBAL const TriangleShading* sh, Hit h, float3 dir, float coneWidth) {
+  float3 kd = xyz(m.albedo);
+  uint tex = as_uint(m.albedo.w);
+  if (tex == MCL_NO_TEXTURE) return kd;
+  float2 uv = surface_uv(tri, sh, h.u, h.v);
+  float3 n = triangle_unit_normal(xyz(tri->e1), xyz(tri->e2));
+  float fp = texture_footprint(coneWidth, uv_area(tri, sh), triangle_area_of(xyz(tri->e1), xyz(tri->e2)), dot(n, dir));
+  return kd * xyz(texture_sample(tt, tex, uv.x, uv.y, fp));
+}
+
+MCL_INLINE TextureTables make_texture_tables(MCL_GLOBAL const TextureDesc* textures,
+                                             MCL_GLOBAL const TextureLevel* levels, MCL_GLOBAL const ushort* texels) {
+  TextureTables tt;
+  tt.textures = textures;
+  tt.levels = levels;
+  tt.texels = texels;
+  return tt;
+}
+
+// What the alpha test reads. Traversals take a pointer to one; a null pointer: every hit exists.
+typedef struct AlphaScene {
+  MCL_GLOBAL const Material* materials;
+  MCL_GLOBAL const TriangleShading* shading;
+  TextureTables tex;
+} AlphaScene;
+
+MCL_INLINE AlphaScene make_alpha_scene(MCL_GLOBAL const Material* materials, MCL_GLOBAL const TriangleShading* shading,
+                                       TextureTables tt) {
+  AlphaScene s;
+  s.materials = materials;
+  s.shading = shading;
+  s.tex = tt;
+  return s;
+}
+
+// 0 when triangle i of tris is alpha-tested (MCL_ATTR_ALPHA) and its material's alpha at (u, v)
+// is below the cutoff: the hit does not exist. Deterministic: the finest level kept, bilinear.
+MCL_INLINE int alpha_hit_exists(const AlphaScene* a, MCL_GLOBAL const Triangle* tris, uint i, float u, float v) {
+  if (!a || !(as_uint(tris[i].e2.w) & MCL_ATTR_ALPHA)) return 1;
+  Material m = a->materials[as_uint(tris[i].v0.w)];
+  float2 uv = surface_uv(&tris[i], &a->shading[i], u, v);
+  return alpha_value(a->tex, m, uv.x, uv.y) >= m.alpha.y;
+}
