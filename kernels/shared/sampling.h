@@ -25,6 +25,21 @@ MCL_INLINE float3 sample_cosine_hemisphere(float u1, float u2) {
 }
 MCL_INLINE float pdf_cosine_hemisphere(float cosTheta) { return fmax(cosTheta, 0.0f) * MCL_INV_PI; }
 
+// Uniform on the unit disk (Shirley and Chiu's concentric map): p = 1 / pi per unit area.
+MCL_INLINE float2 sample_concentric_disk(float u1, float u2) {
+  float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
+  if (a == 0.0f && b == 0.0f) return make_float2(0.0f, 0.0f);
+  float r, phi;
+  if (fabs(a) > fabs(b)) {
+    r = a;
+    phi = (MCL_PI / 4.0f) * (b / a);
+  } else {
+    r = b;
+    phi = (MCL_PI / 2.0f) - (MCL_PI / 4.0f) * (a / b);
+  }
+  return make_float2(r * cos(phi), r * sin(phi));
+}
+
 // Tangent frame (t, b, n) for a unit normal n, branchless and continuous except at n.z = -1
 // (Duff et al., "Building an Orthonormal Basis, Revisited", JCGT 2017).
 MCL_INLINE void make_basis(float3 n, float3* t, float3* b) {
