@@ -237,13 +237,8 @@ TEST_CASE("path: images are bit-identical for any wave size and work-group size,
   for (std::uint64_t wave : {0ull, 53ull}) {
     o.waveSize = wave;
     Film host = render(s, o, "host");
-    CHECK_MESSAGE(sameFilm(render(s, o, "host"), host), "host backend, wave size " << wave);
-    double worst = 0.0;  // across devices: equal within float rounding (montecl conformance)
-    for (std::size_t p = 0; p < host.mean.size(); ++p)
-      for (int c = 0; c < 3; ++c)
-        worst = std::max(worst, std::fabs(host.meanOf(p, c) - reference.meanOf(p, c)) /
-                                    std::max(1e-3, std::fabs(reference.meanOf(p, c))));
-    CHECK_MESSAGE(worst <= 1e-4, "host vs OpenCL, wave size " << wave << ": " << worst);
+    // Across devices too: the path's directions use no built-in sin/cos (sampling.h, portable).
+    CHECK_MESSAGE(sameFilm(reference, host), "host backend vs OpenCL, wave size " << wave);
   }
 }
 

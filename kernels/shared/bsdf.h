@@ -34,7 +34,7 @@ MCL_INLINE float bsdf_pdf(Bsdf b, float3 n, float3 wo, float3 wi) {
 // Samples wi from (u1, u2); writes it and its pdf, returns f * cos / pdf (0 when pdf is 0).
 MCL_INLINE float3 bsdf_sample(Bsdf b, float3 n, float3 wo, float u1, float u2, float3* wi, float* pdf) {
   (void)wo;
-  float3 dirLocal = sample_cosine_hemisphere(u1, u2);
+  float3 dirLocal = sample_cosine_hemisphere_portable(u1, u2);
   *wi = to_world(dirLocal, n);
   *pdf = pdf_cosine_hemisphere(dirLocal.z);
   return *pdf > 0.0f ? b.kd : make_float3(0.0f, 0.0f, 0.0f);  // (Kd / pi) cos / (cos / pi)
