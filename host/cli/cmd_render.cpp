@@ -43,7 +43,7 @@ struct RenderArgs {
   std::optional<AoSampling> aoSampling;
   std::optional<DirectSampling> directSampling;
   std::string bvhLayout = "auto";
-  std::optional<int> spp, width, height, lightSamples;
+  std::optional<int> spp, width, height, lightSamples, maxDepth, rrDepth;
   std::optional<std::uint32_t> seed;
   std::optional<float> aoDistance;
   std::optional<double> textureBudgetMiB;  // --texture-budget; unset: automatic
@@ -68,6 +68,8 @@ void applyOverrides(const RenderArgs& a, Scene& scene) {
   if (a.aoDistance) r.aoDistance = *a.aoDistance;
   if (a.directSampling) r.directSampling = *a.directSampling;
   if (a.lightSamples) r.lightSamples = *a.lightSamples;
+  if (a.maxDepth) r.maxDepth = *a.maxDepth;
+  if (a.rrDepth) r.rrDepth = *a.rrDepth;
 }
 
 // Set by SIGINT or SIGTERM while rendering (to the signal number): the wave loop stops after the
@@ -163,10 +165,12 @@ int runRender(const RenderArgs& a) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - textureStart).count();
   for (const std::string& w : textureWarnings) std::cerr << "montecl: warning: " << scene.path << ": " << w << "\n";
   Bvh bvh = buildBvh(scene.triangles);
-  if (scene.render.integrator == Integrator::Direct && !hasEmitter(scene))
-    std::cerr << "montecl: warning: " << scene.path << ": integrator direct but nothing emits (no Ke, no mesh "
+  const bool lit = scene.render.integrator == Integrator::Direct || scene.render.integrator == Integrator::Path;
+  if (lit && !hasEmitter(scene))
+    std::cerr << "montecl: warning: " << scene.path << ": integrator " << choiceName(scene.render.integrator)
+              << " but nothing emits (no Ke, no mesh "
               << "\"emission\"): the image is black\n";
-  else if (scene.render.integrator == Integrator::Direct && !emittersFaceAnything(scene))
+  else if (lit && !emittersFaceAnything(scene))
     std::cerr << "montecl: warning: " << scene.path << ": no emitter's front face faces any surface (emitters "
               << "light from the side of cross(v1 - v0, v2 - v0)): only the emitters will show; flip their "
               << "winding or set \"two_sided_emission\": true on the mesh\n";
@@ -269,10 +273,16 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--width", args->width, "Image width in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
   cmd->add_option("--height", args->height, "Image height in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
   addChoiceOption(cmd, "--integrator", args->integrator, integratorNames(),
-                  "ao (ambient occlusion) or direct (area lights)");
+                  "ao (ambient occlusion), direct (area lights) or path (path tracing)");
   addChoiceOption(cmd, "--direct-sampling", args->directSampling, directSamplingNames(), "Direct lighting");
   cmd->add_option("--light-samples", args->lightSamples, "Light samples per camera sample (direct; up to 1024)")
       ->check(positiveInteger(kMaxLightSamples));
+  cmd->add_option("--max-depth", args->maxDepth,
+                  "Path: longest path in segments, Mitsuba's convention: -1 unlimited (default), 1 emitters "
+                  "seen directly, 2 direct lighting, 3 one indirect bounce, ...")
+      ->check(maxDepthValue());
+  cmd->add_option("--rr-depth", args->rrDepth, "Path: Russian roulette from this depth on (default 5)")
+      ->check(positiveInteger());
   addChoiceOption(cmd, "--ao-sampling", args->aoSampling, aoSamplingNames(), "AO directions");
   cmd->add_option("--ao-distance", args->aoDistance, "Occluders farther than this are ignored")
       ->check(positiveNumber(std::numeric_limits<float>::max()));

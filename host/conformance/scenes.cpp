@@ -60,6 +60,15 @@ Scene withDirect(Scene s, DirectSampling strategy, int lightSamples) {
   return s;
 }
 
+// Path tracing, unlimited depth unless given, Russian roulette from depth 2 (so the set exercises it).
+Scene withPath(Scene s, int lightSamples, int maxDepth = -1) {
+  s.render.integrator = Integrator::Path;
+  s.render.lightSamples = lightSamples;
+  s.render.maxDepth = maxDepth;
+  s.render.rrDepth = 2;
+  return s;
+}
+
 }  // namespace
 
 std::string defaultCornellPath() {
@@ -86,6 +95,11 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   finishScene(sphere);
   cases.push_back({"smooth-sphere/direct-mis", withDirect(sphere, DirectSampling::Mis, 2)});
   cases.push_back({"smooth-sphere/ao-uniform", withAo(sphere, AoSampling::Uniform)});
+  cases.push_back({"polygon-light/path", withPath(light, 2)});
+  Scene lens = withPath(light, 1, 3);
+  lens.camera.apertureRadius = 0.05f;
+  lens.camera.focusDistance = 1.5f;
+  cases.push_back({"polygon-light/path-depth-3-thin-lens", lens});
 
   const std::string path = o.cornellPath.empty() ? defaultCornellPath() : o.cornellPath;
   if (!std::ifstream(path)) {
@@ -100,6 +114,7 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   cases.push_back({"cornell-box/direct-light", withDirect(cornell, DirectSampling::Light, 1)});
   cases.push_back({"cornell-box/direct-mis", withDirect(cornell, DirectSampling::Mis, 1)});
   cases.push_back({"cornell-box/ao-cosine", withAo(cornell, AoSampling::Cosine)});
+  cases.push_back({"cornell-box/path", withPath(cornell, 1)});
   return cases;
 }
 
