@@ -149,10 +149,11 @@ int runRender(const RenderArgs& a) {
   BvhLayout layout = resolveStageLayout(parseBvhLayout(a.bvhLayout), device);
 
   Bvh bvh = buildBvh(scene.triangles);
-  if (scene.render.integrator == Integrator::Direct && !hasEmitter(scene))
+  const bool areaLightsOnly = scene.render.integrator == Integrator::Direct && !scene.environment.enabled;
+  if (areaLightsOnly && !hasEmitter(scene))
     std::cerr << "montecl: warning: " << scene.path << ": integrator direct but nothing emits (no Ke, no mesh "
               << "\"emission\"): the image is black\n";
-  else if (scene.render.integrator == Integrator::Direct && !emittersFaceAnything(scene))
+  else if (areaLightsOnly && !emittersFaceAnything(scene))
     std::cerr << "montecl: warning: " << scene.path << ": no emitter's front face faces any surface (emitters "
               << "light from the side of cross(v1 - v0, v2 - v0)): only the emitters will show; flip their "
               << "winding or set \"two_sided_emission\": true on the mesh\n";

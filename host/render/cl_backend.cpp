@@ -36,6 +36,8 @@ class ClStageRunner final : public StageRunner {
     b.tris = {cl_.upload(in.bvh->triangles)};
     b.materials = {cl_.upload(in.materials)};
     b.emitters = {cl_.upload(in.emitters)};
+    b.envMap = {cl_.upload(in.envMap)};
+    b.envCdf = {cl_.upload(in.envCdf)};
     std::vector<cl_uint> all(pixels_);
     for (std::uint64_t p = 0; p < pixels_; ++p) all[p] = cl_uint(p);
     b.active = {cl_.upload(all, CL_MEM_READ_WRITE)};

@@ -31,6 +31,8 @@ class HostStageRunner final : public StageRunner {
     tris_ = in.bvh->triangles;
     materials_ = in.materials;
     emitters_ = in.emitters;
+    envMap_ = in.envMap;
+    envCdf_ = in.envCdf;
     if (materials_.empty()) materials_.resize(1);
     if (emitters_.empty()) emitters_.resize(1);
     if (tris_.empty()) tris_.resize(1);
@@ -112,6 +114,8 @@ class HostStageRunner final : public StageRunner {
     b.tris = tris_.data();
     b.materials = materials_.data();
     b.emitters = emitters_.data();
+    b.envMap = envMap_.data();
+    b.envCdf = envCdf_.data();
     b.active = active_.data();
     b.rays = rays_.data();
     b.bounce = bounce_.data();
@@ -141,6 +145,8 @@ class HostStageRunner final : public StageRunner {
   std::vector<Triangle> tris_;
   std::vector<Material> materials_;
   std::vector<Emitter> emitters_;
+  std::vector<float4> envMap_;
+  std::vector<float> envCdf_;
   std::vector<Ray> rays_, bounce_;
   std::vector<Hit> hits_, bounceHits_;
   std::vector<float4> radiance_, shadowContrib_, mean_, meanLo_, m2_, m2Lo_;

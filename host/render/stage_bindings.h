@@ -44,6 +44,8 @@ struct StageBindings {
   Array<Triangle> tris;
   Array<Material> materials;
   Array<Emitter> emitters;
+  Array<float4> envMap;  // environment texels (kernels/shared/environment.h)
+  Array<float> envCdf;   // its marginal and conditional CDFs
   Array<uint> active;  // the active-pixel list
   // Per wave item.
   Array<Ray> rays, bounce;

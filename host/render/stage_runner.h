@@ -21,6 +21,8 @@ struct StageInputs {
   const Bvh* bvh = nullptr;
   std::vector<Material> materials;
   std::vector<Emitter> emitters;
+  std::vector<float4> envMap{float4(0.0f)};  // environment texels and CDFs (never empty)
+  std::vector<float> envCdf{0.0f};
   std::uint64_t wave = 0;    // wave items (pixel samples) per wave
   bool direct = false;       // direct lighting: bounce buffers are needed
   bool aovs = false;         // record first-hit albedo, normal and depth (record_aov, accumulate_aov)

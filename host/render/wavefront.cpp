@@ -9,8 +9,10 @@
 #include <cmath>
 #include <iostream>
 
+#include "kernels/shared/microfacet.h"
 #include "render/stage_runner.h"
 #include "render/emitters.h"
+#include "render/environment_table.h"
 #include "render/frame_params.h"
 #include "render/memory_check.h"
 #include "scene/camera_basis.h"
@@ -52,7 +54,7 @@ std::vector<Material> deviceMaterials(const std::vector<MaterialDesc>& materials
     Material d{};
     d.albedo = glm::vec4(m.albedo, noTexture);
     d.emission = glm::vec4(m.emission, m.twoSidedEmission ? 1.0f : 0.0f);
-    d.specular = glm::vec4(0.0f);
+    d.specular = glm::vec4(m.specular, ggx_alpha_from_ns(m.specularExponent));
     d.alpha = glm::vec4(noTexture, m.alphaCutoff, glm::uintBitsToFloat(0u), 0.0f);
     out.push_back(d);
   }
@@ -75,6 +77,8 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   const EmitterTable emitters = direct ? buildEmitterTable(bvh, scene.materials) : EmitterTable{};
   frame.emitterCount = uint(emitters.emitters.size());
   frame.emitterPower = emitters.totalPower;
+  EnvironmentTable environment = buildEnvironment(scene, frame);  // read (and checked) for any integrator
+  if (!direct) frame.environment = float4(0.0f), frame.envWidth = frame.envHeight = 0;  // AO: background only
   const std::uint64_t pixels = std::uint64_t(frame.width) * frame.height;
   const std::uint64_t total = pixels * std::uint64_t(scene.render.spp);
 
@@ -100,6 +104,8 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   inputs.bvh = &bvh;
   inputs.materials = deviceMaterials(scene.materials);
   inputs.emitters = emitters.emitters;
+  inputs.envMap = std::move(environment.map);
+  inputs.envCdf = std::move(environment.cdf);
   inputs.wave = wave;
   inputs.direct = direct;
   inputs.aovs = m.options.aovs;

@@ -16,6 +16,7 @@
 #include <set>
 #include <sstream>
 
+#include "scene/glossy_material.h"
 #include "scene/scene.h"
 #include "util/errors.h"
 
@@ -324,8 +325,9 @@ bool validColor(const glm::vec3& c) {
 
 // Appends the OBJ's materials; returns the index of the first.
 std::uint32_t appendMaterials(const std::string& file, const std::vector<tinyobj::material_t>& mats,
-                              Scene& scene) {
+                              Scene& scene, std::vector<std::string>* warnings) {
   auto base = static_cast<std::uint32_t>(scene.materials.size());
+  GlossyScaling scaled;
   for (const tinyobj::material_t& m : mats) {
     MaterialDesc d;
     d.name = m.name;
@@ -333,8 +335,12 @@ std::uint32_t appendMaterials(const std::string& file, const std::vector<tinyobj
     d.emission = toVec3(m.emission);
     if (!validColor(d.albedo)) fail(file, "material '" + oneLine(m.name, 60) + "'", "Kd must be finite and >= 0");
     if (!validColor(d.emission)) fail(file, "material '" + oneLine(m.name, 60) + "'", "Ke must be finite and >= 0");
+    d.specular = toVec3(m.specular);  // Ks, Ns: the glossy lobe (issue 12)
+    d.specularExponent = m.shininess;
+    scaled.note(oneLine(m.name, 60), checkGlossyMaterial(oneLine(file, 4096), "material '" + oneLine(m.name, 60) + "'", d));
     scene.materials.push_back(d);
   }
+  scaled.warn(oneLine(file, 4096), warnings);
   return base;
 }
 
@@ -420,7 +426,7 @@ void loadObjInto(const std::string& objPath, Scene& scene, std::vector<std::stri
   scene.inputFiles.insert(scene.inputFiles.end(), data.mtlFiles.begin(), data.mtlFiles.end());
   std::size_t trianglesBefore = scene.triangles.size();
   std::size_t droppedBefore = scene.degenerateDropped;
-  std::uint32_t materialBase = appendMaterials(objPath, data.materials, scene);
+  std::uint32_t materialBase = appendMaterials(objPath, data.materials, scene, warnings);
   appendTriangles(objPath, data, materialBase, scene);
   if (scene.triangles.size() == trianglesBefore)
     fail(objPath, "", "no triangles (" + std::to_string(scene.degenerateDropped - droppedBefore) +

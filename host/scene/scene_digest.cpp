@@ -37,6 +37,17 @@ std::string sceneDigest(const Scene& scene) {
   for (const MaterialDesc& m : scene.materials) {
     appendVec(bytes, m.albedo);
     appendVec(bytes, m.emission);
+    if (m.specular != glm::vec3(0.0f)) {  // glossy lobe (Lambert-only scenes keep their digest)
+      appendVec(bytes, m.specular);
+      append(bytes, &m.specularExponent, sizeof m.specularExponent);
+    }
+  }
+  if (scene.environment.enabled) {  // the map by its path (its pixels are not hashed)
+    const EnvironmentDesc& e = scene.environment;
+    bytes += "environment" + e.file;
+    appendVec(bytes, e.radiance);
+    append(bytes, &e.scale, sizeof e.scale);
+    append(bytes, &e.rotateYDegrees, sizeof e.rotateYDegrees);
   }
   bytes += "camera";
   appendVec(bytes, scene.camera.position);

@@ -16,6 +16,7 @@
 #include <limits>
 
 #include "scene/camera_basis.h"
+#include "scene/environment_key.h"
 #include "scene/scene.h"
 #include "util/errors.h"
 
@@ -408,12 +409,16 @@ Scene loadScene(const std::string& path, std::vector<std::string>& warnings) {
   Ctx ctx{path, warnings};
   json root = parseJson(ctx, readSceneText(ctx));
   requireObject(ctx, root, "(top level)");
-  warnUnknownKeys(ctx, root, "", {"camera", "meshes", "render"});
+  warnUnknownKeys(ctx, root, "", {"camera", "meshes", "render", "environment"});
   Scene scene;
   scene.path = path;
   scene.inputFiles.push_back(path);
   scene.camera = parseCamera(ctx, root);
   scene.render = parseRender(ctx, root);
+  if (const json* env = optionalKey(root, "environment")) {
+    scene.environment = parseEnvironmentKey(path, *env, warnings);
+    if (!scene.environment.file.empty()) scene.inputFiles.push_back(scene.environment.file);
+  }
   loadMeshes(parseMeshes(ctx, root), scene, warnings);
   checkEmissionPower(scene);
   return scene;

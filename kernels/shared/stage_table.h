@@ -45,13 +45,15 @@
   ARG(MCL_GLOBAL const Emitter*, emitters) ARG(MCL_GLOBAL const Ray*, rays)                        \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL float4*, radiance)                               \
   ARG(MCL_GLOBAL float4*, shadowContrib) ARG(MCL_GLOBAL ShadowWork*, queue)                        \
-  ARG(MCL_GLOBAL volatile uint*, queueCount) ARG(MCL_GLOBAL Ray*, bounce)
+  ARG(MCL_GLOBAL volatile uint*, queueCount) ARG(MCL_GLOBAL Ray*, bounce)                        \
+  ARG(MCL_GLOBAL const float4*, envMap) ARG(MCL_GLOBAL const float*, envCdf)
 
 #define MCL_ARGS_shade_direct_hit(ARG)                                                             \
   ARG(uint, waveCount) ARG(MCL_GLOBAL const Triangle*, tris)                                       \
   ARG(MCL_GLOBAL const Material*, materials) ARG(MCL_GLOBAL const Ray*, rays)                      \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL const Ray*, bounce)                              \
-  ARG(MCL_GLOBAL const Hit*, bounceHits) ARG(MCL_GLOBAL float4*, shadowContrib)
+  ARG(MCL_GLOBAL const Hit*, bounceHits) ARG(MCL_GLOBAL float4*, shadowContrib)                   \
+  ARG(MCL_GLOBAL const float4*, envMap)
 
 #define MCL_ARGS_intersect_shadow(ARG)                                                             \
   ARG(MCL_GLOBAL const BvhTraversalNode*, nodes) ARG(MCL_GLOBAL const Triangle*, tris)             \

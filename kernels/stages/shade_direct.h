@@ -1,11 +1,13 @@
-// shade_direct: reads camera rays, hits, materials and the emitter table; for camera item i writes
-// radiance[i] (background, or Le seen directly), pushes K light-sample occlusion queries onto the
-// shadow queue (light / mis) and writes the BRDF ray bounce[i] (brdf / mis; otherwise an empty
-// ray with tmax < 0). Lambertian surfaces (f = Kd / pi), geometric normal facing the incoming ray.
-// Shadow slots per sample: [0, K) light samples, K the BRDF sample (shade_direct_hit); each
+// shade_direct: reads camera rays, hits, materials, the emitter table and the environment; for
+// camera item i writes radiance[i] (on a miss the environment, or the background without one;
+// else Le seen directly), pushes K light-sample occlusion queries onto the shadow queue (light /
+// mis; lights: the environment and emitter triangles, stages/direct_light.h) and writes the BSDF
+// ray bounce[i] (brdf / mis; otherwise an empty ray with tmax < 0). Surfaces: Lambert (Kd) + GGX
+// (Ks, alpha) (shared/bsdf.h) around the geometric normal facing the incoming ray.
+// Shadow slots per sample: [0, K) light samples, K the BSDF sample (shade_direct_hit); each
 // strategy leaves the slots it does not use at 0.
 #pragma once
-#include "stage_common.h"
+#include "direct_light.h"
 
 MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   if (i >= a->waveCount) return;
@@ -13,40 +15,34 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   Hit h = a->hits[i];
   a->bounce[i].origin = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
   a->bounce[i].dir = make_float4(0.0f, 0.0f, 1.0f, -1.0f);  // no BRDF ray unless written below
-  if (!shade_begin(f, h, i, a->radiance, a->shadowContrib)) return;
+  if (!shade_begin(f, h, i, a->radiance, a->shadowContrib)) {
+    if (env_present(f)) a->radiance[i] = with_w(env_radiance(f, a->envMap, xyz(a->rays[i].dir)), 0.0f);
+    return;
+  }
   MCL_GLOBAL const Triangle* tris = a->tris;
   MCL_GLOBAL const Material* materials = a->materials;
   float3 dir = xyz(a->rays[i].dir);
   MCL_GLOBAL const Triangle* tri = &tris[h.tri];
   a->radiance[i] = with_w(emitted_toward(tri, materials, dir), 0.0f);
   float3 n = facing_normal(tri, dir);
-  float3 albedo = xyz(materials[triangle_material(tri)].albedo);
+  float3 wo = -dir;
+  Bsdf bsdf = bsdf_from_material(&materials[triangle_material(tri)]);
   float3 origin = offset_ray_origin(hit_position(tri, h), n, f->offsetScale);
   uint pixel = item_pixel(f, a->active, a->waveStart, i), sample = item_sample(f, a->waveStart, i);
   float nLight = (float)f->lightSamples;
-  bool useLight = f->directSampling != MCL_DIRECT_BRDF && f->emitterCount > 0;
+  bool useLight = f->directSampling != MCL_DIRECT_BRDF && (f->emitterCount > 0 || env_present(f));
   bool useBrdf = f->directSampling != MCL_DIRECT_LIGHT;
 
   for (uint k = 0; useLight && k < f->lightSamples; ++k) {
     float4 u = rng_uniform4(f->seed, pixel, sample, MCL_DIM_LIGHT + k);
-    MCL_GLOBAL const Emitter* em = &a->emitters[pick_emitter(a->emitters, f->emitterCount, u.x)];
-    MCL_GLOBAL const Triangle* lt = &tris[em->tri];
-    float3 le = xyz(materials[triangle_material(lt)].emission);
-    float3 p = sample_triangle(xyz(lt->v0), xyz(lt->e1), xyz(lt->e2), u.y, u.z);
-    float3 toLight = p - origin;
-    float dist2 = dot(toLight, toLight);
-    float dist = sqrt(dist2);
-    float3 wi = toLight / dist;
-    float cosLight = emitter_cosine(lt, materials, wi);
-    float cosSurf = dot(n, wi);
-    if (!(cosLight > 0.0f && cosSurf > 0.0f && dist > 0.0f)) continue;
-    float pick = emitter_pick_probability(em->area, le, f->emitterPower);
-    float pdfLight = area_to_solid_angle(pick / em->area, dist2, cosLight);
-    float weight = useBrdf ? power_heuristic(nLight, pdfLight, 1.0f, pdf_cosine_hemisphere(cosSurf)) : 1.0f;
-    float3 c = albedo * MCL_INV_PI * le * (cosSurf * weight / (pdfLight * nLight));
+    LightSample ls = sample_direct_light(f, tris, materials, a->emitters, a->envMap, a->envCdf, origin, u);
+    float cosSurf = dot(n, ls.wi);
+    if (!(ls.pdf > 0.0f && cosSurf > 0.0f)) continue;
+    float weight = useBrdf ? power_heuristic(nLight, ls.pdf, 1.0f, bsdf_pdf(bsdf, n, wo, ls.wi)) : 1.0f;
+    float3 c = bsdf_f(bsdf, n, wo, ls.wi) * ls.le * (cosSurf * weight / (ls.pdf * nLight));
     ShadowWork w;
     w.ray.origin = with_w(origin, 0.0f);
-    w.ray.dir = with_w(wi, dist * (1.0f - 1e-4f));
+    w.ray.dir = with_w(ls.wi, ls.tmax);
     w.r = c.x;
     w.g = c.y;
     w.b = c.z;
@@ -55,7 +51,9 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   }
   if (useBrdf) {
     float4 u = rng_uniform4(f->seed, pixel, sample, MCL_DIM_BRDF);
+    BsdfSample bs = bsdf_sample(bsdf, n, wo, u.x, u.y, u.z);
+    if (bsdf.specProb != 0.0f && !(bs.pdf > 0.0f)) return;  // absorbed (Lambert: always a direction)
     a->bounce[i].origin = with_w(origin, 0.0f);
-    a->bounce[i].dir = with_w(to_world(sample_cosine_hemisphere(u.x, u.y), n), INFINITY);
+    a->bounce[i].dir = with_w(bs.wi, INFINITY);
   }
 }
