@@ -5,6 +5,7 @@
 // importance sampling estimates irradiance with lower variance than cosine sampling.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -129,4 +130,16 @@ TEST_CASE("environment importance sampling: same irradiance as cosine sampling, 
                      << cosine.variance());
   CHECK(std::abs(importance.mean - cosine.mean) < 4.0 * se);
   CHECK(importance.variance() < 0.1 * cosine.variance());
+}
+
+TEST_CASE("mcl_sincos_turns: sine and cosine of 2 pi t within 1e-7 of the library's" * doctest::test_suite("cpu")) {
+  double worst = 0.0;
+  for (int i = -4000; i <= 8000; ++i) {
+    const float t = float(i) / 4000.0f + 1e-4f * float(i % 7);
+    float s = 0.0f, c = 0.0f;
+    mcl_sincos_turns(t, &s, &c);
+    worst = std::max({worst, std::abs(double(s) - std::sin(2.0 * M_PI * double(t))),
+                      std::abs(double(c) - std::cos(2.0 * M_PI * double(t)))});
+  }
+  CHECK(worst < 2e-7);
 }

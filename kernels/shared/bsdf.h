@@ -36,6 +36,15 @@ MCL_INLINE Bsdf bsdf_from_material(MCL_GLOBAL const Material* m) {
   return bsdf_make(xyz(m->albedo), xyz(m->specular), m->specular.w);
 }
 
+// Cosine-weighted direction (local frame) like sample_cosine_hemisphere, with mcl_sincos_turns
+// (the same bits on every device); the Lambertian-only path keeps sample_cosine_hemisphere.
+MCL_INLINE float3 sample_cosine_hemisphere_portable(float u1, float u2) {
+  float r = sqrt(u1);
+  float s, c;
+  mcl_sincos_turns(u2, &s, &c);
+  return make_float3(r * c, r * s, sqrt(fmax(0.0f, 1.0f - u1)));
+}
+
 // Local coordinates of w in the frame (t, b, n) of make_basis.
 MCL_INLINE float3 to_local(float3 w, float3 n) {
   float3 t, b;
@@ -85,7 +94,7 @@ MCL_INLINE BsdfSample bsdf_sample(Bsdf b, float3 n, float3 wo, float u1, float u
   if (!(woL.z > 0.0f)) return s;
   float3 wiL;
   if (uLobe < b.specProb) wiL = reflect_about(woL, ggx_sample_visible_normal(woL, b.alpha, u1, u2));
-  else wiL = sample_cosine_hemisphere(u1, u2);
+  else wiL = sample_cosine_hemisphere_portable(u1, u2);
   if (!(wiL.z > 0.0f)) return s;
   s.wi = to_world(wiL, n);
   float pdf = (1.0f - b.specProb) * pdf_cosine_hemisphere(wiL.z) + b.specProb * ggx_pdf(woL, wiL, b.alpha);

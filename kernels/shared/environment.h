@@ -18,6 +18,7 @@
 #pragma once
 #include "lights.h"
 #include "sampling.h"
+#include "trig.h"
 
 #define MCL_INV_4PI 0.07957747154594766788f
 #define MCL_INV_2PI2 0.05066059182116888572f  // 1 / (2 pi^2)
@@ -31,7 +32,8 @@ MCL_INLINE float env_pick_probability(MCL_CONSTANT const FrameParams* f) {
 
 // d rotated by angle a (radians) about +y (right-handed).
 MCL_INLINE float3 rotate_about_y(float3 d, float a) {
-  float c = cos(a), s = sin(a);
+  float s, c;
+  mcl_sincos_turns(a * MCL_INV_2PI, &s, &c);
   return make_float3(c * d.x + s * d.z, d.y, c * d.z - s * d.x);
 }
 
@@ -89,9 +91,10 @@ MCL_INLINE EnvSample env_sample(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL co
   EnvSample s;
   if (f->envWidth == 0u) {  // uniform over the sphere
     float y = 1.0f - 2.0f * u2;
-    float r = sqrt(fmax(0.0f, 1.0f - y * y));
-    float phi = 2.0f * MCL_PI * u1;
-    s.wi = make_float3(r * sin(phi), y, -r * cos(phi));
+    float r = 2.0f * sqrt(u2 * (1.0f - u2));  // sqrt(1 - y^2), without cancellation
+    float sinPhi, cosPhi;
+    mcl_sincos_turns(u1, &sinPhi, &cosPhi);
+    s.wi = make_float3(r * sinPhi, y, -r * cosPhi);
     s.le = xyz(f->environment);
     s.pdf = MCL_INV_4PI;
     return s;
@@ -104,10 +107,11 @@ MCL_INLINE EnvSample env_sample(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL co
   uint i = env_cdf_find(row, w, u1);
   float r0 = row[i], r1 = row[i + 1u];
   float du = r1 > r0 ? (u1 - r0) / (r1 - r0) : 0.5f;
-  float theta = MCL_PI * (((float)j + dv) / (float)h);
-  float phi = 2.0f * MCL_PI * (((float)i + du) / (float)w);
-  float sinTheta = sin(theta);
-  float3 d = make_float3(sinTheta * sin(phi), cos(theta), -sinTheta * cos(phi));
+  float sinTheta, cosTheta, sinPhi, cosPhi;
+  mcl_sincos_turns(0.5f * (((float)j + dv) / (float)h), &sinTheta, &cosTheta);  // theta = pi v
+  mcl_sincos_turns(((float)i + du) / (float)w, &sinPhi, &cosPhi);               // phi = 2 pi u
+  sinTheta = fmax(sinTheta, 0.0f);
+  float3 d = make_float3(sinTheta * sinPhi, cosTheta, -sinTheta * cosPhi);
   s.wi = rotate_about_y(d, f->envRotateY);
   float4 t = map[j * w + i];
   s.le = xyz(f->environment) * xyz(t);

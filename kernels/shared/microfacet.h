@@ -7,6 +7,7 @@
 // Pure; compiled by the kernels and by the host tests.
 #pragma once
 #include "sampling.h"
+#include "trig.h"
 
 #define MCL_GGX_MIN_ALPHA 1e-3f
 
@@ -47,8 +48,9 @@ MCL_INLINE float3 ggx_sample_visible_normal(float3 wo, float alpha, float u1, fl
   float3 t1 = lensq > 0.0f ? make_float3(-vh.y, vh.x, 0.0f) * (1.0f / sqrt(lensq)) : make_float3(1.0f, 0.0f, 0.0f);
   float3 t2 = cross(vh, t1);
   float r = sqrt(u1);
-  float phi = 2.0f * MCL_PI * u2;
-  float p1 = r * cos(phi), p2 = r * sin(phi);
+  float sinPhi, cosPhi;
+  mcl_sincos_turns(u2, &sinPhi, &cosPhi);  // phi = 2 pi u2
+  float p1 = r * cosPhi, p2 = r * sinPhi;
   float s = 0.5f * (1.0f + vh.z);
   p2 = (1.0f - s) * sqrt(fmax(0.0f, 1.0f - p1 * p1)) + s * p2;
   float3 nh = t1 * p1 + t2 * p2 + vh * sqrt(fmax(0.0f, 1.0f - p1 * p1 - p2 * p2));
