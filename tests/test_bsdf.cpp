@@ -198,10 +198,12 @@ TEST_CASE("BSDF: with Ks = 0 the functions are the Lambertian expressions, bit f
   for (int i = 0; i < 100; ++i) {
     float4 u = rng_uniform4(1u, uint(i), 0u, 0u);
     BsdfSample s = bsdf_sample(b, n, n, u.x, u.y, u.z);
-    const float3 wi = to_world(sample_cosine_hemisphere(u.x, u.y), n);
+    const float3 local = sample_cosine_hemisphere(u.x, u.y);
+    const float3 wi = to_world(local, n);
     REQUIRE(s.wi == wi);
     REQUIRE(s.weight == kd);
-    REQUIRE(s.pdf == pdf_cosine_hemisphere(dot(n, wi)));
+    REQUIRE(s.pdf == pdf_cosine_hemisphere(local.z));
+    REQUIRE(bsdf_eval(b, n, n, wi) == kd * (dot(n, wi) * MCL_INV_PI));
     REQUIRE(bsdf_pdf(b, n, n, wi) == pdf_cosine_hemisphere(dot(n, wi)));
     REQUIRE(bsdf_f(b, n, n, wi) == kd * MCL_INV_PI);
   }

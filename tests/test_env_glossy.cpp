@@ -3,8 +3,8 @@
 // a E with BSDF sampling (zero variance) and within 4 standard errors with light and MIS sampling;
 // camera misses see E; an environment map is importance sampled with a lower variance than
 // cosine (BSDF) sampling at equal spp; light, BSDF and MIS sampling agree on a glossy plate lit by
-// an area light and by an environment map; Lambert-only scenes do not change with an unused
-// environment key absent.
+// an area light and by an environment map; bad input. The path integrator: the environment
+// furnace, --max-depth 2 = direct mis with glossy + environment + area light, a glossy furnace.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -237,4 +237,90 @@ TEST_CASE("cli: Kd + Ks above 1 is scaled down with one warning naming the file;
   CHECK(r.exitCode == 0);
   CHECK(r.err.find("quad.obj: material 'm': Kd + Ks > 1, both scaled by 0.769") != std::string::npos);
   CHECK(std::filesystem::exists(dir.file("out.pfm")));
+}
+
+// --- the path integrator ----------------------------------------------------------------------
+namespace {
+
+Film renderPath(Scene scene, int maxDepth) {
+  static const DeviceInfo device = selectDevice("");
+  scene.render.integrator = montecl::Integrator::Path;
+  scene.render.maxDepth = maxDepth;
+  Bvh bvh = buildBvh(scene.triangles);
+  WavefrontRenderer renderer(device, {});
+  RenderStats stats;
+  return renderer.render(scene, bvh, stats);
+}
+
+// Per-pixel |z| > 4 count between two films (channel c).
+int pixelsApart(const Film& a, const Film& b, int c) {
+  int apart = 0;
+  for (std::size_t p = 0; p < a.mean.size(); ++p) {
+    const double se = std::sqrt(a.variance(p, c) / double(a.count[p]) + b.variance(p, c) / double(b.count[p]));
+    const double d = a.meanOf(p, c) - b.meanOf(p, c);
+    if (std::fabs(d) > 4.0 * se + 1e-6) ++apart;
+  }
+  return apart;
+}
+
+}  // namespace
+
+TEST_CASE("path: environment furnace: a convex cube of albedo a under constant E shows a E, misses E" * doctest::test_suite("opencl")) {
+  const Film f = renderPath(cubeScene(false), -1);
+  for (int c = 0; c < 3; ++c) {
+    ImageEstimate e = imageEstimate(f, c);
+    INFO("channel " << c << ": " << e.mean << " +- " << e.standardError);
+    CHECK(e.standardError > 0.0);
+    CHECK(std::fabs(e.mean - double(kA) * kE[c]) < 4.0 * e.standardError);
+  }
+  const Film b = renderPath(cubeScene(true), -1);
+  for (std::size_t p = 0; p < b.mean.size(); ++p)
+    for (int c = 0; c < 3; ++c) CHECK(b.meanOf(p, c) == double(kE[c]));
+}
+
+TEST_CASE("path: --max-depth 2 equals direct mis on a glossy plate under an environment map and an area light" * doctest::test_suite("opencl")) {
+  TempDir dir;
+  Scene s;
+  s.path = "<glossy plate>";
+  MaterialDesc plate{"plate", glm::vec3(0.2f, 0.25f, 0.3f), glm::vec3(0.0f)};
+  plate.specular = glm::vec3(0.6f, 0.5f, 0.4f);
+  plate.specularExponent = 100.0f;
+  s.materials = {plate, MaterialDesc{"light", glm::vec3(0.0f), glm::vec3(5.0f, 4.0f, 3.0f)}};
+  addFloor(s, 0);
+  addQuad(s, {-0.5f, 1.0f, -0.5f}, {0.5f, 1.0f, -0.5f}, {0.5f, 1.0f, 0.5f}, {-0.5f, 1.0f, 0.5f}, 1);
+  s.environment.enabled = true;
+  s.environment.file = writeSky(dir);
+  s.camera.position = {-1.0f, 1.0f, 0.1f};
+  s.camera.target = {-0.5f, 0.0f, 0.1f};
+  s.camera.fovY = 20.0f;
+  s.camera.width = s.camera.height = 8;
+  s.render.spp = 512;
+  finishScene(s);
+  const Film path = renderPath(s, 2), direct = renderDirect(s, "mis");
+  for (int c = 0; c < 3; ++c) {
+    INFO("channel " << c << ": path " << imageEstimate(path, c).mean << " direct " << imageEstimate(direct, c).mean);
+    CHECK(std::fabs(zDiff(path, direct, c)) < 4.0);
+    CHECK(pixelsApart(path, direct, c) <= 1);
+  }
+}
+
+TEST_CASE("path: glossy furnace: inside a closed box of Kd = Ks = 0.3 emitting Le, Le/(1-0.3) <= L <= Le/(1-0.6)" * doctest::test_suite("opencl")) {
+  // Every inner face reflects Kd (Lambert) plus at most Ks (GGX loses energy): the furnace value
+  // lies between the Lambert-only and the lossless answers.
+  Scene s = cubeScene(false);
+  s.environment.enabled = false;
+  MaterialDesc m{"box", glm::vec3(0.3f), glm::vec3(1.0f)};
+  m.specular = glm::vec3(0.3f);
+  m.specularExponent = 20.0f;
+  s.materials = {m};
+  for (SceneTriangle& t : s.triangles) std::swap(t.v[1], t.v[2]);  // front faces inward
+  s.camera.position = {0.05f, 0.1f, 0.2f};
+  s.camera.target = {0.05f, 0.1f, -1.0f};
+  s.camera.fovY = 60.0f;
+  s.render.spp = 256;
+  const Film f = renderPath(s, -1);
+  ImageEstimate e = imageEstimate(f, 0);
+  INFO("L = " << e.mean << " +- " << e.standardError);
+  CHECK(e.mean > 1.0 / 0.7 + 4.0 * e.standardError);   // the glossy lobe adds light
+  CHECK(e.mean < 1.0 / 0.4 - 4.0 * e.standardError);   // but never more than Kd + Ks allows
 }

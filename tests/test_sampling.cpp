@@ -108,3 +108,22 @@ TEST_CASE("make_basis gives a right-handed orthonormal frame, also at the poles"
     CHECK(dot(cross(t, b), n) == doctest::Approx(1.0f).epsilon(1e-5));
   }
 }
+
+TEST_CASE("concentric disk samples are uniform: lifted to the hemisphere (Malley) they pass the cosine test" * doctest::test_suite("cpu")) {
+  const auto lifted = [](float u1, float u2) {
+    float2 p = sample_concentric_disk(u1, u2);
+    REQUIRE(p.x * p.x + p.y * p.y <= 1.0f + 1e-6f);
+    return make_float3(p.x, p.y, std::sqrt(std::max(0.0f, 1.0f - p.x * p.x - p.y * p.y)));
+  };
+  ChiSquare cs = chiSquareHemisphere(lifted, [](double a, double b) { return b * b - a * a; }, 400000);
+  CHECK(cs.statistic < chiSquareCritical(cs.dof));
+  ChiSquare wrong = chiSquareHemisphere(lifted, [](double a, double b) { return b - a; }, 400000);
+  CHECK(wrong.statistic > chiSquareCritical(wrong.dof));
+  // The polynomial sin/cos the map uses (the same operations on every device) match libm.
+  for (int i = 0; i <= 1000; ++i) {
+    const float x = -float(M_PI / 4) + float(M_PI / 2) * float(i) / 1000.0f;
+    const float2 sc = sincos_quarter(x);
+    CHECK(std::fabs(sc.x - std::sin(x)) < 2e-7f);
+    CHECK(std::fabs(sc.y - std::cos(x)) < 2e-7f);
+  }
+}

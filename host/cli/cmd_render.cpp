@@ -41,7 +41,7 @@ struct RenderArgs {
   std::optional<AoSampling> aoSampling;
   std::optional<DirectSampling> directSampling;
   std::string bvhLayout = "auto";
-  std::optional<int> spp, width, height, lightSamples;
+  std::optional<int> spp, width, height, lightSamples, maxDepth, rrDepth;
   std::optional<std::uint32_t> seed;
   std::optional<float> aoDistance;
   std::uint64_t waveSize = 0;
@@ -65,6 +65,8 @@ void applyOverrides(const RenderArgs& a, Scene& scene) {
   if (a.aoDistance) r.aoDistance = *a.aoDistance;
   if (a.directSampling) r.directSampling = *a.directSampling;
   if (a.lightSamples) r.lightSamples = *a.lightSamples;
+  if (a.maxDepth) r.maxDepth = *a.maxDepth;
+  if (a.rrDepth) r.rrDepth = *a.rrDepth;
 }
 
 // Set by SIGINT or SIGTERM while rendering (to the signal number): the wave loop stops after the
@@ -249,10 +251,16 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--width", args->width, "Image width in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
   cmd->add_option("--height", args->height, "Image height in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
   addChoiceOption(cmd, "--integrator", args->integrator, integratorNames(),
-                  "ao (ambient occlusion) or direct (area lights)");
+                  "ao (ambient occlusion), direct (area lights) or path (path tracing)");
   addChoiceOption(cmd, "--direct-sampling", args->directSampling, directSamplingNames(), "Direct lighting");
   cmd->add_option("--light-samples", args->lightSamples, "Light samples per camera sample (direct; up to 1024)")
       ->check(positiveInteger(kMaxLightSamples));
+  cmd->add_option("--max-depth", args->maxDepth,
+                  "Path: longest path in segments, Mitsuba's convention: -1 unlimited (default), 1 emitters "
+                  "seen directly, 2 direct lighting, 3 one indirect bounce, ...")
+      ->check(maxDepthValue());
+  cmd->add_option("--rr-depth", args->rrDepth, "Path: Russian roulette from this depth on (default 5)")
+      ->check(positiveInteger());
   addChoiceOption(cmd, "--ao-sampling", args->aoSampling, aoSamplingNames(), "AO directions");
   cmd->add_option("--ao-distance", args->aoDistance, "Occluders farther than this are ignored")
       ->check(positiveNumber(std::numeric_limits<float>::max()));

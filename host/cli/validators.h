@@ -41,6 +41,20 @@ inline std::string shortNumber(double v) {
   return s.str();
 }
 
+// --max-depth: -1 (unlimited) or a positive integer.
+inline CLI::Validator maxDepthValue() {
+  const std::string rule = "-1 (unlimited) or a positive integer";
+  return CLI::Validator(
+      [rule](std::string& text) -> std::string {
+        errno = 0;
+        char* end = nullptr;
+        long long v = std::strtoll(text.c_str(), &end, 10);
+        bool ok = !text.empty() && end && *end == '\0' && errno == 0 && (v == -1 || (v >= 1 && v <= std::numeric_limits<int>::max()));
+        return ok ? std::string() : "must be " + rule + ", got '" + text + "'";
+      },
+      rule);
+}
+
 // A finite number > 0 and at most hi (float options pass FLT_MAX so they cannot overflow to inf).
 inline CLI::Validator positiveNumber(double hi = std::numeric_limits<double>::max()) {
   return CLI::Validator(

@@ -60,6 +60,15 @@ Scene withDirect(Scene s, DirectSampling strategy, int lightSamples) {
   return s;
 }
 
+// Path tracing, unlimited depth unless given, Russian roulette from depth 2 (so the set exercises it).
+Scene withPath(Scene s, int lightSamples, int maxDepth = -1) {
+  s.render.integrator = Integrator::Path;
+  s.render.lightSamples = lightSamples;
+  s.render.maxDepth = maxDepth;
+  s.render.rrDepth = 2;
+  return s;
+}
+
 }  // namespace
 
 std::string defaultCornellPath() {
@@ -79,6 +88,11 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   cases.push_back({"polygon-light/direct-brdf", withDirect(light, DirectSampling::Brdf, 1)});
   cases.push_back({"polygon-light/direct-mis", withDirect(light, DirectSampling::Mis, 2)});
   cases.push_back({"polygon-light/ao-cosine", withAo(light, AoSampling::Cosine)});
+  cases.push_back({"polygon-light/path", withPath(light, 2)});
+  Scene lens = withPath(light, 1, 3);
+  lens.camera.apertureRadius = 0.05f;
+  lens.camera.focusDistance = 1.5f;
+  cases.push_back({"polygon-light/path-depth-3-thin-lens", lens});
   // The same scene with glossy floor and occluder (GGX lobe) under a constant environment as well.
   Scene glossy = light;
   glossy.materials[0].specular = glm::vec3(0.3f, 0.25f, 0.2f);
@@ -89,6 +103,7 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   glossy.environment.radiance = {0.3f, 0.4f, 0.5f};
   cases.push_back({"glossy-environment/direct-light", withDirect(glossy, DirectSampling::Light, 1)});
   cases.push_back({"glossy-environment/direct-mis", withDirect(glossy, DirectSampling::Mis, 2)});
+  cases.push_back({"glossy-environment/path", withPath(glossy, 2)});
 
   const std::string path = o.cornellPath.empty() ? defaultCornellPath() : o.cornellPath;
   if (!std::ifstream(path)) {
@@ -103,6 +118,7 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   cases.push_back({"cornell-box/direct-light", withDirect(cornell, DirectSampling::Light, 1)});
   cases.push_back({"cornell-box/direct-mis", withDirect(cornell, DirectSampling::Mis, 1)});
   cases.push_back({"cornell-box/ao-cosine", withAo(cornell, AoSampling::Cosine)});
+  cases.push_back({"cornell-box/path", withPath(cornell, 1)});
   return cases;
 }
 

@@ -48,6 +48,12 @@ class ClStageRunner final : public StageRunner {
     b.radiance = {cl_.scratch<cl_float4>(wave)};
     b.shadowContrib = {cl_.scratch<cl_float4>(wave * slots)};
     b.queue = {cl_.scratch<ShadowWork>(wave * slots)};
+    const std::uint64_t pathItems = in.path ? wave : 1;
+    b.throughput = {cl_.scratch<cl_float4>(pathItems)};
+    b.nextRays = {cl_.scratch<Ray>(pathItems)};
+    b.pathIds = {cl_.scratch<cl_uint>(pathItems)};
+    b.nextPathIds = {cl_.scratch<cl_uint>(pathItems)};
+    b.nextCount = {cl_.buffer<cl_uint>(1)};
     b.rayCount = {cl_.buffer<cl_uint>(1)};
     b.queueCount = {cl_.buffer<cl_uint>(1)};
     b.nanRays = {cl_.buffer<cl_uint>(1)};
@@ -104,6 +110,25 @@ class ClStageRunner final : public StageRunner {
     cl_.launch(k, items);
   }
 
+  void startBounce(std::uint32_t bounce) override {
+    bindings_.pathBounce = bounce;
+    cl_.queue().enqueueWriteBuffer(bindings_.queueCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &counters_[1]);
+    cl_.queue().enqueueWriteBuffer(bindings_.nextCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &counters_[1]);
+  }
+
+  void endBounce() override {
+    ClBindings& b = bindings_;
+    std::swap(b.rays, b.nextRays);
+    std::swap(b.pathIds, b.nextPathIds);
+    std::swap(b.rayCount, b.nextCount);
+  }
+
+  BounceCounts readBounceCounts() override {
+    cl_.queue().enqueueReadBuffer(bindings_.queueCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &bounceCounts_[1]);
+    cl_.queue().enqueueReadBuffer(bindings_.rayCount.buffer, CL_TRUE, 0, sizeof(cl_uint), &bounceCounts_[0]);
+    return BounceCounts{bounceCounts_[0], bounceCounts_[1]};
+  }
+
   WaveCounts finishWave() override {
     cl_uint shadowCount = 0, nanRays = 0;
     cl_.queue().enqueueReadBuffer(bindings_.nanRays.buffer, CL_FALSE, 0, sizeof(cl_uint), &nanRays);
@@ -136,6 +161,7 @@ class ClStageRunner final : public StageRunner {
   ClBindings bindings_;
   bool aovs_ = false;
   cl_uint counters_[2] = {0, 0};
+  cl_uint bounceCounts_[2] = {0, 0};
   FrameParams frame_{};
   std::uint64_t pixels_ = 0;
 };

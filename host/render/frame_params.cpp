@@ -28,8 +28,10 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
   f.directSampling = settings.directSampling == DirectSampling::Light  ? MCL_DIRECT_LIGHT
                      : settings.directSampling == DirectSampling::Brdf ? MCL_DIRECT_BRDF
                                                                        : MCL_DIRECT_MIS;
-  f.maxDepth = -1;
-  f.rrDepth = 5;
+  f.maxDepth = settings.maxDepth;
+  f.rrDepth = uint(settings.rrDepth);
+  f.lensRadius = camera.apertureRadius;
+  f.focusDistance = camera.focusDistance > 0.0f ? camera.focusDistance : glm::length(camera.target - camera.position);
   return f;
 }
 

@@ -41,6 +41,11 @@ class HostStageRunner final : public StageRunner {
     hits_.assign(wave, Hit{});
     bounce_.assign(in.direct ? wave : 1, Ray{});
     bounceHits_.assign(in.direct ? wave : 1, Hit{});
+    const std::uint64_t pathItems = in.path ? wave : 1;
+    throughput_.assign(pathItems, float4(0.0f));
+    nextRays_.assign(pathItems, Ray{});
+    pathIds_.assign(pathItems, 0);
+    nextPathIds_.assign(pathItems, 0);
     radiance_.assign(wave, float4(0.0f));
     shadowContrib_.assign(wave * slots, float4(0.0f));
     queue_.assign(wave * slots, ShadowWork{});
@@ -77,7 +82,7 @@ class HostStageRunner final : public StageRunner {
   void beginWave(std::uint64_t waveStart, std::uint32_t count) override {
     bindings_.waveStart = waveStart;
     bindings_.waveCount = count;
-    rayCount_ = count;
+    *bindings_.rayCount = count;  // (the current ray count: path bounces swap it)
     queueCount_ = 0;
     nanRays_ = 0;
   }
@@ -88,6 +93,21 @@ class HostStageRunner final : public StageRunner {
       parallelFor(items, threads_, kMinItemsPerThread, [&](std::size_t i) { runStage(&args, uint(i)); });
     });
   }
+
+  void startBounce(std::uint32_t bounce) override {
+    bindings_.pathBounce = bounce;
+    queueCount_ = 0;
+    *bindings_.nextCount = 0;
+  }
+
+  void endBounce() override {
+    HostBindings& b = bindings_;
+    std::swap(b.rays, b.nextRays);
+    std::swap(b.pathIds, b.nextPathIds);
+    std::swap(b.rayCount, b.nextCount);
+  }
+
+  BounceCounts readBounceCounts() override { return BounceCounts{*bindings_.rayCount, queueCount_}; }
 
   WaveCounts finishWave() override { return WaveCounts{queueCount_, nanRays_}; }
 
@@ -126,6 +146,11 @@ class HostStageRunner final : public StageRunner {
     b.aov = aov_.data();
     b.queue = queue_.data();
     b.rayCount = &rayCount_;
+    b.nextCount = &nextCount_;
+    b.throughput = throughput_.data();
+    b.nextRays = nextRays_.data();
+    b.pathIds = pathIds_.data();
+    b.nextPathIds = nextPathIds_.data();
     b.queueCount = &queueCount_;
     b.nanRays = &nanRays_;
     b.mean = mean_.data();
@@ -151,7 +176,10 @@ class HostStageRunner final : public StageRunner {
   std::vector<Hit> hits_, bounceHits_;
   std::vector<float4> radiance_, shadowContrib_, mean_, meanLo_, m2_, m2Lo_;
   std::vector<ShadowWork> queue_;
-  uint rayCount_ = 0;
+  std::vector<float4> throughput_;
+  std::vector<Ray> nextRays_;
+  std::vector<uint> pathIds_, nextPathIds_;
+  uint rayCount_ = 0, nextCount_ = 0;
   uint queueCount_ = 0;  // incremented atomically by the shade stages
   uint nanRays_ = 0;     // incremented atomically by the intersect stages
 };

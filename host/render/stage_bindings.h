@@ -54,11 +54,17 @@ struct StageBindings {
   Array<ShadowWork> queue;
   Array<uint> rayCount, queueCount;
   Array<uint> nanRays;  // rays the intersect stages met with a NaN/inf origin or direction
+  // Path tracing: per path (wave item) state, and the next bounce's compacted queue (swapped with
+  // rays / pathIds / rayCount between bounces: swapPathQueues).
+  Array<float4> throughput;
+  Array<Ray> nextRays;
+  Array<uint> pathIds, nextPathIds, nextCount;
   // Per pixel: the film (kernels/stages/accumulate.h: float-float mean and M2, 64-bit count).
   Array<float4> mean, meanLo, m2, m2Lo, aovSum;
   // Per wave.
   ulong waveStart = 0;
   uint waveCount = 0;
+  uint pathBounce = 0;  // path tracing: the bounce being shaded (0: camera rays)
 
   StageBindings forRays(RayInput set) const {
     StageBindings b = *this;

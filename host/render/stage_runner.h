@@ -25,9 +25,16 @@ struct StageInputs {
   std::vector<float> envCdf{0.0f};
   std::uint64_t wave = 0;    // wave items (pixel samples) per wave
   bool direct = false;       // direct lighting: bounce buffers are needed
+  bool path = false;         // path tracing: path state and the continuation queue are needed
   bool aovs = false;         // record first-hit albedo, normal and depth (record_aov, accumulate_aov)
   // The film state the render starts from (a resumed checkpoint); null: a cleared film.
   const Film* initialFilm = nullptr;
+};
+
+// What a path bounce counted on the device (StageRunner::readBounceCounts).
+struct BounceCounts {
+  std::uint32_t paths = 0;       // live paths queued for the next bounce
+  std::uint32_t shadowRays = 0;  // occlusion queries of this bounce
 };
 
 // What a wave counted on the device.
@@ -59,6 +66,13 @@ class StageRunner {
   // Runs stage s over `items` work items (its body bounds them by its own count), reading the
   // camera or the bounce rays (RayInput). Stages run in launch order.
   virtual void launch(Stage s, std::uint64_t items, RayInput rays = RayInput::Camera) = 0;
+  // Path tracing (render/path_waves.cpp). startBounce: sets the bounce index the stages get and
+  // resets the shadow queue and the next-bounce queue counts to 0. endBounce: the next-bounce
+  // queue (nextRays, nextPathIds, nextCount) becomes the current one (rays, pathIds, rayCount).
+  // readBounceCounts: waits, returns the current queue's size and the last bounce's shadow count.
+  virtual void startBounce(std::uint32_t bounce) = 0;
+  virtual void endBounce() = 0;
+  virtual BounceCounts readBounceCounts() = 0;
   // Waits for the wave; returns the number of occlusion queries it traced and of non-finite rays.
   virtual WaveCounts finishWave() = 0;
   // Reads the accumulated statistics (film.mean, film.m2, film.aovSum; the caller sets the size).

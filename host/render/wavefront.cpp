@@ -1,7 +1,8 @@
 // wavefront.cpp: the render loop, one for every backend (render/stage_runner.h: OpenCL kernels or
 // the host's C++ loops). Sizes the wave, uploads once, then per wave: reset the queue counters,
 // generate -> intersect -> shade_ao | (shade_direct -> intersect bounce -> shade_direct_hit) ->
-// intersect_shadow -> accumulate; the host never reads a queue count back to size a launch.
+// intersect_shadow -> accumulate; the host never reads a queue count back to size a launch, except
+// in path tracing's bounce loop (render/path_waves.cpp: generate -> bounces -> accumulate).
 #include "render/wavefront.h"
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include "render/environment_table.h"
 #include "render/frame_params.h"
 #include "render/memory_check.h"
+#include "render/path_waves.h"
 #include "scene/camera_basis.h"
 #include "util/errors.h"
 
@@ -22,9 +24,11 @@ namespace montecl {
 namespace {
 
 // Bytes of per-wave buffers for one pixel sample with `slots` occlusion queries.
-std::uint64_t bytesPerItem(std::uint32_t slots, bool bounce, bool aovs) {
+// Path tracing adds the path state: throughput, the next bounce's ray and the two id queues.
+std::uint64_t bytesPerItem(std::uint32_t slots, bool bounce, bool aovs, bool path = false) {
   return sizeof(Ray) + sizeof(Hit) + sizeof(float4) + slots * (sizeof(float4) + sizeof(ShadowWork)) +
-         (bounce ? sizeof(Ray) + sizeof(Hit) : 0) + (aovs ? 2 * sizeof(float4) : 0);
+         (bounce ? sizeof(Ray) + sizeof(Hit) : 0) + (aovs ? 2 * sizeof(float4) : 0) +
+         (path ? sizeof(float4) + sizeof(Ray) + 2 * sizeof(uint) : 0);
 }
 
 }  // namespace
@@ -68,29 +72,33 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   Impl& m = *impl_;
   StageRunner& run = *m.runner;
   const bool direct = scene.render.integrator == Integrator::Direct;
-  const std::uint32_t slots = direct ? std::uint32_t(scene.render.lightSamples) + 1 : 1;
+  const bool path = scene.render.integrator == Integrator::Path;
+  const std::uint32_t slots = direct ? std::uint32_t(scene.render.lightSamples) + 1
+                              : path ? std::uint32_t(scene.render.lightSamples)
+                                     : 1;
   // Scene files are checked at load; a camera set in code is checked here (never NaN camera rays).
   const CameraProblem cameraProblem = cameraBasisProblem(scene.camera);
   if (!cameraProblem.empty()) throwInputError(scene.path, cameraProblem.key, cameraProblem.problem);
   FrameParams frame = makeFrameParams(scene.camera, scene.render, slots);
   frame.offsetScale = offsetScaleFor(scene.triangles);
-  const EmitterTable emitters = direct ? buildEmitterTable(bvh, scene.materials) : EmitterTable{};
+  const EmitterTable emitters = direct || path ? buildEmitterTable(bvh, scene.materials) : EmitterTable{};
   frame.emitterCount = uint(emitters.emitters.size());
   frame.emitterPower = emitters.totalPower;
   EnvironmentTable environment = buildEnvironment(scene, frame);  // read (and checked) for any integrator
-  if (!direct) frame.environment = float4(0.0f), frame.envWidth = frame.envHeight = 0;  // AO: background only
+  if (!direct && !path) frame.environment = float4(0.0f), frame.envWidth = frame.envHeight = 0;  // AO: background only
   const std::uint64_t pixels = std::uint64_t(frame.width) * frame.height;
   const std::uint64_t total = pixels * std::uint64_t(scene.render.spp);
 
   // Wave size: the memory budget, the device's largest allocation, and 32-bit item indices.
   const std::uint64_t maxAlloc = run.maxAllocBytes();
   std::uint64_t wave = m.options.waveSize;
-  if (wave == 0) wave = std::max<std::uint64_t>(1, m.options.memoryBudget / bytesPerItem(slots, direct, m.options.aovs));
+  const std::uint64_t itemBytes = bytesPerItem(slots, direct, m.options.aovs, path);
+  if (wave == 0) wave = std::max<std::uint64_t>(1, m.options.memoryBudget / itemBytes);
   wave = std::min<std::uint64_t>(wave, maxAlloc / (slots * sizeof(ShadowWork)));
   wave = std::min<std::uint64_t>(wave, 0xffffffffull / slots);
   wave = std::max<std::uint64_t>(1, std::min(wave, total));
   checkImageMemory(m.device, scene.path, scene.camera.width, scene.camera.height, m.options.aovs,
-                   wave * bytesPerItem(slots, direct, m.options.aovs));
+                   wave * itemBytes);
   for (std::uint64_t bytes : {pixels * sizeof(float4), std::uint64_t(bvhNodeBytes(bvh, run.bvhLayout())),
                               bvh.triangles.size() * sizeof(Triangle)})
     if (bytes > maxAlloc)
@@ -108,14 +116,15 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   inputs.envCdf = std::move(environment.cdf);
   inputs.wave = wave;
   inputs.direct = direct;
+  inputs.path = path;
   inputs.aovs = m.options.aovs;
   inputs.initialFilm = m.options.initialFilm;
   run.setup(inputs);
 
   if (m.options.verbose)
-    std::cerr << "montecl: wave of " << wave << " pixel samples (" << (wave * bytesPerItem(slots, direct, m.options.aovs) >> 20)
+    std::cerr << "montecl: wave of " << wave << " pixel samples (" << (wave * itemBytes >> 20)
               << " MiB), " << (total + wave - 1) / wave << " waves"
-              << (direct ? ", " + std::to_string(emitters.emitters.size()) + " emitter triangles" : std::string())
+              << (direct || path ? ", " + std::to_string(emitters.emitters.size()) + " emitter triangles" : std::string())
               << "\n";
 
   const auto start = std::chrono::steady_clock::now();
@@ -132,28 +141,35 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
       const std::uint32_t n = std::uint32_t(std::min(wave, count - done));
       run.beginWave(first + done, n);
       run.launch(Stage::generate, n);
-      run.launch(Stage::intersect, n);
-      if (direct) {
-        run.launch(Stage::shade_direct, n);
-        run.launch(Stage::intersect, n, RayInput::Bounce);
-        run.launch(Stage::shade_direct_hit, n);
+      PathWaveCounts pathCounts;
+      if (path) {
+        runPathWave(run, n, slots, m.options.aovs, pathCounts);  // (records the AOVs at bounce 0)
       } else {
-        run.launch(Stage::shade_ao, n);
+        run.launch(Stage::intersect, n);
+        if (direct) {
+          run.launch(Stage::shade_direct, n);
+          run.launch(Stage::intersect, n, RayInput::Bounce);
+          run.launch(Stage::shade_direct_hit, n);
+        } else {
+          run.launch(Stage::shade_ao, n);
+        }
+        run.launch(Stage::intersect_shadow, std::uint64_t(n) * slots);
+        if (m.options.aovs) run.launch(Stage::record_aov, n);
       }
-      run.launch(Stage::intersect_shadow, std::uint64_t(n) * slots);
       const std::uint64_t touched = std::min<std::uint64_t>(n, activeCount);  // pixels in the wave
       run.launch(Stage::accumulate, touched);
-      if (m.options.aovs) {
-        run.launch(Stage::record_aov, n);
-        run.launch(Stage::accumulate_aov, touched);
-      }
+      if (m.options.aovs) run.launch(Stage::accumulate_aov, touched);
       const WaveCounts counts = run.finishWave();
 
       done += n;
       stats.waves++;
       stats.samples += n;
       stats.cameraRays += n;
-      stats.shadowRays += counts.shadowRays;
+      stats.shadowRays += path ? pathCounts.shadowRays : counts.shadowRays;
+      stats.cameraRays += pathCounts.bounceRays;
+      auto& survivors = stats.pathSurvivors;
+      if (survivors.size() < pathCounts.survivors.size()) survivors.resize(pathCounts.survivors.size(), 0);
+      for (std::size_t b = 0; b < pathCounts.survivors.size(); ++b) survivors[b] += pathCounts.survivors[b];
       stats.nanRays += counts.nanRays;
       if (direct && scene.render.directSampling != DirectSampling::Light) stats.cameraRays += n;  // BRDF rays
       stats.seconds = elapsed();
@@ -233,6 +249,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
     for (std::uint64_t p = 0; p < pixels; ++p)
       stats.converged += relativeStandardError(film, p, m.options.errorFloor) <= m.options.targetError;
   stats.seconds = elapsed();
+  if (m.options.verbose && path) std::cerr << "montecl: " << survivorsSummary(stats.pathSurvivors) << "\n";
   return film;
 }
 

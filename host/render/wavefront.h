@@ -51,7 +51,7 @@ double relativeStandardError(const Film& film, std::size_t p, double errorFloor)
 
 struct RenderStats {
   double seconds = 0.0;         // wall time of the wave loop (kernels + transfers)
-  std::uint64_t cameraRays = 0;
+  std::uint64_t cameraRays = 0;   // camera rays, and the BRDF / path continuation rays
   std::uint64_t shadowRays = 0;
   std::uint64_t nanRays = 0;      // rays with a NaN/inf origin or direction, treated as misses
   std::uint64_t waves = 0;
@@ -60,6 +60,7 @@ struct RenderStats {
   std::uint64_t rounds = 0;       // adaptive rounds (1 without adaptive sampling)
   std::uint64_t converged = 0;    // adaptive: pixels that met the target error
   bool stoppedEarly = false;      // the time limit or an interrupt ended the render
+  std::vector<std::uint64_t> pathSurvivors;  // --integrator path: [b] paths shaded at bounce b
   std::uint64_t raysTraced() const { return cameraRays + shadowRays; }
 };
 

@@ -4,7 +4,8 @@
 namespace montecl {
 
 const ChoiceNames<Integrator>& integratorNames() {
-  static const ChoiceNames<Integrator> names{{"ao", Integrator::Ao}, {"direct", Integrator::Direct}};
+  static const ChoiceNames<Integrator> names{{"ao", Integrator::Ao}, {"direct", Integrator::Direct},
+                                                    {"path", Integrator::Path}};
   return names;
 }
 

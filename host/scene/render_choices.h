@@ -8,14 +8,14 @@
 
 namespace montecl {
 
-enum class Integrator : std::uint32_t { Ao, Direct };
+enum class Integrator : std::uint32_t { Ao, Direct, Path };
 enum class AoSampling : std::uint32_t { Uniform, Cosine };
 enum class DirectSampling : std::uint32_t { Light, Brdf, Mis };
 
 // Name -> value, in the spelling of the scene file and the CLI.
 template <class E>
 using ChoiceNames = std::map<std::string, E>;
-const ChoiceNames<Integrator>& integratorNames();     // "ao", "direct"
+const ChoiceNames<Integrator>& integratorNames();     // "ao", "direct", "path"
 const ChoiceNames<AoSampling>& aoSamplingNames();     // "uniform", "cosine"
 const ChoiceNames<DirectSampling>& directSamplingNames();  // "light", "brdf", "mis"
 

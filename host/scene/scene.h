@@ -22,6 +22,8 @@ struct Camera {
   float fovY = 45.0f;  // full vertical field of view, degrees, in (0, 180)
   int width = 512;
   int height = 512;
+  float apertureRadius = 0.0f;  // thin lens radius ("aperture_radius"), 0: pinhole
+  float focusDistance = 0.0f;   // distance of the plane in focus ("focus_distance"); 0: |target - position|
 };
 
 struct RenderSettings {
@@ -32,7 +34,9 @@ struct RenderSettings {
   AoSampling aoSampling = AoSampling::Cosine;
   glm::vec3 background{0.0f};
   DirectSampling directSampling = DirectSampling::Mis;  // (integrator direct)
-  int lightSamples = 1;                // light samples per shading point (integrator "direct")
+  int lightSamples = 1;                // light samples per shading point (integrators "direct", "path")
+  int maxDepth = -1;  // integrator "path", Mitsuba's convention: -1 unlimited, 1 emitters seen, 2 direct, ...
+  int rrDepth = 5;    // integrator "path": Russian roulette from this path depth on (>= 1)
 };
 
 struct MaterialDesc {

@@ -54,6 +54,10 @@ std::string sceneDigest(const Scene& scene) {
   appendVec(bytes, scene.camera.target);
   appendVec(bytes, scene.camera.up);
   append(bytes, &scene.camera.fovY, sizeof scene.camera.fovY);
+  if (scene.camera.apertureRadius > 0.0f) {  // (pinhole scenes keep their digests)
+    append(bytes, &scene.camera.apertureRadius, sizeof scene.camera.apertureRadius);
+    append(bytes, &scene.camera.focusDistance, sizeof scene.camera.focusDistance);
+  }
   return hex64(fnv1a64(bytes));
 }
 
@@ -62,6 +66,9 @@ std::string integratorSettings(const RenderSettings& r) {
   if (r.integrator == Integrator::Direct) {
     s = "integrator=direct direct_sampling=" + choiceName(r.directSampling) +
         " light_samples=" + std::to_string(r.lightSamples);
+  } else if (r.integrator == Integrator::Path) {
+    s = "integrator=path light_samples=" + std::to_string(r.lightSamples) + " max_depth=" +
+        std::to_string(r.maxDepth) + " rr_depth=" + std::to_string(r.rrDepth);
   } else {
     s = "integrator=ao ao_sampling=" + choiceName(r.aoSampling) + " ao_distance=" + num(r.aoDistance);
   }

@@ -240,7 +240,8 @@ void validateCamera(const Ctx& ctx, const Camera& cam) {
 
 Camera parseCamera(const Ctx& ctx, const json& root) {
   const json& j = requireObject(ctx, requireKey(ctx, root, "", "camera"), "camera");
-  warnUnknownKeys(ctx, j, "camera", {"position", "target", "up", "fov_y", "width", "height"});
+  warnUnknownKeys(ctx, j, "camera",
+                  {"position", "target", "up", "fov_y", "width", "height", "aperture_radius", "focus_distance"});
   Camera cam;
   cam.position = getVec3(ctx, requireKey(ctx, j, "camera", "position"), "camera.position");
   cam.target = getVec3(ctx, requireKey(ctx, j, "camera", "target"), "camera.target");
@@ -251,6 +252,14 @@ Camera parseCamera(const Ctx& ctx, const json& root) {
   cam.width = getPositiveInt(ctx, requireKey(ctx, j, "camera", "width"), "camera.width", kMaxImageSide, side);
   cam.height = getPositiveInt(ctx, requireKey(ctx, j, "camera", "height"), "camera.height", kMaxImageSide, side);
   validateCamera(ctx, cam);
+  if (const json* v = optionalKey(j, "aperture_radius")) {
+    cam.apertureRadius = getFloat(ctx, *v, "camera.aperture_radius");
+    if (!(cam.apertureRadius >= 0.0f)) fail(ctx, "camera.aperture_radius", "must be >= 0");
+  }
+  if (const json* v = optionalKey(j, "focus_distance")) {
+    cam.focusDistance = getFloat(ctx, *v, "camera.focus_distance");
+    if (!(cam.focusDistance > 0.0f)) fail(ctx, "camera.focus_distance", "must be > 0");
+  }
   return cam;
 }
 
@@ -263,7 +272,7 @@ RenderSettings parseRender(const Ctx& ctx, const json& root) {
   const json& j = requireObject(ctx, *jp, "render");
   warnUnknownKeys(ctx, j, "render",
                   {"integrator", "spp", "seed", "ao_distance", "ao_sampling", "background", "direct_sampling",
-                   "light_samples"});
+                   "light_samples", "max_depth", "rr_depth"});
   const int intMax = std::numeric_limits<int>::max();
   if (const json* v = optionalKey(j, "integrator")) r.integrator = getChoice(ctx, *v, "render.integrator", integratorNames());
   if (const json* v = optionalKey(j, "spp")) r.spp = getPositiveInt(ctx, *v, "render.spp", intMax);
@@ -281,6 +290,11 @@ RenderSettings parseRender(const Ctx& ctx, const json& root) {
     const std::string rule = "a positive integer up to " + std::to_string(kMaxLightSamples);
     r.lightSamples = getPositiveInt(ctx, *v, "render.light_samples", kMaxLightSamples, rule.c_str());
   }
+  if (const json* v = optionalKey(j, "max_depth")) {
+    r.maxDepth = static_cast<int>(getInteger(ctx, *v, "render.max_depth", -1, intMax, "-1 (unlimited) or a positive integer"));
+    if (r.maxDepth == 0) fail(ctx, "render.max_depth", "must be -1 (unlimited) or a positive integer, got 0");
+  }
+  if (const json* v = optionalKey(j, "rr_depth")) r.rrDepth = getPositiveInt(ctx, *v, "render.rr_depth", intMax);
   return r;
 }
 

@@ -62,7 +62,9 @@ MCL_INLINE float3 bsdf_f(Bsdf b, float3 n, float3 wo, float3 wi) {
 }
 
 MCL_INLINE float3 bsdf_eval(Bsdf b, float3 n, float3 wo, float3 wi) {
-  return bsdf_f(b, n, wo, wi) * fmax(dot(n, wi), 0.0f);
+  float c = dot(n, wi);
+  if (b.specProb == 0.0f) return c > 0.0f ? b.kd * (c * MCL_INV_PI) : make_float3(0.0f, 0.0f, 0.0f);
+  return bsdf_f(b, n, wo, wi) * fmax(c, 0.0f);
 }
 
 MCL_INLINE float bsdf_pdf(Bsdf b, float3 n, float3 wo, float3 wi) {
@@ -82,9 +84,10 @@ typedef struct {
 MCL_INLINE BsdfSample bsdf_sample(Bsdf b, float3 n, float3 wo, float u1, float u2, float uLobe) {
   BsdfSample s;
   if (b.specProb == 0.0f) {  // Lambertian: f cos / p = Kd exactly
-    s.wi = to_world(sample_cosine_hemisphere(u1, u2), n);
-    s.weight = b.kd;
-    s.pdf = pdf_cosine_hemisphere(dot(n, s.wi));
+    float3 dirLocal = sample_cosine_hemisphere(u1, u2);
+    s.wi = to_world(dirLocal, n);
+    s.pdf = pdf_cosine_hemisphere(dirLocal.z);
+    s.weight = s.pdf > 0.0f ? b.kd : make_float3(0.0f, 0.0f, 0.0f);
     return s;
   }
   float3 woL = to_local(wo, n);

@@ -25,6 +25,30 @@ MCL_INLINE float3 sample_cosine_hemisphere(float u1, float u2) {
 }
 MCL_INLINE float pdf_cosine_hemisphere(float cosTheta) { return fmax(cosTheta, 0.0f) * MCL_INV_PI; }
 
+// sin and cos of x in [-pi/4, pi/4] by their Taylor polynomials (error below 2e-9), written out
+// so that every device rounds the same operations: the built-in sin/cos may differ between OpenCL
+// implementations and the host's libm in the last bit, and the thin lens would carry that
+// difference into the image (montecl conformance).
+MCL_INLINE float2 sincos_quarter(float x) {
+  float x2 = x * x;
+  float s = x * (1.0f + x2 * (-1.0f / 6.0f + x2 * (1.0f / 120.0f + x2 * (-1.0f / 5040.0f + x2 * (1.0f / 362880.0f)))));
+  float c = 1.0f + x2 * (-0.5f + x2 * (1.0f / 24.0f + x2 * (-1.0f / 720.0f + x2 * (1.0f / 40320.0f + x2 * (-1.0f / 3628800.0f)))));
+  return make_float2(s, c);
+}
+
+// Uniform on the unit disk (Shirley and Chiu's concentric map): p = 1 / pi per unit area.
+MCL_INLINE float2 sample_concentric_disk(float u1, float u2) {
+  float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
+  if (a == 0.0f && b == 0.0f) return make_float2(0.0f, 0.0f);
+  if (fabs(a) > fabs(b)) {  // phi = pi/4 (b / a), |phi| <= pi/4
+    float2 sc = sincos_quarter((MCL_PI / 4.0f) * (b / a));
+    return make_float2(a * sc.y, a * sc.x);
+  }
+  // phi = pi/2 - t, t = pi/4 (a / b): cos(phi) = sin(t), sin(phi) = cos(t)
+  float2 sc = sincos_quarter((MCL_PI / 4.0f) * (a / b));
+  return make_float2(b * sc.x, b * sc.y);
+}
+
 // Tangent frame (t, b, n) for a unit normal n, branchless and continuous except at n.z = -1
 // (Duff et al., "Building an Orthonormal Basis, Revisited", JCGT 2017).
 MCL_INLINE void make_basis(float3 n, float3* t, float3* b) {

@@ -20,7 +20,9 @@
   STAGE(intersect_shadow)                                                                          \
   STAGE(accumulate)                                                                                \
   STAGE(record_aov)                                                                                \
-  STAGE(accumulate_aov)
+  STAGE(accumulate_aov)                                                                            \
+  STAGE(shade_path)                                                                                \
+  STAGE(path_gather)
 
 // ARG(type, name): the names are StageBindings' members (host/render/stage_bindings.h).
 #define MCL_ARGS_generate(ARG)                                                                     \
@@ -74,6 +76,24 @@
 #define MCL_ARGS_accumulate_aov(ARG)                                                               \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
   ARG(MCL_GLOBAL const float4*, aov) ARG(MCL_GLOBAL float4*, aovSum)
+
+// Path tracing (kernels/stages/shade_path.h): rays, hits and pathIds are the bounce's compacted
+// queue of *rayCount live paths; per-path state is indexed by path id (the wave item).
+#define MCL_ARGS_shade_path(ARG)                                                                   \
+  ARG(ulong, waveStart) ARG(uint, pathBounce) ARG(MCL_GLOBAL const uint*, active)                  \
+  ARG(MCL_GLOBAL const Triangle*, tris) ARG(MCL_GLOBAL const Material*, materials)                 \
+  ARG(MCL_GLOBAL const Emitter*, emitters) ARG(MCL_GLOBAL const Ray*, rays)                        \
+  ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL const uint*, rayCount)                           \
+  ARG(MCL_GLOBAL const uint*, pathIds) ARG(MCL_GLOBAL float4*, radiance)                           \
+  ARG(MCL_GLOBAL float4*, throughput) ARG(MCL_GLOBAL float4*, shadowContrib)                       \
+  ARG(MCL_GLOBAL ShadowWork*, queue) ARG(MCL_GLOBAL volatile uint*, queueCount)                    \
+  ARG(MCL_GLOBAL Ray*, nextRays) ARG(MCL_GLOBAL uint*, nextPathIds)                                \
+  ARG(MCL_GLOBAL volatile uint*, nextCount) ARG(MCL_GLOBAL const float4*, envMap)                   \
+  ARG(MCL_GLOBAL const float*, envCdf)
+
+#define MCL_ARGS_path_gather(ARG)                                                                  \
+  ARG(uint, pathBounce) ARG(MCL_GLOBAL const uint*, rayCount) ARG(MCL_GLOBAL const uint*, pathIds) \
+  ARG(MCL_GLOBAL float4*, shadowContrib) ARG(MCL_GLOBAL float4*, radiance)
 
 // <stage>_args: frame, then the table's arguments, as fields of the same names.
 #define MCL_ARG_FIELD(type, name) type name;

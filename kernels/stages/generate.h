@@ -1,5 +1,5 @@
 // generate: reads the frame's camera and the active-pixel list; writes the camera ray of each wave
-// item to rays[0 .. waveCount).
+// item to rays[0 .. waveCount) (pinhole, or thin lens with the aperture point from MCL_DIM_LENS).
 #pragma once
 #include "stage_common.h"
 
@@ -11,5 +11,10 @@ MCL_INLINE void stage_generate(const generate_args* a, uint i) {
   float4 u = rng_uniform4(f->seed, pixel, sample, MCL_DIM_CAMERA);
   float px = (float)(pixel % f->width) + u.x;
   float py = (float)(pixel / f->width) + u.y;
-  a->rays[i] = camera_ray(f, px, py);
+  if (f->lensRadius > 0.0f) {
+    float4 l = rng_uniform4(f->seed, pixel, sample, MCL_DIM_LENS);
+    a->rays[i] = camera_ray_lens(f, px, py, l.x, l.y);
+  } else {
+    a->rays[i] = camera_ray(f, px, py);
+  }
 }

@@ -11,3 +11,5 @@
 #include "accumulate.h"
 #include "record_aov.h"
 #include "accumulate_aov.h"
+#include "shade_path.h"
+#include "path_gather.h"

@@ -1,0 +1,42 @@
+// path_waves.cpp: the bounce loop of a path-tracing wave. Each bounce is launched over the live
+// paths only: the host reads the next queue's size back after every bounce (one small blocking
+// read) and sizes the next launches by it, and stops when no path is left. The alternative,
+// full-size launches whose items past the device-side count return at once, with a read only every
+// few bounces to stop, was measured slower (README, "Path tracing").
+#include "render/path_waves.h"
+
+#include <cstdio>
+
+namespace montecl {
+
+std::string survivorsSummary(const std::vector<std::uint64_t>& survivors) {
+  std::string s = "paths per bounce (bounce: paths, % of camera rays):";
+  for (std::size_t b = 0; b < survivors.size(); ++b) {
+    char item[64];
+    std::snprintf(item, sizeof item, " %zu: %llu (%.3g%%)", b, static_cast<unsigned long long>(survivors[b]),
+                  survivors[0] ? 100.0 * double(survivors[b]) / double(survivors[0]) : 0.0);
+    s += item;
+  }
+  return s;
+}
+
+void runPathWave(StageRunner& run, std::uint32_t n, std::uint32_t lightSamples, bool aovs, PathWaveCounts& counts) {
+  std::uint32_t live = n;
+  for (std::uint32_t bounce = 0; live > 0; ++bounce) {
+    run.startBounce(bounce);
+    run.launch(Stage::intersect, live);
+    if (bounce == 0 && aovs) run.launch(Stage::record_aov, n);  // camera rays and hits (identity ids)
+    run.launch(Stage::shade_path, live);
+    run.launch(Stage::intersect_shadow, std::uint64_t(live) * lightSamples);
+    run.launch(Stage::path_gather, live);
+    run.endBounce();
+    const BounceCounts c = run.readBounceCounts();
+    if (counts.survivors.size() <= bounce) counts.survivors.resize(bounce + 1, 0);
+    counts.survivors[bounce] += live;
+    if (bounce > 0) counts.bounceRays += live;
+    counts.shadowRays += c.shadowRays;
+    live = c.paths;
+  }
+}
+
+}  // namespace montecl

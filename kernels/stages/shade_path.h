@@ -1,0 +1,104 @@
+// shade_path: one bounce of the path tracer for each live path k < *rayCount (its ray rays[k],
+// hit hits[k], id pathIds[k], the identity at bounce 0). Reads and writes the path's state by id:
+// radiance[id] (accumulated L) and throughput[id] (rgb: the path weight; w: solid-angle pdf of the
+// BSDF sample that made the ray, 0 for camera rays). Adds emission seen (MIS-weighted against
+// light sampling after a BSDF bounce) or the miss radiance (path_miss), pushes lightSamples
+// next-event queries onto the shadow queue (slots id * shadowSlots + k, contributions MIS
+// weighted; lights: emitter triangles and the environment, stages/direct_light.h), samples the
+// BSDF (kernels/shared/bsdf.h: Lambert + GGX), applies Russian roulette from depth
+// rrDepth, and pushes the continuation ray onto nextRays / nextPathIds (compacted, *nextCount).
+// Depth (Mitsuba's convention, FrameParams::maxDepth D): hit b adds emission when b < D, next-event
+// estimation and a continuation when b + 1 < D; D = -1 is unlimited. Random numbers: bounce b
+// owns dimension groups MCL_DIM_PATH + b * MCL_DIM_PATH_STRIDE + j (rng.h).
+#pragma once
+#include "direct_light.h"
+
+// Radiance a path ray escaping the scene along dir brings back, before the path weight: the
+// environment (camera rays see it unweighted; after a BSDF bounce it is MIS weighted against
+// environment sampling with the BSDF sample's pdf lastPdf), else the background for camera rays
+// and nothing afterwards.
+MCL_INLINE float3 path_miss(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const float4* envMap, float3 dir,
+                            uint bounce, float lastPdf) {
+  if (!env_present(f)) return bounce == 0 ? xyz(f->background) : make_float3(0.0f, 0.0f, 0.0f);
+  float3 le = env_radiance(f, envMap, dir);
+  if (bounce == 0 || !(lastPdf > 0.0f)) return le;
+  return le * power_heuristic(1.0f, lastPdf, (float)f->lightSamples, env_light_pdf(f, envMap, dir));
+}
+
+MCL_INLINE uint path_dim(uint bounce, uint j) { return MCL_DIM_PATH + bounce * MCL_DIM_PATH_STRIDE + j; }
+
+MCL_INLINE float max_component(float3 c) { return fmax(c.x, fmax(c.y, c.z)); }
+
+MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
+  if (k >= *a->rayCount) return;
+  MCL_CONSTANT const FrameParams* f = a->frame;
+  uint bounce = a->pathBounce;
+  uint id = bounce == 0 ? k : a->pathIds[k];
+  for (uint s = 0; s < f->shadowSlots; ++s)
+    a->shadowContrib[id * f->shadowSlots + s] = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
+  float4 beta4 = bounce == 0 ? make_float4(1.0f, 1.0f, 1.0f, 0.0f) : a->throughput[id];
+  float3 beta = xyz(beta4);
+  float3 L = bounce == 0 ? make_float3(0.0f, 0.0f, 0.0f) : xyz(a->radiance[id]);
+  Hit h = a->hits[k];
+  float3 dir = xyz(a->rays[k].dir);
+  if (h.tri == MCL_NO_HIT) {
+    a->radiance[id] = with_w(L + beta * path_miss(f, a->envMap, dir, bounce, beta4.w), 0.0f);
+    return;
+  }
+  MCL_GLOBAL const Triangle* tris = a->tris;
+  MCL_GLOBAL const Material* materials = a->materials;
+  MCL_GLOBAL const Triangle* tri = &tris[h.tri];
+  float nLight = (float)f->lightSamples;
+  float3 le = emitted_toward(tri, materials, dir);
+  if (le.x > 0.0f || le.y > 0.0f || le.z > 0.0f) {
+    float weight = 1.0f;
+    if (bounce > 0 && beta4.w > 0.0f && f->emitterCount > 0)  // a BSDF sample found an emitter
+      weight = power_heuristic(1.0f, beta4.w, nLight, emitter_light_pdf(f, tri, materials, dir, h.t));
+    L += beta * le * weight;
+  }
+  a->radiance[id] = with_w(L, 0.0f);
+  if (!(f->maxDepth < 0 || (int)bounce + 1 < f->maxDepth)) return;
+
+  float3 n = facing_normal(tri, dir);
+  float3 wo = dir * -1.0f;
+  Bsdf bsdf = bsdf_from_material(&materials[triangle_material(tri)]);
+  float3 origin = offset_ray_origin(hit_position(tri, h), n, f->offsetScale);
+  uint pixel = item_pixel(f, a->active, a->waveStart, id), sample = item_sample(f, a->waveStart, id);
+  for (uint s = 0; (f->emitterCount > 0 || env_present(f)) && s < f->lightSamples; ++s) {
+    float4 u = rng_uniform4(f->seed, pixel, sample, path_dim(bounce, 1u + s));
+    LightSample ls = sample_direct_light(f, tris, materials, a->emitters, a->envMap, a->envCdf, origin, u);
+    if (!(ls.pdf > 0.0f)) continue;
+    float3 fcos = bsdf_eval(bsdf, n, wo, ls.wi);
+    if (!(max_component(fcos) > 0.0f)) continue;
+    float weight = power_heuristic(nLight, ls.pdf, 1.0f, bsdf_pdf(bsdf, n, wo, ls.wi));
+    float3 c = beta * fcos * ls.le * (weight / (ls.pdf * nLight));
+    ShadowWork w;
+    w.ray.origin = with_w(origin, 0.0f);
+    w.ray.dir = with_w(ls.wi, ls.tmax);
+    w.r = c.x;
+    w.g = c.y;
+    w.b = c.z;
+    w.slot = id * f->shadowSlots + s;
+    a->queue[MCL_ATOMIC_INC(a->queueCount)] = w;
+  }
+
+  float4 u = rng_uniform4(f->seed, pixel, sample, path_dim(bounce, 0u));  // z: roulette, w: lobe
+  BsdfSample bs = bsdf_sample(bsdf, n, wo, u.x, u.y, u.w);
+  float3 wi = bs.wi;
+  float pdf = bs.pdf;
+  float3 next = beta * bs.weight;
+  if (!(pdf > 0.0f)) return;
+  if (bounce + 1u >= f->rrDepth) {  // Russian roulette (depth after this bounce: bounce + 1)
+    float q = fmin(0.95f, max_component(next));
+    if (!(u.z < q)) return;
+    next = next / q;
+  }
+  if (!(max_component(next) > 0.0f)) return;
+  a->throughput[id] = with_w(next, pdf);
+  uint slot = MCL_ATOMIC_INC(a->nextCount);
+  Ray r;
+  r.origin = with_w(origin, 0.0f);
+  r.dir = with_w(wi, INFINITY);
+  a->nextRays[slot] = r;
+  a->nextPathIds[slot] = id;
+}
