@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Convergence of montecl's estimators: renders AO (uniform, cosine) and direct lighting (light,
-brdf, mis) of the Cornell box at 1, 2, 4, ... spp, measures the RMSE against a high-spp reference
+"""Convergence of montecl's estimators: renders AO (uniform, cosine), direct lighting (light,
+brdf, mis) and path tracing (unlimited depth) of the Cornell box at 1, 2, 4, ... spp, measures the RMSE against a high-spp reference
 of the same estimator family, fits the slope of log RMSE against log spp (Monte Carlo: -1/2), and
 plots RMSE vs spp on log-log axes with a 1/sqrt(N) guide. Writes docs/convergence.png and prints
 the slopes. Needs build/montecl and ../shared/scenes (skips with a message when absent).
@@ -64,6 +64,7 @@ def main():
         ("direct light", ["--integrator", "direct", "--direct-sampling", "light"], "direct"),
         ("direct brdf", ["--integrator", "direct", "--direct-sampling", "brdf"], "direct"),
         ("direct mis", ["--integrator", "direct", "--direct-sampling", "mis"], "direct"),
+        ("path", ["--integrator", "path"], "path"),
     ]
     spps = [2 ** k for k in range(int(math.log2(args.max_spp)) + 1)]
     results = {}
@@ -73,6 +74,7 @@ def main():
         refs = {
             "ao": render(exe, scene, out, args.size, args.ref_spp, 1000, estimators[1][1]),
             "direct": render(exe, scene, out, args.size, args.ref_spp, 1000, estimators[4][1]),
+            "path": render(exe, scene, out, args.size, args.ref_spp, 1000, estimators[5][1]),
         }
         for name, extra, family in estimators:
             errors = [rmse(render(exe, scene, out, args.size, spp, 7, extra), refs[family]) for spp in spps]

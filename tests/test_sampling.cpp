@@ -127,3 +127,17 @@ TEST_CASE("concentric disk samples are uniform: lifted to the hemisphere (Malley
     CHECK(std::fabs(sc.y - std::cos(x)) < 2e-7f);
   }
 }
+
+TEST_CASE("portable cosine hemisphere (polynomial sin/cos) passes the chi-square test; cossin_turn matches libm" * doctest::test_suite("cpu")) {
+  ChiSquare cs = chiSquareHemisphere(sample_cosine_hemisphere_portable, [](double a, double b) { return b * b - a * a; }, 400000);
+  CHECK(cs.statistic < chiSquareCritical(cs.dof));
+  ChiSquare wrong = chiSquareHemisphere(sample_cosine_hemisphere_portable, [](double a, double b) { return b - a; }, 400000);
+  CHECK(wrong.statistic > chiSquareCritical(wrong.dof));
+  double worst = 0.0;
+  for (int i = 0; i < 4096; ++i) {
+    const float u = float(i) / 4096.0f;
+    const float2 c = cossin_turn(u);
+    worst = std::max({worst, std::fabs(double(c.x) - std::cos(2.0 * M_PI * u)), std::fabs(double(c.y) - std::sin(2.0 * M_PI * u))});
+  }
+  CHECK(worst < 5e-7);
+}

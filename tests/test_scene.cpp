@@ -352,14 +352,14 @@ TEST_CASE("scene file: unknown keys are warnings naming the file and the key" * 
   json s = baseScene("tri.obj");
   s["comment"] = "hi";
   s["camera"]["aperture"] = 0.1;
-  s["render"] = {{"spp", 2}, {"max_depth", 5}};
+  s["render"] = {{"spp", 2}, {"max_bounces", 5}};
   s["meshes"][0]["scale"] = 2;
   dir.write("scene.json", s.dump());
   std::vector<std::string> warnings;
   Scene scene = montecl::loadScene(dir.file("scene.json"), warnings);
   CHECK(scene.render.spp == 2);
   CHECK(warnings.size() == 4);
-  for (const char* key : {"comment", "camera.aperture", "render.max_depth", "meshes[0].scale"}) {
+  for (const char* key : {"comment", "camera.aperture", "render.max_bounces", "meshes[0].scale"}) {
     INFO(key);
     CHECK(containsWarning(warnings, dir.file("scene.json") + ": " + key, "unknown key"));
   }

@@ -151,11 +151,13 @@ int runRender(const RenderArgs& a) {
   BvhLayout layout = resolveStageLayout(parseBvhLayout(a.bvhLayout), device);
 
   Bvh bvh = buildBvh(scene.triangles);
-  const bool areaLightsOnly = scene.render.integrator == Integrator::Direct && !scene.environment.enabled;
-  if (areaLightsOnly && !hasEmitter(scene))
-    std::cerr << "montecl: warning: " << scene.path << ": integrator direct but nothing emits (no Ke, no mesh "
+  const bool lit = (scene.render.integrator == Integrator::Direct || scene.render.integrator == Integrator::Path) &&
+                   !scene.environment.enabled;  // an environment lights the scene by itself
+  if (lit && !hasEmitter(scene))
+    std::cerr << "montecl: warning: " << scene.path << ": integrator " << choiceName(scene.render.integrator)
+              << " but nothing emits (no Ke, no mesh "
               << "\"emission\"): the image is black\n";
-  else if (areaLightsOnly && !emittersFaceAnything(scene))
+  else if (lit && !emittersFaceAnything(scene))
     std::cerr << "montecl: warning: " << scene.path << ": no emitter's front face faces any surface (emitters "
               << "light from the side of cross(v1 - v0, v2 - v0)): only the emitters will show; flip their "
               << "winding or set \"two_sided_emission\": true on the mesh\n";

@@ -79,11 +79,15 @@ LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs
   return img;
 }
 
-// The camera as a scene-file "camera" entry, to copy into a scene file (-v).
+// The camera as a scene-file "camera" entry, to copy into a scene file (-v); the thin-lens keys
+// only when they are set.
 std::string cameraJson(const Camera& c) {
+  std::string lens;
+  if (c.apertureRadius > 0.0f) lens += ", \"aperture_radius\": " + shortFloat(c.apertureRadius);
+  if (c.focusDistance > 0.0f) lens += ", \"focus_distance\": " + shortFloat(c.focusDistance);
   return "\"camera\": {\"position\": " + vec3Json(c.position) + ", \"target\": " + vec3Json(c.target) +
          ", \"up\": " + vec3Json(c.up) + ", \"fov_y\": " + shortFloat(c.fovY) + ", \"width\": " +
-         std::to_string(c.width) + ", \"height\": " + std::to_string(c.height) + "}";
+         std::to_string(c.width) + ", \"height\": " + std::to_string(c.height) + lens + "}";
 }
 
 // The default output: <stem>.png in the current folder, named after the scene's folder when the

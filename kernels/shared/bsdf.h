@@ -36,15 +36,6 @@ MCL_INLINE Bsdf bsdf_from_material(MCL_GLOBAL const Material* m) {
   return bsdf_make(xyz(m->albedo), xyz(m->specular), m->specular.w);
 }
 
-// Cosine-weighted direction (local frame) like sample_cosine_hemisphere, with mcl_sincos_turns
-// (the same bits on every device); the Lambertian-only path keeps sample_cosine_hemisphere.
-MCL_INLINE float3 sample_cosine_hemisphere_portable(float u1, float u2) {
-  float r = sqrt(u1);
-  float s, c;
-  mcl_sincos_turns(u2, &s, &c);
-  return make_float3(r * c, r * s, sqrt(fmax(0.0f, 1.0f - u1)));
-}
-
 // Local coordinates of w in the frame (t, b, n) of make_basis.
 MCL_INLINE float3 to_local(float3 w, float3 n) {
   float3 t, b;
@@ -84,7 +75,7 @@ typedef struct {
 MCL_INLINE BsdfSample bsdf_sample(Bsdf b, float3 n, float3 wo, float u1, float u2, float uLobe) {
   BsdfSample s;
   if (b.specProb == 0.0f) {  // Lambertian: f cos / p = Kd exactly
-    float3 dirLocal = sample_cosine_hemisphere(u1, u2);
+    float3 dirLocal = sample_cosine_hemisphere_portable(u1, u2);  // sampling.h: same bits on every device
     s.wi = to_world(dirLocal, n);
     s.pdf = pdf_cosine_hemisphere(dirLocal.z);
     s.weight = s.pdf > 0.0f ? b.kd : make_float3(0.0f, 0.0f, 0.0f);

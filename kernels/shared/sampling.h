@@ -36,6 +36,27 @@ MCL_INLINE float2 sincos_quarter(float x) {
   return make_float2(s, c);
 }
 
+// (cos, sin) of 2 pi u for u in [0, 1), from sincos_quarter: the quadrant's centre angle
+// (q + 1/2) pi/2 has cos and sin +-sqrt(1/2), so the rotation is exact arithmetic on every device.
+MCL_INLINE float2 cossin_turn(float u) {
+  float q = floor(u * 4.0f);  // quadrant 0..3
+  float2 sc = sincos_quarter(2.0f * MCL_PI * (u - (q + 0.5f) * 0.25f));
+  float h = 0.70710678118654752f;
+  float cq = (q == 0.0f || q == 3.0f) ? h : -h;  // cos of the centre angle
+  float sq = q < 2.0f ? h : -h;                   // sin of the centre angle
+  return make_float2(cq * sc.y - sq * sc.x, sq * sc.y + cq * sc.x);
+}
+
+// Cosine-weighted over the hemisphere z >= 0 as sample_cosine_hemisphere, with the portable
+// cossin_turn instead of the built-in cos and sin (path tracing: last-bit differences between
+// devices would otherwise change whole paths).
+MCL_INLINE float3 sample_cosine_hemisphere_portable(float u1, float u2) {
+  float r = sqrt(u1);
+  float2 cs = cossin_turn(u2);
+  float z = sqrt(fmax(0.0f, 1.0f - u1));
+  return make_float3(r * cs.x, r * cs.y, z);
+}
+
 // Uniform on the unit disk (Shirley and Chiu's concentric map): p = 1 / pi per unit area.
 MCL_INLINE float2 sample_concentric_disk(float u1, float u2) {
   float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;

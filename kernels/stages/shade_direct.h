@@ -51,9 +51,18 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   }
   if (useBrdf) {
     float4 u = rng_uniform4(f->seed, pixel, sample, MCL_DIM_BRDF);
-    BsdfSample bs = bsdf_sample(bsdf, n, wo, u.x, u.y, u.z);
-    if (bsdf.specProb != 0.0f && !(bs.pdf > 0.0f)) return;  // absorbed (Lambert: always a direction)
+    float3 wi;
+    if (bsdf.specProb == 0.0f) {
+      // Lambertian: the built-in cos/sin of the direct integrator as before the glossy lobe, so
+      // Lambert-only direct images stay bit-identical to earlier renders (bsdf_sample's portable
+      // lobe differs in the last bit; the path integrator uses it).
+      wi = to_world(sample_cosine_hemisphere(u.x, u.y), n);
+    } else {
+      BsdfSample bs = bsdf_sample(bsdf, n, wo, u.x, u.y, u.z);
+      if (!(bs.pdf > 0.0f)) return;  // absorbed
+      wi = bs.wi;
+    }
     a->bounce[i].origin = with_w(origin, 0.0f);
-    a->bounce[i].dir = with_w(bs.wi, INFINITY);
+    a->bounce[i].dir = with_w(wi, INFINITY);
   }
 }
