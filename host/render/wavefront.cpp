@@ -100,7 +100,8 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   checkImageMemory(m.device, scene.path, scene.camera.width, scene.camera.height, m.options.aovs,
                    wave * itemBytes);
   for (std::uint64_t bytes : {pixels * sizeof(float4), std::uint64_t(bvhNodeBytes(bvh, run.bvhLayout())),
-                              bvh.triangles.size() * sizeof(Triangle)})
+                              bvh.triangles.size() * sizeof(Triangle), environment.map.size() * sizeof(float4),
+                              environment.cdf.size() * sizeof(float)})
     if (bytes > maxAlloc)
       throw RuntimeError("a buffer of " + std::to_string(bytes) + " bytes does not fit the device's maximum "
                          "allocation of " + std::to_string(maxAlloc) + " bytes; use a smaller image or scene");
