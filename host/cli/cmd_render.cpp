@@ -165,7 +165,8 @@ int runRender(const RenderArgs& a) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - textureStart).count();
   for (const std::string& w : textureWarnings) std::cerr << "montecl: warning: " << scene.path << ": " << w << "\n";
   Bvh bvh = buildBvh(scene.triangles);
-  const bool lit = scene.render.integrator == Integrator::Direct || scene.render.integrator == Integrator::Path;
+  const bool lit = (scene.render.integrator == Integrator::Direct || scene.render.integrator == Integrator::Path) &&
+                   !scene.environment.enabled;  // an environment lights the scene by itself
   if (lit && !hasEmitter(scene))
     std::cerr << "montecl: warning: " << scene.path << ": integrator " << choiceName(scene.render.integrator)
               << " but nothing emits (no Ke, no mesh "

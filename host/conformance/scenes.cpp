@@ -100,6 +100,17 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   lens.camera.apertureRadius = 0.05f;
   lens.camera.focusDistance = 1.5f;
   cases.push_back({"polygon-light/path-depth-3-thin-lens", lens});
+  // The same scene with glossy floor and occluder (GGX lobe) under a constant environment as well.
+  Scene glossy = light;
+  glossy.materials[0].specular = glm::vec3(0.3f, 0.25f, 0.2f);
+  glossy.materials[0].specularExponent = 60.0f;
+  glossy.materials[2].specular = glm::vec3(0.5f);
+  glossy.materials[2].specularExponent = 8.0f;
+  glossy.environment.enabled = true;
+  glossy.environment.radiance = {0.3f, 0.4f, 0.5f};
+  cases.push_back({"glossy-environment/direct-light", withDirect(glossy, DirectSampling::Light, 1)});
+  cases.push_back({"glossy-environment/direct-mis", withDirect(glossy, DirectSampling::Mis, 2)});
+  cases.push_back({"glossy-environment/path", withPath(glossy, 2)});
 
   const std::string path = o.cornellPath.empty() ? defaultCornellPath() : o.cornellPath;
   if (!std::ifstream(path)) {

@@ -42,6 +42,8 @@ class ClStageRunner final : public StageRunner {
     b.textures = {cl_.upload(tex ? in.textures->textures : std::vector<TextureDesc>(1))};
     b.textureLevels = {cl_.upload(tex ? in.textures->levels : std::vector<TextureLevel>(1))};
     b.texels = {cl_.upload(tex ? in.textures->texels : std::vector<std::uint16_t>(4))};
+    b.envMap = {cl_.upload(in.envMap)};
+    b.envCdf = {cl_.upload(in.envCdf)};
     std::vector<cl_uint> all(pixels_);
     for (std::uint64_t p = 0; p < pixels_; ++p) all[p] = cl_uint(p);
     b.active = {cl_.upload(all, CL_MEM_READ_WRITE)};

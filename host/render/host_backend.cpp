@@ -34,6 +34,8 @@ class HostStageRunner final : public StageRunner {
     if (shading_.empty()) shading_.resize(1);
     materials_ = in.materials;
     emitters_ = in.emitters;
+    envMap_ = in.envMap;
+    envCdf_ = in.envCdf;
     if (materials_.empty()) materials_.resize(1);
     if (emitters_.empty()) emitters_.resize(1);
     const bool tex = in.textures && !in.textures->textures.empty();
@@ -148,6 +150,8 @@ class HostStageRunner final : public StageRunner {
     b.textures = const_cast<TextureDesc*>(textures_->data());
     b.textureLevels = const_cast<TextureLevel*>(textureLevels_->data());
     b.texels = const_cast<std::uint16_t*>(texels_->data());
+    b.envMap = envMap_.data();
+    b.envCdf = envCdf_.data();
     b.active = active_.data();
     b.rays = rays_.data();
     b.bounce = bounce_.data();
@@ -190,6 +194,8 @@ class HostStageRunner final : public StageRunner {
   std::vector<TextureDesc> noTextures_ = std::vector<TextureDesc>(1);
   std::vector<TextureLevel> noTextureLevels_ = std::vector<TextureLevel>(1);
   std::vector<std::uint16_t> noTexels_ = std::vector<std::uint16_t>(4);
+  std::vector<float4> envMap_;
+  std::vector<float> envCdf_;
   std::vector<Ray> rays_, bounce_;
   std::vector<Hit> hits_, bounceHits_;
   std::vector<float4> radiance_, shadowContrib_, mean_, meanLo_, m2_, m2Lo_;

@@ -49,6 +49,8 @@ struct StageBindings {
   Array<TextureDesc> textures;
   Array<TextureLevel> textureLevels;
   Array<ushort> texels;
+  Array<float4> envMap;  // environment texels (kernels/shared/environment.h)
+  Array<float> envCdf;   // its marginal and conditional CDFs
   Array<uint> active;  // the active-pixel list
   // Per wave item.
   Array<Ray> rays, bounce;

@@ -29,6 +29,8 @@ struct StageInputs {
   const SceneTextures* textures = nullptr;
   // Triangles to upload instead of bvh->triangles (cut-outs flagged, alphaFlaggedTriangles); empty: those.
   std::vector<Triangle> triangles;
+  std::vector<float4> envMap{float4(0.0f)};  // environment texels and CDFs (never empty)
+  std::vector<float> envCdf{0.0f};
   std::uint64_t wave = 0;    // wave items (pixel samples) per wave
   bool direct = false;       // direct lighting: bounce buffers are needed
   bool path = false;         // path tracing: path state and the continuation queue are needed

@@ -10,8 +10,10 @@
 #include <cmath>
 #include <iostream>
 
+#include "kernels/shared/microfacet.h"
 #include "render/stage_runner.h"
 #include "render/emitters.h"
+#include "render/environment_table.h"
 #include "render/frame_params.h"
 #include "render/memory_check.h"
 #include "render/triangle_shading.h"
@@ -57,7 +59,7 @@ std::vector<Material> deviceMaterials(const std::vector<MaterialDesc>& materials
     Material d{};
     d.albedo = glm::vec4(m.albedo, noTexture);
     d.emission = glm::vec4(m.emission, m.twoSidedEmission ? 1.0f : 0.0f);
-    d.specular = glm::vec4(0.0f);
+    d.specular = glm::vec4(m.specular, ggx_alpha_from_ns(m.specularExponent));
     d.alpha = glm::vec4(noTexture, m.alphaCutoff, glm::uintBitsToFloat(0u), 0.0f);
     out.push_back(d);
   }
@@ -83,6 +85,8 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   const EmitterTable emitters = direct || path ? buildEmitterTable(bvh, scene.materials) : EmitterTable{};
   frame.emitterCount = uint(emitters.emitters.size());
   frame.emitterPower = emitters.totalPower;
+  EnvironmentTable environment = buildEnvironment(scene, frame);  // read (and checked) for any integrator
+  if (!direct && !path) frame.environment = float4(0.0f), frame.envWidth = frame.envHeight = 0;  // AO: background only
   const std::uint64_t pixels = std::uint64_t(frame.width) * frame.height;
   const std::uint64_t total = pixels * std::uint64_t(scene.render.spp);
 
@@ -97,7 +101,8 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   checkImageMemory(m.device, scene.path, scene.camera.width, scene.camera.height, m.options.aovs,
                    wave * itemBytes);
   for (std::uint64_t bytes : {pixels * sizeof(float4), std::uint64_t(bvhNodeBytes(bvh, run.bvhLayout())),
-                              bvh.triangles.size() * sizeof(Triangle)})
+                              bvh.triangles.size() * sizeof(Triangle), environment.map.size() * sizeof(float4),
+                              environment.cdf.size() * sizeof(float)})
     if (bytes > maxAlloc)
       throw RuntimeError("a buffer of " + std::to_string(bytes) + " bytes does not fit the device's maximum "
                          "allocation of " + std::to_string(maxAlloc) + " bytes; use a smaller image or scene");
@@ -133,6 +138,8 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
     inputs.triangles = alphaFlaggedTriangles(bvh.triangles, *textures);
   }
   inputs.emitters = emitters.emitters;
+  inputs.envMap = std::move(environment.map);
+  inputs.envCdf = std::move(environment.cdf);
   inputs.wave = wave;
   inputs.direct = direct;
   inputs.path = path;

@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "scene/glossy_material.h"
 #include "scene/load_util.h"
 
 namespace montecl {
@@ -165,6 +166,7 @@ std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<t
   for (const MtlFile& f : files) f.unused.flush(warnings);
   auto base = static_cast<std::uint32_t>(scene.materials.size());
   std::set<std::string> textures;
+  GlossyScaling scaled;  // Kd + Ks > 1: one warning per file
   for (std::size_t i = 0; i < mats.size(); ++i) {
     const tinyobj::material_t& m = mats[i];
     const MaterialSource src = sourceOf(objPath, files, i, m.name);
@@ -186,8 +188,11 @@ std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<t
     if (!m.alpha_texname.empty() || src.has("map_d")) d.alphaTexture = texturePath(src, "map_d", m.alpha_texname);
     for (const std::string* t : {&d.albedoTexture, &d.alphaTexture})
       if (!t->empty() && textures.insert(*t).second) scene.inputFiles.push_back(*t);
+    const std::string where = "material '" + oneLine(m.name, 60) + "'";
+    scaled.note(oneLine(m.name, 60), checkGlossyMaterial(oneLine(objPath, 4096), where, d));
     scene.materials.push_back(d);
   }
+  scaled.warn(oneLine(objPath, 4096), warnings);
   return base;
 }
 

@@ -69,11 +69,22 @@ struct SceneTriangle {
   std::uint8_t attributes = 0;
 };
 
+// The environment light (scene key "environment", host/scene/environment_key.cpp): radiance from
+// infinitely far away, seen by camera rays that miss and lighting the scene (direct, path).
+struct EnvironmentDesc {
+  bool enabled = false;
+  glm::vec3 radiance{1.0f};  // "radiance": the constant, or the tint multiplying the map
+  std::string file;          // "file": latitude-longitude map (resolved path); empty: constant
+  float scale = 1.0f;        // "scale" (>= 0): multiplies the radiance
+  float rotateYDegrees = 0.0f;  // "rotate_y": rotation of the map about +y
+};
+
 struct Scene {
   std::string path;  // the file it was loaded from
   std::vector<std::string> inputFiles;  // every file read: scene file, meshes, MTLs, buffers, textures (as opened)
   Camera camera;
   RenderSettings render;
+  EnvironmentDesc environment;
   std::vector<MaterialDesc> materials;
   std::vector<SceneTriangle> triangles;  // non-degenerate triangles only
   std::size_t degenerateDropped = 0;     // zero-area triangles removed while loading

@@ -47,6 +47,13 @@ std::string sceneDigest(const Scene& scene) {
     append(bytes, &m.alphaCutoff, sizeof m.alphaCutoff);
     bytes += m.albedoTexture + '\0' + m.alphaTexture + '\0' + (m.twoSidedEmission ? '2' : '1');
   }
+  if (scene.environment.enabled) {  // the map by its path (its pixels are not hashed)
+    const EnvironmentDesc& e = scene.environment;
+    bytes += "environment" + e.file;
+    appendVec(bytes, e.radiance);
+    append(bytes, &e.scale, sizeof e.scale);
+    append(bytes, &e.rotateYDegrees, sizeof e.rotateYDegrees);
+  }
   bytes += "camera";
   appendVec(bytes, scene.camera.position);
   appendVec(bytes, scene.camera.target);

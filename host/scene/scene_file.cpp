@@ -21,6 +21,7 @@
 #include "scene/load_util.h"
 #include "scene/mesh_entry.h"
 #include "scene/mesh_loaders.h"
+#include "scene/environment_key.h"
 #include "scene/scene.h"
 #include "util/errors.h"
 
@@ -301,7 +302,7 @@ Scene loadScene(const std::string& path, std::vector<std::string>& warnings) {
   Ctx ctx{path, warnings};
   json root = parseJson(ctx, readSceneText(ctx));
   requireObject(ctx, root, "(top level)");
-  warnUnknownKeys(ctx, root, "", {"camera", "meshes", "render"});
+  warnUnknownKeys(ctx, root, "", {"camera", "meshes", "render", "environment"});
   Scene scene;
   scene.path = path;
   scene.inputFiles.push_back(path);
@@ -309,6 +310,10 @@ Scene loadScene(const std::string& path, std::vector<std::string>& warnings) {
   const bool hasCamera = optionalKey(root, "camera") != nullptr;
   if (hasCamera) scene.camera = parseCamera(ctx, root);
   scene.render = parseRender(ctx, root);
+  if (const json* env = optionalKey(root, "environment")) {
+    scene.environment = parseEnvironmentKey(path, *env, warnings);
+    if (!scene.environment.file.empty()) scene.inputFiles.push_back(scene.environment.file);
+  }
   Camera meshCamera;
   const bool hasMeshCamera = loadMeshes(ctx, parseMeshes(ctx, root), scene, &meshCamera);
   if (!hasCamera) {

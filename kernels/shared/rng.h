@@ -12,7 +12,8 @@
 #define MCL_DIM_BRDF 1u       // direct lighting: BRDF direction (shares AO's group; never both)
 #define MCL_DIM_LENS 0x7fffffffu  // thin lens: point on the aperture (x, y)
 // Path tracing: bounce b owns groups MCL_DIM_PATH + b * MCL_DIM_PATH_STRIDE + j: j = 0 the BSDF
-// direction (x, y) and Russian roulette (z); j = 1 + k light sample k (as MCL_DIM_LIGHT + k).
+// direction (x, y), Russian roulette (z) and the BSDF lobe (w); j = 1 + k light sample k (as
+// MCL_DIM_LIGHT + k).
 #define MCL_DIM_PATH 0x80000000u
 #define MCL_DIM_PATH_STRIDE 1025u  // 1 + the most light samples (kMaxLightSamples)
 

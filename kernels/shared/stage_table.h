@@ -59,7 +59,8 @@
   ARG(MCL_GLOBAL const Emitter*, emitters) ARG(MCL_GLOBAL const Ray*, rays)                        \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL float4*, radiance)                               \
   ARG(MCL_GLOBAL float4*, shadowContrib) ARG(MCL_GLOBAL ShadowWork*, queue)                        \
-  ARG(MCL_GLOBAL volatile uint*, queueCount) ARG(MCL_GLOBAL Ray*, bounce) \
+  ARG(MCL_GLOBAL volatile uint*, queueCount) ARG(MCL_GLOBAL Ray*, bounce)                        \
+  ARG(MCL_GLOBAL const float4*, envMap) ARG(MCL_GLOBAL const float*, envCdf) \
   MCL_TEXTURE_ARGS(ARG)
 
 #define MCL_ARGS_shade_direct_hit(ARG)                                                             \
@@ -67,7 +68,8 @@
   ARG(MCL_GLOBAL const TriangleShading*, shading)                                                  \
   ARG(MCL_GLOBAL const Material*, materials) ARG(MCL_GLOBAL const Ray*, rays)                      \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL const Ray*, bounce)                              \
-  ARG(MCL_GLOBAL const Hit*, bounceHits) ARG(MCL_GLOBAL float4*, shadowContrib) \
+  ARG(MCL_GLOBAL const Hit*, bounceHits) ARG(MCL_GLOBAL float4*, shadowContrib)                   \
+  ARG(MCL_GLOBAL const float4*, envMap) \
   MCL_TEXTURE_ARGS(ARG)
 
 #define MCL_ARGS_intersect_shadow(ARG)                                                             \
@@ -97,14 +99,17 @@
 // queue of *rayCount live paths; per-path state is indexed by path id (the wave item).
 #define MCL_ARGS_shade_path(ARG)                                                                   \
   ARG(ulong, waveStart) ARG(uint, pathBounce) ARG(MCL_GLOBAL const uint*, active)                  \
-  ARG(MCL_GLOBAL const Triangle*, tris) ARG(MCL_GLOBAL const Material*, materials)                 \
+  ARG(MCL_GLOBAL const Triangle*, tris) ARG(MCL_GLOBAL const TriangleShading*, shading)            \
+  ARG(MCL_GLOBAL const Material*, materials)                                                       \
   ARG(MCL_GLOBAL const Emitter*, emitters) ARG(MCL_GLOBAL const Ray*, rays)                        \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL const uint*, rayCount)                           \
   ARG(MCL_GLOBAL const uint*, pathIds) ARG(MCL_GLOBAL float4*, radiance)                           \
   ARG(MCL_GLOBAL float4*, throughput) ARG(MCL_GLOBAL float4*, shadowContrib)                       \
   ARG(MCL_GLOBAL ShadowWork*, queue) ARG(MCL_GLOBAL volatile uint*, queueCount)                    \
   ARG(MCL_GLOBAL Ray*, nextRays) ARG(MCL_GLOBAL uint*, nextPathIds)                                \
-  ARG(MCL_GLOBAL volatile uint*, nextCount)
+  ARG(MCL_GLOBAL volatile uint*, nextCount) ARG(MCL_GLOBAL const float4*, envMap)                   \
+  ARG(MCL_GLOBAL const float*, envCdf) \
+  MCL_TEXTURE_ARGS(ARG)
 
 #define MCL_ARGS_path_gather(ARG)                                                                  \
   ARG(uint, pathBounce) ARG(MCL_GLOBAL const uint*, rayCount) ARG(MCL_GLOBAL const uint*, pathIds) \

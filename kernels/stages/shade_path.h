@@ -4,22 +4,27 @@
 // BSDF sample that made the ray, 0 for camera rays). Adds emission seen (MIS-weighted against
 // light sampling after a BSDF bounce) or the miss radiance (path_miss), pushes lightSamples
 // next-event queries onto the shadow queue (slots id * shadowSlots + k, contributions MIS
-// weighted), samples the BSDF (kernels/shared/bsdf.h), applies Russian roulette from depth
+// weighted; lights: emitter triangles and the environment, stages/direct_light.h), samples the
+// BSDF (kernels/shared/surface_bsdf.h: Lambert (albedo = Kd x texture) + GGX around the shading
+// frame; textures filtered with the camera's ray-cone width at this segment's length, a
+// lower bound after diffuse bounces), applies Russian roulette from depth
 // rrDepth, and pushes the continuation ray onto nextRays / nextPathIds (compacted, *nextCount).
 // Depth (Mitsuba's convention, FrameParams::maxDepth D): hit b adds emission when b < D, next-event
 // estimation and a continuation when b + 1 < D; D = -1 is unlimited. Random numbers: bounce b
 // owns dimension groups MCL_DIM_PATH + b * MCL_DIM_PATH_STRIDE + j (rng.h).
 #pragma once
-#include "../shared/bsdf.h"
-#include "stage_common.h"
+#include "direct_light.h"
 
 // Radiance a path ray escaping the scene along dir brings back, before the path weight: the
-// background for camera rays (bounce 0); nothing afterwards yet. lastPdf (the BSDF sample's pdf)
-// is for MIS against environment sampling.
-MCL_INLINE float3 path_miss(MCL_CONSTANT const FrameParams* f, float3 dir, uint bounce, float lastPdf) {
-  (void)dir;
-  (void)lastPdf;
-  return bounce == 0 ? xyz(f->background) : make_float3(0.0f, 0.0f, 0.0f);
+// environment (camera rays see it unweighted; after a BSDF bounce it is MIS weighted against
+// environment sampling with the BSDF sample's pdf lastPdf), else the background for camera rays
+// and nothing afterwards.
+MCL_INLINE float3 path_miss(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const float4* envMap, float3 dir,
+                            uint bounce, float lastPdf) {
+  if (!env_present(f)) return bounce == 0 ? xyz(f->background) : make_float3(0.0f, 0.0f, 0.0f);
+  float3 le = env_radiance(f, envMap, dir);
+  if (bounce == 0 || !(lastPdf > 0.0f)) return le;
+  return le * power_heuristic(1.0f, lastPdf, (float)f->lightSamples, env_light_pdf(f, envMap, dir));
 }
 
 MCL_INLINE uint path_dim(uint bounce, uint j) { return MCL_DIM_PATH + bounce * MCL_DIM_PATH_STRIDE + j; }
@@ -39,7 +44,7 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
   Hit h = a->hits[k];
   float3 dir = xyz(a->rays[k].dir);
   if (h.tri == MCL_NO_HIT) {
-    a->radiance[id] = with_w(L + beta * path_miss(f, dir, bounce, beta4.w), 0.0f);
+    a->radiance[id] = with_w(L + beta * path_miss(f, a->envMap, dir, bounce, beta4.w), 0.0f);
     return;
   }
   MCL_GLOBAL const Triangle* tris = a->tris;
@@ -49,42 +54,32 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
   float3 le = emitted_toward(tri, materials, dir);
   if (le.x > 0.0f || le.y > 0.0f || le.z > 0.0f) {
     float weight = 1.0f;
-    if (bounce > 0 && beta4.w > 0.0f && f->emitterCount > 0) {  // a BSDF sample found an emitter
-      float area = triangle_area(tri);
-      float pick = emitter_pick_probability(area, xyz(materials[triangle_material(tri)].emission), f->emitterPower);
-      float pdfLight = area_to_solid_angle(pick / area, h.t * h.t, emitter_cosine(tri, materials, dir));
-      weight = power_heuristic(1.0f, beta4.w, nLight, pdfLight);
-    }
+    if (bounce > 0 && beta4.w > 0.0f && f->emitterCount > 0)  // a BSDF sample found an emitter
+      weight = power_heuristic(1.0f, beta4.w, nLight, emitter_light_pdf(f, tri, materials, dir, h.t));
     L += beta * le * weight;
   }
   a->radiance[id] = with_w(L, 0.0f);
   if (!(f->maxDepth < 0 || (int)bounce + 1 < f->maxDepth)) return;
 
-  float3 n = facing_normal(tri, dir);
+  SurfaceFrame sf = surface_frame(tris, a->shading, h, dir);
   float3 wo = dir * -1.0f;
-  Bsdf bsdf = bsdf_make(materials[triangle_material(tri)]);
-  float3 origin = offset_ray_origin(hit_position(tri, h), n, f->offsetScale);
+  Bsdf bsdf = bsdf_from_material(&materials[triangle_material(tri)]);
+  bsdf.kd = hit_albedo(make_texture_tables(a->textures, a->textureLevels, a->texels),
+                       materials[triangle_material(tri)], tri, &a->shading[h.tri], h, dir,
+                       camera_spread_angle(f) * h.t);
+  float3 origin = offset_ray_origin(sf.p, sf.ng, f->offsetScale);
   uint pixel = item_pixel(f, a->active, a->waveStart, id), sample = item_sample(f, a->waveStart, id);
-  for (uint s = 0; f->emitterCount > 0 && s < f->lightSamples; ++s) {
+  for (uint s = 0; (f->emitterCount > 0 || env_present(f)) && s < f->lightSamples; ++s) {
     float4 u = rng_uniform4(f->seed, pixel, sample, path_dim(bounce, 1u + s));
-    MCL_GLOBAL const Emitter* em = &a->emitters[pick_emitter(a->emitters, f->emitterCount, u.x)];
-    MCL_GLOBAL const Triangle* lt = &tris[em->tri];
-    float3 lle = xyz(materials[triangle_material(lt)].emission);
-    float3 p = sample_triangle(xyz(lt->v0), xyz(lt->e1), xyz(lt->e2), u.y, u.z);
-    float3 toLight = p - origin;
-    float dist2 = dot(toLight, toLight);
-    float dist = sqrt(dist2);
-    float3 wi = toLight / dist;
-    float cosLight = emitter_cosine(lt, materials, wi);
-    float3 fcos = bsdf_eval(bsdf, n, wo, wi);
-    if (!(cosLight > 0.0f && dist > 0.0f) || !(max_component(fcos) > 0.0f)) continue;
-    float pick = emitter_pick_probability(em->area, lle, f->emitterPower);
-    float pdfLight = area_to_solid_angle(pick / em->area, dist2, cosLight);
-    float weight = power_heuristic(nLight, pdfLight, 1.0f, bsdf_pdf(bsdf, n, wo, wi));
-    float3 c = beta * fcos * lle * (weight / (pdfLight * nLight));
+    LightSample ls = sample_direct_light(f, tris, materials, a->emitters, a->envMap, a->envCdf, origin, u);
+    if (!(ls.pdf > 0.0f)) continue;
+    float3 fcos = surface_bsdf_eval(bsdf, sf, wo, ls.wi);
+    if (!(max_component(fcos) > 0.0f)) continue;
+    float weight = power_heuristic(nLight, ls.pdf, 1.0f, surface_bsdf_pdf(bsdf, sf, wo, ls.wi));
+    float3 c = beta * fcos * ls.le * (weight / (ls.pdf * nLight));
     ShadowWork w;
     w.ray.origin = with_w(origin, 0.0f);
-    w.ray.dir = with_w(wi, dist * (1.0f - 1e-4f));
+    w.ray.dir = with_w(ls.wi, ls.tmax);
     w.r = c.x;
     w.g = c.y;
     w.b = c.z;
@@ -92,10 +87,11 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
     a->queue[MCL_ATOMIC_INC(a->queueCount)] = w;
   }
 
-  float4 u = rng_uniform4(f->seed, pixel, sample, path_dim(bounce, 0u));
-  float3 wi;
-  float pdf;
-  float3 next = beta * bsdf_sample(bsdf, n, wo, u.x, u.y, &wi, &pdf);
+  float4 u = rng_uniform4(f->seed, pixel, sample, path_dim(bounce, 0u));  // z: roulette, w: lobe
+  BsdfSample bs = surface_bsdf_sample(bsdf, sf, wo, u.x, u.y, u.w);
+  float3 wi = bs.wi;
+  float pdf = bs.pdf;
+  float3 next = beta * bs.weight;
   if (!(pdf > 0.0f)) return;
   if (bounce + 1u >= f->rrDepth) {  // Russian roulette (depth after this bounce: bounce + 1)
     float q = fmin(0.95f, max_component(next));

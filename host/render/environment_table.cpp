@@ -1,0 +1,93 @@
+// environment_table.cpp: loads the environment map (image/exr_layers.h: any format OpenImageIO
+// reads) and builds its sampling tables (environment_table.h), in double, stored as float.
+#include "render/environment_table.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "image/exr_layers.h"
+#include "util/errors.h"
+
+namespace montecl {
+
+EnvironmentTable environmentFromPixels(int width, int height, const std::vector<glm::vec3>& rgb) {
+  EnvironmentTable t;
+  t.width = uint(width);
+  t.height = uint(height);
+  const std::size_t w = std::size_t(width), h = std::size_t(height);
+  std::vector<double> weight(w * h);
+  double total = 0.0;
+  for (std::size_t y = 0; y < h; ++y) {
+    const double sinTheta = std::sin(M_PI * (double(y) + 0.5) / double(h));
+    for (std::size_t x = 0; x < w; ++x) {
+      const glm::vec3& c = rgb[y * w + x];
+      weight[y * w + x] = (0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z) * sinTheta;
+      total += weight[y * w + x];
+    }
+  }
+  if (!(total > 0.0))  // a black map: sample by solid angle (its radiance is 0 anyway)
+    for (std::size_t y = 0; y < h; ++y)
+      for (std::size_t x = 0; x < w; ++x) total += weight[y * w + x] = std::sin(M_PI * (double(y) + 0.5) / double(h));
+  const double mean = total / double(w * h);
+  t.map.resize(w * h);
+  for (std::size_t i = 0; i < w * h; ++i) t.map[i] = float4(rgb[i], float(weight[i] / mean));
+  t.cdf.assign((h + 1) + h * (w + 1), 0.0f);
+  double rowsSoFar = 0.0;
+  for (std::size_t y = 0; y < h; ++y) {
+    double rowTotal = 0.0;
+    for (std::size_t x = 0; x < w; ++x) rowTotal += weight[y * w + x];
+    float* row = &t.cdf[(h + 1) + y * (w + 1)];
+    double sum = 0.0;
+    for (std::size_t x = 0; x < w; ++x) {
+      row[x] = rowTotal > 0.0 ? float(sum / rowTotal) : float(double(x) / double(w));
+      sum += weight[y * w + x];
+    }
+    row[w] = 1.0f;
+    t.cdf[y] = float(rowsSoFar / total);
+    rowsSoFar += rowTotal;
+  }
+  t.cdf[h] = 1.0f;
+  return t;
+}
+
+EnvironmentTable buildEnvironment(const Scene& scene, FrameParams& frame) {
+  const EnvironmentDesc& env = scene.environment;
+  frame.environment = float4(0.0f);
+  frame.envWidth = frame.envHeight = 0;
+  frame.envRotateY = 0.0f;
+  if (!env.enabled) return EnvironmentTable{};
+  frame.environment = float4(env.radiance * env.scale, 1.0f);
+  frame.envRotateY = float(double(env.rotateYDegrees) * M_PI / 180.0);
+  if (env.file.empty()) return EnvironmentTable{};
+  const std::string where = "environment.file";
+  LayeredImage image;
+  try {
+    image = readLayeredImage(env.file);
+  } catch (const InputError& e) {
+    throwInputError(scene.path, where, e.what());
+  }
+  // R, G, B by name, else the first three channels, else one channel as grey.
+  const std::vector<float>* planes[3] = {image.find("R"), image.find("G"), image.find("B")};
+  if (!planes[0] || !planes[1] || !planes[2]) {
+    for (int c = 0; c < 3; ++c)
+      planes[c] = &image.planes[std::min<std::size_t>(std::size_t(c), image.planes.size() - 1)];
+  }
+  const std::size_t count = image.pixelCount();
+  std::vector<glm::vec3> rgb(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const float v = (*planes[c])[i];
+      if (!(std::isfinite(v) && v >= 0.0f))
+        throwInputError(scene.path, where,
+                        "'" + env.file + "': pixel (" + std::to_string(i % std::size_t(image.width)) + ", " +
+                            std::to_string(i / std::size_t(image.width)) + ") is negative or not finite");
+      rgb[i][c] = v;
+    }
+  }
+  EnvironmentTable t = environmentFromPixels(image.width, image.height, rgb);
+  frame.envWidth = t.width;
+  frame.envHeight = t.height;
+  return t;
+}
+
+}  // namespace montecl

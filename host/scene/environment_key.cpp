@@ -1,0 +1,72 @@
+// environment_key.cpp: parses and checks the scene file's "environment" key (environment_key.h).
+#include "scene/environment_key.h"
+
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "util/errors.h"
+
+namespace montecl {
+namespace {
+
+using nlohmann::json;
+
+float number(const std::string& file, const json& v, const std::string& where) {
+  if (!v.is_number()) throwInputError(file, where, std::string("expected a number, got ") + v.type_name());
+  const float f = v.get<float>();
+  if (!std::isfinite(f)) throwInputError(file, where, "number out of float range");
+  return f;
+}
+
+}  // namespace
+
+EnvironmentDesc parseEnvironmentKey(const std::string& sceneFile, const json& value,
+                                    std::vector<std::string>& warnings) {
+  const std::string prefix = "environment";
+  if (!value.is_object())
+    throwInputError(sceneFile, prefix, std::string("expected an object, got ") + value.type_name());
+  EnvironmentDesc env;
+  env.enabled = true;
+  for (auto it = value.begin(); it != value.end(); ++it)
+    if (it.key() != "radiance" && it.key() != "file" && it.key() != "scale" && it.key() != "rotate_y")
+      warnings.push_back(sceneFile + ": " + prefix + "." + it.key() + ": unknown key, ignored");
+  if (value.find("radiance") == value.end() && value.find("file") == value.end())
+    throwInputError(sceneFile, prefix, "needs \"radiance\" or \"file\"");
+  if (auto it = value.find("radiance"); it != value.end()) {
+    const std::string where = prefix + ".radiance";
+    if (!it->is_array() || it->size() != 3) throwInputError(sceneFile, where, "expected an array of 3 numbers");
+    for (int c = 0; c < 3; ++c) {
+      env.radiance[c] = number(sceneFile, (*it)[c], where + "[" + std::to_string(c) + "]");
+      if (env.radiance[c] < 0.0f) throwInputError(sceneFile, where, "components must be >= 0");
+    }
+  }
+  if (auto it = value.find("scale"); it != value.end()) {
+    env.scale = number(sceneFile, *it, prefix + ".scale");
+    if (env.scale < 0.0f) throwInputError(sceneFile, prefix + ".scale", "must be >= 0");
+  }
+  if (auto it = value.find("rotate_y"); it != value.end()) env.rotateYDegrees = number(sceneFile, *it, prefix + ".rotate_y");
+  if (auto it = value.find("file"); it != value.end()) {
+    const std::string where = prefix + ".file";
+    if (!it->is_string() || it->get<std::string>().empty())
+      throwInputError(sceneFile, where, "expected a file name");
+    const std::filesystem::path folder = std::filesystem::path(sceneFile).parent_path();
+    env.file = (folder / it->get<std::string>()).lexically_normal().string();
+    struct stat st {};
+    if (::stat(env.file.c_str(), &st) != 0)
+      throwInputError(sceneFile, where, "cannot open '" + env.file + "': " + std::strerror(errno));
+    if (!S_ISREG(st.st_mode)) throwInputError(sceneFile, where, "cannot open '" + env.file + "': not a regular file");
+    std::ifstream in(env.file, std::ios::binary);
+    if (!in) throwInputError(sceneFile, where, "cannot open '" + env.file + "': " + std::strerror(errno));
+  }
+  const glm::vec3 total = env.radiance * env.scale;
+  if (!(std::isfinite(total.x) && std::isfinite(total.y) && std::isfinite(total.z)))
+    throwInputError(sceneFile, prefix + ".scale", "radiance times scale overflows a float");
+  return env;
+}
+
+}  // namespace montecl

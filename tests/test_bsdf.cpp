@@ -1,0 +1,210 @@
+// test_bsdf.cpp: the glossy BSDF of kernels/shared/bsdf.h and microfacet.h, compiled as C++: the GGX
+// normal distribution is normalised, visible-normal sampling and the mixed Lambert + GGX sampling
+// pass chi-square tests against their own pdfs (and fail against a wrong pdf), the sample weight
+// is f cos / pdf, a white furnace of the BSDF alone reflects at most 1, the Ns -> alpha mapping,
+// and the Lambert-only reduction (Ks = 0) is the plain Lambertian expressions.
+#include <doctest/doctest.h>
+
+#include <functional>
+#include <vector>
+
+#include "kernels/shared/bsdf.h"
+#include "kernels/shared/rng.h"
+#include "stats.h"
+
+using montecl_test::chiSquareCritical;
+using montecl_test::RunningStats;
+
+namespace {
+
+float3 dirFromAngles(double theta, double phi) {
+  return float3(float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)), float(std::cos(theta)));
+}
+
+// Chi-square of samples of wi (local frame, n = +z; a pdf-0 sample counts as "absorbed") binned in
+// (cos theta, phi) over the upper hemisphere, against pdf integrated over each bin (midpoint rule
+// on a sub-grid) plus the absorbed mass 1 - integral. Bins expecting < 5 samples are pooled.
+double chiSquareStat(const std::function<bool(float4, float3&)>& sample,
+                     const std::function<double(float3)>& pdf, int count, int& dof) {
+  const int nz = 16, nphi = 32, sub = 12;
+  std::vector<double> observed(nz * nphi + 1, 0.0), expected(nz * nphi + 1, 0.0);
+  for (int i = 0; i < count; ++i) {
+    float3 wi;
+    if (!sample(rng_uniform4(11u, uint(i), 3u, 0u), wi)) {
+      observed[nz * nphi] += 1.0;
+      continue;
+    }
+    double phi = std::atan2(wi.y, wi.x);
+    if (phi < 0) phi += 2.0 * M_PI;
+    int bz = std::min(nz - 1, std::max(0, int(wi.z * nz)));
+    int bp = std::min(nphi - 1, int(phi / (2.0 * M_PI) * nphi));
+    observed[bz * nphi + bp] += 1.0;
+  }
+  double total = 0.0;
+  for (int bz = 0; bz < nz; ++bz)
+    for (int bp = 0; bp < nphi; ++bp) {
+      double sum = 0.0;
+      for (int a = 0; a < sub; ++a)
+        for (int b = 0; b < sub; ++b) {
+          double z = (bz + (a + 0.5) / sub) / nz, phi = 2.0 * M_PI * (bp + (b + 0.5) / sub) / nphi;
+          sum += pdf(dirFromAngles(std::acos(z), phi));
+        }
+      double p = sum / (sub * sub) * (1.0 / nz) * (2.0 * M_PI / nphi);
+      expected[bz * nphi + bp] = p * count;
+      total += p;
+    }
+  expected[nz * nphi] = std::max(0.0, 1.0 - total) * count;
+  double stat = 0.0, poolObs = 0.0, poolExp = 0.0;
+  dof = -1;
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    if (expected[k] < 5.0) {
+      poolObs += observed[k];
+      poolExp += expected[k];
+      continue;
+    }
+    double d = observed[k] - expected[k];
+    stat += d * d / expected[k];
+    ++dof;
+  }
+  if (poolExp > 0.0) {
+    double d = poolObs - poolExp;
+    stat += d * d / std::max(poolExp, 5.0);
+    ++dof;
+  }
+  return stat;
+}
+
+const float3 kN(0.0f, 0.0f, 1.0f);
+
+}  // namespace
+
+TEST_CASE("GGX: D is normalised (integral of D cos over the hemisphere is 1), alpha from Ns" * doctest::test_suite("cpu")) {
+  for (float alpha : {0.1f, 0.3f, 0.7f, 1.0f}) {
+    const int n = 4000;
+    double sum = 0.0;
+    for (int i = 0; i < n; ++i) {  // D depends on theta only; substitute z = cos theta
+      double z = (i + 0.5) / n;
+      sum += ggx_d(dirFromAngles(std::acos(z), 0.0), alpha) * z * 2.0 * M_PI / n;
+    }
+    INFO("alpha " << alpha);
+    CHECK(sum == doctest::Approx(1.0).epsilon(2e-3));
+  }
+  CHECK(ggx_alpha_from_ns(0.0f) == doctest::Approx(1.0f));
+  CHECK(ggx_alpha_from_ns(10.0f) == doctest::Approx(std::sqrt(2.0f / 12.0f)));
+  CHECK(ggx_alpha_from_ns(1000.0f) == doctest::Approx(0.04468f).epsilon(1e-3));
+  CHECK(ggx_alpha_from_ns(1e12f) == MCL_GGX_MIN_ALPHA);
+}
+
+TEST_CASE("GGX visible-normal sampling passes a chi-square test against its pdf, fails against a wrong one" * doctest::test_suite("cpu")) {
+  for (float alpha : {0.25f, 0.6f}) {
+    for (double thetaO : {0.3, 1.2}) {
+      const float3 wo = dirFromAngles(thetaO, 0.4);
+      const auto sample = [&](float4 u, float3& wi) {
+        wi = reflect_about(wo, ggx_sample_visible_normal(wo, alpha, u.x, u.y));
+        return wi.z > 0.0f;
+      };
+      int dof = 0;
+      const double stat = chiSquareStat(sample, [&](float3 wi) { return ggx_pdf(wo, wi, alpha); }, 300000, dof);
+      INFO("alpha " << alpha << " theta_o " << thetaO << ": chi2 " << stat << " dof " << dof);
+      CHECK(stat < chiSquareCritical(dof));
+      // A plausible wrong pdf: the same lobe 20% rougher (still a normalised density).
+      int dofWrong = 0;
+      const double wrong =
+          chiSquareStat(sample, [&](float3 wi) { return ggx_pdf(wo, wi, alpha * 1.2f); }, 300000, dofWrong);
+      INFO("wrong pdf: chi2 " << wrong << " dof " << dofWrong);
+      CHECK(wrong > chiSquareCritical(dofWrong));
+    }
+  }
+}
+
+TEST_CASE("BSDF: Lambert + GGX mixture sampling passes a chi-square test against bsdf_pdf" * doctest::test_suite("cpu")) {
+  const Bsdf b = bsdf_make(float3(0.3f, 0.4f, 0.2f), float3(0.5f), 0.35f);
+  const float3 wo = dirFromAngles(0.8, 2.0);
+  const auto sample = [&](float4 u, float3& wi) {
+    BsdfSample s = bsdf_sample(b, kN, wo, u.x, u.y, u.z);
+    wi = s.wi;
+    return s.pdf > 0.0f;
+  };
+  int dof = 0;
+  const double stat = chiSquareStat(sample, [&](float3 wi) { return bsdf_pdf(b, kN, wo, wi); }, 300000, dof);
+  INFO("chi2 " << stat << " dof " << dof);
+  CHECK(stat < chiSquareCritical(dof));
+  const Bsdf lambert = bsdf_make(float3(0.3f, 0.4f, 0.2f), float3(0.0f), 0.35f);  // the wrong mixture
+  int dofWrong = 0;
+  const double wrong = chiSquareStat(sample, [&](float3 wi) { return bsdf_pdf(lambert, kN, wo, wi); }, 300000, dofWrong);
+  CHECK(wrong > chiSquareCritical(dofWrong));
+}
+
+TEST_CASE("BSDF: sample weight is f cos / pdf, pdf matches bsdf_pdf, in a tilted frame" * doctest::test_suite("cpu")) {
+  const Bsdf b = bsdf_make(float3(0.2f, 0.1f, 0.3f), float3(0.6f, 0.5f, 0.4f), 0.2f);
+  const float3 n = normalize(float3(0.3f, -0.5f, 0.8f));
+  const float3 wo = normalize(n + float3(0.5f, 0.2f, -0.1f));
+  int checked = 0;
+  for (int i = 0; i < 2000; ++i) {
+    float4 u = rng_uniform4(5u, uint(i), 0u, 0u);
+    BsdfSample s = bsdf_sample(b, n, wo, u.x, u.y, u.z);
+    if (!(s.pdf > 0.0f)) continue;
+    ++checked;
+    const float pdf = bsdf_pdf(b, n, wo, s.wi);
+    const float3 w = bsdf_eval(b, n, wo, s.wi) / pdf;
+    REQUIRE(s.pdf == doctest::Approx(pdf).epsilon(1e-3));
+    for (int c = 0; c < 3; ++c) REQUIRE(s.weight[c] == doctest::Approx(w[c]).epsilon(1e-3));
+  }
+  CHECK(checked > 1500);
+}
+
+TEST_CASE("BSDF: white furnace of the BSDF alone: integral of f cos over the hemisphere <= 1" * doctest::test_suite("cpu")) {
+  // Kd + Ks = 1 (the most a material may have after loading), several roughnesses and angles. The
+  // integral is estimated two ways: importance sampled (mean of the weights) and uniformly.
+  struct Case {
+    float kd, ks, alpha;
+  };
+  for (Case c : {Case{0.0f, 1.0f, 0.05f}, Case{0.0f, 1.0f, 0.5f}, Case{0.0f, 1.0f, 1.0f}, Case{0.5f, 0.5f, 0.3f},
+                 Case{1.0f, 0.0f, 0.3f}}) {
+    const Bsdf b = bsdf_make(float3(c.kd), float3(c.ks), c.alpha);
+    for (double thetaO : {0.0, 0.7, 1.45}) {
+      const float3 wo = dirFromAngles(thetaO, 1.0);
+      RunningStats sampled, uniform;
+      for (int i = 0; i < 100000; ++i) {
+        float4 u = rng_uniform4(9u, uint(i), 1u, 0u);
+        BsdfSample s = bsdf_sample(b, kN, wo, u.x, u.y, u.z);
+        sampled.add(s.pdf > 0.0f ? double(s.weight.x) : 0.0);
+        float3 wi = sample_uniform_hemisphere(u.x, u.y);
+        uniform.add(double(bsdf_eval(b, kN, wo, wi).x) / double(pdf_uniform_hemisphere()));
+      }
+      INFO("kd " << c.kd << " ks " << c.ks << " alpha " << c.alpha << " theta_o " << thetaO << ": sampled "
+                 << sampled.mean << " +- " << sampled.standardError() << ", uniform " << uniform.mean << " +- "
+                 << uniform.standardError());
+      CHECK(sampled.mean <= 1.0 + 4.0 * sampled.standardError());
+      CHECK(uniform.mean <= 1.0 + 4.0 * uniform.standardError());
+      if (c.alpha >= 0.3f) {  // both estimate the same integral (uniform is too noisy for a sharp lobe)
+        const double se = std::hypot(sampled.standardError(), uniform.standardError());
+        CHECK(std::abs(sampled.mean - uniform.mean) < 4.0 * se + 1e-6);
+      }
+      if (c.ks == 0.0f) CHECK(sampled.mean == doctest::Approx(c.kd).epsilon(1e-6));  // Lambert: weight = Kd
+      if (c.ks == 1.0f) CHECK(sampled.mean > 0.25);  // the lobe does reflect (not trivially <= 1)
+      // alpha = 1 at normal incidence: D = 1/pi, G2 = 2 cos/(1 + cos), albedo = 1 - ln 2 exactly.
+      if (c.ks == 1.0f && c.alpha == 1.0f && thetaO == 0.0)
+        CHECK(std::abs(sampled.mean - (1.0 - std::log(2.0))) < 4.0 * sampled.standardError());
+    }
+  }
+}
+
+TEST_CASE("BSDF: with Ks = 0 the functions are the Lambertian expressions, bit for bit" * doctest::test_suite("cpu")) {
+  const float3 kd(0.7f, 0.5f, 0.3f);
+  const Bsdf b = bsdf_make(kd, float3(0.0f), 0.5f);
+  CHECK(b.specProb == 0.0f);
+  const float3 n = normalize(float3(0.1f, 0.9f, -0.2f));
+  for (int i = 0; i < 100; ++i) {
+    float4 u = rng_uniform4(1u, uint(i), 0u, 0u);
+    BsdfSample s = bsdf_sample(b, n, n, u.x, u.y, u.z);
+    const float3 local = sample_cosine_hemisphere_portable(u.x, u.y);
+    const float3 wi = to_world(local, n);
+    REQUIRE(s.wi == wi);
+    REQUIRE(s.weight == kd);
+    REQUIRE(s.pdf == pdf_cosine_hemisphere(local.z));
+    REQUIRE(bsdf_eval(b, n, n, wi) == kd * (dot(n, wi) * MCL_INV_PI));
+    REQUIRE(bsdf_pdf(b, n, n, wi) == pdf_cosine_hemisphere(dot(n, wi)));
+    REQUIRE(bsdf_f(b, n, n, wi) == kd * MCL_INV_PI);
+  }
+}
