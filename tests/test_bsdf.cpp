@@ -208,3 +208,70 @@ TEST_CASE("BSDF: with Ks = 0 the functions are the Lambertian expressions, bit f
     REQUIRE(bsdf_f(b, n, n, wi) == kd * MCL_INV_PI);
   }
 }
+
+// --- the BSDF around a shading frame (kernels/shared/surface_bsdf.h) ----------------------------
+// ng = +z (the binning's hemisphere); ns tilted 35 degrees: Lambertian samples below ng are folded,
+// glossy ones absorbed, and the pdf must say exactly that.
+#include "kernels/shared/surface_bsdf.h"
+
+namespace {
+SurfaceFrame tiltedFrame() {
+  SurfaceFrame s;
+  s.p = float3(0.0f);
+  s.ng = kN;
+  s.ns = dirFromAngles(35.0 * M_PI / 180.0, 0.0);
+  s.smooth = 1;
+  return s;
+}
+}  // namespace
+
+TEST_CASE("Surface BSDF: with a tilted shading normal, sampling passes a chi-square test against its pdf (Lambert and Lambert + GGX), fails against the unfolded pdf" *
+          doctest::test_suite("cpu")) {
+  const SurfaceFrame sf = tiltedFrame();
+  const float3 wo = dirFromAngles(0.8, M_PI);  // 81 degrees from ns, on the side away from the tilt
+  for (float ks : {0.0f, 0.5f}) {
+    const Bsdf b = bsdf_make(float3(0.3f, 0.4f, 0.2f), float3(ks), 0.3f);
+    const auto sample = [&](float4 u, float3& wi) {
+      BsdfSample s = surface_bsdf_sample(b, sf, wo, u.x, u.y, u.z);
+      wi = s.wi;
+      if (s.pdf > 0.0f) {  // every traced direction leaves above the geometric surface
+        REQUIRE(wi.z > 0.0f);
+        const float3 w = surface_bsdf_eval(b, sf, wo, wi) / surface_bsdf_pdf(b, sf, wo, wi);
+        for (int c = 0; c < 3; ++c) REQUIRE(s.weight[c] == doctest::Approx(w[c]).epsilon(1e-3));
+      }
+      return s.pdf > 0.0f;
+    };
+    int dof = 0;
+    const double stat = chiSquareStat(sample, [&](float3 wi) { return surface_bsdf_pdf(b, sf, wo, wi); }, 300000, dof);
+    INFO("Ks " << ks << ": chi2 " << stat << " dof " << dof);
+    CHECK(stat < chiSquareCritical(dof));
+    int dofWrong = 0;  // the plain lobe around ns, as if nothing were folded or absorbed
+    const double wrong = chiSquareStat(sample, [&](float3 wi) { return bsdf_pdf(b, sf.ns, wo, wi); }, 300000, dofWrong);
+    INFO("unfolded pdf: chi2 " << wrong);
+    CHECK(wrong > chiSquareCritical(dofWrong));
+  }
+}
+
+TEST_CASE("Surface BSDF: directions below the geometric surface get f = 0 and pdf = 0; flat frames are bsdf.h's" *
+          doctest::test_suite("cpu")) {
+  const SurfaceFrame sf = tiltedFrame();
+  const Bsdf b = bsdf_make(float3(0.3f), float3(0.4f), 0.2f);
+  const float3 wo = dirFromAngles(0.5, 0.3);
+  const float3 below = normalize(float3(0.9f, 0.0f, -0.05f));  // above ns's plane, below ng's
+  REQUIRE(dot(sf.ns, below) > 0.0f);
+  CHECK(surface_bsdf_pdf(b, sf, wo, below) == 0.0f);
+  CHECK(surface_bsdf_eval(b, sf, wo, below).x == 0.0f);
+  CHECK(surface_bsdf_f(b, sf, wo, below).x == 0.0f);
+  SurfaceFrame flat = sf;
+  flat.smooth = 0;
+  flat.ns = flat.ng;
+  const float3 wi = dirFromAngles(0.7, 2.0);
+  CHECK(surface_bsdf_pdf(b, flat, wo, wi) == bsdf_pdf(b, kN, wo, wi));
+  CHECK(surface_bsdf_eval(b, flat, wo, wi).y == bsdf_eval(b, kN, wo, wi).y);
+  for (int i = 0; i < 100; ++i) {
+    float4 u = rng_uniform4(9u, uint(i), 0u, 0u);
+    BsdfSample s1 = surface_bsdf_sample(b, flat, wo, u.x, u.y, u.z), s2 = bsdf_sample(b, kN, wo, u.x, u.y, u.z);
+    REQUIRE(s1.pdf == s2.pdf);
+    REQUIRE(s1.wi.x == s2.wi.x);
+  }
+}

@@ -111,7 +111,7 @@ TEST_CASE("OBJ: bad vt/vn values and indices are InputErrors with the line" * do
   }
 }
 
-TEST_CASE("MTL: map_Kd/map_d are resolved beside the MTL, Ks/Ns read, Kd of 1 under a map without Kd" *
+TEST_CASE("MTL: map_Kd/map_d are resolved beside the MTL, Ks/Ns read, Kd of 1 under a map without Kd (then Kd + Ks scaled to 1)" *
           doctest::test_suite("cpu")) {
   TempDir dir;
   std::filesystem::create_directories(dir.file("mtl/tex"));
@@ -126,8 +126,9 @@ TEST_CASE("MTL: map_Kd/map_d are resolved beside the MTL, Ks/Ns read, Kd of 1 un
   const montecl::MaterialDesc& m = s.materials[0];
   CHECK(m.albedoTexture == dir.file("mtl/tex/wood.png"));
   CHECK(m.alphaTexture == dir.file("mtl/tex/mask.png"));  // the backslash name, found with a slash
-  CHECK(m.albedo == glm::vec3(1.0f));
-  CHECK(m.specular == glm::vec3(0.25f, 0.5f, 1.0f));
+  // Kd 1 (the map's default) + Ks exceeds 1 in blue: both scaled by 1 / 2 (energy conservation).
+  CHECK(m.albedo == glm::vec3(0.5f));
+  CHECK(m.specular == glm::vec3(0.125f, 0.25f, 0.5f));
   CHECK(m.specularExponent == 80.0f);
   CHECK(s.materials[1].albedo == glm::vec3(0.2f, 0.3f, 0.4f));
   CHECK(s.materials[1].specularExponent == 0.0f);
@@ -179,7 +180,7 @@ TEST_CASE("MTL: one warning per kind of unused statement, naming the MTL and the
   CHECK(countContaining(warnings, "m.mtl: line 13: texture option '-s'") == 1);
   CHECK(warnings.size() == 8);  // d 1 says nothing montecl ignores
   // Nothing unused, nothing said.
-  dir.write("m.mtl", "newmtl tex\nKd 1 1 1\nKs 0.1 0.1 0.1\nNs 10\nKe 0 0 0\nd 1\n");
+  dir.write("m.mtl", "newmtl tex\nKd 0.8 0.8 0.8\nKs 0.1 0.1 0.1\nNs 10\nKe 0 0 0\nd 1\n");
   warnings.clear();
   loadObj(dir.file("q.obj"), &warnings);
   CHECK(warnings.empty());

@@ -95,6 +95,15 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   finishScene(sphere);
   cases.push_back({"smooth-sphere/direct-mis", withDirect(sphere, DirectSampling::Mis, 2)});
   cases.push_back({"smooth-sphere/ao-uniform", withAo(sphere, AoSampling::Uniform)});
+  // The same with every material glossy, path traced: the BSDF around the shading frame.
+  Scene glossySphere = sphere;
+  for (MaterialDesc& m : glossySphere.materials)
+    if (m.emission == glm::vec3(0.0f)) {
+      m.albedo *= 0.6f;
+      m.specular = glm::vec3(0.3f);
+      m.specularExponent = 30.0f;
+    }
+  cases.push_back({"smooth-sphere/glossy-path", withPath(glossySphere, 1)});
   cases.push_back({"polygon-light/path", withPath(light, 2)});
   Scene lens = withPath(light, 1, 3);
   lens.camera.apertureRadius = 0.05f;
