@@ -7,6 +7,7 @@
 #include <random>
 
 #include "cli_runner.h"
+#include "test_images.h"
 #include "image/exr_layers.h"
 #include "image/oiio_loader.h"
 #include "kernels/shared/texture.h"
@@ -19,6 +20,8 @@ using namespace montecl;
 using montecl_test::TempDir;
 
 namespace {
+
+using montecl_test::writeImage8;
 
 RgbaImage randomImage(int w, int h, unsigned seed) {
   std::mt19937 rng(seed);
@@ -38,21 +41,6 @@ glm::dvec4 meanOf(const RgbaImage& im) {
 
 TextureTables tablesOf(const SceneTextures& st) {
   return TextureTables{st.textures.data(), st.levels.data(), st.texels.data()};
-}
-
-// An 8-bit RGBA image through OpenImageIO: pixel (x, y) (row 0 at the top) = f(x, y) / 255.
-void writeImage8(const std::string& path, int w, int h, int channels, int (*f)(int x, int y, int c)) {
-  LayeredImage im;
-  im.width = w;
-  im.height = h;
-  const char* names[4] = {"R", "G", "B", "A"};
-  for (int c = 0; c < channels; ++c) {
-    std::vector<float> plane;
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) plane.push_back(float(f(x, y, c)) / 255.0f);
-    im.set(names[c], plane);
-  }
-  oiioWrite(path, path, im);
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "bvh/bvh.h"
 #include "cl/devices.h"
 #include "cli_runner.h"
+#include "test_images.h"
 #include "image/exr_layers.h"
 #include "image/oiio_loader.h"
 #include "render/wavefront.h"
@@ -25,6 +26,8 @@ using namespace montecl;
 using namespace montecl_test;
 
 namespace {
+
+using montecl_test::writeImage8;
 
 Film render(const Scene& s, RenderOptions o, const SceneTextures* textures = nullptr, bool host = false) {
   static const DeviceInfo defaultDevice = selectDevice("");
@@ -43,22 +46,6 @@ void addUvQuad(Scene& s, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, glm
   SceneTriangle t2{{a, c, d}, material, {}, {ta, tc, td}, kHasUv};
   s.triangles.push_back(t1);
   s.triangles.push_back(t2);
-}
-
-// An 8-bit image through OpenImageIO: channel c of pixel (x, y) (row 0 at the top) = f(x, y, c) / 255.
-template <class F>
-void writeImage8(const std::string& path, int w, int h, int channels, F f) {
-  LayeredImage im;
-  im.width = w;
-  im.height = h;
-  const char* names[4] = {"R", "G", "B", "A"};
-  for (int c = 0; c < channels; ++c) {
-    std::vector<float> plane;
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) plane.push_back(float(f(x, y, c)) / 255.0f);
-    im.set(names[c], plane);
-  }
-  oiioWrite(path, path, im);
 }
 
 // 8-bit value of logical texel (i, j) (j = 0 the bottom row) of the textured-quad test.
