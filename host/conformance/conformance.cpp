@@ -72,6 +72,7 @@ ConformanceReport runConformance(const ConformanceOptions& options) {
     WavefrontRenderer host(hostDeviceInfo(), {});
     double rays = 0.0, seconds = 0.0;
     for (std::size_t i = 0; i < cases.size(); ++i) {
+      host.setTextures(cases[i].textures.get());
       reference[i].film = host.render(cases[i].scene, bvhs[i], reference[i].stats);
       rays += double(reference[i].stats.raysTraced());
       seconds += reference[i].stats.seconds;
@@ -135,6 +136,7 @@ ConformanceReport runConformance(const ConformanceOptions& options) {
       if (renderer) {
         try {
           Rendered out;
+          renderer->setTextures(cases[i].textures.get());
           out.film = renderer->render(cases[i].scene, bvhs[i], out.stats);
           c.rendered = true;
           c.seconds = out.stats.seconds;

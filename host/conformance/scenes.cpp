@@ -4,6 +4,7 @@
 #include "conformance/scenes.h"
 
 #include "scene/builtin_scenes.h"
+#include "texture/mip_chain.h"
 
 #include <fstream>
 
@@ -45,6 +46,41 @@ Scene polygonLightScene(int size, int spp) {
   s.render.integrator = Integrator::Direct;
   finishScene(s);
   return s;
+}
+
+// The polygon-light scene with UVs on the floor and the occluder: the floor's albedo is Kd x an
+// 8x8 checker (repeated, so the camera sees several mip levels), the occluder a cut-out of 2-texel
+// stripes (alpha channel 0 or 1). Textures are packed from decoded pixels, as loadSceneTextures
+// would after reading files.
+ConformanceCase texturedCase(const Scene& light, const std::string& name) {
+  ConformanceCase c;
+  c.name = name;
+  c.scene = light;
+  c.scene.path = "<textured polygon light scene>";
+  for (SceneTriangle& t : c.scene.triangles) {
+    if (t.material != 0 && t.material != 2) continue;
+    for (int k = 0; k < 3; ++k) t.uv[k] = glm::vec2(t.v[k].x, t.v[k].z) * 2.3f + glm::vec2(0.13f, 0.07f);
+    t.attributes |= kHasUv;
+  }
+  RgbaImage checker, stripes;
+  checker.width = checker.height = 8;
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x)
+      checker.texels.push_back((x + y) % 2 ? glm::vec4(0.9f, 0.8f, 0.3f, 1.0f) : glm::vec4(0.1f, 0.3f, 0.6f, 1.0f));
+  stripes.width = 8;
+  stripes.height = 2;
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 8; ++x) stripes.texels.push_back(glm::vec4(1.0f, 1.0f, 1.0f, (x / 2) % 2 ? 1.0f : 0.0f));
+  auto t = std::make_shared<SceneTextures>();
+  std::vector<std::string> warnings;
+  packTextures(*t, {checker, stripes}, kDefaultTextureBudget, warnings);
+  t->files = {"<checker>", "<stripes>"};
+  t->materials.assign(c.scene.materials.size(), MaterialTextures{});
+  t->materials[0].albedo = 0;
+  t->materials[2].alpha = 1;
+  t->materials[2].alphaChannel = 3;
+  c.textures = t;
+  return c;
 }
 
 Scene withAo(Scene s, AoSampling sampling) {
@@ -105,6 +141,9 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
     }
   cases.push_back({"smooth-sphere/glossy-path", withPath(glossySphere, 1)});
   cases.push_back({"polygon-light/path", withPath(light, 2)});
+  cases.push_back(texturedCase(withDirect(light, DirectSampling::Mis, 2), "textured-cutout/direct-mis"));
+  cases.push_back(texturedCase(withAo(light, AoSampling::Cosine), "textured-cutout/ao-cosine"));
+  cases.push_back(texturedCase(withPath(light, 1), "textured-cutout/path"));
   Scene lens = withPath(light, 1, 3);
   lens.camera.apertureRadius = 0.05f;
   lens.camera.focusDistance = 1.5f;

@@ -1,20 +1,25 @@
 // scenes.h: the conformance set: small analytic scenes built in code (an open floor, a floor
 // beside a wall, a tilted polygon light over a floor with an occluder, the same with a smooth-shaded
-// sphere) rendered with every integrator and sampling strategy, plus the Cornell box from the
+// sphere, the same with a textured floor and a cut-out occluder) rendered with every integrator and sampling strategy, plus the Cornell box from the
 // shared scenes when present.
 // Ported from tests/test_scenes.h and tests/test_direct.cpp so that `montecl conformance` runs
 // without the test sources.
 #pragma once
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "scene/scene.h"
+#include "texture/scene_textures.h"
 
 namespace montecl {
 
 struct ConformanceCase {
   std::string name;  // e.g. "wall/ao-uniform"
   Scene scene;
+  // Decoded textures of the scene's materials, built in memory (no image files: the set runs where
+  // OpenImageIO is not installed); null when the scene has none.
+  std::shared_ptr<const SceneTextures> textures;
 };
 
 struct ConformanceSetOptions {

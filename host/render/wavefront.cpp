@@ -47,6 +47,8 @@ WavefrontRenderer::WavefrontRenderer(const DeviceInfo& device, const RenderOptio
 
 WavefrontRenderer::~WavefrontRenderer() = default;
 
+void WavefrontRenderer::setTextures(const SceneTextures* textures) { impl_->options.textures = textures; }
+
 bool WavefrontRenderer::programFromCache() const { return impl_->runner->programFromCache(); }
 double WavefrontRenderer::programBuildMs() const { return impl_->runner->programBuildMs(); }
 

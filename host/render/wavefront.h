@@ -84,6 +84,9 @@ class WavefrontRenderer {
 
   // Renders scene (its camera and render settings) with the given BVH of scene.triangles.
   Film render(const Scene& scene, const Bvh& bvh, RenderStats& stats, const ProgressFn& progress = {});
+  // Replaces RenderOptions::textures for the renders that follow (null: each render loads its
+  // scene's own); for callers that render several scenes with one renderer (conformance).
+  void setTextures(const SceneTextures* textures);
 
   bool programFromCache() const;
   double programBuildMs() const;

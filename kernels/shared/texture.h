@@ -42,9 +42,23 @@ MCL_INLINE float4 texture_bilinear(TextureTables tt, uint level, float u, float 
   return a * (1.0f - fy) + b * fy;
 }
 
+// log2(x) for finite x > 0 from frexp (exact) and + x / only (division correctly rounded, see
+// cl_session.cpp): the built-in log2 differs in the last bit between PoCL and glibc, which moved
+// trilinear weights and broke bit-identical images. Absolute error < 2e-6 (atanh series to s^11,
+// |s| <= 1/3), plenty for a level of detail.
+MCL_INLINE float texture_log2(float x) {
+  int e;
+  float m = frexp(x, &e);  // x = m 2^e, m in [0.5, 1)
+  float s = (m - 1.0f) / (m + 1.0f), s2 = s * s;
+  float p = 0.33333334f + s2 * (0.2f + s2 * (0.14285715f + s2 * (0.11111111f + s2 * 0.09090909f)));
+  return (float)e + (2.0f * s * (1.0f + s2 * p)) * 1.44269504f;
+}
+
 // Level of detail in the kept levels of texture d for a footprint (UV units), in [0, levelCount - 1].
 MCL_INLINE float texture_lod(TextureDesc d, float footprint) {
-  float lod = footprint > 0.0f ? log2(footprint) + d.lodBias - (float)d.dropped : 0.0f;
+  float lod = footprint > 0.0f && footprint < INFINITY ? texture_log2(footprint) + d.lodBias - (float)d.dropped
+              : footprint > 0.0f                       ? INFINITY
+                                                       : 0.0f;
   float top = (float)(d.levelCount - 1u);
   return lod > 0.0f ? (lod < top ? lod : top) : 0.0f;  // NaN -> 0
 }
