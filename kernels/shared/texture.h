@@ -42,13 +42,16 @@ MCL_INLINE float4 texture_bilinear(TextureTables tt, uint level, float u, float 
   return a * (1.0f - fy) + b * fy;
 }
 
-// log2(x) for finite x > 0 from frexp (exact) and + x / only (division correctly rounded, see
+// log2(x) for finite x > 0 from its exponent bits and + x / only (division correctly rounded, see
 // cl_session.cpp): the built-in log2 differs in the last bit between PoCL and glibc, which moved
 // trilinear weights and broke bit-identical images. Absolute error < 2e-6 (atanh series to s^11,
 // |s| <= 1/3), plenty for a level of detail.
 MCL_INLINE float texture_log2(float x) {
-  int e;
-  float m = frexp(x, &e);  // x = m 2^e, m in [0.5, 1)
+  uint bits = as_uint(x);
+  uint biased = (bits >> 23) & 0xffu;
+  if (biased == 0u) return -150.0f;  // zero or denormal (flushed on some devices): below any level
+  float m = as_float((bits & 0x807fffffu) | 0x3f000000u);  // x = m 2^e, m in [0.5, 1)
+  int e = (int)biased - 126;
   float s = (m - 1.0f) / (m + 1.0f), s2 = s * s;
   float p = 0.33333334f + s2 * (0.2f + s2 * (0.14285715f + s2 * (0.11111111f + s2 * 0.09090909f)));
   return (float)e + (2.0f * s * (1.0f + s2 * p)) * 1.44269504f;
