@@ -90,7 +90,8 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   const std::uint64_t pixels = std::uint64_t(frame.width) * frame.height;
   const std::uint64_t total = pixels * std::uint64_t(scene.render.spp);
 
-  // Wave size: the memory budget, the device's largest allocation, and 32-bit item indices.
+  // Wave cap: RenderOptions::maxWaveItems (by device), the memory budget, the device's largest
+  // allocation, and 32-bit item indices. The planner sizes each wave under it.
   const std::uint64_t maxAlloc = run.maxAllocBytes();
   std::uint64_t wave = m.options.waveSize;
   const std::uint64_t itemBytes = bytesPerItem(slots, direct, m.options.aovs, path);
