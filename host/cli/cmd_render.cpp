@@ -288,7 +288,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--ao-distance", args->aoDistance, "Occluders farther than this are ignored")
       ->check(positiveNumber(std::numeric_limits<float>::max()));
   cmd->add_option("--device", args->device, "OpenCL device: P:D, part of the device or platform name, or host (CPU, no OpenCL)");
-  cmd->add_option("--wave-size", args->waveSize, "Pixel samples per wave (default: from a 256 MiB budget)")
+  cmd->add_option("--wave-size", args->waveSize, "Pixel samples per wave (default: sized from the measured rate, at most 8192 per CPU compute unit, 2^20 on GPUs)")
       ->check(integerIn(1, std::numeric_limits<long long>::max(), "a positive integer"));
   cmd->add_option("--texture-budget", args->textureBudgetMiB,
                   "Device memory for textures in MiB (default: 1024, at most the device's largest allocation); "

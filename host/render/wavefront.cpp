@@ -92,11 +92,15 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   const std::uint64_t pixels = std::uint64_t(frame.width) * frame.height;
   const std::uint64_t total = pixels * std::uint64_t(scene.render.spp);
 
-  // Wave size: the memory budget, the device's largest allocation, and 32-bit item indices.
+  // Wave cap: RenderOptions::maxWaveItems (by device), the memory budget, the device's largest
+  // allocation, and 32-bit item indices. The planner sizes each wave under it.
   const std::uint64_t maxAlloc = run.maxAllocBytes();
   std::uint64_t wave = m.options.waveSize;
   const std::uint64_t itemBytes = bytesPerItem(slots, direct, m.options.aovs, path);
-  if (wave == 0) wave = std::max<std::uint64_t>(1, m.options.memoryBudget / itemBytes);
+  if (wave == 0) {
+    const std::uint64_t cap = m.options.maxWaveItems ? m.options.maxWaveItems : defaultMaxWaveItems(m.device);
+    wave = std::max<std::uint64_t>(1, std::min(cap, m.options.memoryBudget / itemBytes));
+  }
   wave = std::min<std::uint64_t>(wave, maxAlloc / (slots * sizeof(ShadowWork)));
   wave = std::min<std::uint64_t>(wave, 0xffffffffull / slots);
   wave = std::max<std::uint64_t>(1, std::min(wave, total));
@@ -149,9 +153,12 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   inputs.initialFilm = m.options.initialFilm;
   run.setup(inputs);
 
+  // Wave sizes come from the planner unless a fixed --wave-size is asked for without a time limit.
+  const bool planned = m.options.waveSize == 0 || m.options.timeLimit > 0.0;
+  double rate = 0.0;  // pixel samples per second of the last wave (0: none yet)
   if (m.options.verbose)
-    std::cerr << "montecl: wave of " << wave << " pixel samples (" << (wave * itemBytes >> 20)
-              << " MiB), " << (total + wave - 1) / wave << " waves"
+    std::cerr << "montecl: waves of up to " << wave << " pixel samples (" << (wave * itemBytes >> 20)
+              << " MiB), " << (planned ? "sized from the measured rate" : std::to_string((total + wave - 1) / wave) + " waves")
               << (direct || path ? ", " + std::to_string(emitters.emitters.size()) + " emitter triangles" : std::string())
               << "\n";
 
@@ -166,7 +173,14 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   const auto runSamples = [&](std::uint64_t sampleBase, std::uint64_t spp) {
     const std::uint64_t first = sampleBase * activeCount, count = spp * activeCount;
     for (std::uint64_t done = 0; done < count;) {
-      const std::uint32_t n = std::uint32_t(std::min(wave, count - done));
+      std::uint64_t size = std::min(wave, count - done);
+      if (planned) {
+        const double timeLeft = m.options.timeLimit > 0.0 ? m.options.timeLimit - elapsed() : INFINITY;
+        size = planWave(m.options.planner, wave, count - done, rate, timeLeft);
+        if (size == 0) return false;  // the time limit is (about) reached
+      }
+      const std::uint32_t n = std::uint32_t(size);
+      const double waveStart = elapsed();
       run.beginWave(first + done, n);
       run.launch(Stage::generate, n);
       PathWaveCounts pathCounts;
@@ -201,6 +215,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
       stats.nanRays += counts.nanRays;
       if (direct && scene.render.directSampling != DirectSampling::Light) stats.cameraRays += n;  // BRDF rays
       stats.seconds = elapsed();
+      if (stats.seconds > waveStart) rate = double(n) / (stats.seconds - waveStart);
       if (progress) progress(stats.samples, std::max(expected, stats.samples), stats);
       if (m.options.afterWave) m.options.afterWave([&] {
         Film f;
@@ -280,6 +295,11 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   run.setProfile(nullptr);
   if (m.options.verbose && path) std::cerr << "montecl: " << survivorsSummary(stats.pathSurvivors) << "\n";
   return film;
+}
+
+std::uint64_t defaultMaxWaveItems(const DeviceInfo& device) {
+  if (device.isGpu && !device.isHost) return 1ull << 20;
+  return std::max<std::uint64_t>(16384, 8192ull * std::max<std::uint32_t>(1, device.computeUnits));
 }
 
 double relativeStandardError(const Film& film, std::size_t p, double errorFloor) {

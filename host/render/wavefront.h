@@ -1,8 +1,8 @@
 // wavefront.h: the wavefront renderer. Uploads the BVH, then per wave: generate -> intersect ->
 // shade -> intersect_shadow -> accumulate, each a kernel of kernels/montecl.cl on an OpenCL device,
 // or the same stage functions run on the CPU when the device is the host backend (DeviceInfo::isHost,
-// `--device host`). Waves are bounded by a memory budget; the result does not depend on wave or
-// work-group size, and agrees across devices to about 1e-6 relative (see `montecl conformance`).
+// `--device host`). Waves are sized from the measured rate (render/wave_planner.h) up to an
+// allocated cap; the result does not depend on wave or work-group size, and agrees across devices to about 1e-6 relative (see `montecl conformance`).
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -14,20 +14,33 @@
 #include "cl/devices.h"
 #include "image/film.h"
 #include "render/stage_profile.h"
+#include "render/wave_planner.h"
 #include "scene/scene.h"
 
 namespace montecl {
 
 struct SceneTextures;
 
+// The default cap on a wave's items (RenderOptions::maxWaveItems 0), from a sweep of wave sizes
+// on Sponza (README, "Wave size and memory"): on CPUs (and the host backend) 8192 items per
+// compute unit, at least 16384: a wave's state then stays in the caches, and larger waves were
+// slower and cost memory; on GPUs 2^20 items, enough to fill one.
+std::uint64_t defaultMaxWaveItems(const DeviceInfo& device);
+
 struct RenderOptions {
-  std::uint64_t waveSize = 0;                  // wave items (pixel samples); 0: from memoryBudget
+  // Wave items (pixel samples). 0: the buffers hold maxWaveItems (0: defaultMaxWaveItems; or what
+  // memoryBudget allows, if less) and each wave is sized by `planner` from the measured rate.
+  // Set: every wave has this size, except with timeLimit, when it is the cap the planner sizes
+  // waves under.
+  std::uint64_t waveSize = 0;
+  std::uint64_t maxWaveItems = 0;
   std::uint64_t memoryBudget = 256ull << 20;   // bytes of per-wave buffers when waveSize is 0
+  WavePlanner planner;
   std::size_t workGroupSize = 0;               // 0: min(CL_KERNEL_WORK_GROUP_SIZE, 64)
   BvhLayout bvhLayout = BvhLayout::Auto;        // BVH the kernels traverse (bvh/bvh_layout.h)
   std::uint32_t firstSample = 0;               // render sample indices firstSample .. + spp - 1
   bool verbose = false;
-  // Stops after the wave during which this many seconds have passed (0: no limit).
+  // Stops at this many seconds (0: no limit): waves are planned so the last one ends there.
   double timeLimit = 0.0;
   // Stops after the current wave once *interrupt is non-zero (e.g. set by a SIGINT handler).
   const volatile int* interrupt = nullptr;
@@ -62,7 +75,7 @@ struct RenderStats {
   std::uint64_t shadowRays = 0;
   std::uint64_t nanRays = 0;      // rays with a NaN/inf origin or direction, treated as misses
   std::uint64_t waves = 0;
-  std::uint64_t waveSize = 0;
+  std::uint64_t waveSize = 0;     // the allocated wave (the largest a wave can be)
   std::uint64_t samples = 0;      // pixel samples rendered
   std::uint64_t rounds = 0;       // adaptive rounds (1 without adaptive sampling)
   std::uint64_t converged = 0;    // adaptive: pixels that met the target error
