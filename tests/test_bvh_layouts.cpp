@@ -3,6 +3,8 @@
 // choice. (The kernels of both layouts: test_ray_tracer.cpp.)
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <string>
@@ -34,9 +36,25 @@ std::vector<Ray> rays(int n, uint seed, glm::vec3 lo, glm::vec3 hi) {
   return seededRays(n, seed, lo, hi, 0.05f, glm::length(hi - lo));
 }
 
+// Two different triangles hit at distances at most 2 ulps apart, each the distance its own
+// triangle gives: coincident coplanar faces (the Cornell box's short-box bottom lies in the floor
+// plane). The wide layout's conservative box distances may then skip the node of the hit that is
+// 1 ulp closer; both hits are on the surface. Counted, and must stay rare.
+bool coincidentTie(const Bvh& bvh, const Ray& r, const Hit& a, const Hit& b) {
+  if (a.tri == MCL_NO_HIT || b.tri == MCL_NO_HIT || a.tri == b.tri) return false;
+  if (std::fabs(a.t - b.t) > 2.0f * (std::nextafter(std::max(a.t, b.t), INFINITY) - std::max(a.t, b.t))) return false;
+  for (const Hit* h : {&a, &b}) {
+    const Triangle& t = bvh.triangles[h->tri];
+    float u, v;
+    if (!sameBits(ray_triangle(xyz(r.origin), xyz(r.dir), xyz(t.v0), xyz(t.e1), xyz(t.e2), INFINITY, &u, &v), h->t))
+      return false;
+  }
+  return true;
+}
+
 // Host wide vs host binary traversal on every ray; returns the number of closest hits.
 int checkHostLayouts(const Bvh& bvh, const std::vector<Ray>& rs) {
-  int hits = 0, bad = 0;
+  int hits = 0, bad = 0, ties = 0;
   for (std::size_t i = 0; i < rs.size(); ++i) {
     glm::vec3 o = xyz(rs[i].origin), d = xyz(rs[i].dir);
     float tmax = rs[i].dir.w;
@@ -44,13 +62,20 @@ int checkHostLayouts(const Bvh& bvh, const std::vector<Ray>& rs) {
     Hit b = intersectClosest(bvh, o, d, tmax, BvhLayout::Binary);
     bool anyW = intersectAny(bvh, o, d, tmax, BvhLayout::Wide);
     bool anyB = intersectAny(bvh, o, d, tmax, BvhLayout::Binary);
-    bool ok = sameHit(bvh, rs[i], w, b) && anyW == anyB && anyW == (w.tri != MCL_NO_HIT);
+    bool same = sameHit(bvh, rs[i], w, b);
+    if (!same && coincidentTie(bvh, rs[i], w, b)) {
+      same = true;
+      ++ties;
+    }
+    bool ok = same && anyW == anyB && anyW == (w.tri != MCL_NO_HIT);
     hits += w.tri != MCL_NO_HIT;
     if (!ok && bad++ < 5)
       MESSAGE("ray " << i << ": wide t " << w.t << " tri " << w.tri << " any " << anyW << ", binary t " << b.t
                      << " tri " << b.tri << " any " << anyB);
   }
   CHECK(bad == 0);
+  CHECK(ties * 1000 <= int(rs.size()));  // rare: only rays meeting coincident coplanar faces
+  if (ties) MESSAGE(ties << " rays tied within 2 ulps on coincident triangles");
   return hits;
 }
 

@@ -2,6 +2,7 @@
 // orthonormal basis around a normal. Pure; tested on the host with chi-square tests.
 #pragma once
 #include "compat.h"
+#include "trig.h"
 
 #define MCL_PI 3.14159265358979323846f
 #define MCL_INV_PI 0.31830988618379067154f
@@ -25,36 +26,15 @@ MCL_INLINE float3 sample_cosine_hemisphere(float u1, float u2) {
 }
 MCL_INLINE float pdf_cosine_hemisphere(float cosTheta) { return fmax(cosTheta, 0.0f) * MCL_INV_PI; }
 
-// sin and cos of x in [-pi/4, pi/4] by their Taylor polynomials (error below 2e-9), written out
-// so that every device rounds the same operations: the built-in sin/cos may differ between OpenCL
-// implementations and the host's libm in the last bit, and the thin lens would carry that
-// difference into the image (montecl conformance).
-MCL_INLINE float2 sincos_quarter(float x) {
-  float x2 = x * x;
-  float s = x * (1.0f + x2 * (-1.0f / 6.0f + x2 * (1.0f / 120.0f + x2 * (-1.0f / 5040.0f + x2 * (1.0f / 362880.0f)))));
-  float c = 1.0f + x2 * (-0.5f + x2 * (1.0f / 24.0f + x2 * (-1.0f / 720.0f + x2 * (1.0f / 40320.0f + x2 * (-1.0f / 3628800.0f)))));
-  return make_float2(s, c);
-}
-
-// (cos, sin) of 2 pi u for u in [0, 1), from sincos_quarter: the quadrant's centre angle
-// (q + 1/2) pi/2 has cos and sin +-sqrt(1/2), so the rotation is exact arithmetic on every device.
-MCL_INLINE float2 cossin_turn(float u) {
-  float q = floor(u * 4.0f);  // quadrant 0..3
-  float2 sc = sincos_quarter(2.0f * MCL_PI * (u - (q + 0.5f) * 0.25f));
-  float h = 0.70710678118654752f;
-  float cq = (q == 0.0f || q == 3.0f) ? h : -h;  // cos of the centre angle
-  float sq = q < 2.0f ? h : -h;                   // sin of the centre angle
-  return make_float2(cq * sc.y - sq * sc.x, sq * sc.y + cq * sc.x);
-}
-
 // Cosine-weighted over the hemisphere z >= 0 as sample_cosine_hemisphere, with the portable
-// cossin_turn instead of the built-in cos and sin (path tracing: last-bit differences between
-// devices would otherwise change whole paths).
+// mcl_sincos_turns (trig.h) instead of the built-in cos and sin (path tracing and the thin lens:
+// last-bit differences between devices would otherwise change whole paths).
 MCL_INLINE float3 sample_cosine_hemisphere_portable(float u1, float u2) {
   float r = sqrt(u1);
-  float2 cs = cossin_turn(u2);
+  float s, c;
+  mcl_sincos_turns(u2, &s, &c);
   float z = sqrt(fmax(0.0f, 1.0f - u1));
-  return make_float3(r * cs.x, r * cs.y, z);
+  return make_float3(r * c, r * s, z);
 }
 
 // Uniform on the unit disk (Shirley and Chiu's concentric map): p = 1 / pi per unit area.
@@ -62,11 +42,11 @@ MCL_INLINE float2 sample_concentric_disk(float u1, float u2) {
   float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
   if (a == 0.0f && b == 0.0f) return make_float2(0.0f, 0.0f);
   if (fabs(a) > fabs(b)) {  // phi = pi/4 (b / a), |phi| <= pi/4
-    float2 sc = sincos_quarter((MCL_PI / 4.0f) * (b / a));
+    float2 sc = mcl_sincos_poly((MCL_PI / 4.0f) * (b / a));
     return make_float2(a * sc.y, a * sc.x);
   }
   // phi = pi/2 - t, t = pi/4 (a / b): cos(phi) = sin(t), sin(phi) = cos(t)
-  float2 sc = sincos_quarter((MCL_PI / 4.0f) * (a / b));
+  float2 sc = mcl_sincos_poly((MCL_PI / 4.0f) * (a / b));
   return make_float2(b * sc.x, b * sc.y);
 }
 
