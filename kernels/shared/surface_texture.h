@@ -21,13 +21,16 @@ MCL_INLINE float uv_area(MCL_GLOBAL const Triangle* tri, MCL_GLOBAL const Triang
   return 0.5f * fabs(a);
 }
 
-// Albedo at a hit seen along unit direction dir by a ray cone of width coneWidth there:
-// Kd x the albedo texture's colour (trilinear, footprint from the cone), or Kd without one.
-MCL_INLINE float3 hit_albedo(TextureTables tt, Material m, MCL_GLOBAL const Triangle* tri,
-                             MCL_GLOBAL const TriangleShading* sh, Hit h, float3 dir, float coneWidth) {
+// Albedo at a hit h of a camera ray along unit direction dir: Kd x the albedo texture's colour
+// (trilinear, footprint from the camera's ray cone, camera_spread_angle(f) * h.t wide there), or
+// Kd without one (then nothing else is read or computed: no cone, no UVs).
+MCL_INLINE float3 hit_albedo(TextureTables tt, MCL_CONSTANT const FrameParams* f, Material m,
+                             MCL_GLOBAL const Triangle* tri, MCL_GLOBAL const TriangleShading* sh, Hit h,
+                             float3 dir) {
   float3 kd = xyz(m.albedo);
   uint tex = as_uint(m.albedo.w);
   if (tex == MCL_NO_TEXTURE) return kd;
+  float coneWidth = camera_spread_angle(f) * h.t;
   float2 uv = surface_uv(tri, sh, h.u, h.v);
   float3 n = triangle_unit_normal(xyz(tri->e1), xyz(tri->e2));
   float fp = texture_footprint(coneWidth, uv_area(tri, sh), triangle_area_of(xyz(tri->e1), xyz(tri->e2)), dot(n, dir));

@@ -14,9 +14,8 @@ MCL_INLINE void stage_record_aov(const record_aov_args* a, uint i) {
     return;
   }
   MCL_GLOBAL const Triangle* tri = &a->tris[h.tri];
-  float3 albedo = hit_albedo(make_texture_tables(a->textures, a->textureLevels, a->texels),
-                             a->materials[triangle_material(tri)], tri, &a->shading[h.tri], h, xyz(a->rays[i].dir),
-                             camera_spread_angle(a->frame) * h.t);
+  float3 albedo = hit_albedo(make_texture_tables(a->textures, a->textureLevels, a->texels), a->frame,
+                             a->materials[triangle_material(tri)], tri, &a->shading[h.tri], h, xyz(a->rays[i].dir));
   a->aov[2 * i] = with_w(albedo, h.t);
   a->aov[2 * i + 1] = with_w(surface_frame(a->tris, a->shading, h, xyz(a->rays[i].dir)).ns, 0.0f);
 }

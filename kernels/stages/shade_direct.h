@@ -15,9 +15,11 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   if (i >= a->waveCount) return;
   MCL_CONSTANT const FrameParams* f = a->frame;
   Hit h = a->hits[i];
-  a->bounce[i].origin = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
-  a->bounce[i].dir = make_float4(0.0f, 0.0f, 1.0f, -1.0f);  // no BRDF ray unless written below
+  Ray bounce;  // no BRDF ray unless set below; stored once on every way out
+  bounce.origin = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
+  bounce.dir = make_float4(0.0f, 0.0f, 1.0f, -1.0f);
   if (!shade_begin(f, h, i, a->radiance, a->shadowContrib)) {
+    a->bounce[i] = bounce;
     if (env_present(f)) a->radiance[i] = with_w(env_radiance(f, a->envMap, xyz(a->rays[i].dir)), 0.0f);
     return;
   }
@@ -25,13 +27,15 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   MCL_GLOBAL const Material* materials = a->materials;
   float3 dir = xyz(a->rays[i].dir);
   MCL_GLOBAL const Triangle* tri = &tris[h.tri];
-  a->radiance[i] = with_w(emitted_toward(tri, materials, dir), 0.0f);
+  // Le and the frame before any store, so the compiler computes the triangle's (scaled) cross
+  // product once for both: a global store in between could alias the triangle and forces reloads.
+  float3 le = emitted_toward(tri, materials, dir);
   float3 wo = -dir;
   SurfaceFrame sf = surface_frame(tris, a->shading, h, dir);
+  a->radiance[i] = with_w(le, 0.0f);
   Bsdf bsdf = bsdf_from_material(&materials[triangle_material(tri)]);
-  bsdf.kd = hit_albedo(make_texture_tables(a->textures, a->textureLevels, a->texels),
-                       materials[triangle_material(tri)], tri, &a->shading[h.tri], h, dir,
-                       camera_spread_angle(f) * h.t);
+  bsdf.kd = hit_albedo(make_texture_tables(a->textures, a->textureLevels, a->texels), f,
+                       materials[triangle_material(tri)], tri, &a->shading[h.tri], h, dir);
   float3 origin = offset_ray_origin(sf.p, sf.ng, f->offsetScale);
   uint pixel = item_pixel(f, a->active, a->waveStart, i), sample = item_sample(f, a->waveStart, i);
   float nLight = (float)f->lightSamples;
@@ -57,6 +61,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   if (useBrdf) {
     float4 u = rng_uniform4(f->seed, pixel, sample, MCL_DIM_BRDF);
     float3 wi;
+    bool absorbed = false;
     if (bsdf.specProb == 0.0f) {
       // Lambertian: the built-in cos/sin of the direct integrator as before the glossy lobe, so
       // Lambert-only direct images stay bit-identical to earlier renders (bsdf_sample's portable
@@ -64,10 +69,13 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
       wi = frame_sample_direction(sf, sample_cosine_hemisphere(u.x, u.y));
     } else {
       BsdfSample bs = surface_bsdf_sample(bsdf, sf, wo, u.x, u.y, u.z);
-      if (!(bs.pdf > 0.0f)) return;  // absorbed
+      absorbed = !(bs.pdf > 0.0f);  // then no BRDF ray
       wi = bs.wi;
     }
-    a->bounce[i].origin = with_w(origin, 0.0f);
-    a->bounce[i].dir = with_w(wi, INFINITY);
+    if (!absorbed) {
+      bounce.origin = with_w(origin, 0.0f);
+      bounce.dir = with_w(wi, INFINITY);
+    }
   }
+  a->bounce[i] = bounce;
 }

@@ -32,9 +32,8 @@ MCL_INLINE void stage_shade_direct_hit(const shade_direct_hit_args* a, uint i) {
   float3 wo = -dir;
   SurfaceFrame sf = surface_frame(a->tris, a->shading, h, dir);
   Bsdf bsdf = bsdf_from_material(&materials[triangle_material(tri)]);
-  bsdf.kd = hit_albedo(make_texture_tables(a->textures, a->textureLevels, a->texels),
-                       materials[triangle_material(tri)], tri, &a->shading[h.tri], h, dir,
-                       camera_spread_angle(f) * h.t);
+  bsdf.kd = hit_albedo(make_texture_tables(a->textures, a->textureLevels, a->texels), f,
+                       materials[triangle_material(tri)], tri, &a->shading[h.tri], h, dir);
   float pdfBsdf = surface_bsdf_pdf(bsdf, sf, wo, wi);
   float weight = pdfLight > 0.0f ? power_heuristic(1.0f, pdfBsdf, (float)f->lightSamples, pdfLight) : 1.0f;
   if (bsdf.specProb != 0.0f && !(pdfBsdf > 0.0f)) return;

@@ -64,9 +64,8 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
   SurfaceFrame sf = surface_frame(tris, a->shading, h, dir);
   float3 wo = dir * -1.0f;
   Bsdf bsdf = bsdf_from_material(&materials[triangle_material(tri)]);
-  bsdf.kd = hit_albedo(make_texture_tables(a->textures, a->textureLevels, a->texels),
-                       materials[triangle_material(tri)], tri, &a->shading[h.tri], h, dir,
-                       camera_spread_angle(f) * h.t);
+  bsdf.kd = hit_albedo(make_texture_tables(a->textures, a->textureLevels, a->texels), f,
+                       materials[triangle_material(tri)], tri, &a->shading[h.tri], h, dir);
   float3 origin = offset_ray_origin(sf.p, sf.ng, f->offsetScale);
   uint pixel = item_pixel(f, a->active, a->waveStart, id), sample = item_sample(f, a->waveStart, id);
   for (uint s = 0; (f->emitterCount > 0 || env_present(f)) && s < f->lightSamples; ++s) {
