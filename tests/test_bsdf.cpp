@@ -198,7 +198,7 @@ TEST_CASE("BSDF: with Ks = 0 the functions are the Lambertian expressions, bit f
   for (int i = 0; i < 100; ++i) {
     float4 u = rng_uniform4(1u, uint(i), 0u, 0u);
     BsdfSample s = bsdf_sample(b, n, n, u.x, u.y, u.z);
-    const float3 local = sample_cosine_hemisphere_portable(u.x, u.y);
+    const float3 local = sample_cosine_hemisphere(u.x, u.y);
     const float3 wi = to_world(local, n);
     REQUIRE(s.wi == wi);
     REQUIRE(s.weight == kd);

@@ -75,7 +75,7 @@ typedef struct {
 MCL_INLINE BsdfSample bsdf_sample(Bsdf b, float3 n, float3 wo, float u1, float u2, float uLobe) {
   BsdfSample s;
   if (b.specProb == 0.0f) {  // Lambertian: f cos / p = Kd exactly
-    float3 dirLocal = sample_cosine_hemisphere_portable(u1, u2);  // sampling.h: same bits on every device
+    float3 dirLocal = sample_cosine_hemisphere(u1, u2);  // sampling.h: same bits on every device
     s.wi = to_world(dirLocal, n);
     s.pdf = pdf_cosine_hemisphere(dirLocal.z);
     s.weight = s.pdf > 0.0f ? b.kd : make_float3(0.0f, 0.0f, 0.0f);
@@ -88,7 +88,7 @@ MCL_INLINE BsdfSample bsdf_sample(Bsdf b, float3 n, float3 wo, float u1, float u
   if (!(woL.z > 0.0f)) return s;
   float3 wiL;
   if (uLobe < b.specProb) wiL = reflect_about(woL, ggx_sample_visible_normal(woL, b.alpha, u1, u2));
-  else wiL = sample_cosine_hemisphere_portable(u1, u2);
+  else wiL = sample_cosine_hemisphere(u1, u2);
   if (!(wiL.z > 0.0f)) return s;
   s.wi = to_world(wiL, n);
   float pdf = (1.0f - b.specProb) * pdf_cosine_hemisphere(wiL.z) + b.specProb * ggx_pdf(woL, wiL, b.alpha);

@@ -8,34 +8,29 @@
 #define MCL_INV_PI 0.31830988618379067154f
 #define MCL_INV_2PI 0.15915494309189533577f
 
+// Every warp takes its angle's sine and cosine from the portable mcl_sincos_turns (trig.h, + and
+// x only), never the built-in sin/cos: their last bit differs between devices and libm, and a
+// last-bit change of a direction can change a whole path (or a hit near an edge).
+
 // Uniform over the hemisphere z >= 0: p(w) = 1 / (2 pi).
 MCL_INLINE float3 sample_uniform_hemisphere(float u1, float u2) {
   float z = u1;
   float r = sqrt(fmax(0.0f, 1.0f - z * z));
-  float phi = 2.0f * MCL_PI * u2;
-  return make_float3(r * cos(phi), r * sin(phi), z);
+  float s, c;
+  mcl_sincos_turns(u2, &s, &c);
+  return make_float3(r * c, r * s, z);
 }
 MCL_INLINE float pdf_uniform_hemisphere(void) { return MCL_INV_2PI; }
 
 // Cosine-weighted over the hemisphere z >= 0 (Malley: uniform disk lifted): p(w) = cos(theta) / pi.
 MCL_INLINE float3 sample_cosine_hemisphere(float u1, float u2) {
   float r = sqrt(u1);
-  float phi = 2.0f * MCL_PI * u2;
-  float z = sqrt(fmax(0.0f, 1.0f - u1));
-  return make_float3(r * cos(phi), r * sin(phi), z);
-}
-MCL_INLINE float pdf_cosine_hemisphere(float cosTheta) { return fmax(cosTheta, 0.0f) * MCL_INV_PI; }
-
-// Cosine-weighted over the hemisphere z >= 0 as sample_cosine_hemisphere, with the portable
-// mcl_sincos_turns (trig.h) instead of the built-in cos and sin (path tracing and the thin lens:
-// last-bit differences between devices would otherwise change whole paths).
-MCL_INLINE float3 sample_cosine_hemisphere_portable(float u1, float u2) {
-  float r = sqrt(u1);
   float s, c;
   mcl_sincos_turns(u2, &s, &c);
   float z = sqrt(fmax(0.0f, 1.0f - u1));
   return make_float3(r * c, r * s, z);
 }
+MCL_INLINE float pdf_cosine_hemisphere(float cosTheta) { return fmax(cosTheta, 0.0f) * MCL_INV_PI; }
 
 // Uniform on the unit disk (Shirley and Chiu's concentric map): p = 1 / pi per unit area.
 MCL_INLINE float2 sample_concentric_disk(float u1, float u2) {

@@ -47,7 +47,7 @@ MCL_INLINE BsdfSample surface_bsdf_sample(Bsdf b, SurfaceFrame s, float3 wo, flo
     if (!(woL.z > 0.0f)) return r;
     r.wi = to_world(reflect_about(woL, ggx_sample_visible_normal(woL, b.alpha, u1, u2)), s.ns);
   } else {
-    r.wi = frame_sample_direction(s, sample_cosine_hemisphere_portable(u1, u2));
+    r.wi = frame_sample_direction(s, sample_cosine_hemisphere(u1, u2));
   }
   float pdf = surface_bsdf_pdf(b, s, wo, r.wi);
   if (!(pdf > 0.0f)) return r;

@@ -63,9 +63,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
     float3 wi;
     bool absorbed = false;
     if (bsdf.specProb == 0.0f) {
-      // Lambertian: the built-in cos/sin of the direct integrator as before the glossy lobe, so
-      // Lambert-only direct images stay bit-identical to earlier renders (bsdf_sample's portable
-      // lobe differs in the last bit; the path integrator uses it).
+      // Lambertian: the cosine lobe around the shading frame (folded above the geometric surface).
       wi = frame_sample_direction(sf, sample_cosine_hemisphere(u.x, u.y));
     } else {
       BsdfSample bs = surface_bsdf_sample(bsdf, sf, wo, u.x, u.y, u.z);
