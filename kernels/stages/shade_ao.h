@@ -26,12 +26,7 @@ MCL_INLINE void stage_shade_ao(const shade_ao_args* a, uint i) {
     weight = 2.0f * dirLocal.z;  // cos / (pi / (2 pi))
   }
   if (!(weight > 0.0f)) return;
-  ShadowWork w;
-  w.ray.origin = with_w(offset_ray_origin(sf.p, sf.ng, f->offsetScale), 0.0f);
-  w.ray.dir = with_w(frame_sample_direction(sf, dirLocal), f->aoDistance);
-  w.r = weight;
-  w.g = weight;
-  w.b = weight;
-  w.slot = i * f->shadowSlots;
-  a->queue[MCL_ATOMIC_INC(a->queueCount)] = w;
+  float3 origin = offset_ray_origin(sf.p, sf.ng, f->offsetScale);
+  push_shadow_query(a->queue, a->queueCount, origin, frame_sample_direction(sf, dirLocal), f->aoDistance,
+                    make_float3(weight, weight, weight), i * f->shadowSlots);
 }

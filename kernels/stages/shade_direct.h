@@ -49,14 +49,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
     if (!(ls.pdf > 0.0f && cosSurf > 0.0f)) continue;
     float weight = useBrdf ? power_heuristic(nLight, ls.pdf, 1.0f, surface_bsdf_pdf(bsdf, sf, wo, ls.wi)) : 1.0f;
     float3 c = surface_bsdf_f(bsdf, sf, wo, ls.wi) * ls.le * (cosSurf * weight / (ls.pdf * nLight));
-    ShadowWork w;
-    w.ray.origin = with_w(origin, 0.0f);
-    w.ray.dir = with_w(ls.wi, ls.tmax);
-    w.r = c.x;
-    w.g = c.y;
-    w.b = c.z;
-    w.slot = i * f->shadowSlots + k;
-    a->queue[MCL_ATOMIC_INC(a->queueCount)] = w;
+    push_shadow_query(a->queue, a->queueCount, origin, ls.wi, ls.tmax, c, i * f->shadowSlots + k);
   }
   if (useBrdf) {
     float4 u = rng_uniform4(f->seed, pixel, sample, MCL_DIM_BRDF);

@@ -76,14 +76,7 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
     if (!(max_component(fcos) > 0.0f)) continue;
     float weight = power_heuristic(nLight, ls.pdf, 1.0f, surface_bsdf_pdf(bsdf, sf, wo, ls.wi));
     float3 c = beta * fcos * ls.le * (weight / (ls.pdf * nLight));
-    ShadowWork w;
-    w.ray.origin = with_w(origin, 0.0f);
-    w.ray.dir = with_w(ls.wi, ls.tmax);
-    w.r = c.x;
-    w.g = c.y;
-    w.b = c.z;
-    w.slot = id * f->shadowSlots + s;
-    a->queue[MCL_ATOMIC_INC(a->queueCount)] = w;
+    push_shadow_query(a->queue, a->queueCount, origin, ls.wi, ls.tmax, c, id * f->shadowSlots + s);
   }
 
   float4 u = rng_uniform4(f->seed, pixel, sample, path_dim(bounce, 0u));  // z: roulette, w: lobe

@@ -83,6 +83,21 @@ MCL_INLINE float emitter_cosine(MCL_GLOBAL const Triangle* lt, MCL_GLOBAL const 
   return materials[triangle_material(lt)].emission.w != 0.0f ? fabs(c) : c;
 }
 
+// Pushes an occlusion query onto the shadow queue: if nothing blocks the ray from origin along unit
+// dir before tmax, contribution c goes to shadowContrib[slot] (intersect_shadow). Every shade stage
+// queries visibility through this one function.
+MCL_INLINE void push_shadow_query(MCL_GLOBAL ShadowWork* queue, MCL_GLOBAL volatile uint* queueCount, float3 origin,
+                                  float3 dir, float tmax, float3 c, uint slot) {
+  ShadowWork w;
+  w.ray.origin = with_w(origin, 0.0f);
+  w.ray.dir = with_w(dir, tmax);
+  w.r = c.x;
+  w.g = c.y;
+  w.b = c.z;
+  w.slot = slot;
+  queue[MCL_ATOMIC_INC(queueCount)] = w;
+}
+
 // The start of every shade stage: clears item i's shadow slots (a strategy leaves the slots it does
 // not use at 0) and, when the camera ray missed, writes the background to radiance[i] and returns
 // 0; otherwise returns 1 and leaves radiance[i] to the caller.
