@@ -16,6 +16,7 @@
 #include "image/exr_layers.h"
 #include "film_stats.h"
 #include "kernels/shared/rng.h"
+#include "kernels/shared/surface_texture.h"
 #include "kernels/shared/shading.h"
 #include "kernels/stages/stage_common.h"
 #include "render/frame_params.h"
@@ -63,8 +64,8 @@ TEST_CASE("shading buffer: BVH order, flags in e2.w, a 1-entry dummy without att
     } else {
       CHECK(glm::vec3(s[j].n1) == glm::vec3(0.0f));
     }
-    Hit h{1.0f, std::uint32_t(j), 0.25f, 0.5f};  // hit_uv, as the stages read it
-    const glm::vec2 uv = hit_uv(bvh.triangles.data(), s.data(), h);
+    // surface_uv, as the stages read it (barycentrics u = 0.25, v = 0.5)
+    const glm::vec2 uv = surface_uv(&bvh.triangles[j], &s[j], 0.25f, 0.5f);
     CHECK(uv == (i % 5 == 0 ? glm::vec2(float(i), 0.25f * 0.25f + 0.25f * 1.25f + 0.5f * 2.25f) : glm::vec2(0.0f)));
     if (i % 5 == 0) {
       CHECK(s[j].n0.w == float(i));
@@ -112,7 +113,6 @@ TEST_CASE("shading normals: interpolation, orientation, the below-surface rule" 
   // Folding mirrors across the geometric plane and keeps directions above it as they are.
   CHECK(fold_above(above, ng) == above);
   CHECK(glm::length(fold_above(below, ng) - glm::vec3(below.x, -below.y, below.z)) < 1e-7f);
-  CHECK(interpolate_uv(glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(0, 2), 0.25f, 0.5f) == glm::vec2(0.25f, 1.0f));
   // Flat frames are the flat formulas exactly.
   SurfaceFrame flat{glm::vec3(0), ng, ng, 0};
   CHECK(frame_cosine(flat, above) == glm::dot(ng, above));

@@ -61,11 +61,6 @@ MCL_INLINE float pdf_cosine_folded(float3 ns, float3 ng, float3 wi) {
   return pdf_cosine_hemisphere(dot(ns, wi)) + pdf_cosine_hemisphere(dot(ns, mirror));
 }
 
-// Texture coordinates at barycentrics (1 - u - v, u, v) from the corners' (u, v) pairs.
-MCL_INLINE float2 interpolate_uv(float2 t0, float2 t1, float2 t2, float u, float v) {
-  return t0 * (1.0f - u - v) + t1 * u + t2 * v;
-}
-
 // --- the rule on a SurfaceFrame (smooth == 0: exactly the flat formulas) ---------------------
 
 // A direction sampled in the local frame around ns (z along ns), in world space, folded above ng.

@@ -58,15 +58,6 @@ MCL_INLINE SurfaceFrame surface_frame(MCL_GLOBAL const Triangle* tris, MCL_GLOBA
   return s;
 }
 
-// Texture coordinates of hit h (OBJ convention, v = 0 at the image's bottom row), read from
-// shading[h.tri] only when the triangle has UVs (MCL_ATTR_UV); (0, 0) otherwise.
-MCL_INLINE float2 hit_uv(MCL_GLOBAL const Triangle* tris, MCL_GLOBAL const TriangleShading* shading, Hit h) {
-  if (!(as_uint(tris[h.tri].e2.w) & MCL_ATTR_UV)) return make_float2(0.0f, 0.0f);
-  MCL_GLOBAL const TriangleShading* a = &shading[h.tri];
-  return interpolate_uv(make_float2(a->n0.w, a->tv.x), make_float2(a->n1.w, a->tv.y),
-                        make_float2(a->n2.w, a->tv.z), h.u, h.v);
-}
-
 // Le leaving tri toward the viewer moving along dir (0 from the back face): emitters emit Ke from
 // their front face (the side of cross(e1, e2)), or from both faces when emission.w is set.
 MCL_INLINE float3 emitted_toward(MCL_GLOBAL const Triangle* tri, MCL_GLOBAL const Material* materials,
