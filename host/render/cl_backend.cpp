@@ -9,6 +9,7 @@
 
 #include "render/stage_program.h"
 #include "render/stage_runner.h"
+#include "render/triangle_shading.h"
 #include "util/errors.h"
 
 namespace montecl {
@@ -36,6 +37,7 @@ class ClStageRunner final : public StageRunner {
     b.nodes = {program_.uploadNodes(*in.bvh)};
     b.tris = {cl_.upload(in.triangles.empty() ? in.bvh->triangles : in.triangles)};
     b.shading = {cl_.upload(in.shading.empty() ? std::vector<TriangleShading>(1) : in.shading)};
+    b.normals = {cl_.upload(buildTriangleNormals(in.bvh->triangles))};
     b.materials = {cl_.upload(in.materials)};
     b.emitters = {cl_.upload(in.emitters)};
     const bool tex = in.textures && !in.textures->textures.empty();

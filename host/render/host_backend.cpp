@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "render/stage_runner.h"
+#include "render/triangle_shading.h"
 #include "util/parallel_for.h"
 
 namespace montecl {
@@ -32,6 +33,7 @@ class HostStageRunner final : public StageRunner {
     tris_ = in.triangles.empty() ? in.bvh->triangles : in.triangles;
     shading_ = in.shading;
     if (shading_.empty()) shading_.resize(1);
+    normals_ = buildTriangleNormals(in.bvh->triangles);
     materials_ = in.materials;
     emitters_ = in.emitters;
     envMap_ = in.envMap;
@@ -144,6 +146,7 @@ class HostStageRunner final : public StageRunner {
     b.nodes = nodes_.data();
     b.tris = tris_.data();
     b.shading = shading_.data();
+    b.normals = normals_.data();
     b.materials = materials_.data();
     b.emitters = emitters_.data();
     // Read-only to every stage (const in the stage table); not copied: texels can be large.
@@ -185,6 +188,7 @@ class HostStageRunner final : public StageRunner {
   std::vector<WideNode> nodes_;
   std::vector<Triangle> tris_;
   std::vector<TriangleShading> shading_;
+  std::vector<float4> normals_;
   std::vector<Material> materials_;
   std::vector<Emitter> emitters_;
   // The scene's texture tables (the caller's, alive during the render) or 1-entry dummies.

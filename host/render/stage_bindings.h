@@ -43,6 +43,7 @@ struct StageBindings {
   Array<BvhTraversalNode> nodes;
   Array<Triangle> tris;
   Array<TriangleShading> shading;  // per triangle, BVH order (1-entry dummy when none has attributes)
+  Array<float4> normals;           // per triangle, BVH order: unit geometric normal, w area (buildTriangleNormals)
   Array<Material> materials;
   Array<Emitter> emitters;
   // Texture tables (host/texture/scene_textures.h); 1-entry dummies in a scene without textures.

@@ -1,5 +1,8 @@
-// triangle_shading.cpp: fills TriangleShading in BVH order from SceneTriangle::n/uv/attributes.
+// triangle_shading.cpp: fills TriangleShading in BVH order from SceneTriangle::n/uv/attributes, and the
+// per-triangle unit geometric normals and areas.
 #include "render/triangle_shading.h"
+
+#include "kernels/shared/geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -29,6 +32,15 @@ std::vector<TriangleShading> buildTriangleShading(const std::vector<SceneTriangl
       *corners[k] = glm::vec4(n, u);
     }
     if (t.attributes & kHasUv) s.tv = glm::vec4(t.uv[0].y, t.uv[1].y, t.uv[2].y, 0.0f);
+  }
+  return out;
+}
+
+std::vector<float4> buildTriangleNormals(const std::vector<Triangle>& tris) {
+  std::vector<float4> out(std::max<std::size_t>(1, tris.size()), float4(0.0f));
+  for (std::size_t i = 0; i < tris.size(); ++i) {
+    const float3 e1 = xyz(tris[i].e1), e2 = xyz(tris[i].e2);
+    out[i] = float4(triangle_unit_normal(e1, e2), triangle_area_of(e1, e2));
   }
   return out;
 }

@@ -1,5 +1,6 @@
 // triangle_shading.h: the device's per-triangle attribute buffer (kernels/shared/types.h
-// TriangleShading), in BVH order, from the scene's per-corner normals and texture coordinates.
+// TriangleShading), in BVH order, from the scene's per-corner normals and texture coordinates; and
+// the per-triangle unit geometric normals and areas (buildTriangleNormals).
 #pragma once
 #include <vector>
 
@@ -14,5 +15,11 @@ namespace montecl {
 // has attributes, one zero entry (never read: Triangle::e2.w holds no flag), so such scenes pay
 // 64 bytes, not 64 per triangle.
 std::vector<TriangleShading> buildTriangleShading(const std::vector<SceneTriangle>& tris, const Bvh& bvh);
+
+// normals[i] = (triangle_unit_normal, triangle_area_of) of tris[i]'s edges: the shade stages' geometric
+// normal and emitter area, computed once with the kernels' own functions (kernels/shared/geometry.h;
+// this library is built without FMA contraction, like the kernels), so every device reads the bits
+// it would have computed itself. At least one entry (a zero one for an empty list).
+std::vector<float4> buildTriangleNormals(const std::vector<Triangle>& tris);
 
 }  // namespace montecl

@@ -13,7 +13,7 @@
 #pragma OPENCL FP_CONTRACT OFF
 #define MCL_GLOBAL __global
 #define MCL_CONSTANT __constant
-#define MCL_INLINE inline
+#define MCL_INLINE inline __attribute__((always_inline))
 #define MCL_ALWAYS_INLINE inline __attribute__((always_inline))
 #define make_float2(a, b) ((float2)((a), (b)))
 #define make_float3(a, b, c) ((float3)((a), (b), (c)))

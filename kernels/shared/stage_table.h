@@ -34,6 +34,8 @@
   MCL_TEXTURE_ARGS(ARG)
 
 // ARG(type, name): the names are StageBindings' members (host/render/stage_bindings.h).
+// normals: per BVH-ordered triangle, xyz its unit geometric normal and w its area, computed once
+// on the host (host/render/triangle_shading.h buildTriangleNormals) with the kernels' own functions.
 #define MCL_ARGS_generate(ARG)                                                                     \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
   ARG(MCL_GLOBAL Ray*, rays)
@@ -46,7 +48,7 @@
 
 #define MCL_ARGS_shade_ao(ARG)                                                                     \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
-  ARG(MCL_GLOBAL const Triangle*, tris) ARG(MCL_GLOBAL const TriangleShading*, shading)            \
+  ARG(MCL_GLOBAL const Triangle*, tris) ARG(MCL_GLOBAL const TriangleShading*, shading) ARG(MCL_GLOBAL const float4*, normals) \
   ARG(MCL_GLOBAL const Ray*, rays)                                                                 \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL float4*, radiance)                               \
   ARG(MCL_GLOBAL float4*, shadowContrib) ARG(MCL_GLOBAL ShadowWork*, queue)                        \
@@ -54,7 +56,7 @@
 
 #define MCL_ARGS_shade_direct(ARG)                                                                 \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
-  ARG(MCL_GLOBAL const Triangle*, tris) ARG(MCL_GLOBAL const TriangleShading*, shading)            \
+  ARG(MCL_GLOBAL const Triangle*, tris) ARG(MCL_GLOBAL const TriangleShading*, shading) ARG(MCL_GLOBAL const float4*, normals) \
   ARG(MCL_GLOBAL const Material*, materials)                                                       \
   ARG(MCL_GLOBAL const Emitter*, emitters) ARG(MCL_GLOBAL const Ray*, rays)                        \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL float4*, radiance)                               \
@@ -65,7 +67,7 @@
 
 #define MCL_ARGS_shade_direct_hit(ARG)                                                             \
   ARG(uint, waveCount) ARG(MCL_GLOBAL const Triangle*, tris)                                       \
-  ARG(MCL_GLOBAL const TriangleShading*, shading)                                                  \
+  ARG(MCL_GLOBAL const TriangleShading*, shading) ARG(MCL_GLOBAL const float4*, normals) \
   ARG(MCL_GLOBAL const Material*, materials) ARG(MCL_GLOBAL const Ray*, rays)                      \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL const Ray*, bounce)                              \
   ARG(MCL_GLOBAL const Hit*, bounceHits) ARG(MCL_GLOBAL float4*, shadowContrib)                   \
@@ -86,7 +88,7 @@
 
 #define MCL_ARGS_record_aov(ARG)                                                                   \
   ARG(uint, waveCount) ARG(MCL_GLOBAL const Triangle*, tris)                                       \
-  ARG(MCL_GLOBAL const TriangleShading*, shading)                                                  \
+  ARG(MCL_GLOBAL const TriangleShading*, shading) ARG(MCL_GLOBAL const float4*, normals) \
   ARG(MCL_GLOBAL const Material*, materials) ARG(MCL_GLOBAL const Ray*, rays)                      \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL float4*, aov) \
   MCL_TEXTURE_ARGS(ARG)
@@ -99,7 +101,7 @@
 // queue of *rayCount live paths; per-path state is indexed by path id (the wave item).
 #define MCL_ARGS_shade_path(ARG)                                                                   \
   ARG(ulong, waveStart) ARG(uint, pathBounce) ARG(MCL_GLOBAL const uint*, active)                  \
-  ARG(MCL_GLOBAL const Triangle*, tris) ARG(MCL_GLOBAL const TriangleShading*, shading)            \
+  ARG(MCL_GLOBAL const Triangle*, tris) ARG(MCL_GLOBAL const TriangleShading*, shading) ARG(MCL_GLOBAL const float4*, normals) \
   ARG(MCL_GLOBAL const Material*, materials)                                                       \
   ARG(MCL_GLOBAL const Emitter*, emitters) ARG(MCL_GLOBAL const Ray*, rays)                        \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL const uint*, rayCount)                           \

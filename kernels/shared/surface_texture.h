@@ -23,17 +23,17 @@ MCL_INLINE float uv_area(MCL_GLOBAL const Triangle* tri, MCL_GLOBAL const Triang
 
 // Albedo at a hit h of a camera ray along unit direction dir: Kd x the albedo texture's colour
 // (trilinear, footprint from the camera's ray cone, camera_spread_angle(f) * h.t wide there), or
-// Kd without one (then nothing else is read or computed: no cone, no UVs).
+// Kd without one (then nothing else is read or computed: no cone, no UVs). nA: the triangle's unit
+// geometric normal (xyz) and area (w), as triangle_unit_normal and triangle_area_of give them.
 MCL_INLINE float3 hit_albedo(TextureTables tt, MCL_CONSTANT const FrameParams* f, Material m,
-                             MCL_GLOBAL const Triangle* tri, MCL_GLOBAL const TriangleShading* sh, Hit h,
-                             float3 dir) {
+                             MCL_GLOBAL const Triangle* tri, float4 nA, MCL_GLOBAL const TriangleShading* sh,
+                             Hit h, float3 dir) {
   float3 kd = xyz(m.albedo);
   uint tex = as_uint(m.albedo.w);
   if (tex == MCL_NO_TEXTURE) return kd;
   float coneWidth = camera_spread_angle(f) * h.t;
   float2 uv = surface_uv(tri, sh, h.u, h.v);
-  float3 n = triangle_unit_normal(xyz(tri->e1), xyz(tri->e2));
-  float fp = texture_footprint(coneWidth, uv_area(tri, sh), triangle_area_of(xyz(tri->e1), xyz(tri->e2)), dot(n, dir));
+  float fp = texture_footprint(coneWidth, uv_area(tri, sh), nA.w, dot(xyz(nA), dir));
   return kd * xyz(texture_sample(tt, tex, uv.x, uv.y, fp));
 }
 

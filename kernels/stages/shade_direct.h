@@ -27,15 +27,14 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   MCL_GLOBAL const Material* materials = a->materials;
   float3 dir = xyz(a->rays[i].dir);
   MCL_GLOBAL const Triangle* tri = &tris[h.tri];
-  // Le and the frame before any store, so the compiler computes the triangle's (scaled) cross
-  // product once for both: a global store in between could alias the triangle and forces reloads.
-  float3 le = emitted_toward(tri, materials, dir);
+  float4 nA = a->normals[h.tri];
+  float3 le = emitted_toward(xyz(nA), &materials[triangle_material(tri)], dir);
   float3 wo = -dir;
-  SurfaceFrame sf = surface_frame(tris, a->shading, h, dir);
+  SurfaceFrame sf = surface_frame(tris, a->normals, a->shading, h, dir);
   a->radiance[i] = with_w(le, 0.0f);
   Bsdf bsdf = bsdf_from_material(&materials[triangle_material(tri)]);
   bsdf.kd = hit_albedo(make_texture_tables(a->textures, a->textureLevels, a->texels), f,
-                       materials[triangle_material(tri)], tri, &a->shading[h.tri], h, dir);
+                       materials[triangle_material(tri)], tri, nA, &a->shading[h.tri], h, dir);
   float3 origin = offset_ray_origin(sf.p, sf.ng, f->offsetScale);
   uint pixel = item_pixel(f, a->active, a->waveStart, i), sample = item_sample(f, a->waveStart, i);
   float nLight = (float)f->lightSamples;
@@ -44,7 +43,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
 
   for (uint k = 0; useLight && k < f->lightSamples; ++k) {
     float4 u = rng_uniform4(f->seed, pixel, sample, MCL_DIM_LIGHT + k);
-    LightSample ls = sample_direct_light(f, tris, materials, a->emitters, a->envMap, a->envCdf, origin, u);
+    LightSample ls = sample_direct_light(f, tris, a->normals, materials, a->emitters, a->envMap, a->envCdf, origin, u);
     float cosSurf = frame_cosine(sf, ls.wi);  // 0 below the geometric surface
     if (!(ls.pdf > 0.0f && cosSurf > 0.0f)) continue;
     float weight = useBrdf ? power_heuristic(nLight, ls.pdf, 1.0f, surface_bsdf_pdf(bsdf, sf, wo, ls.wi)) : 1.0f;

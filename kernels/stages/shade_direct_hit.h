@@ -22,18 +22,19 @@ MCL_INLINE void stage_shade_direct_hit(const shade_direct_hit_args* a, uint i) {
     if (mis) pdfLight = env_light_pdf(f, a->envMap, wi);
   } else {
     MCL_GLOBAL const Triangle* lt = &a->tris[bh.tri];
-    le = emitted_toward(lt, materials, wi);
-    if (mis) pdfLight = emitter_light_pdf(f, lt, materials, wi, bh.t);
+    float4 nA = a->normals[bh.tri];
+    le = emitted_toward(xyz(nA), &materials[triangle_material(lt)], wi);
+    if (mis) pdfLight = emitter_light_pdf(f, lt, nA, materials, wi, bh.t);
   }
   if (!(le.x > 0.0f || le.y > 0.0f || le.z > 0.0f)) return;
   Hit h = a->hits[i];
   MCL_GLOBAL const Triangle* tri = &a->tris[h.tri];
   float3 dir = xyz(a->rays[i].dir);
   float3 wo = -dir;
-  SurfaceFrame sf = surface_frame(a->tris, a->shading, h, dir);
+  SurfaceFrame sf = surface_frame(a->tris, a->normals, a->shading, h, dir);
   Bsdf bsdf = bsdf_from_material(&materials[triangle_material(tri)]);
   bsdf.kd = hit_albedo(make_texture_tables(a->textures, a->textureLevels, a->texels), f,
-                       materials[triangle_material(tri)], tri, &a->shading[h.tri], h, dir);
+                       materials[triangle_material(tri)], tri, a->normals[h.tri], &a->shading[h.tri], h, dir);
   float pdfBsdf = surface_bsdf_pdf(bsdf, sf, wo, wi);
   float weight = pdfLight > 0.0f ? power_heuristic(1.0f, pdfBsdf, (float)f->lightSamples, pdfLight) : 1.0f;
   if (bsdf.specProb != 0.0f && !(pdfBsdf > 0.0f)) return;

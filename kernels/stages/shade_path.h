@@ -51,26 +51,27 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
   MCL_GLOBAL const Material* materials = a->materials;
   MCL_GLOBAL const Triangle* tri = &tris[h.tri];
   float nLight = (float)f->lightSamples;
-  float3 le = emitted_toward(tri, materials, dir);
+  float4 nA = a->normals[h.tri];
+  float3 le = emitted_toward(xyz(nA), &materials[triangle_material(tri)], dir);
   if (le.x > 0.0f || le.y > 0.0f || le.z > 0.0f) {
     float weight = 1.0f;
     if (bounce > 0 && beta4.w > 0.0f && f->emitterCount > 0)  // a BSDF sample found an emitter
-      weight = power_heuristic(1.0f, beta4.w, nLight, emitter_light_pdf(f, tri, materials, dir, h.t));
+      weight = power_heuristic(1.0f, beta4.w, nLight, emitter_light_pdf(f, tri, nA, materials, dir, h.t));
     L += beta * le * weight;
   }
   a->radiance[id] = with_w(L, 0.0f);
   if (!(f->maxDepth < 0 || (int)bounce + 1 < f->maxDepth)) return;
 
-  SurfaceFrame sf = surface_frame(tris, a->shading, h, dir);
+  SurfaceFrame sf = surface_frame(tris, a->normals, a->shading, h, dir);
   float3 wo = dir * -1.0f;
   Bsdf bsdf = bsdf_from_material(&materials[triangle_material(tri)]);
   bsdf.kd = hit_albedo(make_texture_tables(a->textures, a->textureLevels, a->texels), f,
-                       materials[triangle_material(tri)], tri, &a->shading[h.tri], h, dir);
+                       materials[triangle_material(tri)], tri, nA, &a->shading[h.tri], h, dir);
   float3 origin = offset_ray_origin(sf.p, sf.ng, f->offsetScale);
   uint pixel = item_pixel(f, a->active, a->waveStart, id), sample = item_sample(f, a->waveStart, id);
   for (uint s = 0; (f->emitterCount > 0 || env_present(f)) && s < f->lightSamples; ++s) {
     float4 u = rng_uniform4(f->seed, pixel, sample, path_dim(bounce, 1u + s));
-    LightSample ls = sample_direct_light(f, tris, materials, a->emitters, a->envMap, a->envCdf, origin, u);
+    LightSample ls = sample_direct_light(f, tris, a->normals, materials, a->emitters, a->envMap, a->envCdf, origin, u);
     if (!(ls.pdf > 0.0f)) continue;
     float3 fcos = surface_bsdf_eval(bsdf, sf, wo, ls.wi);
     if (!(max_component(fcos) > 0.0f)) continue;
