@@ -13,16 +13,7 @@
 #pragma OPENCL FP_CONTRACT OFF
 #define MCL_GLOBAL __global
 #define MCL_CONSTANT __constant
-// Helpers and stage bodies are inlined into the kernel: PoCL otherwise calls the stage body once
-// per work item and passes structs (SurfaceFrame, Bsdf) through the stack, where reloading them
-// stalls on store forwarding (Cornell box direct 128x128 1024 spp: shade_direct_hit 6x faster,
-// generate 2x). Not in unoptimised builds (-cl-opt-disable, Oclgrind): inlining there leaves
-// llvm.experimental.noalias.scope.decl calls that Oclgrind 21.10 cannot run.
-#ifdef __OPTIMIZE__
-#define MCL_INLINE inline __attribute__((always_inline))
-#else
 #define MCL_INLINE inline
-#endif
 #define MCL_ALWAYS_INLINE inline __attribute__((always_inline))
 #define make_float2(a, b) ((float2)((a), (b)))
 #define make_float3(a, b, c) ((float3)((a), (b), (c)))
