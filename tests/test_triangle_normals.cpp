@@ -11,6 +11,7 @@
 #include "soups.h"
 
 using namespace montecl;
+using montecl_test::seededSoup;
 
 namespace {
 
