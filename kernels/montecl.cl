@@ -6,8 +6,8 @@
 
 // -DMCL_SCALAR_WORK_ITEMS (host/cl/device_tuning.cpp: Intel's CPU runtime) marks every kernel
 // vec_type_hint(float8): the kernels compute in float8 within a work item, so that compiler does
-// not pack work items into SIMD lanes (the divergent traversals ran 2-4x slower packed). Others
-// build the kernels without it.
+// not pack work items into SIMD lanes (the divergent traversals ran 2-4x slower packed, and packed
+// shading broke bit-identity on the glossy conformance images). Others build without it.
 #ifdef MCL_SCALAR_WORK_ITEMS
 #define MCL_KERNEL_ATTRIBUTES __attribute__((vec_type_hint(float8)))
 #else

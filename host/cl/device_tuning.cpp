@@ -13,8 +13,8 @@ DeviceTuning deviceTuning(const DeviceInfo& d) {
   if (isIntelCpuRuntime(d)) {
     // Intel's compiler runs 8 or 16 work items in the lanes of one SIMD register (implicit
     // vectorisation). The traversal loops diverge per ray (each lane its own stack and node), so
-    // the packed kernels ran 2-4x slower than one item per core thread, and the packed shade
-    // stages rounded differently from the host (conformance failed on the glossy images).
+    // the packed kernels ran 2-4x slower than one item per core thread; and the glossy
+    // conformance images from packed kernels differ from the host backend (cause not found).
     // -DMCL_SCALAR_WORK_ITEMS puts vec_type_hint(float8) on the kernels (kernels/montecl.cl),
     // which turns the packing off: each work item runs as written, with its own float8 box test.
     t.buildOptions = "-DMCL_SCALAR_WORK_ITEMS=1";
