@@ -28,10 +28,21 @@
 #define MCL_KERNEL_ATTR_shade_path MCL_FLATTEN
 #define MCL_KERNEL_ATTR_path_gather MCL_FLATTEN
 
+// -DMCL_SCALAR_WORK_ITEMS (host/cl/device_tuning.cpp: Intel's CPU runtime) marks every kernel
+// vec_type_hint(float8): the kernels compute in float8 within a work item, so that compiler does
+// not pack work items into SIMD lanes (the divergent traversals ran 2-4x slower packed, and packed
+// shading broke bit-identity on the glossy conformance images). Others build without it.
+#ifdef MCL_SCALAR_WORK_ITEMS
+#define MCL_KERNEL_ATTRIBUTES __attribute__((vec_type_hint(float8)))
+#else
+#define MCL_KERNEL_ATTRIBUTES
+#endif
+
 #define MCL_KERNEL_PARAM(type, name) , type name
 #define MCL_KERNEL_VALUE(type, name) , name
 #define MCL_STAGE_KERNEL(stage)                                                                    \
-  __kernel MCL_KERNEL_ATTR_##stage void stage(__constant FrameParams* frame MCL_ARGS_##stage(MCL_KERNEL_PARAM)) {          \
+  __kernel MCL_KERNEL_ATTRIBUTES MCL_KERNEL_ATTR_##stage void stage(                               \
+      __constant FrameParams* frame MCL_ARGS_##stage(MCL_KERNEL_PARAM)) {                          \
     stage##_args a = {frame MCL_ARGS_##stage(MCL_KERNEL_VALUE)};                                   \
     stage_##stage(&a, (uint)get_global_id(0));                                                     \
   }

@@ -19,12 +19,18 @@ packages=(
 # and libllvm19 (Mitsuba's llvm_ad_rgb variant needs an LLVM newer than Debian's default) and
 # installs PyPI's mitsuba + numpy into a cached venv, $MONTECL_MITSUBA_VENV or
 # ~/.cache/montecl/mitsuba-venv (about 100 MB; skipped when it already imports mitsuba).
+# `setup.sh --intel-opencl` adds Intel's CPU OpenCL runtime (PyPI intel-opencl-rt +
+# intel-cmplr-lib-rt, about 270 MB to download, 0.5 GB installed) into a cached venv,
+# $MONTECL_INTEL_OPENCL_VENV or ~/.cache/montecl/intel-opencl-venv (skipped when its libintelocl.so
+# is there); scripts/with_intel_opencl.sh runs a command with it visible beside PoCL.
 mitsuba=0
+intel_opencl=0
 for arg in "$@"; do
   case "$arg" in
     --plots) packages+=(python3-matplotlib) ;;
     --fuzz) packages+=(clang-14 libclang-rt-14-dev) ;;
     --mitsuba) packages+=(python3-venv libllvm19); mitsuba=1 ;;
+    --intel-opencl) packages+=(python3-venv); intel_opencl=1 ;;
   esac
 done
 
@@ -40,6 +46,27 @@ mitsuba_venv() {
   "$venv/bin/pip" install -q --disable-pip-version-check mitsuba numpy >&2
 }
 
+intel_opencl_venv() {
+  [ "$intel_opencl" = 1 ] || return 0
+  local venv=${MONTECL_INTEL_OPENCL_VENV:-$HOME/.cache/montecl/intel-opencl-venv}
+  if [ -e "$venv/lib/libintelocl.so" ]; then
+    return 0
+  fi
+  echo "setup: installing Intel's CPU OpenCL runtime (PyPI intel-opencl-rt, intel-cmplr-lib-rt) into $venv" >&2
+  mkdir -p "$(dirname "$venv")"
+  python3 -m venv "$venv"
+  "$venv/bin/pip" install -q --disable-pip-version-check intel-opencl-rt intel-cmplr-lib-rt >&2
+  # The wheels hold the big libraries twice (libX.so and libX.so.<version>, no links): link them.
+  local f v
+  for f in "$venv"/lib/*.so; do
+    for v in "$f".*; do
+      if [ -f "$v" ] && [ ! -L "$v" ] && [ ! -L "$f" ] && cmp -s "$f" "$v"; then
+        ln -sf "$(basename "$v")" "$f"
+      fi
+    done
+  done
+}
+
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
@@ -49,6 +76,7 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   mitsuba_venv
+  intel_opencl_venv
   exit 0
 fi
 
@@ -59,3 +87,4 @@ export DEBIAN_FRONTEND=noninteractive
 "${sudo_cmd[@]}" apt-get update -qq
 "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
 mitsuba_venv
+intel_opencl_venv

@@ -1,8 +1,9 @@
 // test_conformance.cpp: portability. The host backend renders the same images as the kernels: in
 // process against the default OpenCL device, and through the real montecl binary's `conformance`
-// command on the PoCL pthread device, the PoCL single-threaded device (POCL_DEVICES=basic) and under
-// Oclgrind (API, data-race and uninitialised-value checks, which must report nothing). Same-seed
-// images agree within 1e-5 relative per pixel everywhere. Also the kernels' float hygiene.
+// command on the PoCL pthread device, the PoCL single-threaded device (POCL_DEVICES=basic), Intel's
+// CPU OpenCL runtime (when scripts/setup.sh --intel-opencl installed it) and under Oclgrind (API,
+// data-race and uninitialised-value checks, which must report nothing). Same-seed images agree
+// within 1e-5 relative per pixel everywhere. Also the kernels' float hygiene.
 #include <doctest/doctest.h>
 
 #include <cstdlib>
@@ -80,6 +81,41 @@ TEST_CASE("conformance: PoCL single-threaded device (POCL_DEVICES=basic)" * doct
                                   "--cornell-spp", "2"},
                                  {"POCL_DEVICES=basic"}),
                       "POCL_DEVICES=basic");
+}
+
+// Intel's CPU OpenCL runtime, a second OpenCL implementation with its own compiler (it packs work
+// items into SIMD lanes): installed by `scripts/setup.sh --intel-opencl` (scripts/test.sh does),
+// made visible beside PoCL by scripts/with_intel_opencl.sh, which exits 3 when it is not installed.
+TEST_CASE("conformance: Intel's CPU OpenCL runtime (scripts/with_intel_opencl.sh)" * doctest::test_suite("cli")) {
+  const std::string wrapper = std::string(MONTECL_SOURCE_DIR) + "/scripts/with_intel_opencl.sh";
+  CliResult probe = runProgram({"bash", wrapper, "true"});
+  MCL_SKIP_UNLESS(probe.exitCode != 3, "Intel's CPU OpenCL runtime is not installed (scripts/setup.sh --intel-opencl): "
+                                           << probe.err);
+  REQUIRE(probe.exitCode == 0);
+  CliResult list = runProgram({"bash", wrapper, MONTECL_EXE, "devices", "--json"});
+  INFO("devices: exit " << list.exitCode << "\n" << list.out << list.err);
+  REQUIRE(list.exitCode == 0);
+  std::string intel;
+  bool pocl = false;
+  for (const auto& d : nlohmann::json::parse(list.out)) {
+    const std::string platform = d["platform"].get<std::string>();
+    if (platform.find("Intel(R) OpenCL") != std::string::npos && d["type"] == "CPU") {
+      intel = d["index"].get<std::string>();
+      CHECK(d["tuning"]["buildOptions"].get<std::string>().find("-DMCL_SCALAR_WORK_ITEMS") != std::string::npos);
+    }
+    if (platform.find("Portable Computing Language") != std::string::npos) {
+      pocl = true;
+      CHECK(d["tuning"]["buildOptions"] == "");  // PoCL builds the kernels as before
+    }
+  }
+  REQUIRE_MESSAGE(!intel.empty(), "the runtime is installed but no Intel(R) OpenCL CPU device is listed");
+  CHECK_MESSAGE(pocl, "PoCL is no longer listed beside the Intel runtime");
+  CliResult r = runProgram({"bash", wrapper, MONTECL_EXE, "conformance", "--json", "--device", intel, "--size", "12",
+                            "--spp", "4", "--cornell-size", "16", "--cornell-spp", "2"});
+  checkConformanceRun(r, "Intel CPU runtime");
+  nlohmann::json j = nlohmann::json::parse(r.out);
+  REQUIRE(j["devices"].size() == 1);
+  CHECK(j["devices"][0]["platform"].get<std::string>().find("Intel(R) OpenCL") != std::string::npos);
 }
 
 // scripts/oclgrind_check.sh: --check-api --data-races --uninitialized, kernels built with

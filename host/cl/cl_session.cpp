@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "cl/cl_errors.h"
+#include "cl/device_tuning.h"
 #include "cl/kernel_source.h"
 #include "util/errors.h"
 
@@ -17,8 +18,12 @@ ClSession::ClSession(const DeviceInfo& device, std::size_t workGroupSize, bool p
                      "OpenCL device");
   context_ = cl::Context(device.device);
   queue_ = cl::CommandQueue(context_, device.device, profiling ? CL_QUEUE_PROFILING_ENABLE : 0);
+  const DeviceTuning tuning = deviceTuning(device);
+  if (workGroupSize_ == 0) workGroupSize_ = tuning.workGroupSize;
   std::string options = kKernelBuildOptions;
   if (!extraOptions.empty()) options += " " + extraOptions;
+  // What this OpenCL implementation runs best (cl/device_tuning.h); never changes results.
+  if (!tuning.buildOptions.empty()) options += " " + tuning.buildOptions;
   // Oclgrind 21.10 (Debian) aborts on the LLVM `freeze` instructions of optimised kernels.
   if (oclgrind_) options += " -cl-opt-disable";
   // Division and sqrt correctly rounded where the device can (OpenCL 1.2 allows 2.5 / 3 ulp by
@@ -39,8 +44,7 @@ cl::Kernel ClSession::kernel(const char* name) const {
 
 std::size_t ClSession::localSize(const cl::Kernel& k) const {
   std::size_t maxSize = k.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device_.device);
-  std::size_t want = workGroupSize_ ? workGroupSize_ : 64;
-  return std::max<std::size_t>(1, std::min(want, maxSize));
+  return std::max<std::size_t>(1, std::min(workGroupSize_, maxSize));
 }
 
 void ClSession::launch(cl::Kernel& k, std::uint64_t n, cl::Event* event) {

@@ -23,9 +23,10 @@ constexpr const char* kKernelBuildOptions = "-cl-std=CL1.2";
 
 class ClSession {
  public:
-  // Builds kernels/<programFile> with kKernelBuildOptions + " " + extraOptions (e.g. defines).
-  // workGroupSize 0: min(64, CL_KERNEL_WORK_GROUP_SIZE) per kernel. profiling: the queue is
-  // created with CL_QUEUE_PROFILING_ENABLE (event timings, used by `montecl bench`).
+  // Builds kernels/<programFile> with kKernelBuildOptions + " " + extraOptions (e.g. defines),
+  // then the device's own options (cl/device_tuning.h). workGroupSize 0: the device's default
+  // (64), capped by CL_KERNEL_WORK_GROUP_SIZE per kernel. profiling: the queue is created with
+  // CL_QUEUE_PROFILING_ENABLE (event timings, used by `montecl bench`).
   explicit ClSession(const DeviceInfo& device, std::size_t workGroupSize = 0, bool profiling = false,
                      const std::string& extraOptions = "", const std::string& programFile = "montecl.cl");
 

@@ -4,6 +4,9 @@
 // cache is best effort: a folder that cannot be created or written never fails a build.
 #include "cl/program_cache.h"
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -30,6 +33,18 @@ constexpr std::uint64_t kCheckSeed = 0x84222325cbf29ce4ull;
 std::string envOr(const char* name) {
   const char* v = std::getenv(name);
   return v ? std::string(v) : std::string();
+}
+
+// Intel's CPU runtime reads compiler settings from CL_CONFIG_* variables (e.g.
+// CL_CONFIG_CPU_VECTORIZER_MODE): "NAME=value\n" for each, sorted, so they key the cache too.
+std::string clConfigEnvironment() {
+  std::vector<std::string> vars;
+  for (char** e = environ; e && *e; ++e)
+    if (std::strncmp(*e, "CL_CONFIG_", 10) == 0) vars.emplace_back(*e);
+  std::sort(vars.begin(), vars.end());
+  std::string out;
+  for (const std::string& v : vars) out += v + "\n";
+  return out;
 }
 
 std::string buildLog(const cl::Program& program, cl_device_id dev) {
@@ -133,7 +148,7 @@ ProgramBuild buildProgramCached(const cl::Context& context, const DeviceInfo& de
   for (const std::string& part :
        {platform.getInfo<CL_PLATFORM_NAME>(), platform.getInfo<CL_PLATFORM_VERSION>(), deviceName,
         clDevice.getInfo<CL_DRIVER_VERSION>(), options, std::string(oclgrindOptions ? oclgrindOptions : ""),
-        source}) {
+        clConfigEnvironment(), source}) {
     key += part;
     key.push_back('\0');
   }

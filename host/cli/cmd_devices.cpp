@@ -4,6 +4,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "cl/device_tuning.h"
 #include "cl/devices.h"
 #include "cli/commands.h"
 #include "conformance/conformance.h"
@@ -15,6 +16,17 @@ namespace {
 
 const char* kNoDevice =
     "no OpenCL device found: install an OpenCL driver, e.g. 'apt-get install pocl-opencl-icd'";
+
+// The per-device kernel choices (cl/device_tuning.h).
+nlohmann::json tuningJson(const DeviceTuning& t) {
+  return {{"buildOptions", t.buildOptions}, {"workGroupSize", t.workGroupSize}, {"why", t.why}};
+}
+
+std::string tuningText(const DeviceTuning& t) {
+  std::string s = "work-group size " + std::to_string(t.workGroupSize);
+  if (!t.buildOptions.empty()) s += ", " + t.buildOptions + " (" + t.why + ")";
+  return s;
+}
 
 nlohmann::json deviceJson(const DeviceInfo& d) {
   if (d.isHost)
@@ -38,6 +50,7 @@ nlohmann::json deviceJson(const DeviceInfo& d) {
       {"maxAllocBytes", d.maxAllocBytes},
       {"maxAlloc", formatBytes(d.maxAllocBytes)},
       {"maxWorkGroupSize", d.maxWorkGroupSize},
+      {"tuning", tuningJson(deviceTuning(d))},
   };
 }
 
@@ -51,7 +64,8 @@ void printText(const DeviceList& list) {
               << "     driver:         " << d.driverVersion << "\n"
               << "     compute units:  " << d.computeUnits << "\n"
               << "     global memory:  " << formatBytes(d.globalMemBytes) << "\n"
-              << "     max allocation: " << formatBytes(d.maxAllocBytes) << "\n";
+              << "     max allocation: " << formatBytes(d.maxAllocBytes) << "\n"
+              << "     kernels:        " << tuningText(deviceTuning(d)) << "\n";
   }
   const DeviceInfo host = hostDeviceInfo();
   std::cout << "host " << host.name << "\n"

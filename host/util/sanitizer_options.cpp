@@ -4,9 +4,9 @@
 // ASAN_OPTIONS / UBSAN_OPTIONS / LSAN_OPTIONS in the environment still override these.
 //
 // Leak suppressions name third-party libraries only (docs/fuzzing.md): PoCL and the LLVM it
-// builds kernels with, the OpenCL ICD loader and OpenImageIO keep process-lifetime allocations
-// (compiler state, plugin registries, thread pools) that they never free. A leak whose stack
-// holds only montecl frames is still reported and fails the test.
+// builds kernels with, Intel's CPU OpenCL runtime, the OpenCL ICD loader and OpenImageIO keep
+// process-lifetime allocations (compiler state, plugin registries, thread pools) that they never
+// free. A leak whose stack holds only montecl frames is still reported and fails the test.
 //
 // verify_asan_link_order=0: `oclgrind montecl ...` (the conformance test) preloads Oclgrind's
 // runtime before libasan; ASan then still checks montecl's own code.
@@ -34,6 +34,10 @@ __attribute__((visibility("default"), used)) const char* __lsan_default_suppress
          "leak:libLLVM\n"
          "leak:libclang-cpp\n"
          "leak:libOpenCL.so\n"
+         // Intel's CPU OpenCL runtime (scripts/with_intel_opencl.sh): kernel argument names
+         // strdup'ed per program build and never freed.
+         "leak:libintelocl.so\n"
+         "leak:libcommon_clang.so\n"
          "leak:libhwloc.so\n"
          "leak:libOpenImageIO\n"
          "leak:libOpenImageIO_Util\n"
