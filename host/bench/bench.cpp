@@ -154,7 +154,9 @@ json runBench(const BenchOptions& o, bool verbose) {
   r["rel_tolerance"] = o.relTolerance;
 
   say("building the BVH over " + std::to_string(scene.triangles.size()) + " triangles");
-  Bvh bvh = buildBvh(scene.triangles);
+  BvhBuildOptions buildOptions;
+  buildOptions.splitBudget = o.splitBudget;
+  Bvh bvh = buildBvh(scene.triangles, buildOptions);
   // Cut-outs: every tracer below applies the same alpha test (bench_alpha.h).
   std::vector<std::string> textureWarnings;
   const std::unique_ptr<BenchAlpha> alpha = makeBenchAlpha(scene, bvh, textureWarnings);
@@ -176,6 +178,8 @@ json runBench(const BenchOptions& o, bool verbose) {
               {"binary_build_ms", bvh.buildMs},
               {"collapse_ms", collapseMs},
               {"nodes", bvh.nodes.size()},
+              {"split_budget", o.splitBudget},
+              {"references", bvh.triangles.size()},
               {"depth", bvh.depth},
               {"sah_cost", bvh.sahCost},
               {"bytes", bvhBytes},
@@ -277,6 +281,8 @@ std::string formatBenchTable(const json& r) {
   s << std::setprecision(1) << "bvh       " << b.value("layout", "wide") << " layout, build "
     << b["build_ms"].get<double>() << " ms, "
     << b["nodes"].get<std::size_t>() << " nodes, depth " << b["depth"].get<int>() << ", "
+    << b.value("references", r["triangles"].get<std::size_t>()) << " triangle references (split budget "
+    << std::setprecision(2) << b.value("split_budget", 0.0) << std::setprecision(1) << "), "
     << b["bytes_per_triangle"].get<double>() << " B/triangle (nodes "
     << b["node_bytes_per_triangle"].get<double>() << "), SAH cost " << std::setprecision(2)
     << b["sah_cost"].get<double>();
