@@ -40,9 +40,6 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
 
 #include "bvh/bvh.h"
 #include "bvh/bvh_builder.h"
@@ -149,12 +146,6 @@ Bvh buildBvhCapped(const std::vector<SceneTriangle>& tris, const BvhBuildOptions
       for (std::size_t i = 0; i < n; ++i) bvh.order[i] = prims[i].id;
     }
   }  // prims freed before the output triangles are allocated
-#ifdef __GLIBC__
-  // The spatial build's per-node reference vectors are freed by now, but glibc keeps such memory
-  // resident in its heaps (its mmap threshold grows with each large free): hand it back, or the
-  // render's allocations land on top of it (Sponza 960x540: +40 MiB peak RSS without this).
-  if (options.splitBudget > 0.0f) malloc_trim(0);
-#endif
   if (bvh.nodes.capacity() > bvh.nodes.size() + bvh.nodes.size() / 4) bvh.nodes.shrink_to_fit();
   if (bvh.order.capacity() > bvh.order.size() + bvh.order.size() / 8) bvh.order.shrink_to_fit();
   if (bvh.order.size() >= (std::size_t(1) << 31))
