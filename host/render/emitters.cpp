@@ -22,7 +22,7 @@ EmitterTable buildEmitterTable(const Bvh& bvh, const std::vector<MaterialDesc>& 
     slots.assign(m, MCL_NO_HIT);
     for (std::size_t i = 0; i < m; ++i)
       if (as_uint(bvh.triangles[i].e1.w) == i && bvh.order[i] < m) slots[bvh.order[i]] = std::uint32_t(i);
-  } else {
+  } else {  // a Bvh assembled by hand (no order): its slots as they are
     for (std::size_t i = 0; i < m; ++i) slots.push_back(std::uint32_t(i));
   }
   for (std::uint32_t i : slots) {
