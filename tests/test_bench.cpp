@@ -1,14 +1,17 @@
 // test_bench.cpp: `montecl bench` and `montecl generate` through the real command line: a tiny
 // generated terrain scene and the demo scene at a small resolution, JSON parsed and checked (zero
-// mismatches per ray kind, the ray counts the spec gives, positive throughput), plus the exact
+// mismatches per ray kind, the ray counts the spec gives, positive throughput, visit counts), the
+// visit counter's exact counts on one triangle, plus the exact
 // triangle count of the generator and bench's exit codes.
 #include <doctest/doctest.h>
+
 
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 
+#include "bvh/bvh_visit_counts.h"
 #include "cli_runner.h"
 
 using montecl_test::CliResult;
@@ -64,6 +67,13 @@ void checkBenchJson(const nlohmann::json& r, int width, int height, bool expectS
     if (r.contains("embree")) {
       CHECK(k["embree_mrays_per_s"].get<double>() > 0.0);
       CHECK(k["ratio"].get<double>() > 0.0);
+    }
+    // Visit counts with the wide layout: at least the root per ray, a leaf per closest hit.
+    CHECK(k.contains("visits_nodes") == (r["bvh"]["layout"] == "wide"));
+    if (k.contains("visits_nodes")) {
+      CHECK(k["visits_nodes"].get<double>() >= 1.0);
+      if (k["query"] == "closest")
+        CHECK(k["visits_leaves"].get<double>() >= double(k["hits"].get<std::size_t>()) / double(k["count"].get<std::size_t>()));
     }
   }
   CHECK(r["mismatches_total"].get<std::size_t>() == 0);
@@ -127,4 +137,41 @@ TEST_CASE("bench bad input exits 2 with one line" * doctest::test_suite("cli")) 
   CliResult j = runMontecl({"bench", MONTECL_SOURCE_DIR "/scenes/demo/scene.json", "--json",
                             dir.file("no/such/folder/out.json")});
   CHECK(j.exitCode == 2);
+}
+
+TEST_CASE("bench visit counts: one triangle is the root node and one leaf" * doctest::test_suite("cpu")) {
+  using namespace montecl;
+  SceneTriangle t;
+  t.v[0] = glm::vec3(0, 0, 0);
+  t.v[1] = glm::vec3(1, 0, 0);
+  t.v[2] = glm::vec3(0, 1, 0);
+  t.material = 0;
+  Bvh bvh = buildBvh({t});
+  auto ray = [](glm::vec3 o, glm::vec3 d, float tmax) {
+    Ray r;
+    r.origin = glm::vec4(o, 0.0f);
+    r.dir = glm::vec4(d, tmax);
+    return r;
+  };
+  const Ray hit = ray({0.25f, 0.25f, 1.0f}, {0, 0, -1}, INFINITY);
+  const Ray inBoxMiss = ray({0.9f, 0.9f, 1.0f}, {0, 0, -1}, INFINITY);  // enters the box, misses
+  const Ray outside = ray({5.0f, 5.0f, 1.0f}, {0, 0, -1}, INFINITY);
+  const Ray nonFinite = ray({NAN, 0.0f, 1.0f}, {0, 0, -1}, INFINITY);
+  for (bool any : {false, true}) {
+    CAPTURE(any);
+    VisitCounts c = countWideVisits(bvh, {hit}, any);
+    CHECK(c.nodes == 1.0);
+    CHECK(c.leaves == 1.0);
+    c = countWideVisits(bvh, {inBoxMiss}, any);
+    CHECK(c.nodes == 1.0);
+    CHECK(c.leaves == 1.0);
+    c = countWideVisits(bvh, {outside}, any);
+    CHECK(c.nodes == 1.0);
+    CHECK(c.leaves == 0.0);
+    c = countWideVisits(bvh, {nonFinite}, any);
+    CHECK(c.nodes == 0.0);
+    c = countWideVisits(bvh, {hit, outside, hit, nonFinite}, any, nullptr, 3);  // means, any threads
+    CHECK(c.nodes == 0.75);
+    CHECK(c.leaves == 0.5);
+  }
 }

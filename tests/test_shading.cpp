@@ -55,7 +55,7 @@ TEST_CASE("shading buffer: BVH order, flags in e2.w, a 1-entry dummy without att
   for (std::size_t j = 0; j < s.size(); ++j) {
     const std::uint32_t i = bvh.order[j];
     CAPTURE(i);
-    CHECK(as_uint(bvh.triangles[j].e1.w) == i);
+    CHECK(bvh.order[as_uint(bvh.triangles[j].e1.w)] == i);  // e1.w: the canonical slot of input i
     CHECK(as_uint(bvh.triangles[j].e2.w) == tris[i].attributes);
     if (i % 3 == 0) {
       CHECK(glm::vec3(s[j].n0) == glm::vec3(0, 0, 1));

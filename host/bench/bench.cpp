@@ -33,6 +33,7 @@
 #include "bench/bench_alpha.h"
 #include "bench/embree_tracer.h"
 #include "bench/ray_sets.h"
+#include "bvh/bvh_visit_counts.h"
 #include "bvh/bvh.h"
 #include "bvh/sah_reference.h"
 #include "render/ray_tracer.h"
@@ -154,7 +155,9 @@ json runBench(const BenchOptions& o, bool verbose) {
   r["rel_tolerance"] = o.relTolerance;
 
   say("building the BVH over " + std::to_string(scene.triangles.size()) + " triangles");
-  Bvh bvh = buildBvh(scene.triangles);
+  BvhBuildOptions buildOptions;
+  buildOptions.splitBudget = o.splitBudget;
+  Bvh bvh = buildBvh(scene.triangles, buildOptions);
   // Cut-outs: every tracer below applies the same alpha test (bench_alpha.h).
   std::vector<std::string> textureWarnings;
   const std::unique_ptr<BenchAlpha> alpha = makeBenchAlpha(scene, bvh, textureWarnings);
@@ -176,6 +179,8 @@ json runBench(const BenchOptions& o, bool verbose) {
               {"binary_build_ms", bvh.buildMs},
               {"collapse_ms", collapseMs},
               {"nodes", bvh.nodes.size()},
+              {"split_budget", o.splitBudget},
+              {"references", bvh.triangles.size()},
               {"depth", bvh.depth},
               {"sah_cost", bvh.sahCost},
               {"bytes", bvhBytes},
@@ -237,6 +242,12 @@ json runBench(const BenchOptions& o, bool verbose) {
               {"best_mrays_per_s", mrays(set->rays.size(), dev.minMs)},
               {"mismatches", mism},
               {"host_ref_mrays_per_s", mrays(set->rays.size(), set->refMs)}};
+    if (layout == BvhLayout::Wide) {  // deterministic traversal work (bvh_visit_counts.h)
+      VisitCounts vc = countWideVisits(bvh, set->rays, set->query == RayKind::Any,
+                                       alpha ? &alpha->host : nullptr, threads);
+      k["visits_nodes"] = vc.nodes;
+      k["visits_leaves"] = vc.leaves;
+    }
     if (embree) {
       std::vector<double> ms;
       std::vector<float> et;
@@ -277,6 +288,8 @@ std::string formatBenchTable(const json& r) {
   s << std::setprecision(1) << "bvh       " << b.value("layout", "wide") << " layout, build "
     << b["build_ms"].get<double>() << " ms, "
     << b["nodes"].get<std::size_t>() << " nodes, depth " << b["depth"].get<int>() << ", "
+    << b.value("references", r["triangles"].get<std::size_t>()) << " triangle references (split budget "
+    << std::setprecision(2) << b.value("split_budget", 0.0) << std::setprecision(1) << "), "
     << b["bytes_per_triangle"].get<double>() << " B/triangle (nodes "
     << b["node_bytes_per_triangle"].get<double>() << "), SAH cost " << std::setprecision(2)
     << b["sah_cost"].get<double>();
@@ -306,6 +319,13 @@ std::string formatBenchTable(const json& r) {
     s << std::setw(12) << k["mismatches"].get<std::size_t>();
     if (haveEmbree) s << std::setw(14) << k["embree_mismatches"].get<std::size_t>();
     s << "\n";
+  }
+  if (!r["rays"].empty() && r["rays"][0].contains("visits_nodes")) {
+    s << "visits   " << std::setprecision(2);
+    for (const json& k : r["rays"])
+      s << " " << k["kind"].get<std::string>() << " " << k["visits_nodes"].get<double>() << " + "
+        << k["visits_leaves"].get<double>();
+    s << "  (per ray: wide nodes + leaves, counted on the host)\n";
   }
   s << "\nMrays/s from the median of " << r["repeat"].get<int>()
     << " runs (closest hit: intersect kernel, primary and diffuse bounce; any hit: intersect_shadow); ratio = montecl/Embree Mrays/s;\n"

@@ -7,6 +7,8 @@
 #include <optional>
 #include <string>
 
+#include "bvh/bvh.h"
+
 namespace montecl {
 
 struct BenchOptions {
@@ -21,6 +23,7 @@ struct BenchOptions {
   std::string bvhLayout = "auto";  // auto | wide | binary (bvh/bvh_layout.h)
   bool embree = true;            // --no-embree skips the comparison
   bool sahReference = false;     // --sah-reference: also the full-sweep SAH cost (slow: seconds)
+  float splitBudget = BvhBuildOptions{}.splitBudget;  // --split-budget (bvh.h)
   double relTolerance = 1e-4;    // a hit distance differing by more than this (relative) mismatches
 };
 

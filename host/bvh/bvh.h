@@ -2,6 +2,7 @@
 // 8-wide form made on demand (bvh_wide.h), and the host reference traversal (the same code the
 // kernels run, from kernels/shared/traverse.h).
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -19,12 +20,21 @@ struct BvhBuildOptions {
   int maxLeafSize = 4;      // a node with at most this many triangles may become a leaf
   float traversalCost = 1.0f;
   float intersectCost = 0.5f;  // per triangle; below traversalCost: leaves are tested 4 at a time
+  // Spatial splits (SBVH, bvh_spatial.h): at most splitBudget extra triangle references per input
+  // triangle (0: none, the plain object-split build); a node tries them only where its best
+  // object split's children overlap by more than splitAlpha of the root's surface area.
+  float splitBudget = 0.3f;
+  float splitAlpha = 1e-3f;
 };
 
 struct Bvh {
   std::vector<BvhNode> nodes;         // nodes[0] is the root; children of an interior node are adjacent
-  std::vector<Triangle> triangles;    // in leaf order, ready for the device
+  // In leaf order, ready for the device. With spatial splits a triangle can be referenced by
+  // several leaves: each reference is a full copy, and e1.w holds the canonical slot (the first
+  // slot holding that input triangle), which closest hit returns as Hit::tri.
+  std::vector<Triangle> triangles;
   std::vector<std::uint32_t> order;   // triangles[i] came from input triangle order[i]
+  std::size_t inputCount = 0;         // input triangles (triangles.size() minus the duplicates)
   int depth = 0;                      // longest root-to-leaf path (always < MCL_BVH_STACK_SIZE)
   double sahCost = 0.0;               // SAH cost of the tree (traversalCost/intersectCost weighted)
   double buildMs = 0.0;               // of the binary tree (the wide collapse is not built here)

@@ -44,6 +44,7 @@
 #include "bvh/bvh.h"
 #include "bvh/bvh_builder.h"
 #include "bvh/bvh_internal.h"
+#include "bvh/bvh_spatial.h"
 #include "util/parallel_for.h"
 
 namespace montecl {
@@ -86,6 +87,9 @@ Bvh buildBvhCapped(const std::vector<SceneTriangle>& tris, const BvhBuildOptions
   if (!(options.traversalCost > 0.0f) || !(options.intersectCost > 0.0f) ||
       !std::isfinite(options.traversalCost) || !std::isfinite(options.intersectCost))
     throw std::invalid_argument("buildBvh: traversal and intersection costs must be finite and > 0");
+  if (!(options.splitBudget >= 0.0f && options.splitBudget <= 4.0f) ||
+      !(options.splitAlpha >= 0.0f && std::isfinite(options.splitAlpha)))
+    throw std::invalid_argument("buildBvh: splitBudget must be in [0, 4] and splitAlpha finite and >= 0");
   if (maxDepth > kMaxDepth || maxDepth < medianHeight(tris.size()))
     throw std::invalid_argument("buildBvh: depth cap " + std::to_string(maxDepth) +
                                 " out of range for " + std::to_string(tris.size()) + " triangles");
@@ -129,23 +133,35 @@ Bvh buildBvhCapped(const std::vector<SceneTriangle>& tris, const BvhBuildOptions
       }
     }
 
-    Builder builder{prims.data(), options.bins, options.maxLeafSize, options.traversalCost,
-                    options.intersectCost, maxDepth};
-    bvh.nodes.reserve(2 * n - 1);  // upper bound; untouched capacity costs no memory
-    bvh.nodes.emplace_back();
-    bvh.depth = builder.build(bvh.nodes, 0, 0, n, rootBox, rootC, 0, parallelLevels);
-
-    bvh.order.resize(n);
-    for (std::size_t i = 0; i < n; ++i) bvh.order[i] = prims[i].id;
+    if (options.splitBudget > 0.0f) {
+      bvh.depth = buildSpatialTree(tris, options, maxDepth, std::move(prims), rootBox, rootC,
+                                   parallelLevels, bvh.nodes, bvh.order);
+    } else {
+      Builder builder{prims.data(), options.bins, options.maxLeafSize, options.traversalCost,
+                      options.intersectCost, maxDepth};
+      bvh.nodes.reserve(2 * n - 1);  // upper bound; untouched capacity costs no memory
+      bvh.nodes.emplace_back();
+      bvh.depth = builder.build(bvh.nodes, 0, 0, n, rootBox, rootC, 0, parallelLevels);
+      bvh.order.resize(n);
+      for (std::size_t i = 0; i < n; ++i) bvh.order[i] = prims[i].id;
+    }
   }  // prims freed before the output triangles are allocated
   if (bvh.nodes.capacity() > bvh.nodes.size() + bvh.nodes.size() / 4) bvh.nodes.shrink_to_fit();
+  if (bvh.order.capacity() > bvh.order.size() + bvh.order.size() / 8) bvh.order.shrink_to_fit();
+  if (bvh.order.size() >= (std::size_t(1) << 31))
+    throw std::invalid_argument("buildBvh: more than 2^31 triangle references");
 
-  bvh.triangles.resize(n);
-  parallelFor(n, unsigned(threads), kMinPrimsPerThread, [&](std::size_t i) {
+  // Canonical slot of each input triangle: the first leaf slot referencing it.
+  const std::size_t m = bvh.order.size();
+  std::vector<std::uint32_t> canonical(n, 0xffffffffu);
+  for (std::size_t i = m; i-- > 0;) canonical[bvh.order[i]] = static_cast<std::uint32_t>(i);
+  bvh.inputCount = n;
+  bvh.triangles.resize(m);
+  parallelFor(m, unsigned(threads), kMinPrimsPerThread, [&](std::size_t i) {
     const SceneTriangle& t = tris[bvh.order[i]];
     Triangle& o = bvh.triangles[i];
     o.v0 = glm::vec4(t.v[0], as_float(t.material));
-    o.e1 = glm::vec4(t.v[1] - t.v[0], as_float(bvh.order[i]));
+    o.e1 = glm::vec4(t.v[1] - t.v[0], as_float(canonical[bvh.order[i]]));
     o.e2 = glm::vec4(t.v[2] - t.v[0], as_float(std::uint32_t(t.attributes)));
   });
 

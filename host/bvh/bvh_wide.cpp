@@ -3,6 +3,7 @@
 #include "bvh/bvh_wide.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
@@ -23,13 +24,25 @@ std::vector<WideNode> collapseWide(const std::vector<BvhNode>& nodes, std::size_
   std::vector<WideNode> wide;
   if (triangleCount > (std::size_t(1) << 27))
     throw std::invalid_argument("collapseWide: the wide BVH holds at most 2^27 triangles");
-  auto area = [](const BvhNode& b) {
-    float dx = b.maxX - b.minX, dy = b.maxY - b.minY, dz = b.maxZ - b.minZ;
-    return dx * dy + dy * dz + dz * dx;
-  };
   wide.reserve(nodes.size() / 4 + 1);
   wide.push_back(emptyWideNode());
   if (nodes.empty()) return wide;
+  // Which interior child to open next: the largest half area * sqrt(triangle references below).
+  // Area alone (the usual rule) made the spatial-split tree's wide form worse than its binary
+  // form promised: Sponza node visits per ray, primary / AO / shadow / bounce, 16.8 / 10.3 / 14.1
+  // / 14.1 with area, 14.3 / 9.3 / 12.8 / 13.0 with this (object splits, area: 14.2 / 11.4 / 16.3
+  // / 16.2); Sibenik and the bunny within 1% either way. Children follow their parent in the
+  // array, so one backward pass counts the references.
+  std::vector<float> weight(nodes.size());
+  {
+    std::vector<std::uint32_t> count(nodes.size());
+    for (std::size_t i = nodes.size(); i-- > 0;) {
+      const BvhNode& b = nodes[i];
+      count[i] = b.triCount > 0 ? b.triCount : count[b.leftFirst] + count[b.leftFirst + 1];
+      float dx = b.maxX - b.minX, dy = b.maxY - b.minY, dz = b.maxZ - b.minZ;
+      weight[i] = (dx * dy + dy * dz + dz * dx) * std::sqrt(static_cast<float>(count[i]));
+    }
+  }
   struct Item {
     std::uint32_t binary, wide;
   };
@@ -47,11 +60,11 @@ std::vector<WideNode> collapseWide(const std::vector<BvhNode>& nodes, std::size_
       kids[k++] = b.leftFirst + 1;
       while (k < MCL_WIDE_WIDTH) {
         int best = -1;
-        float bestArea = -1.0f;
+        float bestWeight = -1.0f;
         for (int i = 0; i < k; ++i)
-          if (nodes[kids[i]].triCount == 0 && area(nodes[kids[i]]) > bestArea) {
+          if (nodes[kids[i]].triCount == 0 && weight[kids[i]] > bestWeight) {
             best = i;
-            bestArea = area(nodes[kids[i]]);
+            bestWeight = weight[kids[i]];
           }
         if (best < 0) break;
         std::uint32_t c = nodes[kids[best]].leftFirst;

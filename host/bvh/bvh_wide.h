@@ -13,8 +13,8 @@ namespace montecl {
 
 // Collapses a binary tree (Bvh::nodes over triangleCount triangles) into MCL_WIDE_WIDTH-wide
 // nodes: each wide node takes the binary node's two children and, while it has fewer than
-// MCL_WIDE_WIDTH, replaces its interior child of largest surface area by that child's two
-// children. Wide nodes are laid out depth-first (element 0 the root); leaves keep their triangle
+// MCL_WIDE_WIDTH, replaces its interior child of largest surface area * sqrt(triangle references
+// below it) by that child's two children. Wide nodes are laid out depth-first (element 0 the root); leaves keep their triangle
 // ranges. Empty nodes give one node of empty slots. Throws std::invalid_argument above 2^27
 // triangles (the leaf encoding's limit).
 std::vector<WideNode> collapseWide(const std::vector<BvhNode>& nodes, std::size_t triangleCount);

@@ -37,6 +37,9 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--bvh-layout", o->bvhLayout,
                   "BVH the kernels traverse: auto (binary on GPUs, wide otherwise) | wide | binary")
       ->check(CLI::IsMember({"auto", "wide", "binary"}));
+  cmd->add_option("--split-budget", o->splitBudget,
+                  "Spatial splits: at most this many extra triangle references per triangle (0: none)")
+      ->check(CLI::Range(0.0f, 4.0f));
   cmd->add_flag("--no-embree", *noEmbree, "Skip the Embree comparison");
   cmd->add_flag("--sah-reference", o->sahReference,
                 "Also compute the SAH cost of a full-sweep build (slow) and the ratio binned / full sweep");

@@ -43,6 +43,7 @@ struct RenderArgs {
   std::optional<AoSampling> aoSampling;
   std::optional<DirectSampling> directSampling;
   std::string bvhLayout = "auto";
+  float splitBudget = BvhBuildOptions{}.splitBudget;  // --split-budget
   std::optional<int> spp, width, height, lightSamples, maxDepth, rrDepth;
   std::optional<std::uint32_t> seed;
   std::optional<float> aoDistance;
@@ -164,7 +165,9 @@ int runRender(const RenderArgs& a) {
   const double textureMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - textureStart).count();
   for (const std::string& w : textureWarnings) std::cerr << "montecl: warning: " << scene.path << ": " << w << "\n";
-  Bvh bvh = buildBvh(scene.triangles);
+  BvhBuildOptions buildOptions;
+  buildOptions.splitBudget = a.splitBudget;
+  Bvh bvh = buildBvh(scene.triangles, buildOptions);
   const bool lit = (scene.render.integrator == Integrator::Direct || scene.render.integrator == Integrator::Path) &&
                    !scene.environment.enabled;  // an environment lights the scene by itself
   if (lit && !hasEmitter(scene))
@@ -179,7 +182,8 @@ int runRender(const RenderArgs& a) {
     std::cerr << "montecl: " << scene.triangles.size() << " triangles (" << scene.degenerateDropped
               << " degenerate dropped), " << scene.materials.size() << " materials\n"
               << "montecl: BVH built in " << bvh.buildMs << " ms: " << bvh.nodes.size() << " nodes, depth "
-              << bvh.depth << ", SAH cost " << bvh.sahCost << "\n"
+              << bvh.depth << ", SAH cost " << bvh.sahCost << ", " << bvh.triangles.size()
+              << " triangle references\n"
               << "montecl: device " << device.platformIndex << ":" << device.deviceIndex << " " << device.name
               << ", " << bvhLayoutName(layout) << " BVH layout\n"
               << "montecl: " << cameraJson(scene.camera) << "\n";
@@ -296,6 +300,9 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
       ->check(positiveNumber());
   cmd->add_option("--work-group-size", args->workGroupSize, "Work-group size (default: min(64, kernel max))")
       ->check(positiveInteger());
+  cmd->add_option("--split-budget", args->splitBudget,
+                  "BVH spatial splits: at most this many extra triangle references per triangle (0: none)")
+      ->check(CLI::Range(0.0f, 4.0f));
   cmd->add_option("--bvh-layout", args->bvhLayout,
                   "BVH the kernels traverse: auto (binary on GPUs, wide otherwise) | wide | binary")
       ->check(CLI::IsMember({"auto", "wide", "binary"}));

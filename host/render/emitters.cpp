@@ -1,5 +1,5 @@
 // emitters.cpp: builds the emitter CDF on the host (in double, stored as float; the last entry
-// is exactly 1 so every u in [0, 1) picks an emitter).
+// is exactly 1 so every u in [0, 1) picks an emitter), over the input triangles in input order.
 #include "render/emitters.h"
 
 #include "kernels/shared/lights.h"
@@ -14,7 +14,19 @@ EmitterTable buildEmitterTable(const Bvh& bvh, const std::vector<MaterialDesc>& 
   EmitterTable table;
   std::vector<double> power;
   double total = 0.0;
-  for (std::size_t i = 0; i < bvh.triangles.size(); ++i) {
+  // Input order, each triangle through its canonical slot (a spatial split's copies are skipped):
+  // the table, and so the light samples, do not depend on the tree.
+  const std::size_t m = bvh.triangles.size();
+  std::vector<std::uint32_t> slots;
+  if (bvh.order.size() == m) {
+    slots.assign(m, MCL_NO_HIT);
+    for (std::size_t i = 0; i < m; ++i)
+      if (as_uint(bvh.triangles[i].e1.w) == i && bvh.order[i] < m) slots[bvh.order[i]] = std::uint32_t(i);
+  } else {  // a Bvh assembled by hand (no order): its slots as they are
+    for (std::size_t i = 0; i < m; ++i) slots.push_back(std::uint32_t(i));
+  }
+  for (std::uint32_t i : slots) {
+    if (i == MCL_NO_HIT) continue;
     const Triangle& t = bvh.triangles[i];
     const glm::vec3 le = materials[triangle_material(&t)].emission;
     float area = triangle_area(&t);

@@ -1,7 +1,8 @@
-// emitters.h: what emits, and the light-selection table for direct lighting: every BVH-ordered
-// triangle whose material emits, with a CDF proportional to area * luminance(Ke). The one rule: a
-// triangle emits when area * luminance(Ke) > 0 (emitterWeight); the kernels sample the table
-// with pick_emitter and sample_triangle (kernels/shared/lights.h).
+// emitters.h: what emits, and the light-selection table for direct lighting: every triangle whose
+// material emits, in input order (Emitter::tri: its canonical slot in the BVH's triangles), with
+// a CDF proportional to area * luminance(Ke). The one rule: a triangle emits when
+// area * luminance(Ke) > 0 (emitterWeight); the kernels sample the table with pick_emitter and
+// sample_triangle (kernels/shared/lights.h).
 #pragma once
 #include <vector>
 

@@ -275,7 +275,10 @@ MCL_INLINE Hit wide_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL con
       }
     }
     if (!pop_entered(stack, stackT, &sp, hit.t, &ref)) {
-      if (hit.tri == MCL_NO_HIT) hit.t = INFINITY;
+      if (hit.tri == MCL_NO_HIT)
+        hit.t = INFINITY;
+      else
+        hit.tri = as_uint(tris[hit.tri].e1.w);  // the canonical slot, whichever copy was hit
       return hit;
     }
   }

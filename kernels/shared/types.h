@@ -41,8 +41,10 @@ typedef struct MCL_ALIGN16 {
 } WideNode;
 
 // Triangle in BVH order, laid out for Moller-Trumbore: v0, e1 = v1 - v0, e2 = v2 - v0.
-// v0.w holds the material index, e1.w the triangle's index in the input and e2.w its attribute
-// flags (MCL_ATTR_*; all three as_float bits, never used in arithmetic).
+// v0.w holds the material index, e1.w the triangle's canonical slot (the first slot of the array
+// holding the same input triangle: spatial splits reference a triangle from several leaves, each
+// through its own copy; closest hit returns the canonical slot) and e2.w its attribute flags
+// (MCL_ATTR_*; all three as_float bits, never used in arithmetic).
 typedef struct MCL_ALIGN16 {
   float4 v0;
   float4 e1;
@@ -127,7 +129,7 @@ typedef struct MCL_ALIGN16 {
 // One emitting triangle. It is picked with probability area * luminance(Le) / emitterPower;
 // cdf is the running sum of those probabilities up to and including this entry.
 typedef struct MCL_ALIGN16 {
-  uint tri;  // index into the BVH-ordered triangles
+  uint tri;  // index into the BVH-ordered triangles: the canonical slot (Triangle::e1.w)
   float cdf;
   float area;
   float pad;
