@@ -131,7 +131,25 @@ class HostStageRunner final : public StageRunner {
     if (aovs_) film.aovSum.assign(aovSum_.begin(), aovSum_.end());
   }
 
+  // The film's vectors move out (no copy); every other buffer is freed.
+  void finish(Film& film) override {
+    film.mean = std::move(mean_);
+    film.meanLo = std::move(meanLo_);
+    film.m2 = std::move(m2_);
+    film.m2Lo = std::move(m2Lo_);
+    film.unpackCounts();
+    if (aovs_) film.aovSum = std::move(aovSum_);
+    release(mean_, meanLo_, m2_, m2Lo_, aovSum_, aov_, active_, nodes_, tris_, shading_, rays_, bounce_, hits_,
+            bounceHits_, radiance_, shadowContrib_, queue_, throughput_, nextRays_, pathIds_, nextPathIds_);
+    bind();
+  }
+
  private:
+  template <class... Vectors>
+  static void release(Vectors&... v) {
+    ((v = Vectors{}), ...);
+  }
+
 #define MCL_HOST_RUN_STAGE(stage) \
   static void runStage(const stage##_args* a, uint i) { stage_##stage(a, i); }
   MCL_STAGES(MCL_HOST_RUN_STAGE)

@@ -85,6 +85,9 @@ class StageRunner {
   virtual WaveCounts finishWave() = 0;
   // Reads the accumulated statistics (film.mean, film.m2, film.aovSum; the caller sets the size).
   virtual void readFilm(Film& film) = 0;
+  // The render's last read of the film (as readFilm), which also releases every buffer: the film
+  // part by part as it is read, so the film is never held whole twice. setup() starts again.
+  virtual void finish(Film& film) = 0;
   // From now on, adds each launch's execution time to *profile by stageProfileName() (null:
   // stop), at the latest by the wave's finishWave(). OpenCL: needs a runner made with profiling.
   void setProfile(StageProfile* profile) { profile_ = profile; }

@@ -20,6 +20,7 @@
 #include "render/path_waves.h"
 #include "scene/camera_basis.h"
 #include "util/errors.h"
+#include "util/heap_trim.h"
 
 namespace montecl {
 namespace {
@@ -151,6 +152,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   inputs.path = path;
   inputs.aovs = m.options.aovs;
   inputs.initialFilm = m.options.initialFilm;
+  if (m.options.trianglesRead) m.options.trianglesRead(), trimHeap();  // scene.triangles: not read below
   run.setup(inputs);
 
   // Wave sizes come from the planner unless a fixed --wave-size is asked for without a time limit.
@@ -283,7 +285,9 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
     for (std::uint32_t p : active) counts[p] = upTo;
     stats.rounds++;
   }
-  run.readFilm(film);
+  std::vector<std::uint64_t>().swap(target);
+  std::vector<std::uint32_t>().swap(active);
+  run.finish(film);  // the film, and every buffer released (the film's part by part)
   if (!going) {  // stopped: was anything left?
     for (std::uint32_t p : mine) counts[p] = film.count[p];
     stats.stoppedEarly = std::any_of(mine.begin(), mine.end(), [&](std::uint32_t p) { return nextTarget(p) != 0; });
