@@ -7,9 +7,11 @@
 #include "cli/commands.h"
 #include "dist/mpi.h"
 #include "util/errors.h"
+#include "util/heap_trim.h"
 
 int main(int argc, char** argv) {
   using namespace montecl;
+  fixMmapThreshold();  // freed arrays leave the resident set (util/heap_trim.h)
   CLI::App app{"montecl: Monte Carlo rendering with OpenCL"};
   app.set_version_flag("--version", MONTECL_VERSION);
   app.require_subcommand(1);
