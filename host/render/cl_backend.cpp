@@ -9,6 +9,7 @@
 // time, releasing each part's buffer, so the film is never whole on both sides.
 #include <algorithm>
 #include <array>
+#include <stdexcept>
 
 #include "render/stage_program.h"
 #include "render/stage_runner.h"
@@ -35,6 +36,7 @@ class ClStageRunner final : public StageRunner {
     const std::uint64_t wave = in.wave, slots = in.frame.shadowSlots;
     pixels_ = std::uint64_t(in.frame.width) * in.frame.height;
     frame_ = in.frame;
+    firstSubmitted_ = submittedCount_ = 0;
     aovs_ = in.aovs;
     ClBindings& b = bindings_;
     b.frame = {cl_.upload(std::vector<FrameParams>{in.frame})};
@@ -109,10 +111,12 @@ class ClStageRunner final : public StageRunner {
   void beginWave(std::uint64_t waveStart, std::uint32_t count) override {
     bindings_.waveStart = waveStart;
     bindings_.waveCount = count;
-    // Counters reset by (non-blocking) writes from members that outlive the wave.
-    counters_[0] = count;
+    // Counters reset by (non-blocking) writes from members that outlive the wave; the ray count
+    // from the slot of this wave (the other one may still be queued for the wave before).
+    Submitted& w = submitted_[(firstSubmitted_ + submittedCount_) % 2];
+    w.rayCount = count;
     counters_[1] = 0;
-    cl_.queue().enqueueWriteBuffer(bindings_.rayCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &counters_[0]);
+    cl_.queue().enqueueWriteBuffer(bindings_.rayCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &w.rayCount);
     cl_.queue().enqueueWriteBuffer(bindings_.queueCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &counters_[1]);
     cl_.queue().enqueueWriteBuffer(bindings_.nanRays.buffer, CL_FALSE, 0, sizeof(cl_uint), &counters_[1]);
   }
@@ -147,16 +151,27 @@ class ClStageRunner final : public StageRunner {
     return BounceCounts{bounceCounts_[0], bounceCounts_[1]};
   }
 
-  WaveCounts finishWave() override {
-    cl_uint shadowCount = 0, nanRays = 0;
-    cl_.queue().enqueueReadBuffer(bindings_.nanRays.buffer, CL_FALSE, 0, sizeof(cl_uint), &nanRays);
-    cl_.queue().enqueueReadBuffer(bindings_.queueCount.buffer, CL_TRUE, 0, sizeof(cl_uint), &shadowCount);
-    for (auto& [name, event] : launched_)  // complete: the blocking read came after them (in order)
+  void submitWave() override {
+    if (submittedCount_ == 2) throw std::logic_error("submitWave: two waves are already waiting");
+    Submitted& w = submitted_[(firstSubmitted_ + submittedCount_++) % 2];
+    w.launched = std::move(launched_);
+    launched_.clear();
+    cl_.queue().enqueueReadBuffer(bindings_.nanRays.buffer, CL_FALSE, 0, sizeof(cl_uint), &w.counts[1]);
+    cl_.queue().enqueueReadBuffer(bindings_.queueCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &w.counts[0], nullptr,
+                                  &w.read);
+  }
+
+  WaveCounts waitWave() override {
+    Submitted& w = submitted_[firstSubmitted_];
+    w.read.wait();  // the last command of the wave (in order): its launches are complete too
+    for (auto& [name, event] : w.launched)
       if (profile_)
         profile_->add(name, double(event.getProfilingInfo<CL_PROFILING_COMMAND_END>() -
                                    event.getProfilingInfo<CL_PROFILING_COMMAND_START>()) * 1e-6);
-    launched_.clear();
-    return WaveCounts{shadowCount, nanRays};
+    w.launched.clear();
+    firstSubmitted_ = (firstSubmitted_ + 1) % 2;
+    --submittedCount_;
+    return WaveCounts{w.counts[0], w.counts[1]};
   }
 
   void readFilm(Film& film) override {
@@ -188,6 +203,8 @@ class ClStageRunner final : public StageRunner {
         {b.m2Lo.buffer, &film.m2Lo}, {b.aovSum.buffer, &film.aovSum}};
     b = ClBindings{};
     launched_.clear();
+    for (Submitted& w : submitted_) w.launched.clear();
+    firstSubmitted_ = submittedCount_ = 0;
     trimHeap();
     for (auto& [device, host] : parts) {
       const std::uint64_t words = host == &film.aovSum ? (aovs_ ? 2 * pixels_ : 0) : pixels_;
@@ -218,6 +235,16 @@ class ClStageRunner final : public StageRunner {
   bool aovs_ = false;
   cl_uint counters_[2] = {0, 0};
   std::vector<std::pair<std::string, cl::Event>> launched_;  // this wave's launches (profiling)
+  // A wave between beginWave and waitWave: its ray count as written, its counts as read, the read's
+  // event and its launches (profiling). Two slots: the next wave is queued before the host waits.
+  struct Submitted {
+    cl_uint rayCount = 0;
+    cl_uint counts[2] = {0, 0};  // occlusion queries, non-finite rays
+    cl::Event read;
+    std::vector<std::pair<std::string, cl::Event>> launched;
+  };
+  Submitted submitted_[2];
+  unsigned firstSubmitted_ = 0, submittedCount_ = 0;
   cl_uint bounceCounts_[2] = {0, 0};
   FrameParams frame_{};
   std::uint64_t pixels_ = 0;

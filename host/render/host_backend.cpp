@@ -120,7 +120,14 @@ class HostStageRunner final : public StageRunner {
 
   BounceCounts readBounceCounts() override { return BounceCounts{*bindings_.rayCount, queueCount_}; }
 
-  WaveCounts finishWave() override { return WaveCounts{queueCount_, nanRays_}; }
+  // (The stages ran in launch(): a wave's counts are final when it is submitted.)
+  void submitWave() override { submitted_[(firstSubmitted_ + submittedCount_++) % 2] = {queueCount_, nanRays_}; }
+  WaveCounts waitWave() override {
+    const WaveCounts c = submitted_[firstSubmitted_];
+    firstSubmitted_ = (firstSubmitted_ + 1) % 2;
+    --submittedCount_;
+    return c;
+  }
 
   void readFilm(Film& film) override {
     film.mean = mean_;
@@ -224,6 +231,8 @@ class HostStageRunner final : public StageRunner {
   uint rayCount_ = 0, nextCount_ = 0;
   uint queueCount_ = 0;  // incremented atomically by the shade stages
   uint nanRays_ = 0;     // incremented atomically by the intersect stages
+  WaveCounts submitted_[2];  // counts of the waves submitted and not yet waited for, oldest first
+  unsigned firstSubmitted_ = 0, submittedCount_ = 0;
 };
 
 }  // namespace

@@ -82,7 +82,16 @@ class StageRunner {
   virtual void endBounce() = 0;
   virtual BounceCounts readBounceCounts() = 0;
   // Waits for the wave; returns the number of occlusion queries it traced and of non-finite rays.
-  virtual WaveCounts finishWave() = 0;
+  WaveCounts finishWave() {
+    submitWave();
+    return waitWave();
+  }
+  // finishWave in two halves, so that the next wave can be queued before the host waits for this
+  // one (the device then does not idle while the host books a wave): submitWave queues the reads
+  // of the wave's counts (at most two waves submitted and not yet waited for); waitWave waits for
+  // the oldest submitted wave and returns its counts.
+  virtual void submitWave() = 0;
+  virtual WaveCounts waitWave() = 0;
   // Reads the accumulated statistics (film.mean, film.m2, film.aovSum; the caller sets the size).
   virtual void readFilm(Film& film) = 0;
   // The render's last read of the film (as readFilm), which also releases every buffer: the film

@@ -172,17 +172,59 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   };
   // Runs the active list's samples [sampleBase, sampleBase + spp) in waves; false if stopped early.
   std::uint64_t activeCount = pixels, expected = total;
+  // Ahead: each wave is queued before the host waits for the one before it (StageRunner::
+  // submitWave / waitWave), so the device does not idle while the host books a wave. Not with a
+  // time limit (each wave is sized from the time left when it starts), nor with afterWave (it
+  // reads the film of the waves booked so far), nor for path tracing (its bounces wait anyway).
+  const bool ahead = !path && !(m.options.timeLimit > 0.0) && !m.options.afterWave;
   const auto runSamples = [&](std::uint64_t sampleBase, std::uint64_t spp) {
     const std::uint64_t first = sampleBase * activeCount, count = spp * activeCount;
+    struct Queued {
+      std::uint32_t n;
+      double start;
+    } queued[2];
+    int waiting = 0;
+    double lastBooked = elapsed();
+    // Waits for the oldest queued wave and books it: statistics, rate, progress, afterWave.
+    const auto book = [&](const PathWaveCounts& pathCounts) {
+      const Queued w = queued[0];
+      queued[0] = queued[1];
+      --waiting;
+      const WaveCounts counts = run.waitWave();
+      const std::uint32_t n = w.n;
+      stats.waves++;
+      stats.samples += n;
+      stats.cameraRays += n;
+      stats.shadowRays += path ? pathCounts.shadowRays : counts.shadowRays;
+      stats.cameraRays += pathCounts.bounceRays;
+      auto& survivors = stats.pathSurvivors;
+      if (survivors.size() < pathCounts.survivors.size()) survivors.resize(pathCounts.survivors.size(), 0);
+      for (std::size_t b = 0; b < pathCounts.survivors.size(); ++b) survivors[b] += pathCounts.survivors[b];
+      stats.nanRays += counts.nanRays;
+      if (direct && scene.render.directSampling != DirectSampling::Light) stats.cameraRays += n;  // BRDF rays
+      stats.seconds = elapsed();
+      // The wave ran from its start, or (queued ahead) from the end of the one before it.
+      const double from = std::max(w.start, lastBooked);
+      if (stats.seconds > from) rate = double(n) / (stats.seconds - from);
+      lastBooked = stats.seconds;
+      if (progress) progress(stats.samples, std::max(expected, stats.samples), stats);
+      if (m.options.afterWave) m.options.afterWave([&] {
+        Film f;
+        f.width = int(frame.width);
+        f.height = int(frame.height);
+        run.readFilm(f);
+        return f;
+      });
+    };
     for (std::uint64_t done = 0; done < count;) {
       std::uint64_t size = std::min(wave, count - done);
       if (planned) {
         const double timeLeft = m.options.timeLimit > 0.0 ? m.options.timeLimit - elapsed() : INFINITY;
         size = planWave(m.options.planner, wave, count - done, rate, timeLeft);
-        if (size == 0) return false;  // the time limit is (about) reached
+        if (size == 0) return false;  // the time limit is (about) reached (never ahead: none queued)
       }
       const std::uint32_t n = std::uint32_t(size);
-      const double waveStart = elapsed();
+      queued[waiting++] = Queued{n, elapsed()};
       run.beginWave(first + done, n);
       run.launch(Stage::generate, n);
       PathWaveCounts pathCounts;
@@ -203,31 +245,12 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
       const std::uint64_t touched = std::min<std::uint64_t>(n, activeCount);  // pixels in the wave
       run.launch(Stage::accumulate, touched);
       if (m.options.aovs) run.launch(Stage::accumulate_aov, touched);
-      const WaveCounts counts = run.finishWave();
-
+      run.submitWave();
       done += n;
-      stats.waves++;
-      stats.samples += n;
-      stats.cameraRays += n;
-      stats.shadowRays += path ? pathCounts.shadowRays : counts.shadowRays;
-      stats.cameraRays += pathCounts.bounceRays;
-      auto& survivors = stats.pathSurvivors;
-      if (survivors.size() < pathCounts.survivors.size()) survivors.resize(pathCounts.survivors.size(), 0);
-      for (std::size_t b = 0; b < pathCounts.survivors.size(); ++b) survivors[b] += pathCounts.survivors[b];
-      stats.nanRays += counts.nanRays;
-      if (direct && scene.render.directSampling != DirectSampling::Light) stats.cameraRays += n;  // BRDF rays
-      stats.seconds = elapsed();
-      if (stats.seconds > waveStart) rate = double(n) / (stats.seconds - waveStart);
-      if (progress) progress(stats.samples, std::max(expected, stats.samples), stats);
-      if (m.options.afterWave) m.options.afterWave([&] {
-        Film f;
-        f.width = int(frame.width);
-        f.height = int(frame.height);
-        run.readFilm(f);
-        return f;
-      });
-      if (done < count && mustStop()) return false;
+      if (!ahead || waiting == 2) book(pathCounts);  // (ahead: never path, so no path counts)
+      if (done < count && mustStop()) break;
     }
+    while (waiting > 0) book(PathWaveCounts{});
     return !mustStop();
   };
 
