@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "bvh/bvh.h"
 #include "cl/devices.h"
@@ -100,4 +101,27 @@ TEST_CASE("wave queue: waves queued ahead book the image, counts and progress of
     CHECK(ahead.stats.shadowRays == oneByOne.stats.shadowRays);
     CHECK(ahead.done == oneByOne.done);
   }
+}
+
+TEST_CASE("wave queue: a render that throws with a wave queued leaves the renderer ready for the next" *
+          doctest::test_suite("opencl")) {
+  Scene s = wallScene(20, 6);
+  const Bvh bvh = buildBvh(s.triangles);
+  RenderOptions options;
+  options.waveSize = 97;  // 25 waves, queued ahead (no time limit, no afterWave)
+  WavefrontRenderer renderer(selectDevice(""), options);
+  RenderStats stats;
+  int calls = 0;
+  CHECK_THROWS_AS(renderer.render(s, bvh, stats,
+                                  [&](std::uint64_t, std::uint64_t, const RenderStats&) {
+                                    if (++calls == 3) throw std::runtime_error("stop");
+                                  }),
+                  std::runtime_error);
+  CHECK(calls == 3);
+  const Film again = renderer.render(s, bvh, stats);
+  CHECK(stats.waves == 25);
+  WavefrontRenderer fresh(selectDevice(""), options);
+  const Film reference = fresh.render(s, bvh, stats);
+  CHECK(again.mean == reference.mean);
+  CHECK(again.count == reference.count);
 }

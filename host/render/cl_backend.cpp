@@ -151,6 +151,17 @@ class ClStageRunner final : public StageRunner {
     return BounceCounts{bounceCounts_[0], bounceCounts_[1]};
   }
 
+  void abandon() noexcept override {
+    try {
+      cl_.queue().finish();
+    } catch (...) {  // (the queue is lost: nothing more runs on it)
+    }
+    bindings_ = ClBindings{};
+    launched_.clear();
+    for (Submitted& w : submitted_) w.launched.clear();
+    firstSubmitted_ = submittedCount_ = 0;
+  }
+
   void submitWave() override {
     if (submittedCount_ == 2) throw std::logic_error("submitWave: two waves are already waiting");
     Submitted& w = submitted_[(firstSubmitted_ + submittedCount_++) % 2];

@@ -97,6 +97,9 @@ class StageRunner {
   // The render's last read of the film (as readFilm), which also releases every buffer: the film
   // part by part as it is read, so the film is never held whole twice. setup() starts again.
   virtual void finish(Film& film) = 0;
+  // A render that ends by an exception: waits for what is queued and releases every buffer, so
+  // that nothing queued reads the arrays a buffer uses in place after they are gone. No throw.
+  virtual void abandon() noexcept {}
   // From now on, adds each launch's execution time to *profile by stageProfileName() (null:
   // stop), at the latest by the wave's finishWave(). OpenCL: needs a runner made with profiling.
   void setProfile(StageProfile* profile) { profile_ = profile; }

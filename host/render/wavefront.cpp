@@ -154,6 +154,15 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   inputs.initialFilm = m.options.initialFilm;
   if (m.options.trianglesRead) m.options.trianglesRead(), trimHeap();  // scene.triangles: not read below
   run.setup(inputs);
+  // Buffers may use inputs' arrays in place: if anything below throws, the queue is settled and
+  // the buffers released before inputs goes (StageRunner::abandon).
+  struct Settle {
+    StageRunner& run;
+    bool done = false;
+    ~Settle() {
+      if (!done) run.abandon();
+    }
+  } settle{run};
 
   // Wave sizes come from the planner unless a fixed --wave-size is asked for without a time limit.
   const bool planned = m.options.waveSize == 0 || m.options.timeLimit > 0.0;
@@ -311,6 +320,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   std::vector<std::uint64_t>().swap(target);
   std::vector<std::uint32_t>().swap(active);
   run.finish(film);  // the film, and every buffer released (the film's part by part)
+  settle.done = true;
   if (!going) {  // stopped: was anything left?
     for (std::uint32_t p : mine) counts[p] = film.count[p];
     stats.stoppedEarly = std::any_of(mine.begin(), mine.end(), [&](std::uint32_t p) { return nextTarget(p) != 0; });
