@@ -3,7 +3,7 @@
 // kernel launch per stage with its arguments bound by name (render/stage_bindings.h). Queue
 // counters are reset on the device; the host never reads a queue count back to size a launch
 // (kernels return past the device-side count), only once per wave for the statistics. With a
-// profile (setProfile), each launch keeps its event and finishWave adds the events' times.
+// profile (setProfile), each launch keeps its event and waitWave adds the events' times.
 // Memory: on CPU devices the large read-only arrays (BVH nodes and triangles, shading, texels) are
 // used in place (CL_MEM_USE_HOST_PTR: no second copy); finish() reads the film one part at a
 // time, releasing each part's buffer, so the film is never whole on both sides.
@@ -115,10 +115,9 @@ class ClStageRunner final : public StageRunner {
     // from the slot of this wave (the other one may still be queued for the wave before).
     Submitted& w = submitted_[(firstSubmitted_ + submittedCount_) % 2];
     w.rayCount = count;
-    counters_[1] = 0;
     cl_.queue().enqueueWriteBuffer(bindings_.rayCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &w.rayCount);
-    cl_.queue().enqueueWriteBuffer(bindings_.queueCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &counters_[1]);
-    cl_.queue().enqueueWriteBuffer(bindings_.nanRays.buffer, CL_FALSE, 0, sizeof(cl_uint), &counters_[1]);
+    cl_.queue().enqueueWriteBuffer(bindings_.queueCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &kZero);
+    cl_.queue().enqueueWriteBuffer(bindings_.nanRays.buffer, CL_FALSE, 0, sizeof(cl_uint), &kZero);
   }
 
   // Arguments are set at every launch (a handful of clSetKernelArg calls per stage and wave): the
@@ -134,8 +133,8 @@ class ClStageRunner final : public StageRunner {
 
   void startBounce(std::uint32_t bounce) override {
     bindings_.pathBounce = bounce;
-    cl_.queue().enqueueWriteBuffer(bindings_.queueCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &counters_[1]);
-    cl_.queue().enqueueWriteBuffer(bindings_.nextCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &counters_[1]);
+    cl_.queue().enqueueWriteBuffer(bindings_.queueCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &kZero);
+    cl_.queue().enqueueWriteBuffer(bindings_.nextCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &kZero);
   }
 
   void endBounce() override {
@@ -244,7 +243,7 @@ class ClStageRunner final : public StageRunner {
   std::array<cl::Kernel, kStageCount> kernels_;
   ClBindings bindings_;
   bool aovs_ = false;
-  cl_uint counters_[2] = {0, 0};
+  static constexpr cl_uint kZero = 0;  // what the counter resets write
   std::vector<std::pair<std::string, cl::Event>> launched_;  // this wave's launches (profiling)
   // A wave between beginWave and waitWave: its ray count as written, its counts as read, the read's
   // event and its launches (profiling). Two slots: the next wave is queued before the host waits.

@@ -2,7 +2,8 @@
 // the host's C++ loops). Sizes the wave, uploads once, then per wave: reset the queue counters,
 // generate -> intersect -> shade_ao | (shade_direct -> intersect bounce -> shade_direct_hit) ->
 // intersect_shadow -> accumulate; the host never reads a queue count back to size a launch, except
-// in path tracing's bounce loop (render/path_waves.cpp: generate -> bounces -> accumulate).
+// in path tracing's bounce loop (render/path_waves.cpp: generate -> bounces -> accumulate). Where
+// nothing needs a wave booked before the next starts, the next wave is queued first (`ahead`).
 #include "render/wavefront.h"
 
 #include <algorithm>
