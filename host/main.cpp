@@ -2,24 +2,16 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <new>
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
 
 #include "cl/cl_errors.h"
 #include "cli/commands.h"
 #include "dist/mpi.h"
 #include "util/errors.h"
+#include "util/heap_trim.h"
 
 int main(int argc, char** argv) {
   using namespace montecl;
-#ifdef __GLIBC__
-  // A fixed mmap threshold: glibc raises it after each large free (up to 32 MiB), after which
-  // large temporary buffers (the BVH builder's reference vectors, host staging copies) stay in
-  // its heaps and fragment them instead of going back to the OS. Sponza 960x540 direct peak RSS:
-  // 398 -> 376 MiB with spatial splits; 380 -> 372 MiB without them.
-  mallopt(M_MMAP_THRESHOLD, 128 * 1024);
-#endif
+  fixMmapThreshold();  // freed arrays leave the resident set (util/heap_trim.h)
   CLI::App app{"montecl: Monte Carlo rendering with OpenCL"};
   app.set_version_flag("--version", MONTECL_VERSION);
   app.require_subcommand(1);

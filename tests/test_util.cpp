@@ -35,6 +35,12 @@ TEST_CASE("util: fnv1a64 and hex64" * doctest::test_suite("cpu")) {
   CHECK(fnv1a64("foobar") == 0x85944171f73967e8ull);
   CHECK(fnv1a64("a") != fnv1a64("b"));
   CHECK(fnv1a64("a", 1) != fnv1a64("a"));
+  Fnv1a64 pieces;  // fed piece by piece: the hash of the concatenation
+  pieces.add("foo");
+  pieces.add("", 0);
+  pieces.add("bar", 3);
+  CHECK(pieces.value() == fnv1a64("foobar"));
+  CHECK(Fnv1a64(1).value() == 1u);
   CHECK(hex64(0x1234) == "0000000000001234");
   CHECK(hex64(0xaf63dc4c8601ec8cull) == "af63dc4c8601ec8c");
 }

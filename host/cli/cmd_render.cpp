@@ -206,6 +206,10 @@ int runRender(const RenderArgs& a) {
   options.verbose = a.verbose;
   options.profile = a.profile;
   options.textures = &textures;
+  // What the EXR records of the scene is read now: the render frees the scene's triangles once it
+  // has built its own arrays from them (only the BVH's and the shading table's are uploaded).
+  const Provenance provenance = isExr(output) ? provenanceOf(a, scene) : Provenance{};
+  options.trianglesRead = [&scene] { std::vector<SceneTriangle>().swap(scene.triangles); };
   dist::Job job(a.job, scene, options);
   WavefrontRenderer renderer(device, options);
   if (a.verbose)
@@ -229,7 +233,7 @@ int runRender(const RenderArgs& a) {
   LayeredImage img;
   if (isExr(output)) {
     img = renderLayers(film, a.aovs);
-    setProvenance(img, provenanceOf(a, scene));
+    setProvenance(img, provenance);
   } else {
     img.width = film.width;
     img.height = film.height;

@@ -46,16 +46,17 @@ std::uint64_t renderKey(const Scene& scene, const RenderOptions& o) {
   const bool direct = scene.render.integrator == Integrator::Direct;
   FrameParams f = makeFrameParams(scene.camera, scene.render, direct ? scene.render.lightSamples + 1 : 1);
   f.activeCount = 0;
-  std::string bytes;
-  append(bytes, &f, 1);
-  append(bytes, scene.triangles.data(), scene.triangles.size());
-  for (const MaterialDesc& m : scene.materials) append(bytes, &m.albedo[0], 3), append(bytes, &m.emission[0], 3);
+  Fnv1a64 h;  // (hashed in place: a string of the triangles was twice their size at its peak)
+  h.add(&f, sizeof f);
+  h.add(scene.triangles.data(), scene.triangles.size() * sizeof(SceneTriangle));
+  for (const MaterialDesc& m : scene.materials)
+    h.add(&m.albedo[0], 3 * sizeof(float)), h.add(&m.emission[0], 3 * sizeof(float));
   const std::uint32_t ints[] = {std::uint32_t(scene.render.integrator), std::uint32_t(scene.render.spp),
                                 o.firstSample, std::uint32_t(o.minSpp), std::uint32_t(o.maxSpp), o.aovs};
-  append(bytes, ints, 6);
+  h.add(ints, sizeof ints);
   const double reals[] = {o.targetError > 0.0 ? o.targetError : 0.0, o.targetError > 0.0 ? o.errorFloor : 0.0};
-  append(bytes, reals, 2);
-  return fnv1a64(bytes);
+  h.add(reals, sizeof reals);
+  return h.value();
 }
 
 CheckpointInfo checkpointInfo(const Scene& scene, const RenderOptions& options) {

@@ -3,14 +3,19 @@
 // kernel launch per stage with its arguments bound by name (render/stage_bindings.h). Queue
 // counters are reset on the device; the host never reads a queue count back to size a launch
 // (kernels return past the device-side count), only once per wave for the statistics. With a
-// profile (setProfile), each launch keeps its event and finishWave adds the events' times.
+// profile (setProfile), each launch keeps its event and waitWave adds the events' times.
+// Memory: on CPU devices the large read-only arrays (BVH nodes and triangles, shading, texels) are
+// used in place (CL_MEM_USE_HOST_PTR: no second copy); finish() reads the film one part at a
+// time, releasing each part's buffer, so the film is never whole on both sides.
 #include <algorithm>
 #include <array>
+#include <stdexcept>
 
 #include "render/stage_program.h"
 #include "render/stage_runner.h"
 #include "render/triangle_shading.h"
 #include "util/errors.h"
+#include "util/heap_trim.h"
 
 namespace montecl {
 namespace {
@@ -18,7 +23,8 @@ namespace {
 class ClStageRunner final : public StageRunner {
  public:
   ClStageRunner(const DeviceInfo& device, std::size_t workGroupSize, BvhLayout layout, bool profiling)
-      : program_(device, layout, workGroupSize, profiling), cl_(program_.session()) {
+      : program_(device, layout, workGroupSize, profiling), cl_(program_.session()),
+        inPlace_(device.isCpu && !isOclgrind(device)) {
     for (int s = 0; s < kStageCount; ++s) kernels_[s] = cl_.kernel(stageName(Stage(s)));
   }
 
@@ -31,19 +37,22 @@ class ClStageRunner final : public StageRunner {
     const std::uint64_t wave = in.wave, slots = in.frame.shadowSlots;
     pixels_ = std::uint64_t(in.frame.width) * in.frame.height;
     frame_ = in.frame;
+    firstSubmitted_ = submittedCount_ = 0;
     aovs_ = in.aovs;
     ClBindings& b = bindings_;
     b.frame = {cl_.upload(std::vector<FrameParams>{in.frame})};
-    b.nodes = {program_.uploadNodes(*in.bvh)};
-    b.tris = {cl_.upload(in.triangles.empty() ? in.bvh->triangles : in.triangles)};
-    b.shading = {cl_.upload(in.shading.empty() ? std::vector<TriangleShading>(1) : in.shading)};
+    const bool binary = program_.layout() == BvhLayout::Binary;
+    b.nodes = {binary ? (in.bvh->nodes.empty() ? program_.uploadNodes(*in.bvh) : readOnly(in.bvh->nodes))
+                      : readOnly(in.bvh->wideNodes())};
+    b.tris = {readOnly(in.triangles.empty() ? in.bvh->triangles : in.triangles)};
+    b.shading = {in.shading.empty() ? cl_.upload(std::vector<TriangleShading>(1)) : readOnly(in.shading)};
     b.normals = {cl_.upload(buildTriangleNormals(in.bvh->triangles))};
     b.materials = {cl_.upload(in.materials)};
     b.emitters = {cl_.upload(in.emitters)};
     const bool tex = in.textures && !in.textures->textures.empty();
     b.textures = {cl_.upload(tex ? in.textures->textures : std::vector<TextureDesc>(1))};
     b.textureLevels = {cl_.upload(tex ? in.textures->levels : std::vector<TextureLevel>(1))};
-    b.texels = {cl_.upload(tex ? in.textures->texels : std::vector<std::uint16_t>(4))};
+    b.texels = {tex ? readOnly(in.textures->texels) : cl_.upload(std::vector<std::uint16_t>(4))};
     b.envMap = {cl_.upload(in.envMap)};
     b.envCdf = {cl_.upload(in.envCdf)};
     std::vector<cl_uint> all(pixels_);
@@ -72,23 +81,25 @@ class ClStageRunner final : public StageRunner {
     b.m2 = {cl_.buffer<cl_float4>(pixels_)};
     b.m2Lo = {cl_.buffer<cl_float4>(pixels_)};
     // Cleared by writes, not clEnqueueFillBuffer: Oclgrind's uninitialised-memory check does not
-    // count a fill as initialising memory, and a write costs the same here.
-    const std::vector<cl_float4> zeros((aovs_ ? 2 : 1) * pixels_, cl_float4{{0.0f, 0.0f, 0.0f, 0.0f}});
-    const void* words[5] = {zeros.data(), zeros.data(), zeros.data(), zeros.data(), zeros.data()};
-    std::vector<glm::vec4> meanWords, meanLoWords;
+    // count a fill as initialising memory, and a write costs the same here. The zeros are written
+    // from one block of at most 1 MiB (not a film-sized host array).
+    const cl::Buffer* films[] = {&b.mean.buffer, &b.meanLo.buffer, &b.m2.buffer, &b.m2Lo.buffer, &b.aovSum.buffer};
+    const std::uint64_t words[] = {pixels_, pixels_, pixels_, pixels_, aovs_ ? 2 * pixels_ : 0};
     if (const Film* f = in.initialFilm) {
+      std::vector<glm::vec4> meanWords, meanLoWords;
       f->packCounts(meanWords, meanLoWords);
-      words[0] = meanWords.data();
-      words[1] = meanLoWords.data();
-      words[2] = f->m2.data();
-      words[3] = f->m2Lo.data();
-      if (aovs_) words[4] = f->aovSum.data();
+      const void* from[] = {meanWords.data(), meanLoWords.data(), f->m2.data(), f->m2Lo.data(), f->aovSum.data()};
+      for (int i = 0; i < 5; ++i)
+        if (words[i]) cl_.queue().enqueueWriteBuffer(*films[i], CL_TRUE, 0, words[i] * sizeof(cl_float4), from[i]);
+      return;
     }
-    const cl::Buffer* films[] = {&b.mean.buffer, &b.meanLo.buffer, &b.m2.buffer, &b.m2Lo.buffer};
-    for (int i = 0; i < 4; ++i)
-      cl_.queue().enqueueWriteBuffer(*films[i], CL_TRUE, 0, pixels_ * sizeof(cl_float4), words[i]);
-    if (aovs_)
-      cl_.queue().enqueueWriteBuffer(b.aovSum.buffer, CL_TRUE, 0, 2 * pixels_ * sizeof(cl_float4), words[4]);
+    const std::vector<cl_float4> zeros(std::min<std::uint64_t>(pixels_, 65536), cl_float4{{0.0f, 0.0f, 0.0f, 0.0f}});
+    for (int i = 0; i < 5; ++i)
+      for (std::uint64_t at = 0; at < words[i]; at += zeros.size())
+        cl_.queue().enqueueWriteBuffer(*films[i], CL_FALSE, at * sizeof(cl_float4),
+                                       std::min<std::uint64_t>(zeros.size(), words[i] - at) * sizeof(cl_float4),
+                                       zeros.data());
+    cl_.queue().finish();  // (zeros is about to go)
   }
 
   void setActivePixels(const std::vector<std::uint32_t>& pixels) override {
@@ -102,12 +113,13 @@ class ClStageRunner final : public StageRunner {
   void beginWave(std::uint64_t waveStart, std::uint32_t count) override {
     bindings_.waveStart = waveStart;
     bindings_.waveCount = count;
-    // Counters reset by (non-blocking) writes from members that outlive the wave.
-    counters_[0] = count;
-    counters_[1] = 0;
-    cl_.queue().enqueueWriteBuffer(bindings_.rayCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &counters_[0]);
-    cl_.queue().enqueueWriteBuffer(bindings_.queueCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &counters_[1]);
-    cl_.queue().enqueueWriteBuffer(bindings_.nanRays.buffer, CL_FALSE, 0, sizeof(cl_uint), &counters_[1]);
+    // Counters reset by (non-blocking) writes from members that outlive the wave; the ray count
+    // from the slot of this wave (the other one may still be queued for the wave before).
+    Submitted& w = submitted_[(firstSubmitted_ + submittedCount_) % 2];
+    w.rayCount = count;
+    cl_.queue().enqueueWriteBuffer(bindings_.rayCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &w.rayCount);
+    cl_.queue().enqueueWriteBuffer(bindings_.queueCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &kZero);
+    cl_.queue().enqueueWriteBuffer(bindings_.nanRays.buffer, CL_FALSE, 0, sizeof(cl_uint), &kZero);
   }
 
   // Arguments are set at every launch (a handful of clSetKernelArg calls per stage and wave): the
@@ -123,8 +135,8 @@ class ClStageRunner final : public StageRunner {
 
   void startBounce(std::uint32_t bounce) override {
     bindings_.pathBounce = bounce;
-    cl_.queue().enqueueWriteBuffer(bindings_.queueCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &counters_[1]);
-    cl_.queue().enqueueWriteBuffer(bindings_.nextCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &counters_[1]);
+    cl_.queue().enqueueWriteBuffer(bindings_.queueCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &kZero);
+    cl_.queue().enqueueWriteBuffer(bindings_.nextCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &kZero);
   }
 
   void endBounce() override {
@@ -140,16 +152,38 @@ class ClStageRunner final : public StageRunner {
     return BounceCounts{bounceCounts_[0], bounceCounts_[1]};
   }
 
-  WaveCounts finishWave() override {
-    cl_uint shadowCount = 0, nanRays = 0;
-    cl_.queue().enqueueReadBuffer(bindings_.nanRays.buffer, CL_FALSE, 0, sizeof(cl_uint), &nanRays);
-    cl_.queue().enqueueReadBuffer(bindings_.queueCount.buffer, CL_TRUE, 0, sizeof(cl_uint), &shadowCount);
-    for (auto& [name, event] : launched_)  // complete: the blocking read came after them (in order)
+  void abandon() noexcept override {
+    try {
+      cl_.queue().finish();
+    } catch (...) {  // (the queue is lost: nothing more runs on it)
+    }
+    bindings_ = ClBindings{};
+    launched_.clear();
+    for (Submitted& w : submitted_) w.launched.clear();
+    firstSubmitted_ = submittedCount_ = 0;
+  }
+
+  void submitWave() override {
+    if (submittedCount_ == 2) throw std::logic_error("submitWave: two waves are already waiting");
+    Submitted& w = submitted_[(firstSubmitted_ + submittedCount_++) % 2];
+    w.launched = std::move(launched_);
+    launched_.clear();
+    cl_.queue().enqueueReadBuffer(bindings_.nanRays.buffer, CL_FALSE, 0, sizeof(cl_uint), &w.counts[1]);
+    cl_.queue().enqueueReadBuffer(bindings_.queueCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &w.counts[0], nullptr,
+                                  &w.read);
+  }
+
+  WaveCounts waitWave() override {
+    Submitted& w = submitted_[firstSubmitted_];
+    w.read.wait();  // the last command of the wave (in order): its launches are complete too
+    for (auto& [name, event] : w.launched)
       if (profile_)
         profile_->add(name, double(event.getProfilingInfo<CL_PROFILING_COMMAND_END>() -
                                    event.getProfilingInfo<CL_PROFILING_COMMAND_START>()) * 1e-6);
-    launched_.clear();
-    return WaveCounts{shadowCount, nanRays};
+    w.launched.clear();
+    firstSubmitted_ = (firstSubmitted_ + 1) % 2;
+    --submittedCount_;
+    return WaveCounts{w.counts[0], w.counts[1]};
   }
 
   void readFilm(Film& film) override {
@@ -170,14 +204,59 @@ class ClStageRunner final : public StageRunner {
     }
   }
 
+  // The last read: every buffer but the film's is released first (the scene's arrays may be used
+  // in place and must not be referenced after render()), then each film part is read and its
+  // buffer released before the next, so the film exists twice one part at a time only.
+  void finish(Film& film) override {
+    cl_.queue().finish();
+    ClBindings& b = bindings_;
+    std::pair<cl::Buffer, std::vector<glm::vec4>*> parts[] = {
+        {b.mean.buffer, &film.mean}, {b.meanLo.buffer, &film.meanLo}, {b.m2.buffer, &film.m2},
+        {b.m2Lo.buffer, &film.m2Lo}, {b.aovSum.buffer, &film.aovSum}};
+    b = ClBindings{};
+    launched_.clear();
+    for (Submitted& w : submitted_) w.launched.clear();
+    firstSubmitted_ = submittedCount_ = 0;
+    trimHeap();
+    for (auto& [device, host] : parts) {
+      const std::uint64_t words = host == &film.aovSum ? (aovs_ ? 2 * pixels_ : 0) : pixels_;
+      host->resize(words);
+      if (words)
+        cl_.queue().enqueueReadBuffer(device, CL_TRUE, 0, words * sizeof(cl_float4), host->data());
+      device = cl::Buffer();
+      trimHeap();
+    }
+    film.unpackCounts();
+  }
+
  private:
+  // A read-only array the kernels read: used in place on CPU devices (the array must outlive the
+  // buffer: finish() releases it), copied elsewhere (GPUs: device memory; Oclgrind).
+  template <typename T>
+  cl::Buffer readOnly(const std::vector<T>& data) const {
+    if (!inPlace_ || data.empty()) return cl_.upload(data);
+    return cl::Buffer(cl_.context(), CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, data.size() * sizeof(T),
+                      const_cast<T*>(data.data()));
+  }
+
   StageProgram program_;
   ClSession& cl_;
+  bool inPlace_;
   std::array<cl::Kernel, kStageCount> kernels_;
   ClBindings bindings_;
   bool aovs_ = false;
-  cl_uint counters_[2] = {0, 0};
+  static constexpr cl_uint kZero = 0;  // what the counter resets write
   std::vector<std::pair<std::string, cl::Event>> launched_;  // this wave's launches (profiling)
+  // A wave between beginWave and waitWave: its ray count as written, its counts as read, the read's
+  // event and its launches (profiling). Two slots: the next wave is queued before the host waits.
+  struct Submitted {
+    cl_uint rayCount = 0;
+    cl_uint counts[2] = {0, 0};  // occlusion queries, non-finite rays
+    cl::Event read;
+    std::vector<std::pair<std::string, cl::Event>> launched;
+  };
+  Submitted submitted_[2];
+  unsigned firstSubmitted_ = 0, submittedCount_ = 0;
   cl_uint bounceCounts_[2] = {0, 0};
   FrameParams frame_{};
   std::uint64_t pixels_ = 0;

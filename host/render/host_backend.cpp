@@ -122,7 +122,14 @@ class HostStageRunner final : public StageRunner {
 
   BounceCounts readBounceCounts() override { return BounceCounts{*bindings_.rayCount, queueCount_}; }
 
-  WaveCounts finishWave() override { return WaveCounts{queueCount_, nanRays_}; }
+  // (The stages ran in launch(): a wave's counts are final when it is submitted.)
+  void submitWave() override { submitted_[(firstSubmitted_ + submittedCount_++) % 2] = {queueCount_, nanRays_}; }
+  WaveCounts waitWave() override {
+    const WaveCounts c = submitted_[firstSubmitted_];
+    firstSubmitted_ = (firstSubmitted_ + 1) % 2;
+    --submittedCount_;
+    return c;
+  }
 
   void readFilm(Film& film) override {
     film.mean = mean_;
@@ -133,7 +140,25 @@ class HostStageRunner final : public StageRunner {
     if (aovs_) film.aovSum.assign(aovSum_.begin(), aovSum_.end());
   }
 
+  // The film's vectors move out (no copy); every other buffer is freed.
+  void finish(Film& film) override {
+    film.mean = std::move(mean_);
+    film.meanLo = std::move(meanLo_);
+    film.m2 = std::move(m2_);
+    film.m2Lo = std::move(m2Lo_);
+    film.unpackCounts();
+    if (aovs_) film.aovSum = std::move(aovSum_);
+    release(mean_, meanLo_, m2_, m2Lo_, aovSum_, aov_, active_, nodes_, tris_, shading_, rays_, bounce_, hits_,
+            bounceHits_, radiance_, shadowContrib_, queue_, throughput_, nextRays_, pathIds_, nextPathIds_);
+    bind();
+  }
+
  private:
+  template <class... Vectors>
+  static void release(Vectors&... v) {
+    ((v = Vectors{}), ...);
+  }
+
 #define MCL_HOST_RUN_STAGE(stage) \
   static void runStage(const stage##_args* a, uint i) { stage_##stage(a, i); }
   MCL_STAGES(MCL_HOST_RUN_STAGE)
@@ -210,6 +235,8 @@ class HostStageRunner final : public StageRunner {
   uint rayCount_ = 0, nextCount_ = 0;
   uint queueCount_ = 0;  // incremented atomically by the shade stages
   uint nanRays_ = 0;     // incremented atomically by the intersect stages
+  WaveCounts submitted_[2];  // counts of the waves submitted and not yet waited for, oldest first
+  unsigned firstSubmitted_ = 0, submittedCount_ = 0;
 };
 
 }  // namespace

@@ -82,9 +82,24 @@ class StageRunner {
   virtual void endBounce() = 0;
   virtual BounceCounts readBounceCounts() = 0;
   // Waits for the wave; returns the number of occlusion queries it traced and of non-finite rays.
-  virtual WaveCounts finishWave() = 0;
+  WaveCounts finishWave() {
+    submitWave();
+    return waitWave();
+  }
+  // finishWave in two halves, so that the next wave can be queued before the host waits for this
+  // one (the device then does not idle while the host books a wave): submitWave queues the reads
+  // of the wave's counts (at most two waves submitted and not yet waited for); waitWave waits for
+  // the oldest submitted wave and returns its counts.
+  virtual void submitWave() = 0;
+  virtual WaveCounts waitWave() = 0;
   // Reads the accumulated statistics (film.mean, film.m2, film.aovSum; the caller sets the size).
   virtual void readFilm(Film& film) = 0;
+  // The render's last read of the film (as readFilm), which also releases every buffer: the film
+  // part by part as it is read, so the film is never held whole twice. setup() starts again.
+  virtual void finish(Film& film) = 0;
+  // A render that ends by an exception: waits for what is queued and releases every buffer, so
+  // that nothing queued reads the arrays a buffer uses in place after they are gone. No throw.
+  virtual void abandon() noexcept {}
   // From now on, adds each launch's execution time to *profile by stageProfileName() (null:
   // stop), at the latest by the wave's finishWave(). OpenCL: needs a runner made with profiling.
   void setProfile(StageProfile* profile) { profile_ = profile; }

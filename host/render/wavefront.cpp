@@ -2,7 +2,8 @@
 // the host's C++ loops). Sizes the wave, uploads once, then per wave: reset the queue counters,
 // generate -> intersect -> shade_ao | (shade_direct -> intersect bounce -> shade_direct_hit) ->
 // intersect_shadow -> accumulate; the host never reads a queue count back to size a launch, except
-// in path tracing's bounce loop (render/path_waves.cpp: generate -> bounces -> accumulate).
+// in path tracing's bounce loop (render/path_waves.cpp: generate -> bounces -> accumulate). Where
+// nothing needs a wave booked before the next starts, the next wave is queued first (`ahead`).
 #include "render/wavefront.h"
 
 #include <algorithm>
@@ -20,6 +21,7 @@
 #include "render/path_waves.h"
 #include "scene/camera_basis.h"
 #include "util/errors.h"
+#include "util/heap_trim.h"
 
 namespace montecl {
 namespace {
@@ -151,7 +153,17 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   inputs.path = path;
   inputs.aovs = m.options.aovs;
   inputs.initialFilm = m.options.initialFilm;
+  if (m.options.trianglesRead) m.options.trianglesRead(), trimHeap();  // scene.triangles: not read below
   run.setup(inputs);
+  // Buffers may use inputs' arrays in place: if anything below throws, the queue is settled and
+  // the buffers released before inputs goes (StageRunner::abandon).
+  struct Settle {
+    StageRunner& run;
+    bool done = false;
+    ~Settle() {
+      if (!done) run.abandon();
+    }
+  } settle{run};
 
   // Wave sizes come from the planner unless a fixed --wave-size is asked for without a time limit.
   const bool planned = m.options.waveSize == 0 || m.options.timeLimit > 0.0;
@@ -170,17 +182,59 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   };
   // Runs the active list's samples [sampleBase, sampleBase + spp) in waves; false if stopped early.
   std::uint64_t activeCount = pixels, expected = total;
+  // Ahead: each wave is queued before the host waits for the one before it (StageRunner::
+  // submitWave / waitWave), so the device does not idle while the host books a wave. Not with a
+  // time limit (each wave is sized from the time left when it starts), nor with afterWave (it
+  // reads the film of the waves booked so far), nor for path tracing (its bounces wait anyway).
+  const bool ahead = !path && !(m.options.timeLimit > 0.0) && !m.options.afterWave;
   const auto runSamples = [&](std::uint64_t sampleBase, std::uint64_t spp) {
     const std::uint64_t first = sampleBase * activeCount, count = spp * activeCount;
+    struct Queued {
+      std::uint32_t n;
+      double start;
+    } queued[2];
+    int waiting = 0;
+    double lastBooked = elapsed();
+    // Waits for the oldest queued wave and books it: statistics, rate, progress, afterWave.
+    const auto book = [&](const PathWaveCounts& pathCounts) {
+      const Queued w = queued[0];
+      queued[0] = queued[1];
+      --waiting;
+      const WaveCounts counts = run.waitWave();
+      const std::uint32_t n = w.n;
+      stats.waves++;
+      stats.samples += n;
+      stats.cameraRays += n;
+      stats.shadowRays += path ? pathCounts.shadowRays : counts.shadowRays;
+      stats.cameraRays += pathCounts.bounceRays;
+      auto& survivors = stats.pathSurvivors;
+      if (survivors.size() < pathCounts.survivors.size()) survivors.resize(pathCounts.survivors.size(), 0);
+      for (std::size_t b = 0; b < pathCounts.survivors.size(); ++b) survivors[b] += pathCounts.survivors[b];
+      stats.nanRays += counts.nanRays;
+      if (direct && scene.render.directSampling != DirectSampling::Light) stats.cameraRays += n;  // BRDF rays
+      stats.seconds = elapsed();
+      // The wave ran from its start, or (queued ahead) from the end of the one before it.
+      const double from = std::max(w.start, lastBooked);
+      if (stats.seconds > from) rate = double(n) / (stats.seconds - from);
+      lastBooked = stats.seconds;
+      if (progress) progress(stats.samples, std::max(expected, stats.samples), stats);
+      if (m.options.afterWave) m.options.afterWave([&] {
+        Film f;
+        f.width = int(frame.width);
+        f.height = int(frame.height);
+        run.readFilm(f);
+        return f;
+      });
+    };
     for (std::uint64_t done = 0; done < count;) {
       std::uint64_t size = std::min(wave, count - done);
       if (planned) {
         const double timeLeft = m.options.timeLimit > 0.0 ? m.options.timeLimit - elapsed() : INFINITY;
         size = planWave(m.options.planner, wave, count - done, rate, timeLeft);
-        if (size == 0) return false;  // the time limit is (about) reached
+        if (size == 0) return false;  // the time limit is (about) reached (never ahead: none queued)
       }
       const std::uint32_t n = std::uint32_t(size);
-      const double waveStart = elapsed();
+      queued[waiting++] = Queued{n, elapsed()};
       run.beginWave(first + done, n);
       run.launch(Stage::generate, n);
       PathWaveCounts pathCounts;
@@ -201,31 +255,12 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
       const std::uint64_t touched = std::min<std::uint64_t>(n, activeCount);  // pixels in the wave
       run.launch(Stage::accumulate, touched);
       if (m.options.aovs) run.launch(Stage::accumulate_aov, touched);
-      const WaveCounts counts = run.finishWave();
-
+      run.submitWave();
       done += n;
-      stats.waves++;
-      stats.samples += n;
-      stats.cameraRays += n;
-      stats.shadowRays += path ? pathCounts.shadowRays : counts.shadowRays;
-      stats.cameraRays += pathCounts.bounceRays;
-      auto& survivors = stats.pathSurvivors;
-      if (survivors.size() < pathCounts.survivors.size()) survivors.resize(pathCounts.survivors.size(), 0);
-      for (std::size_t b = 0; b < pathCounts.survivors.size(); ++b) survivors[b] += pathCounts.survivors[b];
-      stats.nanRays += counts.nanRays;
-      if (direct && scene.render.directSampling != DirectSampling::Light) stats.cameraRays += n;  // BRDF rays
-      stats.seconds = elapsed();
-      if (stats.seconds > waveStart) rate = double(n) / (stats.seconds - waveStart);
-      if (progress) progress(stats.samples, std::max(expected, stats.samples), stats);
-      if (m.options.afterWave) m.options.afterWave([&] {
-        Film f;
-        f.width = int(frame.width);
-        f.height = int(frame.height);
-        run.readFilm(f);
-        return f;
-      });
-      if (done < count && mustStop()) return false;
+      if (!ahead || waiting == 2) book(pathCounts);  // (ahead: never path, so no path counts)
+      if (done < count && mustStop()) break;
     }
+    while (waiting > 0) book(PathWaveCounts{});
     return !mustStop();
   };
 
@@ -283,7 +318,10 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
     for (std::uint32_t p : active) counts[p] = upTo;
     stats.rounds++;
   }
-  run.readFilm(film);
+  std::vector<std::uint64_t>().swap(target);
+  std::vector<std::uint32_t>().swap(active);
+  run.finish(film);  // the film, and every buffer released (the film's part by part)
+  settle.done = true;
   if (!going) {  // stopped: was anything left?
     for (std::uint32_t p : mine) counts[p] = film.count[p];
     stats.stoppedEarly = std::any_of(mine.begin(), mine.end(), [&](std::uint32_t p) { return nextTarget(p) != 0; });

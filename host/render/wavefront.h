@@ -64,6 +64,10 @@ struct RenderOptions {
   const Film* initialFilm = nullptr;
   // Called after every wave's progress callback; readFilm() reads the film state as of that wave.
   std::function<void(const std::function<Film()>& readFilm)> afterWave;
+  // Called once render() has read scene.triangles for the last time (the shading table and the
+  // emitters are built, nothing is uploaded yet): the caller may free them (montecl render does,
+  // which lowers the peak memory by their size). The BVH and the textures are read to the end.
+  std::function<void()> trianglesRead;
 };
 
 // Relative standard error of pixel p's mean luminance (infinite below 2 samples).

@@ -9,11 +9,9 @@
 namespace montecl {
 namespace {
 
-void append(std::string& bytes, const void* data, std::size_t size) {
-  bytes.append(static_cast<const char*>(data), size);
-}
+void append(Fnv1a64& bytes, const void* data, std::size_t size) { bytes.add(data, size); }
 
-void appendVec(std::string& bytes, const glm::vec3& v) {
+void appendVec(Fnv1a64& bytes, const glm::vec3& v) {
   const float f[3] = {v.x, v.y, v.z};
   append(bytes, f, sizeof f);
 }
@@ -27,8 +25,7 @@ std::string num(double v) {
 }  // namespace
 
 std::string sceneDigest(const Scene& scene) {
-  std::string bytes;
-  bytes.reserve(scene.triangles.size() * 40 + scene.materials.size() * 24 + 64);
+  Fnv1a64 bytes;  // hashed as they come (not gathered into a string of the whole scene first)
   for (const SceneTriangle& t : scene.triangles) {
     for (const glm::vec3& v : t.v) appendVec(bytes, v);
     append(bytes, &t.material, sizeof t.material);
@@ -38,23 +35,23 @@ std::string sceneDigest(const Scene& scene) {
     if (t.attributes & kHasUv)
       for (const glm::vec2& uv : t.uv) append(bytes, &uv, sizeof uv);
   }
-  bytes += "materials";
+  bytes.add("materials");
   for (const MaterialDesc& m : scene.materials) {
     appendVec(bytes, m.albedo);
     appendVec(bytes, m.emission);
     appendVec(bytes, m.specular);
     append(bytes, &m.specularExponent, sizeof m.specularExponent);
     append(bytes, &m.alphaCutoff, sizeof m.alphaCutoff);
-    bytes += m.albedoTexture + '\0' + m.alphaTexture + '\0' + (m.twoSidedEmission ? '2' : '1');
+    bytes.add(m.albedoTexture + '\0' + m.alphaTexture + '\0' + (m.twoSidedEmission ? '2' : '1'));
   }
   if (scene.environment.enabled) {  // the map by its path (its pixels are not hashed)
     const EnvironmentDesc& e = scene.environment;
-    bytes += "environment" + e.file;
+    bytes.add("environment" + e.file);
     appendVec(bytes, e.radiance);
     append(bytes, &e.scale, sizeof e.scale);
     append(bytes, &e.rotateYDegrees, sizeof e.rotateYDegrees);
   }
-  bytes += "camera";
+  bytes.add("camera");
   appendVec(bytes, scene.camera.position);
   appendVec(bytes, scene.camera.target);
   appendVec(bytes, scene.camera.up);
@@ -63,7 +60,7 @@ std::string sceneDigest(const Scene& scene) {
     append(bytes, &scene.camera.apertureRadius, sizeof scene.camera.apertureRadius);
     append(bytes, &scene.camera.focusDistance, sizeof scene.camera.focusDistance);
   }
-  return hex64(fnv1a64(bytes));
+  return hex64(bytes.value());
 }
 
 std::string integratorSettings(const RenderSettings& r) {

@@ -67,68 +67,78 @@ void setTextureIndices(std::vector<Material>& materials, const SceneTextures& te
 
 namespace {
 
-// Width and height of each mip level of a w x h image (level 0 first), as buildMipChain makes them.
-std::vector<std::pair<int, int>> levelSizes(int w, int h) {
-  std::vector<std::pair<int, int>> sizes{{w, h}};
-  const int count = mipLevelCount(w, h);
-  while (int(sizes.size()) < count) {
-    w = std::max(1, w / 2);
-    h = std::max(1, h / 2);
-    sizes.push_back({w, h});
+// A texture's mip pyramid (buildMipChain's levels) as RGBA half texels, level 0 first: what is kept
+// of an image between reading it and packing (8 bytes a texel instead of a float image's 16).
+struct HalfChain {
+  int width = 0, height = 0;                    // of level 0
+  std::vector<std::pair<int, int>> sizes;       // of each level
+  std::vector<std::vector<std::uint16_t>> levels;
+};
+
+// The same levels as buildMipChain(image), each converted as soon as it exists (two float levels
+// live at a time).
+HalfChain halfChain(RgbaImage image) {
+  HalfChain c;
+  c.width = image.width;
+  c.height = image.height;
+  const int count = mipLevelCount(image.width, image.height);
+  for (int k = 0; k < count; ++k) {
+    if (k > 0) image = downsample(image);
+    std::vector<std::uint16_t> half(image.texels.size() * 4);
+    std::uint16_t* dst = half.data();
+    for (const glm::vec4& t : image.texels)
+      for (int i = 0; i < 4; ++i) *dst++ = floatToHalf(t[i]);
+    c.sizes.push_back({image.width, image.height});
+    c.levels.push_back(std::move(half));
   }
-  return sizes;
+  return c;
 }
 
-}  // namespace
-
-void packTextures(SceneTextures& out, std::vector<RgbaImage> images, std::uint64_t budgetBytes,
-                  std::vector<std::string>& warnings) {
-  const std::size_t count = images.size();
-  std::vector<std::vector<std::pair<int, int>>> sizes(count);
+// packTextures on converted chains: the texels grow level by level as each chain is freed, so the
+// chains and the packed texels are not both held whole.
+void packChains(SceneTextures& out, std::vector<HalfChain> chains, std::uint64_t budgetBytes,
+                std::vector<std::string>& warnings) {
+  const std::size_t count = chains.size();
   std::vector<std::vector<std::uint64_t>> levelBytes(count);
   std::uint64_t full = 0;
   for (std::size_t t = 0; t < count; ++t) {
-    sizes[t] = levelSizes(images[t].width, images[t].height);
-    for (const auto& [w, h] : sizes[t]) levelBytes[t].push_back(std::uint64_t(w) * std::uint64_t(h) * 8u);
+    for (const auto& [w, h] : chains[t].sizes) levelBytes[t].push_back(std::uint64_t(w) * std::uint64_t(h) * 8u);
     for (std::uint64_t b : levelBytes[t]) full += b;
   }
   const std::vector<int> drop = finestLevelsToDrop(levelBytes, budgetBytes);
-  // The tables first (offsets known from the sizes), then every texture's kept levels in parallel.
   out.textures.clear();
   out.levels.clear();
   std::uint64_t texelCount = 0;
   std::ostringstream dropped;
   int droppedCount = 0;
   for (std::size_t t = 0; t < count; ++t) {
+    const HalfChain& c = chains[t];
     TextureDesc d{};
     d.firstLevel = std::uint32_t(out.levels.size());
-    d.levelCount = std::uint32_t(sizes[t].size() - std::size_t(drop[t]));
+    d.levelCount = std::uint32_t(c.sizes.size() - std::size_t(drop[t]));
     d.dropped = std::uint32_t(drop[t]);
-    d.lodBias = 0.5f * float(std::log2(double(images[t].width) * double(images[t].height)));
+    d.lodBias = 0.5f * float(std::log2(double(c.width) * double(c.height)));
     out.textures.push_back(d);
-    for (std::size_t k = std::size_t(drop[t]); k < sizes[t].size(); ++k) {
-      if (texelCount + std::uint64_t(sizes[t][k].first) * sizes[t][k].second > 0xffffffffull)
+    for (std::size_t k = std::size_t(drop[t]); k < c.sizes.size(); ++k) {
+      if (texelCount + std::uint64_t(c.sizes[k].first) * c.sizes[k].second > 0xffffffffull)
         throw RuntimeError("textures: more than 2^32 texels after the texture budget; lower --texture-budget");
-      out.levels.push_back(TextureLevel{std::uint32_t(texelCount), std::uint32_t(sizes[t][k].first),
-                                        std::uint32_t(sizes[t][k].second), 0u});
-      texelCount += std::uint64_t(sizes[t][k].first) * sizes[t][k].second;
+      out.levels.push_back(TextureLevel{std::uint32_t(texelCount), std::uint32_t(c.sizes[k].first),
+                                        std::uint32_t(c.sizes[k].second), 0u});
+      texelCount += std::uint64_t(c.sizes[k].first) * c.sizes[k].second;
     }
     if (drop[t] > 0)
       dropped << (droppedCount++ ? ", " : "") << (t < out.files.size() ? out.files[t] : "texture " + std::to_string(t))
-              << " " << images[t].width << "x" << images[t].height << " -> " << sizes[t][drop[t]].first << "x"
-              << sizes[t][drop[t]].second;
+              << " " << c.width << "x" << c.height << " -> " << c.sizes[drop[t]].first << "x"
+              << c.sizes[drop[t]].second;
   }
-  out.texels.assign(texelCount * 4, 0);
-  if (count > 0) parallelFor(count, 0, 1, [&](std::size_t t) {
-    std::vector<RgbaImage> chain = buildMipChain(std::move(images[t]));
-    const TextureDesc& d = out.textures[t];
-    for (std::uint32_t k = 0; k < d.levelCount; ++k) {
-      const RgbaImage& level = chain[d.dropped + k];
-      std::uint16_t* dst = &out.texels[std::size_t(out.levels[d.firstLevel + k].offset) * 4];
-      for (const glm::vec4& c : level.texels)
-        for (int i = 0; i < 4; ++i) *dst++ = floatToHalf(c[i]);
-    }
-  });
+  // Levels in table order (offsets ascending): appended, each chain freed once copied.
+  out.texels.clear();
+  out.texels.reserve(texelCount * 4);
+  for (std::size_t t = 0; t < count; ++t) {
+    for (std::size_t k = std::size_t(drop[t]); k < chains[t].levels.size(); ++k)
+      out.texels.insert(out.texels.end(), chains[t].levels[k].begin(), chains[t].levels[k].end());
+    chains[t] = HalfChain{};
+  }
   if (droppedCount > 0) {
     std::ostringstream w;
     w << "textures need " << ((full + (1u << 20) - 1) >> 20) << " MiB, over the texture budget of "
@@ -137,6 +147,15 @@ void packTextures(SceneTextures& out, std::vector<RgbaImage> images, std::uint64
       << " MiB; raise --texture-budget for full resolution";
     warnings.push_back(w.str());
   }
+}
+
+}  // namespace
+
+void packTextures(SceneTextures& out, std::vector<RgbaImage> images, std::uint64_t budgetBytes,
+                  std::vector<std::string>& warnings) {
+  std::vector<HalfChain> chains(images.size());
+  parallelFor(images.size(), 0, 1, [&](std::size_t t) { chains[t] = halfChain(std::move(images[t])); });
+  packChains(out, std::move(chains), budgetBytes, warnings);
 }
 
 SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, std::vector<std::string>& warnings) {
@@ -148,8 +167,8 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     const char* key = "";
     bool asColour = false, asAlpha = false;
     // After reading: the file's textures (sRGB-decoded colour and/or linear alpha; one when they
-    // coincide) and whether it has an alpha channel.
-    std::vector<RgbaImage> images;
+    // coincide), mip-mapped, and whether it has an alpha channel.
+    std::vector<HalfChain> images;
     bool integer = false, hasAlpha = false;
     std::string error;
   };
@@ -169,7 +188,8 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     if (!m.albedoTexture.empty()) use(m, m.albedoTexture, "map_Kd", true);
     if (!m.alphaTexture.empty()) use(m, m.alphaTexture, "map_d", false);
   }
-  // Read and convert in parallel (one file per task); the pixels as read are dropped at once.
+  // Read, convert and mip-map in parallel (one file per task); the pixels as read and the float
+  // levels are dropped at once (only the half-float pyramids are kept until packing).
   if (!files.empty()) parallelChunks(files.size(), 0, 1, [&](std::size_t, std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       File& f = files[i];
@@ -181,8 +201,9 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
         // texture), else the first channel, never decoded.
         const bool colourDecode = f.integer;
         const bool alphaDecode = f.hasAlpha && f.integer;
-        if (f.asColour || (f.asAlpha && alphaDecode == colourDecode)) f.images.push_back(rgbaFromImage(image, colourDecode));
-        if (f.asAlpha && alphaDecode != colourDecode) f.images.push_back(rgbaFromImage(image, alphaDecode));
+        if (f.asColour || (f.asAlpha && alphaDecode == colourDecode))
+          f.images.push_back(halfChain(rgbaFromImage(image, colourDecode)));
+        if (f.asAlpha && alphaDecode != colourDecode) f.images.push_back(halfChain(rgbaFromImage(image, alphaDecode)));
       } catch (const InputError& e) {
         std::string why = e.what();
         const std::string prefix = f.path + ": ";
@@ -193,11 +214,11 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
   for (const File& f : files)
     if (!f.error.empty()) throwInputError(f.path, "material '" + f.material + "' " + f.key, f.error);
   // Texture indices in file order.
-  std::vector<RgbaImage> images;
+  std::vector<HalfChain> images;
   std::vector<std::uint32_t> first(files.size());
   for (std::size_t i = 0; i < files.size(); ++i) {
     first[i] = std::uint32_t(images.size());
-    for (RgbaImage& im : files[i].images) {
+    for (HalfChain& im : files[i].images) {
       images.push_back(std::move(im));
       out.files.push_back(files[i].path);
     }
@@ -215,7 +236,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
       out.materials[i].alphaChannel = f.hasAlpha ? 3u : 0u;
     }
   }
-  packTextures(out, std::move(images), budgetBytes, warnings);
+  packChains(out, std::move(images), budgetBytes, warnings);
   return out;
 }
 

@@ -4,12 +4,19 @@
 namespace montecl {
 
 std::uint64_t fnv1a64(const std::string& data, std::uint64_t seed) {
-  std::uint64_t h = seed;
-  for (unsigned char c : data) {
-    h ^= c;
+  Fnv1a64 h(seed);
+  h.add(data);
+  return h.value();
+}
+
+void Fnv1a64::add(const void* data, std::size_t size) {
+  const unsigned char* c = static_cast<const unsigned char*>(data);
+  std::uint64_t h = h_;
+  for (std::size_t i = 0; i < size; ++i) {
+    h ^= c[i];
     h *= 0x100000001b3ull;
   }
-  return h;
+  h_ = h;
 }
 
 std::string hex64(std::uint64_t v) {
