@@ -94,9 +94,11 @@ TEST_CASE("cli: SIGTERM finishes the wave, writes the image so far, exits 143" *
   std::vector<std::string> args = longRender(dir.file("t.exr"));
   args.push_back("-v");
   pid_t pid = spawnMontecl(args, log.file("err.txt"));
-  // The waves have begun once -v has printed the wave size (kernels built, handler installed).
-  for (int i = 0; i < 1200 && readAll(log.file("err.txt")).find("montecl: wave of") == std::string::npos; ++i)
+  // The waves have begun once -v has printed the wave plan (kernels built, handler installed);
+  // the message is checked below, so a changed wording fails instead of waiting out the minute.
+  for (int i = 0; i < 1200 && readAll(log.file("err.txt")).find("montecl: waves of") == std::string::npos; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  CHECK(readAll(log.file("err.txt")).find("montecl: waves of") != std::string::npos);
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   kill(pid, SIGTERM);
   CHECK(waitFor(pid) == 143);
