@@ -78,14 +78,19 @@ TEST_CASE("linearToSrgb8 follows the sRGB curve: linear toe, 2.4 power, clamping
   CHECK(montecl::linearToSrgb8(0.22f) == 129);   // (1.055 * 0.22^(1/2.4) - 0.055) * 255 = 129.13
 }
 
-TEST_CASE("an EXR render without the OpenImageIO module fails with one line and leaves no file" * doctest::test_suite("cli")) {
+TEST_CASE("EXR output needs no OpenImageIO module; reading an image without it fails with one line" * doctest::test_suite("cli")) {
+  // EXR files are written with OpenEXR itself (image/exr_writer.h): loading the OpenImageIO
+  // module for a write cost ~120 MiB of resident memory. Reads still go through the module.
   TempDir dir;
-  CliResult r = runMontecl(demoRenderArgs(dir.file("x.exr"), 1, 0), {"MONTECL_IMAGE_PLUGIN=" + dir.file("missing.so")});
+  const std::string missing = "MONTECL_IMAGE_PLUGIN=" + dir.file("missing.so");
+  REQUIRE(runMontecl(demoRenderArgs(dir.file("x.exr"), 1, 0), {missing}).exitCode == 0);
+  CHECK(montecl::readLayeredImage(dir.file("x.exr")).width > 0);  // with the module: a valid EXR
+  CliResult r = runMontecl({"merge", dir.file("x.exr"), dir.file("x.exr"), "-o", dir.file("m.exr")}, {missing});
   CHECK(r.exitCode == 1);
   CHECK(r.err.find(dir.file("x.exr")) != std::string::npos);
   CHECK(r.err.find("missing.so") != std::string::npos);
   CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-  CHECK(std::distance(std::filesystem::directory_iterator(dir.path), std::filesystem::directory_iterator{}) == 0);
-  // PNG output does not need the module.
-  CHECK(runMontecl(demoRenderArgs(dir.file("x.png"), 1, 0), {"MONTECL_IMAGE_PLUGIN=" + dir.file("missing.so")}).exitCode == 0);
+  CHECK(!std::filesystem::exists(dir.file("m.exr")));
+  // PNG output does not need the module either.
+  CHECK(runMontecl(demoRenderArgs(dir.file("x.png"), 1, 0), {missing}).exitCode == 0);
 }

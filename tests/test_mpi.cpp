@@ -130,15 +130,16 @@ TEST_CASE("mpi: a rank with a bad --device or an unreadable scene ends the job f
 
 TEST_CASE("checkpoint: a render killed by SIGKILL after its first checkpoint resumes bit-identically" * doctest::test_suite("cli")) {
   TempDir dir;
+  const int kSpp = 160;  // long enough (~1 s with a checkpoint per wave) to be killed mid-render
   const std::vector<std::string> extra{"--device", "host", "--wave-size", "64", "--integrator", "direct"};
-  std::vector<std::string> full = montecl_test::demoRenderArgs(dir.file("full.exr"), 40, 0);
+  std::vector<std::string> full = montecl_test::demoRenderArgs(dir.file("full.exr"), kSpp, 0);
   full.insert(full.end(), extra.begin(), extra.end());
   CliResult ref = runMontecl(full);
   REQUIRE_MESSAGE(ref.exitCode == 0, ref.err);
 
   // The interrupted render: checkpoints after every wave; killed once the first exists.
   const std::string ckpt = dir.file("render.ckpt");
-  std::vector<std::string> args = montecl_test::demoRenderArgs(dir.file("out.exr"), 40, 0);
+  std::vector<std::string> args = montecl_test::demoRenderArgs(dir.file("out.exr"), kSpp, 0);
   args.insert(args.end(), extra.begin(), extra.end());
   args.insert(args.end(), {"--checkpoint", ckpt, "--checkpoint-every", "0.001"});
   std::vector<std::string> argv{MONTECL_EXE};
@@ -159,7 +160,7 @@ TEST_CASE("checkpoint: a render killed by SIGKILL after its first checkpoint res
   CHECK(killedEarly);  // else the render finished before the kill: the test proves less
   CHECK(!fs::exists(dir.file("out.exr")));
 
-  std::vector<std::string> resume = montecl_test::demoRenderArgs(dir.file("resumed.exr"), 40, 0);
+  std::vector<std::string> resume = montecl_test::demoRenderArgs(dir.file("resumed.exr"), kSpp, 0);
   resume.insert(resume.end(), extra.begin(), extra.end());
   resume.insert(resume.end(), {"--resume", ckpt});
   CliResult r = runMontecl(resume);

@@ -1,6 +1,7 @@
 // exr_layers.cpp: named-channel float EXR output/input (through the OpenImageIO module), the film -> AOV planes
 // conversion, and the sample-count-weighted merge of renders (parallel variance formula).
 #include "image/exr_layers.h"
+#include "image/exr_writer.h"
 
 #include <algorithm>
 #include <cctype>
@@ -61,7 +62,7 @@ void writeLayeredExr(const std::string& path, const LayeredImage& image) {
     if (image.planes[c].size() != count)
       throw RuntimeError("cannot write " + path + ": channel '" + image.channels[c] + "' has " +
                          std::to_string(image.planes[c].size()) + " values, not " + std::to_string(count));
-  writeAtomically(path, [&](const std::string& tmp) { oiioWrite(tmp, path, image); });
+  writeAtomically(path, [&](const std::string& tmp) { writeExrFile(tmp, path, image); });
 }
 
 namespace {
