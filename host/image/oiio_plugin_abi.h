@@ -1,6 +1,7 @@
 // oiio_plugin_abi.h: the C entry points of libmontecl_oiio.so, the module that holds every use of
-// OpenImageIO. montecl loads it with dlopen only when an image goes through OpenImageIO (EXR
-// output, any image input): Debian's OpenImageIO pulls in about 260 shared libraries (OpenCV,
+// OpenImageIO. montecl loads it with dlopen only when an image goes through OpenImageIO (any image
+// input; montecl's EXR output uses OpenEXR directly, image/exr_writer.h: the write entry point
+// serves the tests' fixture images in other formats): Debian's OpenImageIO pulls in about 260 shared libraries (OpenCV,
 // FFmpeg, ...) whose relocation alone costs ~0.35 s, which a PNG render should not pay.
 // Both sides are built from this header by the same compiler in the same build, so the functions
 // take montecl's own structs; they never throw: 0 on success, else a one-line message in err.
