@@ -150,11 +150,7 @@ TEST_CASE("images are bit-identical for the same seed, whatever the wave or work
 TEST_CASE("images are bit-identical with the wide and the binary BVH layout" * doctest::test_suite("opencl")) {
   Scene wall = wallScene(20, 6);
   wall.render.aoSampling = montecl::AoSampling::Uniform;
-  std::vector<std::string> warnings;
-  Scene demo = loadScene(MONTECL_SOURCE_DIR "/scenes/demo/scene.json", warnings);
-  demo.camera.width = 32;
-  demo.camera.height = 24;
-  demo.render.spp = 4;
+  Scene demo = montecl_test::smallDemoScene(32, 24, 4);
   for (Scene* s : {&wall, &demo}) {
     RenderOptions wide, binary;
     wide.bvhLayout = BvhLayout::Wide;

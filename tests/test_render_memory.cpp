@@ -68,11 +68,7 @@ void checkFinish(StageRunner& run) {
 }
 
 Film renderDemo(const DeviceInfo& device, bool freeTriangles, int* calls) {
-  std::vector<std::string> warnings;
-  Scene scene = loadScene(MONTECL_SOURCE_DIR "/scenes/demo/scene.json", warnings);
-  scene.camera.width = 24;
-  scene.camera.height = 16;
-  scene.render.spp = 3;
+  Scene scene = montecl_test::smallDemoScene(24, 16, 3);
   scene.render.integrator = Integrator::Direct;
   const Bvh bvh = buildBvh(scene.triangles);
   RenderOptions options;

@@ -132,11 +132,7 @@ bool sameFilm(const Film& a, const Film& b) { return a.mean == b.mean && a.m2 ==
 
 TEST_CASE("planned waves: progress after every wave of at most the cap, and the image of fixed waves" *
           doctest::test_suite("opencl")) {
-  std::vector<std::string> warnings;
-  Scene demo = loadScene(MONTECL_SOURCE_DIR "/scenes/demo/scene.json", warnings);
-  demo.camera.width = 24;
-  demo.camera.height = 16;
-  demo.render.spp = 3;
+  Scene demo = montecl_test::smallDemoScene(24, 16, 3);
   Scene wall = montecl::wallScene(20, 6);
   for (Integrator integrator : {Integrator::Ao, Integrator::Direct, Integrator::Path}) {
     Scene s = integrator == Integrator::Ao ? wall : demo;

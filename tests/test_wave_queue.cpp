@@ -80,11 +80,7 @@ TEST_CASE("wave queue: two waves in flight return their own counts, oldest first
 
 TEST_CASE("wave queue: waves queued ahead book the image, counts and progress of waves booked one by one" *
           doctest::test_suite("opencl")) {
-  std::vector<std::string> warnings;
-  Scene demo = loadScene(MONTECL_SOURCE_DIR "/scenes/demo/scene.json", warnings);
-  demo.camera.width = 24;
-  demo.camera.height = 16;
-  demo.render.spp = 3;
+  Scene demo = montecl_test::smallDemoScene(24, 16, 3);
   for (Integrator integrator : {Integrator::Ao, Integrator::Direct}) {
     CAPTURE(int(integrator));
     Scene s = demo;

@@ -157,10 +157,7 @@ class ClStageRunner final : public StageRunner {
       cl_.queue().finish();
     } catch (...) {  // (the queue is lost: nothing more runs on it)
     }
-    bindings_ = ClBindings{};
-    launched_.clear();
-    for (Submitted& w : submitted_) w.launched.clear();
-    firstSubmitted_ = submittedCount_ = 0;
+    releaseBuffersAndWaves();
   }
 
   void submitWave() override {
@@ -213,10 +210,7 @@ class ClStageRunner final : public StageRunner {
     std::pair<cl::Buffer, std::vector<glm::vec4>*> parts[] = {
         {b.mean.buffer, &film.mean}, {b.meanLo.buffer, &film.meanLo}, {b.m2.buffer, &film.m2},
         {b.m2Lo.buffer, &film.m2Lo}, {b.aovSum.buffer, &film.aovSum}};
-    b = ClBindings{};
-    launched_.clear();
-    for (Submitted& w : submitted_) w.launched.clear();
-    firstSubmitted_ = submittedCount_ = 0;
+    releaseBuffersAndWaves();
     trimHeap();
     for (auto& [device, host] : parts) {
       const std::uint64_t words = host == &film.aovSum ? (aovs_ ? 2 * pixels_ : 0) : pixels_;
@@ -230,6 +224,15 @@ class ClStageRunner final : public StageRunner {
   }
 
  private:
+  // Every buffer (the scene's in-place arrays included) and every queued wave's events let go:
+  // after the queue has finished, by finish() and abandon().
+  void releaseBuffersAndWaves() {
+    bindings_ = ClBindings{};
+    launched_.clear();
+    for (Submitted& w : submitted_) w.launched.clear();
+    firstSubmitted_ = submittedCount_ = 0;
+  }
+
   // A read-only array the kernels read: used in place on CPU devices (the array must outlive the
   // buffer: finish() releases it), copied elsewhere (GPUs: device memory; Oclgrind).
   template <typename T>
