@@ -33,16 +33,17 @@ Film twoWaves(StageRunner& run, const Scene& scene, const Bvh& bvh, Film* before
   grey.albedo = glm::vec4(0.5f, 0.5f, 0.5f, noTexture);
   grey.alpha = glm::vec4(noTexture, 0.0f, 0.0f, 0.0f);
   in.materials = {grey};
-  in.wave = in.frame.width * in.frame.height;
-  in.aovs = true;
+  in.shape.items = in.frame.width * in.frame.height;
+  in.shape.aovs = true;
   run.setup(in);
-  const std::uint32_t n = std::uint32_t(in.wave);
+  const std::uint32_t n = std::uint32_t(in.shape.items);
   for (std::uint64_t start : {std::uint64_t(0), std::uint64_t(n)}) {
     run.beginWave(start, n);
     for (Stage s : {Stage::generate, Stage::intersect, Stage::shade_ao, Stage::intersect_shadow, Stage::record_aov,
                     Stage::accumulate, Stage::accumulate_aov})
       run.launch(s, n);
-    run.finishWave();
+    run.submitWave();
+    run.waitWave();
   }
   Film film;
   film.width = int(in.frame.width);

@@ -29,7 +29,7 @@ void checkTwoInFlight(StageRunner& run) {
   in.frame.camTopLeft = glm::vec4(std::nanf(""), 0.0f, 1.0f, 0.0f);
   in.bvh = &bvh;
   in.materials = std::vector<Material>(1);
-  in.wave = 256;
+  in.shape.items = 256;
   run.setup(in);
   std::uint64_t start = 0;
   for (std::uint32_t n : {100u, 156u}) {

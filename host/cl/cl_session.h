@@ -12,13 +12,6 @@
 
 namespace montecl {
 
-// Sets consecutive kernel arguments starting at index 0.
-template <typename... Args>
-void setArgs(cl::Kernel& k, const Args&... args) {
-  cl_uint index = 0;
-  (k.setArg(index++, args), ...);
-}
-
 constexpr const char* kKernelBuildOptions = "-cl-std=CL1.2";
 
 class ClSession {

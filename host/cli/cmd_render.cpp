@@ -24,6 +24,7 @@
 #include "image/exr_layers.h"
 #include "image/image_io.h"
 #include "render/emitters.h"
+#include "render/integrators.h"
 #include "image/provenance.h"
 #include "render/progress.h"
 #include "render/stage_program.h"
@@ -168,7 +169,7 @@ int runRender(const RenderArgs& a) {
   BvhBuildOptions buildOptions;
   buildOptions.splitBudget = a.splitBudget;
   Bvh bvh = buildBvh(scene.triangles, buildOptions);
-  const bool lit = (scene.render.integrator == Integrator::Direct || scene.render.integrator == Integrator::Path) &&
+  const bool lit = integratorDesc(scene.render.integrator).lit &&
                    !scene.environment.enabled;  // an environment lights the scene by itself
   if (lit && !hasEmitter(scene))
     std::cerr << "montecl: warning: " << scene.path << ": integrator " << choiceName(scene.render.integrator)

@@ -6,6 +6,7 @@
 #include <iterator>
 
 #include "render/frame_params.h"
+#include "render/integrators.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 #include "util/hash.h"
@@ -43,8 +44,8 @@ std::string payloadOf(const Film& film, bool aovs) {
 }  // namespace
 
 std::uint64_t renderKey(const Scene& scene, const RenderOptions& o) {
-  const bool direct = scene.render.integrator == Integrator::Direct;
-  FrameParams f = makeFrameParams(scene.camera, scene.render, direct ? scene.render.lightSamples + 1 : 1);
+  const std::uint32_t slots = integratorDesc(scene.render.integrator).shadowSlots(scene.render);
+  FrameParams f = makeFrameParams(scene.camera, scene.render, slots);
   f.activeCount = 0;
   Fnv1a64 h;  // (hashed in place: a string of the triangles was twice their size at its peak)
   h.add(&f, sizeof f);

@@ -34,11 +34,11 @@ class ClStageRunner final : public StageRunner {
   double programBuildMs() const override { return cl_.build().buildMs; }
 
   void setup(const StageInputs& in) override {
-    const std::uint64_t wave = in.wave, slots = in.frame.shadowSlots;
-    pixels_ = std::uint64_t(in.frame.width) * in.frame.height;
+    const WaveShape shape = setupShape(in);
+    pixels_ = shape.pixels;
     frame_ = in.frame;
     firstSubmitted_ = submittedCount_ = 0;
-    aovs_ = in.aovs;
+    aovs_ = shape.aovs;
     ClBindings& b = bindings_;
     b.frame = {cl_.upload(std::vector<FrameParams>{in.frame})};
     const bool binary = program_.layout() == BvhLayout::Binary;
@@ -58,33 +58,26 @@ class ClStageRunner final : public StageRunner {
     std::vector<cl_uint> all(pixels_);
     for (std::uint64_t p = 0; p < pixels_; ++p) all[p] = cl_uint(p);
     b.active = {cl_.upload(all, CL_MEM_READ_WRITE)};
-    b.rays = {cl_.scratch<Ray>(wave)};
-    b.hits = {cl_.scratch<Hit>(wave)};
-    b.bounce = {cl_.scratch<Ray>(in.direct ? wave : 1)};
-    b.bounceHits = {cl_.scratch<Hit>(in.direct ? wave : 1)};
-    b.radiance = {cl_.scratch<cl_float4>(wave)};
-    b.shadowContrib = {cl_.scratch<cl_float4>(wave * slots)};
-    b.queue = {cl_.scratch<ShadowWork>(wave * slots)};
-    const std::uint64_t pathItems = in.path ? wave : 1;
-    b.throughput = {cl_.scratch<cl_float4>(pathItems)};
-    b.nextRays = {cl_.scratch<Ray>(pathItems)};
-    b.pathIds = {cl_.scratch<cl_uint>(pathItems)};
-    b.nextPathIds = {cl_.scratch<cl_uint>(pathItems)};
-    b.nextCount = {cl_.buffer<cl_uint>(1)};
-    b.rayCount = {cl_.buffer<cl_uint>(1)};
-    b.queueCount = {cl_.buffer<cl_uint>(1)};
-    b.nanRays = {cl_.buffer<cl_uint>(1)};
-    b.aov = {cl_.scratch<cl_float4>(in.aovs ? 2 * wave : 1)};
-    b.aovSum = {cl_.buffer<cl_float4>(in.aovs ? 2 * pixels_ : 1)};
-    b.mean = {cl_.buffer<cl_float4>(pixels_)};
-    b.meanLo = {cl_.buffer<cl_float4>(pixels_)};
-    b.m2 = {cl_.buffer<cl_float4>(pixels_)};
-    b.m2Lo = {cl_.buffer<cl_float4>(pixels_)};
+    // The wave buffers only the stages touch; counters and film the host writes and reads.
+#define MCL_CL_ALLOC(name, T, per, need) b.name = {cl_.scratch<T>(bufferCount(Per::per, Need::need, shape))};
+#define MCL_CL_COUNTER(name) b.name = {cl_.buffer<cl_uint>(1)};
+#define MCL_CL_FILM(name, per, need) b.name = {cl_.buffer<cl_float4>(bufferCount(Per::per, Need::need, shape))};
+    MCL_WAVE_BUFFERS(MCL_CL_ALLOC)
+    MCL_WAVE_COUNTERS(MCL_CL_COUNTER)
+    MCL_FILM_BUFFERS(MCL_CL_FILM)
+#undef MCL_CL_ALLOC
+#undef MCL_CL_COUNTER
+#undef MCL_CL_FILM
     // Cleared by writes, not clEnqueueFillBuffer: Oclgrind's uninitialised-memory check does not
     // count a fill as initialising memory, and a write costs the same here. The zeros are written
     // from one block of at most 1 MiB (not a film-sized host array).
-    const cl::Buffer* films[] = {&b.mean.buffer, &b.meanLo.buffer, &b.m2.buffer, &b.m2Lo.buffer, &b.aovSum.buffer};
-    const std::uint64_t words[] = {pixels_, pixels_, pixels_, pixels_, aovs_ ? 2 * pixels_ : 0};
+#define MCL_CL_FILM_BUFFER(name, per, need) &b.name.buffer,
+#define MCL_CL_FILM_WORDS(name, per, need) needed(Need::need, shape) ? bufferCount(Per::per, Need::need, shape) : 0,
+    const cl::Buffer* films[] = {MCL_FILM_BUFFERS(MCL_CL_FILM_BUFFER)};
+    const std::uint64_t words[] = {MCL_FILM_BUFFERS(MCL_CL_FILM_WORDS)};
+#undef MCL_CL_FILM_BUFFER
+#undef MCL_CL_FILM_WORDS
+    static_assert(sizeof(films) / sizeof(films[0]) == 5, "the film's parts: mean, meanLo, m2, m2Lo, aovSum");
     if (const Film* f = in.initialFilm) {
       std::vector<glm::vec4> meanWords, meanLoWords;
       f->packCounts(meanWords, meanLoWords);

@@ -45,26 +45,17 @@ class HostStageRunner final : public StageRunner {
     textureLevels_ = tex ? &in.textures->levels : &noTextureLevels_;
     texels_ = tex ? &in.textures->texels : &noTexels_;
     if (tris_.empty()) tris_.resize(1);
-    const std::uint64_t wave = std::max<std::uint64_t>(1, in.wave), slots = frame_.shadowSlots;
-    rays_.assign(wave, Ray{});
-    hits_.assign(wave, Hit{});
-    bounce_.assign(in.direct ? wave : 1, Ray{});
-    bounceHits_.assign(in.direct ? wave : 1, Hit{});
-    const std::uint64_t pathItems = in.path ? wave : 1;
-    throughput_.assign(pathItems, float4(0.0f));
-    nextRays_.assign(pathItems, Ray{});
-    pathIds_.assign(pathItems, 0);
-    nextPathIds_.assign(pathItems, 0);
-    radiance_.assign(wave, float4(0.0f));
-    shadowContrib_.assign(wave * slots, float4(0.0f));
-    queue_.assign(wave * slots, ShadowWork{});
-    const std::uint64_t pixels = std::uint64_t(frame_.width) * frame_.height;
+    const WaveShape shape = setupShape(in);
+#define MCL_HOST_ALLOC(name, T, per, need) name##_.assign(bufferCount(Per::per, Need::need, shape), T{});
+#define MCL_HOST_FILM_ALLOC(name, per, need) name##_.assign(bufferCount(Per::per, Need::need, shape), float4(0.0f));
+    MCL_WAVE_BUFFERS(MCL_HOST_ALLOC)
+    MCL_FILM_BUFFERS(MCL_HOST_FILM_ALLOC)
+#undef MCL_HOST_ALLOC
+#undef MCL_HOST_FILM_ALLOC
+    const std::uint64_t pixels = shape.pixels;
     active_.resize(pixels);
     for (std::uint64_t p = 0; p < pixels; ++p) active_[p] = uint(p);
-    aovs_ = in.aovs;
-    aov_.assign(in.aovs ? 2 * wave : 1, float4(0.0f));
-    aovSum_.assign(in.aovs ? 2 * pixels : 1, float4(0.0f));
-    for (std::vector<float4>* film : {&mean_, &meanLo_, &m2_, &m2Lo_}) film->assign(pixels, float4(0.0f));
+    aovs_ = shape.aovs;
     if (const Film* f = in.initialFilm) {  // a resumed film: its words, count bits in the w lanes
       std::vector<glm::vec4> meanWords, meanLoWords;
       f->packCounts(meanWords, meanLoWords);
@@ -148,17 +139,15 @@ class HostStageRunner final : public StageRunner {
     film.m2Lo = std::move(m2Lo_);
     film.unpackCounts();
     if (aovs_) film.aovSum = std::move(aovSum_);
-    release(mean_, meanLo_, m2_, m2Lo_, aovSum_, aov_, active_, nodes_, tris_, shading_, rays_, bounce_, hits_,
-            bounceHits_, radiance_, shadowContrib_, queue_, throughput_, nextRays_, pathIds_, nextPathIds_);
+#define MCL_HOST_RELEASE(name, ...) name##_ = {};
+    MCL_WAVE_BUFFERS(MCL_HOST_RELEASE)
+    MCL_FILM_BUFFERS(MCL_HOST_RELEASE)
+#undef MCL_HOST_RELEASE
+    active_ = {}, nodes_ = {}, tris_ = {}, shading_ = {};
     bind();
   }
 
  private:
-  template <class... Vectors>
-  static void release(Vectors&... v) {
-    ((v = Vectors{}), ...);
-  }
-
 #define MCL_HOST_RUN_STAGE(stage) \
   static void runStage(const stage##_args* a, uint i) { stage_##stage(a, i); }
   MCL_STAGES(MCL_HOST_RUN_STAGE)
@@ -181,34 +170,19 @@ class HostStageRunner final : public StageRunner {
     b.envMap = envMap_.data();
     b.envCdf = envCdf_.data();
     b.active = active_.data();
-    b.rays = rays_.data();
-    b.bounce = bounce_.data();
-    b.hits = hits_.data();
-    b.bounceHits = bounceHits_.data();
-    b.radiance = radiance_.data();
-    b.shadowContrib = shadowContrib_.data();
-    b.aov = aov_.data();
-    b.queue = queue_.data();
-    b.rayCount = &rayCount_;
-    b.nextCount = &nextCount_;
-    b.throughput = throughput_.data();
-    b.nextRays = nextRays_.data();
-    b.pathIds = pathIds_.data();
-    b.nextPathIds = nextPathIds_.data();
-    b.queueCount = &queueCount_;
-    b.nanRays = &nanRays_;
-    b.mean = mean_.data();
-    b.meanLo = meanLo_.data();
-    b.m2 = m2_.data();
-    b.m2Lo = m2Lo_.data();
-    b.aovSum = aovSum_.data();
+#define MCL_HOST_BIND(name, ...) b.name = name##_.data();
+#define MCL_HOST_BIND_COUNTER(name) b.name = &name##_;
+    MCL_WAVE_BUFFERS(MCL_HOST_BIND)
+    MCL_FILM_BUFFERS(MCL_HOST_BIND)
+    MCL_WAVE_COUNTERS(MCL_HOST_BIND_COUNTER)
+#undef MCL_HOST_BIND
+#undef MCL_HOST_BIND_COUNTER
   }
 
   unsigned threads_;
   HostBindings bindings_;
   FrameParams frame_{};
   bool aovs_ = false;
-  std::vector<float4> aov_, aovSum_;
   std::vector<uint> active_;
   std::vector<WideNode> nodes_;
   std::vector<Triangle> tris_;
@@ -225,16 +199,17 @@ class HostStageRunner final : public StageRunner {
   std::vector<std::uint16_t> noTexels_ = std::vector<std::uint16_t>(4);
   std::vector<float4> envMap_;
   std::vector<float> envCdf_;
-  std::vector<Ray> rays_, bounce_;
-  std::vector<Hit> hits_, bounceHits_;
-  std::vector<float4> radiance_, shadowContrib_, mean_, meanLo_, m2_, m2Lo_;
-  std::vector<ShadowWork> queue_;
-  std::vector<float4> throughput_;
-  std::vector<Ray> nextRays_;
-  std::vector<uint> pathIds_, nextPathIds_;
-  uint rayCount_ = 0, nextCount_ = 0;
-  uint queueCount_ = 0;  // incremented atomically by the shade stages
-  uint nanRays_ = 0;     // incremented atomically by the intersect stages
+  // The wave buffers, counters and film (render/wave_buffers.h); queueCount_ and nanRays_ are
+  // incremented atomically by the stages.
+#define MCL_HOST_VECTOR(name, T, per, need) std::vector<T> name##_;
+#define MCL_HOST_FILM_VECTOR(name, per, need) std::vector<float4> name##_;
+#define MCL_HOST_COUNTER(name) uint name##_ = 0;
+  MCL_WAVE_BUFFERS(MCL_HOST_VECTOR)
+  MCL_FILM_BUFFERS(MCL_HOST_FILM_VECTOR)
+  MCL_WAVE_COUNTERS(MCL_HOST_COUNTER)
+#undef MCL_HOST_VECTOR
+#undef MCL_HOST_FILM_VECTOR
+#undef MCL_HOST_COUNTER
   WaveCounts submitted_[2];  // counts of the waves submitted and not yet waited for, oldest first
   unsigned firstSubmitted_ = 0, submittedCount_ = 0;
 };

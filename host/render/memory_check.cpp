@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "render/wave_buffers.h"
 #include "util/errors.h"
 
 namespace montecl {
@@ -20,13 +21,12 @@ std::string gib(std::uint64_t bytes) {
 }  // namespace
 
 ImageMemory imageMemoryNeed(std::uint64_t pixels, bool aovs, std::uint64_t waveBytes) {
-  const std::uint64_t float4 = 16;
   ImageMemory m;
-  // Film mean + M2, AOV sums, the active pixel list; then the per-wave buffers.
-  m.device = pixels * (2 * float4 + (aovs ? 2 * float4 : 0) + 4) + waveBytes;
-  // The film read back (mean, M2, AOV sums), and the output: up to 7 float planes (R, G, B,
-  // samples, var.R/G/B) + 7 AOV planes, plus the encoder's copy of them.
-  m.host = pixels * (2 * float4 + (aovs ? 2 * float4 : 0) + 2 * 4 * (7 + (aovs ? 7 : 0)));
+  // The film's buffers (render/wave_buffers.h) and the active pixel list; then the per-wave buffers.
+  m.device = pixels * (filmBytesPerPixel(aovs) + sizeof(std::uint32_t)) + waveBytes;
+  // The film read back (its buffers and the 64-bit sample counts), and the output: up to 7 float
+  // planes (R, G, B, samples, var.R/G/B) + 7 AOV planes, plus the encoder's copy of them.
+  m.host = pixels * (filmBytesPerPixel(aovs) + sizeof(std::uint64_t) + 2 * 4 * (7 + (aovs ? 7 : 0)));
   return m;
 }
 

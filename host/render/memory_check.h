@@ -10,7 +10,7 @@
 namespace montecl {
 
 struct ImageMemory {
-  std::uint64_t device = 0;  // device buffers: film (2 float4), AOV sums (2 float4), active list, wave
+  std::uint64_t device = 0;  // device buffers: film (4 float4), AOV sums (2 float4), active list, wave
   std::uint64_t host = 0;    // host copies: the film read back, AOVs, the output image being written
 };
 

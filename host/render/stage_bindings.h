@@ -10,6 +10,7 @@
 
 #include "cl/cl_session.h"
 #include "kernels/stages/stages.h"
+#include "render/wave_buffers.h"
 
 namespace montecl {
 
@@ -53,20 +54,16 @@ struct StageBindings {
   Array<float4> envMap;  // environment texels (kernels/shared/environment.h)
   Array<float> envCdf;   // its marginal and conditional CDFs
   Array<uint> active;  // the active-pixel list
-  // Per wave item.
-  Array<Ray> rays, bounce;
-  Array<Hit> hits, bounceHits;
-  Array<float4> radiance, shadowContrib, aov;
-  Array<ShadowWork> queue;
-  Array<uint> rayCount, queueCount;
-  Array<uint> nanRays;  // rays the intersect stages met with a NaN/inf origin or direction
-  // Path tracing: per path (wave item) state, and the next bounce's compacted queue (swapped with
-  // rays / pathIds / rayCount between bounces: swapPathQueues).
-  Array<float4> throughput;
-  Array<Ray> nextRays;
-  Array<uint> pathIds, nextPathIds, nextCount;
-  // Per pixel: the film (kernels/stages/accumulate.h: float-float mean and M2, 64-bit count).
-  Array<float4> mean, meanLo, m2, m2Lo, aovSum;
+  // Per wave item, the counters and the film (render/wave_buffers.h, where each is described).
+#define MCL_BINDING_BUFFER(name, T, per, need) Array<T> name;
+#define MCL_BINDING_COUNTER(name) Array<uint> name;
+#define MCL_BINDING_FILM(name, per, need) Array<float4> name;
+  MCL_WAVE_BUFFERS(MCL_BINDING_BUFFER)
+  MCL_WAVE_COUNTERS(MCL_BINDING_COUNTER)
+  MCL_FILM_BUFFERS(MCL_BINDING_FILM)
+#undef MCL_BINDING_BUFFER
+#undef MCL_BINDING_COUNTER
+#undef MCL_BINDING_FILM
   // Per wave.
   ulong waveStart = 0;
   uint waveCount = 0;

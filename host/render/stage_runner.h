@@ -31,13 +31,21 @@ struct StageInputs {
   std::vector<Triangle> triangles;
   std::vector<float4> envMap{float4(0.0f)};  // environment texels and CDFs (never empty)
   std::vector<float> envCdf{0.0f};
-  std::uint64_t wave = 0;    // wave items (pixel samples) per wave
-  bool direct = false;       // direct lighting: bounce buffers are needed
-  bool path = false;         // path tracing: path state and the continuation queue are needed
-  bool aovs = false;         // record first-hit albedo, normal and depth (record_aov, accumulate_aov)
+  // The wave's size (items) and which buffers it needs (render/wave_buffers.h); its slots and
+  // pixels are taken from frame (setupShape).
+  WaveShape shape;
   // The film state the render starts from (a resumed checkpoint); null: a cleared film.
   const Film* initialFilm = nullptr;
 };
+
+// The shape a backend allocates for: in.shape with at least one item, frame's slots and pixels.
+inline WaveShape setupShape(const StageInputs& in) {
+  WaveShape s = in.shape;
+  s.items = s.items ? s.items : 1;
+  s.slots = in.frame.shadowSlots;
+  s.pixels = std::uint64_t(in.frame.width) * in.frame.height;
+  return s;
+}
 
 // What a path bounce counted on the device (StageRunner::readBounceCounts).
 struct BounceCounts {
@@ -81,12 +89,7 @@ class StageRunner {
   virtual void startBounce(std::uint32_t bounce) = 0;
   virtual void endBounce() = 0;
   virtual BounceCounts readBounceCounts() = 0;
-  // Waits for the wave; returns the number of occlusion queries it traced and of non-finite rays.
-  WaveCounts finishWave() {
-    submitWave();
-    return waitWave();
-  }
-  // finishWave in two halves, so that the next wave can be queued before the host waits for this
+  // The end of a wave in two halves, so that the next wave can be queued before the host waits for this
   // one (the device then does not idle while the host books a wave): submitWave queues the reads
   // of the wave's counts (at most two waves submitted and not yet waited for); waitWave waits for
   // the oldest submitted wave and returns its counts.
@@ -101,7 +104,7 @@ class StageRunner {
   // that nothing queued reads the arrays a buffer uses in place after they are gone. No throw.
   virtual void abandon() noexcept {}
   // From now on, adds each launch's execution time to *profile by stageProfileName() (null:
-  // stop), at the latest by the wave's finishWave(). OpenCL: needs a runner made with profiling.
+  // stop), at the latest by the wave's waitWave(). OpenCL: needs a runner made with profiling.
   void setProfile(StageProfile* profile) { profile_ = profile; }
 
  protected:

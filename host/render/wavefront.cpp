@@ -18,23 +18,14 @@
 #include "render/frame_params.h"
 #include "render/memory_check.h"
 #include "render/triangle_shading.h"
+#include "render/integrators.h"
 #include "render/path_waves.h"
+#include "render/sample_schedule.h"
 #include "scene/camera_basis.h"
 #include "util/errors.h"
 #include "util/heap_trim.h"
 
 namespace montecl {
-namespace {
-
-// Bytes of per-wave buffers for one pixel sample with `slots` occlusion queries.
-// Path tracing adds the path state: throughput, the next bounce's ray and the two id queues.
-std::uint64_t bytesPerItem(std::uint32_t slots, bool bounce, bool aovs, bool path = false) {
-  return sizeof(Ray) + sizeof(Hit) + sizeof(float4) + slots * (sizeof(float4) + sizeof(ShadowWork)) +
-         (bounce ? sizeof(Ray) + sizeof(Hit) : 0) + (aovs ? 2 * sizeof(float4) : 0) +
-         (path ? sizeof(float4) + sizeof(Ray) + 2 * sizeof(uint) : 0);
-}
-
-}  // namespace
 
 struct WavefrontRenderer::Impl {
   Impl(const DeviceInfo& device, const RenderOptions& opts)
@@ -70,89 +61,216 @@ std::vector<Material> deviceMaterials(const std::vector<MaterialDesc>& materials
   return out;
 }
 
+void checkFits(std::uint64_t bytes, std::uint64_t maxAlloc, const char* remedy) {
+  if (bytes > maxAlloc)
+    throw RuntimeError("a buffer of " + std::to_string(bytes) + " bytes does not fit the device's maximum "
+                       "allocation of " + std::to_string(maxAlloc) + " bytes; " + remedy);
+}
+
+// The wave cap: RenderOptions::maxWaveItems (by device), the memory budget, the device's largest
+// allocation and 32-bit item indices (the planner sizes each wave under it).
+std::uint64_t waveCap(const RenderOptions& o, const DeviceInfo& device, std::uint64_t maxAlloc,
+                      const WaveShape& shape, std::uint64_t total) {
+  std::uint64_t wave = o.waveSize;
+  if (wave == 0) {
+    const std::uint64_t cap = o.maxWaveItems ? o.maxWaveItems : defaultMaxWaveItems(device);
+    wave = std::max<std::uint64_t>(1, std::min(cap, o.memoryBudget / waveBytesPerItem(shape)));
+  }
+  wave = std::min<std::uint64_t>(wave, maxAlloc / (shape.slots * sizeof(ShadowWork)));
+  wave = std::min<std::uint64_t>(wave, 0xffffffffull / shape.slots);
+  return std::max<std::uint64_t>(1, std::min(wave, total));
+}
+
+// Everything the render uploads, built from the scene once: the frame constants (camera,
+// settings, offsets, lights, textures), the device tables, and the wave's shape.
+struct Prepared {
+  StageInputs inputs;
+  SceneTextures ownTextures;  // when the caller passed none and the scene names textures
+  std::size_t emitterCount = 0;
+};
+
+void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOptions& o, const DeviceInfo& device,
+             StageRunner& run) {
+  const IntegratorDesc& integrator = integratorDesc(scene.render.integrator);
+  // Scene files are checked at load; a camera set in code is checked here (never NaN camera rays).
+  const CameraProblem cameraProblem = cameraBasisProblem(scene.camera);
+  if (!cameraProblem.empty()) throwInputError(scene.path, cameraProblem.key, cameraProblem.problem);
+  const std::uint64_t pixels = std::uint64_t(scene.camera.width) * std::uint64_t(scene.camera.height);
+  const std::uint64_t maxAlloc = run.maxAllocBytes();
+  WaveShape shape = waveShapeFor(scene, 1, o.aovs);
+  shape.items = waveCap(o, device, maxAlloc, shape, pixels * std::uint64_t(scene.render.spp));
+  checkImageMemory(device, scene.path, scene.camera.width, scene.camera.height, o.aovs,
+                   shape.items * waveBytesPerItem(shape));
+
+  FrameParams frame = makeFrameParams(scene.camera, scene.render, std::uint32_t(shape.slots));
+  frame.offsetScale = offsetScaleFor(scene.triangles);
+  const EmitterTable emitters = integrator.lit ? buildEmitterTable(bvh, scene.materials) : EmitterTable{};
+  frame.emitterCount = uint(emitters.emitters.size());
+  frame.emitterPower = emitters.totalPower;
+  EnvironmentTable environment = buildEnvironment(scene, frame);  // read (and checked) for any integrator
+  if (!integrator.lit) frame.environment = float4(0.0f), frame.envWidth = frame.envHeight = 0;  // background only
+  for (std::uint64_t bytes : {pixels * sizeof(float4), std::uint64_t(bvhNodeBytes(bvh, run.bvhLayout())),
+                              bvh.triangles.size() * sizeof(Triangle), environment.map.size() * sizeof(float4),
+                              environment.cdf.size() * sizeof(float)})
+    checkFits(bytes, maxAlloc, "use a smaller image or scene");
+  StageInputs& in = p.inputs;
+  in.shading = buildTriangleShading(scene.triangles, bvh);
+  checkFits(in.shading.size() * sizeof(TriangleShading), maxAlloc, "use a smaller scene");
+
+  // Textures: the caller's (loaded under its budget, warnings shown), else loaded here.
+  const SceneTextures* textures = o.textures;
+  if (!textures && sceneHasTextures(scene)) {
+    std::vector<std::string> ignored;
+    p.ownTextures = loadSceneTextures(scene, std::min<std::uint64_t>(kDefaultTextureBudget, maxAlloc), ignored);
+    textures = &p.ownTextures;
+  }
+  if (textures && textures->bytes() > maxAlloc)
+    throw RuntimeError("textures of " + std::to_string(textures->bytes()) + " bytes do not fit the device's maximum "
+                       "allocation of " + std::to_string(maxAlloc) + " bytes; lower --texture-budget");
+  frame.textureCount = textures ? std::uint32_t(textures->textures.size()) : 0u;
+  in.frame = frame;
+  in.bvh = &bvh;
+  in.materials = deviceMaterials(scene.materials);
+  if (textures) {
+    setTextureIndices(in.materials, *textures);
+    in.textures = textures;
+    in.triangles = alphaFlaggedTriangles(bvh.triangles, *textures);
+  }
+  in.emitters = emitters.emitters;
+  p.emitterCount = emitters.emitters.size();
+  in.envMap = std::move(environment.map);
+  in.envCdf = std::move(environment.cdf);
+  in.shape = shape;
+  in.initialFilm = o.initialFilm;
+}
+
+// One render's wave loop: runs sample ranges of the active pixels in waves and books them.
+class WaveLoop {
+ public:
+  WaveLoop(const RenderOptions& o, StageRunner& run, const Scene& scene, const StageInputs& in, RenderStats& stats,
+           const ProgressFn& progress)
+      : o_(o), run_(run), integrator_(integratorDesc(scene.render.integrator)), settings_(scene.render),
+        frame_(in.frame), wave_(in.shape.items), stats_(stats), progress_(progress),
+        // Wave sizes come from the planner unless a fixed --wave-size is asked for without a time limit.
+        planned_(o.waveSize == 0 || o.timeLimit > 0.0),
+        // Ahead: each wave is queued before the host waits for the one before it (StageRunner::
+        // submitWave / waitWave), so the device does not idle while the host books a wave. Not with a
+        // time limit (each wave is sized from the time left when it starts), nor with afterWave (it
+        // reads the film of the waves booked so far), nor when the host reads counts within a wave.
+        ahead_(!integrator_.path && !(o.timeLimit > 0.0) && !o.afterWave),
+        start_(std::chrono::steady_clock::now()) {}
+
+  bool planned() const { return planned_; }
+  double elapsed() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  bool mustStop() const {
+    return (o_.interrupt && *o_.interrupt) || (o_.timeLimit > 0.0 && elapsed() >= o_.timeLimit);
+  }
+  // The active list has activeCount pixels; expected: the samples the whole render will have.
+  void setActive(std::uint64_t activeCount, std::uint64_t expected) {
+    activeCount_ = activeCount;
+    expected_ = expected;
+  }
+
+  // Runs the active list's samples [sampleBase, sampleBase + spp) in waves; false if stopped early.
+  bool runSamples(std::uint64_t sampleBase, std::uint64_t spp) {
+    const std::uint64_t first = sampleBase * activeCount_, count = spp * activeCount_;
+    waiting_ = 0;
+    lastBooked_ = elapsed();
+    for (std::uint64_t done = 0; done < count;) {
+      std::uint64_t size = std::min(wave_, count - done);
+      if (planned_) {
+        const double timeLeft = o_.timeLimit > 0.0 ? o_.timeLimit - elapsed() : INFINITY;
+        size = planWave(o_.planner, wave_, count - done, rate_, timeLeft);
+        if (size == 0) return false;  // the time limit is (about) reached (never ahead: none queued)
+      }
+      const std::uint32_t n = std::uint32_t(size);
+      queued_[waiting_++] = Queued{n, elapsed()};
+      run_.beginWave(first + done, n);
+      run_.launch(Stage::generate, n);
+      PathWaveCounts pathCounts;
+      integrator_.launchWave(run_, n, frame_.shadowSlots, o_.aovs, pathCounts);
+      const std::uint64_t touched = std::min<std::uint64_t>(n, activeCount_);  // pixels in the wave
+      run_.launch(Stage::accumulate, touched);
+      if (o_.aovs) run_.launch(Stage::accumulate_aov, touched);
+      run_.submitWave();
+      done += n;
+      if (!ahead_ || waiting_ == 2) book(pathCounts);  // (ahead: never path, so no path counts)
+      if (done < count && mustStop()) break;
+    }
+    while (waiting_ > 0) book(PathWaveCounts{});
+    return !mustStop();
+  }
+
+ private:
+  // Waits for the oldest queued wave and books it: statistics, rate, progress, afterWave.
+  void book(const PathWaveCounts& pathCounts) {
+    const Queued w = queued_[0];
+    queued_[0] = queued_[1];
+    --waiting_;
+    const WaveCounts counts = run_.waitWave();
+    const std::uint32_t n = w.n;
+    RenderStats& s = stats_;
+    s.waves++;
+    s.samples += n;
+    s.cameraRays += n + std::uint64_t(n) * integrator_.extraRays(settings_) + pathCounts.bounceRays;
+    s.shadowRays += integrator_.path ? pathCounts.shadowRays : counts.shadowRays;
+    if (s.pathSurvivors.size() < pathCounts.survivors.size()) s.pathSurvivors.resize(pathCounts.survivors.size(), 0);
+    for (std::size_t b = 0; b < pathCounts.survivors.size(); ++b) s.pathSurvivors[b] += pathCounts.survivors[b];
+    s.nanRays += counts.nanRays;
+    s.seconds = elapsed();
+    // The wave ran from its start, or (queued ahead) from the end of the one before it.
+    const double from = std::max(w.start, lastBooked_);
+    if (s.seconds > from) rate_ = double(n) / (s.seconds - from);
+    lastBooked_ = s.seconds;
+    if (progress_) progress_(s.samples, std::max(expected_, s.samples), s);
+    if (o_.afterWave) o_.afterWave([&] {
+      Film f;
+      f.width = int(frame_.width);
+      f.height = int(frame_.height);
+      run_.readFilm(f);
+      return f;
+    });
+  }
+
+  struct Queued {
+    std::uint32_t n;
+    double start;
+  };
+  const RenderOptions& o_;
+  StageRunner& run_;
+  const IntegratorDesc& integrator_;
+  const RenderSettings& settings_;
+  const FrameParams frame_;
+  const std::uint64_t wave_;
+  RenderStats& stats_;
+  const ProgressFn& progress_;
+  const bool planned_, ahead_;
+  const std::chrono::steady_clock::time_point start_;
+  double rate_ = 0.0;  // pixel samples per second of the last wave (0: none yet)
+  double lastBooked_ = 0.0;
+  std::uint64_t activeCount_ = 0, expected_ = 0;
+  Queued queued_[2] = {};
+  int waiting_ = 0;
+};
+
 }  // namespace
 
 Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& stats,
                                const ProgressFn& progress) {
   Impl& m = *impl_;
   StageRunner& run = *m.runner;
-  const bool direct = scene.render.integrator == Integrator::Direct;
-  const bool path = scene.render.integrator == Integrator::Path;
-  const std::uint32_t slots = direct ? std::uint32_t(scene.render.lightSamples) + 1
-                              : path ? std::uint32_t(scene.render.lightSamples)
-                                     : 1;
-  // Scene files are checked at load; a camera set in code is checked here (never NaN camera rays).
-  const CameraProblem cameraProblem = cameraBasisProblem(scene.camera);
-  if (!cameraProblem.empty()) throwInputError(scene.path, cameraProblem.key, cameraProblem.problem);
-  FrameParams frame = makeFrameParams(scene.camera, scene.render, slots);
-  frame.offsetScale = offsetScaleFor(scene.triangles);
-  const EmitterTable emitters = direct || path ? buildEmitterTable(bvh, scene.materials) : EmitterTable{};
-  frame.emitterCount = uint(emitters.emitters.size());
-  frame.emitterPower = emitters.totalPower;
-  EnvironmentTable environment = buildEnvironment(scene, frame);  // read (and checked) for any integrator
-  if (!direct && !path) frame.environment = float4(0.0f), frame.envWidth = frame.envHeight = 0;  // AO: background only
+  Prepared prepared;
+  prepare(prepared, scene, bvh, m.options, m.device, run);
+  const StageInputs& inputs = prepared.inputs;
+  const FrameParams& frame = inputs.frame;
+  const std::uint64_t wave = inputs.shape.items, itemBytes = waveBytesPerItem(inputs.shape);
   const std::uint64_t pixels = std::uint64_t(frame.width) * frame.height;
   const std::uint64_t total = pixels * std::uint64_t(scene.render.spp);
-
-  // Wave cap: RenderOptions::maxWaveItems (by device), the memory budget, the device's largest
-  // allocation, and 32-bit item indices. The planner sizes each wave under it.
-  const std::uint64_t maxAlloc = run.maxAllocBytes();
-  std::uint64_t wave = m.options.waveSize;
-  const std::uint64_t itemBytes = bytesPerItem(slots, direct, m.options.aovs, path);
-  if (wave == 0) {
-    const std::uint64_t cap = m.options.maxWaveItems ? m.options.maxWaveItems : defaultMaxWaveItems(m.device);
-    wave = std::max<std::uint64_t>(1, std::min(cap, m.options.memoryBudget / itemBytes));
-  }
-  wave = std::min<std::uint64_t>(wave, maxAlloc / (slots * sizeof(ShadowWork)));
-  wave = std::min<std::uint64_t>(wave, 0xffffffffull / slots);
-  wave = std::max<std::uint64_t>(1, std::min(wave, total));
-  checkImageMemory(m.device, scene.path, scene.camera.width, scene.camera.height, m.options.aovs,
-                   wave * itemBytes);
-  for (std::uint64_t bytes : {pixels * sizeof(float4), std::uint64_t(bvhNodeBytes(bvh, run.bvhLayout())),
-                              bvh.triangles.size() * sizeof(Triangle), environment.map.size() * sizeof(float4),
-                              environment.cdf.size() * sizeof(float)})
-    if (bytes > maxAlloc)
-      throw RuntimeError("a buffer of " + std::to_string(bytes) + " bytes does not fit the device's maximum "
-                         "allocation of " + std::to_string(maxAlloc) + " bytes; use a smaller image or scene");
-  std::vector<TriangleShading> shading = buildTriangleShading(scene.triangles, bvh);
-  if (shading.size() * sizeof(TriangleShading) > maxAlloc)
-    throw RuntimeError("a buffer of " + std::to_string(shading.size() * sizeof(TriangleShading)) +
-                       " bytes does not fit the device's maximum allocation of " + std::to_string(maxAlloc) +
-                       " bytes; use a smaller scene");
   stats = RenderStats{};
   stats.waveSize = wave;
   run.setProfile(m.options.profile ? &stats.profile : nullptr);
-
-  // Textures: the caller's (loaded under its budget, warnings shown), else loaded here.
-  SceneTextures ownTextures;
-  const SceneTextures* textures = m.options.textures;
-  if (!textures && sceneHasTextures(scene)) {
-    std::vector<std::string> ignored;
-    ownTextures = loadSceneTextures(scene, std::min<std::uint64_t>(kDefaultTextureBudget, maxAlloc), ignored);
-    textures = &ownTextures;
-  }
-  if (textures && textures->bytes() > maxAlloc)
-    throw RuntimeError("textures of " + std::to_string(textures->bytes()) + " bytes do not fit the device's maximum "
-                       "allocation of " + std::to_string(maxAlloc) + " bytes; lower --texture-budget");
-  frame.textureCount = textures ? std::uint32_t(textures->textures.size()) : 0u;
-  StageInputs inputs;
-  inputs.frame = frame;
-  inputs.bvh = &bvh;
-  inputs.shading = std::move(shading);
-  inputs.materials = deviceMaterials(scene.materials);
-  if (textures) {
-    setTextureIndices(inputs.materials, *textures);
-    inputs.textures = textures;
-    inputs.triangles = alphaFlaggedTriangles(bvh.triangles, *textures);
-  }
-  inputs.emitters = emitters.emitters;
-  inputs.envMap = std::move(environment.map);
-  inputs.envCdf = std::move(environment.cdf);
-  inputs.wave = wave;
-  inputs.direct = direct;
-  inputs.path = path;
-  inputs.aovs = m.options.aovs;
-  inputs.initialFilm = m.options.initialFilm;
   if (m.options.trianglesRead) m.options.trianglesRead(), trimHeap();  // scene.triangles: not read below
   run.setup(inputs);
   // Buffers may use inputs' arrays in place: if anything below throws, the queue is settled and
@@ -165,173 +283,46 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
     }
   } settle{run};
 
-  // Wave sizes come from the planner unless a fixed --wave-size is asked for without a time limit.
-  const bool planned = m.options.waveSize == 0 || m.options.timeLimit > 0.0;
-  double rate = 0.0;  // pixel samples per second of the last wave (0: none yet)
+  WaveLoop loop(m.options, run, scene, inputs, stats, progress);
   if (m.options.verbose)
     std::cerr << "montecl: waves of up to " << wave << " pixel samples (" << (wave * itemBytes >> 20)
-              << " MiB), " << (planned ? "sized from the measured rate" : std::to_string((total + wave - 1) / wave) + " waves")
-              << (direct || path ? ", " + std::to_string(emitters.emitters.size()) + " emitter triangles" : std::string())
+              << " MiB), " << (loop.planned() ? "sized from the measured rate" : std::to_string((total + wave - 1) / wave) + " waves")
+              << (integratorDesc(scene.render.integrator).lit
+                      ? ", " + std::to_string(prepared.emitterCount) + " emitter triangles"
+                      : std::string())
               << "\n";
-
-  const auto start = std::chrono::steady_clock::now();
-  const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-  const auto mustStop = [&] {
-    return (m.options.interrupt && *m.options.interrupt) ||
-           (m.options.timeLimit > 0.0 && elapsed() >= m.options.timeLimit);
-  };
-  // Runs the active list's samples [sampleBase, sampleBase + spp) in waves; false if stopped early.
-  std::uint64_t activeCount = pixels, expected = total;
-  // Ahead: each wave is queued before the host waits for the one before it (StageRunner::
-  // submitWave / waitWave), so the device does not idle while the host books a wave. Not with a
-  // time limit (each wave is sized from the time left when it starts), nor with afterWave (it
-  // reads the film of the waves booked so far), nor for path tracing (its bounces wait anyway).
-  const bool ahead = !path && !(m.options.timeLimit > 0.0) && !m.options.afterWave;
-  const auto runSamples = [&](std::uint64_t sampleBase, std::uint64_t spp) {
-    const std::uint64_t first = sampleBase * activeCount, count = spp * activeCount;
-    struct Queued {
-      std::uint32_t n;
-      double start;
-    } queued[2];
-    int waiting = 0;
-    double lastBooked = elapsed();
-    // Waits for the oldest queued wave and books it: statistics, rate, progress, afterWave.
-    const auto book = [&](const PathWaveCounts& pathCounts) {
-      const Queued w = queued[0];
-      queued[0] = queued[1];
-      --waiting;
-      const WaveCounts counts = run.waitWave();
-      const std::uint32_t n = w.n;
-      stats.waves++;
-      stats.samples += n;
-      stats.cameraRays += n;
-      stats.shadowRays += path ? pathCounts.shadowRays : counts.shadowRays;
-      stats.cameraRays += pathCounts.bounceRays;
-      auto& survivors = stats.pathSurvivors;
-      if (survivors.size() < pathCounts.survivors.size()) survivors.resize(pathCounts.survivors.size(), 0);
-      for (std::size_t b = 0; b < pathCounts.survivors.size(); ++b) survivors[b] += pathCounts.survivors[b];
-      stats.nanRays += counts.nanRays;
-      if (direct && scene.render.directSampling != DirectSampling::Light) stats.cameraRays += n;  // BRDF rays
-      stats.seconds = elapsed();
-      // The wave ran from its start, or (queued ahead) from the end of the one before it.
-      const double from = std::max(w.start, lastBooked);
-      if (stats.seconds > from) rate = double(n) / (stats.seconds - from);
-      lastBooked = stats.seconds;
-      if (progress) progress(stats.samples, std::max(expected, stats.samples), stats);
-      if (m.options.afterWave) m.options.afterWave([&] {
-        Film f;
-        f.width = int(frame.width);
-        f.height = int(frame.height);
-        run.readFilm(f);
-        return f;
-      });
-    };
-    for (std::uint64_t done = 0; done < count;) {
-      std::uint64_t size = std::min(wave, count - done);
-      if (planned) {
-        const double timeLeft = m.options.timeLimit > 0.0 ? m.options.timeLimit - elapsed() : INFINITY;
-        size = planWave(m.options.planner, wave, count - done, rate, timeLeft);
-        if (size == 0) return false;  // the time limit is (about) reached (never ahead: none queued)
-      }
-      const std::uint32_t n = std::uint32_t(size);
-      queued[waiting++] = Queued{n, elapsed()};
-      run.beginWave(first + done, n);
-      run.launch(Stage::generate, n);
-      PathWaveCounts pathCounts;
-      if (path) {
-        runPathWave(run, n, slots, m.options.aovs, pathCounts);  // (records the AOVs at bounce 0)
-      } else {
-        run.launch(Stage::intersect, n);
-        if (direct) {
-          run.launch(Stage::shade_direct, n);
-          run.launch(Stage::intersect, n, RayInput::Bounce);
-          run.launch(Stage::shade_direct_hit, n);
-        } else {
-          run.launch(Stage::shade_ao, n);
-        }
-        run.launch(Stage::intersect_shadow, std::uint64_t(n) * slots);
-        if (m.options.aovs) run.launch(Stage::record_aov, n);
-      }
-      const std::uint64_t touched = std::min<std::uint64_t>(n, activeCount);  // pixels in the wave
-      run.launch(Stage::accumulate, touched);
-      if (m.options.aovs) run.launch(Stage::accumulate_aov, touched);
-      run.submitWave();
-      done += n;
-      if (!ahead || waiting == 2) book(pathCounts);  // (ahead: never path, so no path counts)
-      if (done < count && mustStop()) break;
-    }
-    while (waiting > 0) book(PathWaveCounts{});
-    return !mustStop();
-  };
-
   Film film;
   film.width = int(frame.width);
   film.height = int(frame.height);
   if (m.options.initialFilm) film = *m.options.initialFilm;
-  std::vector<std::uint32_t> mine = m.options.pixels;
-  if (mine.empty())
-    for (std::uint64_t p = 0; p < pixels; ++p) mine.push_back(std::uint32_t(p));
-  std::vector<std::uint64_t> counts(pixels, 0);
-  if (m.options.initialFilm) counts = m.options.initialFilm->count;
-  // Each pixel's schedule depends only on its own count and state: without adaptive sampling it
-  // needs samples up to spp; with it, rounds end at minSpp, 2 minSpp, 4 minSpp ... maxSpp, and at
-  // each round's end the pixel goes on while its relative error exceeds the target. nextTarget:
-  // the count the pixel renders to next (0: done). A fresh render is one round (or the adaptive
-  // rounds); a resumed film (pixels at different counts) first brings the lowest counts up.
+  // Rounds of samples, each for the pixels at the lowest count (sample_schedule.h).
+  SampleSchedule schedule(m.options, pixels, scene.render.spp);
   const bool adaptive = m.options.targetError > 0.0;
-  const std::uint64_t minSpp = std::uint64_t(m.options.minSpp), maxSpp = std::uint64_t(m.options.maxSpp);
-  if (adaptive && minSpp > maxSpp) throw std::invalid_argument("minSpp > maxSpp");
-  const auto nextTarget = [&](std::uint32_t p) -> std::uint64_t {
-    const std::uint64_t c = counts[p];
-    if (!adaptive) return c < std::uint64_t(scene.render.spp) ? std::uint64_t(scene.render.spp) : 0;
-    if (c < minSpp) return minSpp;
-    std::uint64_t bound = minSpp;
-    while (bound < c) bound = std::min(2 * bound, maxSpp);
-    if (bound > c) return bound;  // within a round
-    if (c >= maxSpp || relativeStandardError(film, p, m.options.errorFloor) <= m.options.targetError) return 0;
-    return std::min(2 * c, maxSpp);
-  };
-  const std::uint64_t base = m.options.firstSample;
   bool going = true, filmCurrent = true;  // film: the initial state (or unused: all counts 0)
-  std::vector<std::uint64_t> target(pixels, 0);
   std::vector<std::uint32_t> active;
+  std::uint64_t from = 0, to = 0, remaining = 0;
   while (going) {
     if (adaptive && !filmCurrent) run.readFilm(film);
     filmCurrent = false;
-    std::uint64_t low = UINT64_MAX, remaining = 0;
-    for (std::uint32_t p : mine) {
-      target[p] = nextTarget(p);
-      if (target[p]) low = std::min(low, counts[p]), remaining += target[p] - counts[p];
-    }
-    if (low == UINT64_MAX) break;
-    std::uint64_t upTo = UINT64_MAX;  // the lowest group's target, or the next count above it
-    active.clear();
-    for (std::uint32_t p : mine) {
-      if (!target[p]) continue;
-      if (counts[p] == low) active.push_back(p), upTo = std::min(upTo, target[p]);
-      else upTo = std::min(upTo, counts[p]);
-    }
-    activeCount = active.size();
-    expected = stats.samples + remaining;
+    if (!schedule.next(film, active, from, to, remaining)) break;
+    loop.setActive(active.size(), stats.samples + remaining);
     run.setActivePixels(active);
-    going = runSamples(base + low, upTo - low);
-    for (std::uint32_t p : active) counts[p] = upTo;
+    going = loop.runSamples(m.options.firstSample + from, to - from);
+    schedule.done(active, to);
     stats.rounds++;
   }
-  std::vector<std::uint64_t>().swap(target);
   std::vector<std::uint32_t>().swap(active);
+  schedule.releaseTargets();
   run.finish(film);  // the film, and every buffer released (the film's part by part)
   settle.done = true;
-  if (!going) {  // stopped: was anything left?
-    for (std::uint32_t p : mine) counts[p] = film.count[p];
-    stats.stoppedEarly = std::any_of(mine.begin(), mine.end(), [&](std::uint32_t p) { return nextTarget(p) != 0; });
-  }
+  if (!going) stats.stoppedEarly = schedule.unfinished(film);
   if (m.options.targetError > 0.0)
     for (std::uint64_t p = 0; p < pixels; ++p)
       stats.converged += relativeStandardError(film, p, m.options.errorFloor) <= m.options.targetError;
-  stats.seconds = elapsed();
+  stats.seconds = loop.elapsed();
   run.setProfile(nullptr);
-  if (m.options.verbose && path) std::cerr << "montecl: " << survivorsSummary(stats.pathSurvivors) << "\n";
+  if (m.options.verbose && !stats.pathSurvivors.empty())
+    std::cerr << "montecl: " << survivorsSummary(stats.pathSurvivors) << "\n";
   return film;
 }
 

@@ -1,0 +1,69 @@
+// integrators.cpp: the integrator table (integrators.h) and each integrator's stage schedule.
+#include "render/integrators.h"
+
+#include <stdexcept>
+
+#include "kernels/shared/rng.h"
+
+namespace montecl {
+namespace {
+
+// Path tracing's random-number layout gives each bounce 1 + the most light samples groups.
+static_assert(MCL_DIM_PATH_STRIDE == 1u + kMaxLightSamples, "rng.h's path stride must cover every light sample");
+
+// generate -> intersect -> shade_ao -> intersect_shadow (one query per item).
+void aoWave(StageRunner& run, std::uint32_t n, std::uint32_t slots, bool aovs, PathWaveCounts&) {
+  run.launch(Stage::intersect, n);
+  run.launch(Stage::shade_ao, n);
+  run.launch(Stage::intersect_shadow, std::uint64_t(n) * slots);
+  if (aovs) run.launch(Stage::record_aov, n);
+}
+
+// shade_direct queues the light samples and a BRDF ray, whose hit shade_direct_hit weighs.
+void directWave(StageRunner& run, std::uint32_t n, std::uint32_t slots, bool aovs, PathWaveCounts&) {
+  run.launch(Stage::intersect, n);
+  run.launch(Stage::shade_direct, n);
+  run.launch(Stage::intersect, n, RayInput::Bounce);
+  run.launch(Stage::shade_direct_hit, n);
+  run.launch(Stage::intersect_shadow, std::uint64_t(n) * slots);
+  if (aovs) run.launch(Stage::record_aov, n);
+}
+
+// The bounce loop (render/path_waves.cpp), on the live paths only.
+void pathWave(StageRunner& run, std::uint32_t n, std::uint32_t slots, bool aovs, PathWaveCounts& counts) {
+  runPathWave(run, n, slots, aovs, counts);
+}
+
+std::uint32_t one(const RenderSettings&) { return 1; }
+std::uint32_t none(const RenderSettings&) { return 0; }
+// A slot per light sample and one for the BRDF sample's emitter hit.
+std::uint32_t directSlots(const RenderSettings& r) { return std::uint32_t(r.lightSamples) + 1; }
+std::uint32_t pathSlots(const RenderSettings& r) { return std::uint32_t(r.lightSamples); }
+std::uint32_t brdfRay(const RenderSettings& r) { return r.directSampling != DirectSampling::Light ? 1 : 0; }
+
+//                                     id                  bounce path   lit    slots        extra rays  schedule
+const IntegratorDesc kIntegrators[] = {{Integrator::Ao,     false, false, false, one,         none,       aoWave},
+                                       {Integrator::Direct, true,  false, true,  directSlots, brdfRay,    directWave},
+                                       {Integrator::Path,   false, true,  true,  pathSlots,   none,       pathWave}};
+
+}  // namespace
+
+const IntegratorDesc& integratorDesc(Integrator integrator) {
+  for (const IntegratorDesc& d : kIntegrators)
+    if (d.id == integrator) return d;
+  throw std::logic_error("integratorDesc: an integrator without a row");
+}
+
+WaveShape waveShapeFor(const Scene& scene, std::uint64_t items, bool aovs) {
+  const IntegratorDesc& d = integratorDesc(scene.render.integrator);
+  WaveShape s;
+  s.items = items;
+  s.slots = d.shadowSlots(scene.render);
+  s.pixels = std::uint64_t(scene.camera.width) * std::uint64_t(scene.camera.height);
+  s.bounce = d.bounce;
+  s.path = d.path;
+  s.aovs = aovs;
+  return s;
+}
+
+}  // namespace montecl

@@ -1,0 +1,61 @@
+// sample_schedule.cpp: the per-pixel sample schedule (sample_schedule.h).
+#include "render/sample_schedule.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "render/wavefront.h"
+
+namespace montecl {
+
+SampleSchedule::SampleSchedule(const RenderOptions& options, std::uint64_t pixels, int spp)
+    : o_(options), spp_(std::uint64_t(spp)), mine_(options.pixels), counts_(pixels, 0), target_(pixels, 0) {
+  if (mine_.empty())
+    for (std::uint64_t p = 0; p < pixels; ++p) mine_.push_back(std::uint32_t(p));
+  if (options.initialFilm) counts_ = options.initialFilm->count;
+  if (options.targetError > 0.0 && options.minSpp > options.maxSpp) throw std::invalid_argument("minSpp > maxSpp");
+}
+
+std::uint64_t SampleSchedule::nextTarget(const Film& film, std::uint32_t p) const {
+  const std::uint64_t c = counts_[p];
+  if (!(o_.targetError > 0.0)) return c < spp_ ? spp_ : 0;
+  const std::uint64_t minSpp = std::uint64_t(o_.minSpp), maxSpp = std::uint64_t(o_.maxSpp);
+  if (c < minSpp) return minSpp;
+  std::uint64_t bound = minSpp;
+  while (bound < c) bound = std::min(2 * bound, maxSpp);
+  if (bound > c) return bound;  // within a round
+  if (c >= maxSpp || relativeStandardError(film, p, o_.errorFloor) <= o_.targetError) return 0;
+  return std::min(2 * c, maxSpp);
+}
+
+bool SampleSchedule::next(const Film& film, std::vector<std::uint32_t>& active, std::uint64_t& from,
+                          std::uint64_t& to, std::uint64_t& remaining) {
+  std::uint64_t low = UINT64_MAX;
+  remaining = 0;
+  for (std::uint32_t p : mine_) {
+    target_[p] = nextTarget(film, p);
+    if (target_[p]) low = std::min(low, counts_[p]), remaining += target_[p] - counts_[p];
+  }
+  if (low == UINT64_MAX) return false;
+  std::uint64_t upTo = UINT64_MAX;  // the lowest group's target, or the next count above it
+  active.clear();
+  for (std::uint32_t p : mine_) {
+    if (!target_[p]) continue;
+    if (counts_[p] == low) active.push_back(p), upTo = std::min(upTo, target_[p]);
+    else upTo = std::min(upTo, counts_[p]);
+  }
+  from = low;
+  to = upTo;
+  return true;
+}
+
+void SampleSchedule::done(const std::vector<std::uint32_t>& active, std::uint64_t to) {
+  for (std::uint32_t p : active) counts_[p] = to;
+}
+
+bool SampleSchedule::unfinished(const Film& film) {
+  for (std::uint32_t p : mine_) counts_[p] = film.count[p];
+  return std::any_of(mine_.begin(), mine_.end(), [&](std::uint32_t p) { return nextTarget(film, p) != 0; });
+}
+
+}  // namespace montecl
