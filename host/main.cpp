@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   addBenchCommand(app, exitCode);
   addGenerateCommand(app, exitCode);
   addConformanceCommand(app, exitCode);
+  addSettingsCommand(app, exitCode);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -360,8 +360,6 @@ def parse_args(argv):
         p.error("a scene file is needed")
     if a.repeat < 1 or a.ref_factor < 1 or a.ref_seeds < 2:
         p.error("--repeat and --ref-factor must be >= 1, --ref-seeds >= 2")
-    if a.max_depth is not None and (a.max_depth == 0 or a.max_depth < -1) or a.rr_depth is not None and a.rr_depth < 1:
-        p.error("--max-depth must be -1 or >= 1, --rr-depth >= 1")
     return a
 
 
@@ -402,6 +400,13 @@ def main(argv):
     else:
         mcl += ["--max-depth", str(a.max_depth), "--rr-depth", str(a.rr_depth)]
     mcl += a.montecl_arg
+    # The settings' rules are montecl's (its settings table): a one-pixel render checks them first.
+    probe = list(mcl)
+    for opt, value in (("--spp", "1"), ("--width", "1"), ("--height", "1"), ("-o", os.path.join(work, "probe.pfm"))):
+        probe[probe.index(opt) + 1] = value
+    probe = subprocess.run(probe, capture_output=True, text=True)
+    if probe.returncode == 2:
+        raise BadInput(probe.stderr.strip().removeprefix("montecl: error: "))
     # Mitsuba reads the meshes as PLY files written here once (untimed), with its own C++ loader, as
     # montecl parses the OBJ in its own process.
     shapes = []

@@ -11,6 +11,7 @@
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -40,14 +41,10 @@ namespace {
 
 struct RenderArgs {
   std::string scene, output, device;
-  std::optional<Integrator> integrator;
-  std::optional<AoSampling> aoSampling;
-  std::optional<DirectSampling> directSampling;
+  std::map<std::string, std::string> settings;  // render setting key -> its option's text (scene/render_settings.h)
   std::string bvhLayout = "auto";
   float splitBudget = BvhBuildOptions{}.splitBudget;  // --split-budget
-  std::optional<int> spp, width, height, lightSamples, maxDepth, rrDepth;
-  std::optional<std::uint32_t> seed;
-  std::optional<float> aoDistance;
+  std::optional<int> width, height;
   std::optional<double> textureBudgetMiB;  // --texture-budget; unset: automatic
   std::uint64_t waveSize = 0;
   std::uint32_t firstSample = 0;
@@ -60,18 +57,12 @@ struct RenderArgs {
 };
 
 void applyOverrides(const RenderArgs& a, Scene& scene) {
-  RenderSettings& r = scene.render;
-  if (a.spp) r.spp = *a.spp;
-  if (a.seed) r.seed = *a.seed;
+  for (const RenderSetting& s : renderSettings()) {
+    const auto it = a.settings.find(s.key);
+    if (it != a.settings.end()) setFromText(s, it->second, scene.render);
+  }
   if (a.width) scene.camera.width = *a.width;
   if (a.height) scene.camera.height = *a.height;
-  if (a.integrator) r.integrator = *a.integrator;
-  if (a.aoSampling) r.aoSampling = *a.aoSampling;
-  if (a.aoDistance) r.aoDistance = *a.aoDistance;
-  if (a.directSampling) r.directSampling = *a.directSampling;
-  if (a.lightSamples) r.lightSamples = *a.lightSamples;
-  if (a.maxDepth) r.maxDepth = *a.maxDepth;
-  if (a.rrDepth) r.rrDepth = *a.rrDepth;
 }
 
 // Set by SIGINT or SIGTERM while rendering (to the signal number): the wave loop stops after the
@@ -278,24 +269,20 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                   "samples, var.R, var.G, var.B); default: <scene name>.png in the current folder (<folder "
                   "name>.png for a scene.json), never replacing a file: <name>-1.png, ... unless --overwrite");
   cmd->add_flag("--overwrite", args->overwrite, "Let the default output name replace an existing file");
-  cmd->add_option("--spp", args->spp, "Samples per pixel")->check(positiveInteger());
-  cmd->add_option("--seed", args->seed, "Random seed");
+  // Every render setting with an option (scene/render_settings.h): the scene file's rule and help.
+  for (const RenderSetting& setting : renderSettings()) {
+    if (setting.option.empty()) continue;
+    const std::string key = setting.key;
+    cmd->add_option_function<std::string>(
+           setting.option, [args, key](const std::string& v) { args->settings[key] = v; },
+           setting.help + " (scene file: render." + key + ", default " + settingValueText(setting.get(RenderSettings{})) + ")")
+        ->check(CLI::Validator([&setting](std::string& text) { return settingTextProblem(setting, text); },
+                               setting.rule.text))
+        ->type_name(setting.rule.kind == SettingRule::Choice ? "NAME"
+                    : setting.rule.kind == SettingRule::Integer ? "INT" : "FLOAT");
+  }
   cmd->add_option("--width", args->width, "Image width in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
   cmd->add_option("--height", args->height, "Image height in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
-  addChoiceOption(cmd, "--integrator", args->integrator, integratorNames(),
-                  "ao (ambient occlusion), direct (area lights) or path (path tracing)");
-  addChoiceOption(cmd, "--direct-sampling", args->directSampling, directSamplingNames(), "Direct lighting");
-  cmd->add_option("--light-samples", args->lightSamples, "Light samples per camera sample (direct; up to 1024)")
-      ->check(positiveInteger(kMaxLightSamples));
-  cmd->add_option("--max-depth", args->maxDepth,
-                  "Path: longest path in segments, Mitsuba's convention: -1 unlimited (default), 1 emitters "
-                  "seen directly, 2 direct lighting, 3 one indirect bounce, ...")
-      ->check(maxDepthValue());
-  cmd->add_option("--rr-depth", args->rrDepth, "Path: Russian roulette from this depth on (default 5)")
-      ->check(positiveInteger());
-  addChoiceOption(cmd, "--ao-sampling", args->aoSampling, aoSamplingNames(), "AO directions");
-  cmd->add_option("--ao-distance", args->aoDistance, "Occluders farther than this are ignored")
-      ->check(positiveNumber(std::numeric_limits<float>::max()));
   cmd->add_option("--device", args->device, "OpenCL device: P:D, part of the device or platform name, or host (CPU, no OpenCL)");
   cmd->add_option("--wave-size", args->waveSize, "Pixel samples per wave (default: sized from the measured rate, at most 8192 per CPU compute unit, 2^20 on GPUs)")
       ->check(integerIn(1, std::numeric_limits<long long>::max(), "a positive integer"));

@@ -12,5 +12,6 @@ void addMergeCommand(CLI::App& app, int& exitCode);
 void addBenchCommand(CLI::App& app, int& exitCode);     // cmd_bench.cpp
 void addGenerateCommand(CLI::App& app, int& exitCode);  // cmd_generate.cpp
 void addConformanceCommand(CLI::App& app, int& exitCode);  // cmd_conformance.cpp
+void addSettingsCommand(CLI::App& app, int& exitCode);     // cmd_settings.cpp
 
 }  // namespace montecl

@@ -9,11 +9,8 @@
 #include <cstdlib>
 #include <limits>
 #include <sstream>
-#include <optional>
 #include <string>
-#include <vector>
 
-#include "scene/render_choices.h"
 
 namespace montecl {
 
@@ -41,20 +38,6 @@ inline std::string shortNumber(double v) {
   return s.str();
 }
 
-// --max-depth: -1 (unlimited) or a positive integer.
-inline CLI::Validator maxDepthValue() {
-  const std::string rule = "-1 (unlimited) or a positive integer";
-  return CLI::Validator(
-      [rule](std::string& text) -> std::string {
-        errno = 0;
-        char* end = nullptr;
-        long long v = std::strtoll(text.c_str(), &end, 10);
-        bool ok = !text.empty() && end && *end == '\0' && errno == 0 && (v == -1 || (v >= 1 && v <= std::numeric_limits<int>::max()));
-        return ok ? std::string() : "must be " + rule + ", got '" + text + "'";
-      },
-      rule);
-}
-
 // A finite number > 0 and at most hi (float options pass FLT_MAX so they cannot overflow to inf).
 inline CLI::Validator positiveNumber(double hi = std::numeric_limits<double>::max()) {
   return CLI::Validator(
@@ -66,21 +49,6 @@ inline CLI::Validator positiveNumber(double hi = std::numeric_limits<double>::ma
         return number && v > 0.0 ? std::string() : "must be a positive number, got '" + text + "'";
       },
       "a positive number");
-}
-
-// An option whose value is one of a choice's names (scene/render_choices.h), stored as the enum:
-// only the names are accepted (not the enum's numbers), and help and errors list them.
-template <class E>
-CLI::Option* addChoiceOption(CLI::App* cmd, const std::string& name, std::optional<E>& target,
-                             const ChoiceNames<E>& names, const std::string& help) {
-  std::vector<std::string> keys;
-  for (const auto& entry : names) keys.push_back(entry.first);
-  return cmd
-      ->add_option_function<std::string>(
-          name, [&target, &names](const std::string& v) { target = names.at(v); },
-          help + ": " + choiceList(names, /*quoted=*/false))
-      ->check(CLI::IsMember(keys))
-      ->type_name("NAME");
 }
 
 }  // namespace montecl

@@ -7,13 +7,9 @@
 #include <utility>
 #include <vector>
 
-#include "scene/render_choices.h"
+#include "scene/render_settings.h"
 
 namespace montecl {
-
-// Limits shared by scene files and the command line (one rule for both).
-constexpr int kMaxImageSide = 16384;    // camera.width / camera.height, --width / --height
-constexpr int kMaxLightSamples = 1024;  // render.light_samples, --light-samples
 
 struct Camera {
   glm::vec3 position{0.0f, 0.0f, 1.0f};
@@ -24,19 +20,6 @@ struct Camera {
   int height = 512;
   float apertureRadius = 0.0f;  // thin lens radius ("aperture_radius"), 0: pinhole
   float focusDistance = 0.0f;   // distance of the plane in focus ("focus_distance"); 0: |target - position|
-};
-
-struct RenderSettings {
-  Integrator integrator = Integrator::Ao;
-  int spp = 64;
-  std::uint32_t seed = 0;
-  float aoDistance = 1e30f;         // occluders farther than this do not count
-  AoSampling aoSampling = AoSampling::Cosine;
-  glm::vec3 background{0.0f};
-  DirectSampling directSampling = DirectSampling::Mis;  // (integrator direct)
-  int lightSamples = 1;                // light samples per shading point (integrators "direct", "path")
-  int maxDepth = -1;  // integrator "path", Mitsuba's convention: -1 unlimited, 1 emitters seen, 2 direct, ...
-  int rrDepth = 5;    // integrator "path": Russian roulette from this path depth on (>= 1)
 };
 
 struct MaterialDesc {

@@ -1,7 +1,6 @@
 // scene_digest.cpp: the scene content hash and the integrator settings string of a render's provenance.
 #include "scene/scene_digest.h"
 
-#include <cstdio>
 #include <cstring>
 
 #include "util/hash.h"
@@ -14,12 +13,6 @@ void append(Fnv1a64& bytes, const void* data, std::size_t size) { bytes.add(data
 void appendVec(Fnv1a64& bytes, const glm::vec3& v) {
   const float f[3] = {v.x, v.y, v.z};
   append(bytes, f, sizeof f);
-}
-
-std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
 }
 
 }  // namespace
@@ -61,20 +54,6 @@ std::string sceneDigest(const Scene& scene) {
     append(bytes, &scene.camera.focusDistance, sizeof scene.camera.focusDistance);
   }
   return hex64(bytes.value());
-}
-
-std::string integratorSettings(const RenderSettings& r) {
-  std::string s;
-  if (r.integrator == Integrator::Direct) {
-    s = "integrator=direct direct_sampling=" + choiceName(r.directSampling) +
-        " light_samples=" + std::to_string(r.lightSamples);
-  } else if (r.integrator == Integrator::Path) {
-    s = "integrator=path light_samples=" + std::to_string(r.lightSamples) + " max_depth=" +
-        std::to_string(r.maxDepth) + " rr_depth=" + std::to_string(r.rrDepth);
-  } else {
-    s = "integrator=ao ao_sampling=" + choiceName(r.aoSampling) + " ao_distance=" + num(r.aoDistance);
-  }
-  return s + " background=" + num(r.background.x) + "," + num(r.background.y) + "," + num(r.background.z);
 }
 
 }  // namespace montecl

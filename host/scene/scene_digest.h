@@ -1,5 +1,5 @@
 // scene_digest.h: what a render was made of, as text for its provenance (image/provenance.h): a
-// hash of the loaded scene's content and the settings that change what a sample estimates.
+// hash of the loaded scene's content.
 #pragma once
 #include <string>
 
@@ -13,9 +13,6 @@ namespace montecl {
 // another folder or file name is the same scene; any changed vertex, colour or view is not.
 std::string sceneDigest(const Scene& scene);
 
-// The integrator and its settings that change the estimate, e.g. "integrator=ao ao_sampling=cosine
-// ao_distance=1 background=0,0,0" or "integrator=direct direct_sampling=mis light_samples=1
-// background=0,0,0". Not the seed, sample counts or image size.
-std::string integratorSettings(const RenderSettings& render);
+// integratorSettings(), the settings string, comes from the settings table (scene/render_settings.h).
 
 }  // namespace montecl

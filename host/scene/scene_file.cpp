@@ -175,36 +175,8 @@ Camera parseCamera(const Ctx& ctx, const json& root) {
 // ---- render ---------------------------------------------------------------------------------
 
 RenderSettings parseRender(const Ctx& ctx, const json& root) {
-  RenderSettings r;
-  const json* jp = optionalKey(root, "render");
-  if (!jp) return r;
-  const json& j = requireObject(ctx, *jp, "render");
-  warnUnknownKeys(ctx, j, "render",
-                  {"integrator", "spp", "seed", "ao_distance", "ao_sampling", "background", "direct_sampling",
-                   "light_samples", "max_depth", "rr_depth"});
-  const int intMax = std::numeric_limits<int>::max();
-  if (const json* v = optionalKey(j, "integrator")) r.integrator = getChoice(ctx, *v, "render.integrator", integratorNames());
-  if (const json* v = optionalKey(j, "spp")) r.spp = getPositiveInt(ctx, *v, "render.spp", intMax);
-  if (const json* v = optionalKey(j, "seed"))
-    r.seed = static_cast<std::uint32_t>(getInteger(ctx, *v, "render.seed", 0, 0xffffffffLL, "an integer in [0, 4294967295]"));
-  if (const json* v = optionalKey(j, "ao_distance")) {
-    r.aoDistance = getFloat(ctx, *v, "render.ao_distance");
-    if (!(r.aoDistance > 0.0f)) fail(ctx, "render.ao_distance", "must be > 0");
-  }
-  if (const json* v = optionalKey(j, "ao_sampling")) r.aoSampling = getChoice(ctx, *v, "render.ao_sampling", aoSamplingNames());
-  if (const json* v = optionalKey(j, "background")) r.background = getColor(ctx, *v, "render.background");
-  if (const json* v = optionalKey(j, "direct_sampling"))
-    r.directSampling = getChoice(ctx, *v, "render.direct_sampling", directSamplingNames());
-  if (const json* v = optionalKey(j, "light_samples")) {
-    const std::string rule = "a positive integer up to " + std::to_string(kMaxLightSamples);
-    r.lightSamples = getPositiveInt(ctx, *v, "render.light_samples", kMaxLightSamples, rule.c_str());
-  }
-  if (const json* v = optionalKey(j, "max_depth")) {
-    r.maxDepth = static_cast<int>(getInteger(ctx, *v, "render.max_depth", -1, intMax, "-1 (unlimited) or a positive integer"));
-    if (r.maxDepth == 0) fail(ctx, "render.max_depth", "must be -1 (unlimited) or a positive integer, got 0");
-  }
-  if (const json* v = optionalKey(j, "rr_depth")) r.rrDepth = getPositiveInt(ctx, *v, "render.rr_depth", intMax);
-  return r;
+  const json* j = optionalKey(root, "render");
+  return j ? parseRenderSettings(ctx, *j) : RenderSettings{};  // (scene/render_settings.h)
 }
 
 // ---- meshes ---------------------------------------------------------------------------------

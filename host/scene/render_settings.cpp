@@ -1,0 +1,255 @@
+// render_settings.cpp: the render settings table (render_settings.h) and what reads it: the scene
+// file's "render" block, CLI texts, the provenance string and the docs' table.
+#include "scene/render_settings.h"
+
+#include <cerrno>
+#include <cfloat>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+
+#include "scene/load_util.h"
+
+namespace montecl {
+namespace {
+
+template <class E>
+SettingRule choiceRule(const ChoiceNames<E>& names) {
+  SettingRule r;
+  r.kind = SettingRule::Choice;
+  for (const auto& entry : names) r.names.push_back(entry.first);
+  r.text = choiceList(names, /*quoted=*/false);
+  return r;
+}
+
+SettingRule integerRule(long long lo, long long hi, std::string text, bool zeroAllowed = true) {
+  SettingRule r;
+  r.kind = SettingRule::Integer;
+  r.lo = lo, r.hi = hi, r.zeroAllowed = zeroAllowed, r.text = std::move(text);
+  return r;
+}
+
+SettingRule numberRule() {  // finite, > 0 and at most FLT_MAX (a float setting)
+  SettingRule r;
+  r.kind = SettingRule::Number;
+  r.text = "a positive number";
+  return r;
+}
+
+SettingRule colourRule() {
+  SettingRule r;
+  r.kind = SettingRule::Colour;
+  r.text = "3 numbers >= 0";
+  return r;
+}
+
+// A row whose value is the member `m` of type T (int / uint32_t / float / vec3, or a choice enum
+// through its names).
+template <class T>
+RenderSetting row(const char* key, const char* option, const char* help, SettingRule rule, T RenderSettings::*m,
+                  unsigned integrators = kEveryIntegrator, bool provenance = true) {
+  RenderSetting s{key, option, help, std::move(rule), integrators, provenance, {}, {}};
+  if constexpr (std::is_same_v<T, float>) {
+    s.set = [m](RenderSettings& r, const SettingValue& v) { r.*m = std::get<float>(v); };
+    s.get = [m](const RenderSettings& r) { return SettingValue(r.*m); };
+  } else if constexpr (std::is_same_v<T, glm::vec3>) {
+    s.set = [m](RenderSettings& r, const SettingValue& v) { r.*m = std::get<glm::vec3>(v); };
+    s.get = [m](const RenderSettings& r) { return SettingValue(r.*m); };
+  } else {
+    s.set = [m](RenderSettings& r, const SettingValue& v) { r.*m = T(std::get<long long>(v)); };
+    s.get = [m](const RenderSettings& r) { return SettingValue((long long)(r.*m)); };
+  }
+  return s;
+}
+
+template <class E>
+RenderSetting choiceRow(const char* key, const char* option, const char* help, const ChoiceNames<E>& names,
+                        E RenderSettings::*m, unsigned integrators = kEveryIntegrator) {
+  RenderSetting s{key, option, help, choiceRule(names), integrators, true, {}, {}};
+  s.set = [m, &names](RenderSettings& r, const SettingValue& v) { r.*m = names.at(std::get<std::string>(v)); };
+  s.get = [m, &names](const RenderSettings& r) { return SettingValue(choiceName(names, r.*m)); };
+  return s;
+}
+
+std::vector<RenderSetting> makeTable() {
+  const unsigned ao = integratorBit(Integrator::Ao), direct = integratorBit(Integrator::Direct),
+                 path = integratorBit(Integrator::Path);
+  const long long intMax = INT_MAX;
+  const std::string lightRule = "a positive integer up to " + std::to_string(kMaxLightSamples);
+  return {
+      choiceRow("integrator", "--integrator",
+                "The estimator: ao (ambient occlusion), direct (direct lighting from area lights and the "
+                "environment) or path (path tracing with next-event estimation)",
+                integratorNames(), &RenderSettings::integrator),
+      row("spp", "--spp", "Samples per pixel", integerRule(1, intMax, "a positive integer"), &RenderSettings::spp,
+          kEveryIntegrator, false),
+      row("seed", "--seed", "Random seed: every random number is a function of (seed, pixel, sample, dimension)",
+          integerRule(0, 0xffffffffLL, "an integer in [0, 4294967295]"), &RenderSettings::seed, kEveryIntegrator,
+          false),
+      choiceRow("ao_sampling", "--ao-sampling", "AO directions: uniform over the hemisphere or cosine-weighted",
+                aoSamplingNames(), &RenderSettings::aoSampling, ao),
+      row("ao_distance", "--ao-distance", "AO: occluders farther than this are ignored", numberRule(),
+          &RenderSettings::aoDistance, ao),
+      choiceRow("direct_sampling", "--direct-sampling",
+                "Direct lighting: light sampling, BRDF sampling, or both combined by MIS (power heuristic)",
+                directSamplingNames(), &RenderSettings::directSampling, direct),
+      row("light_samples", "--light-samples", "Light samples per shading point (direct, path)",
+          integerRule(1, kMaxLightSamples, lightRule), &RenderSettings::lightSamples, direct | path),
+      row("max_depth", "--max-depth",
+          "Path: longest path in segments, Mitsuba's convention: -1 unlimited, 1 emitters seen directly, 2 direct "
+          "lighting, 3 one indirect bounce, ...",
+          integerRule(-1, intMax, "-1 (unlimited) or a positive integer", /*zeroAllowed=*/false),
+          &RenderSettings::maxDepth, path),
+      row("rr_depth", "--rr-depth", "Path: Russian roulette from this path depth on",
+          integerRule(1, intMax, "a positive integer"), &RenderSettings::rrDepth, path),
+      row("background", "", "Radiance of camera rays that hit nothing (without an environment)", colourRule(),
+          &RenderSettings::background),
+  };
+}
+
+std::string number(double v, int digits) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+
+std::string valueText(const SettingValue& v, int digits) {
+  if (const long long* i = std::get_if<long long>(&v)) return std::to_string(*i);
+  if (const float* f = std::get_if<float>(&v)) return number(*f, digits);
+  if (const std::string* s = std::get_if<std::string>(&v)) return *s;
+  const glm::vec3& c = std::get<glm::vec3>(v);
+  return number(c.x, digits) + "," + number(c.y, digits) + "," + number(c.z, digits);
+}
+
+}  // namespace
+
+const std::vector<RenderSetting>& renderSettings() {
+  static const std::vector<RenderSetting> table = makeTable();
+  return table;
+}
+
+RenderSettings parseRenderSettings(const JsonCtx& ctx, const nlohmann::json& j) {
+  RenderSettings r;
+  requireObject(ctx, j, "render");
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    bool known = false;
+    for (const RenderSetting& s : renderSettings()) known = known || s.key == it.key();
+    if (!known)
+      ctx.warnings.push_back(oneLine(ctx.file, 4096) + ": " + oneLine("render." + it.key()) + ": unknown key, ignored");
+  }
+  for (const RenderSetting& s : renderSettings()) {
+    const nlohmann::json* v = optionalKey(j, s.key.c_str());
+    if (!v) continue;
+    const std::string where = "render." + s.key;
+    const SettingRule& rule = s.rule;
+    switch (rule.kind) {
+      case SettingRule::Integer: {
+        const long long i = getInteger(ctx, *v, where, rule.lo, rule.hi, rule.text.c_str());
+        if (i == 0 && !rule.zeroAllowed) jsonFail(ctx, where, "must be " + rule.text + ", got 0");
+        s.set(r, i);
+        break;
+      }
+      case SettingRule::Number: {
+        const float f = getFloat(ctx, *v, where);
+        if (!(f > 0.0f)) jsonFail(ctx, where, "must be " + rule.text + ", got " + v->dump());
+        s.set(r, f);
+        break;
+      }
+      case SettingRule::Choice: {
+        std::string list;
+        for (const std::string& n : rule.names) list += (list.empty() ? "\"" : ", \"") + n + "\"";
+        if (!v->is_string()) jsonFail(ctx, where, "expected one of " + list + ", got " + v->type_name());
+        const std::string name = v->get<std::string>();
+        bool ok = false;
+        for (const std::string& n : rule.names) ok = ok || n == name;
+        if (!ok) jsonFail(ctx, where, "expected one of " + list + ", got " + v->dump());
+        s.set(r, name);
+        break;
+      }
+      case SettingRule::Colour:
+        s.set(r, getColor(ctx, *v, where));
+        break;
+    }
+  }
+  return r;
+}
+
+std::string settingTextProblem(const RenderSetting& s, const std::string& text) {
+  const SettingRule& rule = s.rule;
+  const std::string got = ", got '" + text + "'";
+  switch (rule.kind) {
+    case SettingRule::Integer: {
+      errno = 0;
+      char* end = nullptr;
+      const long long v = std::strtoll(text.c_str(), &end, 10);
+      const bool ok = !text.empty() && end && *end == '\0' && errno == 0 && v >= rule.lo && v <= rule.hi &&
+                      (v != 0 || rule.zeroAllowed);
+      return ok ? std::string() : "must be " + rule.text + got;
+    }
+    case SettingRule::Number: {
+      char* end = nullptr;
+      const double v = std::strtod(text.c_str(), &end);
+      const bool number = !text.empty() && end && *end == '\0' && std::isfinite(v);
+      if (number && v > double(FLT_MAX)) return "must be " + rule.text + " up to " + valueText(FLT_MAX, 6) + got;
+      return number && v > 0.0 ? std::string() : "must be " + rule.text + got;
+    }
+    case SettingRule::Choice:
+      for (const std::string& n : rule.names)
+        if (n == text) return std::string();
+      return "must be one of " + rule.text + got;
+    case SettingRule::Colour: {
+      float c[3];
+      char tail = 0;
+      const bool ok = std::sscanf(text.c_str(), "%f,%f,%f%c", &c[0], &c[1], &c[2], &tail) == 3 &&
+                      std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]) && c[0] >= 0 && c[1] >= 0 &&
+                      c[2] >= 0;
+      return ok ? std::string() : "must be " + rule.text + " as R,G,B" + got;
+    }
+  }
+  return "unknown setting kind";
+}
+
+void setFromText(const RenderSetting& s, const std::string& text, RenderSettings& r) {
+  switch (s.rule.kind) {
+    case SettingRule::Integer: s.set(r, std::strtoll(text.c_str(), nullptr, 10)); break;
+    case SettingRule::Number: s.set(r, float(std::strtod(text.c_str(), nullptr))); break;
+    case SettingRule::Choice: s.set(r, text); break;
+    case SettingRule::Colour: {
+      glm::vec3 c(0.0f);
+      std::sscanf(text.c_str(), "%f,%f,%f", &c.x, &c.y, &c.z);
+      s.set(r, c);
+      break;
+    }
+  }
+}
+
+std::string settingValueText(const SettingValue& v) { return valueText(v, 9); }
+
+std::string integratorSettings(const RenderSettings& r) {
+  std::string out;
+  for (const RenderSetting& s : renderSettings())
+    if (s.provenance && (s.integrators & integratorBit(r.integrator)))
+      out += (out.empty() ? "" : " ") + s.key + "=" + settingValueText(s.get(r));
+  return out;
+}
+
+std::string renderSettingsMarkdown() {
+  static const char* const types[] = {"integer", "number", "name", "[r, g, b]"};
+  std::ostringstream md;
+  md << "| key | type | default | valid | meaning |\n|---|---|---|---|---|\n";
+  const RenderSettings defaults;
+  for (const RenderSetting& s : renderSettings()) {
+    std::string valid = s.rule.text;
+    if (s.rule.kind == SettingRule::Choice) {
+      valid.clear();
+      for (const std::string& n : s.rule.names) valid += (valid.empty() ? "`" : ", `") + n + "`";
+    }
+    md << "| `" << s.key << "` | " << types[s.rule.kind] << " | " << valueText(s.get(defaults), 6) << " | " << valid
+       << " | " << s.help << (s.option.empty() ? " (scene file only)" : " (`" + s.option + "`)") << " |\n";
+  }
+  return md.str();
+}
+
+}  // namespace montecl
