@@ -2,7 +2,8 @@
 // shade -> intersect_shadow -> accumulate, each a kernel of kernels/montecl.cl on an OpenCL device,
 // or the same stage functions run on the CPU when the device is the host backend (DeviceInfo::isHost,
 // `--device host`). Waves are sized from the measured rate (render/wave_planner.h) up to an
-// allocated cap; the result does not depend on wave or work-group size, and agrees across devices to about 1e-6 relative (see `montecl conformance`).
+// allocated cap; the result does not depend on wave or work-group size, and is bit-identical
+// across devices (`montecl conformance` checks exact equality against the host backend).
 #pragma once
 #include <cstdint>
 #include <functional>
