@@ -23,9 +23,9 @@ namespace montecl {
 struct SceneTextures;
 
 // The default cap on a wave's items (RenderOptions::maxWaveItems 0), from a sweep of wave sizes
-// on Sponza (README, "Wave size and memory"): on CPUs (and the host backend) 8192 items per
-// compute unit, at least 16384: a wave's state then stays in the caches, and larger waves were
-// slower and cost memory; on GPUs 2^20 items, enough to fill one.
+// on Sponza (docs/performance.md, "Wave size and memory"): on CPUs (and the host backend) 8192
+// items per compute unit, at least 16384: a wave's state then stays in the caches, and larger
+// waves were slower and cost memory; on GPUs 2^20 items, enough to fill one.
 std::uint64_t defaultMaxWaveItems(const DeviceInfo& device);
 
 struct RenderOptions {
