@@ -284,7 +284,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   addChoiceOption(cmd, "--integrator", args->integrator, integratorNames(),
                   "ao (ambient occlusion), direct (area lights) or path (path tracing)");
   addChoiceOption(cmd, "--direct-sampling", args->directSampling, directSamplingNames(), "Direct lighting");
-  cmd->add_option("--light-samples", args->lightSamples, "Light samples per camera sample (direct; up to 1024)")
+  cmd->add_option("--light-samples", args->lightSamples, "Light samples per shading point (direct, path; up to 1024)")
       ->check(positiveInteger(kMaxLightSamples));
   cmd->add_option("--max-depth", args->maxDepth,
                   "Path: longest path in segments, Mitsuba's convention: -1 unlimited (default), 1 emitters "
