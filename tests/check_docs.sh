@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # check_docs.sh: fails when the documentation falls behind the code. (1) Every long option (--xyz)
-# that `montecl <command> --help` prints, for every command, must appear in docs/usage.md; (2)
-# every relative markdown link in README.md and docs/*.md must point at a file or folder that
-# exists. Prints one line per problem and exits 1 if there is any, else 0.
+# that `montecl <command> --help` prints, for every command, must appear in that command's section
+# of docs/usage.md ("## <command>"); (2) every relative markdown link in README.md and docs/*.md
+# must point at a file or folder that exists. Prints one line per problem and exits 1 if there is any, else 0.
 # Usage: tests/check_docs.sh MONTECL_EXE SOURCE_DIR   (CTest runs it: CMakeLists.txt)
 set -u
 exe=${1:?usage: check_docs.sh MONTECL_EXE SOURCE_DIR}
@@ -21,11 +21,23 @@ for cmd in "${commands[@]}"; do
     fail "'montecl ${cmd:+$cmd }--help' failed: $(printf '%s' "$help" | head -1)"
     continue
   fi
+  # A command's options must be in its own section ("## render" ... up to the next "## "); the
+  # top-level options anywhere in the file.
+  section=${cmd%% *}
+  if [ -n "$section" ]; then
+    text=$(awk -v h="## $section" '$0 == h { on = 1; next } /^## / { on = 0 } on' "$usage")
+    [ -n "$text" ] || { fail "docs/usage.md has no section '## $section'"; continue; }
+    where="its section '## $section' of docs/usage.md"
+  else
+    text=$(cat "$usage")
+    where="docs/usage.md"
+  fi
   while IFS= read -r opt; do
     [ -n "$opt" ] || continue
+    [ -n "$section" ] && [ "$opt" = --help ] && continue  # every command's; documented once, on top
     # The option must appear as a whole word: --checkpoint does not count as --checkpoint-every.
-    grep -qE -- "${opt}([^a-zA-Z0-9-]|\$)" "$usage" ||
-      fail "docs/usage.md does not mention ${opt} (montecl ${cmd:+$cmd }--help)"
+    printf '%s\n' "$text" | grep -qE -- "${opt}([^a-zA-Z0-9-]|\$)" ||
+      fail "montecl ${cmd:+$cmd }--help has ${opt}, which $where does not mention"
   done < <(printf '%s\n' "$help" | grep -oE -- '--[a-zA-Z][a-zA-Z0-9-]*' | sort -u)
 done
 
