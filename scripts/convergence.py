@@ -2,7 +2,7 @@
 """Convergence of montecl's estimators: renders AO (uniform, cosine), direct lighting (light,
 brdf, mis) and path tracing (unlimited depth) of the Cornell box at 1, 2, 4, ... spp, measures the RMSE against a high-spp reference
 of the same estimator family, fits the slope of log RMSE against log spp (Monte Carlo: -1/2), and
-plots RMSE vs spp on log-log axes with a 1/sqrt(N) guide. Writes docs/convergence.png and prints
+plots RMSE vs spp on log-log axes with a 1/sqrt(N) guide. Writes docs/images/convergence.png and prints
 the slopes. Needs build/montecl and ../shared/scenes (skips with a message when absent).
 
 Usage: /usr/bin/python3 scripts/convergence.py [--size 48] [--max-spp 256] [--ref-spp 4096]
@@ -51,7 +51,7 @@ def main():
     ap.add_argument("--size", type=int, default=48)
     ap.add_argument("--max-spp", type=int, default=256)
     ap.add_argument("--ref-spp", type=int, default=4096)
-    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "convergence.png"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "images", "convergence.png"))
     args = ap.parse_args()
     scene = os.path.join(ROOT, "..", "shared", "scenes", "cornell-box", "scene.json")
     if not os.path.exists(scene):

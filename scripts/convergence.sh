@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs what the plot needs, builds, and runs scripts/convergence.py (docs/convergence.png).
+# Installs what the plot needs, builds, and runs scripts/convergence.py (docs/images/convergence.png).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh --plots

@@ -8,8 +8,8 @@
 # key): Debian 12's Oclgrind 21.10 aborts on LLVM's `freeze` instruction in optimised kernels under
 # --uninitialized. Its uninitialised-value check also keeps the definedness of a released buffer
 # for the next buffer given the same slot; montecl therefore creates its kernel-written scratch
-# buffers on Oclgrind from one host write of NaN canaries (ClSession::scratch, README
-# "Portability").
+# buffers on Oclgrind from one host write of NaN canaries (ClSession::scratch,
+# docs/portability.md).
 #
 # Usage: scripts/oclgrind_check.sh [path/to/montecl [conformance options...]]
 #   default executable: build/montecl; further options are passed to `montecl conformance` (the

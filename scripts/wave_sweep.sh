@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # wave_sweep.sh: render time and peak resident memory of `montecl render` over a sweep of wave
-# sizes, per integrator (the measurement behind the default wave cap, README "Wave size and
-# memory"). Prints a markdown table: integrator, --wave-size (planned: the default, rate-sized
+# sizes, per integrator (the measurement behind the default wave cap, docs/performance.md "Wave
+# size and memory"). Prints a markdown table: integrator, --wave-size (planned: the default, rate-sized
 # waves under the cap), render seconds (the summary line's), Mrays/s, peak RSS MiB (/usr/bin/time -v).
 # Usage: scripts/wave_sweep.sh [SCENE] [SIZES...]   (env: MONTECL, SPP_AO, SPP_DIRECT, SPP_PATH, REPEAT)
 set -euo pipefail

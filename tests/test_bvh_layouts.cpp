@@ -1,4 +1,4 @@
-// test_bvh_layouts.cpp: the wide (Bvh::wide) and binary (Bvh::nodes) host traversals find the same
+// test_bvh_layouts.cpp: the wide (Bvh::wideNodes()) and binary (Bvh::nodes) host traversals find the same
 // hits on random soups, a depth-capped tree and the shared scenes; and --bvh-layout's names and auto
 // choice. (The kernels of both layouts: test_ray_tracer.cpp.)
 #include <doctest/doctest.h>
@@ -147,7 +147,7 @@ TEST_CASE("bvh layouts: the host backend traverses the wide layout only (the one
   CHECK(resolveStageLayout(BvhLayout::Wide, gpu) == BvhLayout::Wide);
 }
 
-// Non-finite rays (issue 14): a NaN ray "entered" every child through the NaN-dropping slab test,
+// Non-finite rays must be misses, not crashes: a NaN ray "entered" every child through the NaN-dropping slab test,
 // and an empty wide slot (0xffffffff, leaf bit set) was read as a leaf with a huge first index:
 // without the fix this case dies with SIGSEGV in wide_closest_hit (ray_triangle4).
 TEST_CASE("bvh layouts: a ray with a NaN or infinite origin or direction is a miss in both layouts" * doctest::test_suite("cpu")) {

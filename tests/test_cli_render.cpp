@@ -143,8 +143,8 @@ TEST_CASE("cli: --min-spp above --max-spp exits 2 before any work" * doctest::te
   CHECK(err.find("--max-spp (8)") != std::string::npos);
 }
 
-// Program cache robustness (issue 14). Each case fails without the fix: a truncated or
-// byte-flipped cache file crashed PoCL (exit 139) on every later run, a FIFO blocked (timeout), and
+// Program cache robustness: a damaged cache must never break a later run. Each case fails without
+// the fix: a truncated or byte-flipped cache file crashed PoCL (exit 139) on every later run, a FIFO blocked (timeout), and
 // XDG_CACHE_HOME under a regular file made PoCL report "no OpenCL device found" (exit 1).
 TEST_CASE("cli: a damaged, odd or unwritable program cache never crashes, hangs or hides the device" * doctest::test_suite("cli")) {
   namespace fs = std::filesystem;
@@ -194,7 +194,7 @@ TEST_CASE("cli: a damaged, odd or unwritable program cache never crashes, hangs 
   CHECK(ro.err.find("PoCL's kernel cache is in") != std::string::npos);
 }
 
-// Oclgrind (issue 14): montecl adds -cl-opt-disable itself on the Oclgrind platform. Without it
+// Oclgrind: montecl adds -cl-opt-disable itself on the Oclgrind platform. Without it
 // Debian's Oclgrind 21.10 aborts (SIGSEGV) on LLVM `freeze` in the optimised kernels unless the
 // user sets OCLGRIND_BUILD_OPTIONS=-cl-opt-disable.
 TEST_CASE("cli: oclgrind montecl render --device oclgrind works without OCLGRIND_BUILD_OPTIONS" * doctest::test_suite("cli")) {

@@ -68,13 +68,13 @@ TEST_CASE("adaptive sampling with minSpp above maxSpp is an error, not a clamp" 
   CHECK(double(f.count[0]) == 64.0f);
 }
 
-TEST_CASE("host backend: NaN camera rays are misses and every one is counted (issue 14)" * doctest::test_suite("cpu")) {
+TEST_CASE("host backend: NaN camera rays are misses and every one is counted" * doctest::test_suite("cpu")) {
   // Without the fix there is no count (WaveCounts), and the traversal read an empty slot (SIGSEGV).
   std::unique_ptr<StageRunner> run = makeHostStageRunner();
   checkNanCameraWave(*run, floorScene({0, 0, 0}, 1.0f, 60.0f, 16, 1));
 }
 
-TEST_CASE("the renderer refuses a camera whose float basis is NaN, naming the key (issue 14)" * doctest::test_suite("cpu")) {
+TEST_CASE("the renderer refuses a camera whose float basis is NaN, naming the key" * doctest::test_suite("cpu")) {
   // A camera set in code (not loaded, so not checked at load): without the check this rendered
   // NaN rays (and crashed in the wide traversal).
   Scene s = floorScene({0, 0, 0}, 1.0f, 60.0f, 8, 1);
@@ -113,7 +113,7 @@ Scene cornerScene(float k) {
 }
 }  // namespace
 
-TEST_CASE("tiny scenes: a scene scaled by 2^-20 or 2^-40 renders the same AO bits, by 1e-6 or 1e-12 the same image within statistics (issue 14)" * doctest::test_suite("cpu")) {
+TEST_CASE("tiny scenes: a scene scaled by 2^-20 or 2^-40 renders the same AO bits, by 1e-6 or 1e-12 the same image within statistics" * doctest::test_suite("cpu")) {
   // Without scale-aware offsets the absolute 1/65536 offset throws AO rays of a 1e-6 scene far off
   // the surface (AO near 1 everywhere), and at 1e-12 cross(e1, e2) underflows: NaN normals.
   const DeviceInfo host = hostDeviceInfo();

@@ -102,7 +102,7 @@ TEST_CASE("bvh layouts: the binary kernels equal the wide kernels and the host r
   for (const Hit& h : none) CHECK(h.tri == MCL_NO_HIT);
 }
 
-// Non-finite rays on the device, both layouts (issue 14): misses, counted, their shadow light
+// Non-finite rays on the device, both layouts: misses, counted, their shadow light
 // dropped, and the finite rays of the same launch unaffected. Without the fix the wide kernels
 // read triangles through an empty slot (SIGSEGV inside PoCL) and nothing is counted.
 TEST_CASE("OpenCL: rays with a NaN or infinite origin or direction are misses, counted, in both layouts" * doctest::test_suite("opencl")) {

@@ -159,7 +159,7 @@ TEST_CASE("images are bit-identical with the wide and the binary BVH layout" * d
   }
 }
 
-TEST_CASE("NaN camera rays are misses and every one is counted, in both BVH layouts (issue 14)" * doctest::test_suite("opencl")) {
+TEST_CASE("NaN camera rays are misses and every one is counted, in both BVH layouts" * doctest::test_suite("opencl")) {
   // Without the fix there is no count, and the wide kernel read an empty slot (SIGSEGV in PoCL).
   for (BvhLayout layout : {BvhLayout::Wide, BvhLayout::Binary}) {
     CAPTURE(int(layout));

@@ -1,4 +1,4 @@
-// test_shading.cpp: per-triangle surface attributes and shading normals (issue 11 §1): the device
+// test_shading.cpp: per-triangle surface attributes and shading normals (the below-surface rule): the device
 // attribute buffer in BVH order (render/triangle_shading.h), the pure shading-normal rule
 // (kernels/shared/shading.h), and renders through the kernels: the N AOV of a low-poly sphere with
 // and without normals, AO exactly 1 on a smooth sphere in open space (no dark rings), direct light
@@ -231,14 +231,13 @@ TEST_CASE("N AOV of a 12x24 sphere: with normals several times closer to the tru
 
 TEST_CASE("OBJ vn end to end: montecl render --aov normal of a 12x24 sphere is smooth with vn, faceted without" * doctest::test_suite("cli")) {
   // The same sphere as above, written as OBJ with and without `vn` and rendered by the real binary.
-  // OBJ `vn` reading comes with the loader work of issue 11 (the `inputs` branch's "OBJ attributes"
-  // commit); until the loader has it, this case is skipped.
+  // Skipped when the OBJ loader does not read `vn` (a build whose loader predates OBJ attributes).
   TempDir dir;
   dir.write("probe.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n");
   std::vector<std::string> warnings;
   const Scene probe = loadScene(dir.file("probe.obj"), warnings);
   MCL_SKIP_UNLESS(!probe.triangles.empty() && (probe.triangles[0].attributes & kHasNormals),
-                  "the OBJ loader does not read vn yet (issue 11's OBJ attributes)");
+                  "the OBJ loader does not read vn");
   const Scene ref = sphereScene(true, 48, 16);
   double error[2];
   for (int withVn = 0; withVn < 2; ++withVn) {

@@ -19,7 +19,7 @@ using namespace montecl_test;
 
 namespace {
 
-// Two AO waves of all-NaN camera rays (each ray is counted as non-finite: issue 14) of different
+// Two AO waves of all-NaN camera rays (each ray is counted as non-finite) of different
 // sizes, the second queued before the first is waited for.
 void checkTwoInFlight(StageRunner& run) {
   const Scene scene = floorScene({0, 0, 0}, 1.0f, 60.0f, 16, 1);

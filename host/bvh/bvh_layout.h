@@ -1,6 +1,6 @@
 // bvh_layout.h: which BVH the kernels traverse (--bvh-layout auto|wide|binary). wide: the 8-wide
-// BVH (Bvh::wide, float8 tests of eight boxes; best on CPUs); binary: the binary BVH (Bvh::nodes,
-// two child boxes per visit, 64-entry stack; suited to GPUs); auto: binary on GPU devices, wide
+// BVH (Bvh::wideNodes(), float8 tests of eight boxes; best on CPUs); binary: the binary BVH
+// (Bvh::nodes, two child boxes per visit, 64-entry stack; suited to GPUs); auto: binary on GPU devices, wide
 // otherwise. Both layouts give the same hits. Reads and writes nothing.
 #pragma once
 #include <cstddef>
@@ -17,7 +17,7 @@ BvhLayout parseBvhLayout(const std::string& name);
 const char* bvhLayoutName(BvhLayout layout);
 // Auto becomes Binary on a GPU and Wide elsewhere; Wide and Binary are returned as they are.
 BvhLayout resolveBvhLayout(BvhLayout layout, bool isGpu);
-// Bytes of the node array a resolved layout traverses (Bvh::wide or Bvh::nodes).
+// Bytes of the node array a resolved layout traverses (Bvh::wideNodes() or Bvh::nodes).
 std::size_t bvhNodeBytes(const Bvh& bvh, BvhLayout resolved);
 
 }  // namespace montecl

@@ -3,7 +3,7 @@
 // Entry: 8-byte magic "MCLPRG02", then little-endian 64-bit words: the check (a second hash of the
 // cache key, a collision guard for the 64-bit file name), the binary's size and its FNV-1a, then
 // the program binary as CL_PROGRAM_BINARIES gave it. A truncated or corrupted binary crashed PoCL
-// on load (issue 14): size and checksum are verified before the driver sees it.
+// on load, on every later run: size and checksum are verified before the driver sees it.
 #pragma once
 #include <cstdint>
 #include <string>

@@ -1,5 +1,5 @@
 // device_tuning.cpp: per-device build options and work-group size from device queries
-// (device_tuning.h). Measured on a 2-core AMD EPYC (README, "Per-device choices").
+// (device_tuning.h). Measured on a 2-core AMD EPYC (docs/portability.md, "Per-device choices").
 #include "cl/device_tuning.h"
 
 namespace montecl {

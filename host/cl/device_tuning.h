@@ -1,7 +1,8 @@
 // device_tuning.h: what each OpenCL implementation runs the kernels best with, chosen from device
 // queries (never from a setting the user must make): extra kernel build options and the default
 // work-group size. Options here change speed only, never results (images stay bit-identical
-// across devices: `montecl conformance`). README "Per-device choices" says why each one is there.
+// across devices: `montecl conformance`). docs/portability.md "Per-device choices"
+// says why each one is there.
 #pragma once
 #include <cstddef>
 #include <string>

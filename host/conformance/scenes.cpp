@@ -124,7 +124,7 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   cases.push_back({"polygon-light/direct-brdf", withDirect(light, DirectSampling::Brdf, 1)});
   cases.push_back({"polygon-light/direct-mis", withDirect(light, DirectSampling::Mis, 2)});
   cases.push_back({"polygon-light/ao-cosine", withAo(light, AoSampling::Cosine)});
-  // Shading normals (issue 11): a coarse sphere with exact corner normals beside the occluder.
+  // Shading normals: a coarse sphere with exact corner normals beside the occluder.
   Scene sphere = light;
   sphere.path = "<smooth sphere scene>";
   addUvSphere(sphere, {-0.4f, 0.22f, 0.45f}, 0.2f, 8, 16, true, 2);

@@ -1,4 +1,4 @@
-// exr_layers.cpp: named-channel float EXR output/input (through the OpenImageIO module), the film -> AOV planes
+// exr_layers.cpp: named-channel float EXR output (OpenEXR, exr_writer.cpp) and input (the OpenImageIO module), the film -> AOV planes
 // conversion, and the sample-count-weighted merge of renders (parallel variance formula).
 #include "image/exr_layers.h"
 #include "image/exr_writer.h"

@@ -1,5 +1,6 @@
 // exr_layers.h: multi-channel float EXR images with named channels (OpenEXR layer convention
-// "layer.channel"), written from and read back into named planes through OpenImageIO; the AOV
+// "layer.channel"), written from named planes with OpenEXR (image/exr_writer.cpp) and read back
+// into them through the OpenImageIO module (image/oiio_loader.h); the AOV
 // layout of montecl's renders; and the per-pixel merge of several renders of one scene weighted
 // by their sample counts (exact parallel-variance combination).
 #pragma once

@@ -1,5 +1,5 @@
 // image_io.cpp: RGB image output by extension, always atomic: PNG through libpng, EXR through
-// OpenImageIO (loaded on demand), PFM by hand.
+// OpenEXR (exr_layers.h writeLayeredExr), PFM by hand.
 #include "image/image_io.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// image_io.h: writing RGB images, chosen by extension: .exr (32-bit float, OpenImageIO module),
+// image_io.h: writing RGB images, chosen by extension: .exr (32-bit float, OpenEXR),
 // .png (8-bit sRGB, clamped, libpng), .pfm (32-bit float, by hand). Always atomic.
 #pragma once
 #include <string>

@@ -1,4 +1,4 @@
-// frame_params.cpp: pinhole camera basis and render settings packed for the kernels.
+// frame_params.cpp: camera basis (pinhole or thin lens) and render settings packed for the kernels.
 #include "render/frame_params.h"
 
 #include <algorithm>

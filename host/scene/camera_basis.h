@@ -1,7 +1,8 @@
-// camera_basis.h: the pinhole camera's basis in the precision the renderer uses (float), and the
-// check that it is usable. The kernels get exactly this basis (render/frame_params.cpp), so a
-// camera that passes here yields finite camera rays; one that does not is bad input, caught at
-// scene load with the key to fix, not a NaN image or a crash later.
+// camera_basis.h: the camera's basis (the pinhole, and the thin lens's centre) in the precision
+// the renderer uses (float), and the check that it is usable. The kernels get exactly this basis
+// (render/frame_params.cpp), so a camera that passes here yields finite camera rays; one that
+// does not is bad input, caught at scene load with the key to fix, not a NaN image or a crash
+// later.
 #pragma once
 #include <string>
 

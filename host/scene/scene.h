@@ -36,7 +36,7 @@ struct MaterialDesc {
   std::string albedoTexture;  // map_Kd, glTF baseColorTexture (8-bit: sRGB-encoded)
   std::string alphaTexture;   // map_d, or the albedo texture's alpha (glTF MASK); empty: opaque
   float alphaCutoff = 0.5f;   // a hit whose alpha is below this does not exist for any ray
-  glm::vec3 specular{0.0f};   // Ks (glossy lobe, issue 12), 0: Lambertian only
+  glm::vec3 specular{0.0f};   // Ks (the GGX glossy lobe), 0: Lambertian only
   float specularExponent = 0.0f;  // Ns
 };
 

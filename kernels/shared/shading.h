@@ -1,4 +1,5 @@
-// shading.h: shading normals and the below-geometric-surface rule (issue 11 §1). Pure functions of
+// shading.h: shading normals and the below-geometric-surface rule (no light leaks through a
+// surface, no dark rings where shading and geometric normals disagree). Pure functions of
 // their arguments; compiled by the kernels, the host backend and the host tests.
 //
 // At a hit, the geometric normal ng (the triangle's, flipped to face the incoming ray) keeps every

@@ -1,6 +1,6 @@
 // traverse.h: the BVH traversal the kernels run, picked when the program is built: the 8-wide BVH
-// (traverse_wide.h, Bvh::wide; for CPUs) by default, the binary one (traverse_binary.h, Bvh::nodes;
-// for GPUs) when the host passes -DMCL_BVH_BINARY (--bvh-layout, host/bvh/bvh_layout.h).
+// (traverse_wide.h, Bvh::wideNodes(); for CPUs) by default, the binary one (traverse_binary.h,
+// Bvh::nodes; for GPUs) when the host passes -DMCL_BVH_BINARY (--bvh-layout, host/bvh/bvh_layout.h).
 // BvhTraversalNode is what the kernels' nodes buffer holds. Both layouts find the same hits; the
 // host reference calls either layout's functions by name.
 #pragma once

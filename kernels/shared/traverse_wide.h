@@ -1,5 +1,5 @@
-// traverse_wide.h: closest-hit and any-hit traversal of the 8-wide BVH (WideNode, Bvh::wide) with
-// an explicit stack: the layout for CPUs (--bvh-layout wide). Reads nodes and triangles; pure, so
+// traverse_wide.h: closest-hit and any-hit traversal of the 8-wide BVH (WideNode,
+// Bvh::wideNodes()) with an explicit stack: the layout for CPUs (--bvh-layout wide). Reads nodes and triangles; pure, so
 // the host reference traversal is this same code.
 //
 // Speed notes (the kernels run one scalar work item per ray on CPU OpenCL, and PoCL cannot
