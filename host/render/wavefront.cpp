@@ -11,7 +11,7 @@
 #include <cmath>
 #include <iostream>
 
-#include "kernels/shared/microfacet.h"
+#include "render/device_materials.h"
 #include "render/stage_runner.h"
 #include "render/emitters.h"
 #include "render/environment_table.h"
@@ -53,24 +53,6 @@ void WavefrontRenderer::setTextures(const SceneTextures* textures) { impl_->opti
 
 bool WavefrontRenderer::programFromCache() const { return impl_->runner->programFromCache(); }
 double WavefrontRenderer::programBuildMs() const { return impl_->runner->programBuildMs(); }
-
-namespace {
-
-std::vector<Material> deviceMaterials(const std::vector<MaterialDesc>& materials) {
-  std::vector<Material> out;
-  const float noTexture = glm::uintBitsToFloat(MCL_NO_TEXTURE);
-  for (const MaterialDesc& m : materials) {
-    Material d{};
-    d.albedo = glm::vec4(m.albedo, noTexture);
-    d.emission = glm::vec4(m.emission, m.twoSidedEmission ? 1.0f : 0.0f);
-    d.specular = glm::vec4(m.specular, ggx_alpha_from_ns(m.specularExponent));
-    d.alpha = glm::vec4(noTexture, m.alphaCutoff, glm::uintBitsToFloat(0u), 0.0f);
-    out.push_back(d);
-  }
-  return out;
-}
-
-}  // namespace
 
 Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& stats,
                                const ProgressFn& progress) {
