@@ -39,7 +39,8 @@ MCL_INLINE Bsdf bsdf_from_material(Material m, float3 albedo) {
   case MCL_MATERIAL_##kind: b.p.kind = kind##_from_material(m, albedo); break;
     MCL_MATERIAL_KINDS(MCL_BSDF_CASE)
 #undef MCL_BSDF_CASE
-    default: b.p.diffuse = diffuse_make(make_float3(0.0f, 0.0f, 0.0f), make_float3(0.0f, 0.0f, 0.0f), 1.0f);
+    default:  // never read (every function returns its zero for an unknown tag); set, not left undefined
+      b.p.diffuse = diffuse_make(make_float3(0.0f, 0.0f, 0.0f), make_float3(0.0f, 0.0f, 0.0f), 1.0f);
   }
   return b;
 }

@@ -8,7 +8,6 @@
 #include "../shared/light_area.h"
 #include "../shared/light_environment.h"
 #include "../shared/light_kinds.h"
-#include "../shared/surface.h"
 #include "stage_common.h"
 
 // The light of a ray along wi that got hit h: the triangle hit (an area light, emitting or not),
