@@ -136,7 +136,7 @@ TEST_CASE("mesh material: overrides replace the file's values for that mesh only
   writeModel(dir);
   dir.write("wood.png", "x");
   json scene = sceneWith(json{{"file", "model.obj"},
-                              {"material", {{"albedo_texture", "wood.png"}, {"emission", {2, 2, 2}}, {"alpha_cutoff", 0.25},
+                              {"material", {{"type", "diffuse"}, {"albedo_texture", "wood.png"}, {"emission", {2, 2, 2}}, {"alpha_cutoff", 0.25},
                                             {"specular", {0.1, 0.2, 0.3}}, {"specular_exponent", 20}, {"two_sided_emission", true}}}});
   scene["meshes"].push_back(json{{"file", "model.obj"}, {"material", {{"albedo", {0.1, 0.2, 0.3}}}}});
   scene["meshes"].push_back(json{{"file", "model.obj"}});
@@ -150,6 +150,7 @@ TEST_CASE("mesh material: overrides replace the file's values for that mesh only
   CHECK(a.alphaCutoff == 0.25f);
   CHECK(a.specular == glm::vec3(0.1f, 0.2f, 0.3f));
   CHECK(a.specularExponent == 20.0f);
+  CHECK(a.kind == MCL_MATERIAL_diffuse);
   const montecl::MaterialDesc& b = s.materials[s.triangles[3].material];
   CHECK(b.albedo == glm::vec3(0.1f, 0.2f, 0.3f));
   CHECK(b.albedoTexture.empty());
@@ -187,6 +188,8 @@ TEST_CASE("mesh transform/material: every bad value is an InputError naming its 
       {{{"material", {{"two_sided_emission", 1}}}}, "meshes[0].material.two_sided_emission: expected true or false"},
       {{{"material", {{"emission", {1, 1, 1}}}}, {"emission", {1, 1, 1}}}, "meshes[0].emission: also given as meshes[0].material.emission"},
       {{{"material", "red"}}, "meshes[0].material: expected an object"},
+      {{{"material", {{"type", "glass"}}}}, "meshes[0].material.type: unknown material type 'glass' (known: diffuse)"},
+      {{{"material", {{"type", 3}}}}, "meshes[0].material.type: expected a material type"},
   };
   for (Case& c : cases) {
     c.mesh["file"] = "model.obj";

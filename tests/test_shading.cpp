@@ -116,7 +116,9 @@ TEST_CASE("shading normals: interpolation, orientation, the below-surface rule" 
   // Flat frames are the flat formulas exactly.
   SurfaceFrame flat{glm::vec3(0), ng, ng, 0};
   CHECK(frame_cosine(flat, above) == glm::dot(ng, above));
-  CHECK(frame_pdf_cosine(flat, above) == pdf_cosine_hemisphere(glm::dot(ng, above)));
+  // The cosine lobe's pdf as the stages take it: the diffuse kind without a glossy lobe.
+  const DiffuseBsdf lambert = diffuse_make(glm::vec3(0.5f), glm::vec3(0.0f), 1.0f);
+  CHECK(diffuse_pdf(lambert, flat, above, above) == pdf_cosine_hemisphere(glm::dot(ng, above)));
   CHECK(frame_cosine_weight(flat, above) == 1.0f);
   CHECK(frame_sample_direction(flat, glm::vec3(0.6f, 0.0f, 0.8f)) == to_world(glm::vec3(0.6f, 0.0f, 0.8f), ng));
 }

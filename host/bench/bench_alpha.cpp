@@ -1,6 +1,7 @@
 // bench_alpha.cpp: the bench's cut-out test shared by its tracers (bench_alpha.h).
 #include "bench/bench_alpha.h"
 
+#include "render/device_materials.h"
 #include "render/triangle_shading.h"
 
 namespace montecl {
@@ -25,9 +26,7 @@ std::unique_ptr<BenchAlpha> makeBenchAlpha(const Scene& scene, Bvh& bvh, std::ve
   a->textures = loadSceneTextures(scene, kDefaultTextureBudget, warnings);
   if (!a->textures.anyAlpha()) return nullptr;
   bvh.triangles = alphaFlaggedTriangles(bvh.triangles, a->textures);
-  a->materials.assign(scene.materials.size(), Material{});
-  for (std::size_t i = 0; i < scene.materials.size(); ++i) a->materials[i].alpha.y = scene.materials[i].alphaCutoff;
-  setTextureIndices(a->materials, a->textures);
+  a->materials = deviceMaterials(scene.materials, &a->textures);
   a->shading = buildTriangleShading(scene.triangles, bvh);
   a->tested.resize(scene.triangles.size());
   for (std::size_t i = 0; i < scene.triangles.size(); ++i) {

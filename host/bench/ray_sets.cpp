@@ -18,6 +18,12 @@ namespace montecl {
 
 namespace {
 
+// Geometric normal of a hit triangle, flipped to face the incoming direction: what the stages'
+// surface_frame gives (its ng) without the precomputed normals buffer, with the same functions.
+float3 facing_normal(const Triangle* tri, float3 incoming) {
+  return orient_facing(triangle_unit_normal(xyz(tri->e1), xyz(tri->e2)), incoming);
+}
+
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }

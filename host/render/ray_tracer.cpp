@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "render/device_materials.h"
 #include "render/triangle_shading.h"
 
 namespace montecl {
@@ -19,12 +20,7 @@ RayTracer::RayTracer(StageProgram& program, const Bvh& bvh, const Scene* scene, 
   bindings_.nodes = {program.uploadNodes(bvh)};
   bindings_.tris = {cl_.upload(alpha ? alphaFlaggedTriangles(bvh.triangles, *textures) : bvh.triangles)};
   // What the alpha test reads (1-entry dummies without cut-outs).
-  std::vector<Material> materials(alpha ? scene->materials.size() : 1, Material{});
-  if (alpha) {
-    for (std::size_t i = 0; i < materials.size(); ++i) materials[i].alpha.y = scene->materials[i].alphaCutoff;
-    setTextureIndices(materials, *textures);
-  }
-  bindings_.materials = {cl_.upload(materials)};
+  bindings_.materials = {cl_.upload(alpha ? deviceMaterials(scene->materials, textures) : std::vector<Material>(1))};
   bindings_.shading = {cl_.upload(alpha ? buildTriangleShading(scene->triangles, bvh) : std::vector<TriangleShading>(1))};
   bindings_.textures = {cl_.upload(alpha ? textures->textures : std::vector<TextureDesc>(1))};
   bindings_.textureLevels = {cl_.upload(alpha ? textures->levels : std::vector<TextureLevel>(1))};

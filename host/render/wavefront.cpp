@@ -11,8 +11,8 @@
 #include <cmath>
 #include <iostream>
 
-#include "kernels/shared/microfacet.h"
 #include "render/stage_runner.h"
+#include "render/device_materials.h"
 #include "render/emitters.h"
 #include "render/environment_table.h"
 #include "render/frame_params.h"
@@ -46,20 +46,6 @@ bool WavefrontRenderer::programFromCache() const { return impl_->runner->program
 double WavefrontRenderer::programBuildMs() const { return impl_->runner->programBuildMs(); }
 
 namespace {
-
-std::vector<Material> deviceMaterials(const std::vector<MaterialDesc>& materials) {
-  std::vector<Material> out;
-  const float noTexture = glm::uintBitsToFloat(MCL_NO_TEXTURE);
-  for (const MaterialDesc& m : materials) {
-    Material d{};
-    d.albedo = glm::vec4(m.albedo, noTexture);
-    d.emission = glm::vec4(m.emission, m.twoSidedEmission ? 1.0f : 0.0f);
-    d.specular = glm::vec4(m.specular, ggx_alpha_from_ns(m.specularExponent));
-    d.alpha = glm::vec4(noTexture, m.alphaCutoff, glm::uintBitsToFloat(0u), 0.0f);
-    out.push_back(d);
-  }
-  return out;
-}
 
 void checkFits(std::uint64_t bytes, std::uint64_t maxAlloc, const char* remedy) {
   if (bytes > maxAlloc)

@@ -69,6 +69,7 @@ std::uint32_t Loader::material(int index) {
   const std::string where = itemWhere("materials", i);
   MaterialDesc d;
   d.name = g.name.empty() ? where : g.name;
+  d.kind = MCL_MATERIAL_diffuse;  // the base colour as Lambert: metallic/roughness are not read (below)
   const auto& pbr = g.pbrMetallicRoughness;
   d.albedo = factor3(pbr.baseColorFactor, 1.0);
   double strength = 1.0;

@@ -36,9 +36,15 @@ float getUnit(const JsonCtx& ctx, const json& v, const std::string& where) {
 void parseMaterial(const JsonCtx& ctx, const json& j, const std::string& prefix, MaterialOverride& o) {
   requireObject(ctx, j, prefix);
   warnUnknownKeys(ctx, j, prefix,
-                  {"albedo", "albedo_texture", "alpha_texture", "alpha_cutoff", "emission", "two_sided_emission",
-                   "specular", "specular_exponent"});
+                  {"type", "albedo", "albedo_texture", "alpha_texture", "alpha_cutoff", "emission",
+                   "two_sided_emission", "specular", "specular_exponent"});
   MaterialDesc& d = o.value;
+  if (const json* v = optionalKey(j, "type")) {  // the material kind (kernels/shared/material_kinds.h)
+    const std::string name = getString(ctx, *v, prefix + ".type", "a material type");
+    if (!materialKindFromName(name.c_str(), d.kind))
+      jsonFail(ctx, prefix + ".type", "unknown material type '" + oneLine(name, 60) + "' (known: " + materialKindNames() + ")");
+    o.kind = true;
+  }
   if (const json* v = optionalKey(j, "albedo")) o.albedo = true, d.albedo = getColor(ctx, *v, prefix + ".albedo");
   if (const json* v = optionalKey(j, "albedo_texture"))
     o.albedoTexture = true, d.albedoTexture = texturePath(ctx, *v, prefix + ".albedo_texture");
@@ -137,6 +143,7 @@ void overrideMaterials(Scene& scene, std::size_t firstTri, const MeshEntry& mesh
     if (copyOf[m] < 0) {
       MaterialDesc d = scene.materials[m];
       d.name += " (" + mesh.prefix + " override)";
+      if (o.kind) d.kind = o.value.kind;
       if (o.albedo) d.albedo = o.value.albedo;
       if (o.albedoTexture) {
         d.albedoTexture = o.value.albedoTexture;

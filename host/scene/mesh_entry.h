@@ -1,6 +1,6 @@
 // mesh_entry.h: one entry of a scene file's "meshes" list: the file, its per-mesh transform
 // ("transform": scale, rotate, translate, or a row-major 4x4 "matrix") and material overrides
-// ("material": {...}, plus the older "emission" / "two_sided_emission" at the entry's top level).
+// ("material": {"type": a material kind, ...}, plus the older "emission" / "two_sided_emission" at the entry's top level).
 // parseMeshEntry() validates every key (InputError naming the key path); applyMeshEntry()
 // transforms the mesh's triangles (normals by the inverse transpose; a mirroring transform swaps
 // two corners so faces keep their side) and gives them overridden copies of their materials.
@@ -18,11 +18,11 @@ namespace montecl {
 
 // The material fields a scene file sets for one mesh; the others keep the file's values.
 struct MaterialOverride {
-  bool albedo = false, albedoTexture = false, alphaTexture = false, alphaCutoff = false, emission = false,
-       twoSided = false, specular = false, specularExponent = false;
+  bool kind = false, albedo = false, albedoTexture = false, alphaTexture = false, alphaCutoff = false,
+       emission = false, twoSided = false, specular = false, specularExponent = false;
   MaterialDesc value;
   bool any() const {
-    return albedo || albedoTexture || alphaTexture || alphaCutoff || emission || twoSided || specular ||
+    return kind || albedo || albedoTexture || alphaTexture || alphaCutoff || emission || twoSided || specular ||
            specularExponent;
   }
 };

@@ -172,6 +172,7 @@ std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<t
     const MaterialSource src = sourceOf(objPath, files, i, m.name);
     MaterialDesc d;
     d.name = m.name;
+    d.kind = MCL_MATERIAL_diffuse;  // Kd + Ks/Ns: every MTL material is this kind today (illum is not read)
     d.albedo = toVec3(m.diffuse);
     d.emission = toVec3(m.emission);
     d.specular = toVec3(m.specular);

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "kernels/shared/material_kinds.h"
 #include "scene/render_settings.h"
 
 namespace montecl {
@@ -27,6 +28,7 @@ struct MaterialDesc {
   MaterialDesc(std::string name_, glm::vec3 albedo_, glm::vec3 emission_ = glm::vec3(0.0f))
       : name(std::move(name_)), albedo(albedo_), emission(emission_) {}
   std::string name;
+  std::uint32_t kind = MCL_MATERIAL_diffuse;  // MCL_MATERIAL_<kind> (kernels/shared/material_kinds.h)
   glm::vec3 albedo{0.5f};    // Kd (multiplies albedoTexture when there is one)
   glm::vec3 emission{0.0f};  // Ke
   bool twoSidedEmission = false;  // both faces emit Ke (scene key "two_sided_emission"), else the front only

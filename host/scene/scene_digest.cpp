@@ -36,6 +36,9 @@ std::string sceneDigest(const Scene& scene) {
     append(bytes, &m.specularExponent, sizeof m.specularExponent);
     append(bytes, &m.alphaCutoff, sizeof m.alphaCutoff);
     bytes.add(m.albedoTexture + '\0' + m.alphaTexture + '\0' + (m.twoSidedEmission ? '2' : '1'));
+    // The kind only when it is not the first (diffuse): every scene from before kinds existed keeps
+    // its digest, so its checkpoints still resume.
+    if (m.kind != MCL_MATERIAL_diffuse) bytes.add("kind" + std::to_string(m.kind));
   }
   if (scene.environment.enabled) {  // the map by its path (its pixels are not hashed)
     const EnvironmentDesc& e = scene.environment;

@@ -1,100 +1,126 @@
-// bsdf.h: the surface model of every shade stage: a Lambertian lobe (Kd) plus a GGX glossy lobe
-// (Ks, roughness alpha; shared/microfacet.h), in world space around a unit normal n that faces wo.
-// Conventions: wo points from the surface toward the viewer, wi toward the light, both unit.
-//   bsdf_f(b, n, wo, wi)        f (no cosine); 0 when wi or wo is below the surface
-//   bsdf_eval(b, n, wo, wi)     f * cos(n, wi)
-//   bsdf_pdf(b, n, wo, wi)      solid-angle pdf of bsdf_sample producing wi
-//   bsdf_sample(b, n, wo, u1, u2, uLobe)   wi, weight = f cos / pdf, pdf (pdf 0: no sample)
-// The lobe is picked with probability proportional to its luminance (Kd vs Ks); the pdf is the
-// mixture of both lobes' pdfs (one-sample MIS over lobes). With Ks = 0 every function reduces to
-// the Lambertian expressions, operation for operation (Lambert-only images are bit-identical to
-// the renderer before the glossy lobe). Kd + Ks <= 1 is ensured at load (energy conservation).
-// Pure; compiled by the kernels and by the host tests.
+// bsdf.h: the BSDF interface of every shade stage, dispatched on the material kind in one place:
+// each function below is a switch generated from the kind table (material_kinds.h) calling the
+// kind's own function (bsdf_<kind>.h). Reads nothing but its arguments; pure; compiled by the
+// kernels and by the host tests.
+//   bsdf_from_material(m, albedo)   the BSDF of device material m at a hit (albedo: textured)
+//   bsdf_f(b, s, wo, wi)            f (no cosine), around shading frame s
+//   bsdf_eval(b, s, wo, wi)         f * cos(ns, wi)
+//   bsdf_pdf(b, s, wo, wi)          solid-angle pdf of bsdf_sample producing wi
+//   bsdf_sample(b, s, wo, u1, u2, uLobe)             wi, weight = f cos / pdf, pdf (0: absorbed)
+//   bsdf_sample_direction / bsdf_direction_weight    the same sample split over two stages
+//                                                    (the direct integrator; bsdf_common.h)
+//   bsdf_albedo(b)                  the colour of the albedo AOV
+// A tag outside the table (never loaded: the loaders only set tabled kinds) reflects nothing.
+// Switches, not function pointers: OpenCL C 1.2 has none; with one kind the switch folds away.
 #pragma once
-#include "lights.h"
-#include "microfacet.h"
+#include "material_kinds.h"
+#include "bsdf_diffuse.h"  // one include per kind: bsdf_<kind>.h
 
+// A material kind's tag as the device Material holds it (alpha.w, as uint bits).
+MCL_INLINE uint material_kind(Material m) { return as_uint(m.alpha.w); }
+
+#define MCL_BSDF_PARAMS_MEMBER(kind, Params) Params kind;
+typedef union {
+  MCL_MATERIAL_KINDS(MCL_BSDF_PARAMS_MEMBER)
+} BsdfParams;
+#undef MCL_BSDF_PARAMS_MEMBER
+
+// The BSDF at a hit: the kind and that kind's parameters (p.<kind>).
 typedef struct {
-  float3 kd;        // Lambertian reflectance
-  float3 ks;        // glossy reflectance
-  float alpha;      // GGX roughness
-  float specProb;   // probability of sampling the glossy lobe; 0 = Lambertian only
+  uint kind;
+  BsdfParams p;
 } Bsdf;
 
-MCL_INLINE Bsdf bsdf_make(float3 kd, float3 ks, float alpha) {
+MCL_INLINE Bsdf bsdf_from_material(Material m, float3 albedo) {
   Bsdf b;
-  b.kd = kd;
-  b.ks = ks;
-  b.alpha = fmax(alpha, MCL_GGX_MIN_ALPHA);
-  float ls = luminance(ks), ld = luminance(kd);
-  b.specProb = ls > 0.0f ? ls / (ls + ld) : 0.0f;
+  b.kind = material_kind(m);
+  switch (b.kind) {
+#define MCL_BSDF_CASE(kind, Params) \
+  case MCL_MATERIAL_##kind: b.p.kind = kind##_from_material(m, albedo); break;
+    MCL_MATERIAL_KINDS(MCL_BSDF_CASE)
+#undef MCL_BSDF_CASE
+    default:  // never read (every function returns its zero for an unknown tag); set, not left undefined
+      b.p.diffuse = diffuse_make(make_float3(0.0f, 0.0f, 0.0f), make_float3(0.0f, 0.0f, 0.0f), 1.0f);
+  }
   return b;
 }
 
-// A device material's lobes (albedo texture lookups, if any, replace kd afterwards).
-MCL_INLINE Bsdf bsdf_from_material(MCL_GLOBAL const Material* m) {
-  return bsdf_make(xyz(m->albedo), xyz(m->specular), m->specular.w);
-}
-
-// Local coordinates of w in the frame (t, b, n) of make_basis.
-MCL_INLINE float3 to_local(float3 w, float3 n) {
-  float3 t, b;
-  make_basis(n, &t, &b);
-  return make_float3(dot(w, t), dot(w, b), dot(w, n));
-}
-
-MCL_INLINE float3 bsdf_f(Bsdf b, float3 n, float3 wo, float3 wi) {
-  float cosI = dot(n, wi);
-  if (b.specProb == 0.0f) return cosI > 0.0f ? b.kd * MCL_INV_PI : make_float3(0.0f, 0.0f, 0.0f);
-  float cosO = dot(n, wo);
-  if (!(cosI > 0.0f && cosO > 0.0f)) return make_float3(0.0f, 0.0f, 0.0f);
-  float g = ggx_eval_cos(to_local(wo, n), to_local(wi, n), b.alpha) / cosI;
-  return b.kd * MCL_INV_PI + b.ks * g;
-}
-
-MCL_INLINE float3 bsdf_eval(Bsdf b, float3 n, float3 wo, float3 wi) {
-  float c = dot(n, wi);
-  if (b.specProb == 0.0f) return c > 0.0f ? b.kd * (c * MCL_INV_PI) : make_float3(0.0f, 0.0f, 0.0f);
-  return bsdf_f(b, n, wo, wi) * fmax(c, 0.0f);
-}
-
-MCL_INLINE float bsdf_pdf(Bsdf b, float3 n, float3 wo, float3 wi) {
-  float cosI = dot(n, wi);
-  if (b.specProb == 0.0f) return pdf_cosine_hemisphere(cosI);
-  if (!(cosI > 0.0f && dot(n, wo) > 0.0f)) return 0.0f;
-  return (1.0f - b.specProb) * pdf_cosine_hemisphere(cosI) +
-         b.specProb * ggx_pdf(to_local(wo, n), to_local(wi, n), b.alpha);
-}
-
-typedef struct {
-  float3 wi;
-  float3 weight;  // f * cos / pdf
-  float pdf;      // 0: no direction (the sample is absorbed)
-} BsdfSample;
-
-MCL_INLINE BsdfSample bsdf_sample(Bsdf b, float3 n, float3 wo, float u1, float u2, float uLobe) {
-  BsdfSample s;
-  if (b.specProb == 0.0f) {  // Lambertian: f cos / p = Kd exactly
-    float3 dirLocal = sample_cosine_hemisphere(u1, u2);  // sampling.h: same bits on every device
-    s.wi = to_world(dirLocal, n);
-    s.pdf = pdf_cosine_hemisphere(dirLocal.z);
-    s.weight = s.pdf > 0.0f ? b.kd : make_float3(0.0f, 0.0f, 0.0f);
-    return s;
+MCL_INLINE float3 bsdf_f(Bsdf b, SurfaceFrame s, float3 wo, float3 wi) {
+  switch (b.kind) {
+#define MCL_BSDF_CASE(kind, Params) \
+  case MCL_MATERIAL_##kind: return kind##_f(b.p.kind, s, wo, wi);
+    MCL_MATERIAL_KINDS(MCL_BSDF_CASE)
+#undef MCL_BSDF_CASE
   }
-  float3 woL = to_local(wo, n);
-  s.weight = make_float3(0.0f, 0.0f, 0.0f);
-  s.pdf = 0.0f;
-  s.wi = n;
-  if (!(woL.z > 0.0f)) return s;
-  float3 wiL;
-  if (uLobe < b.specProb) wiL = reflect_about(woL, ggx_sample_visible_normal(woL, b.alpha, u1, u2));
-  else wiL = sample_cosine_hemisphere(u1, u2);
-  if (!(wiL.z > 0.0f)) return s;
-  s.wi = to_world(wiL, n);
-  float pdf = (1.0f - b.specProb) * pdf_cosine_hemisphere(wiL.z) + b.specProb * ggx_pdf(woL, wiL, b.alpha);
-  if (!(pdf > 0.0f)) return s;
-  float3 fcos = b.kd * (MCL_INV_PI * wiL.z) + b.ks * ggx_eval_cos(woL, wiL, b.alpha);
-  s.pdf = pdf;
-  s.weight = fcos * (1.0f / pdf);
-  return s;
+  return make_float3(0.0f, 0.0f, 0.0f);
+}
+
+MCL_INLINE float3 bsdf_eval(Bsdf b, SurfaceFrame s, float3 wo, float3 wi) {
+  switch (b.kind) {
+#define MCL_BSDF_CASE(kind, Params) \
+  case MCL_MATERIAL_##kind: return kind##_eval(b.p.kind, s, wo, wi);
+    MCL_MATERIAL_KINDS(MCL_BSDF_CASE)
+#undef MCL_BSDF_CASE
+  }
+  return make_float3(0.0f, 0.0f, 0.0f);
+}
+
+MCL_INLINE float bsdf_pdf(Bsdf b, SurfaceFrame s, float3 wo, float3 wi) {
+  switch (b.kind) {
+#define MCL_BSDF_CASE(kind, Params) \
+  case MCL_MATERIAL_##kind: return kind##_pdf(b.p.kind, s, wo, wi);
+    MCL_MATERIAL_KINDS(MCL_BSDF_CASE)
+#undef MCL_BSDF_CASE
+  }
+  return 0.0f;
+}
+
+MCL_INLINE BsdfSample bsdf_sample(Bsdf b, SurfaceFrame s, float3 wo, float u1, float u2, float uLobe) {
+  switch (b.kind) {
+#define MCL_BSDF_CASE(kind, Params) \
+  case MCL_MATERIAL_##kind: return kind##_sample(b.p.kind, s, wo, u1, u2, uLobe);
+    MCL_MATERIAL_KINDS(MCL_BSDF_CASE)
+#undef MCL_BSDF_CASE
+  }
+  BsdfSample none;
+  none.wi = s.ng;
+  none.weight = make_float3(0.0f, 0.0f, 0.0f);
+  none.pdf = 0.0f;
+  return none;
+}
+
+MCL_INLINE BsdfDirection bsdf_sample_direction(Bsdf b, SurfaceFrame s, float3 wo, float u1, float u2, float uLobe) {
+  switch (b.kind) {
+#define MCL_BSDF_CASE(kind, Params) \
+  case MCL_MATERIAL_##kind: return kind##_sample_direction(b.p.kind, s, wo, u1, u2, uLobe);
+    MCL_MATERIAL_KINDS(MCL_BSDF_CASE)
+#undef MCL_BSDF_CASE
+  }
+  BsdfDirection none;
+  none.wi = s.ng;
+  none.traced = 0;
+  return none;
+}
+
+MCL_INLINE BsdfWeight bsdf_direction_weight(Bsdf b, SurfaceFrame s, float3 wo, float3 wi, float pdf) {
+  switch (b.kind) {
+#define MCL_BSDF_CASE(kind, Params) \
+  case MCL_MATERIAL_##kind: return kind##_direction_weight(b.p.kind, s, wo, wi, pdf);
+    MCL_MATERIAL_KINDS(MCL_BSDF_CASE)
+#undef MCL_BSDF_CASE
+  }
+  BsdfWeight none;
+  none.weight = make_float3(0.0f, 0.0f, 0.0f);
+  none.counts = 0;
+  return none;
+}
+
+MCL_INLINE float3 bsdf_albedo(Bsdf b) {
+  switch (b.kind) {
+#define MCL_BSDF_CASE(kind, Params) \
+  case MCL_MATERIAL_##kind: return kind##_albedo(b.p.kind);
+    MCL_MATERIAL_KINDS(MCL_BSDF_CASE)
+#undef MCL_BSDF_CASE
+  }
+  return make_float3(0.0f, 0.0f, 0.0f);
 }

@@ -73,10 +73,6 @@ MCL_INLINE float3 frame_sample_direction(SurfaceFrame s, float3 dirLocal) {
 MCL_INLINE float frame_cosine(SurfaceFrame s, float3 wi) {
   return s.smooth ? shading_cosine(s.ns, s.ng, wi) : dot(s.ng, wi);
 }
-// The pdf of frame_sample_direction(s, sample_cosine_hemisphere(...)) at wi.
-MCL_INLINE float frame_pdf_cosine(SurfaceFrame s, float3 wi) {
-  return s.smooth ? pdf_cosine_folded(s.ns, s.ng, wi) : pdf_cosine_hemisphere(dot(s.ng, wi));
-}
 // f cos / p of a Lambertian surface of albedo 1 for a direction from cosine sampling: 1 when flat;
 // with folding, cos_s(wi) / (pi pdf) <= 1.
 MCL_INLINE float frame_cosine_weight(SurfaceFrame s, float3 wi) {

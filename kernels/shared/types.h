@@ -74,7 +74,8 @@ typedef struct MCL_ALIGN16 {
   float4 emission;  // rgb: Ke; w: 1 when both faces emit ("two_sided_emission"), else 0 (front only)
   float4 specular;  // rgb: Ks (glossy lobe); w: GGX roughness alpha (unused while Ks is 0)
   float4 alpha;     // x: alpha texture index (as_float bits, MCL_NO_TEXTURE: opaque); y: cutoff;
-                    // z: channel of that texture holding alpha (as_float bits); w unused
+                    // z: channel of that texture holding alpha (as_float bits); w: the material kind
+                    // MCL_MATERIAL_<kind> (as_float bits; shared/material_kinds.h; 0: diffuse)
 } Material;
 
 // A ray: origin.w unused (0), dir.w = tmax.

@@ -3,9 +3,8 @@
 // or the background without one; else Le seen directly), pushes K light-sample occlusion queries
 // onto the shadow queue (light / mis; lights: the environment and emitter triangles,
 // stages/direct_light.h) and writes the BSDF ray bounce[i] (brdf / mis; otherwise an empty ray
-// with tmax < 0). Surfaces: Lambert (albedo = Kd x texture, surface_texture.h) + GGX (Ks, alpha)
-// around the shading frame (shared/surface_bsdf.h: light directions below the geometric surface
-// are zero, Lambertian samples folded above it).
+// with tmax < 0). Surfaces: surface_at (shared/surface.h): the shading frame and the material
+// kind's BSDF (shared/bsdf.h; light directions below the geometric surface are zero).
 // Shadow slots per sample: [0, K) light samples, K the BSDF sample (shade_direct_hit); each
 // strategy leaves the slots it does not use at 0.
 #pragma once
@@ -15,26 +14,22 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   if (i >= a->waveCount) return;
   MCL_CONSTANT const FrameParams* f = a->frame;
   Hit h = a->hits[i];
+  float3 dir = xyz(a->rays[i].dir);
+  LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf);
   Ray bounce;  // no BRDF ray unless set below; stored once on every way out
   bounce.origin = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
   bounce.dir = make_float4(0.0f, 0.0f, 1.0f, -1.0f);
   if (!shade_begin(f, h, i, a->radiance, a->shadowContrib)) {
     a->bounce[i] = bounce;
-    if (env_present(f)) a->radiance[i] = with_w(env_radiance(f, a->envMap, xyz(a->rays[i].dir)), 0.0f);
+    if (env_present(f)) a->radiance[i] = with_w(light_eval(f, lights, light_hit(h, dir)), 0.0f);
     return;
   }
-  MCL_GLOBAL const Triangle* tris = a->tris;
-  MCL_GLOBAL const Material* materials = a->materials;
-  float3 dir = xyz(a->rays[i].dir);
-  MCL_GLOBAL const Triangle* tri = &tris[h.tri];
-  float4 nA = a->normals[h.tri];
-  float3 le = emitted_toward(xyz(nA), &materials[triangle_material(tri)], dir);
+  float3 le = light_eval(f, lights, light_hit(h, dir));  // Le of the hit triangle seen directly
   float3 wo = -dir;
-  SurfaceFrame sf = surface_frame(tris, a->normals, a->shading, h, dir);
+  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, dir);
+  SurfaceFrame sf = surf.frame;
+  Bsdf bsdf = surf.bsdf;
   a->radiance[i] = with_w(le, 0.0f);
-  Bsdf bsdf = bsdf_from_material(&materials[triangle_material(tri)]);
-  bsdf.kd = hit_albedo(make_texture_tables(a->textures, a->textureLevels, a->texels), f,
-                       materials[triangle_material(tri)], tri, nA, &a->shading[h.tri], h, dir);
   float3 origin = offset_ray_origin(sf.p, sf.ng, f->offsetScale);
   uint pixel = item_pixel(f, a->active, a->waveStart, i), sample = item_sample(f, a->waveStart, i);
   float nLight = (float)f->lightSamples;
@@ -43,28 +38,19 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
 
   for (uint k = 0; useLight && k < f->lightSamples; ++k) {
     float4 u = rng_uniform4(f->seed, pixel, sample, MCL_DIM_LIGHT + k);
-    LightSample ls = sample_direct_light(f, tris, a->normals, materials, a->emitters, a->envMap, a->envCdf, origin, u);
+    LightSample ls = sample_direct_light(f, lights, origin, u);
     float cosSurf = frame_cosine(sf, ls.wi);  // 0 below the geometric surface
     if (!(ls.pdf > 0.0f && cosSurf > 0.0f)) continue;
-    float weight = useBrdf ? power_heuristic(nLight, ls.pdf, 1.0f, surface_bsdf_pdf(bsdf, sf, wo, ls.wi)) : 1.0f;
-    float3 c = surface_bsdf_f(bsdf, sf, wo, ls.wi) * ls.le * (cosSurf * weight / (ls.pdf * nLight));
+    float weight = useBrdf ? power_heuristic(nLight, ls.pdf, 1.0f, bsdf_pdf(bsdf, sf, wo, ls.wi)) : 1.0f;
+    float3 c = bsdf_f(bsdf, sf, wo, ls.wi) * ls.le * (cosSurf * weight / (ls.pdf * nLight));
     push_shadow_query(a->queue, a->queueCount, origin, ls.wi, ls.tmax, c, i * f->shadowSlots + k);
   }
   if (useBrdf) {
     float4 u = rng_uniform4(f->seed, pixel, sample, MCL_DIM_BRDF);
-    float3 wi;
-    bool absorbed = false;
-    if (bsdf.specProb == 0.0f) {
-      // Lambertian: the cosine lobe around the shading frame (folded above the geometric surface).
-      wi = frame_sample_direction(sf, sample_cosine_hemisphere(u.x, u.y));
-    } else {
-      BsdfSample bs = surface_bsdf_sample(bsdf, sf, wo, u.x, u.y, u.z);
-      absorbed = !(bs.pdf > 0.0f);  // then no BRDF ray
-      wi = bs.wi;
-    }
-    if (!absorbed) {
+    BsdfDirection d = bsdf_sample_direction(bsdf, sf, wo, u.x, u.y, u.z);  // weighed in shade_direct_hit
+    if (d.traced) {  // else absorbed: no BRDF ray
       bounce.origin = with_w(origin, 0.0f);
-      bounce.dir = with_w(wi, INFINITY);
+      bounce.dir = with_w(d.wi, INFINITY);
     }
   }
   a->bounce[i] = bounce;

@@ -5,9 +5,9 @@
 // light sampling after a BSDF bounce) or the miss radiance (path_miss), pushes lightSamples
 // next-event queries onto the shadow queue (slots id * shadowSlots + k, contributions MIS
 // weighted; lights: emitter triangles and the environment, stages/direct_light.h), samples the
-// BSDF (kernels/shared/surface_bsdf.h: Lambert (albedo = Kd x texture) + GGX around the shading
-// frame; textures filtered with the camera's ray-cone width at this segment's length, a
-// lower bound after diffuse bounces), applies Russian roulette from depth
+// BSDF (surface_at, kernels/shared/surface.h: the material kind's BSDF around the shading frame;
+// textures filtered with the camera's ray-cone width at this segment's length, a lower bound after
+// diffuse bounces), applies Russian roulette from depth
 // rrDepth, and pushes the continuation ray onto nextRays / nextPathIds (compacted, *nextCount).
 // Depth (Mitsuba's convention, FrameParams::maxDepth D): hit b adds emission when b < D, next-event
 // estimation and a continuation when b + 1 < D; D = -1 is unlimited. Random numbers: bounce b
@@ -19,12 +19,12 @@
 // environment (camera rays see it unweighted; after a BSDF bounce it is MIS weighted against
 // environment sampling with the BSDF sample's pdf lastPdf), else the background for camera rays
 // and nothing afterwards.
-MCL_INLINE float3 path_miss(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const float4* envMap, float3 dir,
-                            uint bounce, float lastPdf) {
+MCL_INLINE float3 path_miss(MCL_CONSTANT const FrameParams* f, LightScene lights, LightHit miss, uint bounce,
+                            float lastPdf) {
   if (!env_present(f)) return bounce == 0 ? xyz(f->background) : make_float3(0.0f, 0.0f, 0.0f);
-  float3 le = env_radiance(f, envMap, dir);
+  float3 le = light_eval(f, lights, miss);
   if (bounce == 0 || !(lastPdf > 0.0f)) return le;
-  return le * power_heuristic(1.0f, lastPdf, (float)f->lightSamples, env_light_pdf(f, envMap, dir));
+  return le * power_heuristic(1.0f, lastPdf, (float)f->lightSamples, light_pdf(f, lights, miss));
 }
 
 MCL_INLINE uint path_dim(uint bounce, uint j) { return MCL_DIM_PATH + bounce * MCL_DIM_PATH_STRIDE + j; }
@@ -43,45 +43,42 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
   float3 L = bounce == 0 ? make_float3(0.0f, 0.0f, 0.0f) : xyz(a->radiance[id]);
   Hit h = a->hits[k];
   float3 dir = xyz(a->rays[k].dir);
+  LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf);
+  LightHit lh = light_hit(h, dir);  // the environment on a miss, else the hit triangle
   if (h.tri == MCL_NO_HIT) {
-    a->radiance[id] = with_w(L + beta * path_miss(f, a->envMap, dir, bounce, beta4.w), 0.0f);
+    a->radiance[id] = with_w(L + beta * path_miss(f, lights, lh, bounce, beta4.w), 0.0f);
     return;
   }
-  MCL_GLOBAL const Triangle* tris = a->tris;
-  MCL_GLOBAL const Material* materials = a->materials;
-  MCL_GLOBAL const Triangle* tri = &tris[h.tri];
   float nLight = (float)f->lightSamples;
-  float4 nA = a->normals[h.tri];
-  float3 le = emitted_toward(xyz(nA), &materials[triangle_material(tri)], dir);
+  float3 le = light_eval(f, lights, lh);
   if (le.x > 0.0f || le.y > 0.0f || le.z > 0.0f) {
     float weight = 1.0f;
     if (bounce > 0 && beta4.w > 0.0f && f->emitterCount > 0)  // a BSDF sample found an emitter
-      weight = power_heuristic(1.0f, beta4.w, nLight, emitter_light_pdf(f, tri, nA, materials, dir, h.t));
+      weight = power_heuristic(1.0f, beta4.w, nLight, light_pdf(f, lights, lh));
     L += beta * le * weight;
   }
   a->radiance[id] = with_w(L, 0.0f);
   if (!(f->maxDepth < 0 || (int)bounce + 1 < f->maxDepth)) return;
 
-  SurfaceFrame sf = surface_frame(tris, a->normals, a->shading, h, dir);
+  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, dir);
+  SurfaceFrame sf = surf.frame;
+  Bsdf bsdf = surf.bsdf;
   float3 wo = dir * -1.0f;
-  Bsdf bsdf = bsdf_from_material(&materials[triangle_material(tri)]);
-  bsdf.kd = hit_albedo(make_texture_tables(a->textures, a->textureLevels, a->texels), f,
-                       materials[triangle_material(tri)], tri, nA, &a->shading[h.tri], h, dir);
   float3 origin = offset_ray_origin(sf.p, sf.ng, f->offsetScale);
   uint pixel = item_pixel(f, a->active, a->waveStart, id), sample = item_sample(f, a->waveStart, id);
   for (uint s = 0; (f->emitterCount > 0 || env_present(f)) && s < f->lightSamples; ++s) {
     float4 u = rng_uniform4(f->seed, pixel, sample, path_dim(bounce, 1u + s));
-    LightSample ls = sample_direct_light(f, tris, a->normals, materials, a->emitters, a->envMap, a->envCdf, origin, u);
+    LightSample ls = sample_direct_light(f, lights, origin, u);
     if (!(ls.pdf > 0.0f)) continue;
-    float3 fcos = surface_bsdf_eval(bsdf, sf, wo, ls.wi);
+    float3 fcos = bsdf_eval(bsdf, sf, wo, ls.wi);
     if (!(max_component(fcos) > 0.0f)) continue;
-    float weight = power_heuristic(nLight, ls.pdf, 1.0f, surface_bsdf_pdf(bsdf, sf, wo, ls.wi));
+    float weight = power_heuristic(nLight, ls.pdf, 1.0f, bsdf_pdf(bsdf, sf, wo, ls.wi));
     float3 c = beta * fcos * ls.le * (weight / (ls.pdf * nLight));
     push_shadow_query(a->queue, a->queueCount, origin, ls.wi, ls.tmax, c, id * f->shadowSlots + s);
   }
 
   float4 u = rng_uniform4(f->seed, pixel, sample, path_dim(bounce, 0u));  // z: roulette, w: lobe
-  BsdfSample bs = surface_bsdf_sample(bsdf, sf, wo, u.x, u.y, u.w);
+  BsdfSample bs = bsdf_sample(bsdf, sf, wo, u.x, u.y, u.w);
   float3 wi = bs.wi;
   float pdf = bs.pdf;
   float3 next = beta * bs.weight;

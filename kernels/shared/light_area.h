@@ -1,0 +1,70 @@
+// light_area.h: the light kind "area" (light_kinds.h): emitting triangles. Reads the emitter table
+// (Emitter: picked with probability area * luminance(Le) / emitterPower), the triangles, their
+// normals and areas, and their materials' emission; pure; compiled by the kernels and the host.
+// Emitters emit Ke from their front face (the side of cross(e1, e2)), or from both faces when the
+// material's emission.w is set.
+#pragma once
+#include "environment.h"
+#include "light_scene.h"
+#include "lights.h"
+
+// Le leaving a triangle of unit normal n and material m toward the viewer moving along dir (0 from
+// the back face).
+MCL_INLINE float3 emitted_toward(float3 n, MCL_GLOBAL const Material* m, float3 dir) {
+  float4 e = m->emission;
+  bool front = dot(n, dir) < 0.0f;
+  return front || e.w != 0.0f ? xyz(e) : make_float3(0.0f, 0.0f, 0.0f);
+}
+
+// Cosine at an emitter of unit normal n and material m for a direction wi from the shading point
+// toward it: positive when wi reaches the emitting side (either side for a two-sided emitter).
+MCL_INLINE float emitter_cosine(float3 n, MCL_GLOBAL const Material* m, float3 wi) {
+  float c = -dot(n, wi);
+  return m->emission.w != 0.0f ? fabs(c) : c;
+}
+
+// The share of light samples left by the environment (light_environment.h), when there are emitters.
+MCL_INLINE float area_light_probability(MCL_CONSTANT const FrameParams* f) {
+  return f->emitterCount > 0u ? 1.0f - env_pick_probability(f) : 0.0f;
+}
+
+// An emitter by power (u0), a uniform point on it (u1, u2); pdf per solid angle within the kind.
+MCL_INLINE LightSample area_light_sample(MCL_CONSTANT const FrameParams* f, LightScene ls, float3 origin, float u0,
+                                         float u1, float u2) {
+  LightSample s = no_light_sample();
+  MCL_GLOBAL const Emitter* em = &ls.emitters[pick_emitter(ls.emitters, f->emitterCount, u0)];
+  MCL_GLOBAL const Triangle* lt = &ls.tris[em->tri];
+  MCL_GLOBAL const Material* lm = &ls.materials[triangle_material(lt)];
+  float3 le = xyz(lm->emission);
+  float3 p = sample_triangle(xyz(lt->v0), xyz(lt->e1), xyz(lt->e2), u1, u2);
+  float3 toLight = p - origin;
+  float dist2 = dot(toLight, toLight);
+  float dist = sqrt(dist2);
+  float3 wi = toLight / dist;
+  float cosLight = emitter_cosine(xyz(ls.normals[em->tri]), lm, wi);
+  if (!(cosLight > 0.0f && dist > 0.0f)) return s;
+  float pick = emitter_pick_probability(em->area, le, f->emitterPower);
+  s.pdf = area_to_solid_angle(pick / em->area, dist2, cosLight);
+  s.wi = wi;
+  s.le = le;
+  s.tmax = dist * (1.0f - 1e-4f);
+  return s;
+}
+
+// Pdf within the kind of reaching triangle hit.tri along hit.wi at distance hit.t (0 without
+// emitters).
+MCL_INLINE float area_light_pdf(MCL_CONSTANT const FrameParams* f, LightScene ls, LightHit hit) {
+  if (f->emitterCount == 0u) return 0.0f;
+  MCL_GLOBAL const Material* lm = &ls.materials[triangle_material(&ls.tris[hit.tri])];
+  float4 nA = ls.normals[hit.tri];
+  float area = nA.w;
+  float cosLight = emitter_cosine(xyz(nA), lm, hit.wi);
+  float pick = emitter_pick_probability(area, xyz(lm->emission), f->emitterPower);
+  return area_to_solid_angle(pick / area, hit.t * hit.t, cosLight);
+}
+
+// Le the triangle hit.tri sends back along -hit.wi (0 for a non-emitter or its back face).
+MCL_INLINE float3 area_light_eval(MCL_CONSTANT const FrameParams* f, LightScene ls, LightHit hit) {
+  (void)f;
+  return emitted_toward(xyz(ls.normals[hit.tri]), &ls.materials[triangle_material(&ls.tris[hit.tri])], hit.wi);
+}

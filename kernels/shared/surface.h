@@ -1,0 +1,85 @@
+// surface.h: what a shade stage knows about the surface at a hit, from one call: surface_at reads
+// the hit triangle, its precomputed normal, its attributes (TriangleShading), its material and
+// the textures, and returns the shading frame and the BSDF (kind, parameters, textured albedo).
+// Pure; compiled by the kernels, the host backend and the host tests.
+#pragma once
+#include "bsdf.h"
+#include "lights.h"
+#include "shading.h"
+#include "surface_texture.h"
+
+// What surface_at reads: the scene's triangles (BVH order), their unit geometric normals and
+// areas (normals[t]: xyz, w), attributes, materials and texture tables.
+typedef struct {
+  MCL_GLOBAL const Triangle* tris;
+  MCL_GLOBAL const float4* normals;
+  MCL_GLOBAL const TriangleShading* shading;
+  MCL_GLOBAL const Material* materials;
+  TextureTables tex;
+} SurfaceScene;
+
+MCL_INLINE SurfaceScene make_surface_scene(MCL_GLOBAL const Triangle* tris, MCL_GLOBAL const float4* normals,
+                                           MCL_GLOBAL const TriangleShading* shading,
+                                           MCL_GLOBAL const Material* materials, TextureTables tt) {
+  SurfaceScene s;
+  s.tris = tris;
+  s.normals = normals;
+  s.shading = shading;
+  s.materials = materials;
+  s.tex = tt;
+  return s;
+}
+
+// The SurfaceScene of a stage's arguments a (every shading stage's table row names these fields).
+#define MCL_STAGE_SURFACE_SCENE(a)                                                                 \
+  make_surface_scene((a)->tris, (a)->normals, (a)->shading, (a)->materials,                       \
+                     make_texture_tables((a)->textures, (a)->textureLevels, (a)->texels))
+
+// Unit normal n flipped to face the incoming direction.
+MCL_INLINE float3 orient_facing(float3 n, float3 incoming) { return dot(n, incoming) > 0.0f ? -n : n; }
+
+// Hit position from barycentrics (more accurate than org + t * dir).
+MCL_INLINE float3 hit_position(MCL_GLOBAL const Triangle* tri, Hit h) {
+  return xyz(tri->v0) + xyz(tri->e1) * h.u + xyz(tri->e2) * h.v;
+}
+
+// The shading frame of hit h on triangle tris[h.tri] for a ray moving along `incoming`: position,
+// geometric normal facing the ray, shading normal (shared/shading.h: interpolated corner normals
+// on the geometric normal's side, read from shading[h.tri] only when the triangle's flags say it
+// has normals; else the geometric normal, smooth = 0). The geometric normal is normals[h.tri]
+// (precomputed triangle_unit_normal).
+MCL_INLINE SurfaceFrame surface_frame(MCL_GLOBAL const Triangle* tris, MCL_GLOBAL const float4* normals,
+                                      MCL_GLOBAL const TriangleShading* shading, Hit h, float3 incoming) {
+  MCL_GLOBAL const Triangle* tri = &tris[h.tri];
+  SurfaceFrame s;
+  s.p = hit_position(tri, h);
+  s.ng = orient_facing(xyz(normals[h.tri]), incoming);
+  s.ns = s.ng;
+  s.smooth = 0;
+  if (as_uint(tri->e2.w) & MCL_ATTR_NORMALS) {
+    MCL_GLOBAL const TriangleShading* a = &shading[h.tri];
+    float3 n = interpolate_normal(xyz(a->n0), xyz(a->n1), xyz(a->n2), h.u, h.v);
+    if (dot(n, n) > 0.0f) {
+      s.ns = orient_to(n, s.ng);
+      s.smooth = 1;
+    }
+  }
+  return s;
+}
+
+typedef struct {
+  SurfaceFrame frame;
+  Bsdf bsdf;
+} Surface;
+
+// The surface at hit h (h.tri != MCL_NO_HIT) of a ray moving along unit direction dir, whose
+// length to the hit is h.t (the albedo texture's footprint is the camera's ray cone there).
+// Every shade stage and record_aov read their surface through this one function.
+MCL_INLINE Surface surface_at(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, Hit h, float3 dir) {
+  MCL_GLOBAL const Triangle* tri = &sc.tris[h.tri];
+  Material m = sc.materials[triangle_material(tri)];
+  Surface s;
+  s.frame = surface_frame(sc.tris, sc.normals, sc.shading, h, dir);
+  s.bsdf = bsdf_from_material(m, hit_albedo(sc.tex, f, m, tri, sc.normals[h.tri], &sc.shading[h.tri], h, dir));
+  return s;
+}

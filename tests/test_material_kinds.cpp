@@ -1,0 +1,198 @@
+// test_material_kinds.cpp: every row of the material kind table (kernels/shared/material_kinds.h)
+// against its BSDF (shared/bsdf.h dispatch), compiled as C++: the name round-trips, the packer
+// (render/device_materials.cpp) stores the tag where bsdf_from_material finds it, and for each
+// kind's test materials, around a flat and a tilted shading frame and at several viewing angles,
+// eval / pdf / sample / the split sample / albedo agree: each sample's pdf and weight are pdf() and
+// eval() / pdf() there, f = eval / |cos|, the split pair (sample_direction, direction_weight)
+// gives sample()'s direction and weight, the mean sample weight (the reflectance, estimated by
+// importance sampling) matches an independent uniform-sphere estimate of the integral of eval
+// within a z-score of their standard errors, and where a case says so, that reflectance is
+// albedo() within a z-score of its own standard error. A new table row without test cases
+// (kindCases_<kind>) does not compile.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "kernels/shared/bsdf.h"
+#include "kernels/shared/rng.h"
+#include "render/device_materials.h"
+#include "stats.h"
+
+using montecl::MaterialDesc;
+using montecl_test::RunningStats;
+
+namespace {
+
+struct KindCase {
+  std::string what;
+  MaterialDesc desc;
+  float3 albedo;              // the textured albedo at the hit, handed to bsdf_from_material
+  bool albedoIsReflectance;   // on a flat frame the reflectance (mean sample weight) is albedo()
+};
+
+MaterialDesc withKind(std::uint32_t kind, float3 kd, float3 ks, float ns) {
+  MaterialDesc d;
+  d.kind = kind;
+  d.albedo = kd;
+  d.specular = ks;
+  d.specularExponent = ns;
+  return d;
+}
+
+// The diffuse kind: Lambert alone (its reflectance is Kd x texture), and with glossy lobes
+// (single-scattering GGX loses energy: no albedo claim, only consistency and energy <= 1).
+std::vector<KindCase> kindCases_diffuse() {
+  const std::uint32_t k = MCL_MATERIAL_diffuse;
+  return {
+      {"Lambert", withKind(k, float3(0.7f, 0.5f, 0.3f), float3(0.0f), 0.0f), float3(0.6f, 0.45f, 0.2f), true},
+      {"Lambert + GGX Ns 20", withKind(k, float3(0.3f, 0.4f, 0.2f), float3(0.5f), 20.0f), float3(0.3f, 0.4f, 0.2f),
+       false},
+      {"Lambert + GGX Ns 0 (alpha 1)", withKind(k, float3(0.5f), float3(0.4f, 0.3f, 0.2f), 0.0f), float3(0.5f), false},
+  };
+}
+
+struct KindRow {
+  const char* name;
+  std::uint32_t tag;
+  std::vector<KindCase> cases;
+};
+
+std::vector<KindRow> kindRows() {
+  std::vector<KindRow> rows;
+#define MCL_TEST_KIND_ROW(kind, Params) rows.push_back(KindRow{#kind, MCL_MATERIAL_##kind, kindCases_##kind()});
+  MCL_MATERIAL_KINDS(MCL_TEST_KIND_ROW)
+#undef MCL_TEST_KIND_ROW
+  return rows;
+}
+
+float3 dirFromAngles(double theta, double phi) {
+  return float3(float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)), float(std::cos(theta)));
+}
+
+// Uniform on the unit sphere from u1, u2 in [0, 1): pdf 1 / (4 pi).
+float3 uniformSphere(float u1, float u2) {
+  const double z = 1.0 - 2.0 * u1, r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = 2.0 * M_PI * u2;
+  return float3(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z));
+}
+
+bool near(float a, float b, float rel) { return std::fabs(a - b) <= rel * std::max(std::fabs(a), std::fabs(b)) + 1e-6f; }
+
+}  // namespace
+
+TEST_CASE("material kinds: names round-trip, tags are the table's order, the packer stores the tag" *
+          doctest::test_suite("cpu")) {
+  const std::vector<KindRow> rows = kindRows();
+  REQUIRE(rows.size() == std::size_t(MCL_MATERIAL_KIND_COUNT));
+  CHECK(MCL_MATERIAL_diffuse == 0);  // the default: zero-filled materials are diffuse
+  CHECK(MaterialDesc{}.kind == std::uint32_t(MCL_MATERIAL_diffuse));
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    CAPTURE(rows[i].name);
+    CHECK(rows[i].tag == i);
+    CHECK(std::string(materialKindName(rows[i].tag)) == rows[i].name);
+    std::uint32_t tag = 99;
+    CHECK(materialKindFromName(rows[i].name, tag));
+    CHECK(tag == rows[i].tag);
+    CHECK(std::string(materialKindNames()).find(rows[i].name) != std::string::npos);
+    for (const KindCase& c : rows[i].cases) {
+      const Material m = montecl::deviceMaterial(c.desc);
+      CHECK(material_kind(m) == rows[i].tag);
+      CHECK(bsdf_from_material(m, c.albedo).kind == rows[i].tag);
+    }
+  }
+  std::uint32_t tag = 7;
+  CHECK_FALSE(materialKindFromName("glass", tag));
+  CHECK(tag == 7);
+  CHECK(materialKindName(MCL_MATERIAL_KIND_COUNT) == nullptr);
+}
+
+TEST_CASE("material kinds: every kind's eval, pdf, sample, split sample and albedo agree (Monte Carlo)" *
+          doctest::test_suite("cpu")) {
+  SurfaceFrame flat;
+  flat.p = float3(0.0f);
+  flat.ng = flat.ns = float3(0.0f, 0.0f, 1.0f);
+  flat.smooth = 0;
+  SurfaceFrame tilted = flat;  // ns 35 degrees off ng: folding and absorption below ng
+  tilted.ns = dirFromAngles(35.0 * M_PI / 180.0, 0.0);
+  tilted.smooth = 1;
+  const int n = 200000;
+  for (const KindRow& row : kindRows()) {
+    for (const KindCase& c : row.cases) {
+      const Bsdf b = bsdf_from_material(montecl::deviceMaterial(c.desc), c.albedo);
+      const float3 albedo = bsdf_albedo(b);
+      for (int fi = 0; fi < 2; ++fi) {
+        const SurfaceFrame& sf = fi == 0 ? flat : tilted;
+        for (double thetaO : {0.1, 0.9, 1.35}) {
+          const float3 wo = dirFromAngles(thetaO, 2.5);
+          INFO(row.name << " / " << c.what << (fi ? ", tilted frame" : ", flat frame") << ", theta_o " << thetaO);
+          RunningStats sampled[3], uniform[3];
+          int pdfMismatch = 0, weightMismatch = 0, fMismatch = 0, splitMismatch = 0, absorbed = 0;
+          for (int i = 0; i < n; ++i) {
+            const float4 u = rng_uniform4(17u, uint(i), uint(fi), 0u);
+            const BsdfSample s = bsdf_sample(b, sf, wo, u.x, u.y, u.z);
+            const BsdfDirection d = bsdf_sample_direction(b, sf, wo, u.x, u.y, u.z);
+            if (s.pdf > 0.0f) {
+              const float pdf = bsdf_pdf(b, sf, wo, s.wi);
+              const float3 fcos = bsdf_eval(b, sf, wo, s.wi), f = bsdf_f(b, sf, wo, s.wi);
+              const float cosI = std::fabs(dot(sf.ns, s.wi));
+              pdfMismatch += !near(s.pdf, pdf, 1e-3f);
+              const BsdfWeight w = bsdf_direction_weight(b, sf, wo, d.wi, pdf);
+              splitMismatch += !(d.traced && d.wi == s.wi && w.counts);
+              for (int k = 0; k < 3; ++k) {
+                weightMismatch += !near(s.weight[k], fcos[k] / pdf, 1e-3f);
+                fMismatch += !near(f[k] * cosI, fcos[k], 1e-4f);
+                splitMismatch += !near(w.weight[k], s.weight[k], 1e-3f);
+              }
+            } else {
+              ++absorbed;
+            }
+            for (int k = 0; k < 3; ++k) sampled[k].add(s.pdf > 0.0f ? double(s.weight[k]) : 0.0);
+            const float4 v = rng_uniform4(17u, uint(i), uint(fi), 1u);
+            const float3 wi = uniformSphere(v.x, v.y);
+            const float3 fcos = bsdf_eval(b, sf, wo, wi);
+            for (int k = 0; k < 3; ++k) uniform[k].add(double(fcos[k]) * 4.0 * M_PI);
+          }
+          CHECK(pdfMismatch == 0);
+          CHECK(weightMismatch == 0);
+          CHECK(fMismatch == 0);
+          CHECK(splitMismatch == 0);
+          CHECK(absorbed < n);
+          for (int k = 0; k < 3; ++k) {
+            const double se = std::hypot(sampled[k].standardError(), uniform[k].standardError());
+            INFO("channel " << k << ": sampled " << sampled[k].mean << " +- " << sampled[k].standardError()
+                            << ", uniform " << uniform[k].mean << " +- " << uniform[k].standardError() << ", albedo "
+                            << albedo[k]);
+            CHECK(std::fabs(sampled[k].mean - uniform[k].mean) < 4.0 * se + 1e-6);
+            CHECK(sampled[k].mean <= 1.0 + 4.0 * sampled[k].standardError());  // energy
+            if (c.albedoIsReflectance && fi == 0) {
+              CHECK(std::fabs(sampled[k].mean - albedo[k]) <= 4.0 * sampled[k].standardError() + 1e-6);
+              CHECK(std::fabs(uniform[k].mean - albedo[k]) <= 4.0 * uniform[k].standardError() + 1e-6);
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("diffuse kind: the direct integrator's split sample is the folded cosine lobe (Lambert) or sample()'s" *
+          doctest::test_suite("cpu")) {
+  SurfaceFrame sf;
+  sf.p = float3(0.0f);
+  sf.ng = float3(0.0f, 0.0f, 1.0f);
+  sf.ns = dirFromAngles(50.0 * M_PI / 180.0, 0.0);
+  sf.smooth = 1;
+  const float3 wo = dirFromAngles(1.0, M_PI);
+  const DiffuseBsdf lambert = diffuse_make(float3(0.5f, 0.4f, 0.3f), float3(0.0f), 1.0f);
+  for (int i = 0; i < 2000; ++i) {
+    const float4 u = rng_uniform4(3u, uint(i), 0u, 0u);
+    const BsdfDirection d = diffuse_sample_direction(lambert, sf, wo, u.x, u.y, u.z);
+    const float3 wi = frame_sample_direction(sf, sample_cosine_hemisphere(u.x, u.y));
+    REQUIRE(d.traced);  // always traced: its weight is 0 where the folded pdf is
+    REQUIRE(d.wi == wi);
+    const BsdfWeight w = diffuse_direction_weight(lambert, sf, wo, wi, diffuse_pdf(lambert, sf, wo, wi));
+    REQUIRE(w.counts);
+    REQUIRE(w.weight == lambert.kd * frame_cosine_weight(sf, wi));
+  }
+}
