@@ -2,7 +2,7 @@
 // (the last film read, which releases every buffer, the film's part by part) returns what
 // readFilm returns and leaves the runner ready for another setup, on OpenCL (where the scene's
 // arrays are used in place on CPU devices) and on the host backend; and a render whose caller
-// frees the scene's triangles in RenderOptions::trianglesRead gives the same image.
+// renders from prepared triangles with the scene's own freed gives the same image.
 #include <doctest/doctest.h>
 
 #include "bvh/bvh.h"
@@ -74,21 +74,25 @@ Film renderDemo(const DeviceInfo& device, bool freeTriangles, int* calls) {
   const Bvh bvh = buildBvh(scene.triangles);
   RenderOptions options;
   options.waveSize = 100;
-  options.trianglesRead = [&] {
+  RenderPart part;
+  PreparedTriangles prepared;
+  if (freeTriangles) {  // as montecl render does: prepared, then freed before the render
+    prepared = prepareTriangles(scene, bvh);
+    part.triangles = &prepared;
+    std::vector<SceneTriangle>().swap(scene.triangles);
     ++*calls;
-    if (freeTriangles) std::vector<SceneTriangle>().swap(scene.triangles);
-  };
+  }
   WavefrontRenderer renderer(device, options);
   RenderStats stats;
-  Film film = renderer.render(scene, bvh, stats);
+  Film film = renderer.render(scene, bvh, stats, {}, part);
   CHECK(scene.triangles.empty() == freeTriangles);
   return film;
 }
 
-void checkTrianglesRead(const DeviceInfo& device) {
+void checkPreparedTriangles(const DeviceInfo& device) {
   int kept = 0, freed = 0;
   const Film reference = renderDemo(device, false, &kept);
-  CHECK(kept == 1);
+  CHECK(kept == 0);
   CHECK(sameFilm(renderDemo(device, true, &freed), reference));
   CHECK(freed == 1);
 }
@@ -101,10 +105,10 @@ TEST_CASE("render memory: finish() reads what readFilm reads, and the runner set
     CAPTURE(int(layout));
     checkFinish(*makeClStageRunner(selectDevice(""), 0, layout));
   }
-  checkTrianglesRead(selectDevice(""));
+  checkPreparedTriangles(selectDevice(""));
 }
 
-TEST_CASE("render memory: finish() and trianglesRead on the host backend" * doctest::test_suite("cpu")) {
+TEST_CASE("render memory: finish() and prepared triangles on the host backend" * doctest::test_suite("cpu")) {
   checkFinish(*makeHostStageRunner());
-  checkTrianglesRead(selectDevice("host"));
+  checkPreparedTriangles(selectDevice("host"));
 }

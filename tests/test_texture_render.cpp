@@ -33,10 +33,11 @@ Film render(const Scene& s, RenderOptions o, const SceneTextures* textures = nul
   static const DeviceInfo defaultDevice = selectDevice("");
   const DeviceInfo device = host ? hostDeviceInfo() : defaultDevice;
   Bvh bvh = buildBvh(s.triangles);
-  o.textures = textures;
   WavefrontRenderer r(device, o);
   RenderStats stats;
-  return r.render(s, bvh, stats);
+  RenderPart part;
+  part.textures = textures;
+  return r.render(s, bvh, stats, {}, part);
 }
 
 // The quad a, b, c, d (counter-clockwise from its front) with texture coordinates ta .. td.

@@ -57,12 +57,13 @@ Run render(const Scene& scene, bool oneByOne) {
   const Bvh bvh = buildBvh(scene.triangles);
   RenderOptions options;
   options.waveSize = 97;
-  if (oneByOne) options.afterWave = [](const std::function<Film()>&) {};
+  RenderPart part;
+  if (oneByOne) part.afterWave = [](const std::function<Film()>&) {};
   WavefrontRenderer renderer(device, options);
   Run r;
   r.film = renderer.render(scene, bvh, r.stats, [&](std::uint64_t done, std::uint64_t, const RenderStats&) {
     r.done.push_back(done);
-  });
+  }, part);
   return r;
 }
 

@@ -35,6 +35,7 @@
 #include "scene/scene_digest.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
+#include "util/heap_trim.h"
 
 namespace montecl {
 namespace {
@@ -150,7 +151,7 @@ int runRender(const RenderArgs& a) {
   // allocation); a bad file is an input error before anything renders.
   const std::uint64_t textureBudget =
       a.textureBudgetMiB ? std::uint64_t(*a.textureBudgetMiB * double(1 << 20))
-                         : (device.isHost ? kDefaultTextureBudget : std::min(kDefaultTextureBudget, device.maxAllocBytes));
+                         : defaultTextureBudget(device);
   std::vector<std::string> textureWarnings;
   const auto textureStart = std::chrono::steady_clock::now();
   const SceneTextures textures = loadSceneTextures(scene, textureBudget, textureWarnings);
@@ -197,12 +198,17 @@ int runRender(const RenderArgs& a) {
   options.bvhLayout = layout;
   options.verbose = a.verbose;
   options.profile = a.profile;
-  options.textures = &textures;
-  // What the EXR records of the scene is read now: the render frees the scene's triangles once it
-  // has built its own arrays from them (only the BVH's and the shading table's are uploaded).
+  // Everything that reads the scene's triangles runs now: the provenance digest, the job's
+  // checkpoint key and the renderer's per-triangle table; then they are freed (only the BVH's
+  // arrays and that table are uploaded), which lowers the peak by their size.
   const Provenance provenance = isExr(output) ? provenanceOf(a, scene) : Provenance{};
-  options.trianglesRead = [&scene] { std::vector<SceneTriangle>().swap(scene.triangles); };
   dist::Job job(a.job, scene, options);
+  RenderPart part;
+  part.textures = &textures;
+  PreparedTriangles triangles = prepareTriangles(scene, bvh);
+  part.triangles = &triangles;
+  std::vector<SceneTriangle>().swap(scene.triangles);
+  trimHeap();
   WavefrontRenderer renderer(device, options);
   if (a.verbose)
     std::cerr << "montecl: kernels " << (renderer.programFromCache() ? "loaded from cache" : "compiled") << " in "
@@ -213,7 +219,7 @@ int runRender(const RenderArgs& a) {
   InterruptGuard guard;
   Film film = job.render(renderer, scene, bvh, stats, [&](std::uint64_t done, std::uint64_t total, const RenderStats& s) {
     bar.update(done, total, s);
-  });
+  }, part);
   bar.finish();
   if (a.profile) std::cout << formatProfile(stats.profile, stats.seconds);
   if (stats.nanRays > 0)  // each rank of an MPI job warns about its own pixels

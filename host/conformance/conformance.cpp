@@ -72,8 +72,9 @@ ConformanceReport runConformance(const ConformanceOptions& options) {
     WavefrontRenderer host(hostDeviceInfo(), {});
     double rays = 0.0, seconds = 0.0;
     for (std::size_t i = 0; i < cases.size(); ++i) {
-      host.setTextures(cases[i].textures.get());
-      reference[i].film = host.render(cases[i].scene, bvhs[i], reference[i].stats);
+      RenderPart part;
+      part.textures = cases[i].textures.get();
+      reference[i].film = host.render(cases[i].scene, bvhs[i], reference[i].stats, {}, part);
       rays += double(reference[i].stats.raysTraced());
       seconds += reference[i].stats.seconds;
     }
@@ -136,8 +137,9 @@ ConformanceReport runConformance(const ConformanceOptions& options) {
       if (renderer) {
         try {
           Rendered out;
-          renderer->setTextures(cases[i].textures.get());
-          out.film = renderer->render(cases[i].scene, bvhs[i], out.stats);
+          RenderPart part;
+          part.textures = cases[i].textures.get();
+          out.film = renderer->render(cases[i].scene, bvhs[i], out.stats, {}, part);
           c.rendered = true;
           c.seconds = out.stats.seconds;
           c.mrays = mrays(out.stats);

@@ -54,7 +54,7 @@ std::string deviceSpec(const std::string& spec) {
   return deviceIndexString(gpus[std::size_t(w.localRank) % gpus.size()]);
 }
 
-Job::Job(const JobArgs& args, const Scene& scene, RenderOptions& options) : args_(args) {
+Job::Job(const JobArgs& args, const Scene& scene, const RenderOptions& options) : args_(args) {
   const World& w = world();
   width_ = scene.camera.width;
   height_ = scene.camera.height;
@@ -64,7 +64,7 @@ Job::Job(const JobArgs& args, const Scene& scene, RenderOptions& options) : args
   info_ = checkpointInfo(scene, options);
   if (!args_.resume.empty()) {
     resumed_ = readCheckpoint(args_.resume, info_, width_, height_);
-    options.initialFilm = &resumed_;
+    part_.initialFilm = &resumed_;
   }
   const std::uint64_t pixels = std::uint64_t(width_) * height_;
   if (w.active) {
@@ -74,10 +74,10 @@ Job::Job(const JobArgs& args, const Scene& scene, RenderOptions& options) : args
     if (const char* drop = std::getenv("MONTECL_DEBUG_DROP_PIXEL"); drop && w.rank == w.size - 1)
       render.erase(std::remove(render.begin(), render.end(), std::uint32_t(std::atoll(drop))), render.end());
     if (render.empty()) render.push_back(pixels_.front());
-    options.pixels = render;
+    part_.pixels = render;
   }
   if (w.active || !args_.checkpoint.empty())
-    options.afterWave = [this](const std::function<Film()>& readFilm) { afterWave(readFilm); };
+    part_.afterWave = [this](const std::function<Film()>& readFilm) { afterWave(readFilm); };
 }
 
 bool Job::writesImage() const { return world().rank == 0; }
@@ -159,15 +159,18 @@ Film Job::gather(const Film& mine) const {
 }
 
 Film Job::render(WavefrontRenderer& renderer, const Scene& scene, const Bvh& bvh, RenderStats& stats,
-                 const ProgressFn& progress) {
+                 const ProgressFn& progress, RenderPart part) {
   const World& w = world();
   started_ = lastCheckpoint_ = now();
-  if (!w.active) return renderer.render(scene, bvh, stats, progress);
+  part.pixels = part_.pixels;
+  part.initialFilm = part_.initialFilm;
+  part.afterWave = part_.afterWave;
+  if (!w.active) return renderer.render(scene, bvh, stats, progress, part);
   progress_ = progress;
   Film mine = renderer.render(scene, bvh, local_, [this](std::uint64_t, std::uint64_t total, const RenderStats& s) {
     local_ = s;
     localExpected_ = total;
-  });
+  }, part);
   localExpected_ = local_.samples;
   const double busy = now() - started_;  // this rank's own work (render), before waiting for the others
   while (!allFinished_) exchange(true, [&] { return mine; });

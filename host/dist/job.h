@@ -31,12 +31,14 @@ std::string deviceSpec(const std::string& spec);
 
 class Job {
  public:
-  // Joins MPI when launched by it; reads --resume (refusing another render's checkpoint); sets
-  // options.pixels, initialFilm and afterWave. Construct before the WavefrontRenderer.
-  Job(const JobArgs& args, const Scene& scene, RenderOptions& options);
-  // Renders; on the rank that writes (rank 0, or alone) returns the whole film and the job's stats.
+  // Joins MPI when launched by it; reads --resume (refusing another render's checkpoint); decides
+  // this rank's pixels, the film it resumes and what runs after each wave.
+  Job(const JobArgs& args, const Scene& scene, const RenderOptions& options);
+  // Renders `part` (the caller's textures and prepared triangles) with the job's pixels, resumed
+  // film and per-wave hook; on the rank that writes (rank 0, or alone) returns the whole film and
+  // the job's stats.
   Film render(WavefrontRenderer& renderer, const Scene& scene, const Bvh& bvh, RenderStats& stats,
-              const ProgressFn& progress);
+              const ProgressFn& progress, RenderPart part);
   bool writesImage() const;
 
  private:
@@ -47,7 +49,8 @@ class Job {
   JobArgs args_;
   CheckpointInfo info_;
   Film resumed_;
-  std::vector<std::uint32_t> pixels_;
+  std::vector<std::uint32_t> pixels_;  // this rank's share (MPI)
+  RenderPart part_;                    // what the job decided of each render call
   int width_ = 0, height_ = 0;
   bool aovs_ = false;
   double targetError_ = 0.0, errorFloor_ = 0.0;

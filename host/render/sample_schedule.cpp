@@ -8,11 +8,11 @@
 
 namespace montecl {
 
-SampleSchedule::SampleSchedule(const RenderOptions& options, std::uint64_t pixels, int spp)
-    : o_(options), spp_(std::uint64_t(spp)), mine_(options.pixels), counts_(pixels, 0), target_(pixels, 0) {
+SampleSchedule::SampleSchedule(const RenderOptions& options, const RenderPart& part, std::uint64_t pixels, int spp)
+    : o_(options), spp_(std::uint64_t(spp)), mine_(part.pixels), counts_(pixels, 0), target_(pixels, 0) {
   if (mine_.empty())
     for (std::uint64_t p = 0; p < pixels; ++p) mine_.push_back(std::uint32_t(p));
-  if (options.initialFilm) counts_ = options.initialFilm->count;
+  if (part.initialFilm) counts_ = part.initialFilm->count;
   if (options.targetError > 0.0 && options.minSpp > options.maxSpp) throw std::invalid_argument("minSpp > maxSpp");
 }
 

@@ -13,11 +13,12 @@
 namespace montecl {
 
 struct RenderOptions;
+struct RenderPart;
 
 class SampleSchedule {
  public:
-  // The pixels this render owns (options.pixels, or all), counts from options.initialFilm.
-  SampleSchedule(const RenderOptions& options, std::uint64_t pixels, int spp);
+  // The pixels this render owns (part.pixels, or all), counts from part.initialFilm.
+  SampleSchedule(const RenderOptions& options, const RenderPart& part, std::uint64_t pixels, int spp);
 
   // The next group, from the film as it stands: the owned pixels with the lowest count that still
   // need samples (active), that count (from) and the count they all reach next (to); remaining:

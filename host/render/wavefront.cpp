@@ -40,8 +40,6 @@ WavefrontRenderer::WavefrontRenderer(const DeviceInfo& device, const RenderOptio
 
 WavefrontRenderer::~WavefrontRenderer() = default;
 
-void WavefrontRenderer::setTextures(const SceneTextures* textures) { impl_->options.textures = textures; }
-
 bool WavefrontRenderer::programFromCache() const { return impl_->runner->programFromCache(); }
 double WavefrontRenderer::programBuildMs() const { return impl_->runner->programBuildMs(); }
 
@@ -75,8 +73,8 @@ struct Prepared {
   std::size_t emitterCount = 0;
 };
 
-void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOptions& o, const DeviceInfo& device,
-             StageRunner& run) {
+void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOptions& o, const RenderPart& part,
+             const DeviceInfo& device, StageRunner& run) {
   const IntegratorDesc& integrator = integratorDesc(scene.render.integrator);
   // Scene files are checked at load; a camera set in code is checked here (never NaN camera rays).
   const CameraProblem cameraProblem = cameraBasisProblem(scene.camera);
@@ -89,7 +87,11 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
                    shape.items * waveBytesPerItem(shape));
 
   FrameParams frame = makeFrameParams(scene.camera, scene.render, std::uint32_t(shape.slots));
-  frame.offsetScale = offsetScaleFor(scene.triangles);
+  StageInputs& in = p.inputs;
+  PreparedTriangles own;
+  if (!part.triangles) own = prepareTriangles(scene, bvh);
+  PreparedTriangles& triangles = part.triangles ? *part.triangles : own;
+  frame.offsetScale = triangles.offsetScale;
   const EmitterTable emitters = integrator.lit ? buildEmitterTable(bvh, scene.materials) : EmitterTable{};
   frame.emitterCount = uint(emitters.emitters.size());
   frame.emitterPower = emitters.totalPower;
@@ -99,15 +101,14 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
                               bvh.triangles.size() * sizeof(Triangle), environment.map.size() * sizeof(float4),
                               environment.cdf.size() * sizeof(float)})
     checkFits(bytes, maxAlloc, "use a smaller image or scene");
-  StageInputs& in = p.inputs;
-  in.shading = buildTriangleShading(scene.triangles, bvh);
+  in.shading = std::move(triangles.shading);
   checkFits(in.shading.size() * sizeof(TriangleShading), maxAlloc, "use a smaller scene");
 
   // Textures: the caller's (loaded under its budget, warnings shown), else loaded here.
-  const SceneTextures* textures = o.textures;
+  const SceneTextures* textures = part.textures;
   if (!textures && sceneHasTextures(scene)) {
     std::vector<std::string> ignored;
-    p.ownTextures = loadSceneTextures(scene, std::min<std::uint64_t>(kDefaultTextureBudget, maxAlloc), ignored);
+    p.ownTextures = loadSceneTextures(scene, defaultTextureBudget(device), ignored);
     textures = &p.ownTextures;
   }
   if (textures && textures->bytes() > maxAlloc)
@@ -127,15 +128,15 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
   in.envMap = std::move(environment.map);
   in.envCdf = std::move(environment.cdf);
   in.shape = shape;
-  in.initialFilm = o.initialFilm;
+  in.initialFilm = part.initialFilm;
 }
 
 // One render's wave loop: runs sample ranges of the active pixels in waves and books them.
 class WaveLoop {
  public:
-  WaveLoop(const RenderOptions& o, StageRunner& run, const Scene& scene, const StageInputs& in, RenderStats& stats,
-           const ProgressFn& progress)
-      : o_(o), run_(run), integrator_(integratorDesc(scene.render.integrator)), settings_(scene.render),
+  WaveLoop(const RenderOptions& o, const RenderPart& part, StageRunner& run, const Scene& scene, const StageInputs& in,
+           RenderStats& stats, const ProgressFn& progress)
+      : o_(o), afterWave_(part.afterWave), run_(run), integrator_(integratorDesc(scene.render.integrator)), settings_(scene.render),
         frame_(in.frame), wave_(in.shape.items), stats_(stats), progress_(progress),
         // Wave sizes come from the planner unless a fixed --wave-size is asked for without a time limit.
         planned_(o.waveSize == 0 || o.timeLimit > 0.0),
@@ -143,7 +144,7 @@ class WaveLoop {
         // submitWave / waitWave), so the device does not idle while the host books a wave. Not with a
         // time limit (each wave is sized from the time left when it starts), nor with afterWave (it
         // reads the film of the waves booked so far), nor when the host reads counts within a wave.
-        ahead_(!integrator_.path && !(o.timeLimit > 0.0) && !o.afterWave),
+        ahead_(!integrator_.path && !(o.timeLimit > 0.0) && !part.afterWave),
         start_(std::chrono::steady_clock::now()) {}
 
   bool planned() const { return planned_; }
@@ -211,7 +212,7 @@ class WaveLoop {
     if (s.seconds > from) rate_ = double(n) / (s.seconds - from);
     lastBooked_ = s.seconds;
     if (progress_) progress_(s.samples, std::max(expected_, s.samples), s);
-    if (o_.afterWave) o_.afterWave([&] {
+    if (afterWave_) afterWave_([&] {
       Film f;
       f.width = int(frame_.width);
       f.height = int(frame_.height);
@@ -225,6 +226,7 @@ class WaveLoop {
     double start;
   };
   const RenderOptions& o_;
+  const std::function<void(const std::function<Film()>&)>& afterWave_;
   StageRunner& run_;
   const IntegratorDesc& integrator_;
   const RenderSettings& settings_;
@@ -244,11 +246,11 @@ class WaveLoop {
 }  // namespace
 
 Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& stats,
-                               const ProgressFn& progress) {
+                               const ProgressFn& progress, const RenderPart& part) {
   Impl& m = *impl_;
   StageRunner& run = *m.runner;
   Prepared prepared;
-  prepare(prepared, scene, bvh, m.options, m.device, run);
+  prepare(prepared, scene, bvh, m.options, part, m.device, run);
   const StageInputs& inputs = prepared.inputs;
   const FrameParams& frame = inputs.frame;
   const std::uint64_t wave = inputs.shape.items, itemBytes = waveBytesPerItem(inputs.shape);
@@ -257,7 +259,6 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   stats = RenderStats{};
   stats.waveSize = wave;
   run.setProfile(m.options.profile ? &stats.profile : nullptr);
-  if (m.options.trianglesRead) m.options.trianglesRead(), trimHeap();  // scene.triangles: not read below
   run.setup(inputs);
   // Buffers may use inputs' arrays in place: if anything below throws, the queue is settled and
   // the buffers released before inputs goes (StageRunner::abandon).
@@ -269,7 +270,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
     }
   } settle{run};
 
-  WaveLoop loop(m.options, run, scene, inputs, stats, progress);
+  WaveLoop loop(m.options, part, run, scene, inputs, stats, progress);
   if (m.options.verbose)
     std::cerr << "montecl: waves of up to " << wave << " pixel samples (" << (wave * itemBytes >> 20)
               << " MiB), " << (loop.planned() ? "sized from the measured rate" : std::to_string((total + wave - 1) / wave) + " waves")
@@ -280,9 +281,9 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   Film film;
   film.width = int(frame.width);
   film.height = int(frame.height);
-  if (m.options.initialFilm) film = *m.options.initialFilm;
+  if (part.initialFilm) film = *part.initialFilm;
   // Rounds of samples, each for the pixels at the lowest count (sample_schedule.h).
-  SampleSchedule schedule(m.options, pixels, scene.render.spp);
+  SampleSchedule schedule(m.options, part, pixels, scene.render.spp);
   const bool adaptive = m.options.targetError > 0.0;
   bool going = true, filmCurrent = true;  // film: the initial state (or unused: all counts 0)
   std::vector<std::uint32_t> active;
@@ -310,6 +311,17 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   if (m.options.verbose && !stats.pathSurvivors.empty())
     std::cerr << "montecl: " << survivorsSummary(stats.pathSurvivors) << "\n";
   return film;
+}
+
+PreparedTriangles prepareTriangles(const Scene& scene, const Bvh& bvh) {
+  PreparedTriangles t;
+  t.shading = buildTriangleShading(scene.triangles, bvh);
+  t.offsetScale = offsetScaleFor(scene.triangles);
+  return t;
+}
+
+std::uint64_t defaultTextureBudget(const DeviceInfo& device) {
+  return device.isHost ? kDefaultTextureBudget : std::min(kDefaultTextureBudget, device.maxAllocBytes);
 }
 
 std::uint64_t defaultMaxWaveItems(const DeviceInfo& device) {

@@ -18,10 +18,9 @@
 #include "render/stage_profile.h"
 #include "render/wave_planner.h"
 #include "scene/scene.h"
+#include "texture/scene_textures.h"
 
 namespace montecl {
-
-struct SceneTextures;
 
 // The default cap on a wave's items (RenderOptions::maxWaveItems 0), from a sweep of wave sizes
 // on Sponza (docs/performance.md, "Wave size and memory"): on CPUs (and the host backend) 8192
@@ -55,21 +54,39 @@ struct RenderOptions {
   double errorFloor = 0.01;
   bool profile = false;  // time every stage launch into RenderStats::profile (--profile)
   bool aovs = false;  // also accumulate first-hit albedo, normal and depth (Film::aovSum)
-  // The scene's textures, loaded by the caller (texture/scene_textures.h); null: render() loads
-  // them itself (automatic budget, warnings dropped) when a material names a texture.
-  const SceneTextures* textures = nullptr;
-  // The pixels to render, ascending (empty: all): one rank's share of an MPI job (dist/job.h).
-  // Each pixel's result depends only on its own samples, so any subset renders bit-identically.
+};
+
+// What the renderer reads of a scene's triangles, built once: the per-triangle attributes in BVH
+// order (render/triangle_shading.h) and the ray-offset scale (render/frame_params.h). A caller that
+// prepares them can free the scene's triangles before rendering (montecl render does: the peak
+// memory then lacks their size); the BVH and the textures are read to the end.
+struct PreparedTriangles {
+  std::vector<TriangleShading> shading;
+  float offsetScale = 1.0f;
+};
+PreparedTriangles prepareTriangles(const Scene& scene, const Bvh& bvh);
+
+// The textures' byte budget on a device when the user sets none: 1 GiB, at most the device's
+// largest allocation (the host backend has no such limit).
+std::uint64_t defaultTextureBudget(const DeviceInfo& device);
+
+// What one render call covers, beside the scene: decided per call (by a job: dist/job.h), so the
+// renderer can be built before or after whoever decides it.
+struct RenderPart {
+  // The pixels to render, ascending (empty: all): one rank's share of an MPI job. Each pixel's
+  // result depends only on its own samples, so any subset renders bit-identically.
   std::vector<std::uint32_t> pixels;
   // Film state to continue from (a checkpoint, render/checkpoint.h): every pixel resumes at its
   // own count, so the result is bit-identical to a render that never stopped. Null: a clear film.
   const Film* initialFilm = nullptr;
   // Called after every wave's progress callback; readFilm() reads the film state as of that wave.
   std::function<void(const std::function<Film()>& readFilm)> afterWave;
-  // Called once render() has read scene.triangles for the last time (the shading table and the
-  // emitters are built, nothing is uploaded yet): the caller may free them (montecl render does,
-  // which lowers the peak memory by their size). The BVH and the textures are read to the end.
-  std::function<void()> trianglesRead;
+  // The scene's decoded textures (texture/scene_textures.h); null: loaded here under
+  // defaultTextureBudget when a material names a texture (warnings dropped).
+  const SceneTextures* textures = nullptr;
+  // The scene's triangles as prepared beforehand (the render moves the shading table out of it:
+  // no second copy); null: prepared here from scene.triangles.
+  PreparedTriangles* triangles = nullptr;
 };
 
 // Relative standard error of pixel p's mean luminance (infinite below 2 samples).
@@ -102,10 +119,8 @@ class WavefrontRenderer {
   WavefrontRenderer& operator=(const WavefrontRenderer&) = delete;
 
   // Renders scene (its camera and render settings) with the given BVH of scene.triangles.
-  Film render(const Scene& scene, const Bvh& bvh, RenderStats& stats, const ProgressFn& progress = {});
-  // Replaces RenderOptions::textures for the renders that follow (null: each render loads its
-  // scene's own); for callers that render several scenes with one renderer (conformance).
-  void setTextures(const SceneTextures* textures);
+  Film render(const Scene& scene, const Bvh& bvh, RenderStats& stats, const ProgressFn& progress = {},
+              const RenderPart& part = {});
 
   bool programFromCache() const;
   double programBuildMs() const;
