@@ -5,7 +5,7 @@
 
 #include "cl/cl_errors.h"
 #include "cli/commands.h"
-#include "dist/mpi.h"
+#include "job/mpi.h"
 #include "util/errors.h"
 #include "util/heap_trim.h"
 
@@ -28,19 +28,19 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     int code = app.exit(e);
-    return code == 0 ? kExitOk : dist::failed(kExitBadInput);
+    return code == 0 ? kExitOk : jobs::failed(kExitBadInput);
   } catch (const InputError& e) {
     std::cerr << "montecl: error: " << e.what() << "\n";
-    return dist::failed(kExitBadInput);  // under MPI: MPI_Abort, the whole job ends
+    return jobs::failed(kExitBadInput);  // under MPI: MPI_Abort, the whole job ends
   } catch (const cl::Error& e) {
     std::cerr << "montecl: error: " << describeClError(e) << "\n";
-    return dist::failed(kExitRuntime);
+    return jobs::failed(kExitRuntime);
   } catch (const std::bad_alloc&) {
     std::cerr << "montecl: error: out of memory: the scene or image is too large for this machine\n";
-    return dist::failed(kExitRuntime);
+    return jobs::failed(kExitRuntime);
   } catch (const std::exception& e) {
     std::cerr << "montecl: error: " << e.what() << "\n";
-    return dist::failed(kExitRuntime);
+    return jobs::failed(kExitRuntime);
   }
   return exitCode;
 }

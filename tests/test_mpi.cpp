@@ -1,4 +1,4 @@
-// test_mpi.cpp: `mpirun -np K montecl render` (host/dist) writes an EXR bit-identical, channel by
+// test_mpi.cpp: `mpirun -np K montecl render` (host/job) writes an EXR bit-identical, channel by
 // channel, to one process, for AO, direct and adaptive renders; a wrong split (the last rank
 // skipping a pixel, MONTECL_DEBUG_DROP_PIXEL) differs; a failing rank ends the job at once with its
 // message and no file; and --checkpoint / --resume: a render killed by SIGKILL after its first

@@ -1,15 +1,25 @@
 // test_structure.cpp: the source tree's structure rules, read from the sources: host folders include
 // only folders of lower layers (util < scene, image < bvh, texture < cl < render < bench, conformance,
-// integrate, dist < cli < main), so no two folders depend on each other; kernels/shared (pure functions
+// integrate, job < cli < main), so no two folders depend on each other; kernels/shared (pure functions
 // and the stage table) never includes the stage bodies (kernels/stages); no host source file
-// is longer than 450 lines.
+// is longer than 450 lines, no function in host/render longer than 120; every stage of the stage
+// table runs in some case of the conformance set (so `montecl conformance` checks every stage body).
 #include <doctest/doctest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <regex>
+#include <set>
 #include <string>
+#include <utility>
+#include <vector>
+
+#include "bvh/bvh.h"
+#include "cl/devices.h"
+#include "conformance/scenes.h"
+#include "cli_runner.h"
+#include "render/wavefront.h"
 
 namespace fs = std::filesystem;
 
@@ -19,7 +29,7 @@ namespace {
 const std::map<std::string, int>& hostLayers() {
   static const std::map<std::string, int> layers{
       {"util", 0},  {"scene", 1},       {"image", 1},     {"bvh", 2},       {"texture", 2},   {"cl", 3},
-      {"render", 4}, {"bench", 5},      {"conformance", 5}, {"integrate", 5}, {"dist", 5},
+      {"render", 4}, {"bench", 5},      {"conformance", 5}, {"integrate", 5}, {"job", 5},
       {"cli", 6},
   };
   return layers;
@@ -101,4 +111,111 @@ TEST_CASE("structure: no host source file is over 450 lines" * doctest::test_sui
     }
   }
   CHECK(longFiles == 0);
+}
+
+namespace {
+
+// Lines of each function body in a C++ file, found by brace depth: a block opened at the top level
+// (outside namespaces), or inside a class/struct body, that is not itself a class, struct, enum or
+// namespace. Comments and string literals are blanked first. Returns (first line, lines) pairs.
+std::vector<std::pair<int, int>> functionLengths(const fs::path& file) {
+  std::ifstream in(file);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string code = text;
+  for (std::size_t i = 0; i < code.size(); ++i) {  // blank // and /* */ comments, "..." and '...'
+    if (code.compare(i, 2, "//") == 0) {
+      while (i < code.size() && code[i] != '\n') code[i++] = ' ';
+    } else if (code.compare(i, 2, "/*") == 0) {
+      for (; i + 1 < code.size() && code.compare(i, 2, "*/") != 0; ++i)
+        if (code[i] != '\n') code[i] = ' ';
+    } else if (code[i] == '"' || code[i] == '\'') {
+      const char quote = code[i];
+      for (++i; i < code.size() && code[i] != quote; ++i) {
+        if (code[i] == '\\') code[i++] = ' ';
+        if (code[i] != '\n') code[i] = ' ';
+      }
+    }
+  }
+  struct Open {
+    bool function;  // a function body (or an initializer/lambda inside one)
+    bool scope;     // a namespace / class / struct / enum body: its blocks are at "top level"
+    int line;
+  };
+  std::vector<Open> stack;
+  std::vector<std::pair<int, int>> out;
+  int line = 1;
+  std::size_t statementStart = 0;
+  static const std::regex scopeHead(R"re(\b(namespace|class|struct|enum|union)\b[^;()]*$)re");
+  for (std::size_t i = 0; i < code.size(); ++i) {
+    const char c = code[i];
+    if (c == '\n') ++line;
+    if (c == ';' || c == '}') statementStart = i + 1;
+    if (c == '{') {
+      const bool insideFunction = !stack.empty() && !stack.back().scope;
+      const std::string head = code.substr(statementStart, i - statementStart);
+      const bool scope = !insideFunction && std::regex_search(head, scopeHead);
+      stack.push_back({!insideFunction && !scope, scope, line});
+      statementStart = i + 1;
+    } else if (c == '}' && !stack.empty()) {
+      const Open o = stack.back();
+      stack.pop_back();
+      if (o.function) out.push_back({o.line, line - o.line + 1});
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("structure: no function in host/render is over 120 lines" * doctest::test_suite("cpu")) {
+  const fs::path render = fs::path(MONTECL_SOURCE_DIR) / "host" / "render";
+  int functions = 0, longOnes = 0;
+  for (const fs::path& file : sourcesUnder(render))
+    for (const auto& [first, lines] : functionLengths(file)) {
+      ++functions;
+      if (lines > 120) {
+        ++longOnes;
+        MESSAGE(file.filename().string() << ":" << first << ": a function of " << lines << " lines");
+      }
+    }
+  CHECK(functions > 100);  // (the scanner finds the functions at all)
+  CHECK(longOnes == 0);
+}
+
+TEST_CASE("structure: the function-length scanner finds a long function and skips classes" * doctest::test_suite("cpu")) {
+  montecl_test::TempDir dir;
+  std::string body;
+  for (int i = 0; i < 130; ++i) body += "  x += " + std::to_string(i) + ";  // { not a brace \"}\"\n";
+  dir.write("f.cpp", "namespace a {\nstruct S {\n  int f() {\n    return 1;\n  }\n};\nint g(int x) {\n" + body +
+                         "  return x;\n}\n}  // namespace a\n");
+  const auto lengths = functionLengths(dir.file("f.cpp"));
+  REQUIRE(lengths.size() == 2);
+  CHECK(lengths[0].second == 3);    // S::f
+  CHECK(lengths[1].second == 133);  // g: its head line, 130 lines, return, closing brace
+}
+
+TEST_CASE("structure: every stage of the stage table runs in some conformance case" * doctest::test_suite("cpu")) {
+  std::vector<std::string> skipped;
+  montecl::ConformanceSetOptions setOptions;
+  setOptions.size = 4;
+  setOptions.spp = 1;
+  setOptions.cornellPath = "/nonexistent/scene.json";  // the analytic scenes alone cover every stage
+  const std::vector<montecl::ConformanceCase> cases = montecl::conformanceSet(setOptions, skipped);
+  std::set<std::string> launched;
+  for (const montecl::ConformanceCase& c : cases) {
+    montecl::RenderOptions o;
+    o.profile = true;
+    o.aovs = c.aovs;
+    montecl::WavefrontRenderer host(montecl::hostDeviceInfo(), o);
+    montecl::RenderStats stats;
+    montecl::RenderPart part;
+    part.textures = c.textures.get();
+    const montecl::Bvh bvh = montecl::buildBvh(c.scene.triangles);
+    host.render(c.scene, bvh, stats, {}, part);
+    for (const montecl::StageTime& t : stats.profile.stages) launched.insert(t.name.substr(0, t.name.find(' ')));
+  }
+  for (int s = 0; s < montecl::kStageCount; ++s) {
+    const std::string name = montecl::stageName(montecl::Stage(s));
+    CHECK_MESSAGE(launched.count(name), "stage " << name << " runs in no conformance case (host/conformance/scenes.cpp)");
+  }
 }

@@ -20,7 +20,7 @@
 #include "cl/devices.h"
 #include "cli/commands.h"
 #include "cli/render_output.h"
-#include "dist/job.h"
+#include "job/job.h"
 #include "cli/validators.h"
 #include "image/exr_layers.h"
 #include "image/image_io.h"
@@ -54,7 +54,7 @@ struct RenderArgs {
   std::vector<std::string> aovs;
   std::size_t workGroupSize = 0;
   bool quiet = false, verbose = false, overwrite = false, profile = false;
-  dist::JobArgs job;  // MPI split, --checkpoint, --resume (dist/job.h)
+  jobs::JobArgs job;  // MPI split, --checkpoint, --resume (job/job.h)
 };
 
 void applyOverrides(const RenderArgs& a, Scene& scene) {
@@ -144,7 +144,7 @@ int runRender(const RenderArgs& a) {
     throwInputError(output, "--aov", "AOVs need an .exr output");
   checkOutputIsNoInput(output, scene);
   checkWritableTarget(output);
-  DeviceInfo device = selectDevice(dist::deviceSpec(a.device));
+  DeviceInfo device = selectDevice(jobs::deviceSpec(a.device));
   BvhLayout layout = resolveStageLayout(parseBvhLayout(a.bvhLayout), device);
 
   // Textures: every file once, under the budget (automatic: 1 GiB, at most the device's largest
@@ -202,7 +202,7 @@ int runRender(const RenderArgs& a) {
   // checkpoint key and the renderer's per-triangle table; then they are freed (only the BVH's
   // arrays and that table are uploaded), which lowers the peak by their size.
   const Provenance provenance = isExr(output) ? provenanceOf(a, scene) : Provenance{};
-  dist::Job job(a.job, scene, options);
+  jobs::Job job(a.job, scene, options);
   RenderPart part;
   part.textures = &textures;
   PreparedTriangles triangles = prepareTriangles(scene, bvh);
@@ -322,7 +322,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::IsMember({"albedo", "normal", "depth", "all"}));
   cmd->add_option("--first-sample", args->firstSample,
                   "Render sample indices K .. K+spp-1 of the deterministic sequence (split renders, then merge)");
-  dist::addJobOptions(cmd, args->job);
+  jobs::addJobOptions(cmd, args->job);
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar");
   cmd->add_flag("-v,--verbose", args->verbose, "Scene, BVH, device and wave details on stderr");
   cmd->add_flag("--profile", args->profile,

@@ -44,6 +44,17 @@ void compare(const Film& ref, const Film& dev, ImageComparison& c) {
   }
   for (std::size_t p = 0; p < ref.mean.size(); ++p)
     if (ref.count[p] != dev.count[p]) ++c.failingValues;  // sample counts must match exactly
+  if (ref.aovSum.size() != dev.aovSum.size()) {
+    c.error = "AOV planes differ from the host's";
+    ++c.failingValues;
+  }
+  for (std::size_t i = 0; i < ref.aovSum.size() && i < dev.aovSum.size(); ++i)  // AOVs: the same rule
+    for (int k = 0; k < 4; ++k) {
+      const double x = ref.aovSum[i][k], y = dev.aovSum[i][k];
+      const double diff = std::fabs(x - y), scale = std::max(std::fabs(x), std::fabs(y));
+      c.maxAbsDiff = std::max(c.maxAbsDiff, diff);
+      if (!(diff <= std::max(kRelTolerance * scale, kAbsFloor))) ++c.failingValues;
+    }
   c.meanAbsDiff = a.empty() ? 0.0 : sumAbs / double(a.size());
   c.pass = c.failingValues == 0;
 }
@@ -69,12 +80,14 @@ ConformanceReport runConformance(const ConformanceOptions& options) {
   // Reference images from the host backend.
   std::vector<Rendered> reference(cases.size());
   {
-    WavefrontRenderer host(hostDeviceInfo(), {});
+    RenderOptions withAovs;
+    withAovs.aovs = true;
+    WavefrontRenderer host(hostDeviceInfo(), {}), hostAovs(hostDeviceInfo(), withAovs);
     double rays = 0.0, seconds = 0.0;
     for (std::size_t i = 0; i < cases.size(); ++i) {
       RenderPart part;
       part.textures = cases[i].textures.get();
-      reference[i].film = host.render(cases[i].scene, bvhs[i], reference[i].stats, {}, part);
+      reference[i].film = (cases[i].aovs ? hostAovs : host).render(cases[i].scene, bvhs[i], reference[i].stats, {}, part);
       rays += double(reference[i].stats.raysTraced());
       seconds += reference[i].stats.seconds;
     }
@@ -96,13 +109,15 @@ ConformanceReport runConformance(const ConformanceOptions& options) {
     r.index = deviceIndexString(device);
     r.name = device.name;
     r.platform = device.platformName;
-    std::unique_ptr<WavefrontRenderer> renderer;
+    std::unique_ptr<WavefrontRenderer> renderer, aovRenderer;  // (the AOV cases' renderer records AOVs)
     try {
       RenderOptions ro;
       // --bvh-layout is for the OpenCL devices under test; the host backend, the reference, runs
       // its own (default) layout.
       ro.bvhLayout = device.isHost ? BvhLayout::Auto : options.bvhLayout;
       renderer = std::make_unique<WavefrontRenderer>(device, ro);
+      ro.aovs = true;
+      aovRenderer = std::make_unique<WavefrontRenderer>(device, ro);
       r.buildMs = renderer->programBuildMs();
       r.fromCache = renderer->programFromCache();
       if (!device.isHost) buildIntegrateProgram(device, r);
@@ -139,7 +154,7 @@ ConformanceReport runConformance(const ConformanceOptions& options) {
           Rendered out;
           RenderPart part;
           part.textures = cases[i].textures.get();
-          out.film = renderer->render(cases[i].scene, bvhs[i], out.stats, {}, part);
+          out.film = (cases[i].aovs ? aovRenderer : renderer)->render(cases[i].scene, bvhs[i], out.stats, {}, part);
           c.rendered = true;
           c.seconds = out.stats.seconds;
           c.mrays = mrays(out.stats);

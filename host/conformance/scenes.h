@@ -20,6 +20,7 @@ struct ConformanceCase {
   // Decoded textures of the scene's materials, built in memory (no image files: the set runs where
   // OpenImageIO is not installed); null when the scene has none.
   std::shared_ptr<const SceneTextures> textures;
+  bool aovs = false;  // also record the first-hit AOVs (record_aov, accumulate_aov) and compare them
 };
 
 struct ConformanceSetOptions {

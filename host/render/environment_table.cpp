@@ -50,15 +50,13 @@ EnvironmentTable environmentFromPixels(int width, int height, const std::vector<
   return t;
 }
 
-EnvironmentTable buildEnvironment(const Scene& scene, FrameParams& frame) {
+EnvironmentTable buildEnvironment(const Scene& scene) {
   const EnvironmentDesc& env = scene.environment;
-  frame.environment = float4(0.0f);
-  frame.envWidth = frame.envHeight = 0;
-  frame.envRotateY = 0.0f;
   if (!env.enabled) return EnvironmentTable{};
-  frame.environment = float4(env.radiance * env.scale, 1.0f);
-  frame.envRotateY = float(double(env.rotateYDegrees) * M_PI / 180.0);
-  if (env.file.empty()) return EnvironmentTable{};
+  EnvironmentTable constant;
+  constant.radiance = float4(env.radiance * env.scale, 1.0f);
+  constant.rotateY = float(double(env.rotateYDegrees) * M_PI / 180.0);
+  if (env.file.empty()) return constant;
   const std::string where = "environment.file";
   LayeredImage image;
   try {
@@ -85,8 +83,8 @@ EnvironmentTable buildEnvironment(const Scene& scene, FrameParams& frame) {
     }
   }
   EnvironmentTable t = environmentFromPixels(image.width, image.height, rgb);
-  frame.envWidth = t.width;
-  frame.envHeight = t.height;
+  t.radiance = constant.radiance;
+  t.rotateY = constant.rotateY;
   return t;
 }
 

@@ -8,7 +8,7 @@
 
 namespace montecl {
 
-FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings, uint shadowSlots) {
+FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings, const FrameExtras& extras) {
   const CameraBasis b = cameraBasis(camera);  // validated at scene load (cameraBasisProblem)
   FrameParams f{};
   f.camOrigin = glm::vec4(camera.position, 0.0f);
@@ -16,13 +16,13 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
   f.camDx = glm::vec4(b.dx, 0.0f);
   f.camDy = glm::vec4(b.dy, 0.0f);
   f.background = glm::vec4(settings.background, 0.0f);
-  f.offsetScale = 1.0f;
+  f.offsetScale = extras.offsetScale;
   f.width = uint(camera.width);
   f.height = uint(camera.height);
   f.seed = settings.seed;
   f.aoSampling = settings.aoSampling == AoSampling::Uniform ? MCL_AO_UNIFORM : MCL_AO_COSINE;
   f.aoDistance = settings.aoDistance;
-  f.shadowSlots = shadowSlots;
+  f.shadowSlots = extras.shadowSlots;
   f.activeCount = f.width * f.height;
   f.lightSamples = uint(settings.lightSamples);
   f.directSampling = settings.directSampling == DirectSampling::Light  ? MCL_DIRECT_LIGHT
@@ -32,6 +32,13 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
   f.rrDepth = uint(settings.rrDepth);
   f.lensRadius = camera.apertureRadius;
   f.focusDistance = camera.focusDistance > 0.0f ? camera.focusDistance : glm::length(camera.target - camera.position);
+  f.emitterCount = extras.emitterCount;
+  f.emitterPower = extras.emitterPower;
+  f.environment = extras.environment;
+  f.envWidth = extras.envWidth;
+  f.envHeight = extras.envHeight;
+  f.envRotateY = extras.envRotateY;
+  f.textureCount = extras.textureCount;
   return f;
 }
 

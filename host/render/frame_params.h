@@ -6,8 +6,25 @@
 
 namespace montecl {
 
-// shadowSlots: occlusion queries per pixel sample (1 for AO).
-FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings, uint shadowSlots);
+// What FrameParams holds besides the camera and the settings, gathered by the renderer first so
+// that the frame is made in one place (defaults: no lights, no textures, unit offsets).
+struct FrameExtras {
+  uint shadowSlots = 1;     // occlusion queries per pixel sample (IntegratorDesc::shadowSlots)
+  float offsetScale = 1.0f; // offsetScaleFor(the scene's triangles)
+  uint emitterCount = 0;    // the emitter table (render/emitters.h) ...
+  float emitterPower = 0.0f;
+  float4 environment{0.0f};  // ... and the environment (render/environment_table.h), for lit integrators
+  uint envWidth = 0, envHeight = 0;
+  float envRotateY = 0.0f;
+  uint textureCount = 0;
+};
+
+FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings, const FrameExtras& extras);
+inline FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings, uint shadowSlots) {
+  FrameExtras extras;
+  extras.shadowSlots = shadowSlots;
+  return makeFrameParams(camera, settings, extras);
+}
 
 // FrameParams::offsetScale for these triangles: the smallest power of two at or above their largest
 // absolute coordinate, at most 1 (scenes of unit size or larger keep the unit offsets; a scene

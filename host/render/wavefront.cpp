@@ -86,17 +86,12 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
   checkImageMemory(device, scene.path, scene.camera.width, scene.camera.height, o.aovs,
                    shape.items * waveBytesPerItem(shape));
 
-  FrameParams frame = makeFrameParams(scene.camera, scene.render, std::uint32_t(shape.slots));
   StageInputs& in = p.inputs;
   PreparedTriangles own;
   if (!part.triangles) own = prepareTriangles(scene, bvh);
   PreparedTriangles& triangles = part.triangles ? *part.triangles : own;
-  frame.offsetScale = triangles.offsetScale;
   const EmitterTable emitters = integrator.lit ? buildEmitterTable(bvh, scene.materials) : EmitterTable{};
-  frame.emitterCount = uint(emitters.emitters.size());
-  frame.emitterPower = emitters.totalPower;
-  EnvironmentTable environment = buildEnvironment(scene, frame);  // read (and checked) for any integrator
-  if (!integrator.lit) frame.environment = float4(0.0f), frame.envWidth = frame.envHeight = 0;  // background only
+  EnvironmentTable environment = buildEnvironment(scene);  // read (and checked) for any integrator
   for (std::uint64_t bytes : {pixels * sizeof(float4), std::uint64_t(bvhNodeBytes(bvh, run.bvhLayout())),
                               bvh.triangles.size() * sizeof(Triangle), environment.map.size() * sizeof(float4),
                               environment.cdf.size() * sizeof(float)})
@@ -114,7 +109,20 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
   if (textures && textures->bytes() > maxAlloc)
     throw RuntimeError("textures of " + std::to_string(textures->bytes()) + " bytes do not fit the device's maximum "
                        "allocation of " + std::to_string(maxAlloc) + " bytes; lower --texture-budget");
-  frame.textureCount = textures ? std::uint32_t(textures->textures.size()) : 0u;
+
+  FrameExtras extras;
+  extras.shadowSlots = std::uint32_t(shape.slots);
+  extras.offsetScale = triangles.offsetScale;
+  extras.emitterCount = uint(emitters.emitters.size());
+  extras.emitterPower = emitters.totalPower;
+  if (integrator.lit) {  // otherwise the background only
+    extras.environment = environment.radiance;
+    extras.envWidth = environment.width;
+    extras.envHeight = environment.height;
+  }
+  extras.envRotateY = environment.rotateY;
+  extras.textureCount = textures ? std::uint32_t(textures->textures.size()) : 0u;
+  const FrameParams frame = makeFrameParams(scene.camera, scene.render, extras);
   in.frame = frame;
   in.bvh = &bvh;
   in.materials = deviceMaterials(scene.materials);

@@ -70,7 +70,7 @@ PreparedTriangles prepareTriangles(const Scene& scene, const Bvh& bvh);
 // largest allocation (the host backend has no such limit).
 std::uint64_t defaultTextureBudget(const DeviceInfo& device);
 
-// What one render call covers, beside the scene: decided per call (by a job: dist/job.h), so the
+// What one render call covers, beside the scene: decided per call (by a job: job/job.h), so the
 // renderer can be built before or after whoever decides it.
 struct RenderPart {
   // The pixels to render, ascending (empty: all): one rank's share of an MPI job. Each pixel's

@@ -1,5 +1,5 @@
-// mpi.cpp: dist/mpi.h: the launch rule, and the dlopened MPI module.
-#include "dist/mpi.h"
+// mpi.cpp: job/mpi.h: the launch rule, and the dlopened MPI module.
+#include "job/mpi.h"
 
 #include <dlfcn.h>
 
@@ -8,10 +8,10 @@
 #include <iostream>
 #include <mutex>
 
-#include "dist/mpi_plugin_abi.h"
+#include "job/mpi_plugin_abi.h"
 #include "util/errors.h"
 
-namespace montecl::dist {
+namespace montecl::jobs {
 namespace {
 
 constexpr const char* kModuleName = "libmontecl_mpi.so";
@@ -101,4 +101,4 @@ int failed(int code) {
   return code;
 }
 
-}  // namespace montecl::dist
+}  // namespace montecl::jobs

@@ -1,9 +1,9 @@
-// mpi_plugin.cpp: libmontecl_mpi.so (dist/mpi_plugin_abi.h), the only code that links MPI.
+// mpi_plugin.cpp: libmontecl_mpi.so (job/mpi_plugin_abi.h), the only code that links MPI.
 #include <mpi.h>
 #include <stdio.h>
 #include <time.h>
 
-#include "dist/mpi_plugin_abi.h"
+#include "job/mpi_plugin_abi.h"
 
 namespace {
 

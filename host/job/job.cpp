@@ -1,5 +1,5 @@
-// job.cpp: dist/job.h.
-#include "dist/job.h"
+// job.cpp: job/job.h.
+#include "job/job.h"
 
 #include <CLI/CLI.hpp>
 
@@ -10,10 +10,10 @@
 #include <iostream>
 
 #include "cl/devices.h"
-#include "dist/mpi.h"
+#include "job/mpi.h"
 #include "util/errors.h"
 
-namespace montecl::dist {
+namespace montecl::jobs {
 namespace {
 
 double now() {
@@ -198,4 +198,4 @@ Film Job::render(WavefrontRenderer& renderer, const Scene& scene, const Bvh& bvh
   return full;
 }
 
-}  // namespace montecl::dist
+}  // namespace montecl::jobs

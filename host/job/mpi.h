@@ -1,12 +1,12 @@
 // mpi.h: the MPI job this process belongs to, if any. MPI is used only when the environment says
 // the process was launched by an MPI launcher (launchedByMpi); then libmontecl_mpi.so is dlopened
-// (dist/mpi_plugin_abi.h) and MPI_Init runs; otherwise nothing MPI is loaded.
+// (job/mpi_plugin_abi.h) and MPI_Init runs; otherwise nothing MPI is loaded.
 #pragma once
 #include <cstdint>
 #include <string>
 #include <vector>
 
-namespace montecl::dist {
+namespace montecl::jobs {
 
 // The launch rule: MONTECL_MPI=0 never, =1 always; else MPI when any of OMPI_COMM_WORLD_SIZE
 // (Open MPI's mpirun), PMI_SIZE (MPICH/Hydra, Intel MPI), PMIX_RANK (PMIx launchers, srun
@@ -32,4 +32,4 @@ void gatherBytes(const std::string& send, std::string& recv, const std::vector<i
 // otherwise returns code.
 int failed(int code);
 
-}  // namespace montecl::dist
+}  // namespace montecl::jobs

@@ -1,5 +1,5 @@
 // mpi_plugin_abi.h: the C interface of libmontecl_mpi.so, the module that links the MPI library
-// (built only when CMake finds MPI; dlopened by dist/mpi.cpp only when the process was launched by
+// (built only when CMake finds MPI; dlopened by job/mpi.cpp only when the process was launched by
 // MPI), so a plain `montecl render` never loads MPI and a build without MPI builds the rest.
 #pragma once
 #include <stdint.h>

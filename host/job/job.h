@@ -1,4 +1,4 @@
-// job.h: one render as a job: alone, or split among the ranks of an MPI job (dist/mpi.h), with
+// job.h: one render as a job: alone, or split among the ranks of an MPI job (job/mpi.h), with
 // optional checkpoints and resume (render/checkpoint.h). Under MPI rank r of K renders the pixels
 // p with p % K == r (interleaved: near-equal cost per rank), one Iallreduce per wave carries the
 // job's progress (rank 0's bar shows the whole job) and the checkpoint decision (rank 0's clock),
@@ -15,7 +15,7 @@ namespace CLI {
 class App;
 }
 
-namespace montecl::dist {
+namespace montecl::jobs {
 
 struct JobArgs {
   std::string checkpoint, resume;
@@ -61,4 +61,4 @@ class Job {
   bool allFinished_ = false;
 };
 
-}  // namespace montecl::dist
+}  // namespace montecl::jobs
