@@ -86,7 +86,10 @@ class ClStageRunner final : public StageRunner {
         if (words[i]) cl_.queue().enqueueWriteBuffer(*films[i], CL_TRUE, 0, words[i] * sizeof(cl_float4), from[i]);
       return;
     }
-    const std::vector<cl_float4> zeros(std::min<std::uint64_t>(pixels_, 65536), cl_float4{{0.0f, 0.0f, 0.0f, 0.0f}});
+    // One write per part where it fits the block: Oclgrind resets a buffer's definedness only on a
+    // write at offset 0 (cl_session.h scratch), so the AOV sums (two per pixel) must not come in two.
+    const std::vector<cl_float4> zeros(std::min<std::uint64_t>(*std::max_element(std::begin(words), std::end(words)), 65536),
+                                       cl_float4{{0.0f, 0.0f, 0.0f, 0.0f}});
     for (int i = 0; i < 5; ++i)
       for (std::uint64_t at = 0; at < words[i]; at += zeros.size())
         cl_.queue().enqueueWriteBuffer(*films[i], CL_FALSE, at * sizeof(cl_float4),
