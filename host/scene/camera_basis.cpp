@@ -40,6 +40,12 @@ CameraProblem cameraBasisProblem(const Camera& camera) {
   if (!finite(camera.position)) return {"camera.position", "must be finite"};
   if (!finite(camera.target)) return {"camera.target", "must be finite"};
   if (!finite(camera.up)) return {"camera.up", "must be finite"};
+  if (!(camera.fovY > 0.0f && camera.fovY < 180.0f)) return {"camera.fov_y", "must be in (0, 180) degrees"};
+  const glm::vec3 dir = camera.target - camera.position;
+  if (dir == glm::vec3(0.0f)) return {"camera.target", "equals camera.position (no view direction)"};
+  if (camera.up == glm::vec3(0.0f)) return {"camera.up", "must not be the zero vector"};
+  const glm::dvec3 d = glm::normalize(glm::dvec3(dir)), u = glm::normalize(glm::dvec3(camera.up));
+  if (glm::length(glm::cross(d, u)) < 1e-5) return {"camera.up", "parallel to the view direction"};
   const CameraBasis b = cameraBasis(camera);
   if (!unit(b.forward)) {
     const double distance = glm::length(glm::dvec3(camera.target) - glm::dvec3(camera.position));

@@ -20,8 +20,10 @@ struct CameraBasis {
 // been given).
 CameraBasis cameraBasis(const Camera& camera);
 
-// Why camera's float basis is unusable, or empty when it is fine: `key` is the camera key to
-// change (camera.position, camera.target, camera.up or camera.fov_y), `problem` one line.
+// Why a camera is unusable, or empty when it is fine: the one camera rule, for scene files, glTF
+// cameras, automatic framing and cameras set in code (a field of view in (0, 180), a view
+// direction, an up not along it, and a float basis the renderer can build). `key` is the camera
+// key to change (camera.position, camera.target, camera.up or camera.fov_y), `problem` one line.
 struct CameraProblem {
   std::string key, problem;
   bool empty() const { return key.empty(); }

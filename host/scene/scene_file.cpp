@@ -136,17 +136,6 @@ json parseJson(const Ctx& ctx, const std::string& text) {
 
 // ---- camera ---------------------------------------------------------------------------------
 
-void validateCamera(const Ctx& ctx, const Camera& cam) {
-  if (!(cam.fovY > 0.0f && cam.fovY < 180.0f)) fail(ctx, "camera.fov_y", "must be in (0, 180) degrees");
-  glm::vec3 dir = cam.target - cam.position;
-  if (dir == glm::vec3(0.0f)) fail(ctx, "camera.target", "equals camera.position (no view direction)");
-  if (cam.up == glm::vec3(0.0f)) fail(ctx, "camera.up", "must not be the zero vector");
-  glm::dvec3 d = glm::normalize(glm::dvec3(dir)), u = glm::normalize(glm::dvec3(cam.up));
-  if (glm::length(glm::cross(d, u)) < 1e-5) fail(ctx, "camera.up", "parallel to the view direction");
-  const CameraProblem p = cameraBasisProblem(cam);  // the float basis the renderer builds
-  if (!p.empty()) fail(ctx, p.key, p.problem);
-}
-
 Camera parseCamera(const Ctx& ctx, const json& root) {
   const json& j = requireObject(ctx, requireKey(ctx, root, "", "camera"), "camera");
   warnUnknownKeys(ctx, j, "camera",
@@ -160,7 +149,8 @@ Camera parseCamera(const Ctx& ctx, const json& root) {
   const char* side = sideRule.c_str();
   cam.width = getPositiveInt(ctx, requireKey(ctx, j, "camera", "width"), "camera.width", kMaxImageSide, side);
   cam.height = getPositiveInt(ctx, requireKey(ctx, j, "camera", "height"), "camera.height", kMaxImageSide, side);
-  validateCamera(ctx, cam);
+  const CameraProblem p = cameraBasisProblem(cam);  // the one camera rule (scene/camera_basis.h)
+  if (!p.empty()) fail(ctx, p.key, p.problem);
   if (const json* v = optionalKey(j, "aperture_radius")) {
     cam.apertureRadius = getFloat(ctx, *v, "camera.aperture_radius");
     if (!(cam.apertureRadius >= 0.0f)) fail(ctx, "camera.aperture_radius", "must be >= 0");
@@ -248,14 +238,12 @@ Scene loadBareMesh(const std::string& path, std::vector<std::string>& warnings) 
   Camera fileCamera;
   const bool hasCamera = loadMeshFile(path, scene, &warnings, &fileCamera);
   const CameraProblem fileProblem = hasCamera ? cameraBasisProblem(fileCamera) : CameraProblem{};
-  const bool fovOk = fileCamera.fovY > 0.0f && fileCamera.fovY < 180.0f;
-  if (hasCamera && fileProblem.empty() && fovOk) {
+  if (hasCamera && fileProblem.empty()) {
     scene.camera = fileCamera;
   } else {
     if (hasCamera)
-      warnings.push_back(oneLine(path) + ": camera: the file's camera cannot be used (" +
-                         (fovOk ? fileProblem.key + " " + fileProblem.problem : std::string("yfov out of range")) +
-                         "), framing the model instead");
+      warnings.push_back(oneLine(path) + ": camera: the file's camera cannot be used (" + fileProblem.key + " " +
+                         fileProblem.problem + "), framing the model instead");
     scene.camera = defaultCamera(scene.boundsMin, scene.boundsMax, 512, 512);
   }
   const CameraProblem p = cameraBasisProblem(scene.camera);
@@ -291,7 +279,7 @@ Scene loadScene(const std::string& path, std::vector<std::string>& warnings) {
   if (!hasCamera) {
     if (!hasMeshCamera) fail(ctx, "camera", "missing required key (and no glTF mesh has a camera)");
     const CameraProblem p = cameraBasisProblem(meshCamera);
-    if (!p.empty() || !(meshCamera.fovY > 0.0f && meshCamera.fovY < 180.0f))
+    if (!p.empty())
       fail(ctx, "camera", "missing, and the glTF mesh's camera cannot be used (" + p.key + " " + p.problem + ")");
     scene.camera = meshCamera;
   }
