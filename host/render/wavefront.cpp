@@ -38,7 +38,7 @@ std::uint64_t bytesPerItem(std::uint32_t slots, bool bounce, bool aovs, bool pat
 
 struct WavefrontRenderer::Impl {
   Impl(const DeviceInfo& device, const RenderOptions& opts)
-      : options(opts), device(device), runner(makeStageRunner(device, opts.workGroupSize, opts.bvhLayout, opts.profile)) {}
+      : options(opts), device(device), runner(makeStageRunner(device, opts.workGroupSize, opts.bvhLayout, opts.profile, opts.lanes)) {}
   RenderOptions options;
   DeviceInfo device;
   std::unique_ptr<StageRunner> runner;
