@@ -85,17 +85,54 @@ typedef MCL_LANES_CAT(ulong, MCL_LANES) vulong;
 #endif
 #endif
 
+// Lane 0's value.
+#if MCL_LANES == 1
+#define v_first_lane(v) (v)
+#else
+#define v_first_lane(v) ((v).s0)
+#endif
+
 // Set lanes where m is clear (works on both mask conventions).
 #define v_not(m) ((m) == (vmask)0)
 
-// Lane values through private arrays: v_store_lanes(v, arr) writes lane k to arr[k]; v_load_lanes
-// reads arr[0 .. W) back. Per-lane code (gathers, scatters, scalar fallbacks) loops over k.
-#if MCL_LANES == 1
-#define v_store_lanes(v, arr) ((arr)[0] = (v))
-#define v_load_lanes(arr) ((arr)[0])
+// Vector memory access. PoCL 3.1's vload16/vstore16 (and vloadN on private arrays) compile to
+// 8-byte pieces (vmovsd) and stack round trips, so on clang-based compilers the lanes read and
+// write through pointers to vector types of 4-byte alignment (clang's aligned attribute on a
+// typedef lowers the alignment: unaligned vector loads, vmovups); MCL_LANES_BUILTIN_VLOAD, or
+// another compiler, takes the builtins. mcl_ld16/mcl_st16: 16 floats at p + 16 i (any float
+// alignment); mcl_ld4/mcl_st4: one float4 at a 16-byte aligned p (a record of types.h).
+#if MCL_LANES > 1
+#if defined(__clang__) && !defined(MCL_LANES_BUILTIN_VLOAD)
+typedef float mcl_float16_u __attribute__((ext_vector_type(16), aligned(4)));
+typedef uint mcl_vuint_u __attribute__((ext_vector_type(MCL_LANES), aligned(4)));
+#define mcl_ld16(p, i) (*(MCL_GLOBAL const mcl_float16_u*)((p) + 16 * (i)))
+#define mcl_st16(v, p, i) (*(MCL_GLOBAL mcl_float16_u*)((p) + 16 * (i)) = (v))
+#define mcl_ldu(p) (*(MCL_GLOBAL const mcl_vuint_u*)(p))
+#define mcl_ld4(p) (*(MCL_GLOBAL const float4*)(p))
+#define mcl_st4(v, p) (*(MCL_GLOBAL float4*)(p) = (v))
 #else
-#define v_store_lanes(v, arr) MCL_LANES_CAT(vstore, MCL_LANES)((v), 0, (arr))
-#define v_load_lanes(arr) MCL_LANES_CAT(vload, MCL_LANES)(0, (arr))
+#define mcl_ld16(p, i) vload16((i), (p))
+#define mcl_st16(v, p, i) vstore16((v), (i), (p))
+#define mcl_ldu(p) MCL_LANES_CAT(vload, MCL_LANES)(0, (p))
+#define mcl_ld4(p) vload4(0, (p))
+#define mcl_st4(v, p) vstore4((v), 0, (p))
+#endif
+#endif
+
+// Lane values through private arrays, declared `T name[MCL_LANES] MCL_LANE_ALIGN` (aligned for a
+// whole vector): v_store_lanes(v, arr) writes lane k to arr[k]; v_loadf_lanes / v_loadu_lanes
+// read arr[0 .. W) back as vfloat / vuint. Per-lane code (gathers, scatters, scalar fallbacks)
+// loops over k.
+#if MCL_LANES == 1
+#define MCL_LANE_ALIGN
+#define v_store_lanes(v, arr) ((arr)[0] = (v))
+#define v_loadf_lanes(arr) ((arr)[0])
+#define v_loadu_lanes(arr) ((arr)[0])
+#else
+#define MCL_LANE_ALIGN __attribute__((aligned(64)))
+#define v_store_lanes(v, arr) (*(__typeof__(v)*)(arr) = (v))
+#define v_loadf_lanes(arr) (*(vfloat*)(arr))
+#define v_loadu_lanes(arr) (*(vuint*)(arr))
 #endif
 
 // Three lanes of floats: a float3 per lane, structure of arrays.
@@ -128,9 +165,9 @@ MCL_INLINE vfloat3 v3_select(vmask m, vfloat3 t, vfloat3 f) {
 
 // --- loads and stores of W consecutive records -------------------------------------------------
 // v_load4(p, x, y, z, w): the float4s p[0 .. W) (p: floats, 4 per record, consecutive records),
-// transposed into four lane vectors; v_store4 the reverse. Whole vectors (vload16 and shuffles).
+// transposed into four lane vectors; v_store4 the reverse. Whole vectors (16-float loads, shuffles).
 // v_load4_stride / v_store4_stride: the same for records of `stride` floats (the float4 at the
-// start of each), one vload4/vstore4 per lane. v_gather4(p, idx, stride): the float4 at
+// start of each, 16-byte aligned), one float4 load/store per lane. v_gather4(p, idx, stride): the float4 at
 // p + idx[k] * stride for each lane k; v_scatter4 stores there.
 #if MCL_LANES == 1
 MCL_INLINE void v_load4(MCL_GLOBAL const float* p, vfloat* x, vfloat* y, vfloat* z, vfloat* w) {
@@ -172,104 +209,126 @@ MCL_INLINE float16 mcl_interleave4(float4 x, float4 y, float4 z, float4 w) {
 }
 #if MCL_LANES == 4
 MCL_INLINE void v_load4(MCL_GLOBAL const float* p, vfloat* x, vfloat* y, vfloat* z, vfloat* w) {
-  float16 a = vload16(0, p);
+  float16 a = mcl_ld16(p, 0);
   *x = MCL_T4_X(a);
   *y = MCL_T4_Y(a);
   *z = MCL_T4_Z(a);
   *w = MCL_T4_W(a);
 }
 MCL_INLINE void v_store4(MCL_GLOBAL float* p, vfloat x, vfloat y, vfloat z, vfloat w) {
-  vstore16(mcl_interleave4(x, y, z, w), 0, p);
+  mcl_st16(mcl_interleave4(x, y, z, w), p, 0);
 }
 #elif MCL_LANES == 8
 MCL_INLINE void v_load4(MCL_GLOBAL const float* p, vfloat* x, vfloat* y, vfloat* z, vfloat* w) {
-  float16 a = vload16(0, p), b = vload16(1, p);
+  float16 a = mcl_ld16(p, 0), b = mcl_ld16(p, 1);
   *x = (float8)(MCL_T4_X(a), MCL_T4_X(b));
   *y = (float8)(MCL_T4_Y(a), MCL_T4_Y(b));
   *z = (float8)(MCL_T4_Z(a), MCL_T4_Z(b));
   *w = (float8)(MCL_T4_W(a), MCL_T4_W(b));
 }
 MCL_INLINE void v_store4(MCL_GLOBAL float* p, vfloat x, vfloat y, vfloat z, vfloat w) {
-  vstore16(mcl_interleave4(x.lo, y.lo, z.lo, w.lo), 0, p);
-  vstore16(mcl_interleave4(x.hi, y.hi, z.hi, w.hi), 1, p);
+  mcl_st16(mcl_interleave4(x.lo, y.lo, z.lo, w.lo), p, 0);
+  mcl_st16(mcl_interleave4(x.hi, y.hi, z.hi, w.hi), p, 1);
 }
 #else
 MCL_INLINE void v_load4(MCL_GLOBAL const float* p, vfloat* x, vfloat* y, vfloat* z, vfloat* w) {
-  float16 a = vload16(0, p), b = vload16(1, p), c = vload16(2, p), d = vload16(3, p);
+  float16 a = mcl_ld16(p, 0), b = mcl_ld16(p, 1), c = mcl_ld16(p, 2), d = mcl_ld16(p, 3);
   *x = (float16)(MCL_T4_X(a), MCL_T4_X(b), MCL_T4_X(c), MCL_T4_X(d));
   *y = (float16)(MCL_T4_Y(a), MCL_T4_Y(b), MCL_T4_Y(c), MCL_T4_Y(d));
   *z = (float16)(MCL_T4_Z(a), MCL_T4_Z(b), MCL_T4_Z(c), MCL_T4_Z(d));
   *w = (float16)(MCL_T4_W(a), MCL_T4_W(b), MCL_T4_W(c), MCL_T4_W(d));
 }
 MCL_INLINE void v_store4(MCL_GLOBAL float* p, vfloat x, vfloat y, vfloat z, vfloat w) {
-  vstore16(mcl_interleave4(x.lo.lo, y.lo.lo, z.lo.lo, w.lo.lo), 0, p);
-  vstore16(mcl_interleave4(x.lo.hi, y.lo.hi, z.lo.hi, w.lo.hi), 1, p);
-  vstore16(mcl_interleave4(x.hi.lo, y.hi.lo, z.hi.lo, w.hi.lo), 2, p);
-  vstore16(mcl_interleave4(x.hi.hi, y.hi.hi, z.hi.hi, w.hi.hi), 3, p);
+  mcl_st16(mcl_interleave4(x.lo.lo, y.lo.lo, z.lo.lo, w.lo.lo), p, 0);
+  mcl_st16(mcl_interleave4(x.lo.hi, y.lo.hi, z.lo.hi, w.lo.hi), p, 1);
+  mcl_st16(mcl_interleave4(x.hi.lo, y.hi.lo, z.hi.lo, w.hi.lo), p, 2);
+  mcl_st16(mcl_interleave4(x.hi.hi, y.hi.hi, z.hi.hi, w.hi.hi), p, 3);
 }
 #endif
 MCL_INLINE void v_load4_stride(MCL_GLOBAL const float* p, uint stride, vfloat* x, vfloat* y, vfloat* z, vfloat* w) {
-  float ax[MCL_LANES], ay[MCL_LANES], az[MCL_LANES], aw[MCL_LANES];
+  float ax[MCL_LANES] MCL_LANE_ALIGN, ay[MCL_LANES] MCL_LANE_ALIGN, az[MCL_LANES] MCL_LANE_ALIGN, aw[MCL_LANES] MCL_LANE_ALIGN;
   for (uint k = 0; k < MCL_LANES; ++k) {
-    float4 r = vload4(0, p + k * stride);
+    float4 r = mcl_ld4(p + k * stride);
     ax[k] = r.x;
     ay[k] = r.y;
     az[k] = r.z;
     aw[k] = r.w;
   }
-  *x = v_load_lanes(ax);
-  *y = v_load_lanes(ay);
-  *z = v_load_lanes(az);
-  *w = v_load_lanes(aw);
+  *x = v_loadf_lanes(ax);
+  *y = v_loadf_lanes(ay);
+  *z = v_loadf_lanes(az);
+  *w = v_loadf_lanes(aw);
 }
 MCL_INLINE void v_store4_stride(MCL_GLOBAL float* p, uint stride, vfloat x, vfloat y, vfloat z, vfloat w) {
-  float ax[MCL_LANES], ay[MCL_LANES], az[MCL_LANES], aw[MCL_LANES];
+  float ax[MCL_LANES] MCL_LANE_ALIGN, ay[MCL_LANES] MCL_LANE_ALIGN, az[MCL_LANES] MCL_LANE_ALIGN, aw[MCL_LANES] MCL_LANE_ALIGN;
   v_store_lanes(x, ax);
   v_store_lanes(y, ay);
   v_store_lanes(z, az);
   v_store_lanes(w, aw);
-  for (uint k = 0; k < MCL_LANES; ++k) vstore4((float4)(ax[k], ay[k], az[k], aw[k]), 0, p + k * stride);
+  for (uint k = 0; k < MCL_LANES; ++k) mcl_st4(((float4)(ax[k], ay[k], az[k], aw[k])), p + k * stride);
 }
 MCL_INLINE void v_gather4(MCL_GLOBAL const float* p, vuint idx, uint stride, vfloat* x, vfloat* y, vfloat* z,
                           vfloat* w) {
-  uint ai[MCL_LANES];
-  float ax[MCL_LANES], ay[MCL_LANES], az[MCL_LANES], aw[MCL_LANES];
+  uint ai[MCL_LANES] MCL_LANE_ALIGN;
+  float ax[MCL_LANES] MCL_LANE_ALIGN, ay[MCL_LANES] MCL_LANE_ALIGN, az[MCL_LANES] MCL_LANE_ALIGN, aw[MCL_LANES] MCL_LANE_ALIGN;
   v_store_lanes(idx, ai);
   for (uint k = 0; k < MCL_LANES; ++k) {
-    float4 r = vload4(0, p + (ulong)ai[k] * stride);
+    float4 r = mcl_ld4(p + (ulong)ai[k] * stride);
     ax[k] = r.x;
     ay[k] = r.y;
     az[k] = r.z;
     aw[k] = r.w;
   }
-  *x = v_load_lanes(ax);
-  *y = v_load_lanes(ay);
-  *z = v_load_lanes(az);
-  *w = v_load_lanes(aw);
+  *x = v_loadf_lanes(ax);
+  *y = v_loadf_lanes(ay);
+  *z = v_loadf_lanes(az);
+  *w = v_loadf_lanes(aw);
 }
 MCL_INLINE void v_scatter4(MCL_GLOBAL float* p, vuint idx, uint stride, vfloat x, vfloat y, vfloat z, vfloat w) {
-  uint ai[MCL_LANES];
-  float ax[MCL_LANES], ay[MCL_LANES], az[MCL_LANES], aw[MCL_LANES];
+  uint ai[MCL_LANES] MCL_LANE_ALIGN;
+  float ax[MCL_LANES] MCL_LANE_ALIGN, ay[MCL_LANES] MCL_LANE_ALIGN, az[MCL_LANES] MCL_LANE_ALIGN, aw[MCL_LANES] MCL_LANE_ALIGN;
   v_store_lanes(idx, ai);
   v_store_lanes(x, ax);
   v_store_lanes(y, ay);
   v_store_lanes(z, az);
   v_store_lanes(w, aw);
-  for (uint k = 0; k < MCL_LANES; ++k) vstore4((float4)(ax[k], ay[k], az[k], aw[k]), 0, p + (ulong)ai[k] * stride);
+  for (uint k = 0; k < MCL_LANES; ++k) mcl_st4(((float4)(ax[k], ay[k], az[k], aw[k])), p + (ulong)ai[k] * stride);
 }
 #endif
+
+// Records of two float4s (a, b) at p[0 .. 2W) as float4s: the a parts into ax.., the b parts into
+// bx.. (whole vector loads, then even / odd lanes).
+MCL_INLINE void v_load4_pairs(MCL_GLOBAL const float* p, vfloat* ax, vfloat* ay, vfloat* az, vfloat* aw, vfloat* bx,
+                              vfloat* by, vfloat* bz, vfloat* bw) {
+#if MCL_LANES == 1
+  v_load4(p, ax, ay, az, aw);
+  v_load4(p + 4, bx, by, bz, bw);
+#else
+  vfloat x0, y0, z0, w0, x1, y1, z1, w1;
+  v_load4(p, &x0, &y0, &z0, &w0);
+  v_load4(p + 4 * MCL_LANES, &x1, &y1, &z1, &w1);
+  *ax = (vfloat)(x0.even, x1.even);
+  *ay = (vfloat)(y0.even, y1.even);
+  *az = (vfloat)(z0.even, z1.even);
+  *aw = (vfloat)(w0.even, w1.even);
+  *bx = (vfloat)(x0.odd, x1.odd);
+  *by = (vfloat)(y0.odd, y1.odd);
+  *bz = (vfloat)(z0.odd, z1.odd);
+  *bw = (vfloat)(w0.odd, w1.odd);
+#endif
+}
 
 // uint lanes from W consecutive uints, or gathered by index.
 #if MCL_LANES == 1
 #define v_load_uints(p) ((p)[0])
 MCL_INLINE vuint v_gather_uint(MCL_GLOBAL const uint* p, vuint idx) { return p[idx]; }
 #else
-#define v_load_uints(p) MCL_LANES_CAT(vload, MCL_LANES)(0, (p))
+#define v_load_uints(p) mcl_ldu(p)
 MCL_INLINE vuint v_gather_uint(MCL_GLOBAL const uint* p, vuint idx) {
-  uint ai[MCL_LANES];
+  uint ai[MCL_LANES] MCL_LANE_ALIGN;
   v_store_lanes(idx, ai);
   for (uint k = 0; k < MCL_LANES; ++k) ai[k] = p[ai[k]];
-  return v_load_lanes(ai);
+  return v_loadu_lanes(ai);
 }
 #endif
 
@@ -278,7 +337,7 @@ MCL_INLINE uint v_count(vmask m) {
 #if MCL_LANES == 1
   return m != 0 ? 1u : 0u;
 #else
-  uint b[MCL_LANES];
+  uint b[MCL_LANES] MCL_LANE_ALIGN;
   v_store_lanes(v_mask01(m), b);
   uint n = 0;
   for (uint k = 0; k < MCL_LANES; ++k) n += b[k];

@@ -57,11 +57,24 @@ MCL_INLINE void stage_accumulate_lanes(const accumulate_args* a, uint j0) {
   }
   vuint pixel, sample;
   v_item_pixel_sample(f, a->active, a->waveStart, j0, &pixel, &sample);
+  // Consecutive pixels (the active list of a render without adaptive sampling): whole vector
+  // loads and stores of the film; otherwise per-lane gathers and scatters.
+  const uint p0 = v_first_lane(pixel);
+  const int run = v_all(pixel == p0 + v_lane_index());
+  MCL_GLOBAL float* film[4] = {(MCL_GLOBAL float*)a->mean, (MCL_GLOBAL float*)a->meanLo, (MCL_GLOBAL float*)a->m2,
+                               (MCL_GLOBAL float*)a->m2Lo};
   vfloat mhx, mhy, mhz, mhw, mlx, mly, mlz, mlw, shx, shy, shz, shw, slx, sly, slz, slw;
-  v_gather4((MCL_GLOBAL const float*)a->mean, pixel, 4, &mhx, &mhy, &mhz, &mhw);
-  v_gather4((MCL_GLOBAL const float*)a->meanLo, pixel, 4, &mlx, &mly, &mlz, &mlw);
-  v_gather4((MCL_GLOBAL const float*)a->m2, pixel, 4, &shx, &shy, &shz, &shw);
-  v_gather4((MCL_GLOBAL const float*)a->m2Lo, pixel, 4, &slx, &sly, &slz, &slw);
+  if (run) {
+    v_load4(film[0] + (ulong)p0 * 4, &mhx, &mhy, &mhz, &mhw);
+    v_load4(film[1] + (ulong)p0 * 4, &mlx, &mly, &mlz, &mlw);
+    v_load4(film[2] + (ulong)p0 * 4, &shx, &shy, &shz, &shw);
+    v_load4(film[3] + (ulong)p0 * 4, &slx, &sly, &slz, &slw);
+  } else {
+    v_gather4(film[0], pixel, 4, &mhx, &mhy, &mhz, &mhw);
+    v_gather4(film[1], pixel, 4, &mlx, &mly, &mlz, &mlw);
+    v_gather4(film[2], pixel, 4, &shx, &shy, &shz, &shw);
+    v_gather4(film[3], pixel, 4, &slx, &sly, &slz, &slw);
+  }
   vulong n = v_cvt_ul_u(v_as_uint(mhw)) | (v_cvt_ul_u(v_as_uint(mlw)) << 32);
   vffloat meanX = v_ff_make(mhx, mlx), meanY = v_ff_make(mhy, mly), meanZ = v_ff_make(mhz, mlz);
   vffloat m2X = v_ff_make(shx, slx), m2Y = v_ff_make(shy, sly), m2Z = v_ff_make(shz, slz), m2W = v_ff_make(shw, slw);
@@ -74,14 +87,24 @@ MCL_INLINE void stage_accumulate_lanes(const accumulate_args* a, uint j0) {
     vfloat vx, vy, vz, vw, sx, sy, sz, sw;
     if (count - i0 >= MCL_LANES) {  // the packet's items i0 .. i0 + W - 1 all exist
       v_load4(rad + (ulong)i0 * 4, &vx, &vy, &vz, &vw);
-      for (uint k = 0; k < slots; ++k) {
-        if (slots == 1)
-          v_load4(sc + (ulong)i0 * 4, &sx, &sy, &sz, &sw);
-        else
-          v_load4_stride(sc + ((ulong)i0 * slots + k) * 4, slots * 4, &sx, &sy, &sz, &sw);
+      if (slots == 1) {  // AO
+        v_load4(sc + (ulong)i0 * 4, &sx, &sy, &sz, &sw);
         vx = vx + sx;
         vy = vy + sy;
         vz = vz + sz;
+      } else if (slots == 2) {  // direct lighting with one light sample
+        vfloat tx, ty, tz, tw;
+        v_load4_pairs(sc + (ulong)i0 * 8, &sx, &sy, &sz, &sw, &tx, &ty, &tz, &tw);
+        vx = vx + sx + tx;
+        vy = vy + sy + ty;
+        vz = vz + sz + tz;
+      } else {
+        for (uint k = 0; k < slots; ++k) {
+          v_load4_stride(sc + ((ulong)i0 * slots + k) * 4, slots * 4, &sx, &sy, &sz, &sw);
+          vx = vx + sx;
+          vy = vy + sy;
+          vz = vz + sz;
+        }
       }
     } else {  // lanes past the wave read item i0 (and are masked)
       vuint at = vsel(live, i, v_u(i0));
@@ -104,8 +127,15 @@ MCL_INLINE void stage_accumulate_lanes(const accumulate_args* a, uint j0) {
     m2W = v_ff_select(live, m2WNew, m2W);
   }
   vfloat countLo = v_as_float(v_cvt_u_ul(n & 0xfffffffful)), countHi = v_as_float(v_cvt_u_ul(n >> 32));
-  v_scatter4((MCL_GLOBAL float*)a->mean, pixel, 4, meanX.hi, meanY.hi, meanZ.hi, countLo);
-  v_scatter4((MCL_GLOBAL float*)a->meanLo, pixel, 4, meanX.lo, meanY.lo, meanZ.lo, countHi);
-  v_scatter4((MCL_GLOBAL float*)a->m2, pixel, 4, m2X.hi, m2Y.hi, m2Z.hi, m2W.hi);
-  v_scatter4((MCL_GLOBAL float*)a->m2Lo, pixel, 4, m2X.lo, m2Y.lo, m2Z.lo, m2W.lo);
+  if (run) {
+    v_store4(film[0] + (ulong)p0 * 4, meanX.hi, meanY.hi, meanZ.hi, countLo);
+    v_store4(film[1] + (ulong)p0 * 4, meanX.lo, meanY.lo, meanZ.lo, countHi);
+    v_store4(film[2] + (ulong)p0 * 4, m2X.hi, m2Y.hi, m2Z.hi, m2W.hi);
+    v_store4(film[3] + (ulong)p0 * 4, m2X.lo, m2Y.lo, m2Z.lo, m2W.lo);
+  } else {
+    v_scatter4(film[0], pixel, 4, meanX.hi, meanY.hi, meanZ.hi, countLo);
+    v_scatter4(film[1], pixel, 4, meanX.lo, meanY.lo, meanZ.lo, countHi);
+    v_scatter4(film[2], pixel, 4, m2X.hi, m2Y.hi, m2Z.hi, m2W.hi);
+    v_scatter4(film[3], pixel, 4, m2X.lo, m2Y.lo, m2Z.lo, m2W.lo);
+  }
 }

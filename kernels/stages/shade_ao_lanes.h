@@ -60,7 +60,7 @@ MCL_INLINE void stage_shade_ao_lanes(const shade_ao_args* a, uint first) {
                           (first + v_lane_index()) * slots);
   }
   if (v_any(smooth)) {
-    uint s[MCL_LANES];
+    uint s[MCL_LANES] MCL_LANE_ALIGN;
     v_store_lanes(v_mask01(smooth), s);
     for (uint k = 0; k < MCL_LANES; ++k)
       if (s[k]) stage_shade_ao(a, first + k);

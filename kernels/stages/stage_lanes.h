@@ -136,9 +136,9 @@ MCL_INLINE void v_push_shadow_queries(MCL_GLOBAL ShadowWork* queue, MCL_GLOBAL v
   w.slot = slot;
   queue[at] = w;
 #else
-  uint set[MCL_LANES], sl[MCL_LANES];
-  float ox[MCL_LANES], oy[MCL_LANES], oz[MCL_LANES], dx[MCL_LANES], dy[MCL_LANES], dz[MCL_LANES];
-  float cr[MCL_LANES], cg[MCL_LANES], cb[MCL_LANES];
+  uint set[MCL_LANES] MCL_LANE_ALIGN, sl[MCL_LANES] MCL_LANE_ALIGN;
+  float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN, dx[MCL_LANES] MCL_LANE_ALIGN, dy[MCL_LANES] MCL_LANE_ALIGN, dz[MCL_LANES] MCL_LANE_ALIGN;
+  float cr[MCL_LANES] MCL_LANE_ALIGN, cg[MCL_LANES] MCL_LANE_ALIGN, cb[MCL_LANES] MCL_LANE_ALIGN;
   v_store_lanes(v_mask01(m), set);
   v_store_lanes(slot, sl);
   v_store_lanes(origin.x, ox);
@@ -153,9 +153,9 @@ MCL_INLINE void v_push_shadow_queries(MCL_GLOBAL ShadowWork* queue, MCL_GLOBAL v
   for (uint k = 0; k < MCL_LANES; ++k) {
     if (!set[k]) continue;
     MCL_GLOBAL float* q = (MCL_GLOBAL float*)(queue + at);
-    vstore4((float4)(ox[k], oy[k], oz[k], 0.0f), 0, q);
-    vstore4((float4)(dx[k], dy[k], dz[k], tmax), 1, q);
-    vstore4((float4)(cr[k], cg[k], cb[k], as_float(sl[k])), 2, q);
+    mcl_st4(((float4)(ox[k], oy[k], oz[k], 0.0f)), q);
+    mcl_st4(((float4)(dx[k], dy[k], dz[k], tmax)), q + 4);
+    mcl_st4(((float4)(cr[k], cg[k], cb[k], as_float(sl[k]))), q + 8);
     ++at;
   }
 #endif
