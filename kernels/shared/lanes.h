@@ -332,6 +332,19 @@ MCL_INLINE vuint v_gather_uint(MCL_GLOBAL const uint* p, vuint idx) {
 }
 #endif
 
+// One float per lane at p + idx[k] * stride.
+#if MCL_LANES == 1
+MCL_INLINE vfloat v_gather_float(MCL_GLOBAL const float* p, vuint idx, uint stride) { return p[(ulong)idx * stride]; }
+#else
+MCL_INLINE vfloat v_gather_float(MCL_GLOBAL const float* p, vuint idx, uint stride) {
+  uint ai[MCL_LANES] MCL_LANE_ALIGN;
+  float af[MCL_LANES] MCL_LANE_ALIGN;
+  v_store_lanes(idx, ai);
+  for (uint k = 0; k < MCL_LANES; ++k) af[k] = p[(ulong)ai[k] * stride];
+  return v_loadf_lanes(af);
+}
+#endif
+
 // Lanes set in m (at most W).
 MCL_INLINE uint v_count(vmask m) {
 #if MCL_LANES == 1

@@ -32,7 +32,7 @@
 #define MCL_PACKET_generate 1
 #define MCL_PACKET_intersect 0
 #define MCL_PACKET_shade_ao 1
-#define MCL_PACKET_shade_direct 0
+#define MCL_PACKET_shade_direct 1
 #define MCL_PACKET_shade_direct_hit 0
 #define MCL_PACKET_intersect_shadow 0
 #define MCL_PACKET_accumulate 1
