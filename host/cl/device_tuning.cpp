@@ -22,7 +22,14 @@ DeviceTuning deviceTuning(const DeviceInfo& d) {
     t.buildOptions = "-DMCL_SCALAR_WORK_ITEMS=1";
     t.why = "Intel CPU runtime: one work item per thread (no packing across work items)";
   }
-  if (d.isCpu && !d.isHost) {
+  if (isOclgrind(d)) {
+    // Oclgrind 21.10 checks the packet stages at W = 1 only: with W = 4 its --uninitialized check
+    // reports film and queue stores of the packet code as uninitialised (the same renders are bit
+    // for bit the host backend's on PoCL at every W; suspected: its shadow tracking through vector
+    // shuffles), and it segfaults with W = 16 (or W = 4 with the typed vector loads of lanes.h).
+    t.lanes = 1;
+    t.lanesWhy = "Oclgrind: packet stages checked at W = 1";
+  } else if (d.isCpu && !d.isHost) {
     // PoCL compiles each work item as written (it vectorised none of the stage kernels across
     // work items), so the packet stages fill the CPU's vector registers themselves: float16 on
     // AVX-512 (PoCL's device name and HSTR say "avx512"; its native float vector width is 16).
