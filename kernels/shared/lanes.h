@@ -194,6 +194,7 @@ MCL_INLINE void v_gather4(MCL_GLOBAL const float* p, vuint idx, uint stride, vfl
                           vfloat* w) {
   v_load4(p + (ulong)idx * stride, x, y, z, w);
 }
+#define v_gather4_few v_gather4
 MCL_INLINE void v_scatter4(MCL_GLOBAL float* p, vuint idx, uint stride, vfloat x, vfloat y, vfloat z, vfloat w) {
   v_store4(p + (ulong)idx * stride, x, y, z, w);
 }
@@ -269,6 +270,15 @@ MCL_INLINE void v_store4_stride(MCL_GLOBAL float* p, uint stride, vfloat x, vflo
 }
 MCL_INLINE void v_gather4(MCL_GLOBAL const float* p, vuint idx, uint stride, vfloat* x, vfloat* y, vfloat* z,
                           vfloat* w) {
+  const uint i0 = idx.s0;
+  if (v_all(idx == i0)) {  // one record for the whole packet (e.g. one triangle under 16 pixels)
+    float4 r = mcl_ld4(p + (ulong)i0 * stride);
+    *x = (vfloat)(r.x);
+    *y = (vfloat)(r.y);
+    *z = (vfloat)(r.z);
+    *w = (vfloat)(r.w);
+    return;
+  }
   uint ai[MCL_LANES] MCL_LANE_ALIGN;
   float ax[MCL_LANES] MCL_LANE_ALIGN, ay[MCL_LANES] MCL_LANE_ALIGN, az[MCL_LANES] MCL_LANE_ALIGN, aw[MCL_LANES] MCL_LANE_ALIGN;
   v_store_lanes(idx, ai);
@@ -283,6 +293,40 @@ MCL_INLINE void v_gather4(MCL_GLOBAL const float* p, vuint idx, uint stride, vfl
   *y = v_loadf_lanes(ay);
   *z = v_loadf_lanes(az);
   *w = v_loadf_lanes(aw);
+}
+// The smallest lane value.
+MCL_INLINE uint v_min_lane(vuint v) {
+#if MCL_LANES == 16
+  uint4 b = min(min(v.lo.lo, v.lo.hi), min(v.hi.lo, v.hi.hi));
+#elif MCL_LANES == 8
+  uint4 b = min(v.lo, v.hi);
+#else
+  uint4 b = v;
+#endif
+  uint2 c = min(b.lo, b.hi);
+  return min(c.x, c.y);
+}
+// v_gather4 for indices with few distinct values (emitters: a light has few triangles): one load
+// per distinct index, selected into the lanes that have it.
+MCL_INLINE void v_gather4_few(MCL_GLOBAL const float* p, vuint idx, uint stride, vfloat* x, vfloat* y, vfloat* z,
+                              vfloat* w) {
+  vmask todo = idx == idx;  // every lane
+  vfloat rx = v_f(0.0f), ry = v_f(0.0f), rz = v_f(0.0f), rw = v_f(0.0f);
+  for (;;) {
+    const uint i0 = v_min_lane(vsel(todo, idx, v_u(0xffffffffu)));
+    vmask m = todo & (idx == i0);
+    float4 r = mcl_ld4(p + (ulong)i0 * stride);
+    rx = vsel(m, v_f(r.x), rx);
+    ry = vsel(m, v_f(r.y), ry);
+    rz = vsel(m, v_f(r.z), rz);
+    rw = vsel(m, v_f(r.w), rw);
+    todo = todo & v_not(m);
+    if (!v_any(todo)) break;
+  }
+  *x = rx;
+  *y = ry;
+  *z = rz;
+  *w = rw;
 }
 MCL_INLINE void v_scatter4(MCL_GLOBAL float* p, vuint idx, uint stride, vfloat x, vfloat y, vfloat z, vfloat w) {
   uint ai[MCL_LANES] MCL_LANE_ALIGN;

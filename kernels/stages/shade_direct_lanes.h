@@ -100,15 +100,15 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
       // sample_direct_light without an environment (pEnv = 0): an emitter by power, a point on it.
       vuint em = v_pick_emitter(a->emitters, f->emitterCount, u.x);
       vfloat emTri, emCdf, emArea, emPad;
-      v_gather4((MCL_GLOBAL const float*)a->emitters, em, 4, &emTri, &emCdf, &emArea, &emPad);
+      v_gather4_few((MCL_GLOBAL const float*)a->emitters, em, 4, &emTri, &emCdf, &emArea, &emPad);
       vuint lt = v_as_uint(emTri);
       vfloat l0x, l0y, l0z, l0w, l1x, l1y, l1z, l1w, l2x, l2y, l2z, l2w, lnx, lny, lnz, lnw;
-      v_gather4(tf, lt, 12, &l0x, &l0y, &l0z, &l0w);
-      v_gather4(tf + 4, lt, 12, &l1x, &l1y, &l1z, &l1w);
-      v_gather4(tf + 8, lt, 12, &l2x, &l2y, &l2z, &l2w);
-      v_gather4((MCL_GLOBAL const float*)a->normals, lt, 4, &lnx, &lny, &lnz, &lnw);
+      v_gather4_few(tf, lt, 12, &l0x, &l0y, &l0z, &l0w);
+      v_gather4_few(tf + 4, lt, 12, &l1x, &l1y, &l1z, &l1w);
+      v_gather4_few(tf + 8, lt, 12, &l2x, &l2y, &l2z, &l2w);
+      v_gather4_few((MCL_GLOBAL const float*)a->normals, lt, 4, &lnx, &lny, &lnz, &lnw);
       vfloat lex, ley, lez, lew;
-      v_gather4(mf + 4, v_as_uint(l0w), 16, &lex, &ley, &lez, &lew);
+      v_gather4_few(mf + 4, v_as_uint(l0w), 16, &lex, &ley, &lez, &lew);
       vfloat3 lle = v3_make(lex, ley, lez);
       // sample_triangle
       vfloat su = sqrt(u.y);
