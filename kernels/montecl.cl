@@ -1,6 +1,7 @@
 // montecl.cl: the one program holding every wavefront stage kernel, generated from the stage table
 // (shared/stage_table.h): kernel <stage>(frame, the table's arguments) packs its arguments into a
-// <stage>_args struct and runs the stage body (stages/<stage>.h) for work item get_global_id(0).
+// <stage>_args struct and runs the stage body (stages/<stage>.h) for work item get_global_id(0), or
+// a packet stage's body for the W items of its packet (-DMCL_LANES=W, shared/lanes.h).
 // Each body checks the item against its own count, so launches may round up to whole work-groups.
 #include "stages/stages.h"
 
@@ -38,12 +39,16 @@
 #define MCL_KERNEL_ATTRIBUTES
 #endif
 
+// A packet stage (MCL_PACKET_<stage> 1 in the stage table) runs wave items
+// get_global_id(0) * MCL_LANES onwards, one per lane (kernels/shared/lanes.h); the others one item.
 #define MCL_KERNEL_PARAM(type, name) , type name
 #define MCL_KERNEL_VALUE(type, name) , name
+#define MCL_STAGE_CALL_0(stage) stage_##stage(&a, (uint)get_global_id(0))
+#define MCL_STAGE_CALL_1(stage) stage_##stage##_lanes(&a, (uint)get_global_id(0) * MCL_LANES)
 #define MCL_STAGE_KERNEL(stage)                                                                    \
   __kernel MCL_KERNEL_ATTRIBUTES MCL_KERNEL_ATTR_##stage void stage(                               \
       __constant FrameParams* frame MCL_ARGS_##stage(MCL_KERNEL_PARAM)) {                          \
     stage##_args a = {frame MCL_ARGS_##stage(MCL_KERNEL_VALUE)};                                   \
-    stage_##stage(&a, (uint)get_global_id(0));                                                     \
+    MCL_LANES_CAT(MCL_STAGE_CALL_, MCL_PACKET_##stage)(stage);                                     \
   }
 MCL_STAGES(MCL_STAGE_KERNEL)

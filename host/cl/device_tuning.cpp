@@ -2,6 +2,8 @@
 // (device_tuning.h). Measured on a 2-core AMD EPYC (docs/portability.md, "Per-device choices").
 #include "cl/device_tuning.h"
 
+#include "util/errors.h"
+
 namespace montecl {
 
 bool isIntelCpuRuntime(const DeviceInfo& d) {
@@ -20,7 +22,42 @@ DeviceTuning deviceTuning(const DeviceInfo& d) {
     t.buildOptions = "-DMCL_SCALAR_WORK_ITEMS=1";
     t.why = "Intel CPU runtime: one work item per thread (no packing across work items)";
   }
+  if (isOclgrind(d)) {
+    // Oclgrind 21.10 checks the packet stages at W = 1 only: with W = 4 its --uninitialized check
+    // reports film and queue stores of the packet code as uninitialised (the same renders are bit
+    // for bit the host backend's on PoCL at every W; suspected: its shadow tracking through vector
+    // shuffles), and it segfaults with W = 16 (or W = 4 with the typed vector loads of lanes.h).
+    t.lanes = 1;
+    t.lanesWhy = "Oclgrind: packet stages checked at W = 1";
+  } else if (d.isCpu && !d.isHost) {
+    // PoCL compiles each work item as written (it vectorised none of the stage kernels across
+    // work items), so the packet stages fill the CPU's vector registers themselves: float16 on
+    // AVX-512 (PoCL's device name and HSTR say "avx512"; its native float vector width is 16).
+    cl_uint native = 0;
+    try {
+      if (d.device()) native = d.device.getInfo<CL_DEVICE_NATIVE_VECTOR_WIDTH_FLOAT>();
+    } catch (const cl::Error&) {
+    }
+    const bool avx512 = d.name.find("avx512") != std::string::npos || d.version.find("avx512") != std::string::npos;
+    if (avx512 || native >= 16) {
+      t.lanes = 16;
+      t.lanesWhy = "CPU with AVX-512: float16 packets";
+    } else if (native == 4) {
+      t.lanes = 4;
+      t.lanesWhy = "CPU with 4-wide float vectors: float4 packets";
+    } else {
+      t.lanes = 8;
+      t.lanesWhy = "CPU: float8 packets";
+    }
+  }
   return t;
+}
+
+unsigned resolveLanes(unsigned requested, const DeviceInfo& device) {
+  if (requested != 0 && requested != 1 && requested != 4 && requested != 8 && requested != 16)
+    throw InputError("--lanes " + std::to_string(requested) + ": must be 1, 4, 8 or 16");
+  if (device.isHost) return 1;
+  return requested != 0 ? requested : deviceTuning(device).lanes;
 }
 
 }  // namespace montecl

@@ -50,6 +50,10 @@ void addConformanceCommand(CLI::App& app, int& exitCode) {
                   "BVH the OpenCL devices traverse: auto (binary on GPUs, wide otherwise) | wide | binary; "
                   "the host backend and its reference images use wide")
       ->check(CLI::IsMember({"auto", "wide", "binary"}));
+  cmd->add_option("--lanes", args->options.lanes,
+                  "Items per work item of the OpenCL devices' packet stages: 1 | 4 | 8 | 16 (default: each "
+                  "device's, `montecl devices`)")
+      ->check(CLI::IsMember({1u, 4u, 8u, 16u}));
   addConformanceOptions(cmd, *args);
   cmd->callback([args, &exitCode]() { exitCode = runConformanceCommand(*args); });
 }

@@ -19,11 +19,13 @@ const char* kNoDevice =
 
 // The per-device kernel choices (cl/device_tuning.h).
 nlohmann::json tuningJson(const DeviceTuning& t) {
-  return {{"buildOptions", t.buildOptions}, {"workGroupSize", t.workGroupSize}, {"why", t.why}};
+  return {{"buildOptions", t.buildOptions}, {"workGroupSize", t.workGroupSize}, {"why", t.why},
+          {"lanes", t.lanes}, {"lanesWhy", t.lanesWhy}};
 }
 
 std::string tuningText(const DeviceTuning& t) {
-  std::string s = "work-group size " + std::to_string(t.workGroupSize);
+  std::string s = "work-group size " + std::to_string(t.workGroupSize) + ", lanes " + std::to_string(t.lanes) +
+                  " (" + t.lanesWhy + ")";
   if (!t.buildOptions.empty()) s += ", " + t.buildOptions + " (" + t.why + ")";
   return s;
 }

@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "bvh/bvh.h"
+#include "cl/device_tuning.h"
 #include "cl/devices.h"
 #include "cli/commands.h"
 #include "cli/render_output.h"
@@ -53,6 +54,7 @@ struct RenderArgs {
   int minSpp = 16, maxSpp = 1024;
   std::vector<std::string> aovs;
   std::size_t workGroupSize = 0;
+  unsigned lanes = 0;  // packet stages' width W (0: the device's)
   bool quiet = false, verbose = false, overwrite = false, profile = false;
   jobs::JobArgs job;  // MPI split, --checkpoint, --resume (job/job.h)
 };
@@ -178,7 +180,8 @@ int runRender(const RenderArgs& a) {
               << bvh.depth << ", SAH cost " << bvh.sahCost << ", " << bvh.triangles.size()
               << " triangle references\n"
               << "montecl: device " << device.platformIndex << ":" << device.deviceIndex << " " << device.name
-              << ", " << bvhLayoutName(layout) << " BVH layout\n"
+              << ", " << bvhLayoutName(layout) << " BVH layout, " << resolveLanes(a.lanes, device)
+              << " lanes\n"
               << "montecl: " << cameraJson(scene.camera) << "\n";
     if (!textures.textures.empty())
       std::cerr << "montecl: " << textures.textures.size() << " textures, " << textures.levels.size()
@@ -195,6 +198,7 @@ int runRender(const RenderArgs& a) {
   options.interrupt = &gInterrupted;
   options.aovs = !a.aovs.empty();
   options.workGroupSize = a.workGroupSize;
+  options.lanes = a.lanes;
   options.bvhLayout = layout;
   options.verbose = a.verbose;
   options.profile = a.profile;
@@ -298,6 +302,10 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
       ->check(positiveNumber());
   cmd->add_option("--work-group-size", args->workGroupSize, "Work-group size (default: min(64, kernel max))")
       ->check(positiveInteger());
+  cmd->add_option("--lanes", args->lanes,
+                  "Items per work item of the packet stages, in vector lanes: 1 | 4 | 8 | 16 (default: the "
+                  "device's, `montecl devices`; the host backend runs 1); images are the same for every value")
+      ->check(CLI::IsMember({1u, 4u, 8u, 16u}));
   cmd->add_option("--split-budget", args->splitBudget,
                   "BVH spatial splits: at most this many extra triangle references per triangle (0: none)")
       ->check(CLI::Range(0.0f, 4.0f));

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <sstream>
 
 #include "bvh/bvh.h"
@@ -56,6 +57,14 @@ void compare(const Film& ref, const Film& dev, ImageComparison& c) {
       if (!(diff <= std::max(kRelTolerance * scale, kAbsFloor))) ++c.failingValues;
     }
   c.meanAbsDiff = a.empty() ? 0.0 : sumAbs / double(a.size());
+  // Bit for bit: every channel of the film's float-float mean and M2 (the variance), not only
+  // the image.
+  const std::vector<glm::vec4>* refParts[] = {&ref.mean, &ref.meanLo, &ref.m2, &ref.m2Lo};
+  const std::vector<glm::vec4>* devParts[] = {&dev.mean, &dev.meanLo, &dev.m2, &dev.m2Lo};
+  for (int k = 0; k < 4; ++k)
+    for (std::size_t p = 0; p < refParts[k]->size() && p < devParts[k]->size(); ++p)
+      for (int ch = 0; ch < 3; ++ch)
+        if (std::memcmp(&(*refParts[k])[p][ch], &(*devParts[k])[p][ch], sizeof(float)) != 0) ++c.differingBits;
   c.pass = c.failingValues == 0;
 }
 
@@ -115,6 +124,7 @@ ConformanceReport runConformance(const ConformanceOptions& options) {
       // --bvh-layout is for the OpenCL devices under test; the host backend, the reference, runs
       // its own (default) layout.
       ro.bvhLayout = device.isHost ? BvhLayout::Auto : options.bvhLayout;
+      ro.lanes = device.isHost ? 0 : options.lanes;
       renderer = std::make_unique<WavefrontRenderer>(device, ro);
       ro.aovs = true;
       aovRenderer = std::make_unique<WavefrontRenderer>(device, ro);
@@ -190,6 +200,7 @@ nlohmann::json conformanceJson(const ConformanceReport& report) {
                         {"meanAbsDiff", c.meanAbsDiff},
                         {"maxRelDiff", c.maxRelDiff},
                         {"failingValues", c.failingValues},
+                        {"differingBits", c.differingBits},
                         {"mrays", c.mrays},
                         {"seconds", c.seconds},
                         {"pass", c.pass},

@@ -23,6 +23,7 @@ struct ImageComparison {
   int width = 0, height = 0, spp = 0;
   double maxAbsDiff = 0.0, meanAbsDiff = 0.0, maxRelDiff = 0.0;
   std::uint64_t failingValues = 0;  // pixel channels over the tolerance
+  std::uint64_t differingBits = 0;  // film channels (mean, M2: hi and lo, rgb) whose bits differ from the host's
   double mrays = 0.0;               // this device's Mrays/s on the image
   double seconds = 0.0;
   bool rendered = false, pass = false;
@@ -50,6 +51,7 @@ struct ConformanceReport {
 struct ConformanceOptions {
   std::vector<std::string> deviceSpecs;  // empty: every OpenCL device found
   BvhLayout bvhLayout = BvhLayout::Auto;  // of the OpenCL devices; the host backend runs wide
+  unsigned lanes = 0;  // packet stages' width on the OpenCL devices (0: each device's own)
   ConformanceSetOptions set;
 };
 

@@ -11,6 +11,7 @@
 #include <array>
 #include <stdexcept>
 
+#include "cl/device_tuning.h"
 #include "render/stage_program.h"
 #include "render/stage_runner.h"
 #include "render/triangle_shading.h"
@@ -22,8 +23,9 @@ namespace {
 
 class ClStageRunner final : public StageRunner {
  public:
-  ClStageRunner(const DeviceInfo& device, std::size_t workGroupSize, BvhLayout layout, bool profiling)
-      : program_(device, layout, workGroupSize, profiling), cl_(program_.session()),
+  ClStageRunner(const DeviceInfo& device, std::size_t workGroupSize, BvhLayout layout, bool profiling,
+                unsigned lanes)
+      : program_(device, layout, workGroupSize, profiling, lanes), cl_(program_.session()),
         inPlace_(device.isCpu && !isOclgrind(device)) {
     for (int s = 0; s < kStageCount; ++s) kernels_[s] = cl_.kernel(stageName(Stage(s)));
   }
@@ -123,6 +125,8 @@ class ClStageRunner final : public StageRunner {
   void launch(Stage s, std::uint64_t items, RayInput rays) override {
     cl::Kernel& k = kernels_[int(s)];
     bindStageArgs(k, s, rays == RayInput::Camera ? bindings_ : bindings_.forRays(rays));
+    // A packet stage's work item runs W consecutive items (kernels/shared/lanes.h).
+    if (stageRunsPackets(s)) items = (items + program_.lanes() - 1) / program_.lanes();
     if (!profile_) return cl_.launch(k, items);
     cl::Event event;
     cl_.launch(k, items, &event);
@@ -264,17 +268,18 @@ class ClStageRunner final : public StageRunner {
 }  // namespace
 
 std::unique_ptr<StageRunner> makeClStageRunner(const DeviceInfo& device, std::size_t workGroupSize,
-                                               BvhLayout layout, bool profiling) {
-  return std::make_unique<ClStageRunner>(device, workGroupSize, layout, profiling);
+                                               BvhLayout layout, bool profiling, unsigned lanes) {
+  return std::make_unique<ClStageRunner>(device, workGroupSize, layout, profiling, lanes);
 }
 
 std::unique_ptr<StageRunner> makeStageRunner(const DeviceInfo& device, std::size_t workGroupSize,
-                                             BvhLayout layout, bool profiling) {
+                                             BvhLayout layout, bool profiling, unsigned lanes) {
   if (device.isHost) {
     resolveStageLayout(layout, device);  // the host backend's layout rule (Binary is bad input)
+    resolveLanes(lanes, device);         // (the host backend runs the scalar bodies; W is checked)
     return makeHostStageRunner();
   }
-  return makeClStageRunner(device, workGroupSize, layout, profiling);
+  return makeClStageRunner(device, workGroupSize, layout, profiling, lanes);
 }
 
 }  // namespace montecl

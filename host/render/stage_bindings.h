@@ -29,6 +29,16 @@ inline const char* stageName(Stage s) {
   };
   return names[int(s)];
 }
+// True for a packet stage (MCL_PACKET_<stage> in the stage table): its OpenCL kernel runs W
+// consecutive items per work item (launched over ceil(items / W) work items).
+inline bool stageRunsPackets(Stage s) {
+  static const bool packets[] = {
+#define MCL_STAGE_PACKET(stage) MCL_PACKET_##stage != 0,
+      MCL_STAGES(MCL_STAGE_PACKET)
+#undef MCL_STAGE_PACKET
+  };
+  return packets[int(s)];
+}
 #define MCL_STAGE_COUNT_ONE(stage) +1
 constexpr int kStageCount = 0 MCL_STAGES(MCL_STAGE_COUNT_ONE);
 #undef MCL_STAGE_COUNT_ONE

@@ -1,6 +1,7 @@
 // stage_program.cpp: the layout rule and the stage program built for it (see stage_program.h).
 #include "render/stage_program.h"
 
+#include "cl/device_tuning.h"
 #include "util/errors.h"
 
 namespace montecl {
@@ -14,14 +15,16 @@ BvhLayout resolveStageLayout(BvhLayout requested, const DeviceInfo& device) {
   return resolveBvhLayout(requested, device.isGpu);
 }
 
-std::string stageBuildOptions(BvhLayout resolved) {
-  return resolved == BvhLayout::Binary ? "-DMCL_BVH_BINARY=1" : "";
+std::string stageBuildOptions(BvhLayout resolved, unsigned lanes) {
+  std::string options = resolved == BvhLayout::Binary ? "-DMCL_BVH_BINARY=1" : "";
+  if (lanes > 1) options += (options.empty() ? "" : " ") + std::string("-DMCL_LANES=") + std::to_string(lanes);
+  return options;
 }
 
 StageProgram::StageProgram(const DeviceInfo& device, BvhLayout layout, std::size_t workGroupSize,
-                           bool profiling)
-    : layout_(resolveStageLayout(layout, device)),
-      session_(device, workGroupSize, profiling, stageBuildOptions(layout_)) {}
+                           bool profiling, unsigned lanes)
+    : layout_(resolveStageLayout(layout, device)), lanes_(resolveLanes(lanes, device)),
+      session_(device, workGroupSize, profiling, stageBuildOptions(layout_, lanes_)) {}
 
 cl::Buffer StageProgram::uploadNodes(const Bvh& bvh) const {
   if (layout_ == BvhLayout::Binary)

@@ -113,12 +113,15 @@ class StageRunner {
 
 // OpenCL kernels on `device` (its kernels built through the program cache); profiling: a queue
 // with CL_QUEUE_PROFILING_ENABLE (for setProfile).
+// lanes: the packet stages' width W (0: the device's, cl/device_tuning.h resolveLanes).
 std::unique_ptr<StageRunner> makeClStageRunner(const DeviceInfo& device, std::size_t workGroupSize,
-                                               BvhLayout layout = BvhLayout::Auto, bool profiling = false);
+                                               BvhLayout layout = BvhLayout::Auto, bool profiling = false,
+                                               unsigned lanes = 0);
 // The stage functions compiled as C++, run on the CPU's threads.
 std::unique_ptr<StageRunner> makeHostStageRunner();
 // The runner for a device: the host backend when device.isHost, else OpenCL.
 std::unique_ptr<StageRunner> makeStageRunner(const DeviceInfo& device, std::size_t workGroupSize,
-                                             BvhLayout layout = BvhLayout::Auto, bool profiling = false);
+                                             BvhLayout layout = BvhLayout::Auto, bool profiling = false,
+                                             unsigned lanes = 0);
 
 }  // namespace montecl

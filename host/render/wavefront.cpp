@@ -29,7 +29,7 @@ namespace montecl {
 
 struct WavefrontRenderer::Impl {
   Impl(const DeviceInfo& device, const RenderOptions& opts)
-      : options(opts), device(device), runner(makeStageRunner(device, opts.workGroupSize, opts.bvhLayout, opts.profile)) {}
+      : options(opts), device(device), runner(makeStageRunner(device, opts.workGroupSize, opts.bvhLayout, opts.profile, opts.lanes)) {}
   RenderOptions options;
   DeviceInfo device;
   std::unique_ptr<StageRunner> runner;

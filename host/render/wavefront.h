@@ -39,6 +39,7 @@ struct RenderOptions {
   WavePlanner planner;
   std::size_t workGroupSize = 0;               // 0: min(CL_KERNEL_WORK_GROUP_SIZE, 64)
   BvhLayout bvhLayout = BvhLayout::Auto;        // BVH the kernels traverse (bvh/bvh_layout.h)
+  unsigned lanes = 0;                          // packet stages' width W (0: the device's; cl/device_tuning.h)
   std::uint32_t firstSample = 0;               // render sample indices firstSample .. + spp - 1
   bool verbose = false;
   // Stops at this many seconds (0: no limit): waves are planned so the last one ends there.

@@ -6,8 +6,8 @@
 // - the OpenCL argument binding and the host backend's call (host/render/stage_bindings.h), both
 //   by name from StageBindings, so a table name that no binding has does not compile.
 // Every stage also receives `frame` (the render's FrameParams) as its first argument.
-// Adding a stage: write kernels/stages/<stage>.h, add STAGE(<stage>) to MCL_STAGES and its
-// MCL_ARGS_<stage> list here, and launch it from the wave loop (host/render/wavefront.cpp).
+// Adding a stage: write kernels/stages/<stage>.h, add STAGE(<stage>) to MCL_STAGES, its
+// MCL_PACKET_<stage> flag and its MCL_ARGS_<stage> list here, and launch it from the wave loop (host/render/wavefront.cpp).
 #pragma once
 #include "traverse.h"  // BvhTraversalNode: the node type of the layout the program is built for
 
@@ -23,6 +23,23 @@
   STAGE(accumulate_aov)                                                                            \
   STAGE(shade_path)                                                                                \
   STAGE(path_gather)
+
+// Packet stages: MCL_PACKET_<stage> is 1 when the stage's OpenCL kernel runs MCL_LANES (W,
+// kernels/shared/lanes.h) consecutive items per work item through its packet body
+// stage_<stage>_lanes(a, first) (kernels/stages/<stage>_lanes.h; the host launches ceil(items / W)
+// work items), 0 when it runs one item per work item through stage_<stage>(a, item). The host
+// backend always runs the scalar bodies. Every stage of MCL_STAGES has its line.
+#define MCL_PACKET_generate 1
+#define MCL_PACKET_intersect 0
+#define MCL_PACKET_shade_ao 1
+#define MCL_PACKET_shade_direct 1
+#define MCL_PACKET_shade_direct_hit 0
+#define MCL_PACKET_intersect_shadow 0
+#define MCL_PACKET_accumulate 1
+#define MCL_PACKET_record_aov 0
+#define MCL_PACKET_accumulate_aov 0
+#define MCL_PACKET_shade_path 0
+#define MCL_PACKET_path_gather 0
 
 // The texture tables (kernels/shared/texture.h): what albedo lookups read.
 #define MCL_TEXTURE_ARGS(ARG)                                                                      \

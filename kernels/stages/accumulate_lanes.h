@@ -1,0 +1,141 @@
+// accumulate_lanes.h: the packet form of accumulate (accumulate.h), the same bits per pixel: W
+// consecutive touched pixels j, one per lane, each walking its samples in the wave in sample order
+// (the lanes of a packet step together; a lane whose samples are done is masked). The film is
+// gathered and scattered per lane (the active list may be any order); radiance and shadow slots of
+// consecutive items are whole vector loads. A partial last packet runs the scalar body per pixel.
+#pragma once
+#include "accumulate.h"
+#include "stage_lanes.h"
+
+typedef struct {
+  vfloat hi, lo;
+} vffloat;
+
+// ff_two_sum and ff_add_float (shared/ffloat.h) on one lane component.
+MCL_INLINE vffloat v_ff_two_sum(vfloat a, vfloat b) {
+  vfloat s = a + b;
+  vfloat v = s - a;
+  vffloat r;
+  r.hi = s;
+  r.lo = (a - (s - v)) + (b - v);
+  return r;
+}
+MCL_INLINE vffloat v_ff_add_float(vffloat x, vfloat t) {
+  vffloat s = v_ff_two_sum(x.hi, t);
+  return v_ff_two_sum(s.hi, s.lo + x.lo);
+}
+MCL_INLINE vffloat v_ff_select(vmask m, vffloat t, vffloat f) {
+  vffloat r;
+  r.hi = vsel(m, t.hi, f.hi);
+  r.lo = vsel(m, t.lo, f.lo);
+  return r;
+}
+MCL_INLINE vffloat v_ff_make(vfloat hi, vfloat lo) {
+  vffloat r;
+  r.hi = hi;
+  r.lo = lo;
+  return r;
+}
+
+// One sample's Welford update of one colour component (accumulate.h), for the lanes set in m.
+MCL_INLINE void v_welford(vmask m, vfloat value, vfloat nf, vffloat* mean, vffloat* m2) {
+  vfloat delta = (value - mean->hi) - mean->lo;
+  vffloat meanNew = v_ff_add_float(*mean, delta / nf);
+  vffloat m2New = v_ff_add_float(*m2, delta * ((value - meanNew.hi) - meanNew.lo));
+  *mean = v_ff_select(m, meanNew, *mean);
+  *m2 = v_ff_select(m, m2New, *m2);
+}
+
+MCL_INLINE void stage_accumulate_lanes(const accumulate_args* a, uint j0) {
+  MCL_CONSTANT const FrameParams* f = a->frame;
+  const uint ac = f->activeCount, count = a->waveCount;
+  const uint limit = count < ac ? count : ac;  // pixels touched by the wave
+  if (j0 >= limit) return;
+  if (v_packet_partial(j0, limit)) {
+    for (uint k = 0; k < MCL_LANES; ++k) stage_accumulate(a, j0 + k);
+    return;
+  }
+  vuint pixel, sample;
+  v_item_pixel_sample(f, a->active, a->waveStart, j0, &pixel, &sample);
+  // Consecutive pixels (the active list of a render without adaptive sampling): whole vector
+  // loads and stores of the film; otherwise per-lane gathers and scatters.
+  const uint p0 = v_first_lane(pixel);
+  const int run = v_all(pixel == p0 + v_lane_index());
+  MCL_GLOBAL float* film[4] = {(MCL_GLOBAL float*)a->mean, (MCL_GLOBAL float*)a->meanLo, (MCL_GLOBAL float*)a->m2,
+                               (MCL_GLOBAL float*)a->m2Lo};
+  vfloat mhx, mhy, mhz, mhw, mlx, mly, mlz, mlw, shx, shy, shz, shw, slx, sly, slz, slw;
+  if (run) {
+    v_load4(film[0] + (ulong)p0 * 4, &mhx, &mhy, &mhz, &mhw);
+    v_load4(film[1] + (ulong)p0 * 4, &mlx, &mly, &mlz, &mlw);
+    v_load4(film[2] + (ulong)p0 * 4, &shx, &shy, &shz, &shw);
+    v_load4(film[3] + (ulong)p0 * 4, &slx, &sly, &slz, &slw);
+  } else {
+    v_gather4(film[0], pixel, 4, &mhx, &mhy, &mhz, &mhw);
+    v_gather4(film[1], pixel, 4, &mlx, &mly, &mlz, &mlw);
+    v_gather4(film[2], pixel, 4, &shx, &shy, &shz, &shw);
+    v_gather4(film[3], pixel, 4, &slx, &sly, &slz, &slw);
+  }
+  vulong n = v_cvt_ul_u(v_as_uint(mhw)) | (v_cvt_ul_u(v_as_uint(mlw)) << 32);
+  vffloat meanX = v_ff_make(mhx, mlx), meanY = v_ff_make(mhy, mly), meanZ = v_ff_make(mhz, mlz);
+  vffloat m2X = v_ff_make(shx, slx), m2Y = v_ff_make(shy, sly), m2Z = v_ff_make(shz, slz), m2W = v_ff_make(shw, slw);
+  const uint slots = f->shadowSlots;
+  MCL_GLOBAL const float* rad = (MCL_GLOBAL const float*)a->radiance;
+  MCL_GLOBAL const float* sc = (MCL_GLOBAL const float*)a->shadowContrib;
+  for (uint i0 = j0; i0 < count; i0 += ac) {
+    vuint i = i0 + v_lane_index();
+    vmask live = i < count;
+    vfloat vx, vy, vz, vw, sx, sy, sz, sw;
+    if (count - i0 >= MCL_LANES) {  // the packet's items i0 .. i0 + W - 1 all exist
+      v_load4(rad + (ulong)i0 * 4, &vx, &vy, &vz, &vw);
+      if (slots == 1) {  // AO
+        v_load4(sc + (ulong)i0 * 4, &sx, &sy, &sz, &sw);
+        vx = vx + sx;
+        vy = vy + sy;
+        vz = vz + sz;
+      } else if (slots == 2) {  // direct lighting with one light sample
+        vfloat tx, ty, tz, tw;
+        v_load4_pairs(sc + (ulong)i0 * 8, &sx, &sy, &sz, &sw, &tx, &ty, &tz, &tw);
+        vx = vx + sx + tx;
+        vy = vy + sy + ty;
+        vz = vz + sz + tz;
+      } else {
+        for (uint k = 0; k < slots; ++k) {
+          v_load4_stride(sc + ((ulong)i0 * slots + k) * 4, slots * 4, &sx, &sy, &sz, &sw);
+          vx = vx + sx;
+          vy = vy + sy;
+          vz = vz + sz;
+        }
+      }
+    } else {  // lanes past the wave read item i0 (and are masked)
+      vuint at = vsel(live, i, v_u(i0));
+      v_gather4(rad, at, 4, &vx, &vy, &vz, &vw);
+      for (uint k = 0; k < slots; ++k) {
+        v_gather4(sc + k * 4, at, slots * 4, &sx, &sy, &sz, &sw);
+        vx = vx + sx;
+        vy = vy + sy;
+        vz = vz + sz;
+      }
+    }
+    n += v_cvt_ul_u(v_mask01(live));
+    vfloat nf = v_cvt_f_ul(n);
+    v_welford(live, vx, nf, &meanX, &m2X);
+    v_welford(live, vy, nf, &meanY, &m2Y);
+    v_welford(live, vz, nf, &meanZ, &m2Z);
+    // The w lanes compute like the others from value.w = 0 and mean.w = 0: the mean's stay 0 (then
+    // hold the count), M2's add 0 * 0.
+    vffloat m2WNew = v_ff_add_float(m2W, v_f(0.0f) * (v_f(0.0f) - v_f(0.0f) - v_f(0.0f)));
+    m2W = v_ff_select(live, m2WNew, m2W);
+  }
+  vfloat countLo = v_as_float(v_cvt_u_ul(n & 0xfffffffful)), countHi = v_as_float(v_cvt_u_ul(n >> 32));
+  if (run) {
+    v_store4(film[0] + (ulong)p0 * 4, meanX.hi, meanY.hi, meanZ.hi, countLo);
+    v_store4(film[1] + (ulong)p0 * 4, meanX.lo, meanY.lo, meanZ.lo, countHi);
+    v_store4(film[2] + (ulong)p0 * 4, m2X.hi, m2Y.hi, m2Z.hi, m2W.hi);
+    v_store4(film[3] + (ulong)p0 * 4, m2X.lo, m2Y.lo, m2Z.lo, m2W.lo);
+  } else {
+    v_scatter4(film[0], pixel, 4, meanX.hi, meanY.hi, meanZ.hi, countLo);
+    v_scatter4(film[1], pixel, 4, meanX.lo, meanY.lo, meanZ.lo, countHi);
+    v_scatter4(film[2], pixel, 4, m2X.hi, m2Y.hi, m2Z.hi, m2W.hi);
+    v_scatter4(film[3], pixel, 4, m2X.lo, m2Y.lo, m2Z.lo, m2W.lo);
+  }
+}

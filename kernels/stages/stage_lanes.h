@@ -1,0 +1,162 @@
+// stage_lanes.h: what the packet stage bodies (kernels/stages/*_lanes.h) share: the lane forms of
+// stage_common.h's wave-item pixel and sample, the counter-based RNG, the hemisphere warps and the
+// ray-origin offset, each the scalar function's operations in the same order per lane (so a lane
+// gives the scalar function's bits; see kernels/shared/lanes.h). A packet stage's body is
+// stage_<stage>_lanes(a, first): wave items first .. first + W - 1, one per lane; the generated
+// kernel passes first = get_global_id(0) * W (kernels/montecl.cl). A packet that is not whole
+// (the last of a launch) runs the scalar body per item: v_packet_partial.
+#pragma once
+#include "../shared/lanes.h"
+#include "stage_common.h"
+
+#ifdef MCL_OPENCL
+#define MCL_ATOMIC_ADD(p, n) atomic_add((p), (n))
+#else
+inline uint MCL_ATOMIC_ADD(volatile uint* p, uint n) { return __atomic_fetch_add(p, n, __ATOMIC_RELAXED); }
+#endif
+
+// 1 when the packet starting at `first` does not lie wholly below count (W = 1: never).
+MCL_INLINE int v_packet_partial(uint first, uint count) { return MCL_LANES > 1 && count - first < MCL_LANES; }
+
+// The pixels and sample indices of wave items first .. first + W - 1 (item_pixel, item_sample):
+// one 64-bit division per packet, then each lane steps on from the packet's first item.
+MCL_INLINE void v_item_pixel_sample(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const uint* active,
+                                    ulong waveStart, uint first, vuint* pixel, vuint* sample) {
+  uint ac = f->activeCount;
+  ulong g0 = waveStart + first;
+  uint r0 = (uint)(g0 % ac);
+  vuint r = r0 + v_lane_index();
+  vuint s = v_u((uint)(g0 / ac));
+  while (v_any(r >= ac)) {  // a lane past the end of the active list wraps to the next sample
+    vmask m = r >= ac;
+    r = vsel(m, r - ac, r);
+    s = vsel(m, s + 1u, s);
+  }
+  *sample = s;
+  *pixel = r0 + MCL_LANES <= ac ? v_load_uints(active + r0) : v_gather_uint(active, r);
+}
+
+// --- RNG (shared/rng.h) --------------------------------------------------------------------------
+typedef struct {
+  vfloat x, y, z, w;
+} vfloat4;
+
+MCL_INLINE vfloat4 v_rng_uniform4(uint seed, vuint pixel, vuint sample, uint group) {
+  vuint x = pixel, y = sample, z = v_u(mcl_mix32(group)), w = v_u(seed);
+  x = x * 1664525u + 1013904223u;
+  y = y * 1664525u + 1013904223u;
+  z = z * 1664525u + 1013904223u;
+  w = w * 1664525u + 1013904223u;
+  x += y * w; y += z * x; z += x * y; w += y * z;
+  x ^= x >> 16; y ^= y >> 16; z ^= z >> 16; w ^= w >> 16;
+  x += y * w; y += z * x; z += x * y; w += y * z;
+  vfloat4 u;
+  u.x = v_cvt_f_u(x >> 8) * (1.0f / 16777216.0f);
+  u.y = v_cvt_f_u(y >> 8) * (1.0f / 16777216.0f);
+  u.z = v_cvt_f_u(z >> 8) * (1.0f / 16777216.0f);
+  u.w = v_cvt_f_u(w >> 8) * (1.0f / 16777216.0f);
+  return u;
+}
+
+// --- trig.h, sampling.h ------------------------------------------------------------------------
+MCL_INLINE void v_sincos_poly(vfloat x, vfloat* sn, vfloat* cs) {
+  vfloat x2 = x * x;
+  *sn = x * (1.0f + x2 * (-1.6666667e-1f + x2 * (8.3333333e-3f + x2 * (-1.9841270e-4f + x2 * 2.7557319e-6f))));
+  *cs = 1.0f + x2 * (-0.5f + x2 * (4.1666667e-2f + x2 * (-1.3888889e-3f + x2 * (2.4801587e-5f + x2 * -2.7557319e-7f))));
+}
+
+MCL_INLINE void v_sincos_turns(vfloat t, vfloat* s, vfloat* c) {
+  vfloat q = floor(t * 4.0f + 0.5f);
+  vfloat sn, cs;
+  v_sincos_poly((t - q * 0.25f) * 6.28318530717958647692f, &sn, &cs);
+  vint k = v_cvt_i_f(q) & 3;
+  vmask k0 = k == 0, k1 = k == 1, k2 = k == 2;
+  *s = vsel(k0, sn, vsel(k1, cs, vsel(k2, -sn, -cs)));
+  *c = vsel(k0, cs, vsel(k1, -sn, vsel(k2, -cs, sn)));
+}
+
+MCL_INLINE vfloat3 v_sample_uniform_hemisphere(vfloat u1, vfloat u2) {
+  vfloat z = u1;
+  vfloat r = sqrt(fmax(v_f(0.0f), 1.0f - z * z));
+  vfloat s, c;
+  v_sincos_turns(u2, &s, &c);
+  return v3_make(r * c, r * s, z);
+}
+
+MCL_INLINE vfloat3 v_sample_cosine_hemisphere(vfloat u1, vfloat u2) {
+  vfloat r = sqrt(u1);
+  vfloat s, c;
+  v_sincos_turns(u2, &s, &c);
+  vfloat z = sqrt(fmax(v_f(0.0f), 1.0f - u1));
+  return v3_make(r * c, r * s, z);
+}
+
+// make_basis and to_world (Duff et al.), term by term as in sampling.h.
+MCL_INLINE vfloat3 v_to_world(vfloat3 d, vfloat3 n) {
+  vfloat s = copysign(v_f(1.0f), n.z);
+  vfloat a = -1.0f / (s + n.z);
+  vfloat c = n.x * n.y * a;
+  vfloat3 t = v3_make(1.0f + s * n.x * n.x * a, s * c, -s * n.x);
+  vfloat3 b = v3_make(c, s + n.y * n.y * a, -n.y);
+  return v3_add(v3_add(v3_scale(t, d.x), v3_scale(b, d.y)), v3_scale(n, d.z));
+}
+
+// --- geometry.h, stage_common.h ---------------------------------------------------------------
+MCL_INLINE vfloat v_offset_coord(vfloat p, vfloat n, float scale) {
+  const float origin = 1.0f / 32.0f, floatScale = 1.0f / 65536.0f, intScale = 256.0f;
+  vint of = v_cvt_i_f(intScale * n);
+  vint step = vsel(p < 0.0f, -of, of);
+  vfloat pi = v_as_float(v_as_uint(p) + v_int_as_uint(step));
+  return vsel(fabs(p) < origin * scale, p + floatScale * scale * n, pi);
+}
+MCL_INLINE vfloat3 v_offset_ray_origin(vfloat3 p, vfloat3 n, float scale) {
+  return v3_make(v_offset_coord(p.x, n.x, scale), v_offset_coord(p.y, n.y, scale), v_offset_coord(p.z, n.z, scale));
+}
+
+// orient_facing: n flipped to face the incoming direction.
+MCL_INLINE vfloat3 v_orient_facing(vfloat3 n, vfloat3 incoming) {
+  return v3_select(v3_dot(n, incoming) > 0.0f, v3_neg(n), n);
+}
+
+// Pushes the occlusion queries of the lanes set in m (push_shadow_query), with one atomic per
+// packet: the packet takes count(m) consecutive queue entries and its set lanes fill them in lane
+// order (the queue's order does not matter: each query names its own slot).
+MCL_INLINE void v_push_shadow_queries(MCL_GLOBAL ShadowWork* queue, MCL_GLOBAL volatile uint* queueCount, vmask m,
+                                      vfloat3 origin, vfloat3 dir, float tmax, vfloat3 c, vuint slot) {
+  uint count = v_count(m);
+  if (count == 0) return;
+  uint at = MCL_ATOMIC_ADD(queueCount, count);
+#if MCL_LANES == 1
+  ShadowWork w;
+  w.ray.origin = make_float4(origin.x, origin.y, origin.z, 0.0f);
+  w.ray.dir = make_float4(dir.x, dir.y, dir.z, tmax);
+  w.r = c.x;
+  w.g = c.y;
+  w.b = c.z;
+  w.slot = slot;
+  queue[at] = w;
+#else
+  uint set[MCL_LANES] MCL_LANE_ALIGN, sl[MCL_LANES] MCL_LANE_ALIGN;
+  float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN, dx[MCL_LANES] MCL_LANE_ALIGN, dy[MCL_LANES] MCL_LANE_ALIGN, dz[MCL_LANES] MCL_LANE_ALIGN;
+  float cr[MCL_LANES] MCL_LANE_ALIGN, cg[MCL_LANES] MCL_LANE_ALIGN, cb[MCL_LANES] MCL_LANE_ALIGN;
+  v_store_lanes(v_mask01(m), set);
+  v_store_lanes(slot, sl);
+  v_store_lanes(origin.x, ox);
+  v_store_lanes(origin.y, oy);
+  v_store_lanes(origin.z, oz);
+  v_store_lanes(dir.x, dx);
+  v_store_lanes(dir.y, dy);
+  v_store_lanes(dir.z, dz);
+  v_store_lanes(c.x, cr);
+  v_store_lanes(c.y, cg);
+  v_store_lanes(c.z, cb);
+  for (uint k = 0; k < MCL_LANES; ++k) {
+    if (!set[k]) continue;
+    MCL_GLOBAL float* q = (MCL_GLOBAL float*)(queue + at);
+    mcl_st4(((float4)(ox[k], oy[k], oz[k], 0.0f)), q);
+    mcl_st4(((float4)(dx[k], dy[k], dz[k], tmax)), q + 4);
+    mcl_st4(((float4)(cr[k], cg[k], cb[k], as_float(sl[k]))), q + 8);
+    ++at;
+  }
+#endif
+}

@@ -1,0 +1,105 @@
+// test_lanes.cpp: the packet stages (kernels/shared/lanes.h, MCL_PACKET_<stage> in the stage
+// table). On the default OpenCL device, the conformance set rendered with every packet width
+// W = 1, 4, 8, 16 is bit for bit the host backend's (film mean and M2, hi and lo parts); the sizes
+// leave a partial last packet in some waves (10 x 10 pixels: 100 items per sample). Adaptive
+// renders (active-pixel lists out of order) at W = 1, 4, 16 are byte for byte the host's. And the W rule.
+#include <doctest/doctest.h>
+
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "cl/device_tuning.h"
+#include "cli_runner.h"
+#include "cl/devices.h"
+#include "conformance/conformance.h"
+#include "render/stage_bindings.h"
+#include "render/stage_program.h"
+#include "skip.h"
+#include "util/errors.h"
+
+using namespace montecl;
+using namespace montecl_test;
+
+TEST_CASE("packet stages: conformance set bit-identical to the host backend for W = 1, 4, 8, 16" *
+          doctest::test_suite("opencl")) {
+  for (unsigned lanes : {1u, 4u, 8u, 16u}) {
+    CAPTURE(lanes);
+    ConformanceOptions o;
+    o.deviceSpecs = {""};
+    o.lanes = lanes;
+    o.set.size = 10;
+    o.set.spp = 3;
+    o.set.cornellSize = 12;
+    o.set.cornellSpp = 2;
+    o.set.cornellPath = sharedScenes() + "/cornell-box/scene.json";
+    ConformanceReport report = runConformance(o);
+    INFO(conformanceTable(report));
+    REQUIRE(report.devices.size() == 1);
+    REQUIRE(report.devices[0].buildOk);
+    CHECK(report.devices[0].images.size() >= 7);
+    for (const ImageComparison& c : report.devices[0].images) {
+      CAPTURE(c.name);
+      CHECK(c.rendered);
+      CHECK(c.differingBits == 0);
+      CHECK(c.maxAbsDiff == 0.0);
+    }
+    CHECK(report.pass);
+  }
+}
+
+TEST_CASE("packet stages: W per device, --lanes values, and the stage table's packet stages" *
+          doctest::test_suite("opencl")) {
+  CHECK(resolveLanes(0, hostDeviceInfo()) == 1);
+  CHECK(resolveLanes(16, hostDeviceInfo()) == 1);  // the host backend runs the scalar bodies
+  CHECK_THROWS_AS(resolveLanes(3, hostDeviceInfo()), InputError);
+  CHECK(stageRunsPackets(Stage::generate));
+  CHECK(stageRunsPackets(Stage::shade_ao));
+  CHECK(stageRunsPackets(Stage::accumulate));
+  CHECK_FALSE(stageRunsPackets(Stage::intersect));
+  CHECK(stageBuildOptions(BvhLayout::Wide, 1) == "");
+  CHECK(stageBuildOptions(BvhLayout::Wide, 16) == "-DMCL_LANES=16");
+  CHECK(stageBuildOptions(BvhLayout::Binary, 8) == "-DMCL_BVH_BINARY=1 -DMCL_LANES=8");
+  const DeviceInfo d = selectDevice("");
+  const DeviceTuning t = deviceTuning(d);
+  CAPTURE(d.name);
+  CAPTURE(d.version);
+  if (d.isGpu) CHECK(t.lanes == 1);
+  if (d.isCpu) CHECK((t.lanes == 4 || t.lanes == 8 || t.lanes == 16));
+  if (d.isCpu && d.name.find("avx512") != std::string::npos) CHECK(t.lanes == 16);
+  CHECK(resolveLanes(0, d) == t.lanes);
+  CHECK(resolveLanes(4, d) == 4);
+}
+
+namespace {
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+}  // namespace
+
+TEST_CASE("packet stages: adaptive sampling (active lists out of order, wrapping packets) matches the host backend" *
+          doctest::test_suite("cli")) {
+  const std::string scene = sharedScenes() + "/cornell-box/scene.json";
+  MCL_SKIP_UNLESS(std::ifstream(scene).good(), "no shared Cornell box at " << scene);
+  TempDir dir;
+  for (const char* integrator : {"ao", "direct"}) {
+    CAPTURE(integrator);
+    const std::vector<std::string> common = {"render", scene, "-q", "--width", "37", "--height", "23",
+                                             "--integrator", integrator, "--target-error", "0.05", "--min-spp",
+                                             "4", "--max-spp", "32", "--overwrite"};
+    std::vector<std::string> host = common;
+    host.insert(host.end(), {"--device", "host", "-o", dir.file("host.pfm")});
+    CliResult h = runMontecl(host);
+    REQUIRE_MESSAGE(h.exitCode == 0, h.err);
+    for (const char* lanes : {"1", "4", "16"}) {
+      CAPTURE(lanes);
+      std::vector<std::string> cl = common;
+      cl.insert(cl.end(), {"--lanes", lanes, "-o", dir.file("cl.pfm")});
+      CliResult r = runMontecl(cl);
+      REQUIRE_MESSAGE(r.exitCode == 0, r.err);
+      CHECK(fileBytes(dir.file("cl.pfm")) == fileBytes(dir.file("host.pfm")));
+    }
+  }
+}
