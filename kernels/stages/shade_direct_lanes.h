@@ -1,6 +1,6 @@
 // shade_direct_lanes.h: the packet form of shade_direct (shade_direct.h) for the common case, the
 // same bits per item: W consecutive camera hits, one per lane, on flat (no shading normals),
-// untextured, Lambertian (no glossy lobe) surfaces lit by emitter triangles: Le seen directly, the
+// untextured, Lambertian surfaces of the diffuse kind (no glossy lobe) lit by emitter triangles: Le seen directly, the
 // light samples (an emitter by power, a uniform point on it; one atomic per packet per light
 // sample) and the BSDF ray (cosine lobe). Lanes that hit anything else (shading normals, an albedo
 // texture, a glossy lobe) run the scalar body after the packet; so does every item of a packet
@@ -65,11 +65,13 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
   v_gather4(mf, mat, 16, &kdx, &kdy, &kdz, &kdw);      // albedo: Kd, texture index
   v_gather4(mf + 4, mat, 16, &kex, &key, &kez, &kew);  // emission: Ke, two-sided
   v_gather4(mf + 8, mat, 16, &ksx, &ksy, &ksz, &ksw);  // specular: Ks, alpha
+  vfloat kax, kay, kaz, kaw;
+  v_gather4(mf + 12, mat, 16, &kax, &kay, &kaz, &kaw);  // alpha test; w: the material kind (uint bits)
   // bsdf_make's specProb, as the scalar body computes it: the packet takes the lanes where it is 0.
   vfloat ls = v_luminance(v3_make(ksx, ksy, ksz)), ld = v_luminance(v3_make(kdx, kdy, kdz));
   vfloat specProb = vsel(ls > 0.0f, ls / (ls + ld), v_f(0.0f));
   vmask packet = hit & ((v_as_uint(e2w) & MCL_ATTR_NORMALS) == 0u) & (v_as_uint(kdw) == MCL_NO_TEXTURE) &
-                 (specProb == 0.0f);
+                 (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse);
   vmask scalar = hit & v_not(packet);
   vfloat dx, dy, dz, dw;
   v_load4_stride((MCL_GLOBAL const float*)(a->rays + first) + 4, 8, &dx, &dy, &dz, &dw);
