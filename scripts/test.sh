@@ -6,12 +6,19 @@
 # OpenCL runtime (setup.sh --intel-opencl: a cached venv, about 270 MB from PyPI once), so the
 # conformance tests run on two OpenCL implementations plus Oclgrind; where that install fails (no
 # PyPI, not x86-64) its test skips with the reason. MONTECL_NO_INTEL_OPENCL=1 does not install it.
+# Mitsuba 3 likewise (setup.sh --mitsuba), so the comparisons with an independent renderer run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 if [ "${MONTECL_NO_INTEL_OPENCL:-0}" != 1 ]; then
   bash scripts/setup.sh --intel-opencl ||
     echo "test: Intel's CPU OpenCL runtime could not be installed; its conformance test will skip" >&2
+fi
+# Mitsuba 3 (PyPI, a cached venv): the independent renderer the vs_mitsuba tests compare with;
+# where the install fails those tests skip with the reason. MONTECL_NO_MITSUBA=1 does not install it.
+if [ "${MONTECL_NO_MITSUBA:-0}" != 1 ]; then
+  bash scripts/setup.sh --mitsuba ||
+    echo "test: Mitsuba 3 could not be installed; the vs_mitsuba tests will skip" >&2
 fi
 bash scripts/build.sh
 ctest --test-dir build --output-on-failure -j"$(nproc)"
