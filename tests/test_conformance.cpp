@@ -2,8 +2,8 @@
 // process against the default OpenCL device, and through the real montecl binary's `conformance`
 // command on the PoCL pthread device, the PoCL single-threaded device (POCL_DEVICES=basic), Intel's
 // CPU OpenCL runtime (when scripts/setup.sh --intel-opencl installed it) and under Oclgrind (API,
-// data-race and uninitialised-value checks, which must report nothing). Same-seed images agree
-// within 1e-5 relative per pixel everywhere. Also the kernels' float hygiene.
+// data-race and uninitialised-value checks, which must report nothing). Same-seed images are
+// bit-identical everywhere (`pass` requires it; differingBits must be 0). Also the kernels' float hygiene.
 #include <doctest/doctest.h>
 
 #include <cstdlib>
@@ -38,6 +38,7 @@ void checkConformanceRun(const CliResult& r, const char* what) {
       CHECK(img["rendered"] == true);
       CHECK(img["pass"] == true);
       CHECK(img["maxRelDiff"].get<double>() <= 1e-5);
+      CHECK(img["differingBits"].get<std::uint64_t>() == 0u);
     }
   }
 }

@@ -1,9 +1,9 @@
 // conformance.h: `montecl conformance`: renders the conformance set (conformance/scenes.h) on
-// each OpenCL device and on the host backend, and compares every image with the host's pixel by
-// pixel. A pixel channel passes when |device - host| <= max(kRelTolerance * max(|device|, |host|),
-// kAbsFloor): 1e-5 relative, with an absolute floor of 1e-6 (radiance units; the scenes' values
-// are O(0.1 .. 10)) so that pixels that are 0 on one side and a rounding residue on the other do
-// not fail on a meaningless relative difference.
+// each OpenCL device and on the host backend, and compares every image with the host's: an image
+// passes only when every film value (mean and M2, both float-float halves, the sample counts and
+// the AOV sums) has the host's bits. How far a failing image is is reported as differences, and
+// values beyond max(kRelTolerance * max(|device|, |host|), kAbsFloor) (1e-5 relative, absolute
+// floor 1e-6) are counted as gross errors.
 #pragma once
 #include <string>
 #include <vector>
