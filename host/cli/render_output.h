@@ -15,6 +15,12 @@ namespace montecl {
 
 // Refuses (InputError) an output that is one of the files the render reads (scene, OBJ, MTL).
 void checkOutputIsNoInput(const std::string& output, const Scene& scene);
+// The files of --checkpoint and --resume, checked before any work: the output is not the resume
+// checkpoint; the checkpoint is neither the output nor an input, is a montecl checkpoint when it
+// exists already, and can be created (util/atomic_file.h checkWritableTarget). The checkpoint may be
+// the resume file (a resumed render keeps saving to it). InputError (exit 2) otherwise.
+void checkJobFiles(const std::string& checkpoint, const std::string& resume, const std::string& output,
+                   const Scene& scene);
 // Whether path ends in .exr (any case).
 bool isExr(const std::string& path);
 // The number of pixels with a NaN or infinite value in any plane (values that overflowed a float).
