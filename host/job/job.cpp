@@ -93,14 +93,14 @@ void Job::afterWave(const std::function<Film()>& readFilm) {
 }
 
 // A checkpoint that cannot be written (disk full, folder removed) is a warning: the render goes on
-// and its image is still written. Warned once per distinct failure, not every wave.
+// and its image is still written. Warned at the first failure, again only after one succeeded.
 void Job::saveCheckpoint(const Film& film) {
   try {
     writeCheckpoint(args_.checkpoint, info_, film);
-    checkpointProblem_.clear();
+    checkpointFailing_ = false;
   } catch (const std::exception& e) {
-    if (checkpointProblem_ == e.what()) return;
-    checkpointProblem_ = e.what();
+    if (checkpointFailing_) return;
+    checkpointFailing_ = true;
     std::cerr << "montecl: warning: " << args_.checkpoint << ": checkpoint not written (" << e.what()
               << "); the render goes on\n";
   }

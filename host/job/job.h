@@ -60,7 +60,7 @@ class Job {
   RenderStats local_, global_;
   std::uint64_t localExpected_ = 0;
   bool allFinished_ = false;
-  std::string checkpointProblem_;  // the last checkpoint write's failure ("" after a success)
+  bool checkpointFailing_ = false;  // the last checkpoint write failed (warned)
 };
 
 }  // namespace montecl::jobs
