@@ -153,7 +153,7 @@ TEST_CASE("cli: a --texture-budget whose byte count overflows 64 bits is refused
   TempDir dir;
   montecl::writeRgbImage(dir.file("wood.png"), 4, 4, std::vector<float>(48, 0.25f));
   const std::string scene = writeOverrideScene(dir, R"({"albedo_texture": "wood.png"})");
-  for (const char* budget : {"17592186044416", "1e30"}) {  // 2^44 MiB: 2^64 bytes, which wrapped to 0
+  for (const std::string budget : {"17592186044416", "1e30"}) {  // 2^44 MiB: 2^64 bytes, which wrapped to 0
     CliResult r = render(scene, dir.file("out.png"), {"--texture-budget", budget});
     INFO(budget << ": " << r.err);
     CHECK(r.exitCode == 2);

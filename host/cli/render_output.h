@@ -1,7 +1,8 @@
 // render_output.h: what `montecl render` does around its output image: the default name, the
 // checks before rendering (the output is not an input), the EXR layers of a film, the count of
 // non-finite pixels that refuses a write, and the camera as scene JSON for -v. Reads and writes no
-// file except what defaultOutput looks at (whether names exist).
+// file except what defaultOutput looks at (whether names exist) and checkJobFiles (an existing
+// checkpoint's magic, a probe file created and removed beside the checkpoint).
 #pragma once
 #include <cstddef>
 #include <string>
