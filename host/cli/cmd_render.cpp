@@ -134,6 +134,9 @@ int runRender(const RenderArgs& a) {
   // Option rules first, before any file is read or kernel built.
   if (a.targetError > 0.0 && a.minSpp > a.maxSpp)
     throwInputError("--min-spp", "", "must not exceed --max-spp (" + std::to_string(a.maxSpp) + ")");
+  // The budget in bytes must fit 64 bits (2^44 MiB and more would wrap to 0: every texture 1x1).
+  if (a.textureBudgetMiB && !(*a.textureBudgetMiB * double(1 << 20) < 18446744073709551616.0))
+    throwInputError("--texture-budget", "", "too large: at most 2^44 MiB (a 64-bit byte count)");
   std::vector<std::string> warnings;
   Scene scene = loadScene(a.scene, warnings);
   for (const std::string& w : warnings) std::cerr << "montecl: warning: " << w << "\n";
@@ -146,6 +149,13 @@ int runRender(const RenderArgs& a) {
     throwInputError(output, "--aov", "AOVs need an .exr output");
   checkOutputIsNoInput(output, scene);
   checkWritableTarget(output);
+  checkJobFiles(a.job.checkpoint, a.job.resume, output, scene);
+  // Sample indices are 32-bit: a range past 2^32 would wrap to sample 0 while the provenance says otherwise.
+  const std::uint64_t sampleCount = a.targetError > 0.0 ? std::uint64_t(a.maxSpp) : std::uint64_t(scene.render.spp);
+  if (std::uint64_t(a.firstSample) + sampleCount > (std::uint64_t(1) << 32))
+    throwInputError("--first-sample", "", std::to_string(a.firstSample) + " + " + std::to_string(sampleCount) +
+                                              (a.targetError > 0.0 ? " (--max-spp)" : " (spp)") +
+                                              " samples run past sample index 4294967295");
   DeviceInfo device = selectDevice(jobs::deviceSpec(a.device));
   BvhLayout layout = resolveStageLayout(parseBvhLayout(a.bvhLayout), device);
 

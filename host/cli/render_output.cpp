@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "render/checkpoint.h"
+#include "util/atomic_file.h"
 #include "util/errors.h"
 
 namespace montecl {
@@ -29,6 +31,18 @@ std::string vec3Json(const glm::vec3& v) {
 
 }  // namespace
 
+// Whether a and b name one file: the same file when both exist (hard links too), else the same
+// path once made absolute and normal (a file not yet written).
+bool sameFile(const std::string& a, const std::string& b) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::equivalent(a, b, ec) && !ec) return true;
+  const fs::path pa = fs::weakly_canonical(fs::absolute(a), ec);
+  if (ec) return false;
+  const fs::path pb = fs::weakly_canonical(fs::absolute(b), ec);
+  return !ec && pa == pb;
+}
+
 // Refuses an output that is one of the files the render reads (the scene, an OBJ, an MTL).
 void checkOutputIsNoInput(const std::string& output, const Scene& scene) {
   for (const std::string& in : scene.inputFiles) {
@@ -36,6 +50,24 @@ void checkOutputIsNoInput(const std::string& output, const Scene& scene) {
     if (std::filesystem::equivalent(output, in, ec) && !ec)
       throwInputError(output, "", "the output is an input of the render ('" + in + "'): refusing to overwrite it");
   }
+}
+
+void checkJobFiles(const std::string& checkpoint, const std::string& resume, const std::string& output,
+                   const Scene& scene) {
+  if (!resume.empty() && sameFile(resume, output))
+    throwInputError(output, "", "the output is the --resume checkpoint: refusing to overwrite it");
+  if (checkpoint.empty()) return;
+  if (sameFile(checkpoint, output))
+    throwInputError(checkpoint, "--checkpoint", "is also the output image (-o): give the checkpoint its own file");
+  for (const std::string& in : scene.inputFiles)
+    if (sameFile(checkpoint, in))
+      throwInputError(checkpoint, "--checkpoint", "is an input of the render ('" + in + "'): refusing to overwrite it");
+  std::error_code ec;
+  const auto st = std::filesystem::status(checkpoint, ec);
+  if (std::filesystem::exists(st) && !std::filesystem::is_directory(st) &&
+      !(std::filesystem::is_regular_file(st) && isCheckpointFile(checkpoint)))
+    throwInputError(checkpoint, "--checkpoint", "exists and is not a montecl checkpoint: refusing to overwrite it");
+  checkWritableTarget(checkpoint, "the checkpoint");
 }
 
 bool isExr(const std::string& path) {

@@ -1,7 +1,8 @@
 // render_output.h: what `montecl render` does around its output image: the default name, the
 // checks before rendering (the output is not an input), the EXR layers of a film, the count of
 // non-finite pixels that refuses a write, and the camera as scene JSON for -v. Reads and writes no
-// file except what defaultOutput looks at (whether names exist).
+// file except what defaultOutput looks at (whether names exist) and checkJobFiles (an existing
+// checkpoint's magic, a probe file created and removed beside the checkpoint).
 #pragma once
 #include <cstddef>
 #include <string>
@@ -15,6 +16,12 @@ namespace montecl {
 
 // Refuses (InputError) an output that is one of the files the render reads (scene, OBJ, MTL).
 void checkOutputIsNoInput(const std::string& output, const Scene& scene);
+// The files of --checkpoint and --resume, checked before any work: the output is not the resume
+// checkpoint; the checkpoint is neither the output nor an input, is a montecl checkpoint when it
+// exists already, and can be created (util/atomic_file.h checkWritableTarget). The checkpoint may be
+// the resume file (a resumed render keeps saving to it). InputError (exit 2) otherwise.
+void checkJobFiles(const std::string& checkpoint, const std::string& resume, const std::string& output,
+                   const Scene& scene);
 // Whether path ends in .exr (any case).
 bool isExr(const std::string& path);
 // The number of pixels with a NaN or infinite value in any plane (values that overflowed a float).

@@ -61,7 +61,9 @@ Job::Job(const JobArgs& args, const Scene& scene, const RenderOptions& options) 
   aovs_ = options.aovs;
   targetError_ = options.targetError;
   errorFloor_ = options.errorFloor;
-  info_ = checkpointInfo(scene, options);
+  // The render's identity hashes texture and environment files: only computed when a checkpoint
+  // is written or read.
+  if (!args_.checkpoint.empty() || !args_.resume.empty()) info_ = checkpointInfo(scene, options);
   if (!args_.resume.empty()) {
     resumed_ = readCheckpoint(args_.resume, info_, width_, height_);
     part_.initialFilm = &resumed_;
@@ -85,8 +87,22 @@ bool Job::writesImage() const { return world().rank == 0; }
 void Job::afterWave(const std::function<Film()>& readFilm) {
   if (world().active) return exchange(false, readFilm);
   if (now() - lastCheckpoint_ >= args_.checkpointEvery) {
-    writeCheckpoint(args_.checkpoint, info_, readFilm());
+    saveCheckpoint(readFilm());
     lastCheckpoint_ = now();
+  }
+}
+
+// A checkpoint that cannot be written (disk full, folder removed) is a warning: the render goes on
+// and its image is still written. Warned at the first failure, again only after one succeeded.
+void Job::saveCheckpoint(const Film& film) {
+  try {
+    writeCheckpoint(args_.checkpoint, info_, film);
+    checkpointFailing_ = false;
+  } catch (const std::exception& e) {
+    if (checkpointFailing_) return;
+    checkpointFailing_ = true;
+    std::cerr << "montecl: warning: " << args_.checkpoint << ": checkpoint not written (" << e.what()
+              << "); the render goes on\n";
   }
 }
 
@@ -109,7 +125,7 @@ void Job::exchange(bool finished, const std::function<Film()>& readFilm) {
   if (w.rank == 0 && progress_) progress_(v[0], v[1], global_);
   if (v[6]) {
     Film full = gather(readFilm());
-    if (w.rank == 0) writeCheckpoint(args_.checkpoint, info_, full);
+    if (w.rank == 0) saveCheckpoint(full);
     lastCheckpoint_ = now();
   }
   allFinished_ = v[5] == std::uint64_t(w.size);

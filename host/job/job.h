@@ -45,6 +45,7 @@ class Job {
   void afterWave(const std::function<Film()>& readFilm);
   void exchange(bool finished, const std::function<Film()>& readFilm);
   Film gather(const Film& mine) const;
+  void saveCheckpoint(const Film& film);
 
   JobArgs args_;
   CheckpointInfo info_;
@@ -59,6 +60,7 @@ class Job {
   RenderStats local_, global_;
   std::uint64_t localExpected_ = 0;
   bool allFinished_ = false;
+  bool checkpointFailing_ = false;  // the last checkpoint write failed (warned)
 };
 
 }  // namespace montecl::jobs

@@ -1,12 +1,15 @@
 // checkpoint.cpp: render/checkpoint.h's binary film file.
 #include "render/checkpoint.h"
 
+#include <sys/stat.h>
+
+#include <cerrno>
 #include <cstring>
 #include <fstream>
-#include <iterator>
 
 #include "render/frame_params.h"
 #include "render/integrators.h"
+#include "scene/scene_digest.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 #include "util/hash.h"
@@ -47,11 +50,12 @@ std::uint64_t renderKey(const Scene& scene, const RenderOptions& o) {
   const std::uint32_t slots = integratorDesc(scene.render.integrator).shadowSlots(scene.render);
   FrameParams f = makeFrameParams(scene.camera, scene.render, slots);
   f.activeCount = 0;
-  Fnv1a64 h;  // (hashed in place: a string of the triangles was twice their size at its peak)
+  // One render identity with the provenance of an EXR (image/provenance.h): the scene digest
+  // (geometry, every material field, texture and environment contents, camera) and the settings
+  // string, then what only a checkpoint needs (the frame as uploaded, sampling, AOVs).
+  Fnv1a64 h;
+  h.add(sceneDigest(scene) + '\0' + integratorSettings(scene.render) + '\0');
   h.add(&f, sizeof f);
-  h.add(scene.triangles.data(), scene.triangles.size() * sizeof(SceneTriangle));
-  for (const MaterialDesc& m : scene.materials)
-    h.add(&m.albedo[0], 3 * sizeof(float)), h.add(&m.emission[0], 3 * sizeof(float));
   const std::uint32_t ints[] = {std::uint32_t(scene.render.integrator), std::uint32_t(scene.render.spp),
                                 o.firstSample, std::uint32_t(o.minSpp), std::uint32_t(o.maxSpp), o.aovs};
   h.add(ints, sizeof ints);
@@ -94,13 +98,25 @@ void writeCheckpoint(const std::string& path, const CheckpointInfo& info, const 
   });
 }
 
-Film readCheckpoint(const std::string& path, const CheckpointInfo& expected, int width, int height) {
+bool isCheckpointFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throwInputError(path, "--resume", "cannot open the checkpoint");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  char magic[8] = {};
+  return in.read(magic, 8) && std::memcmp(magic, kMagic, 8) == 0;
+}
+
+Film readCheckpoint(const std::string& path, const CheckpointInfo& expected, int width, int height) {
+  // A regular file only (a FIFO would block, /dev/zero never end), its size checked against the
+  // header before the payload is read.
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0)
+    throwInputError(path, "--resume", std::string("cannot open the checkpoint: ") + std::strerror(errno));
+  if (S_ISDIR(st.st_mode)) throwInputError(path, "--resume", "is a directory, not a checkpoint");
+  if (!S_ISREG(st.st_mode)) throwInputError(path, "--resume", "not a regular file, not a checkpoint");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throwInputError(path, "--resume", std::string("cannot open the checkpoint: ") + std::strerror(errno));
   Header h{};
-  if (bytes.size() < sizeof h) throwInputError(path, "--resume", "not a montecl checkpoint (too short)");
-  std::memcpy(&h, bytes.data(), sizeof h);
+  if (std::uint64_t(st.st_size) < sizeof h || !in.read(reinterpret_cast<char*>(&h), sizeof h))
+    throwInputError(path, "--resume", "not a montecl checkpoint (too short)");
   if (std::memcmp(h.magic, kMagic, 8) != 0) throwInputError(path, "--resume", "not a montecl checkpoint");
   if (h.version != kVersion || h.headerBytes != sizeof h)
     throwInputError(path, "--resume", "checkpoint version " + std::to_string(h.version) + ", expected " +
@@ -121,10 +137,12 @@ Film readCheckpoint(const std::string& path, const CheckpointInfo& expected, int
   film.height = height;
   const std::size_t n = std::size_t(width) * height;
   const std::size_t need = sizeof h + n * (4 * 16 + 8) + (h.aovs ? 2 * n * 16 : 0);
-  if (bytes.size() != need) throwInputError(path, "--resume", "damaged checkpoint (wrong size)");
-  const char* at = bytes.data() + sizeof h;
-  if (fnv1a64(std::string(at, bytes.size() - sizeof h)) != h.payloadHash)
-    throwInputError(path, "--resume", "damaged checkpoint (payload hash)");
+  if (std::uint64_t(st.st_size) != need) throwInputError(path, "--resume", "damaged checkpoint (wrong size)");
+  std::string payload(need - sizeof h, '\0');
+  if (!in.read(payload.data(), std::streamsize(payload.size())))
+    throwInputError(path, "--resume", "damaged checkpoint (shorter than its size)");
+  if (fnv1a64(payload) != h.payloadHash) throwInputError(path, "--resume", "damaged checkpoint (payload hash)");
+  const char* at = payload.data();
   const auto take = [&](auto& v, std::size_t count) {
     v.resize(count);
     std::memcpy(v.data(), at, count * sizeof(v[0]));

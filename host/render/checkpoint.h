@@ -1,7 +1,7 @@
 // checkpoint.h: a render's exact film state on disk, so a killed render resumes bit-identically.
 // Format (version 1, little-endian, docs/mpi.md): an 88-byte header, then the raw film arrays
 //   char magic[8] = "MCLCKPT1"; u32 version = 1; u32 headerBytes = 88;
-//   u64 key (renderKey: scene geometry, materials, camera, every setting that changes a pixel);
+//   u64 key (renderKey: sceneDigest, settings, camera, everything else that changes a pixel);
 //   u32 width, height, aovs (0/1), seed, spp, firstSample, integrator, minSpp, maxSpp, pad;
 //   f64 targetError; u64 samplesDone (sum of counts); u64 payloadHash (FNV-1a of the payload);
 //   payload: mean[P], meanLo[P], m2[P], m2Lo[P] (float4 each), count[P] (u64), aovSum[2P] (with AOVs).
@@ -17,8 +17,9 @@
 
 namespace montecl {
 
-// Hash of everything that decides a pixel's value: geometry, materials, camera, render settings,
-// first sample, adaptive settings and AOVs (not the device, wave size or work-group size).
+// Hash of everything that decides a pixel's value: the provenance's scene digest (geometry,
+// materials, texture and environment contents, camera) and settings string, the frame, first
+// sample, adaptive settings and AOVs (not the device, wave size or work-group size).
 std::uint64_t renderKey(const Scene& scene, const RenderOptions& options);
 
 struct CheckpointInfo {
@@ -32,8 +33,12 @@ CheckpointInfo checkpointInfo(const Scene& scene, const RenderOptions& options);
 // Writes film and info to path atomically.
 void writeCheckpoint(const std::string& path, const CheckpointInfo& info, const Film& film);
 
+// Whether path is a file that starts like a montecl checkpoint (its magic): the only kind of
+// existing file --checkpoint may replace.
+bool isCheckpointFile(const std::string& path);
+
 // Reads a checkpoint written for `expected` (same key, size and AOVs); anything else, or a
-// damaged file, is an InputError naming the file (exit 2).
+// damaged file, or a path that is not a regular file, is an InputError naming the file (exit 2).
 Film readCheckpoint(const std::string& path, const CheckpointInfo& expected, int width, int height);
 
 }  // namespace montecl

@@ -205,10 +205,10 @@ void Loader::takeCamera(int index, const glm::dmat4& world) {
 }  // namespace
 
 bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string>* warnings, Camera* camera) {
-  const Model m = readGltfModel(path, warnings);
+  std::vector<std::string> opened;  // external buffers and images, as opened (decoded URIs)
+  const Model m = readGltfModel(path, warnings, &opened);
   scene.inputFiles.push_back(path);
-  for (const tinygltf::Buffer& b : m.buffers)
-    if (!b.uri.empty() && b.uri.compare(0, 5, "data:") != 0) scene.inputFiles.push_back(besideFile(path, b.uri));
+  scene.inputFiles.insert(scene.inputFiles.end(), opened.begin(), opened.end());
   Loader l{path, m, scene, KindWarnings(path), std::vector<std::int64_t>(m.materials.size(), -1), false, Camera{}};
   for (const std::string& e : m.extensionsUsed)
     if (e != "KHR_materials_emissive_strength")

@@ -2,6 +2,7 @@
 // gltf_model.h).
 #include "scene/gltf_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -14,7 +15,8 @@ namespace {
 bool fileExists(const std::string& path, void*) { return fileProblem(path).empty(); }
 std::string expandNothing(const std::string& path, void*) { return path; }
 
-bool readFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+// user: the caller's list of opened files (the paths as tinygltf decoded and opened them), or null.
+bool readFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
   const std::string problem = fileProblem(path);
   if (!problem.empty()) {
     if (err) *err += "cannot open '" + path + "': " + problem + "\n";
@@ -23,6 +25,7 @@ bool readFile(std::vector<unsigned char>* out, std::string* err, const std::stri
   try {
     const std::string bytes = readWholeFile(path);
     out->assign(bytes.begin(), bytes.end());
+    if (user) static_cast<std::vector<std::string>*>(user)->push_back(path);
   } catch (const std::exception& e) {
     if (err) *err += std::string(e.what()) + "\n";
     return false;
@@ -115,15 +118,23 @@ const tinygltf::Accessor& accessorAt(const std::string& file, const tinygltf::Mo
 
 }  // namespace
 
-tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>* warnings) {
+tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>* warnings,
+                              std::vector<std::string>* opened) {
   const std::string bytes = readWholeFile(path);
   tinygltf::TinyGLTF loader;
-  loader.SetFsCallbacks({&fileExists, &expandNothing, &readFile, &writeNothing, nullptr});
+  loader.SetFsCallbacks({&fileExists, &expandNothing, &readFile, &writeNothing, opened});
   loader.SetImageLoader(&keepImageUndecoded, nullptr);
   tinygltf::Model model;
   std::string err, warn;
   const std::string dir = folderOf(path).empty() ? "." : folderOf(path);
   const bool glb = bytes.compare(0, 4, "glTF") == 0;
+  if (glb && bytes.size() >= 20) {  // the JSON chunk: length at byte 12, text from byte 20
+    std::uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    checkJsonDepth(path, bytes.data() + 20, std::min<std::size_t>(length, bytes.size() - 20));
+  } else if (!glb) {
+    checkJsonDepth(path, bytes.data(), bytes.size());
+  }
   bool ok = false;
   if (glb) {
     ok = loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),

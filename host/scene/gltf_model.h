@@ -13,8 +13,11 @@
 
 namespace montecl {
 
-// Loads the model; tinygltf's warnings are appended (one line each, naming the file).
-tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>* warnings);
+// Loads the model; tinygltf's warnings are appended (one line each, naming the file). opened, when
+// given, gets every other file read (external buffers and images) by the path actually opened
+// (percent-decoded, resolved). A JSON part nested deeper than kMaxJsonDepth is refused first.
+tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>* warnings,
+                              std::vector<std::string>* opened = nullptr);
 
 // Accessor `index` as floats with `components` components per element (VEC2: 2, VEC3: 3), from
 // FLOAT data or normalized integer data; where names the attribute for messages.

@@ -54,6 +54,27 @@ std::string readWholeFile(const std::string& path) {
   return text;
 }
 
+void checkJsonDepth(const std::string& file, const char* text, std::size_t size) {
+  int depth = 0;
+  bool inString = false;
+  std::size_t line = 1;
+  for (std::size_t i = 0; i < size; ++i) {
+    const char c = text[i];
+    if (c == '\n') ++line;
+    if (inString) {
+      if (c == '\\') ++i;  // the escaped character is no quote
+      else if (c == '"') inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth)
+        loadFail(file, lineWhere(line), "nesting deeper than " + std::to_string(kMaxJsonDepth) + " arrays/objects");
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
+
 std::string folderOf(const std::string& path) {
   std::size_t slash = path.find_last_of('/');
   if (slash == std::string::npos) return "";

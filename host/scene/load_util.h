@@ -25,6 +25,15 @@ std::string fileProblem(const std::string& path);
 // Reads a regular file into memory; throws InputError naming the file on failure.
 std::string readWholeFile(const std::string& path);
 
+// The deepest nesting of arrays and objects a JSON text (scene file, glTF) may have: deeper ones
+// are refused before parsing (tinygltf converts JSON values recursively: 15,000 nested arrays
+// overflow the stack).
+constexpr int kMaxJsonDepth = 512;
+
+// Throws InputError "<file>: line N: nesting deeper than 512 arrays/objects" when the JSON text
+// [text, text + size) nests deeper than kMaxJsonDepth (brackets inside strings do not count).
+void checkJsonDepth(const std::string& file, const char* text, std::size_t size);
+
 // The folder of a path ("" for a bare name).
 std::string folderOf(const std::string& path);
 

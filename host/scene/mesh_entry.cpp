@@ -193,6 +193,9 @@ MeshEntry parseMeshEntry(const JsonCtx& ctx, const json& j, const std::string& p
 void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, const MeshEntry& mesh) {
   if (mesh.hasTransform) transformTriangles(ctx, scene, firstTri, mesh);
   if (mesh.material.any()) overrideMaterials(scene, firstTri, mesh);
+  // The override's textures are read by the render like any other: inputs the output must not replace.
+  if (mesh.material.albedoTexture) scene.inputFiles.push_back(mesh.material.value.albedoTexture);
+  if (mesh.material.alphaTexture) scene.inputFiles.push_back(mesh.material.value.alphaTexture);
 }
 
 void recomputeBounds(Scene& scene) {

@@ -2,6 +2,8 @@
 #include "scene/scene_digest.h"
 
 #include <cstring>
+#include <fstream>
+#include <map>
 
 #include "util/hash.h"
 
@@ -15,10 +17,26 @@ void appendVec(Fnv1a64& bytes, const glm::vec3& v) {
   append(bytes, f, sizeof f);
 }
 
+// A file's bytes as a hash, read in chunks: a texture or environment map counts by its content,
+// not its name (another file under the same name is another scene; a copied folder is the same).
+// "" stands for no file; a file that cannot be read hashes as such (loading it fails later anyway).
+std::uint64_t fileContentHash(const std::string& path, std::map<std::string, std::uint64_t>& cache) {
+  if (path.empty()) return 0;
+  const auto it = cache.find(path);
+  if (it != cache.end()) return it->second;
+  Fnv1a64 h;
+  std::ifstream in(path, std::ios::binary);
+  char chunk[1 << 16];
+  while (in && (in.read(chunk, sizeof chunk) || in.gcount() > 0)) h.add(chunk, std::size_t(in.gcount()));
+  if (!in.eof()) h.add("unreadable");
+  return cache[path] = h.value();
+}
+
 }  // namespace
 
 std::string sceneDigest(const Scene& scene) {
   Fnv1a64 bytes;  // hashed as they come (not gathered into a string of the whole scene first)
+  std::map<std::string, std::uint64_t> files;  // content hashes by path (a texture shared by materials is read once)
   for (const SceneTriangle& t : scene.triangles) {
     for (const glm::vec3& v : t.v) appendVec(bytes, v);
     append(bytes, &t.material, sizeof t.material);
@@ -35,14 +53,18 @@ std::string sceneDigest(const Scene& scene) {
     appendVec(bytes, m.specular);
     append(bytes, &m.specularExponent, sizeof m.specularExponent);
     append(bytes, &m.alphaCutoff, sizeof m.alphaCutoff);
-    bytes.add(m.albedoTexture + '\0' + m.alphaTexture + '\0' + (m.twoSidedEmission ? '2' : '1'));
+    const std::uint64_t textures[2] = {fileContentHash(m.albedoTexture, files), fileContentHash(m.alphaTexture, files)};
+    append(bytes, textures, sizeof textures);
+    bytes.add(m.twoSidedEmission ? "2" : "1");
     // The kind only when it is not the first (diffuse): every scene from before kinds existed keeps
     // its digest, so its checkpoints still resume.
     if (m.kind != MCL_MATERIAL_diffuse) bytes.add("kind" + std::to_string(m.kind));
   }
-  if (scene.environment.enabled) {  // the map by its path (its pixels are not hashed)
+  if (scene.environment.enabled) {  // the map by its content
     const EnvironmentDesc& e = scene.environment;
-    bytes.add("environment" + e.file);
+    bytes.add("environment");
+    const std::uint64_t map = fileContentHash(e.file, files);
+    append(bytes, &map, sizeof map);
     appendVec(bytes, e.radiance);
     append(bytes, &e.scale, sizeof e.scale);
     append(bytes, &e.rotateYDegrees, sizeof e.rotateYDegrees);

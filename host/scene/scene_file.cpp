@@ -113,6 +113,7 @@ std::string lineColumn(const std::string& text, std::size_t offset) {
 // nlohmann's message "[json.exception.parse_error.101] parse error at line 3, column 5: syntax
 // error ..." becomes where = "line 3, column 5", problem = "malformed JSON: syntax error ...".
 json parseJson(const Ctx& ctx, const std::string& text) {
+  checkJsonDepth(ctx.file, text.data(), text.size());
   try {
     return json::parse(text);
   } catch (const json::parse_error& e) {

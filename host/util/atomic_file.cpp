@@ -133,11 +133,11 @@ void writeAtomically(const std::string& path,
   }
 }
 
-void checkWritableTarget(const std::string& path) {
+void checkWritableTarget(const std::string& path, const std::string& role) {
   fs::path p(path);
   const std::string name = p.filename().string();
   fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-  auto fail = [&](const std::string& why) { throwInputError(path, "", "cannot write the output: " + why); };
+  auto fail = [&](const std::string& why) { throwInputError(path, "", "cannot write " + role + ": " + why); };
   if (name.empty() || name == "." || name == "..") fail("no file name");
   if (name.size() > NAME_MAX)
     fail("file name is " + std::to_string(name.size()) + " bytes, more than the " + std::to_string(NAME_MAX) +

@@ -18,9 +18,9 @@ void writeAtomically(const std::string& path, const std::function<void(const std
 // The temporary's file name (no folder) for target file name `name`, process pid, counter n.
 std::string tempFileName(const std::string& name, long pid, unsigned n);
 
-// Throws InputError "<path>: cannot write the output: <why>" unless a file can be written at path:
+// Throws InputError "<path>: cannot write <role>: <why>" unless a file can be written at path:
 // the folder exists and accepts a new file (probed by creating and removing a temporary), the
 // name fits NAME_MAX, and path is not a folder. Call before rendering.
-void checkWritableTarget(const std::string& path);
+void checkWritableTarget(const std::string& path, const std::string& role = "the output");
 
 }  // namespace montecl

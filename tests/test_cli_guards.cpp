@@ -1,0 +1,167 @@
+// test_cli_guards.cpp: `montecl render` refuses, with one line and exit 2 and no file written,
+// what would lose data or crash: an output that is a texture named in a scene file's mesh material
+// override, or a glTF buffer whose URI is percent-encoded (the file as opened is the input); a
+// glTF (.gltf, .glb, or through a scene file) or scene file nested thousands of arrays deep (a
+// stack overflow in the JSON conversion); a sample range past 2^32 (it would wrap to sample 0
+// while the EXR's provenance says otherwise); a --texture-budget whose byte count overflows 64 bits.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+
+#include "cli_runner.h"
+#include "image/image_io.h"
+#include "mesh_files.h"
+
+using montecl_test::CliResult;
+using montecl_test::readAll;
+using montecl_test::runMontecl;
+using montecl_test::TempDir;
+namespace fs = std::filesystem;
+
+namespace {
+
+bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
+
+// An 8x8 render on the host device, 1 sample per pixel unless extra gives --spp.
+CliResult render(const std::string& scene, const std::string& out, std::vector<std::string> extra = {}) {
+  std::vector<std::string> args{"render", scene, "-o", out, "--width", "8", "--height", "8", "-q", "--device", "host"};
+  if (std::find(extra.begin(), extra.end(), "--spp") == extra.end()) args.insert(args.end(), {"--spp", "1"});
+  args.insert(args.end(), extra.begin(), extra.end());
+  return runMontecl(args);
+}
+
+// A quad (with uvs) and a scene file whose mesh entry has the given "material" override JSON.
+std::string writeOverrideScene(const TempDir& dir, const std::string& material) {
+  dir.write("quad.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");
+  dir.write("scene.json", R"({"camera": {"position": [0, 0, 3], "target": [0, 0, 0], "fov_y": 45, "width": 8, "height": 8},
+    "meshes": [{"file": "quad.obj", "material": )" + material + "}]}");
+  return dir.file("scene.json");
+}
+
+// The JSON text with `"extras": [[...]]` nested `depth` deep inserted after its first '{'.
+std::string withDeepExtras(const std::string& json, int depth) {
+  return "{\"extras\": " + std::string(std::size_t(depth), '[') + std::string(std::size_t(depth), ']') + ", " +
+         json.substr(json.find('{') + 1);
+}
+
+// A GLB whose JSON chunk is replaced by `json` (padded with spaces; the BIN chunk kept).
+std::string glbWithJson(const std::string& glb, std::string json) {
+  std::uint32_t oldLength = 0;
+  std::memcpy(&oldLength, glb.data() + 12, 4);
+  while (json.size() % 4) json += ' ';
+  std::string out = glb.substr(0, 12);
+  const std::uint32_t length = std::uint32_t(json.size());
+  out.append(reinterpret_cast<const char*>(&length), 4);
+  out.append(glb, 16, 4);  // chunk type JSON
+  out += json;
+  out += glb.substr(20 + oldLength);
+  const std::uint32_t total = std::uint32_t(out.size());
+  std::memcpy(out.data() + 8, &total, 4);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("cli: an output that is a mesh material override's texture is refused (exit 2), the texture untouched" * doctest::test_suite("cli")) {
+  for (const char* key : {"albedo_texture", "alpha_texture"}) {
+    TempDir dir;
+    montecl::writeRgbImage(dir.file("wood.png"), 2, 2, std::vector<float>(12, 0.25f));
+    const std::string before = readAll(dir.file("wood.png"));
+    const std::string scene = writeOverrideScene(dir, std::string("{\"") + key + "\": \"wood.png\"}");
+    CliResult r = render(scene, dir.file("wood.png"));
+    INFO(key << ": " << r.err);
+    CHECK(r.exitCode == 2);
+    CHECK(oneLine(r.err));
+    CHECK(r.err.find("input") != std::string::npos);
+    CHECK(readAll(dir.file("wood.png")) == before);
+  }
+}
+
+TEST_CASE("cli: an output that is a glTF buffer named by a percent-encoded URI is refused (exit 2), the buffer untouched" * doctest::test_suite("cli")) {
+  TempDir dir;
+  const montecl_test::MeshData mesh = montecl_test::tentMesh();
+  // The buffer's file is "geo data.pfm" (an image extension, so -o may name it); the URI encodes the space.
+  dir.write("geo data.pfm", montecl_test::gltfBuffer(mesh));
+  dir.write("model.gltf", montecl_test::gltfText(mesh, 0.5f, "geo%20data.pfm"));
+  const std::string before = readAll(dir.file("geo data.pfm"));
+  CliResult ok = render(dir.file("model.gltf"), dir.file("out.png"));
+  REQUIRE_MESSAGE(ok.exitCode == 0, ok.err);  // the model loads: its buffer is that file
+  CliResult r = render(dir.file("model.gltf"), dir.file("geo data.pfm"));
+  INFO(r.err);
+  CHECK(r.exitCode == 2);
+  CHECK(oneLine(r.err));
+  CHECK(r.err.find("input") != std::string::npos);
+  CHECK(readAll(dir.file("geo data.pfm")) == before);
+}
+
+TEST_CASE("cli: a glTF or scene file nested 15000 arrays deep is refused with one line, not a crash" * doctest::test_suite("cli")) {
+  TempDir dir;
+  const montecl_test::MeshData mesh = montecl_test::tentMesh();
+  dir.write("deep.gltf", withDeepExtras(montecl_test::gltfText(mesh, 0.5f, ""), 15000));
+  dir.write("deep.glb", glbWithJson(montecl_test::glbBytes(mesh, 0.5f), withDeepExtras(
+      [&] {  // the GLB's own JSON chunk
+        const std::string glb = montecl_test::glbBytes(mesh, 0.5f);
+        std::uint32_t length = 0;
+        std::memcpy(&length, glb.data() + 12, 4);
+        return glb.substr(20, length);
+      }(), 15000)));
+  const std::string camera = R"("camera": {"position": [0, 0, 3], "target": [0, 0, 0], "fov_y": 45, "width": 8, "height": 8})";
+  dir.write("scene.json", "{" + camera + R"(, "meshes": [{"file": "deep.gltf"}]})");
+  dir.write("deepscene.json", withDeepExtras("{" + camera + R"(, "meshes": [{"file": "ok.gltf"}]})", 15000));
+  dir.write("ok.gltf", montecl_test::gltfText(mesh, 0.5f, ""));
+  // Just under the limit loads (the extras are ignored).
+  dir.write("shallow.gltf", withDeepExtras(montecl_test::gltfText(mesh, 0.5f, ""), 500));
+  CliResult ok = render(dir.file("shallow.gltf"), dir.file("out.png"));
+  CHECK_MESSAGE(ok.exitCode == 0, ok.err);
+  struct Case {
+    std::string input, named;
+  };
+  for (const Case& c : {Case{"deep.gltf", "deep.gltf"}, Case{"deep.glb", "deep.glb"}, Case{"scene.json", "deep.gltf"},
+                        Case{"deepscene.json", "deepscene.json"}}) {
+    fs::remove(dir.file("out.png"));
+    CliResult r = render(dir.file(c.input), dir.file("out.png"));
+    INFO(c.input << ": exit " << r.exitCode << ": " << r.err);
+    CHECK(r.exitCode == 2);
+    CHECK(oneLine(r.err));
+    CHECK(r.err.find(c.named + ": line 1: nesting deeper than 512") != std::string::npos);
+    CHECK(!fs::exists(dir.file("out.png")));
+  }
+}
+
+TEST_CASE("cli: a sample range past 2^32 is refused (exit 2), not wrapped to sample 0" * doctest::test_suite("cli")) {
+  TempDir dir;
+  const std::string scene = montecl_test::demoScene();
+  const std::string out = dir.file("out.exr");
+  for (const std::vector<std::string>& extra :
+       {std::vector<std::string>{"--first-sample", "4294967295", "--spp", "2"},
+        std::vector<std::string>{"--first-sample", "4294967200", "--target-error", "0.1", "--min-spp", "4", "--max-spp", "200"}}) {
+    CliResult r = render(scene, out, extra);
+    INFO(extra[1] << ": " << r.err);
+    CHECK(r.exitCode == 2);
+    CHECK(oneLine(r.err));
+    CHECK(r.err.find("--first-sample") != std::string::npos);
+    CHECK(!fs::exists(out));
+  }
+  // The last samples of the sequence still render.
+  CliResult r = render(scene, out, {"--first-sample", "4294967294", "--spp", "2"});
+  CHECK_MESSAGE(r.exitCode == 0, r.err);
+}
+
+TEST_CASE("cli: a --texture-budget whose byte count overflows 64 bits is refused (exit 2)" * doctest::test_suite("cli")) {
+  TempDir dir;
+  montecl::writeRgbImage(dir.file("wood.png"), 4, 4, std::vector<float>(48, 0.25f));
+  const std::string scene = writeOverrideScene(dir, R"({"albedo_texture": "wood.png"})");
+  for (const std::string budget : {"17592186044416", "1e30"}) {  // 2^44 MiB: 2^64 bytes, which wrapped to 0
+    CliResult r = render(scene, dir.file("out.png"), {"--texture-budget", budget});
+    INFO(budget << ": " << r.err);
+    CHECK(r.exitCode == 2);
+    CHECK(oneLine(r.err));
+    CHECK(r.err.find("--texture-budget") != std::string::npos);
+    CHECK(!fs::exists(dir.file("out.png")));
+  }
+  CliResult r = render(scene, dir.file("out.png"), {"--texture-budget", "8796093022208"});  // 2^43 MiB fits
+  CHECK_MESSAGE(r.exitCode == 0, r.err);
+  CHECK(r.err.find("budget") == std::string::npos);  // no level dropped
+}
