@@ -17,6 +17,7 @@
 
 #include "cli_runner.h"
 #include "skip.h"
+#include "cl/devices.h"
 #include "render/memory_check.h"
 #include "util/errors.h"
 
@@ -132,6 +133,21 @@ TEST_CASE("cli: an image too large for memory is refused before allocating, sayi
   CHECK(r.err.find("image 8192x8192: needs about") != std::string::npos);
   CHECK(r.err.find("GiB") != std::string::npos);
   CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK(!fs::exists(dir.file("out.png")));
+}
+
+TEST_CASE("cli: on a CPU OpenCL device the device buffers count against this machine's memory too" * doctest::test_suite("cli")) {
+  MCL_SKIP_UNLESS(montecl::selectDevice("").isCpu, "the default OpenCL device is not a CPU");
+  TempDir dir;
+  // 4096x4096: the host's copies (film read back, output planes) take about 2.1 GB and the device's
+  // film and wave buffers about 1.4 GB more, in this machine's memory on a CPU device; 2.5 GB
+  // covers the first but not both. Without the device part the render starts (--time stops it).
+  CliResult r = runMontecl({"render", kGoodScene, "-q", "--spp", "1", "--time", "0.01", "--width", "4096",
+                            "--height", "4096", "-o", dir.file("out.png")},
+                           {"MONTECL_MEMORY_LIMIT=2500000000"});
+  INFO("stderr: " << r.err);
+  CHECK(r.exitCode == 2);
+  CHECK(r.err.find("image 4096x4096: needs about") != std::string::npos);
   CHECK(!fs::exists(dir.file("out.png")));
 }
 

@@ -48,7 +48,10 @@ void checkImageMemory(const DeviceInfo& device, const std::string& scenePath, in
   const std::string where = "image " + std::to_string(width) + "x" + std::to_string(height);
   const std::string what = aovs ? " (film, AOVs and output image)" : " (film and output image)";
   const std::uint64_t hostHas = hostMemoryBytes();
-  const std::uint64_t hostNeeds = need.host + (device.isHost ? need.device : 0);
+  // The host backend's buffers, and a CPU OpenCL device's (PoCL and Intel's runtime allocate them in
+  // this machine's memory), come out of host memory too.
+  const bool sharesHostMemory = device.isHost || device.isCpu;
+  const std::uint64_t hostNeeds = need.host + (sharesHostMemory ? need.device : 0);
   if (hostNeeds > hostHas)
     throwInputError(scenePath, where,
                     "needs about " + gib(hostNeeds) + " of memory" + what + ", this machine has " + gib(hostHas) +

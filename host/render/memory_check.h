@@ -21,7 +21,7 @@ ImageMemory imageMemoryNeed(std::uint64_t pixels, bool aovs, std::uint64_t waveB
 std::uint64_t hostMemoryBytes();
 
 // Throws InputError "<scene>: image WxH: needs about X GiB ..., <where> has Y GiB" when the need
-// exceeds host memory (host backend: device + host) or the device's global memory.
+// exceeds host memory (host backend and CPU OpenCL devices: device + host) or the device's global memory.
 void checkImageMemory(const DeviceInfo& device, const std::string& scenePath, int width, int height, bool aovs,
                       std::uint64_t waveBytes);
 
