@@ -38,7 +38,7 @@
 #define MCL_PACKET_accumulate 1
 #define MCL_PACKET_record_aov 0
 #define MCL_PACKET_accumulate_aov 0
-#define MCL_PACKET_shade_path 0
+#define MCL_PACKET_shade_path 1
 #define MCL_PACKET_path_gather 0
 
 // The texture tables (kernels/shared/texture.h): what albedo lookups read.

@@ -1,0 +1,256 @@
+// shade_path_lanes.h: the packet form of shade_path (shade_path.h) for the common case, the same
+// bits per path: W consecutive queue entries k (rays[k], hits[k], path ids pathIds[k]; per-path
+// state gathered and scattered by id) whose rays escape (no environment: the background at bounce
+// 0, else nothing) or hit flat (no shading normals), untextured surfaces of the diffuse kind with
+// no glossy lobe, lit by emitter triangles: emission seen (MIS weighted after a BSDF bounce), the
+// next-event light samples (an emitter by power, a uniform point on it; one atomic per packet per
+// light sample), the cosine-lobe continuation with Russian roulette (one atomic per packet). Lanes
+// that hit anything else run the scalar body after the packet; so does every entry of a packet
+// when an environment lights the scene or there are no emitters, and of a partial last packet.
+// Queue order: the packet's shadow queries and continuations fill their entries in lane order, so
+// the next queue's order can differ from the scalar stage's; nothing depends on it (shadow queries
+// name their slot, path_gather adds slots in slot order, every random number comes from the
+// path's pixel and sample, and the path's state is indexed by its id).
+#pragma once
+#include "shade_direct_lanes.h"  // v_luminance, v_pick_emitter
+#include "shade_path.h"
+#include "stage_lanes.h"
+
+MCL_INLINE vfloat v_max_component(vfloat3 c) { return fmax(c.x, fmax(c.y, c.z)); }
+
+MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
+  const uint count = *a->rayCount;
+  if (first >= count) return;
+  MCL_CONSTANT const FrameParams* f = a->frame;
+  const uint bounce = a->pathBounce;
+  const uint slots = f->shadowSlots;
+  const uint ac = f->activeCount;
+  const ulong q0 = a->waveStart / ac;
+  const uint r0 = (uint)(a->waveStart % ac);
+  if (v_packet_partial(first, count) || env_present(f) || f->emitterCount == 0u) {
+    for (uint k = 0; k < MCL_LANES && first + k < count; ++k) stage_shade_path(a, first + k);
+    return;
+  }
+  vuint id = bounce == 0 ? first + v_lane_index() : v_load_uints(a->pathIds + first);
+  vfloat ht, htri, hu, hv;
+  v_load4((MCL_GLOBAL const float*)(a->hits + first), &ht, &htri, &hu, &hv);
+  vuint tri = v_as_uint(htri);
+  vmask hit = tri != MCL_NO_HIT;
+  // The hit triangles, their normals and materials (misses read entry 0 and are masked off).
+  vuint t = vsel(hit, tri, v_u(0u));
+  MCL_GLOBAL const float* tf = (MCL_GLOBAL const float*)a->tris;
+  MCL_GLOBAL const float* mf = (MCL_GLOBAL const float*)a->materials;
+  vfloat v0x, v0y, v0z, v0w, e1x, e1y, e1z, e1w, e2x, e2y, e2z, e2w, nx, ny, nz, nw;
+  v_gather4(tf, t, 12, &v0x, &v0y, &v0z, &v0w);
+  v_gather4(tf + 4, t, 12, &e1x, &e1y, &e1z, &e1w);
+  v_gather4(tf + 8, t, 12, &e2x, &e2y, &e2z, &e2w);
+  v_gather4((MCL_GLOBAL const float*)a->normals, t, 4, &nx, &ny, &nz, &nw);
+  vuint mat = v_as_uint(v0w);  // triangle_material
+  vfloat kdx, kdy, kdz, kdw, kex, key, kez, kew, ksx, ksy, ksz, ksw, kax, kay, kaz, kaw;
+  v_gather4(mf, mat, 16, &kdx, &kdy, &kdz, &kdw);       // albedo: Kd, texture index
+  v_gather4(mf + 4, mat, 16, &kex, &key, &kez, &kew);   // emission: Ke, two-sided
+  v_gather4(mf + 8, mat, 16, &ksx, &ksy, &ksz, &ksw);   // specular: Ks, alpha
+  v_gather4(mf + 12, mat, 16, &kax, &kay, &kaz, &kaw);  // alpha test; w: the material kind (uint bits)
+  vfloat lks = v_luminance(v3_make(ksx, ksy, ksz)), lkd = v_luminance(v3_make(kdx, kdy, kdz));
+  vfloat specProb = vsel(lks > 0.0f, lks / (lks + lkd), v_f(0.0f));  // bsdf_make's
+  vmask flat = hit & ((v_as_uint(e2w) & MCL_ATTR_NORMALS) == 0u) & (v_as_uint(kdw) == MCL_NO_TEXTURE) &
+               (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse);
+  vmask scalar = hit & v_not(flat);
+  vmask mine = v_not(scalar);  // the packet's lanes: misses and the common hits
+
+  uint ids[MCL_LANES] MCL_LANE_ALIGN, own[MCL_LANES] MCL_LANE_ALIGN;
+  v_store_lanes(id, ids);
+  v_store_lanes(v_mask01(mine), own);
+  for (uint j = 0; j < MCL_LANES; ++j)
+    if (own[j])
+      for (uint s = 0; s < slots; ++s) a->shadowContrib[ids[j] * slots + s] = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
+
+  vfloat3 beta = v3_make(v_f(1.0f), v_f(1.0f), v_f(1.0f)), L = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f));
+  vfloat lastPdf = v_f(0.0f);
+  if (bounce > 0) {
+    vfloat lw;
+    v_gather4((MCL_GLOBAL const float*)a->throughput, id, 4, &beta.x, &beta.y, &beta.z, &lastPdf);
+    v_gather4((MCL_GLOBAL const float*)a->radiance, id, 4, &L.x, &L.y, &L.z, &lw);
+  }
+  vfloat dx, dy, dz, dw;
+  v_load4_stride((MCL_GLOBAL const float*)(a->rays + first) + 4, 8, &dx, &dy, &dz, &dw);
+  vfloat3 dir = v3_make(dx, dy, dz);
+  vfloat3 n = v3_make(nx, ny, nz);
+  const float nLight = (float)f->lightSamples;
+
+  // Misses: path_miss without an environment.
+  float4 bg = bounce == 0 ? f->background : make_float4(0.0f, 0.0f, 0.0f, 0.0f);
+  vfloat3 Lmiss = v3_add(L, v3_mul(beta, v3_make(v_f(bg.x), v_f(bg.y), v_f(bg.z))));
+  // Hits: Le seen (area_light_eval: emitted_toward), MIS weighted against light sampling after a
+  // BSDF bounce (area_light_pdf).
+  vmask front = v3_dot(n, dir) < 0.0f;
+  vmask emits = front | (kew != 0.0f);
+  vfloat3 le = v3_make(vsel(emits, kex, v_f(0.0f)), vsel(emits, key, v_f(0.0f)), vsel(emits, kez, v_f(0.0f)));
+  vmask glows = flat & ((le.x > 0.0f) | (le.y > 0.0f) | (le.z > 0.0f));
+  if (v_any(glows)) {
+    vfloat weight = v_f(1.0f);
+    if (bounce > 0) {
+      vfloat c = -v3_dot(n, dir);  // emitter_cosine
+      vfloat cosLight = vsel(kew != 0.0f, fabs(c), c);
+      vfloat pick = nw * v_luminance(v3_make(kex, key, kez)) / f->emitterPower;  // emitter_pick_probability
+      vfloat lpdf = area_light_probability(f) * (pick / nw * (ht * ht) / cosLight);
+      vfloat fw = 1.0f * lastPdf, gw = nLight * lpdf;
+      weight = vsel(lastPdf > 0.0f, (fw * fw) / (fw * fw + gw * gw), weight);
+    }
+    L = v3_select(glows, v3_add(L, v3_scale(v3_mul(beta, le), weight)), L);
+  }
+  L = v3_select(hit, L, Lmiss);
+  {
+    float lx[MCL_LANES] MCL_LANE_ALIGN, ly[MCL_LANES] MCL_LANE_ALIGN, lz[MCL_LANES] MCL_LANE_ALIGN;
+    v_store_lanes(L.x, lx);
+    v_store_lanes(L.y, ly);
+    v_store_lanes(L.z, lz);
+    for (uint j = 0; j < MCL_LANES; ++j)
+      if (own[j]) a->radiance[ids[j]] = make_float4(lx[j], ly[j], lz[j], 0.0f);
+  }
+
+  if ((f->maxDepth < 0 || (int)bounce + 1 < f->maxDepth) && v_any(flat)) {
+    vfloat3 p = v3_add(v3_add(v3_make(v0x, v0y, v0z), v3_scale(v3_make(e1x, e1y, e1z), hu)),
+                       v3_scale(v3_make(e2x, e2y, e2z), hv));
+    vfloat3 ng = v_orient_facing(n, dir);  // flat: ns = ng
+    vfloat3 kd = v3_make(kdx, kdy, kdz);
+    vfloat3 origin = v_offset_ray_origin(p, ng, f->offsetScale);
+    // item_pixel, item_sample of id: waveStart = q0 ac + r0, so waveStart + id = q0 ac + (r0 + id).
+    vuint pixel, sample;
+    vuint g = r0 + id;
+    if (!v_any(g < r0)) {  // r0 + id did not wrap
+      vuint qq, rr;
+      v_divmod(g, ac, &qq, &rr);
+      sample = (uint)q0 + qq;
+      pixel = v_gather_uint(a->active, rr);
+    } else {
+      uint px[MCL_LANES] MCL_LANE_ALIGN, sm[MCL_LANES] MCL_LANE_ALIGN;
+      for (uint j = 0; j < MCL_LANES; ++j) {
+        px[j] = item_pixel(f, a->active, a->waveStart, ids[j]);
+        sm[j] = item_sample(f, a->waveStart, ids[j]);
+      }
+      pixel = v_loadu_lanes(px);
+      sample = v_loadu_lanes(sm);
+    }
+    const float share = area_light_probability(f);  // sample_direct_light: the area kind's share
+    vuint slot0 = id * slots;
+    for (uint s = 0; s < f->lightSamples; ++s) {
+      vfloat4 u = v_rng_uniform4(f->seed, pixel, sample, path_dim(bounce, 1u + s));
+      vuint em = v_pick_emitter(a->emitters, f->emitterCount, (u.x - 0.0f) / share);
+      vfloat emTri, emCdf, emArea, emPad;
+      v_gather4_few((MCL_GLOBAL const float*)a->emitters, em, 4, &emTri, &emCdf, &emArea, &emPad);
+      vuint lt = v_as_uint(emTri);
+      vfloat l0x, l0y, l0z, l0w, l1x, l1y, l1z, l1w, l2x, l2y, l2z, l2w, lnx, lny, lnz, lnw;
+      v_gather4_few(tf, lt, 12, &l0x, &l0y, &l0z, &l0w);
+      v_gather4_few(tf + 4, lt, 12, &l1x, &l1y, &l1z, &l1w);
+      v_gather4_few(tf + 8, lt, 12, &l2x, &l2y, &l2z, &l2w);
+      v_gather4_few((MCL_GLOBAL const float*)a->normals, lt, 4, &lnx, &lny, &lnz, &lnw);
+      vfloat lex, ley, lez, lew;
+      v_gather4_few(mf + 4, v_as_uint(l0w), 16, &lex, &ley, &lez, &lew);
+      vfloat3 lle = v3_make(lex, ley, lez);
+      vfloat su = sqrt(u.y);  // sample_triangle
+      vfloat3 lp = v3_add(v3_add(v3_make(l0x, l0y, l0z), v3_scale(v3_make(l1x, l1y, l1z), su * (1.0f - u.z))),
+                          v3_scale(v3_make(l2x, l2y, l2z), su * u.z));
+      vfloat3 toLight = v3_sub(lp, origin);
+      vfloat dist2 = v3_dot(toLight, toLight);
+      vfloat dist = sqrt(dist2);
+      vfloat3 wi = v3_make(toLight.x / dist, toLight.y / dist, toLight.z / dist);
+      vfloat c = -v3_dot(v3_make(lnx, lny, lnz), wi);  // emitter_cosine
+      vfloat cosLight = vsel(lew != 0.0f, fabs(c), c);
+      vmask ok = (cosLight > 0.0f) & (dist > 0.0f);
+      vfloat pick = emArea * v_luminance(lle) / f->emitterPower;  // emitter_pick_probability
+      vfloat pdf = share * vsel(ok, pick / emArea * dist2 / cosLight, v_f(0.0f));
+      vfloat tmax = dist * (1.0f - 1e-4f);
+      // bsdf_eval (Lambert about ng): Kd cos / pi above the surface
+      vfloat cosI = v3_dot(ng, wi);
+      vmask lit = cosI > 0.0f;
+      vfloat cpi = cosI * MCL_INV_PI;
+      vfloat3 fcos = v3_make(vsel(lit, kd.x * cpi, v_f(0.0f)), vsel(lit, kd.y * cpi, v_f(0.0f)),
+                             vsel(lit, kd.z * cpi, v_f(0.0f)));
+      vmask push = flat & ok & (pdf > 0.0f) & (v_max_component(fcos) > 0.0f);
+      if (!v_any(push)) continue;
+      vfloat bsdfPdf = fmax(cosI, v_f(0.0f)) * MCL_INV_PI;  // pdf_cosine_hemisphere
+      vfloat fw = nLight * pdf, gw = 1.0f * bsdfPdf;
+      vfloat weight = (fw * fw) / (fw * fw + gw * gw);
+      vfloat3 contrib = v3_scale(v3_mul(v3_mul(beta, fcos), lle), weight / (pdf * nLight));
+      uint set[MCL_LANES] MCL_LANE_ALIGN, sl[MCL_LANES] MCL_LANE_ALIGN;
+      float tm[MCL_LANES] MCL_LANE_ALIGN;
+      float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN;
+      float wx[MCL_LANES] MCL_LANE_ALIGN, wy[MCL_LANES] MCL_LANE_ALIGN, wz[MCL_LANES] MCL_LANE_ALIGN;
+      float cr[MCL_LANES] MCL_LANE_ALIGN, cg[MCL_LANES] MCL_LANE_ALIGN, cb[MCL_LANES] MCL_LANE_ALIGN;
+      v_store_lanes(v_mask01(push), set);
+      v_store_lanes(tmax, tm);
+      v_store_lanes(origin.x, ox);
+      v_store_lanes(origin.y, oy);
+      v_store_lanes(origin.z, oz);
+      v_store_lanes(wi.x, wx);
+      v_store_lanes(wi.y, wy);
+      v_store_lanes(wi.z, wz);
+      v_store_lanes(contrib.x, cr);
+      v_store_lanes(contrib.y, cg);
+      v_store_lanes(contrib.z, cb);
+      v_store_lanes(slot0 + s, sl);
+      uint at = MCL_ATOMIC_ADD(a->queueCount, v_count(push));
+      for (uint j = 0; j < MCL_LANES; ++j) {
+        if (!set[j]) continue;
+        ShadowWork w;
+        w.ray.origin = make_float4(ox[j], oy[j], oz[j], 0.0f);
+        w.ray.dir = make_float4(wx[j], wy[j], wz[j], tm[j]);
+        w.r = cr[j];
+        w.g = cg[j];
+        w.b = cb[j];
+        w.slot = sl[j];
+        a->queue[at++] = w;
+      }
+    }
+
+    // bsdf_sample (Lambert about ng): the cosine lobe; weight Kd where the pdf is positive.
+    vfloat4 u = v_rng_uniform4(f->seed, pixel, sample, path_dim(bounce, 0u));  // z: roulette, w: lobe
+    vfloat3 dl = v_sample_cosine_hemisphere(u.x, u.y);
+    vfloat3 wi = v_to_world(dl, ng);
+    vfloat pdf = fmax(dl.z, v_f(0.0f)) * MCL_INV_PI;
+    vmask live = flat & (pdf > 0.0f);
+    vfloat3 next = v3_mul(beta, kd);
+    if (bounce + 1u >= f->rrDepth) {  // Russian roulette (depth after this bounce: bounce + 1)
+      vfloat q = fmin(v_f(0.95f), v_max_component(next));
+      live = live & (u.z < q);
+      next = v3_make(next.x / q, next.y / q, next.z / q);
+    }
+    live = live & (v_max_component(next) > 0.0f);
+    if (v_any(live)) {
+      uint set[MCL_LANES] MCL_LANE_ALIGN;
+      float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN;
+      float wx[MCL_LANES] MCL_LANE_ALIGN, wy[MCL_LANES] MCL_LANE_ALIGN, wz[MCL_LANES] MCL_LANE_ALIGN;
+      float bx[MCL_LANES] MCL_LANE_ALIGN, by[MCL_LANES] MCL_LANE_ALIGN, bz[MCL_LANES] MCL_LANE_ALIGN;
+      float pp[MCL_LANES] MCL_LANE_ALIGN;
+      v_store_lanes(v_mask01(live), set);
+      v_store_lanes(origin.x, ox);
+      v_store_lanes(origin.y, oy);
+      v_store_lanes(origin.z, oz);
+      v_store_lanes(wi.x, wx);
+      v_store_lanes(wi.y, wy);
+      v_store_lanes(wi.z, wz);
+      v_store_lanes(next.x, bx);
+      v_store_lanes(next.y, by);
+      v_store_lanes(next.z, bz);
+      v_store_lanes(pdf, pp);
+      uint at = MCL_ATOMIC_ADD(a->nextCount, v_count(live));
+      for (uint j = 0; j < MCL_LANES; ++j) {
+        if (!set[j]) continue;
+        a->throughput[ids[j]] = make_float4(bx[j], by[j], bz[j], pp[j]);
+        Ray r;
+        r.origin = make_float4(ox[j], oy[j], oz[j], 0.0f);
+        r.dir = make_float4(wx[j], wy[j], wz[j], INFINITY);
+        a->nextRays[at] = r;
+        a->nextPathIds[at] = ids[j];
+        ++at;
+      }
+    }
+  }
+  if (v_any(scalar)) {
+    uint sc[MCL_LANES] MCL_LANE_ALIGN;
+    v_store_lanes(v_mask01(scalar), sc);
+    for (uint j = 0; j < MCL_LANES; ++j)
+      if (sc[j]) stage_shade_path(a, first + j);
+  }
+}
