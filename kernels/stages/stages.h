@@ -18,3 +18,4 @@
 #include "shade_ao_lanes.h"
 #include "shade_direct_lanes.h"
 #include "accumulate_lanes.h"
+#include "intersect_lanes.h"
