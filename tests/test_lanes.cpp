@@ -57,7 +57,8 @@ TEST_CASE("packet stages: W per device, --lanes values, and the stage table's pa
   CHECK(stageRunsPackets(Stage::generate));
   CHECK(stageRunsPackets(Stage::shade_ao));
   CHECK(stageRunsPackets(Stage::accumulate));
-  CHECK_FALSE(stageRunsPackets(Stage::intersect));
+  CHECK(stageRunsPackets(Stage::intersect));
+  CHECK_FALSE(stageRunsPackets(Stage::intersect_shadow));
   CHECK(stageBuildOptions(BvhLayout::Wide, 1) == "");
   CHECK(stageBuildOptions(BvhLayout::Wide, 16) == "-DMCL_LANES=16");
   CHECK(stageBuildOptions(BvhLayout::Binary, 8) == "-DMCL_BVH_BINARY=1 -DMCL_LANES=8");

@@ -11,6 +11,7 @@ namespace montecl {
 
 RayTracer::RayTracer(StageProgram& program, const Bvh& bvh, const Scene* scene, const SceneTextures* textures)
     : cl_(program.session()),
+      lanes_(program.lanes()),
       intersect_(cl_.kernel(stageName(Stage::intersect))),
       intersectShadow_(cl_.kernel(stageName(Stage::intersect_shadow))) {
   const bool alpha = scene && textures && textures->anyAlpha();
@@ -31,6 +32,7 @@ RayTracer::RayTracer(StageProgram& program, const Bvh& bvh, const Scene* scene, 
 void RayTracer::run(Stage stage, std::size_t n, int runs, std::vector<double>* kernelMs) {
   cl::Kernel& k = stage == Stage::intersect ? intersect_ : intersectShadow_;
   bindStageArgs(k, stage, bindings_);
+  if (stageRunsPackets(stage)) n = (n + lanes_ - 1) / lanes_;  // W items per work item (lanes.h)
   for (int r = 0; r < std::max(1, runs); ++r) {
     if (kernelMs)
       kernelMs->push_back(cl_.launchTimed(k, n));

@@ -30,6 +30,7 @@ class RayTracer {
   void run(Stage stage, std::size_t n, int runs, std::vector<double>* kernelMs);
 
   ClSession& cl_;
+  unsigned lanes_;  // the program's W: a packet stage's work item traces W consecutive rays
   ClBindings bindings_;  // frame (unused by the traversal stages), nodes and tris; the rest per call
   cl::Kernel intersect_, intersectShadow_;
 };

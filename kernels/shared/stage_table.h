@@ -30,7 +30,7 @@
 // work items), 0 when it runs one item per work item through stage_<stage>(a, item). The host
 // backend always runs the scalar bodies. Every stage of MCL_STAGES has its line.
 #define MCL_PACKET_generate 1
-#define MCL_PACKET_intersect 0
+#define MCL_PACKET_intersect 1
 #define MCL_PACKET_shade_ao 1
 #define MCL_PACKET_shade_direct 1
 #define MCL_PACKET_shade_direct_hit 0

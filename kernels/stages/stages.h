@@ -19,3 +19,4 @@
 #include "shade_direct_lanes.h"
 #include "accumulate_lanes.h"
 #include "shade_path_lanes.h"
+#include "intersect_lanes.h"

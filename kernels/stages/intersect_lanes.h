@@ -1,0 +1,56 @@
+// intersect_lanes.h: the packet form of intersect (intersect.h), the same hit per ray: W
+// consecutive rays, one per lane, through one packet traversal (shared/traverse_packet.h) when
+// they are coherent enough to share it: all finite and in one octant (camera rays; the incoherent
+// bounce rays of direct lighting mostly fail this and take the scalar traversal per ray). Scenes
+// with textures (alpha-tested cut-outs), a partial last packet, the binary BVH layout and the lanes
+// where the packet order could pick another triangle at an exactly equal t run the scalar body.
+#pragma once
+#include "intersect.h"
+#include "stage_lanes.h"
+#include "../shared/traverse_packet.h"
+
+MCL_INLINE void stage_intersect_lanes(const intersect_args* a, uint first) {
+#if MCL_LANES == 1 || defined(MCL_BVH_BINARY) || defined(MCL_INTERSECT_SCALAR)
+  // MCL_INTERSECT_SCALAR: every item through the scalar traversal (for measurements).
+  for (uint k = 0; k < MCL_LANES; ++k) stage_intersect(a, first + k);
+#else
+  uint count = *a->rayCount;
+  if (first >= count) return;
+  if (v_packet_partial(first, count) || a->frame->textureCount > 0) {
+    for (uint k = 0; k < MCL_LANES && first + k < count; ++k) stage_intersect(a, first + k);
+    return;
+  }
+  vfloat ox, oy, oz, ow, dx, dy, dz, tmax;
+  v_load4_stride((MCL_GLOBAL const float*)(a->rays + first), 8, &ox, &oy, &oz, &ow);
+  v_load4_stride((MCL_GLOBAL const float*)(a->rays + first) + 4, 8, &dx, &dy, &dz, &tmax);
+  // ray_is_finite, lane-wise
+  vfloat z = (ox - ox) + (oy - oy) + (oz - oz) + (dx - dx) + (dy - dy) + (dz - dz);
+  vmask finite = z == 0.0f;
+  // safe_inverse, lane-wise
+  vfloat3 inv = v3_make(vsel(dx != 0.0f, 1.0f / dx, copysign(v_f(INFINITY), dx)),
+                        vsel(dy != 0.0f, 1.0f / dy, copysign(v_f(INFINITY), dy)),
+                        vsel(dz != 0.0f, 1.0f / dz, copysign(v_f(INFINITY), dz)));
+  vmask nx = inv.x < 0.0f, ny = inv.y < 0.0f, nz = inv.z < 0.0f;
+  int octant = v_all(finite) && (v_all(nx) || v_all(v_not(nx))) && (v_all(ny) || v_all(v_not(ny))) &&
+               (v_all(nz) || v_all(v_not(nz)));
+  if (!octant) {
+    for (uint k = 0; k < MCL_LANES; ++k) stage_intersect(a, first + k);
+    return;
+  }
+  uint nearX = v_first_lane(nx) ? 1u : 0u, nearY = v_first_lane(ny) ? 3u : 2u,
+       nearZ = v_first_lane(nz) ? 5u : 4u;
+  vfloat ht = tmax, hu = v_f(0.0f), hv = v_f(0.0f);
+  vuint htri = v_u(MCL_NO_HIT), hcanon = v_u(MCL_NO_HIT);
+  vmask redo = packet_closest_hit(a->nodes, a->tris, v3_make(ox, oy, oz), v3_make(dx, dy, dz), inv, finite,
+                                  nearX, nearY, nearZ, &ht, &htri, &hcanon, &hu, &hv);
+  vmask miss = htri == MCL_NO_HIT;
+  ht = vsel(miss, v_f(INFINITY), ht);
+  v_store4((MCL_GLOBAL float*)(a->hits + first), ht, v_as_float(hcanon), hu, hv);
+  if (v_any(redo)) {
+    uint rd[MCL_LANES] MCL_LANE_ALIGN;
+    v_store_lanes(v_mask01(redo), rd);
+    for (uint k = 0; k < MCL_LANES; ++k)
+      if (rd[k]) stage_intersect(a, first + k);
+  }
+#endif
+}
