@@ -1,5 +1,6 @@
 // main.cpp: montecl's entry point: parses the command line and maps failures to exit codes.
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <iostream>
 #include <new>
 
@@ -12,6 +13,9 @@
 int main(int argc, char** argv) {
   using namespace montecl;
   fixMmapThreshold();  // freed arrays leave the resident set (util/heap_trim.h)
+  // Past a file-size limit (ulimit -f) a write would kill the process by SIGXFSZ, leaving a partial
+  // temporary file; ignored, the write fails with EFBIG and the atomic writer reports it.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"montecl: Monte Carlo rendering with OpenCL"};
   app.set_version_flag("--version", MONTECL_VERSION);
   app.require_subcommand(1);

@@ -318,7 +318,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::IsMember({1u, 4u, 8u, 16u}));
   cmd->add_option("--split-budget", args->splitBudget,
                   "BVH spatial splits: at most this many extra triangle references per triangle (0: none)")
-      ->check(CLI::Range(0.0f, 4.0f));
+      ->check(finiteIn(0.0, 4.0));
   cmd->add_option("--bvh-layout", args->bvhLayout,
                   "BVH the kernels traverse: auto (binary on GPUs, wide otherwise) | wide | binary")
       ->check(CLI::IsMember({"auto", "wide", "binary"}));

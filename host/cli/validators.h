@@ -51,4 +51,17 @@ inline CLI::Validator positiveNumber(double hi = std::numeric_limits<double>::ma
       "a positive number");
 }
 
+// A finite number in [lo, hi]: CLI::Range lets NaN through (every comparison with it is false).
+inline CLI::Validator finiteIn(double lo, double hi) {
+  const std::string rule = "a number from " + shortNumber(lo) + " to " + shortNumber(hi);
+  return CLI::Validator(
+      [lo, hi, rule](std::string& text) -> std::string {
+        char* end = nullptr;
+        double v = std::strtod(text.c_str(), &end);
+        bool number = !text.empty() && end && *end == '\0' && std::isfinite(v);
+        return number && v >= lo && v <= hi ? std::string() : "must be " + rule + ", got '" + text + "'";
+      },
+      rule);
+}
+
 }  // namespace montecl

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 
 #include "scene/load_util.h"
 
@@ -132,13 +133,32 @@ tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>*
     std::uint32_t length = 0;
     std::memcpy(&length, bytes.data() + 12, 4);
     checkJsonDepth(path, bytes.data() + 20, std::min<std::size_t>(length, bytes.size() - 20));
+    // tinygltf checks the BIN chunk's length against the GLB header's total but forgets the chunk's
+    // own 8-byte header, so a length that fills the file to the end is read past it: check it here.
+    std::uint32_t total = 0;
+    std::memcpy(&total, bytes.data() + 8, 4);
+    const std::uint64_t binAt = 20ull + length;  // where the BIN chunk's header starts
+    if (total > binAt && binAt + 8 <= bytes.size()) {
+      std::uint32_t binLength = 0;
+      std::memcpy(&binLength, bytes.data() + binAt, 4);
+      if (binAt + 8 + binLength > bytes.size())
+        loadFail(path, "BIN chunk", "claims " + std::to_string(binLength) + " bytes but the file holds only " +
+                                        std::to_string(bytes.size() - binAt - 8) + " after its header");
+    }
   } else if (!glb) {
     checkJsonDepth(path, bytes.data(), bytes.size());
   }
   bool ok = false;
   if (glb) {
-    ok = loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                     static_cast<unsigned int>(bytes.size()), dir);
+    try {
+      ok = loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                       static_cast<unsigned int>(bytes.size()), dir);
+    } catch (const std::out_of_range&) {
+      // tinygltf copies a BIN-chunk buffer with data.at(0), which throws for byteLength 0; the
+      // buffers parsed so far say which one it was.
+      loadFail(path, "buffers[" + std::to_string(model.buffers.size()) + "]",
+               "byteLength 0: a buffer stored in the BIN chunk must hold at least one byte");
+    }
   } else {
     if (lowerExtension(path) == ".glb") loadFail(path, "", "not a binary glTF (no 'glTF' magic)");
     ok = loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), dir);

@@ -190,6 +190,8 @@ std::vector<MeshEntry> parseMeshes(const Ctx& ctx, const json& root) {
 // mesh brought a camera (the first one, moved by its mesh's transform), stored in *camera.
 bool loadMeshes(const Ctx& ctx, const std::vector<MeshEntry>& meshes, Scene& scene, Camera* camera) {
   bool hasCamera = false;
+  std::string emptiedBy;  // the first entry whose transform dropped all of its mesh's triangles
+  std::size_t emptiedCount = 0;
   for (const MeshEntry& m : meshes) {
     std::size_t firstTri = scene.triangles.size();
     Camera cam;
@@ -203,8 +205,20 @@ bool loadMeshes(const Ctx& ctx, const std::vector<MeshEntry>& meshes, Scene& sce
       camera->width = cam.width;
       camera->height = cam.height;
     }
+    const std::size_t loaded = scene.triangles.size() - firstTri;
     applyMeshEntry(ctx, scene, firstTri, m);
+    if (scene.triangles.size() == firstTri && emptiedBy.empty()) {
+      emptiedBy = m.prefix + ".transform";
+      emptiedCount = loaded;
+    }
   }
+  // Every loader refuses a file without triangles, but a transform (scale 0, say) can make all of
+  // them degenerate: the renderer cannot build a BVH over nothing, so say which entry did it.
+  if (scene.triangles.empty())
+    fail(ctx, emptiedBy.empty() ? "meshes" : emptiedBy,
+         emptiedBy.empty() ? "the scene has no triangles"
+                           : "leaves the scene with no triangles (all " + std::to_string(emptiedCount) +
+                                 " of the mesh's triangles are degenerate after the transform)");
   recomputeBounds(scene);
   return hasCamera;
 }
