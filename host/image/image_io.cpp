@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -25,11 +27,12 @@ std::string lowerExtension(const std::string& path) {
 // 2.4 has no PFM writer ("could not find a format writer").
 void writePfm(const std::string& path, int width, int height, const std::vector<float>& rgb) {
   writeAtomically(path, [&](const std::string& tmp) {
+    errno = 0;  // the failed write's reason (EFBIG past ulimit -f, ENOSPC, ...) for the message
     std::ofstream out(tmp, std::ios::binary);
     out << "PF\n" << width << " " << height << "\n-1.0\n";
     for (int y = height - 1; y >= 0; --y)
       out.write(reinterpret_cast<const char*>(&rgb[std::size_t(y) * width * 3]), std::streamsize(width) * 3 * 4);
-    if (!out.flush()) throw RuntimeError("cannot write " + path);
+    if (!out.flush()) throw RuntimeError("cannot write " + path + (errno ? std::string(": ") + std::strerror(errno) : ""));
   });
 }
 
