@@ -3,8 +3,12 @@
 // override, or a glTF buffer whose URI is percent-encoded (the file as opened is the input); a
 // glTF (.gltf, .glb, or through a scene file) or scene file nested thousands of arrays deep (a
 // stack overflow in the JSON conversion); a sample range past 2^32 (it would wrap to sample 0
-// while the EXR's provenance says otherwise); a --texture-budget whose byte count overflows 64 bits.
+// while the EXR's provenance says otherwise); a --texture-budget whose byte count overflows 64 bits;
+// a GLB whose BIN chunk runs past the file or whose BIN-chunk buffer has byteLength 0; a mesh
+// transform that leaves no triangle; a --split-budget of NaN. Under `ulimit -f`, a write that
+// passes the limit fails with one line and exit 1, no partial file (not death by SIGXFSZ).
 #include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cstring>
@@ -164,4 +168,106 @@ TEST_CASE("cli: a --texture-budget whose byte count overflows 64 bits is refused
   CliResult r = render(scene, dir.file("out.png"), {"--texture-budget", "8796093022208"});  // 2^43 MiB fits
   CHECK_MESSAGE(r.exitCode == 0, r.err);
   CHECK(r.err.find("budget") == std::string::npos);  // no level dropped
+}
+
+namespace {
+
+// The tent GLB's JSON chunk, parsed.
+nlohmann::json glbJson(const std::string& glb) {
+  std::uint32_t length = 0;
+  std::memcpy(&length, glb.data() + 12, 4);
+  return nlohmann::json::parse(glb.substr(20, length));
+}
+
+}  // namespace
+
+TEST_CASE("cli: a GLB whose BIN chunk claims more bytes than the file holds is refused (exit 2), not read past" *
+          doctest::test_suite("cli")) {
+  TempDir dir;
+  const std::string glb = montecl_test::glbBytes(montecl_test::tentMesh(), 0.5f);
+  nlohmann::json j = glbJson(glb);
+  std::uint32_t jsonLength = 0, binLength = 0;
+  std::memcpy(&jsonLength, glb.data() + 12, 4);
+  std::memcpy(&binLength, glb.data() + 20 + jsonLength, 4);
+  // The chunk and its buffer claim 8 bytes more: exactly the file's end counted from the chunk's
+  // header, which tinygltf's own check (it forgets the header) lets through.
+  j["buffers"][0]["byteLength"] = binLength + 8;
+  std::string bad = glbWithJson(glb, j.dump());
+  std::memcpy(&jsonLength, bad.data() + 12, 4);
+  const std::uint32_t claimed = std::uint32_t(bad.size() - 20 - jsonLength);
+  std::memcpy(bad.data() + 20 + jsonLength, &claimed, 4);
+  dir.write("long.glb", bad);
+  CliResult r = render(dir.file("long.glb"), dir.file("out.png"));
+  INFO("exit " << r.exitCode << ": " << r.err);
+  CHECK(r.exitCode == 2);
+  CHECK(oneLine(r.err));
+  CHECK(r.err.find(dir.file("long.glb") + ": BIN chunk: claims " + std::to_string(claimed) + " bytes") != std::string::npos);
+  CHECK(!fs::exists(dir.file("out.png")));
+}
+
+TEST_CASE("cli: a GLB buffer of byteLength 0 is refused with one line naming the file and the buffer (exit 2)" *
+          doctest::test_suite("cli")) {
+  TempDir dir;
+  const std::string glb = montecl_test::glbBytes(montecl_test::tentMesh(), 0.5f);
+  nlohmann::json j = glbJson(glb);
+  j["buffers"][0]["byteLength"] = 0;
+  dir.write("empty.glb", glbWithJson(glb, j.dump()));
+  CliResult r = render(dir.file("empty.glb"), dir.file("out.png"));
+  INFO("exit " << r.exitCode << ": " << r.err);
+  CHECK(r.exitCode == 2);
+  CHECK(oneLine(r.err));
+  CHECK(r.err.find(dir.file("empty.glb") + ": buffers[0]: byteLength 0") != std::string::npos);
+  CHECK(r.err.find("range_check") == std::string::npos);
+  CHECK(!fs::exists(dir.file("out.png")));
+}
+
+TEST_CASE("cli: a mesh transform that leaves no triangle is refused naming the scene file (exit 2)" *
+          doctest::test_suite("cli")) {
+  TempDir dir;
+  dir.write("quad.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
+  // Scaled by 1e-30 every triangle's area underflows to 0: all of them are dropped as degenerate.
+  dir.write("scene.json", R"({"camera": {"position": [0, 0, 3], "target": [0, 0, 0], "fov_y": 45, "width": 8, "height": 8},
+    "meshes": [{"file": "quad.obj", "transform": {"scale": 1e-30}}]})");
+  CliResult r = render(dir.file("scene.json"), dir.file("out.png"));
+  INFO("exit " << r.exitCode << ": " << r.err);
+  CHECK(r.exitCode == 2);
+  CHECK(oneLine(r.err));
+  CHECK(r.err.find(dir.file("scene.json") + ": meshes[0].transform: leaves the scene with no triangles") !=
+        std::string::npos);
+  CHECK(r.err.find("buildBvh") == std::string::npos);
+  CHECK(!fs::exists(dir.file("out.png")));
+}
+
+TEST_CASE("cli: --split-budget nan is refused with the option's rule (exit 2)" * doctest::test_suite("cli")) {
+  TempDir dir;
+  const std::string scene = montecl_test::demoScene();
+  for (const std::string value : {"nan", "-nan", "5", "-1"}) {
+    CliResult r = render(scene, dir.file("out.png"), {"--split-budget", value});
+    INFO(value << ": exit " << r.exitCode << ": " << r.err);
+    CHECK(r.exitCode == 2);
+    CHECK(r.err.find("--split-budget") != std::string::npos);
+    CHECK(r.err.find("must be a number from 0 to 4, got '" + value + "'") != std::string::npos);
+    CHECK(!fs::exists(dir.file("out.png")));
+  }
+  CliResult r = render(scene, dir.file("out.png"), {"--split-budget", "4"});
+  CHECK_MESSAGE(r.exitCode == 0, r.err);
+}
+
+TEST_CASE("cli: an EXR or PFM output past ulimit -f fails with one line (exit 1) and no partial file, not SIGXFSZ" *
+          doctest::test_suite("cli")) {
+  const std::string scene = montecl_test::demoScene();
+  for (const char* name : {"out.exr", "out.pfm"}) {
+    TempDir dir;
+    // 100 blocks (at most 100 KiB) against a 512x512 float image (3 MiB as PFM, over 100 KiB as EXR).
+    const std::string cmd = "ulimit -f 100; exec \"$0\" render \"$1\" -q --device host --spp 1 --width 512 "
+                            "--height 512 -o \"$2\"";
+    CliResult r = montecl_test::runProgram({"sh", "-c", cmd, MONTECL_EXE, scene, dir.file(name)});
+    INFO(std::string(name) << ": exit " << r.exitCode << ": " << r.err);
+    CHECK(r.exitCode == 1);
+    CHECK(oneLine(r.err));
+    CHECK(r.err.find(name) != std::string::npos);
+    CHECK(r.err.find("File too large") != std::string::npos);  // EFBIG, the write's own reason
+    CHECK(!fs::exists(dir.file(name)));
+    CHECK(dir.entries().empty());  // no temporary left behind either
+  }
 }
