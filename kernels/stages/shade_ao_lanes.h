@@ -56,7 +56,7 @@ MCL_INLINE void stage_shade_ao_lanes(const shade_ao_args* a, uint first) {
     vmask push = flat & (weight > 0.0f);
     vfloat3 origin = v_offset_ray_origin(p, ng, f->offsetScale);
     vfloat3 w = v_to_world(dirLocal, ng);  // frame_sample_direction without a shading normal
-    v_push_shadow_queries(a->queue, a->queueCount, push, origin, w, f->aoDistance, v3_make(weight, weight, weight),
+    v_push_shadow_queries(a->queue, a->queueCount, push, origin, w, v_f(f->aoDistance), v3_make(weight, weight, weight),
                           (first + v_lane_index()) * slots);
   }
   if (v_any(smooth)) {

@@ -7,26 +7,8 @@
 // when an environment lights the scene, and of a partial last packet.
 #pragma once
 #include "shade_direct.h"
+#include "light_area_lanes.h"
 #include "stage_lanes.h"
-
-// luminance (lights.h) per lane.
-MCL_INLINE vfloat v_luminance(vfloat3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-
-// pick_emitter per lane: the first emitter whose cdf exceeds u (binary search, lanes masked as
-// they finish); count > 0.
-MCL_INLINE vuint v_pick_emitter(MCL_GLOBAL const Emitter* emitters, uint count, vfloat u) {
-  vuint lo = v_u(0u), hi = v_u(count - 1u);
-  MCL_GLOBAL const float* cdf = (MCL_GLOBAL const float*)emitters + 1;  // Emitter::cdf
-  for (;;) {
-    vmask active = lo < hi;
-    if (!v_any(active)) break;
-    vuint mid = (lo + hi) / 2u;
-    vmask above = v_gather_float(cdf, vsel(active, mid, lo), 4) > u;
-    hi = vsel(active & above, mid, hi);
-    lo = vsel(active & v_not(above), mid + 1u, lo);
-  }
-  return lo;
-}
 
 MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first) {
   if (first >= a->waveCount) return;
@@ -100,31 +82,10 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
     for (uint k = 0; useLight && k < f->lightSamples; ++k) {
       vfloat4 u = v_rng_uniform4(f->seed, pixel, sample, MCL_DIM_LIGHT + k);
       // sample_direct_light without an environment (pEnv = 0): an emitter by power, a point on it.
-      vuint em = v_pick_emitter(a->emitters, f->emitterCount, u.x);
-      vfloat emTri, emCdf, emArea, emPad;
-      v_gather4_few((MCL_GLOBAL const float*)a->emitters, em, 4, &emTri, &emCdf, &emArea, &emPad);
-      vuint lt = v_as_uint(emTri);
-      vfloat l0x, l0y, l0z, l0w, l1x, l1y, l1z, l1w, l2x, l2y, l2z, l2w, lnx, lny, lnz, lnw;
-      v_gather4_few(tf, lt, 12, &l0x, &l0y, &l0z, &l0w);
-      v_gather4_few(tf + 4, lt, 12, &l1x, &l1y, &l1z, &l1w);
-      v_gather4_few(tf + 8, lt, 12, &l2x, &l2y, &l2z, &l2w);
-      v_gather4_few((MCL_GLOBAL const float*)a->normals, lt, 4, &lnx, &lny, &lnz, &lnw);
-      vfloat lex, ley, lez, lew;
-      v_gather4_few(mf + 4, v_as_uint(l0w), 16, &lex, &ley, &lez, &lew);
-      vfloat3 lle = v3_make(lex, ley, lez);
-      // sample_triangle
-      vfloat su = sqrt(u.y);
-      vfloat3 lp = v3_add(v3_add(v3_make(l0x, l0y, l0z), v3_scale(v3_make(l1x, l1y, l1z), su * (1.0f - u.z))),
-                          v3_scale(v3_make(l2x, l2y, l2z), su * u.z));
-      vfloat3 toLight = v3_sub(lp, origin);
-      vfloat dist2 = v3_dot(toLight, toLight);
-      vfloat dist = sqrt(dist2);
-      vfloat3 wi = v3_make(toLight.x / dist, toLight.y / dist, toLight.z / dist);
-      vfloat c = -v3_dot(v3_make(lnx, lny, lnz), wi);  // emitter_cosine
-      vfloat cosLight = vsel(lew != 0.0f, fabs(c), c);
-      vmask ok = (cosLight > 0.0f) & (dist > 0.0f);
-      vfloat pick = emArea * v_luminance(lle) / f->emitterPower;  // emitter_pick_probability
-      vfloat pdf = vsel(ok, pick / emArea * dist2 / cosLight, v_f(0.0f));  // area_to_solid_angle
+      VEmitterSample ls = v_sample_emitter(f, a->emitters, a->tris, a->normals, a->materials, u.x, u.y, u.z, origin);
+      vfloat3 wi = ls.wi, lle = ls.le;
+      vfloat dist = ls.dist, pdf = ls.pdf;
+      vmask ok = ls.ok;
       wi = v3_select(ok, wi, v3_make(v_f(0.0f), v_f(0.0f), v_f(1.0f)));
       lle = v3_select(ok, lle, v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f)));
       vfloat tmax = vsel(ok, dist * (1.0f - 1e-4f), v_f(INFINITY));
@@ -141,39 +102,7 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
                            vsel(lit, kd.z * MCL_INV_PI, v_f(0.0f)));
       vfloat s = cosSurf * weight / (pdf * nLight);
       vfloat3 contrib = v3_scale(v3_mul(fr, lle), s);
-      // tmax of a sample through the shadow queue is per lane: pushed lane by lane below.
-      uint set[MCL_LANES] MCL_LANE_ALIGN;
-      float tm[MCL_LANES] MCL_LANE_ALIGN;
-      v_store_lanes(v_mask01(push), set);
-      v_store_lanes(tmax, tm);
-      uint count = v_count(push);
-      if (count == 0) continue;
-      uint at = MCL_ATOMIC_ADD(a->queueCount, count);
-      float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN;
-      float wx[MCL_LANES] MCL_LANE_ALIGN, wy[MCL_LANES] MCL_LANE_ALIGN, wz[MCL_LANES] MCL_LANE_ALIGN;
-      float cr[MCL_LANES] MCL_LANE_ALIGN, cg[MCL_LANES] MCL_LANE_ALIGN, cb[MCL_LANES] MCL_LANE_ALIGN;
-      uint sl[MCL_LANES] MCL_LANE_ALIGN;
-      v_store_lanes(origin.x, ox);
-      v_store_lanes(origin.y, oy);
-      v_store_lanes(origin.z, oz);
-      v_store_lanes(wi.x, wx);
-      v_store_lanes(wi.y, wy);
-      v_store_lanes(wi.z, wz);
-      v_store_lanes(contrib.x, cr);
-      v_store_lanes(contrib.y, cg);
-      v_store_lanes(contrib.z, cb);
-      v_store_lanes(slot0 + k, sl);
-      for (uint j = 0; j < MCL_LANES; ++j) {
-        if (!set[j]) continue;
-        ShadowWork w;
-        w.ray.origin = make_float4(ox[j], oy[j], oz[j], 0.0f);
-        w.ray.dir = make_float4(wx[j], wy[j], wz[j], tm[j]);
-        w.r = cr[j];
-        w.g = cg[j];
-        w.b = cb[j];
-        w.slot = sl[j];
-        a->queue[at++] = w;
-      }
+      v_push_shadow_queries(a->queue, a->queueCount, push, origin, wi, tmax, contrib, slot0 + k);
     }
     if (useBrdf) {  // Lambertian: the cosine lobe around ng
       vfloat4 u = v_rng_uniform4(f->seed, pixel, sample, MCL_DIM_BRDF);

@@ -12,7 +12,7 @@
 // name their slot, path_gather adds slots in slot order, every random number comes from the
 // path's pixel and sample, and the path's state is indexed by its id).
 #pragma once
-#include "shade_direct_lanes.h"  // v_luminance, v_pick_emitter
+#include "light_area_lanes.h"
 #include "shade_path.h"
 #include "stage_lanes.h"
 
@@ -136,30 +136,12 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
     vuint slot0 = id * slots;
     for (uint s = 0; s < f->lightSamples; ++s) {
       vfloat4 u = v_rng_uniform4(f->seed, pixel, sample, path_dim(bounce, 1u + s));
-      vuint em = v_pick_emitter(a->emitters, f->emitterCount, (u.x - 0.0f) / share);
-      vfloat emTri, emCdf, emArea, emPad;
-      v_gather4_few((MCL_GLOBAL const float*)a->emitters, em, 4, &emTri, &emCdf, &emArea, &emPad);
-      vuint lt = v_as_uint(emTri);
-      vfloat l0x, l0y, l0z, l0w, l1x, l1y, l1z, l1w, l2x, l2y, l2z, l2w, lnx, lny, lnz, lnw;
-      v_gather4_few(tf, lt, 12, &l0x, &l0y, &l0z, &l0w);
-      v_gather4_few(tf + 4, lt, 12, &l1x, &l1y, &l1z, &l1w);
-      v_gather4_few(tf + 8, lt, 12, &l2x, &l2y, &l2z, &l2w);
-      v_gather4_few((MCL_GLOBAL const float*)a->normals, lt, 4, &lnx, &lny, &lnz, &lnw);
-      vfloat lex, ley, lez, lew;
-      v_gather4_few(mf + 4, v_as_uint(l0w), 16, &lex, &ley, &lez, &lew);
-      vfloat3 lle = v3_make(lex, ley, lez);
-      vfloat su = sqrt(u.y);  // sample_triangle
-      vfloat3 lp = v3_add(v3_add(v3_make(l0x, l0y, l0z), v3_scale(v3_make(l1x, l1y, l1z), su * (1.0f - u.z))),
-                          v3_scale(v3_make(l2x, l2y, l2z), su * u.z));
-      vfloat3 toLight = v3_sub(lp, origin);
-      vfloat dist2 = v3_dot(toLight, toLight);
-      vfloat dist = sqrt(dist2);
-      vfloat3 wi = v3_make(toLight.x / dist, toLight.y / dist, toLight.z / dist);
-      vfloat c = -v3_dot(v3_make(lnx, lny, lnz), wi);  // emitter_cosine
-      vfloat cosLight = vsel(lew != 0.0f, fabs(c), c);
-      vmask ok = (cosLight > 0.0f) & (dist > 0.0f);
-      vfloat pick = emArea * v_luminance(lle) / f->emitterPower;  // emitter_pick_probability
-      vfloat pdf = share * vsel(ok, pick / emArea * dist2 / cosLight, v_f(0.0f));
+      VEmitterSample ls = v_sample_emitter(f, a->emitters, a->tris, a->normals, a->materials, (u.x - 0.0f) / share,
+                                           u.y, u.z, origin);
+      vfloat3 wi = ls.wi, lle = ls.le;
+      vfloat dist = ls.dist;
+      vmask ok = ls.ok;
+      vfloat pdf = share * ls.pdf;
       vfloat tmax = dist * (1.0f - 1e-4f);
       // bsdf_eval (Lambert about ng): Kd cos / pi above the surface
       vfloat cosI = v3_dot(ng, wi);
@@ -173,35 +155,7 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
       vfloat fw = nLight * pdf, gw = 1.0f * bsdfPdf;
       vfloat weight = (fw * fw) / (fw * fw + gw * gw);
       vfloat3 contrib = v3_scale(v3_mul(v3_mul(beta, fcos), lle), weight / (pdf * nLight));
-      uint set[MCL_LANES] MCL_LANE_ALIGN, sl[MCL_LANES] MCL_LANE_ALIGN;
-      float tm[MCL_LANES] MCL_LANE_ALIGN;
-      float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN;
-      float wx[MCL_LANES] MCL_LANE_ALIGN, wy[MCL_LANES] MCL_LANE_ALIGN, wz[MCL_LANES] MCL_LANE_ALIGN;
-      float cr[MCL_LANES] MCL_LANE_ALIGN, cg[MCL_LANES] MCL_LANE_ALIGN, cb[MCL_LANES] MCL_LANE_ALIGN;
-      v_store_lanes(v_mask01(push), set);
-      v_store_lanes(tmax, tm);
-      v_store_lanes(origin.x, ox);
-      v_store_lanes(origin.y, oy);
-      v_store_lanes(origin.z, oz);
-      v_store_lanes(wi.x, wx);
-      v_store_lanes(wi.y, wy);
-      v_store_lanes(wi.z, wz);
-      v_store_lanes(contrib.x, cr);
-      v_store_lanes(contrib.y, cg);
-      v_store_lanes(contrib.z, cb);
-      v_store_lanes(slot0 + s, sl);
-      uint at = MCL_ATOMIC_ADD(a->queueCount, v_count(push));
-      for (uint j = 0; j < MCL_LANES; ++j) {
-        if (!set[j]) continue;
-        ShadowWork w;
-        w.ray.origin = make_float4(ox[j], oy[j], oz[j], 0.0f);
-        w.ray.dir = make_float4(wx[j], wy[j], wz[j], tm[j]);
-        w.r = cr[j];
-        w.g = cg[j];
-        w.b = cb[j];
-        w.slot = sl[j];
-        a->queue[at++] = w;
-      }
+      v_push_shadow_queries(a->queue, a->queueCount, push, origin, wi, tmax, contrib, slot0 + s);
     }
 
     // bsdf_sample (Lambert about ng): the cosine lobe; weight Kd where the pdf is positive.

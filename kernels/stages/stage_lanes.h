@@ -120,9 +120,9 @@ MCL_INLINE vfloat3 v_orient_facing(vfloat3 n, vfloat3 incoming) {
 
 // Pushes the occlusion queries of the lanes set in m (push_shadow_query), with one atomic per
 // packet: the packet takes count(m) consecutive queue entries and its set lanes fill them in lane
-// order (the queue's order does not matter: each query names its own slot).
+// order (the queue's order does not matter: each query names its own slot); tmax per lane.
 MCL_INLINE void v_push_shadow_queries(MCL_GLOBAL ShadowWork* queue, MCL_GLOBAL volatile uint* queueCount, vmask m,
-                                      vfloat3 origin, vfloat3 dir, float tmax, vfloat3 c, vuint slot) {
+                                      vfloat3 origin, vfloat3 dir, vfloat tmax, vfloat3 c, vuint slot) {
   uint count = v_count(m);
   if (count == 0) return;
   uint at = MCL_ATOMIC_ADD(queueCount, count);
@@ -138,9 +138,10 @@ MCL_INLINE void v_push_shadow_queries(MCL_GLOBAL ShadowWork* queue, MCL_GLOBAL v
 #else
   uint set[MCL_LANES] MCL_LANE_ALIGN, sl[MCL_LANES] MCL_LANE_ALIGN;
   float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN, dx[MCL_LANES] MCL_LANE_ALIGN, dy[MCL_LANES] MCL_LANE_ALIGN, dz[MCL_LANES] MCL_LANE_ALIGN;
-  float cr[MCL_LANES] MCL_LANE_ALIGN, cg[MCL_LANES] MCL_LANE_ALIGN, cb[MCL_LANES] MCL_LANE_ALIGN;
+  float cr[MCL_LANES] MCL_LANE_ALIGN, cg[MCL_LANES] MCL_LANE_ALIGN, cb[MCL_LANES] MCL_LANE_ALIGN, tm[MCL_LANES] MCL_LANE_ALIGN;
   v_store_lanes(v_mask01(m), set);
   v_store_lanes(slot, sl);
+  v_store_lanes(tmax, tm);
   v_store_lanes(origin.x, ox);
   v_store_lanes(origin.y, oy);
   v_store_lanes(origin.z, oz);
@@ -154,7 +155,7 @@ MCL_INLINE void v_push_shadow_queries(MCL_GLOBAL ShadowWork* queue, MCL_GLOBAL v
     if (!set[k]) continue;
     MCL_GLOBAL float* q = (MCL_GLOBAL float*)(queue + at);
     mcl_st4(((float4)(ox[k], oy[k], oz[k], 0.0f)), q);
-    mcl_st4(((float4)(dx[k], dy[k], dz[k], tmax)), q + 4);
+    mcl_st4(((float4)(dx[k], dy[k], dz[k], tm[k])), q + 4);
     mcl_st4(((float4)(cr[k], cg[k], cb[k], as_float(sl[k]))), q + 8);
     ++at;
   }

@@ -1,0 +1,70 @@
+// light_area_lanes.h: the area light kind (shared/light_area.h) per lane, for the packet stages:
+// reads the emitter table, the emitting triangles, their normals and materials; writes nothing.
+// Each function does the scalar code's float operations in the same order (the same bits per lane).
+#pragma once
+#include "stage_lanes.h"
+
+// luminance (lights.h) per lane.
+MCL_INLINE vfloat v_luminance(vfloat3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+// pick_emitter per lane: the first emitter whose cdf exceeds u (binary search, lanes masked as
+// they finish); count > 0.
+MCL_INLINE vuint v_pick_emitter(MCL_GLOBAL const Emitter* emitters, uint count, vfloat u) {
+  vuint lo = v_u(0u), hi = v_u(count - 1u);
+  MCL_GLOBAL const float* cdf = (MCL_GLOBAL const float*)emitters + 1;  // Emitter::cdf
+  for (;;) {
+    vmask active = lo < hi;
+    if (!v_any(active)) break;
+    vuint mid = (lo + hi) / 2u;
+    vmask above = v_gather_float(cdf, vsel(active, mid, lo), 4) > u;
+    hi = vsel(active & above, mid, hi);
+    lo = vsel(active & v_not(above), mid + 1u, lo);
+  }
+  return lo;
+}
+
+// A light sample on an emitter triangle, seen from origin (sample_direct_light's area branch
+// without the kind share): Le, the unit direction, the distance, and the solid-angle pdf of the
+// emitter pick and point (0 where the sample is unusable: ok false, i.e. the emitter faces away or
+// the point is the origin).
+typedef struct {
+  vfloat3 le, wi;
+  vfloat dist, pdf;
+  vmask ok;
+} VEmitterSample;
+
+// pick: the emitter-selection number (u.x, rescaled by the caller when other kinds share it);
+// u2, u3: the point on the triangle (sample_triangle).
+MCL_INLINE VEmitterSample v_sample_emitter(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const Emitter* emitters,
+                                           MCL_GLOBAL const Triangle* tris, MCL_GLOBAL const float4* normals,
+                                           MCL_GLOBAL const Material* materials, vfloat pick, vfloat u2, vfloat u3,
+                                           vfloat3 origin) {
+  MCL_GLOBAL const float* tf = (MCL_GLOBAL const float*)tris;
+  MCL_GLOBAL const float* mf = (MCL_GLOBAL const float*)materials;
+  vuint em = v_pick_emitter(emitters, f->emitterCount, pick);
+  vfloat emTri, emCdf, emArea, emPad;
+  v_gather4_few((MCL_GLOBAL const float*)emitters, em, 4, &emTri, &emCdf, &emArea, &emPad);
+  vuint lt = v_as_uint(emTri);
+  vfloat l0x, l0y, l0z, l0w, l1x, l1y, l1z, l1w, l2x, l2y, l2z, l2w, lnx, lny, lnz, lnw;
+  v_gather4_few(tf, lt, 12, &l0x, &l0y, &l0z, &l0w);
+  v_gather4_few(tf + 4, lt, 12, &l1x, &l1y, &l1z, &l1w);
+  v_gather4_few(tf + 8, lt, 12, &l2x, &l2y, &l2z, &l2w);
+  v_gather4_few((MCL_GLOBAL const float*)normals, lt, 4, &lnx, &lny, &lnz, &lnw);
+  vfloat lex, ley, lez, lew;
+  v_gather4_few(mf + 4, v_as_uint(l0w), 16, &lex, &ley, &lez, &lew);
+  VEmitterSample s;
+  s.le = v3_make(lex, ley, lez);
+  vfloat su = sqrt(u2);  // sample_triangle
+  vfloat3 lp = v3_add(v3_add(v3_make(l0x, l0y, l0z), v3_scale(v3_make(l1x, l1y, l1z), su * (1.0f - u3))),
+                      v3_scale(v3_make(l2x, l2y, l2z), su * u3));
+  vfloat3 toLight = v3_sub(lp, origin);
+  vfloat dist2 = v3_dot(toLight, toLight);
+  s.dist = sqrt(dist2);
+  s.wi = v3_make(toLight.x / s.dist, toLight.y / s.dist, toLight.z / s.dist);
+  vfloat c = -v3_dot(v3_make(lnx, lny, lnz), s.wi);  // emitter_cosine
+  vfloat cosLight = vsel(lew != 0.0f, fabs(c), c);
+  s.ok = (cosLight > 0.0f) & (s.dist > 0.0f);
+  vfloat pickP = emArea * v_luminance(s.le) / f->emitterPower;  // emitter_pick_probability
+  s.pdf = vsel(s.ok, pickP / emArea * dist2 / cosLight, v_f(0.0f));  // area_to_solid_angle
+  return s;
+}
