@@ -343,6 +343,7 @@ __kernel void probe(__global uint* out) {
   out[19] = OFF(WideNode, child);
   out[20] = sizeof(TriangleShading);
   out[21] = OFF(TriangleShading, tv);
+  out[22] = OFF(FrameParams, sampler);
 }
 )";
   const std::vector<std::pair<const char*, cl_uint>> host = {
@@ -368,6 +369,7 @@ __kernel void probe(__global uint* out) {
       {"offsetof(WideNode, child)", offsetof(WideNode, child)},
       {"sizeof(TriangleShading)", sizeof(TriangleShading)},
       {"offsetof(TriangleShading, tv)", offsetof(TriangleShading, tv)},
+      {"offsetof(FrameParams, sampler)", offsetof(FrameParams, sampler)},
   };
   DeviceInfo dev = selectDevice("");
   cl::Context context(dev.device);

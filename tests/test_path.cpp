@@ -142,6 +142,27 @@ TEST_CASE("path: furnace, unlimited depth: L = Le / (1 - a) within 4 SE, Russian
   }
 }
 
+TEST_CASE("sobol: path furnace, unlimited depth: L = Le / (1 - a) within 4 SE over 16 seeds" * doctest::test_suite("opencl")) {
+  // The standard error from the spread of independently seeded renders (Sobol samples within one
+  // render are correlated).
+  std::vector<std::vector<double>> means(3);
+  for (std::uint32_t seed = 0; seed < 16; ++seed) {
+    Scene s = withPath(furnaceScene(8, 32), -1, 1);
+    s.render.sampler = Sampler::Sobol;
+    s.render.seed = seed;
+    Film f = render(s);
+    for (int c = 0; c < 3; ++c) means[size_t(c)].push_back(imageEstimate(f, c).mean);
+  }
+  for (int c = 0; c < 3; ++c) {
+    const double expected = kFurnaceLe[c] / (1.0 - kFurnaceAlbedo[c]);
+    ImageEstimate e = acrossRenders(means[size_t(c)]);
+    INFO("channel " << c << ": " << e.mean << " +- " << e.standardError << ", expected " << expected);
+    CHECK(e.standardError > 0.0);
+    CHECK(e.standardError < 0.01 * expected);
+    CHECK(std::fabs(e.mean - expected) <= 4.0 * e.standardError);
+  }
+}
+
 TEST_CASE("path: furnace at --max-depth D: L = Le (1 - a^D) / (1 - a); D = 1 is exactly Le" * doctest::test_suite("opencl")) {
   for (int depth : {1, 2, 3, 6}) {
     Film f = render(withPath(furnaceScene(8, 128), depth, 3));

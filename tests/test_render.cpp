@@ -76,6 +76,23 @@ TEST_CASE("AO of an open plane is 1 within 4 standard errors with uniform sampli
   CHECK(std::fabs(zSum / f.mean.size()) < 0.2);
 }
 
+TEST_CASE("sobol: AO of an open plane with uniform sampling is 1 within 4 SE over 16 seeds" * doctest::test_suite("opencl")) {
+  // Within one render the Sobol samples are correlated; the seeds' image means are independent.
+  Scene s = floorScene({0, 0, 0}, 1.0f, 60.0f, 8, 16);
+  s.render.aoSampling = montecl::AoSampling::Uniform;
+  s.render.sampler = montecl::Sampler::Sobol;
+  std::vector<double> means;
+  for (std::uint32_t seed = 0; seed < 16; ++seed) {
+    s.render.seed = seed;
+    means.push_back(imageEstimate(renderScene(s)).mean);
+  }
+  ImageEstimate e = acrossRenders(means);
+  INFO("mean " << e.mean << " +- " << e.standardError);
+  CHECK(e.standardError > 0.0);
+  CHECK(e.standardError < 0.01);  // the test can see a 4% bias
+  CHECK(std::fabs(e.mean - 1.0) < 4.0 * e.standardError);
+}
+
 TEST_CASE("AO beside an infinite wall is 1/2 for both samplings, and they agree per pixel" * doctest::test_suite("opencl")) {
   Scene s = wallScene(24, 256);
   s.render.aoSampling = montecl::AoSampling::Uniform;

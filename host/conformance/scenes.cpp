@@ -89,6 +89,11 @@ Scene withAo(Scene s, AoSampling sampling) {
   return s;
 }
 
+Scene withSobol(Scene s) {
+  s.render.sampler = Sampler::Sobol;
+  return s;
+}
+
 Scene withDirect(Scene s, DirectSampling strategy, int lightSamples) {
   s.render.integrator = Integrator::Direct;
   s.render.directSampling = strategy;
@@ -165,6 +170,12 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   cases.push_back({"glossy-environment/direct-light", withDirect(glossy, DirectSampling::Light, 1)});
   cases.push_back({"glossy-environment/direct-mis", withDirect(glossy, DirectSampling::Mis, 2)});
   cases.push_back({"glossy-environment/path", withPath(glossy, 2)});
+  // The Sobol sampler: its lane form and the host's give the same bits (light samples 2: a coupled
+  // and an uncoupled set; the thin lens: its own set).
+  cases.push_back({"polygon-light/ao-uniform-sobol", withSobol(withAo(light, AoSampling::Uniform))});
+  cases.push_back({"polygon-light/direct-mis-sobol", withSobol(withDirect(light, DirectSampling::Mis, 2))});
+  cases.push_back({"glossy-environment/path-sobol", withSobol(withPath(glossy, 2))});
+  cases.push_back({"polygon-light/path-depth-3-thin-lens-sobol", withSobol(lens)});
 
   const std::string path = o.cornellPath.empty() ? defaultCornellPath() : o.cornellPath;
   if (!std::ifstream(path)) {
@@ -180,6 +191,8 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   cases.push_back({"cornell-box/direct-mis", withDirect(cornell, DirectSampling::Mis, 1)});
   cases.push_back({"cornell-box/ao-cosine", withAo(cornell, AoSampling::Cosine)});
   cases.push_back({"cornell-box/path", withPath(cornell, 1)});
+  cases.push_back({"cornell-box/direct-mis-sobol", withSobol(withDirect(cornell, DirectSampling::Mis, 1))});
+  cases.push_back({"cornell-box/path-sobol", withSobol(withPath(cornell, 1))});
   return cases;
 }
 

@@ -39,6 +39,7 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
   f.envHeight = extras.envHeight;
   f.envRotateY = extras.envRotateY;
   f.textureCount = extras.textureCount;
+  f.sampler = settings.sampler == Sampler::Sobol ? MCL_SAMPLER_SOBOL : MCL_SAMPLER_INDEPENDENT;
   return f;
 }
 

@@ -20,4 +20,9 @@ const ChoiceNames<DirectSampling>& directSamplingNames() {
   return names;
 }
 
+const ChoiceNames<Sampler>& samplerNames() {
+  static const ChoiceNames<Sampler> names{{"independent", Sampler::Independent}, {"sobol", Sampler::Sobol}};
+  return names;
+}
+
 }  // namespace montecl

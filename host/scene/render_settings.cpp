@@ -104,6 +104,11 @@ std::vector<RenderSetting> makeTable() {
           &RenderSettings::maxDepth, path),
       row("rr_depth", "--rr-depth", "Path: Russian roulette from this path depth on",
           integerRule(1, intMax, "a positive integer"), &RenderSettings::rrDepth, path),
+      choiceRow("sampler", "--sampler",
+                "Where the uniform numbers come from: independent (a hash per sample and dimension) or "
+                "sobol (Owen-scrambled Sobol points, stratified; var.* and error figures then overstate the "
+                "error of the mean)",
+                samplerNames(), &RenderSettings::sampler),
       row("background", "", "Radiance of camera rays that hit nothing (without an environment)", colourRule(),
           &RenderSettings::background),
   };

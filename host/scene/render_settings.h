@@ -34,6 +34,7 @@ struct RenderSettings {
   int lightSamples = 1;                // light samples per shading point (integrators "direct", "path")
   int maxDepth = -1;  // integrator "path", Mitsuba's convention: -1 unlimited, 1 emitters seen, 2 direct, ...
   int rrDepth = 5;    // integrator "path": Russian roulette from this path depth on (>= 1)
+  Sampler sampler = Sampler::Independent;  // where the uniform numbers come from (shared/sampler.h)
 };
 
 // A setting's value: an integer, a number, a choice's name or a colour.

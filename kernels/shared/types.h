@@ -11,6 +11,9 @@
 #define MCL_DIRECT_LIGHT 0u
 #define MCL_DIRECT_BRDF 1u
 #define MCL_DIRECT_MIS 2u
+// FrameParams::sampler (shared/sampler.h): where the stages' uniform numbers come from.
+#define MCL_SAMPLER_INDEPENDENT 0u  // pcg4d hash per (seed, pixel, sample, group): i.i.d.
+#define MCL_SAMPLER_SOBOL 1u        // Owen-scrambled Sobol, one 4D set per group (shared/sobol.h)
 
 // Flattened BVH node (32 bytes). Interior: triCount == 0 and leftFirst is the left child; the right
 // child is leftFirst + 1. Leaf: triCount > 0 triangles starting at leftFirst.
@@ -125,6 +128,8 @@ typedef struct MCL_ALIGN16 {
   uint envWidth, envHeight;  // environment map size, 0 x 0 for a constant environment
   float envRotateY;          // environment rotation about +y, radians
   uint textureCount;         // entries of the texture table
+  uint sampler;              // MCL_SAMPLER_INDEPENDENT | MCL_SAMPLER_SOBOL
+  uint pad0, pad1, pad2;
 } FrameParams;
 
 // One emitting triangle. It is picked with probability area * luminance(Le) / emitterPower;
@@ -173,9 +178,10 @@ static_assert(sizeof(Material) == 64, "Material layout");
 static_assert(sizeof(Ray) == 32, "Ray layout");
 static_assert(sizeof(Hit) == 16, "Hit layout");
 static_assert(sizeof(ShadowWork) == 48, "ShadowWork layout");
-static_assert(sizeof(FrameParams) == 176, "FrameParams layout");
+static_assert(sizeof(FrameParams) == 192, "FrameParams layout");
 static_assert(sizeof(Emitter) == 16, "Emitter layout");
 static_assert(sizeof(TextureDesc) == 16, "TextureDesc layout");
 static_assert(sizeof(TextureLevel) == 16, "TextureLevel layout");
 static_assert(offsetof(FrameParams, width) == 80, "FrameParams layout");
+static_assert(offsetof(FrameParams, sampler) == 176, "FrameParams layout");
 #endif

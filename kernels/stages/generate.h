@@ -8,11 +8,11 @@ MCL_INLINE void stage_generate(const generate_args* a, uint i) {
   MCL_CONSTANT const FrameParams* f = a->frame;
   uint pixel = item_pixel(f, a->active, a->waveStart, i);
   uint sample = item_sample(f, a->waveStart, i);
-  float4 u = rng_uniform4(f->seed, pixel, sample, MCL_DIM_CAMERA);
+  float4 u = sample_uniform4(f, pixel, sample, MCL_DIM_CAMERA);
   float px = (float)(pixel % f->width) + u.x;
   float py = (float)(pixel / f->width) + u.y;
   if (f->lensRadius > 0.0f) {
-    float4 l = rng_uniform4(f->seed, pixel, sample, MCL_DIM_LENS);
+    float4 l = sample_uniform4(f, pixel, sample, MCL_DIM_LENS);
     a->rays[i] = camera_ray_lens(f, px, py, l.x, l.y);
   } else {
     a->rays[i] = camera_ray(f, px, py);

@@ -14,7 +14,7 @@ MCL_INLINE void stage_generate_lanes(const generate_args* a, uint first) {
   }
   vuint pixel, sample;
   v_item_pixel_sample(f, a->active, a->waveStart, first, &pixel, &sample);
-  vfloat4 u = v_rng_uniform4(f->seed, pixel, sample, MCL_DIM_CAMERA);
+  vfloat4 u = v_sample_uniform4(f, pixel, sample, MCL_DIM_CAMERA);
   vuint row, column;
   v_divmod(pixel, f->width, &row, &column);
   vfloat px = v_cvt_f_u(column) + u.x;

@@ -14,7 +14,7 @@ MCL_INLINE void stage_shade_ao(const shade_ao_args* a, uint i) {
   a->radiance[i] = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
   float3 dir = xyz(a->rays[i].dir);
   SurfaceFrame sf = surface_frame(a->tris, a->normals, a->shading, h, dir);
-  float4 u = rng_uniform4(f->seed, item_pixel(f, a->active, a->waveStart, i),
+  float4 u = sample_uniform4(f, item_pixel(f, a->active, a->waveStart, i),
                           item_sample(f, a->waveStart, i), MCL_DIM_AO);
   float3 dirLocal;
   float weight;

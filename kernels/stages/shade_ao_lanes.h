@@ -43,7 +43,7 @@ MCL_INLINE void stage_shade_ao_lanes(const shade_ao_args* a, uint first) {
     vfloat3 ng = v_orient_facing(v3_make(nx, ny, nz), dir);
     vuint pixel, sample;
     v_item_pixel_sample(f, a->active, a->waveStart, first, &pixel, &sample);
-    vfloat4 u = v_rng_uniform4(f->seed, pixel, sample, MCL_DIM_AO);
+    vfloat4 u = v_sample_uniform4(f, pixel, sample, MCL_DIM_AO);
     vfloat3 dirLocal;
     vfloat weight;
     if (f->aoSampling == MCL_AO_COSINE) {

@@ -37,7 +37,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   bool useBrdf = f->directSampling != MCL_DIRECT_LIGHT;
 
   for (uint k = 0; useLight && k < f->lightSamples; ++k) {
-    float4 u = rng_uniform4(f->seed, pixel, sample, MCL_DIM_LIGHT + k);
+    float4 u = sample_uniform4(f, pixel, sample, MCL_DIM_LIGHT + k);
     LightSample ls = sample_direct_light(f, lights, origin, u);
     float cosSurf = frame_cosine(sf, ls.wi);  // 0 below the geometric surface
     if (!(ls.pdf > 0.0f && cosSurf > 0.0f)) continue;
@@ -46,7 +46,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
     push_shadow_query(a->queue, a->queueCount, origin, ls.wi, ls.tmax, c, i * f->shadowSlots + k);
   }
   if (useBrdf) {
-    float4 u = rng_uniform4(f->seed, pixel, sample, MCL_DIM_BRDF);
+    float4 u = sample_uniform4(f, pixel, sample, MCL_DIM_BRDF);
     BsdfDirection d = bsdf_sample_direction(bsdf, sf, wo, u.x, u.y, u.z);  // weighed in shade_direct_hit
     if (d.traced) {  // else absorbed: no BRDF ray
       bounce.origin = with_w(origin, 0.0f);

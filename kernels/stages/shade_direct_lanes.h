@@ -80,7 +80,7 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
     const int useBrdf = f->directSampling != MCL_DIRECT_LIGHT;
     vuint slot0 = (first + v_lane_index()) * slots;
     for (uint k = 0; useLight && k < f->lightSamples; ++k) {
-      vfloat4 u = v_rng_uniform4(f->seed, pixel, sample, MCL_DIM_LIGHT + k);
+      vfloat4 u = v_sample_uniform4(f, pixel, sample, MCL_DIM_LIGHT + k);
       // sample_direct_light without an environment (pEnv = 0): an emitter by power, a point on it.
       VEmitterSample ls = v_sample_emitter(f, a->emitters, a->tris, a->normals, a->materials, u.x, u.y, u.z, origin);
       vfloat3 wi = ls.wi, lle = ls.le;
@@ -105,7 +105,7 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
       v_push_shadow_queries(a->queue, a->queueCount, push, origin, wi, tmax, contrib, slot0 + k);
     }
     if (useBrdf) {  // Lambertian: the cosine lobe around ng
-      vfloat4 u = v_rng_uniform4(f->seed, pixel, sample, MCL_DIM_BRDF);
+      vfloat4 u = v_sample_uniform4(f, pixel, sample, MCL_DIM_BRDF);
       vfloat3 wi = v_to_world(v_sample_cosine_hemisphere(u.x, u.y), ng);
       bo = v3_select(packet, origin, bo);
       bd = v3_select(packet, wi, bd);

@@ -67,7 +67,7 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
   float3 origin = offset_ray_origin(sf.p, sf.ng, f->offsetScale);
   uint pixel = item_pixel(f, a->active, a->waveStart, id), sample = item_sample(f, a->waveStart, id);
   for (uint s = 0; (f->emitterCount > 0 || env_present(f)) && s < f->lightSamples; ++s) {
-    float4 u = rng_uniform4(f->seed, pixel, sample, path_dim(bounce, 1u + s));
+    float4 u = sample_uniform4(f, pixel, sample, path_dim(bounce, 1u + s));
     LightSample ls = sample_direct_light(f, lights, origin, u);
     if (!(ls.pdf > 0.0f)) continue;
     float3 fcos = bsdf_eval(bsdf, sf, wo, ls.wi);
@@ -77,7 +77,7 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
     push_shadow_query(a->queue, a->queueCount, origin, ls.wi, ls.tmax, c, id * f->shadowSlots + s);
   }
 
-  float4 u = rng_uniform4(f->seed, pixel, sample, path_dim(bounce, 0u));  // z: roulette, w: lobe
+  float4 u = sample_uniform4(f, pixel, sample, path_dim(bounce, 0u));  // z: roulette, w: lobe
   BsdfSample bs = bsdf_sample(bsdf, sf, wo, u.x, u.y, u.w);
   float3 wi = bs.wi;
   float pdf = bs.pdf;

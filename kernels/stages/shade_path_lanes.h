@@ -135,7 +135,7 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
     const float share = area_light_probability(f);  // sample_direct_light: the area kind's share
     vuint slot0 = id * slots;
     for (uint s = 0; s < f->lightSamples; ++s) {
-      vfloat4 u = v_rng_uniform4(f->seed, pixel, sample, path_dim(bounce, 1u + s));
+      vfloat4 u = v_sample_uniform4(f, pixel, sample, path_dim(bounce, 1u + s));
       VEmitterSample ls = v_sample_emitter(f, a->emitters, a->tris, a->normals, a->materials, (u.x - 0.0f) / share,
                                            u.y, u.z, origin);
       vfloat3 wi = ls.wi, lle = ls.le;
@@ -159,7 +159,7 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
     }
 
     // bsdf_sample (Lambert about ng): the cosine lobe; weight Kd where the pdf is positive.
-    vfloat4 u = v_rng_uniform4(f->seed, pixel, sample, path_dim(bounce, 0u));  // z: roulette, w: lobe
+    vfloat4 u = v_sample_uniform4(f, pixel, sample, path_dim(bounce, 0u));  // z: roulette, w: lobe
     vfloat3 dl = v_sample_cosine_hemisphere(u.x, u.y);
     vfloat3 wi = v_to_world(dl, ng);
     vfloat pdf = fmax(dl.z, v_f(0.0f)) * MCL_INV_PI;

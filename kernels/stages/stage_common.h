@@ -8,7 +8,7 @@
 #pragma once
 #include "../shared/camera.h"
 #include "../shared/lights.h"
-#include "../shared/rng.h"
+#include "../shared/sampler.h"
 #include "../shared/sampling.h"
 #include "../shared/shading.h"
 #include "../shared/stage_table.h"

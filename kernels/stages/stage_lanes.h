@@ -36,13 +36,16 @@ MCL_INLINE void v_item_pixel_sample(MCL_CONSTANT const FrameParams* f, MCL_GLOBA
   *pixel = r0 + MCL_LANES <= ac ? v_load_uints(active + r0) : v_gather_uint(active, r);
 }
 
-// --- RNG (shared/rng.h) --------------------------------------------------------------------------
+// --- RNG (shared/rng.h, shared/sampler.h) ----------------------------------------------------
 typedef struct {
   vfloat x, y, z, w;
 } vfloat4;
 
-MCL_INLINE vfloat4 v_rng_uniform4(uint seed, vuint pixel, vuint sample, uint group) {
-  vuint x = pixel, y = sample, z = v_u(mcl_mix32(group)), w = v_u(seed);
+typedef struct {
+  vuint x, y, z, w;
+} vRngOut;
+
+MCL_INLINE vRngOut v_pcg4d(vuint x, vuint y, vuint z, vuint w) {
   x = x * 1664525u + 1013904223u;
   y = y * 1664525u + 1013904223u;
   z = z * 1664525u + 1013904223u;
@@ -50,12 +53,108 @@ MCL_INLINE vfloat4 v_rng_uniform4(uint seed, vuint pixel, vuint sample, uint gro
   x += y * w; y += z * x; z += x * y; w += y * z;
   x ^= x >> 16; y ^= y >> 16; z ^= z >> 16; w ^= w >> 16;
   x += y * w; y += z * x; z += x * y; w += y * z;
+  vRngOut r;
+  r.x = x; r.y = y; r.z = z; r.w = w;
+  return r;
+}
+
+MCL_INLINE vfloat v_u32_to_unit(vuint u) { return v_cvt_f_u(u >> 8) * (1.0f / 16777216.0f); }
+
+MCL_INLINE vfloat4 v_rng_uniform4(uint seed, vuint pixel, vuint sample, uint group) {
+  vRngOut r = v_pcg4d(pixel, sample, v_u(mcl_mix32(group)), v_u(seed));
   vfloat4 u;
-  u.x = v_cvt_f_u(x >> 8) * (1.0f / 16777216.0f);
-  u.y = v_cvt_f_u(y >> 8) * (1.0f / 16777216.0f);
-  u.z = v_cvt_f_u(z >> 8) * (1.0f / 16777216.0f);
-  u.w = v_cvt_f_u(w >> 8) * (1.0f / 16777216.0f);
+  u.x = v_u32_to_unit(r.x);
+  u.y = v_u32_to_unit(r.y);
+  u.z = v_u32_to_unit(r.z);
+  u.w = v_u32_to_unit(r.w);
   return u;
+}
+
+// --- Sobol (shared/sobol.h, shared/sampler.h), the same uint operations per lane --------------
+MCL_INLINE vuint v_mix32(vuint x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+MCL_INLINE vuint v_reverse_bits(vuint x) {
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+  return (x >> 16) | (x << 16);
+}
+
+MCL_INLINE vuint v_owen_scramble(vuint x, vuint seed) {
+  x = v_reverse_bits(x);
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return v_reverse_bits(x);
+}
+
+MCL_INLINE vRngOut v_sobol4(vuint i) {
+  uint d1 = 0x80000000u;  // the direction numbers are the same in every lane
+  uint p2 = 0x80000000u, q2 = 0xc0000000u;
+  uint p3 = 0x80000000u, q3 = 0xc0000000u, r3 = 0x20000000u;
+  vuint x1 = v_u(0u), x2 = v_u(0u), x3 = v_u(0u);
+  for (uint k = 0; k < 32u; ++k) {
+    vuint bit = v_u(0u) - ((i >> k) & 1u);
+    x1 ^= bit & d1;
+    x2 ^= bit & p2;
+    x3 ^= bit & p3;
+    d1 ^= d1 >> 1;
+    uint n2 = q2 ^ p2 ^ (p2 >> 2);
+    p2 = q2;
+    q2 = n2;
+    uint n3 = q3 ^ p3 ^ (p3 >> 3);
+    p3 = q3;
+    q3 = r3;
+    r3 = n3;
+  }
+  vRngOut r;
+  r.x = v_reverse_bits(i);
+  r.y = x1;
+  r.z = x2;
+  r.w = x3;
+  return r;
+}
+
+MCL_INLINE vRngOut v_sobol_owen4_bits(uint seed, vuint pixel, vuint sample, uint set) {
+  vRngOut h = v_pcg4d(pixel, v_u(mcl_mix32(set)), v_u(seed), v_u(0x50b01u));
+  vRngOut p = v_sobol4(v_owen_scramble(sample, h.x));
+  p.x = v_owen_scramble(p.x, h.y);
+  p.y = v_owen_scramble(p.y, h.z);
+  p.z = v_owen_scramble(p.z, h.w);
+  p.w = v_owen_scramble(p.w, v_mix32(h.x ^ 0x9e3779b9u));
+  return p;
+}
+
+MCL_INLINE vfloat4 v_sobol_uniform4(uint seed, vuint pixel, vuint sample, uint group) {
+  vRngOut p = v_sobol_owen4_bits(seed, pixel, sample, group);
+  if (sampler_coupled_to_camera(group)) {
+    vRngOut c = v_sobol_owen4_bits(seed, pixel, sample, MCL_DIM_CAMERA);
+    p.w = p.y;
+    p.y = c.z;
+    p.z = c.w;
+  }
+  vfloat4 u;
+  u.x = v_u32_to_unit(p.x);
+  u.y = v_u32_to_unit(p.y);
+  u.z = v_u32_to_unit(p.z);
+  u.w = v_u32_to_unit(p.w);
+  return u;
+}
+
+// sample_uniform4 (shared/sampler.h) per lane.
+MCL_INLINE vfloat4 v_sample_uniform4(MCL_CONSTANT const FrameParams* f, vuint pixel, vuint sample, uint group) {
+  if (f->sampler == MCL_SAMPLER_SOBOL) return v_sobol_uniform4(f->seed, pixel, sample, group);
+  return v_rng_uniform4(f->seed, pixel, sample, group);
 }
 
 // --- trig.h, sampling.h ------------------------------------------------------------------------

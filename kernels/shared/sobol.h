@@ -1,0 +1,93 @@
+// sobol.h: Owen-scrambled Sobol points, a pure function of (seed, pixel, sample index, dimension
+// set). Each set is a 4D point: Sobol dimensions 0..3 of the Joe-Kuo direction numbers
+// (new-joe-kuo-6.21201; dimension 0 is the van der Corput bit reversal), every dimension
+// nested-uniform scrambled with its own seed, and the sample index itself nested-uniform scrambled
+// per (seed, pixel, set), so each pixel walks its own randomly placed, aligned block of the
+// sequence (Burley 2020, "Practical Hash-based Owen Scrambling"). Sets are decorrelated by hashing
+// (seed, pixel, set) into all five scramble seeds. uint arithmetic only: the same bits on every
+// device, and the lane form (kernels/stages/stage_lanes.h) repeats these operations per lane.
+#pragma once
+#include "rng.h"
+
+// Bit i to bit 31 - i.
+MCL_INLINE uint mcl_reverse_bits(uint x) {
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+  return (x >> 16) | (x << 16);
+}
+
+// Nested uniform (Owen) scramble of a 32-bit fixed-point value: bit k of the result (counted from
+// the most significant) is bit k flipped by a hash of the seed and the bits above it. On the
+// bit-reversed value that is a map whose bit k depends only on bits below k: adding a number and
+// x ^= x * even carry information upwards only (Burley's Laine-Karras style hash and constants).
+MCL_INLINE uint mcl_owen_scramble(uint x, uint seed) {
+  x = mcl_reverse_bits(x);
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return mcl_reverse_bits(x);
+}
+
+// Sobol dimensions 1..3 of index i as 32-bit fixed point. The direction numbers v_k (left-aligned,
+// k = 1, 2, ...) follow from each primitive polynomial's recurrence, so no table is needed:
+// dim 1 (x + 1, m = 1):                 v_k = v_{k-1} ^ (v_{k-1} >> 1)
+// dim 2 (x^2 + x + 1, m = 1, 3):        v_k = v_{k-1} ^ v_{k-2} ^ (v_{k-2} >> 2)
+// dim 3 (x^3 + x + 1, m = 1, 3, 1):     v_k = v_{k-2} ^ v_{k-3} ^ (v_{k-3} >> 3)
+// Every bit of i is visited (an Owen-scrambled index is anywhere in [0, 2^32)).
+MCL_INLINE RngOut mcl_sobol4(uint i) {
+  uint d1 = 0x80000000u;
+  uint p2 = 0x80000000u, q2 = 0xc0000000u;
+  uint p3 = 0x80000000u, q3 = 0xc0000000u, r3 = 0x20000000u;
+  uint x1 = 0u, x2 = 0u, x3 = 0u;
+  for (uint k = 0; k < 32u; ++k) {
+    uint bit = 0u - ((i >> k) & 1u);  // all ones where bit k of i is set
+    x1 ^= bit & d1;
+    x2 ^= bit & p2;
+    x3 ^= bit & p3;
+    d1 ^= d1 >> 1;
+    uint n2 = q2 ^ p2 ^ (p2 >> 2);
+    p2 = q2;
+    q2 = n2;
+    uint n3 = q3 ^ p3 ^ (p3 >> 3);
+    p3 = q3;
+    q3 = r3;
+    r3 = n3;
+  }
+  RngOut r;
+  r.x = mcl_reverse_bits(i);
+  r.y = x1;
+  r.z = x2;
+  r.w = x3;
+  return r;
+}
+
+// The five scramble seeds of (seed, pixel, set): x for the index, then one per dimension.
+typedef struct {
+  uint index, d0, d1, d2, d3;
+} SobolSeeds;
+
+MCL_INLINE SobolSeeds mcl_sobol_seeds(uint seed, uint pixel, uint set) {
+  RngOut h = pcg4d(pixel, mcl_mix32(set), seed, 0x50b01u);
+  SobolSeeds s;
+  s.index = h.x;
+  s.d0 = h.y;
+  s.d1 = h.z;
+  s.d2 = h.w;
+  s.d3 = mcl_mix32(h.x ^ 0x9e3779b9u);
+  return s;
+}
+
+// The 4D point `sample` of dimension set `set` of this pixel, 32-bit fixed point per dimension.
+MCL_INLINE RngOut sobol_owen4_bits(uint seed, uint pixel, uint sample, uint set) {
+  SobolSeeds s = mcl_sobol_seeds(seed, pixel, set);
+  RngOut p = mcl_sobol4(mcl_owen_scramble(sample, s.index));
+  p.x = mcl_owen_scramble(p.x, s.d0);
+  p.y = mcl_owen_scramble(p.y, s.d1);
+  p.z = mcl_owen_scramble(p.z, s.d2);
+  p.w = mcl_owen_scramble(p.w, s.d3);
+  return p;
+}
