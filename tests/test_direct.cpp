@@ -135,25 +135,26 @@ TEST_CASE("direct lighting matches the polygon form factor for light, brdf and m
 
 TEST_CASE("sobol: direct lighting matches the polygon form factor within 4 SE over 16 seeds (light, mis)" * doctest::test_suite("opencl")) {
   const std::vector<glm::vec3> tri = {{-0.3f, 0.7f, -0.4f}, {0.5f, 0.9f, -0.2f}, {0.1f, 0.8f, 0.6f}};  // front face down
-  for (const std::vector<glm::vec3>& poly : {square({0.2f, 1, 0.1f}, glm::vec3(0, -1, 0), 0.6f), tri}) {
+  // The square by light sampling, the triangle by MIS (each pair would take twice as long).
+  const std::pair<std::vector<glm::vec3>, const char*> cases[] = {
+      {square({0.2f, 1, 0.1f}, glm::vec3(0, -1, 0), 0.6f), "light"}, {tri, "mis"}};
+  for (const auto& [poly, strategy] : cases) {
     std::vector<glm::dvec3> dpoly;
     for (glm::vec3 v : poly) dpoly.push_back(glm::dvec3(v));
     const double F = formFactor(dpoly, glm::dvec3(0), glm::dvec3(0, 1, 0));
     Scene s = polygonLightScene(poly, 64);
     s.render.sampler = Sampler::Sobol;
-    for (const char* strategy : {"light", "mis"}) {
-      std::vector<double> means;
-      for (std::uint32_t seed = 0; seed < 16; ++seed) {
-        s.render.seed = seed;
-        means.push_back(imageEstimate(renderDirect(s, strategy), 1).mean);
-      }
-      const double expected = kAlbedo[1] * kLe[1] * F;
-      ImageEstimate e = acrossRenders(means);
-      INFO(strategy << ": expected " << expected << " (F = " << F << "), got " << e.mean << " +- " << e.standardError);
-      CHECK(e.standardError > 0.0);
-      CHECK(e.standardError < 0.01 * expected);
-      CHECK(std::fabs(e.mean - expected) < 4.0 * e.standardError + 1e-4 * expected);
+    std::vector<double> means;
+    for (std::uint32_t seed = 0; seed < 16; ++seed) {
+      s.render.seed = seed;
+      means.push_back(imageEstimate(renderDirect(s, strategy), 1).mean);
     }
+    const double expected = kAlbedo[1] * kLe[1] * F;
+    ImageEstimate e = acrossRenders(means);
+    INFO(strategy << ": expected " << expected << " (F = " << F << "), got " << e.mean << " +- " << e.standardError);
+    CHECK(e.standardError > 0.0);
+    CHECK(e.standardError < 0.01 * expected);
+    CHECK(std::fabs(e.mean - expected) < 4.0 * e.standardError + 1e-4 * expected);
   }
 }
 

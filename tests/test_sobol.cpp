@@ -184,7 +184,7 @@ TEST_CASE("sobol: pixels, seeds and sets get different scrambles; sets are uncor
   // are decorrelated by their seeds (a shared seed would give r = 1).
   const uint sets[] = {MCL_DIM_CAMERA, MCL_DIM_AO, MCL_DIM_LIGHT, MCL_DIM_LENS, MCL_DIM_PATH, MCL_DIM_PATH + 1u,
                        MCL_DIM_PATH + MCL_DIM_PATH_STRIDE};
-  const int n = 4096 * 16;
+  const int n = 2048 * 16;
   for (uint a : sets)
     for (uint b : sets) {
       if (a >= b) continue;
