@@ -2,7 +2,8 @@
 // table). On the default OpenCL device, the conformance set rendered with every packet width
 // W = 1, 4, 8, 16 is bit for bit the host backend's (film mean and M2, hi and lo parts); the sizes
 // leave a partial last packet in some waves (10 x 10 pixels: 100 items per sample). Adaptive
-// renders (active-pixel lists out of order) at W = 1, 4, 16 are byte for byte the host's. And the W rule.
+// renders (active-pixel lists out of order; independent and sobol samplers) at W = 1, 4, 16 are byte
+// for byte the host's. And the W rule.
 #include <doctest/doctest.h>
 
 #include <fstream>
@@ -85,11 +86,16 @@ TEST_CASE("packet stages: adaptive sampling (active lists out of order, wrapping
   const std::string scene = sharedScenes() + "/cornell-box/scene.json";
   MCL_SKIP_UNLESS(std::ifstream(scene).good(), "no shared Cornell box at " << scene);
   TempDir dir;
-  for (const char* integrator : {"ao", "direct"}) {
+  // (integrator, sampler): the Sobol points' lane form, with packets that wrap the active list.
+  const std::pair<const char*, const char*> configs[] = {
+      {"ao", "independent"}, {"direct", "independent"}, {"direct", "sobol"}};
+  for (const auto& [integrator, sampler] : configs) {
     CAPTURE(integrator);
+    CAPTURE(sampler);
     const std::vector<std::string> common = {"render", scene, "-q", "--width", "37", "--height", "23",
-                                             "--integrator", integrator, "--target-error", "0.05", "--min-spp",
-                                             "4", "--max-spp", "32", "--overwrite"};
+                                             "--integrator", integrator, "--sampler", sampler,
+                                             "--target-error", "0.05", "--min-spp", "4", "--max-spp", "32",
+                                             "--overwrite"};
     std::vector<std::string> host = common;
     host.insert(host.end(), {"--device", "host", "-o", dir.file("host.pfm")});
     CliResult h = runMontecl(host);
