@@ -151,7 +151,7 @@ TEST_CASE("sobol: direct lighting matches the polygon form factor within 4 SE ov
     }
     const double expected = kAlbedo[1] * kLe[1] * F;
     ImageEstimate e = acrossRenders(means);
-    INFO(strategy << ": expected " << expected << " (F = " << F << "), got " << e.mean << " +- " << e.standardError);
+    INFO(std::string(strategy) << ": expected " << expected << " (F = " << F << "), got " << e.mean << " +- " << e.standardError);
     CHECK(e.standardError > 0.0);
     CHECK(e.standardError < 0.01 * expected);
     CHECK(std::fabs(e.mean - expected) < 4.0 * e.standardError + 1e-4 * expected);
