@@ -20,4 +20,10 @@ const ChoiceNames<DirectSampling>& directSamplingNames() {
   return names;
 }
 
+const ChoiceNames<DenoiseQuality>& denoiseQualityNames() {
+  static const ChoiceNames<DenoiseQuality> names{
+      {"fast", DenoiseQuality::Fast}, {"balanced", DenoiseQuality::Balanced}, {"high", DenoiseQuality::High}};
+  return names;
+}
+
 }  // namespace montecl
