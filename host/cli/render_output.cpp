@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "image/oidn_api.h"
 #include "image/oidn_denoiser.h"
 #include "render/checkpoint.h"
 #include "util/atomic_file.h"
@@ -114,6 +115,19 @@ LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs
   return img;
 }
 
+namespace {
+
+int oidnQuality(DenoiseQuality q) {
+  switch (q) {
+    case DenoiseQuality::Fast: return oidn::kQualityFast;
+    case DenoiseQuality::Balanced: return oidn::kQualityBalanced;
+    case DenoiseQuality::High: return oidn::kQualityHigh;
+  }
+  return oidn::kQualityHigh;
+}
+
+}  // namespace
+
 // The guides are the film's own AOV averages (as noisy as the color: no cleanAux), so the
 // denoiser sees the same samples the estimate does.
 std::vector<float> denoiseFilm(const Film& film, DenoiseQuality quality, bool quiet, double& seconds) {
@@ -132,7 +146,7 @@ std::vector<float> denoiseFilm(const Film& film, DenoiseQuality quality, bool qu
     std::cerr << "denoising " << film.width << "x" << film.height << " (Open Image Denoise, RT filter, quality "
               << choiceName(denoiseQualityNames(), quality) << ")\n";
   const auto start = std::chrono::steady_clock::now();
-  std::vector<float> out = oidnDenoise(film.width, film.height, film.meanRgb(), albedo, normal, quality);
+  std::vector<float> out = oidnDenoise(film.width, film.height, film.meanRgb(), albedo, normal, oidnQuality(quality));
   seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

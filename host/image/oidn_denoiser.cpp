@@ -8,7 +8,6 @@
 #include <filesystem>
 
 #include "image/oidn_api.h"
-#include "scene/render_choices.h"
 #include "util/errors.h"
 
 namespace montecl {
@@ -81,15 +80,6 @@ const Loaded& loaded() {
   return l;
 }
 
-int qualityValue(DenoiseQuality q) {
-  switch (q) {
-    case DenoiseQuality::Fast: return oidn::kQualityFast;
-    case DenoiseQuality::Balanced: return oidn::kQualityBalanced;
-    case DenoiseQuality::High: return oidn::kQualityHigh;
-  }
-  return oidn::kQualityHigh;
-}
-
 }  // namespace
 
 std::string oidnLibraryPath() {
@@ -106,7 +96,7 @@ std::string oidnProblem() { return loaded().problem; }
 
 std::vector<float> oidnDenoise(int width, int height, const std::vector<float>& color,
                                const std::vector<float>& albedo, const std::vector<float>& normal,
-                               DenoiseQuality quality) {
+                               int quality) {
   const Loaded& l = loaded();
   if (!l.problem.empty()) throw RuntimeError(l.problem);
   const oidn::Api& a = l.api;
@@ -133,7 +123,7 @@ std::vector<float> oidnDenoise(int width, int height, const std::vector<float>& 
       a.setSharedFilterImage(f, "normal", nrm.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
       a.setSharedFilterImage(f, "output", out.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
       a.setFilterBool(f, "hdr", true);  // radiance, not display values
-      a.setFilterInt(f, "quality", qualityValue(quality));
+      a.setFilterInt(f, "quality", quality);
       a.commitFilter(f);
       check();
       if (error.empty()) a.executeFilter(f);

@@ -8,8 +8,6 @@
 
 namespace montecl {
 
-enum class DenoiseQuality : unsigned;
-
 // The library file montecl would load ("" when no candidate exists).
 std::string oidnLibraryPath();
 // Loads the library (once per process) and resolves its symbols. Returns "" when it is usable, else
@@ -18,10 +16,9 @@ std::string oidnProblem();
 
 // Denoises `color` (width * height RGB floats, linear HDR radiance, row 0 at the top) with the
 // guides albedo (RGB in [0, 1]) and normal (XYZ in [-1, 1]), both as noisy as the color (no
-// cleanAux). Returns the denoised RGB. Throws RuntimeError when the library is missing or reports
-// an error.
+// cleanAux), in the filter's quality mode `quality` (oidn::kQuality* of image/oidn_api.h).
+// Returns the denoised RGB. Throws RuntimeError when the library is missing or reports an error.
 std::vector<float> oidnDenoise(int width, int height, const std::vector<float>& color,
-                               const std::vector<float>& albedo, const std::vector<float>& normal,
-                               DenoiseQuality quality);
+                               const std::vector<float>& albedo, const std::vector<float>& normal, int quality);
 
 }  // namespace montecl
