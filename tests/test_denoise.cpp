@@ -125,3 +125,44 @@ TEST_CASE("denoise: a 16-spp Cornell box denoised is closer to a 2048-spp refere
                                        << noisyError / denoisedError);
   CHECK(noisyError > 1.25 * denoisedError);
 }
+
+TEST_CASE("denoise: render.denoise in the scene file is a boolean; anything else is one line, exit 2" *
+          doctest::test_suite("cli")) {
+  TempDir dir;
+  const std::string obj = std::string(MONTECL_SOURCE_DIR) + "/scenes/demo/demo.obj";
+  auto sceneWith = [&](const std::string& value) {
+    return "{\"camera\": {\"position\": [0, 1.6, 5], \"target\": [0, 0.5, 0], \"up\": [0, 1, 0], \"fov_y\": 40, "
+           "\"width\": 8, \"height\": 8}, \"meshes\": [{\"file\": \"" + obj + "\"}], \"render\": {\"spp\": 1, "
+           "\"denoise\": " + value + "}}";
+  };
+  dir.write("bad.json", sceneWith("1"));
+  CliResult bad = runMontecl({"render", dir.file("bad.json"), "-o", dir.file("bad.png"), "-q"});
+  CHECK(bad.exitCode == 2);
+  CHECK(bad.err.find("render.denoise") != std::string::npos);
+  CHECK(bad.err.find("true or false") != std::string::npos);
+  // true asks for the denoiser: with the library missing that is the set-up line, exit 2.
+  dir.write("on.json", sceneWith("true"));
+  CliResult on = runMontecl({"render", dir.file("on.json"), "-o", dir.file("on.png"), "-q"},
+                            {"MONTECL_OIDN_LIBRARY=" + dir.file("missing.so")});
+  CHECK(on.exitCode == 2);
+  CHECK(on.err.find("scripts/setup.sh --oidn") != std::string::npos);
+  CHECK(!std::ifstream(dir.file("bad.png")).good());
+  CHECK(!std::ifstream(dir.file("on.png")).good());
+}
+
+TEST_CASE("denoise: merge combines a denoised and a plain part and leaves the denoised layers out" *
+          doctest::test_suite("cli")) {
+  MCL_SKIP_UNLESS_OIDN();
+  TempDir dir;
+  std::vector<std::string> a = demoRenderArgs(dir.file("a.exr"), 2, 0), b = demoRenderArgs(dir.file("b.exr"), 2, 2);
+  a.push_back("--denoise");
+  REQUIRE(runMontecl(a).exitCode == 0);
+  REQUIRE(runMontecl(b).exitCode == 0);
+  CliResult m = runMontecl({"merge", dir.file("a.exr"), dir.file("b.exr"), "-o", dir.file("m.exr")});
+  INFO(m.err);
+  REQUIRE(m.exitCode == 0);  // --denoise is not in the provenance: the parts are one estimate
+  CHECK(m.err.find("does not denoise") != std::string::npos);
+  const LayeredImage merged = readLayeredImage(dir.file("m.exr")), plain = readLayeredImage(dir.file("b.exr"));
+  CHECK(merged.channels.size() == plain.channels.size());
+  for (const std::string& ch : merged.channels) CHECK(ch.rfind("denoised.", 0) != 0);
+}
