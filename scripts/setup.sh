@@ -23,14 +23,20 @@ packages=(
 # intel-cmplr-lib-rt, about 270 MB to download, 0.5 GB installed) into a cached venv,
 # $MONTECL_INTEL_OPENCL_VENV or ~/.cache/montecl/intel-opencl-venv (skipped when its libintelocl.so
 # is there); scripts/with_intel_opencl.sh runs a command with it visible beside PoCL.
+# Only `montecl render --denoise` needs Open Image Denoise: `setup.sh --oidn` installs PyPI's pyoidn
+# 2.5.1 wheel (it bundles OIDN 2.5.1's shared libraries with TBB; about 270 MB installed) into a
+# cached venv, $MONTECL_OIDN_VENV or ~/.cache/montecl/oidn-venv (skipped when its
+# libOpenImageDenoise.so.2 is there); montecl dlopens the library from there.
 mitsuba=0
 intel_opencl=0
+oidn=0
 for arg in "$@"; do
   case "$arg" in
     --plots) packages+=(python3-matplotlib) ;;
     --fuzz) packages+=(clang-14 libclang-rt-14-dev) ;;
     --mitsuba) packages+=(python3-venv libllvm19); mitsuba=1 ;;
     --intel-opencl) packages+=(python3-venv); intel_opencl=1 ;;
+    --oidn) packages+=(python3-venv); oidn=1 ;;
   esac
 done
 
@@ -67,6 +73,18 @@ intel_opencl_venv() {
   done
 }
 
+oidn_venv() {
+  [ "$oidn" = 1 ] || return 0
+  local venv=${MONTECL_OIDN_VENV:-$HOME/.cache/montecl/oidn-venv}
+  if compgen -G "$venv/lib/python*/site-packages/pyoidn/oidn/lib/libOpenImageDenoise.so.2" >/dev/null; then
+    return 0
+  fi
+  echo "setup: installing Open Image Denoise 2.5.1 (PyPI pyoidn) into $venv" >&2
+  mkdir -p "$(dirname "$venv")"
+  python3 -m venv "$venv"
+  "$venv/bin/pip" install -q --disable-pip-version-check pyoidn==2.5.1.0 >&2
+}
+
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
@@ -77,6 +95,7 @@ done
 if [ ${#missing[@]} -eq 0 ]; then
   mitsuba_venv
   intel_opencl_venv
+  oidn_venv
   exit 0
 fi
 
@@ -88,3 +107,4 @@ export DEBIAN_FRONTEND=noninteractive
 "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
 mitsuba_venv
 intel_opencl_venv
+oidn_venv

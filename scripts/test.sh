@@ -6,7 +6,8 @@
 # OpenCL runtime (setup.sh --intel-opencl: a cached venv, about 270 MB from PyPI once), so the
 # conformance tests run on two OpenCL implementations plus Oclgrind; where that install fails (no
 # PyPI, not x86-64) its test skips with the reason. MONTECL_NO_INTEL_OPENCL=1 does not install it.
-# Mitsuba 3 likewise (setup.sh --mitsuba), so the comparisons with an independent renderer run.
+# Mitsuba 3 likewise (setup.sh --mitsuba), so the comparisons with an independent renderer run, and
+# Open Image Denoise (setup.sh --oidn), so the --denoise tests run (MONTECL_NO_OIDN=1: not installed).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -19,6 +20,12 @@ fi
 if [ "${MONTECL_NO_MITSUBA:-0}" != 1 ]; then
   bash scripts/setup.sh --mitsuba ||
     echo "test: Mitsuba 3 could not be installed; the vs_mitsuba tests will skip" >&2
+fi
+# Open Image Denoise (PyPI pyoidn, a cached venv) for `render --denoise`; where the install fails the
+# denoise tests skip with the reason.
+if [ "${MONTECL_NO_OIDN:-0}" != 1 ]; then
+  bash scripts/setup.sh --oidn ||
+    echo "test: Open Image Denoise could not be installed; the denoise tests will skip" >&2
 fi
 bash scripts/build.sh
 ctest --test-dir build --output-on-failure -j"$(nproc)"

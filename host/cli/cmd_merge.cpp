@@ -3,6 +3,7 @@
 // their per-pixel sample counts, with the variances combined exactly, and writes the result
 // atomically. Inputs must carry a provenance (image/provenance.h) saying they show the same scene
 // with the same settings and disjoint samples (--force skips the check); the output carries the union. Bad inputs (unreadable, wrong size, missing channels) are InputErrors naming the file.
+// Merge does not denoise: the inputs' denoised.R/G/B layers (render --denoise) are dropped.
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
@@ -18,6 +19,19 @@
 namespace montecl {
 namespace {
 
+// Removes the denoised.* planes: a mean of denoised parts is not the denoised merge, so merge
+// combines only the estimates. Returns whether any was removed.
+bool dropDenoised(LayeredImage& img) {
+  bool dropped = false;
+  for (std::size_t c = img.channels.size(); c-- > 0;)
+    if (img.channels[c].rfind("denoised.", 0) == 0) {
+      img.channels.erase(img.channels.begin() + std::ptrdiff_t(c));
+      img.planes.erase(img.planes.begin() + std::ptrdiff_t(c));
+      dropped = true;
+    }
+  return dropped;
+}
+
 struct MergeArgs {
   std::vector<std::string> inputs;
   std::string output;
@@ -31,7 +45,13 @@ int runMerge(const MergeArgs& a) {
   if (ext != ".exr") throwInputError(a.output, "", "merge writes OpenEXR only (use .exr)");
   checkWritableTarget(a.output);
   std::vector<LayeredImage> images;
-  for (const std::string& path : a.inputs) images.push_back(readLayeredImage(path));
+  bool dropped = false;
+  for (const std::string& path : a.inputs) {
+    images.push_back(readLayeredImage(path));
+    dropped = dropDenoised(images.back()) || dropped;
+  }
+  if (dropped && !a.quiet)
+    std::cerr << "montecl: note: merge does not denoise: the inputs' denoised.R/G/B layers were left out\n";
   LayeredImage merged = mergeLayeredImages(images, a.inputs);  // sizes and channels first
   std::optional<Provenance> provenance = mergeProvenance(images, a.inputs, a.force);
   merged.attributes.clear();

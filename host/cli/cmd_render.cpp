@@ -25,6 +25,7 @@
 #include "cli/validators.h"
 #include "image/exr_layers.h"
 #include "image/image_io.h"
+#include "image/oidn_denoiser.h"
 #include "render/emitters.h"
 #include "render/integrators.h"
 #include "image/provenance.h"
@@ -150,6 +151,9 @@ int runRender(const RenderArgs& a) {
   checkOutputIsNoInput(output, scene);
   checkWritableTarget(output);
   checkJobFiles(a.job.checkpoint, a.job.resume, output, scene);
+  // The denoiser is loaded now, so a missing library is one line before any work, not after it.
+  if (scene.render.denoise)
+    if (const std::string problem = oidnProblem(); !problem.empty()) throw InputError(problem);
   // Sample indices are 32-bit: a range past 2^32 would wrap to sample 0 while the provenance says otherwise.
   const std::uint64_t sampleCount = a.targetError > 0.0 ? std::uint64_t(a.maxSpp) : std::uint64_t(scene.render.spp);
   if (std::uint64_t(a.firstSample) + sampleCount > (std::uint64_t(1) << 32))
@@ -206,7 +210,7 @@ int runRender(const RenderArgs& a) {
   options.maxSpp = a.maxSpp;
   options.timeLimit = a.timeLimit;
   options.interrupt = &gInterrupted;
-  options.aovs = !a.aovs.empty();
+  options.aovs = !a.aovs.empty() || scene.render.denoise;  // the denoiser's albedo and normal guides
   options.workGroupSize = a.workGroupSize;
   options.lanes = a.lanes;
   options.bvhLayout = layout;
@@ -241,20 +245,22 @@ int runRender(const RenderArgs& a) {
               << " rays with NaN/inf origin or direction were treated as misses\n";
   if (!job.writesImage()) return kExitOk;
   const bool interrupted = gInterrupted && stats.stoppedEarly;  // a signal after the last wave changes nothing
-  // The image as written: every EXR plane, or the mean for PNG/PFM; refused if a value overflowed.
+  // Only the final image is denoised (an MPI job's rank 0, after the merge of the ranks' films).
+  double denoiseSeconds = 0.0;
+  const std::vector<float> denoised =
+      scene.render.denoise ? denoiseFilm(film, scene.render.denoiseQuality, a.quiet, denoiseSeconds)
+                           : std::vector<float>();
+  // The image as written: every EXR plane (the noisy estimate exactly, plus denoised.R/G/B), or the
+  // mean (denoised with --denoise) for PNG/PFM; refused if a value overflowed.
   LayeredImage img;
   if (isExr(output)) {
     img = renderLayers(film, a.aovs);
+    if (!denoised.empty()) addRgbPlanes(img, "denoised.", denoised);
     setProvenance(img, provenance);
   } else {
     img.width = film.width;
     img.height = film.height;
-    std::vector<float> rgb = film.meanRgb();
-    for (int c = 0; c < 3; ++c) {
-      std::vector<float> plane(img.pixelCount());
-      for (std::size_t p = 0; p < plane.size(); ++p) plane[p] = rgb[3 * p + c];
-      img.set(channel::kMean[c], std::move(plane));
-    }
+    addRgbPlanes(img, "", denoised.empty() ? film.meanRgb() : denoised);
   }
   if (std::size_t bad = nonFinitePixels(img))
     throw RuntimeError(std::to_string(bad) + " of " + std::to_string(img.pixelCount()) +
@@ -263,9 +269,14 @@ int runRender(const RenderArgs& a) {
   if (isExr(output))
     writeLayeredExr(output, img);
   else
-    writeRgbImage(output, film.width, film.height, film.meanRgb());
-  std::cout << "wrote " << output << ": " << summaryLine(film.width, film.height, scene.render.spp, stats) << outputNote
-            << "\n";
+    writeRgbImage(output, film.width, film.height, denoised.empty() ? film.meanRgb() : denoised);
+  std::cout << "wrote " << output << ": " << summaryLine(film.width, film.height, scene.render.spp, stats);
+  if (!denoised.empty()) {
+    char took[64];
+    std::snprintf(took, sizeof took, ", denoised in %.3f s", denoiseSeconds);
+    std::cout << took;
+  }
+  std::cout << outputNote << "\n";
   const std::uint64_t pixels = std::uint64_t(film.width) * film.height;
   if (a.targetError > 0.0)
     std::cout << "adaptive: " << stats.converged << " of " << pixels << " pixels within relative error "
@@ -293,6 +304,12 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   for (const RenderSetting& setting : renderSettings()) {
     if (setting.option.empty()) continue;
     const std::string key = setting.key;
+    if (setting.rule.kind == SettingRule::Bool) {  // a flag: present means true
+      cmd->add_flag_function(
+          setting.option, [args, key](std::int64_t) { args->settings[key] = "true"; },
+          setting.help + " (scene file: render." + key + ", default " + settingValueText(setting.get(RenderSettings{})) + ")");
+      continue;
+    }
     cmd->add_option_function<std::string>(
            setting.option, [args, key](const std::string& v) { args->settings[key] = v; },
            setting.help + " (scene file: render." + key + ", default " + settingValueText(setting.get(RenderSettings{})) + ")")

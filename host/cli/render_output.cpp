@@ -3,11 +3,15 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 
+#include "image/oidn_api.h"
+#include "image/oidn_denoiser.h"
 #include "render/checkpoint.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
@@ -109,6 +113,50 @@ LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs
     for (int c = 0; c < 3; ++c) img.set(std::string("N.") + "XYZ"[c], plane(1, c));
   if (wants("depth")) img.set("Z", plane(0, 3));
   return img;
+}
+
+namespace {
+
+int oidnQuality(DenoiseQuality q) {
+  switch (q) {
+    case DenoiseQuality::Fast: return oidn::kQualityFast;
+    case DenoiseQuality::Balanced: return oidn::kQualityBalanced;
+    case DenoiseQuality::High: return oidn::kQualityHigh;
+  }
+  return oidn::kQualityHigh;
+}
+
+}  // namespace
+
+// The guides are the film's own AOV averages (as noisy as the color: no cleanAux), so the
+// denoiser sees the same samples the estimate does.
+std::vector<float> denoiseFilm(const Film& film, DenoiseQuality quality, bool quiet, double& seconds) {
+  const std::size_t pixels = film.pixelCount();
+  std::vector<float> albedo(3 * pixels, 0.0f), normal(3 * pixels, 0.0f);
+  if (film.aovSum.size() == 2 * pixels)
+    for (std::size_t p = 0; p < pixels; ++p) {
+      if (film.count[p] == 0) continue;
+      const double n = double(film.count[p]);
+      for (int c = 0; c < 3; ++c) {
+        albedo[3 * p + c] = float(film.aovSum[2 * p][c] / n);
+        normal[3 * p + c] = float(film.aovSum[2 * p + 1][c] / n);
+      }
+    }
+  if (!quiet)
+    std::cerr << "denoising " << film.width << "x" << film.height << " (Open Image Denoise, RT filter, quality "
+              << choiceName(denoiseQualityNames(), quality) << ")\n";
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<float> out = oidnDenoise(film.width, film.height, film.meanRgb(), albedo, normal, oidnQuality(quality));
+  seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+void addRgbPlanes(LayeredImage& img, const std::string& prefix, const std::vector<float>& rgb) {
+  for (int c = 0; c < 3; ++c) {
+    std::vector<float> plane(img.pixelCount());
+    for (std::size_t p = 0; p < plane.size(); ++p) plane[p] = rgb[3 * p + c];
+    img.set(prefix + channel::kMean[c], std::move(plane));
+  }
 }
 
 // The camera as a scene-file "camera" entry, to copy into a scene file (-v); the thin-lens keys

@@ -1,8 +1,9 @@
 // render_output.h: what `montecl render` does around its output image: the default name, the
 // checks before rendering (the output is not an input), the EXR layers of a film, the count of
-// non-finite pixels that refuses a write, and the camera as scene JSON for -v. Reads and writes no
-// file except what defaultOutput looks at (whether names exist) and checkJobFiles (an existing
-// checkpoint's magic, a probe file created and removed beside the checkpoint).
+// non-finite pixels that refuses a write, the denoised image (Open Image Denoise, dlopened), and
+// the camera as scene JSON for -v. Reads and writes no file except what defaultOutput looks at
+// (whether names exist) and checkJobFiles (an existing checkpoint's magic, a probe file created
+// and removed beside the checkpoint).
 #pragma once
 #include <cstddef>
 #include <string>
@@ -29,6 +30,12 @@ std::size_t nonFinitePixels(const LayeredImage& img);
 // The EXR layers: R, G, B, samples, var.R/G/B, and the AOVs asked for, averaged over samples:
 // albedo.R/G/B, N.X/Y/Z (facing geometric normal), Z (distance along the camera ray).
 LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs);
+// Open Image Denoise on the film's mean with its albedo and normal AOVs (zero guides when the film
+// has none); a progress line on stderr unless quiet. Returns interleaved RGB and the filter's
+// seconds. Throws RuntimeError if the library fails.
+std::vector<float> denoiseFilm(const Film& film, DenoiseQuality quality, bool quiet, double& seconds);
+// Adds planes <prefix>R, <prefix>G, <prefix>B from interleaved RGB ("" for the image itself).
+void addRgbPlanes(LayeredImage& img, const std::string& prefix, const std::vector<float>& rgb);
 // The camera as a scene-file "camera" entry, to copy into a scene file (-v).
 std::string cameraJson(const Camera& c);
 // The default output: <stem>.png in the current folder, named after the scene's folder when the

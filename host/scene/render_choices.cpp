@@ -25,4 +25,10 @@ const ChoiceNames<Sampler>& samplerNames() {
   return names;
 }
 
+const ChoiceNames<DenoiseQuality>& denoiseQualityNames() {
+  static const ChoiceNames<DenoiseQuality> names{
+      {"fast", DenoiseQuality::Fast}, {"balanced", DenoiseQuality::Balanced}, {"high", DenoiseQuality::High}};
+  return names;
+}
+
 }  // namespace montecl

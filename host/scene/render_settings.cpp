@@ -38,6 +38,13 @@ SettingRule numberRule() {  // finite, > 0 and at most FLT_MAX (a float setting)
   return r;
 }
 
+SettingRule boolRule() {  // a JSON true/false; on the command line a flag
+  SettingRule r;
+  r.kind = SettingRule::Bool;
+  r.text = "true or false";
+  return r;
+}
+
 SettingRule colourRule() {
   SettingRule r;
   r.kind = SettingRule::Colour;
@@ -54,6 +61,9 @@ RenderSetting row(const char* key, const char* option, const char* help, Setting
   if constexpr (std::is_same_v<T, float>) {
     s.set = [m](RenderSettings& r, const SettingValue& v) { r.*m = std::get<float>(v); };
     s.get = [m](const RenderSettings& r) { return SettingValue(r.*m); };
+  } else if constexpr (std::is_same_v<T, bool>) {
+    s.set = [m](RenderSettings& r, const SettingValue& v) { r.*m = std::get<bool>(v); };
+    s.get = [m](const RenderSettings& r) { return SettingValue(r.*m); };
   } else if constexpr (std::is_same_v<T, glm::vec3>) {
     s.set = [m](RenderSettings& r, const SettingValue& v) { r.*m = std::get<glm::vec3>(v); };
     s.get = [m](const RenderSettings& r) { return SettingValue(r.*m); };
@@ -66,8 +76,8 @@ RenderSetting row(const char* key, const char* option, const char* help, Setting
 
 template <class E>
 RenderSetting choiceRow(const char* key, const char* option, const char* help, const ChoiceNames<E>& names,
-                        E RenderSettings::*m, unsigned integrators = kEveryIntegrator) {
-  RenderSetting s{key, option, help, choiceRule(names), integrators, true, {}, {}};
+                        E RenderSettings::*m, unsigned integrators = kEveryIntegrator, bool provenance = true) {
+  RenderSetting s{key, option, help, choiceRule(names), integrators, provenance, {}, {}};
   s.set = [m, &names](RenderSettings& r, const SettingValue& v) { r.*m = names.at(std::get<std::string>(v)); };
   s.get = [m, &names](const RenderSettings& r) { return SettingValue(choiceName(names, r.*m)); };
   return s;
@@ -111,6 +121,16 @@ std::vector<RenderSetting> makeTable() {
                 samplerNames(), &RenderSettings::sampler),
       row("background", "", "Radiance of camera rays that hit nothing (without an environment)", colourRule(),
           &RenderSettings::background),
+      // Denoising changes only the added denoised layers, never the estimate: not in the provenance,
+      // so denoised and plain renders of one scene merge.
+      row("denoise", "--denoise",
+          "Denoise the final image with Open Image Denoise (filter RT, albedo and normal guides; needs `bash "
+          "scripts/setup.sh --oidn`): PNG/PFM get the denoised image, EXR keeps the noisy R, G, B and adds "
+          "denoised.R/G/B",
+          boolRule(), &RenderSettings::denoise, kEveryIntegrator, false),
+      choiceRow("denoise_quality", "--denoise-quality",
+                "Open Image Denoise quality mode with --denoise: fast, balanced or high (slowest, best)",
+                denoiseQualityNames(), &RenderSettings::denoiseQuality, kEveryIntegrator, false),
   };
 }
 
@@ -124,6 +144,7 @@ std::string valueText(const SettingValue& v, int digits) {
   if (const long long* i = std::get_if<long long>(&v)) return std::to_string(*i);
   if (const float* f = std::get_if<float>(&v)) return number(*f, digits);
   if (const std::string* s = std::get_if<std::string>(&v)) return *s;
+  if (const bool* b = std::get_if<bool>(&v)) return *b ? "true" : "false";
   const glm::vec3& c = std::get<glm::vec3>(v);
   return number(c.x, digits) + "," + number(c.y, digits) + "," + number(c.z, digits);
 }
@@ -176,6 +197,10 @@ RenderSettings parseRenderSettings(const JsonCtx& ctx, const nlohmann::json& j) 
       case SettingRule::Colour:
         s.set(r, getColor(ctx, *v, where));
         break;
+      case SettingRule::Bool:
+        if (!v->is_boolean()) jsonFail(ctx, where, "expected true or false, got " + v->dump());
+        s.set(r, v->get<bool>());
+        break;
     }
   }
   return r;
@@ -212,6 +237,8 @@ std::string settingTextProblem(const RenderSetting& s, const std::string& text) 
                       c[2] >= 0;
       return ok ? std::string() : "must be " + rule.text + " as R,G,B" + got;
     }
+    case SettingRule::Bool:
+      return text == "true" || text == "false" ? std::string() : "must be " + rule.text + got;
   }
   return "unknown setting kind";
 }
@@ -227,6 +254,7 @@ void setFromText(const RenderSetting& s, const std::string& text, RenderSettings
       s.set(r, c);
       break;
     }
+    case SettingRule::Bool: s.set(r, text == "true"); break;
   }
 }
 
@@ -241,7 +269,7 @@ std::string integratorSettings(const RenderSettings& r) {
 }
 
 std::string renderSettingsMarkdown() {
-  static const char* const types[] = {"integer", "number", "name", "[r, g, b]"};
+  static const char* const types[] = {"integer", "number", "name", "[r, g, b]", "boolean"};
   std::ostringstream md;
   md << "| key | type | default | valid | meaning |\n|---|---|---|---|---|\n";
   const RenderSettings defaults;

@@ -35,14 +35,16 @@ struct RenderSettings {
   int maxDepth = -1;  // integrator "path", Mitsuba's convention: -1 unlimited, 1 emitters seen, 2 direct, ...
   int rrDepth = 5;    // integrator "path": Russian roulette from this path depth on (>= 1)
   Sampler sampler = Sampler::Independent;  // where the uniform numbers come from (shared/sampler.h)
+  bool denoise = false;  // Open Image Denoise on the final image (image/oidn_denoiser.h)
+  DenoiseQuality denoiseQuality = DenoiseQuality::High;  // OIDN's own default
 };
 
-// A setting's value: an integer, a number, a choice's name or a colour.
-using SettingValue = std::variant<long long, float, std::string, glm::vec3>;
+// A setting's value: an integer, a number, a choice's name, a colour or a switch.
+using SettingValue = std::variant<long long, float, std::string, glm::vec3, bool>;
 
 // What values a setting takes.
 struct SettingRule {
-  enum Kind { Integer, Number, Choice, Colour } kind = Integer;
+  enum Kind { Integer, Number, Choice, Colour, Bool } kind = Integer;  // Bool: a flag on the command line
   long long lo = 0, hi = 0;         // Integer: within [lo, hi] ...
   bool zeroAllowed = true;          // ... and not 0 unless this
   std::vector<std::string> names;   // Choice: the accepted names

@@ -1,0 +1,140 @@
+// oidn_denoiser.cpp: loads Open Image Denoise with dlopen and runs its "RT" filter (see
+// oidn_denoiser.h). Reads the library file; writes nothing.
+#include "image/oidn_denoiser.h"
+
+#include <dlfcn.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "image/oidn_api.h"
+#include "util/errors.h"
+
+namespace montecl {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* const kSetup = "bash scripts/setup.sh --oidn";
+
+// The wheel puts the library under <venv>/lib/pythonX.Y/site-packages/pyoidn/oidn/lib; the Python
+// version is whatever the venv was made with, so the lib folder is searched.
+std::string findInVenv(const fs::path& venv) {
+  std::error_code ec;
+  for (const fs::directory_entry& py : fs::directory_iterator(venv / "lib", ec)) {
+    const fs::path lib = py.path() / "site-packages" / "pyoidn" / "oidn" / "lib" / "libOpenImageDenoise.so.2";
+    if (fs::exists(lib, ec)) return lib.string();
+  }
+  return "";
+}
+
+struct Loaded {
+  oidn::Api api;
+  std::string problem;  // "" when api is complete
+};
+
+template <class Fn>
+bool bind(void* handle, const char* name, Fn& fn, std::string& problem) {
+  fn = reinterpret_cast<Fn>(dlsym(handle, name));
+  if (!fn && problem.empty()) problem = std::string("has no symbol ") + name + " (not Open Image Denoise 2.x?)";
+  return fn != nullptr;
+}
+
+Loaded load() {
+  Loaded l;
+  const char* env = std::getenv("MONTECL_OIDN_LIBRARY");
+  const std::string path = oidnLibraryPath();
+  const std::string fix = ": install it with `" + std::string(kSetup) + "` (or set MONTECL_OIDN_LIBRARY)";
+  if (path.empty() || !fs::exists(path)) {
+    l.problem = "--denoise needs Open Image Denoise, not found (" +
+                (env && *env ? "MONTECL_OIDN_LIBRARY=" + path : std::string("no libOpenImageDenoise.so.2 in the oidn venv")) +
+                ")" + fix;
+    return l;
+  }
+  // The handle stays open for the process: the filter may run more than once.
+  void* h = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!h) {
+    const char* why = dlerror();
+    l.problem = "--denoise: cannot load " + path + " (" + (why ? why : "dlopen failed") + ")" + fix;
+    return l;
+  }
+  std::string bad;
+  oidn::Api& a = l.api;
+  bind(h, "oidnNewDevice", a.newDevice, bad);
+  bind(h, "oidnCommitDevice", a.commitDevice, bad);
+  bind(h, "oidnReleaseDevice", a.releaseDevice, bad);
+  bind(h, "oidnGetDeviceError", a.getDeviceError, bad);
+  bind(h, "oidnNewFilter", a.newFilter, bad);
+  bind(h, "oidnSetSharedFilterImage", a.setSharedFilterImage, bad);
+  bind(h, "oidnSetFilterBool", a.setFilterBool, bad);
+  bind(h, "oidnSetFilterInt", a.setFilterInt, bad);
+  bind(h, "oidnCommitFilter", a.commitFilter, bad);
+  bind(h, "oidnExecuteFilter", a.executeFilter, bad);
+  bind(h, "oidnReleaseFilter", a.releaseFilter, bad);
+  if (!bad.empty()) l.problem = "--denoise: " + path + " " + bad + fix;
+  return l;
+}
+
+const Loaded& loaded() {
+  static const Loaded l = load();
+  return l;
+}
+
+}  // namespace
+
+std::string oidnLibraryPath() {
+  if (const char* env = std::getenv("MONTECL_OIDN_LIBRARY"); env && *env) return env;
+  fs::path venv;
+  if (const char* v = std::getenv("MONTECL_OIDN_VENV"); v && *v)
+    venv = v;
+  else if (const char* home = std::getenv("HOME"); home && *home)
+    venv = fs::path(home) / ".cache" / "montecl" / "oidn-venv";
+  return venv.empty() ? "" : findInVenv(venv);
+}
+
+std::string oidnProblem() { return loaded().problem; }
+
+std::vector<float> oidnDenoise(int width, int height, const std::vector<float>& color,
+                               const std::vector<float>& albedo, const std::vector<float>& normal,
+                               int quality) {
+  const Loaded& l = loaded();
+  if (!l.problem.empty()) throw RuntimeError(l.problem);
+  const oidn::Api& a = l.api;
+  const std::size_t w = std::size_t(width), h = std::size_t(height);
+  std::vector<float> out(3 * w * h, 0.0f);
+  // The filter reads the inputs in place; it never writes them (the API takes void*).
+  std::vector<float> in = color, alb = albedo, nrm = normal;
+  oidn::Device dev = a.newDevice(oidn::kDeviceTypeCpu);
+  std::string error;
+  auto check = [&]() {
+    const char* msg = nullptr;
+    if (error.empty() && a.getDeviceError(dev, &msg) != oidn::kErrorNone)
+      error = msg && *msg ? msg : "unknown error";
+  };
+  check();
+  if (dev) {
+    a.commitDevice(dev);
+    check();
+    oidn::Filter f = error.empty() ? a.newFilter(dev, "RT") : nullptr;
+    check();
+    if (f) {
+      a.setSharedFilterImage(f, "color", in.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
+      a.setSharedFilterImage(f, "albedo", alb.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
+      a.setSharedFilterImage(f, "normal", nrm.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
+      a.setSharedFilterImage(f, "output", out.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
+      a.setFilterBool(f, "hdr", true);  // radiance, not display values
+      a.setFilterInt(f, "quality", quality);
+      a.commitFilter(f);
+      check();
+      if (error.empty()) a.executeFilter(f);
+      check();
+      a.releaseFilter(f);
+    }
+    a.releaseDevice(dev);
+  }
+  if (!dev && error.empty()) error = "no CPU device";
+  if (!error.empty()) throw RuntimeError("Open Image Denoise: " + error);
+  return out;
+}
+
+}  // namespace montecl
