@@ -3,6 +3,7 @@
 #pragma once
 #include <glm/glm.hpp>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -72,6 +73,10 @@ struct Scene {
   EnvironmentDesc environment;
   std::vector<MaterialDesc> materials;
   std::vector<SceneTriangle> triangles;  // non-degenerate triangles only
+  // Images held inside an input file (a .glb's bufferViews, data URIs), encoded as stored, by the
+  // name a material's texture path gives them ("<file>#images[i].<ext>"; never a real file): the
+  // texture loader decodes them from memory and the scene digest hashes these bytes.
+  std::map<std::string, std::vector<unsigned char>> embeddedImages;
   std::size_t degenerateDropped = 0;     // zero-area triangles removed while loading
   glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};
 };

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "image/exr_layers.h"
+#include "image/oiio_loader.h"
 #include "texture/mip_chain.h"
 #include "texture/texture_budget.h"
 #include "util/errors.h"
@@ -194,7 +195,10 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     for (std::size_t i = b; i < e; ++i) {
       File& f = files[i];
       try {
-        const LayeredImage image = readLayeredImage(f.path);
+        const auto embedded = scene.embeddedImages.find(f.path);
+        const LayeredImage image = embedded != scene.embeddedImages.end()
+                                       ? oiioReadMemory(f.path, embedded->second)
+                                       : readLayeredImage(f.path);
         f.integer = isIntegerImage(image);
         f.hasAlpha = image.planes.size() == 2 || image.planes.size() >= 4;
         // Colour: sRGB-decoded when integer. Alpha: the alpha channel (shared with the colour
