@@ -90,10 +90,16 @@ std::uint32_t Loader::material(int index) {
     const tinygltf::Texture& t = m.textures[static_cast<std::size_t>(tex)];
     if (t.source < 0 || static_cast<std::size_t>(t.source) >= m.images.size())
       loadFail(file, itemWhere("textures", std::size_t(tex)), "source image missing or out of range");
-    const std::string path = gltfImagePath(file, m, t.source, scene);
+    std::string path = gltfImagePath(file, m, t.source, scene);
     if (scene.embeddedImages.count(path) == 0) {  // a file of its own: an input, checked now
-      const std::string problem = fileProblem(path);
-      if (!problem.empty()) loadFail(file, itemWhere("images", std::size_t(t.source)), "cannot open '" + path + "': " + problem);
+      const std::string problem = fileProblem(path), found = problem.empty() ? "" : findIgnoringCase(path);
+      if (!found.empty()) {
+        unused.add("case", itemWhere("images", std::size_t(t.source)),
+                   "'" + path + "' not found as written; using '" + found + "' (the names differ in case)");
+        path = found;
+      } else if (!problem.empty()) {
+        loadFail(file, itemWhere("images", std::size_t(t.source)), "cannot open '" + path + "': " + problem);
+      }
       scene.inputFiles.push_back(path);
     }
     d.albedoTexture = path;
