@@ -166,7 +166,9 @@ int runRender(const RenderArgs& a) {
                          : defaultTextureBudget(device);
   std::vector<std::string> textureWarnings;
   const auto textureStart = std::chrono::steady_clock::now();
-  const SceneTextures textures = loadSceneTextures(scene, textureBudget, textureWarnings);
+  // Colour textures only where an image reads them: the lit integrators and the albedo AOV.
+  const bool colourTextures = integratorDesc(scene.render.integrator).lit || !a.aovs.empty();
+  const SceneTextures textures = loadSceneTextures(scene, textureBudget, textureWarnings, colourTextures);
   const double textureMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - textureStart).count();
   for (const std::string& w : textureWarnings) std::cerr << "montecl: warning: " << scene.path << ": " << w << "\n";

@@ -159,7 +159,8 @@ void packTextures(SceneTextures& out, std::vector<RgbaImage> images, std::uint64
   packChains(out, std::move(chains), budgetBytes, warnings);
 }
 
-SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, std::vector<std::string>& warnings) {
+SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, std::vector<std::string>& warnings,
+                                bool colour) {
   SceneTextures out;
   out.materials.resize(scene.materials.size());
   // Every file once, in first-use order, with the first material and key naming it in errors.
@@ -186,7 +187,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     (colour ? files[it->second].asColour : files[it->second].asAlpha) = true;
   };
   for (const MaterialDesc& m : scene.materials) {
-    if (!m.albedoTexture.empty()) use(m, m.albedoTexture, "map_Kd", true);
+    if (colour && !m.albedoTexture.empty()) use(m, m.albedoTexture, "map_Kd", true);
     if (!m.alphaTexture.empty()) use(m, m.alphaTexture, "map_d", false);
   }
   // Read, convert and mip-map in parallel (one file per task); the pixels as read and the float
@@ -230,7 +231,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
   }
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
     const MaterialDesc& m = scene.materials[i];
-    if (!m.albedoTexture.empty()) out.materials[i].albedo = first[fileIndex.at(m.albedoTexture)];
+    if (colour && !m.albedoTexture.empty()) out.materials[i].albedo = first[fileIndex.at(m.albedoTexture)];
     if (!m.alphaTexture.empty()) {
       const std::size_t k = fileIndex.at(m.alphaTexture);
       const File& f = files[k];
