@@ -102,7 +102,12 @@ std::uint32_t defaultMaterialIndex(Scene& scene);
 // is then black but for the emitters themselves. Exact for small scenes, bounding-box based above.
 bool emittersFaceAnything(const Scene& scene);
 
-// A camera looking at the bounding box from the +z side (tilted down a little), framing all of it.
-Camera defaultCamera(const glm::vec3& boundsMin, const glm::vec3& boundsMax, int width, int height);
+// A camera looking at the bounding box from one side, framing all of it: view "front" (the +z side,
+// tilted down a little; what a bare mesh gets), "back", "left" (-x), "right", "top", "bottom" or
+// "iso" (from the +x +y +z corner); an unknown name is "front" (check with isViewName).
+Camera defaultCamera(const glm::vec3& boundsMin, const glm::vec3& boundsMax, int width, int height,
+                     const std::string& view = "front");
+bool isViewName(const std::string& view);
+const char* viewNames();  // "front, back, ...", for messages
 
 }  // namespace montecl
