@@ -1,7 +1,7 @@
 // test_gltf.cpp: the glTF 2.0 loader (host/scene/gltf_mesh.cpp, gltf_model.cpp): .gltf with an
 // external or a data-URI buffer and .glb give exactly the OBJ's triangles (v flipped back to OBJ's
 // convention); node hierarchies with TRS and matrices; materials (base colour x texture, MASK and
-// BLEND cut-outs, emission x KHR_materials_emissive_strength, embedded images skipped); the first
+// BLEND cut-outs, emission x KHR_materials_emissive_strength, embedded images held in memory); the first
 // perspective camera; one warning per unused kind; malformed files as one InputError line.
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
@@ -132,7 +132,7 @@ TEST_CASE("glTF: node hierarchy with TRS and matrices; mirrors keep faces' sides
   CHECK(countContaining(warnings, "meshes[0].primitives[1]: primitive mode 1 (not TRIANGLES) skipped (1 more)") == 1);
 }
 
-TEST_CASE("glTF: base colour x texture, MASK/BLEND cut-outs, emission x strength, embedded images skipped" *
+TEST_CASE("glTF: base colour x texture, MASK/BLEND cut-outs, emission x strength, embedded images kept in memory" *
           doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("wood 1.png", "x");
@@ -161,11 +161,14 @@ TEST_CASE("glTF: base colour x texture, MASK/BLEND cut-outs, emission x strength
   const montecl::MaterialDesc& b = s.materials[s.triangles[4].material];
   CHECK(b.emission == glm::vec3(4.0f, 2.0f, 0.0f));
   CHECK(b.twoSidedEmission);
-  CHECK(b.albedoTexture.empty());  // embedded: skipped
-  CHECK(b.alphaTexture.empty());
+  // Embedded: named after the glTF and the image, its bytes (the data URI's, decoded) kept.
+  CHECK(b.albedoTexture == dir.file("m.gltf") + "#images[1].png");
+  REQUIRE(s.embeddedImages.count(b.albedoTexture) == 1);
+  CHECK(s.embeddedImages.at(b.albedoTexture).size() == 8);
+  CHECK(b.alphaTexture == b.albedoTexture);
   CHECK(b.alphaCutoff == 0.5f);
   INFO(allLines(warnings));
-  CHECK(countContaining(warnings, "m.gltf: images[1]: embedded image (data URI or buffer) cannot be opened by path") == 1);
+  CHECK(countContaining(warnings, "embedded image") == 0);
   CHECK(countContaining(warnings, "m.gltf: materials[1]: alphaMode BLEND treated as MASK") == 1);
   CHECK(countContaining(warnings, "m.gltf: extensionsUsed: extension 'KHR_texture_transform' not used by montecl") == 1);
   CHECK(countContaining(warnings, "emissive_strength' not used") == 0);

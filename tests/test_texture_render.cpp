@@ -3,7 +3,7 @@
 // far field close to the checker mean (mip-mapped ray-cone lookups, no moire); a fully
 // transparent cut-out neither occludes (AO exactly 1) nor shows; a striped cut-out passes half of
 // the AO rays (z-test); a tiny texture budget renders with coarser levels; through the command
-// line (OBJ + MTL map_Kd): one warning over --texture-budget, and a bad texture file is exit 2,
+// line (OBJ + MTL map_Kd): one warning over --texture-budget, and a bad texture file is exit 2 where an image reads it (AO loads no colour texture),
 // one line, no output file.
 #include <doctest/doctest.h>
 
@@ -248,7 +248,7 @@ TEST_CASE("textures: a tiny budget drops fine levels with a warning and the rend
   }
 }
 
-TEST_CASE("textures: montecl render warns once over --texture-budget; a bad texture file is exit 2, one line" * doctest::test_suite("cli")) {
+TEST_CASE("textures: montecl render warns once over --texture-budget; a bad texture file is exit 2, one line, where read" * doctest::test_suite("cli")) {
   TempDir dir;
   dir.write("quad.obj",
             "mtllib quad.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
@@ -256,19 +256,27 @@ TEST_CASE("textures: montecl render warns once over --texture-budget; a bad text
   dir.write("quad.mtl", "newmtl m\nKd 1 1 1\nmap_Kd tex.png\n");
   writeImage8(dir.file("tex.png"), 64, 64, 3, [](int x, int y, int c) { return (x * 4 + y + c) % 256; });
   const std::vector<std::string> args = {"render", dir.file("quad.obj"), "-o", dir.file("out.png"), "--width", "16",
-                                         "--height", "16", "--spp", "1", "-q", "--overwrite"};
-  std::vector<std::string> tiny = args;
+                                         "--height", "16", "--spp", "1", "-q", "--overwrite", "--integrator"};
+  std::vector<std::string> lit = args, ao = args;
+  lit.push_back("direct");  // reads the albedo texture
+  ao.push_back("ao");       // reads none
+  std::vector<std::string> tiny = lit;
   tiny.insert(tiny.end(), {"--texture-budget", "0.01"});
   const CliResult small = runMontecl(tiny);
   CHECK(small.exitCode == 0);
   CHECK(small.err.find("texture budget") != std::string::npos);
   CHECK(small.err.find("tex.png 64x64 -> 16x16") != std::string::npos);
-  const CliResult full = runMontecl(args);
+  const CliResult full = runMontecl(lit);
   CHECK(full.exitCode == 0);
   CHECK(full.err.find("texture budget") == std::string::npos);
   std::filesystem::remove(dir.file("out.png"));
   dir.write("tex.png", "this is not a PNG");
-  const CliResult bad = runMontecl(args);
+  // AO reads no colour texture (nor loads one); the direct integrator does.
+  const CliResult aoRun = runMontecl(ao);
+  CHECK(aoRun.exitCode == 0);
+  CHECK(aoRun.err.find("tex.png") == std::string::npos);
+  std::filesystem::remove(dir.file("out.png"));
+  const CliResult bad = runMontecl(lit);
   CHECK(bad.exitCode == 2);
   CHECK(bad.err.find("tex.png: material 'm' map_Kd: cannot read image") != std::string::npos);
   CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);

@@ -32,6 +32,7 @@
 #include "render/progress.h"
 #include "render/stage_program.h"
 #include "render/wavefront.h"
+#include "scene/environment_key.h"
 #include "scene/scene.h"
 #include "texture/scene_textures.h"
 #include "scene/scene_digest.h"
@@ -54,6 +55,8 @@ struct RenderArgs {
   double targetError = 0.0, timeLimit = 0.0;
   int minSpp = 16, maxSpp = 1024;
   std::vector<std::string> aovs;
+  std::string env, view;            // --env R,G,B | FILE; --view SIDE
+  float envScale = 1.0f, envRotate = 0.0f;
   std::size_t workGroupSize = 0;
   unsigned lanes = 0;  // packet stages' width W (0: the device's)
   bool quiet = false, verbose = false, overwrite = false, profile = false;
@@ -67,6 +70,15 @@ void applyOverrides(const RenderArgs& a, Scene& scene) {
   }
   if (a.width) scene.camera.width = *a.width;
   if (a.height) scene.camera.height = *a.height;
+  // The command line's environment replaces the scene's; --view frames the model from that side.
+  if (!a.env.empty()) {
+    scene.environment = environmentFromOption(a.env, a.envScale, a.envRotate);
+    if (!scene.environment.file.empty()) scene.inputFiles.push_back(scene.environment.file);
+  }
+  if (!a.view.empty()) {
+    if (!isViewName(a.view)) throwInputError("--view", "", "unknown side '" + a.view + "' (known: " + viewNames() + ")");
+    scene.camera = defaultCamera(scene.boundsMin, scene.boundsMax, scene.camera.width, scene.camera.height, a.view);
+  }
 }
 
 // Set by SIGINT or SIGTERM while rendering (to the signal number): the wave loop stops after the
@@ -170,7 +182,9 @@ int runRender(const RenderArgs& a) {
                          : defaultTextureBudget(device);
   std::vector<std::string> textureWarnings;
   const auto textureStart = std::chrono::steady_clock::now();
-  const SceneTextures textures = loadSceneTextures(scene, textureBudget, textureWarnings);
+  // Colour textures only where an image reads them: the lit integrators and the albedo AOV.
+  const bool colourTextures = integratorDesc(scene.render.integrator).lit || !a.aovs.empty();
+  const SceneTextures textures = loadSceneTextures(scene, textureBudget, textureWarnings, colourTextures);
   const double textureMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - textureStart).count();
   for (const std::string& w : textureWarnings) std::cerr << "montecl: warning: " << scene.path << ": " << w << "\n";
@@ -355,6 +369,14 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                   "or all; averaged over each pixel's samples")
       ->delimiter(',')
       ->check(CLI::IsMember({"albedo", "normal", "depth", "all"}));
+  cmd->add_option("--env", args->env,
+                  "Environment light replacing the scene's: R,G,B (constant radiance) or a latitude-longitude "
+                  "map file (.exr, .hdr, ...)");
+  cmd->add_option("--env-scale", args->envScale, "Multiplies --env's radiance (default 1)");
+  cmd->add_option("--env-rotate", args->envRotate, "Rotates --env's map about +y, degrees (default 0)");
+  cmd->add_option("--view", args->view,
+                  "Frame the whole model from a side, replacing the scene's camera: front (+z, a bare mesh's "
+                  "default) | back | left | right | top | bottom | iso");
   cmd->add_option("--first-sample", args->firstSample,
                   "Render sample indices K .. K+spp-1 of the deterministic sequence (split renders, then merge)");
   jobs::addJobOptions(cmd, args->job);

@@ -20,6 +20,7 @@ constexpr const char* kModuleName = "libmontecl_oiio.so";
 struct Module {
   MonteclOiioWriteFn write = nullptr;
   MonteclOiioReadFn read = nullptr;
+  MonteclOiioReadMemoryFn readMemory = nullptr;
   std::string error;  // why the module could not be used (empty when it loaded)
 };
 
@@ -47,7 +48,8 @@ Module loadModule() {
     }
     m.write = reinterpret_cast<MonteclOiioWriteFn>(dlsym(handle, MONTECL_OIIO_WRITE_SYMBOL));
     m.read = reinterpret_cast<MonteclOiioReadFn>(dlsym(handle, MONTECL_OIIO_READ_SYMBOL));
-    if (!m.write || !m.read) m.error = path.string() + " lacks the montecl_oiio_* entry points";
+    m.readMemory = reinterpret_cast<MonteclOiioReadMemoryFn>(dlsym(handle, MONTECL_OIIO_READ_MEMORY_SYMBOL));
+    if (!m.write || !m.read || !m.readMemory) m.error = path.string() + " lacks the montecl_oiio_* entry points";
     return m;  // never dlclosed: OpenImageIO keeps threads and caches until exit
   }
   m.error = std::string("the OpenImageIO module ") + kModuleName + " was not found (tried " + tried +
@@ -78,6 +80,16 @@ LayeredImage oiioRead(const std::string& path) {
   LayeredImage image;
   char err[1024] = {0};
   if (m.read(path.c_str(), &image, err, sizeof err) != 0) throwInputError(path, "", std::string("cannot read image: ") + err);
+  return image;
+}
+
+LayeredImage oiioReadMemory(const std::string& name, const std::vector<unsigned char>& bytes) {
+  const Module& m = module();
+  if (!m.error.empty()) throw RuntimeError("cannot read " + name + ": " + m.error);
+  LayeredImage image;
+  char err[1024] = {0};
+  if (m.readMemory(name.c_str(), bytes.data(), bytes.size(), &image, err, sizeof err) != 0)
+    throwInputError(name, "", std::string("cannot read image: ") + err);
   return image;
 }
 

@@ -3,6 +3,7 @@
 // (a file), beside the running executable, then in <executable>/../lib/montecl/.
 #pragma once
 #include <string>
+#include <vector>
 
 namespace montecl {
 
@@ -14,5 +15,9 @@ void oiioWrite(const std::string& path, const std::string& displayPath, const La
 
 // Reads every channel of path. Throws InputError "<path>: cannot read image: <reason>".
 LayeredImage oiioRead(const std::string& path);
+
+// The same for an encoded image held in memory: name (its extension picks the format) is what
+// errors call it. Throws InputError "<name>: cannot read image: <reason>".
+LayeredImage oiioReadMemory(const std::string& name, const std::vector<unsigned char>& bytes);
 
 }  // namespace montecl

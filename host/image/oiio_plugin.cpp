@@ -1,6 +1,7 @@
 // oiio_plugin.cpp: libmontecl_oiio.so, montecl's only user of OpenImageIO (see oiio_plugin_abi.h).
 // Reads: a path and montecl::LayeredImage planes. Writes: the image file (to exactly the path it is
 // given; the caller makes the write atomic), or the planes read back. Never throws.
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <cstdio>
@@ -43,15 +44,18 @@ int writeImage(const char* path, const montecl::LayeredImage& image, char* err, 
   return 0;
 }
 
-int readImage(const char* path, montecl::LayeredImage& image, char* err, std::size_t errSize) {
+// proxy: the encoded bytes when the image is held in memory (path then only names its format).
+int readImage(const char* path, OIIO::Filesystem::IOProxy* proxy, montecl::LayeredImage& image, char* err,
+              std::size_t errSize) {
   using namespace OIIO;
-  // The reader the file name's extension selects, opened directly: ImageInput::open() would try
-  // every other format reader of OpenImageIO in turn on a file its own reader refuses (~10 ms).
-  auto in = ImageInput::create(path);
-  if (!in) return fail(err, errSize, OIIO::geterror());
   ImageSpec opened, config;
   // Colour as stored: OpenImageIO would premultiply a PNG's or TGA's unassociated alpha into it.
   config.attribute("oiio:UnassociatedAlpha", 1);
+  // The reader the file name's extension selects, opened directly: ImageInput::open() would try
+  // every other format reader of OpenImageIO in turn on a file its own reader refuses (~10 ms).
+  auto in = ImageInput::create(path, false, &config, proxy);
+  if (!in) return fail(err, errSize, OIIO::geterror());
+  if (proxy && !in->set_ioproxy(proxy)) return fail(err, errSize, "this image format cannot be read from memory");
   if (!in->open(path, opened, config)) return fail(err, errSize, in->geterror());
   const ImageSpec& spec = in->spec();
   // Sizes are checked before allocating: montecl's renders are at most 16384 x 16384 pixels.
@@ -100,7 +104,18 @@ __attribute__((visibility("default"))) int montecl_oiio_write(const char* path, 
 __attribute__((visibility("default"))) int montecl_oiio_read(const char* path, montecl::LayeredImage* image,
                                                              char* err, std::size_t errSize) {
   try {
-    return readImage(path, *image, err, errSize);
+    return readImage(path, nullptr, *image, err, errSize);
+  } catch (const std::exception& e) {
+    return fail(err, errSize, e.what());
+  }
+}
+
+__attribute__((visibility("default"))) int montecl_oiio_read_memory(const char* name, const unsigned char* data,
+                                                                    std::size_t size, montecl::LayeredImage* image,
+                                                                    char* err, std::size_t errSize) {
+  try {
+    OIIO::Filesystem::IOMemReader proxy(data, size);
+    return readImage(name, &proxy, *image, err, errSize);
   } catch (const std::exception& e) {
     return fail(err, errSize, e.what());
   }
@@ -111,3 +126,4 @@ __attribute__((visibility("default"))) int montecl_oiio_read(const char* path, m
 // Both entry points must match the types the loader casts them to.
 static_assert(std::is_same<decltype(&montecl_oiio_write), MonteclOiioWriteFn>::value, "plugin ABI");
 static_assert(std::is_same<decltype(&montecl_oiio_read), MonteclOiioReadFn>::value, "plugin ABI");
+static_assert(std::is_same<decltype(&montecl_oiio_read_memory), MonteclOiioReadMemoryFn>::value, "plugin ABI");

@@ -22,7 +22,13 @@ typedef int (*MonteclOiioWriteFn)(const char* path, const montecl::LayeredImage*
 // attribute whose name starts with "montecl:" into image->attributes.
 typedef int (*MonteclOiioReadFn)(const char* path, montecl::LayeredImage* image, char* err,
                                  std::size_t errSize);
+// The same from an encoded image held in memory (an image inside a .glb or a data URI): name's
+// extension picks the reader, as a path's does; the bytes are decoded in place, never through a
+// temporary file.
+typedef int (*MonteclOiioReadMemoryFn)(const char* name, const unsigned char* data, std::size_t size,
+                                       montecl::LayeredImage* image, char* err, std::size_t errSize);
 }
 
 #define MONTECL_OIIO_WRITE_SYMBOL "montecl_oiio_write"
 #define MONTECL_OIIO_READ_SYMBOL "montecl_oiio_read"
+#define MONTECL_OIIO_READ_MEMORY_SYMBOL "montecl_oiio_read_memory"

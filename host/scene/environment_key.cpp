@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -23,7 +24,41 @@ float number(const std::string& file, const json& v, const std::string& where) {
   return f;
 }
 
+// A map file must be a readable regular file (it is decoded at render time).
+void checkMapFile(const std::string& file, const std::string& from, const std::string& where) {
+  struct stat st {};
+  if (::stat(file.c_str(), &st) != 0) throwInputError(from, where, "cannot open '" + file + "': " + std::strerror(errno));
+  if (!S_ISREG(st.st_mode)) throwInputError(from, where, "cannot open '" + file + "': not a regular file");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throwInputError(from, where, "cannot open '" + file + "': " + std::strerror(errno));
+}
+
 }  // namespace
+
+EnvironmentDesc environmentFromOption(const std::string& text, float scale, float rotateYDegrees) {
+  EnvironmentDesc env;
+  env.enabled = true;
+  if (!(std::isfinite(scale) && scale >= 0.0f)) throwInputError("--env-scale", "", "must be finite and >= 0");
+  if (!std::isfinite(rotateYDegrees)) throwInputError("--env-rotate", "", "must be finite");
+  env.scale = scale;
+  env.rotateYDegrees = rotateYDegrees;
+  // "R,G,B": three numbers; anything else names a map file.
+  float rgb[3];
+  char end = 0;
+  if (std::sscanf(text.c_str(), "%f,%f,%f%c", &rgb[0], &rgb[1], &rgb[2], &end) == 3) {
+    for (int c = 0; c < 3; ++c)
+      if (!(std::isfinite(rgb[c]) && rgb[c] >= 0.0f)) throwInputError("--env", "", "radiance components must be finite and >= 0");
+    env.radiance = glm::vec3(rgb[0], rgb[1], rgb[2]);
+  } else {
+    if (text.empty()) throwInputError("--env", "", "expected R,G,B or an environment map file");
+    env.file = std::filesystem::path(text).lexically_normal().string();
+    checkMapFile(env.file, "--env", "");
+  }
+  const glm::vec3 total = env.radiance * env.scale;
+  if (!(std::isfinite(total.x) && std::isfinite(total.y) && std::isfinite(total.z)))
+    throwInputError("--env-scale", "", "radiance times scale overflows a float");
+  return env;
+}
 
 EnvironmentDesc parseEnvironmentKey(const std::string& sceneFile, const json& value,
                                     std::vector<std::string>& warnings) {
@@ -56,12 +91,7 @@ EnvironmentDesc parseEnvironmentKey(const std::string& sceneFile, const json& va
       throwInputError(sceneFile, where, "expected a file name");
     const std::filesystem::path folder = std::filesystem::path(sceneFile).parent_path();
     env.file = (folder / it->get<std::string>()).lexically_normal().string();
-    struct stat st {};
-    if (::stat(env.file.c_str(), &st) != 0)
-      throwInputError(sceneFile, where, "cannot open '" + env.file + "': " + std::strerror(errno));
-    if (!S_ISREG(st.st_mode)) throwInputError(sceneFile, where, "cannot open '" + env.file + "': not a regular file");
-    std::ifstream in(env.file, std::ios::binary);
-    if (!in) throwInputError(sceneFile, where, "cannot open '" + env.file + "': " + std::strerror(errno));
+    checkMapFile(env.file, sceneFile, where);
   }
   const glm::vec3 total = env.radiance * env.scale;
   if (!(std::isfinite(total.x) && std::isfinite(total.y) && std::isfinite(total.z)))

@@ -88,18 +88,21 @@ std::uint32_t Loader::material(int index) {
   if (tex >= 0) {
     if (static_cast<std::size_t>(tex) >= m.textures.size()) loadFail(file, where, "baseColorTexture index out of range");
     const tinygltf::Texture& t = m.textures[static_cast<std::size_t>(tex)];
-    const std::string path = gltfImagePath(file, m, t.source);
     if (t.source < 0 || static_cast<std::size_t>(t.source) >= m.images.size())
       loadFail(file, itemWhere("textures", std::size_t(tex)), "source image missing or out of range");
-    if (path.empty()) {
-      unused.add("embedded image", itemWhere("images", std::size_t(t.source)),
-                 "embedded image (data URI or buffer) cannot be opened by path: texture skipped, the material is untextured");
-    } else {
-      const std::string problem = fileProblem(path);
-      if (!problem.empty()) loadFail(file, itemWhere("images", std::size_t(t.source)), "cannot open '" + path + "': " + problem);
-      d.albedoTexture = path;
+    std::string path = gltfImagePath(file, m, t.source, scene);
+    if (scene.embeddedImages.count(path) == 0) {  // a file of its own: an input, checked now
+      const std::string problem = fileProblem(path), found = problem.empty() ? "" : findIgnoringCase(path);
+      if (!found.empty()) {
+        unused.add("case", itemWhere("images", std::size_t(t.source)),
+                   "'" + path + "' not found as written; using '" + found + "' (the names differ in case)");
+        path = found;
+      } else if (!problem.empty()) {
+        loadFail(file, itemWhere("images", std::size_t(t.source)), "cannot open '" + path + "': " + problem);
+      }
       scene.inputFiles.push_back(path);
     }
+    d.albedoTexture = path;
     if (pbr.baseColorTexture.texCoord != 0) unused.add("texCoord", where, "texCoord other than 0 not used by montecl (TEXCOORD_0 used)");
     if (t.sampler >= 0 && static_cast<std::size_t>(t.sampler) < m.samplers.size()) {
       const tinygltf::Sampler& s = m.samplers[static_cast<std::size_t>(t.sampler)];

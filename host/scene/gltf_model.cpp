@@ -39,10 +39,27 @@ bool writeNothing(std::string* err, const std::string&, const std::vector<unsign
   return false;
 }
 
-// Images are opened later by path: nothing to decode here.
-bool keepImageUndecoded(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
-                        void*) {
+// Images are decoded later, by the texture loader: an image in a file of its own is opened there by
+// path (its bytes are dropped here); an embedded one (a bufferView, a data URI: no uri is kept for
+// it) keeps its encoded bytes in image->image until gltfImagePath hands them to the scene.
+bool keepImageUndecoded(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                        const unsigned char* bytes, int size, void*) {
+  if ((image->uri.empty() || image->uri.compare(0, 5, "data:") == 0) && bytes && size > 0) {
+    image->image.assign(bytes, bytes + size);
+    image->as_is = true;
+  }
   return true;
+}
+
+// The file-name extension OpenImageIO picks its reader by, for an embedded image: from its
+// mimeType, else from the bytes' signature; empty when neither names a format montecl reads.
+std::string embeddedImageExtension(const tinygltf::Image& img) {
+  if (img.mimeType == "image/png") return "png";
+  if (img.mimeType == "image/jpeg") return "jpg";
+  const std::vector<unsigned char>& b = img.image;
+  if (b.size() >= 8 && b[0] == 0x89 && b[1] == 'P' && b[2] == 'N' && b[3] == 'G') return "png";
+  if (b.size() >= 3 && b[0] == 0xff && b[1] == 0xd8 && b[2] == 0xff) return "jpg";
+  return "";
 }
 
 std::string firstLine(const std::string& s) {
@@ -222,11 +239,19 @@ std::vector<std::uint32_t> readIndexAccessor(const std::string& file, const tiny
   return out;
 }
 
-std::string gltfImagePath(const std::string& file, const tinygltf::Model& m, int index) {
+std::string gltfImagePath(const std::string& file, const tinygltf::Model& m, int index, Scene& scene) {
   if (index < 0 || static_cast<std::size_t>(index) >= m.images.size()) return "";
   const tinygltf::Image& img = m.images[static_cast<std::size_t>(index)];
-  if (img.uri.empty() || img.uri.compare(0, 5, "data:") == 0 || img.bufferView >= 0) return "";
-  return besideFile(file, percentDecode(img.uri));
+  const std::string where = "images[" + std::to_string(index) + "]";
+  if (!img.uri.empty() && img.uri.compare(0, 5, "data:") != 0 && img.bufferView < 0)
+    return besideFile(file, percentDecode(img.uri));
+  if (img.image.empty()) loadFail(file, where, "embedded image holds no bytes");
+  const std::string ext = embeddedImageExtension(img);
+  if (ext.empty())
+    loadFail(file, where, "embedded image of type '" + img.mimeType + "': montecl reads PNG and JPEG images");
+  const std::string name = file + "#" + where + "." + ext;
+  scene.embeddedImages.emplace(name, img.image);
+  return name;
 }
 
 }  // namespace montecl

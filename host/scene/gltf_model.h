@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/scene.h"
+
 namespace montecl {
 
 // Loads the model; tinygltf's warnings are appended (one line each, naming the file). opened, when
@@ -28,8 +30,10 @@ std::vector<float> readFloatAccessor(const std::string& file, const tinygltf::Mo
 std::vector<std::uint32_t> readIndexAccessor(const std::string& file, const tinygltf::Model& m, int index,
                                              const std::string& where);
 
-// The file of image `index` when it has one (a URI that is not a data URI), resolved beside the
-// glTF and percent-decoded; "" for an embedded image.
-std::string gltfImagePath(const std::string& file, const tinygltf::Model& m, int index);
+// The texture path of image `index`: its file when it has one (a URI that is not a data URI),
+// resolved beside the glTF and percent-decoded; for an embedded image (a bufferView, a data URI)
+// the name "<file>#images[i].<png|jpg>", its bytes added to scene.embeddedImages. "" for an index
+// out of range. Throws InputError for an embedded image in a format montecl does not read.
+std::string gltfImagePath(const std::string& file, const tinygltf::Model& m, int index, Scene& scene);
 
 }  // namespace montecl

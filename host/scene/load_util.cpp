@@ -4,10 +4,13 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include "util/errors.h"
 
@@ -39,6 +42,47 @@ std::string fileProblem(const std::string& path) {
   if (!S_ISREG(st.st_mode)) return "not a regular file";
   std::ifstream in(path, std::ios::binary);
   if (!in) return std::strerror(errno);
+  return "";
+}
+
+namespace {
+
+std::string lowered(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// The entries of folder whose names equal name but for case, in name order.
+std::vector<std::filesystem::path> sameNameIgnoringCase(const std::filesystem::path& folder, const std::string& name) {
+  std::vector<std::filesystem::path> found;
+  std::error_code ec;
+  const std::string want = lowered(name);
+  for (std::filesystem::directory_iterator it(folder.empty() ? "." : folder, ec), end; !ec && it != end; it.increment(ec))
+    if (lowered(it->path().filename().string()) == want) found.push_back(folder / it->path().filename());
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
+// Every existing path that matches the components of p but for case (folders only while dirs).
+std::vector<std::filesystem::path> matchesIgnoringCase(const std::filesystem::path& p) {
+  std::error_code ec;
+  if (std::filesystem::exists(p, ec)) return {p};
+  const std::filesystem::path parent = p.parent_path();
+  if (p.filename().empty() || parent == p) return {};
+  std::vector<std::filesystem::path> parents = parent.empty() ? std::vector<std::filesystem::path>{""} : matchesIgnoringCase(parent);
+  std::vector<std::filesystem::path> out;
+  for (const std::filesystem::path& folder : parents) {
+    if (!folder.empty() && !std::filesystem::is_directory(folder, ec)) continue;
+    for (const std::filesystem::path& f : sameNameIgnoringCase(folder, p.filename().string())) out.push_back(f);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string findIgnoringCase(const std::string& path) {
+  for (const std::filesystem::path& f : matchesIgnoringCase(std::filesystem::path(path).lexically_normal()))
+    if (fileProblem(f.string()).empty()) return f.string();
   return "";
 }
 

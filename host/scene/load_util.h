@@ -22,6 +22,11 @@ std::string lineWhere(std::size_t line);  // "line N"
 // Empty when path is a readable regular file, else why not ("No such file or directory", ...).
 std::string fileProblem(const std::string& path);
 
+// The readable regular file whose path equals `path` but for the case of letters in the names of
+// its folders and itself (what an exporter on a case-insensitive file system wrote, e.g. MTL's
+// 'SP_LUK.JPG' for sp_luk.JPG); the first in name order where several match; "" when none does.
+std::string findIgnoringCase(const std::string& path);
+
 // Reads a regular file into memory; throws InputError naming the file on failure.
 std::string readWholeFile(const std::string& path);
 

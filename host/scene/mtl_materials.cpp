@@ -120,19 +120,57 @@ MaterialSource sourceOf(const std::string& objPath, const std::vector<MtlFile>& 
   return {objPath, nullptr, name};
 }
 
+// The textures of an OBJ's materials that could not be opened, gathered so that one message names
+// them all (a scene with ten misspelt names needs one run to fix, not ten), and the case-insensitive
+// matches used instead of what was written, each warned once.
+struct TextureLookup {
+  std::string firstFile, firstWhere, firstProblem;  // the first missing texture, as the error leads
+  std::vector<std::string> others;                  // the rest: "<mtl> line N map_Kd 'name'"
+  std::vector<std::string>* warnings = nullptr;
+};
+
 // A texture named by key, opened beside the MTL; a name written with backslashes (Windows
-// exporters) is tried with slashes when it is not found as written.
-std::string texturePath(const MaterialSource& src, const std::string& key, const std::string& name) {
+// exporters) is tried with slashes, then either is tried ignoring case (with a warning), when it is
+// not found as written. "" when none opens (recorded in look).
+std::string texturePath(const MaterialSource& src, const std::string& key, const std::string& name, TextureLookup& look) {
   if (name.empty()) src.fail(key, key + " needs a file name");
-  std::string path = besideFile(src.file, name);
-  std::string problem = fileProblem(path);
-  if (!problem.empty() && name.find('\\') != std::string::npos) {
-    std::string slashed = name;
-    std::replace(slashed.begin(), slashed.end(), '\\', '/');
-    if (fileProblem(besideFile(src.file, slashed)).empty()) return besideFile(src.file, slashed);
+  const std::string path = besideFile(src.file, name);
+  const std::string problem = fileProblem(path);
+  if (problem.empty()) return path;
+  std::string slashed = name;
+  std::replace(slashed.begin(), slashed.end(), '\\', '/');
+  if (slashed != name && fileProblem(besideFile(src.file, slashed)).empty()) return besideFile(src.file, slashed);
+  const std::string found = findIgnoringCase(besideFile(src.file, slashed));
+  const std::string where = src.where(key);
+  const std::string at = src.file + (where.empty() ? "" : ": " + where);
+  if (!found.empty()) {
+    if (look.warnings)
+      look.warnings->push_back(at + ": material '" + oneLine(src.name, 60) + "': " + key + " '" + oneLine(name, 200) +
+                               "' not found as written; using '" + found + "' (the names differ in case)");
+    return found;
   }
-  if (!problem.empty()) src.fail(key, key + " '" + name + "': cannot open '" + path + "': " + problem);
-  return path;
+  if (look.firstFile.empty()) {
+    look.firstFile = src.file;
+    look.firstWhere = where;
+    look.firstProblem = "material '" + oneLine(src.name, 60) + "': " + key + " '" + oneLine(name, 200) + "': cannot open '" +
+                        path + "': " + problem;
+  } else {
+    look.others.push_back((src.file == look.firstFile ? "" : src.file + " ") + (where.empty() ? "" : where + " ") + key +
+                          " '" + oneLine(name, 200) + "'");
+  }
+  return "";
+}
+
+// Fails with one line naming the first texture that could not be opened and every other one.
+void failOnMissingTextures(const TextureLookup& look) {
+  if (look.firstFile.empty()) return;
+  std::string all = look.firstProblem;
+  if (!look.others.empty()) {
+    all += "; also missing:";
+    for (std::size_t i = 0; i < look.others.size(); ++i) all += (i ? ", " : " ") + look.others[i];
+    all += " (" + std::to_string(look.others.size() + 1) + " textures missing)";
+  }
+  loadFail(look.firstFile, look.firstWhere, all);
 }
 
 }  // namespace
@@ -167,6 +205,8 @@ std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<t
   auto base = static_cast<std::uint32_t>(scene.materials.size());
   std::set<std::string> textures;
   GlossyScaling scaled;  // Kd + Ks > 1: one warning per file
+  TextureLookup look;
+  look.warnings = warnings;
   for (std::size_t i = 0; i < mats.size(); ++i) {
     const tinyobj::material_t& m = mats[i];
     const MaterialSource src = sourceOf(objPath, files, i, m.name);
@@ -183,16 +223,17 @@ std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<t
     if (!std::isfinite(d.specularExponent) || d.specularExponent < 0.0f) src.fail("Ns", "Ns must be finite and >= 0");
     if (src.block && !src.has("Ns")) d.specularExponent = 0.0f;  // tinyobj's default is 1
     if (!m.diffuse_texname.empty() || src.has("map_Kd")) {
-      d.albedoTexture = texturePath(src, "map_Kd", m.diffuse_texname);
+      d.albedoTexture = texturePath(src, "map_Kd", m.diffuse_texname, look);
       if (src.block && !src.has("Kd")) d.albedo = glm::vec3(1.0f);  // the texture as it is (tinyobj: 0.6)
     }
-    if (!m.alpha_texname.empty() || src.has("map_d")) d.alphaTexture = texturePath(src, "map_d", m.alpha_texname);
+    if (!m.alpha_texname.empty() || src.has("map_d")) d.alphaTexture = texturePath(src, "map_d", m.alpha_texname, look);
     for (const std::string* t : {&d.albedoTexture, &d.alphaTexture})
       if (!t->empty() && textures.insert(*t).second) scene.inputFiles.push_back(*t);
     const std::string where = "material '" + oneLine(m.name, 60) + "'";
     scaled.note(oneLine(m.name, 60), checkGlossyMaterial(oneLine(objPath, 4096), where, d));
     scene.materials.push_back(d);
   }
+  failOnMissingTextures(look);
   scaled.warn(oneLine(objPath, 4096), warnings);
   return base;
 }

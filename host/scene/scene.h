@@ -3,6 +3,7 @@
 #pragma once
 #include <glm/glm.hpp>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -72,6 +73,10 @@ struct Scene {
   EnvironmentDesc environment;
   std::vector<MaterialDesc> materials;
   std::vector<SceneTriangle> triangles;  // non-degenerate triangles only
+  // Images held inside an input file (a .glb's bufferViews, data URIs), encoded as stored, by the
+  // name a material's texture path gives them ("<file>#images[i].<ext>"; never a real file): the
+  // texture loader decodes them from memory and the scene digest hashes these bytes.
+  std::map<std::string, std::vector<unsigned char>> embeddedImages;
   std::size_t degenerateDropped = 0;     // zero-area triangles removed while loading
   glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};
 };
@@ -97,7 +102,12 @@ std::uint32_t defaultMaterialIndex(Scene& scene);
 // is then black but for the emitters themselves. Exact for small scenes, bounding-box based above.
 bool emittersFaceAnything(const Scene& scene);
 
-// A camera looking at the bounding box from the +z side (tilted down a little), framing all of it.
-Camera defaultCamera(const glm::vec3& boundsMin, const glm::vec3& boundsMax, int width, int height);
+// A camera looking at the bounding box from one side, framing all of it: view "front" (the +z side,
+// tilted down a little; what a bare mesh gets), "back", "left" (-x), "right", "top", "bottom" or
+// "iso" (from the +x +y +z corner); an unknown name is "front" (check with isViewName).
+Camera defaultCamera(const glm::vec3& boundsMin, const glm::vec3& boundsMax, int width, int height,
+                     const std::string& view = "front");
+bool isViewName(const std::string& view);
+const char* viewNames();  // "front, back, ...", for messages
 
 }  // namespace montecl

@@ -37,6 +37,11 @@ std::uint64_t fileContentHash(const std::string& path, std::map<std::string, std
 std::string sceneDigest(const Scene& scene) {
   Fnv1a64 bytes;  // hashed as they come (not gathered into a string of the whole scene first)
   std::map<std::string, std::uint64_t> files;  // content hashes by path (a texture shared by materials is read once)
+  for (const auto& [name, encoded] : scene.embeddedImages) {  // held in memory: hashed as held
+    Fnv1a64 h;
+    h.add(encoded.data(), encoded.size());
+    files[name] = h.value();
+  }
   for (const SceneTriangle& t : scene.triangles) {
     for (const glm::vec3& v : t.v) appendVec(bytes, v);
     append(bytes, &t.material, sizeof t.material);

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "image/exr_layers.h"
+#include "image/oiio_loader.h"
 #include "texture/mip_chain.h"
 #include "texture/texture_budget.h"
 #include "util/errors.h"
@@ -158,7 +159,8 @@ void packTextures(SceneTextures& out, std::vector<RgbaImage> images, std::uint64
   packChains(out, std::move(chains), budgetBytes, warnings);
 }
 
-SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, std::vector<std::string>& warnings) {
+SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, std::vector<std::string>& warnings,
+                                bool colour) {
   SceneTextures out;
   out.materials.resize(scene.materials.size());
   // Every file once, in first-use order, with the first material and key naming it in errors.
@@ -185,7 +187,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     (colour ? files[it->second].asColour : files[it->second].asAlpha) = true;
   };
   for (const MaterialDesc& m : scene.materials) {
-    if (!m.albedoTexture.empty()) use(m, m.albedoTexture, "map_Kd", true);
+    if (colour && !m.albedoTexture.empty()) use(m, m.albedoTexture, "map_Kd", true);
     if (!m.alphaTexture.empty()) use(m, m.alphaTexture, "map_d", false);
   }
   // Read, convert and mip-map in parallel (one file per task); the pixels as read and the float
@@ -194,7 +196,10 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     for (std::size_t i = b; i < e; ++i) {
       File& f = files[i];
       try {
-        const LayeredImage image = readLayeredImage(f.path);
+        const auto embedded = scene.embeddedImages.find(f.path);
+        const LayeredImage image = embedded != scene.embeddedImages.end()
+                                       ? oiioReadMemory(f.path, embedded->second)
+                                       : readLayeredImage(f.path);
         f.integer = isIntegerImage(image);
         f.hasAlpha = image.planes.size() == 2 || image.planes.size() >= 4;
         // Colour: sRGB-decoded when integer. Alpha: the alpha channel (shared with the colour
@@ -226,7 +231,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
   }
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
     const MaterialDesc& m = scene.materials[i];
-    if (!m.albedoTexture.empty()) out.materials[i].albedo = first[fileIndex.at(m.albedoTexture)];
+    if (colour && !m.albedoTexture.empty()) out.materials[i].albedo = first[fileIndex.at(m.albedoTexture)];
     if (!m.alphaTexture.empty()) {
       const std::size_t k = fileIndex.at(m.alphaTexture);
       const File& f = files[k];

@@ -41,8 +41,10 @@ bool sceneHasTextures(const Scene& scene);
 // without an alpha channel is loaded twice (sRGB-decoded, and linear for alpha); otherwise once.
 // Over budget, the finest levels are dropped (one warning naming the textures). Throws InputError
 // "<texture file>: material '<name>' <map_Kd|map_d>: cannot read image: <reason>".
+// colour false: the albedo textures are left out (no image reads them: AO without an albedo AOV),
+// only the cut-outs' alpha textures are loaded.
 SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes,
-                                std::vector<std::string>& warnings);
+                                std::vector<std::string>& warnings, bool colour = true);
 
 // tris (BVH order) with MCL_ATTR_ALPHA set in e2.w on every triangle whose material has an alpha
 // texture (the traversals test only those); empty when no material has one.
