@@ -12,6 +12,7 @@
 #include "image/exr_layers.h"
 #include "image/image_io.h"
 #include "image/provenance.h"
+#include "render/memory_check.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
@@ -31,7 +32,9 @@ int runMerge(const MergeArgs& a) {
   if (ext != ".exr") throwInputError(a.output, "", "merge writes OpenEXR only (use .exr)");
   checkWritableTarget(a.output);
   std::vector<LayeredImage> images;
-  for (const std::string& path : a.inputs) images.push_back(readLayeredImage(path));
+  // Each input's share of the merged output (4 bytes per value) beyond its own decode.
+  const ImageSizeCheck fits = [](int w, int h, int c) { return decodeMemoryRefusal(w, h, c, std::uint64_t(c) * 4); };
+  for (const std::string& path : a.inputs) images.push_back(readLayeredImage(path, fits));
   LayeredImage merged = mergeLayeredImages(images, a.inputs);  // sizes and channels first
   std::optional<Provenance> provenance = mergeProvenance(images, a.inputs, a.force);
   merged.attributes.clear();

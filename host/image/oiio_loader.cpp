@@ -3,6 +3,7 @@
 
 #include <dlfcn.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
@@ -72,12 +73,20 @@ void oiioWrite(const std::string& path, const std::string& displayPath, const La
     throw RuntimeError("cannot write " + displayPath + ": " + err);
 }
 
-LayeredImage oiioRead(const std::string& path) {
+LayeredImage oiioRead(const std::string& path, const ImageSizeCheck& check) {
   const Module& m = module();
   if (!m.error.empty()) throw RuntimeError("cannot read " + path + ": " + m.error);
   LayeredImage image;
   char err[1024] = {0};
-  if (m.read(path.c_str(), &image, err, sizeof err) != 0) throwInputError(path, "", std::string("cannot read image: ") + err);
+  // The C callback forwards to check; its reason comes back through err.
+  const MonteclOiioSizeCheckFn trampoline = [](void* context, int w, int h, int c, char* e, std::size_t n) -> int {
+    const std::string why = (*static_cast<const ImageSizeCheck*>(context))(w, h, c);
+    if (why.empty()) return 0;
+    std::snprintf(e, n, "%s", why.c_str());
+    return 1;
+  };
+  if (m.read(path.c_str(), &image, check ? trampoline : nullptr, const_cast<ImageSizeCheck*>(&check), err,
+             sizeof err) != 0) throwInputError(path, "", std::string("cannot read image: ") + err);
   return image;
 }
 

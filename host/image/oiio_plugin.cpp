@@ -43,7 +43,8 @@ int writeImage(const char* path, const montecl::LayeredImage& image, char* err, 
   return 0;
 }
 
-int readImage(const char* path, montecl::LayeredImage& image, char* err, std::size_t errSize) {
+int readImage(const char* path, montecl::LayeredImage& image, MonteclOiioSizeCheckFn check, void* checkContext,
+              char* err, std::size_t errSize) {
   using namespace OIIO;
   // The reader the file name's extension selects, opened directly: ImageInput::open() would try
   // every other format reader of OpenImageIO in turn on a file its own reader refuses (~10 ms).
@@ -62,6 +63,7 @@ int readImage(const char* path, montecl::LayeredImage& image, char* err, std::si
                                   " pixels (at most " + std::to_string(kMaxSide) + " per side)");
   if (spec.nchannels <= 0 || spec.nchannels > kMaxChannels)
     return fail(err, errSize, "image has " + std::to_string(spec.nchannels) + " channels");
+  if (check && check(checkContext, spec.width, spec.height, spec.nchannels, err, errSize) != 0) return 1;
   image.width = spec.width;
   image.height = spec.height;
   const std::size_t count = image.pixelCount(), nch = std::size_t(spec.nchannels);
@@ -98,9 +100,10 @@ __attribute__((visibility("default"))) int montecl_oiio_write(const char* path, 
 }
 
 __attribute__((visibility("default"))) int montecl_oiio_read(const char* path, montecl::LayeredImage* image,
+                                                             MonteclOiioSizeCheckFn check, void* checkContext,
                                                              char* err, std::size_t errSize) {
   try {
-    return readImage(path, *image, err, errSize);
+    return readImage(path, *image, check, checkContext, err, errSize);
   } catch (const std::exception& e) {
     return fail(err, errSize, e.what());
   }

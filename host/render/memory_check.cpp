@@ -41,6 +41,14 @@ std::uint64_t hostMemoryBytes() {
   return std::uint64_t(pages) * std::uint64_t(pageSize);
 }
 
+std::string decodeMemoryRefusal(int width, int height, int channels, std::uint64_t extraBytesPerPixel) {
+  const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
+  const std::uint64_t need = pixels * (std::uint64_t(channels) * 8 + extraBytesPerPixel), has = hostMemoryBytes();
+  if (need <= has) return "";
+  return "declares " + std::to_string(width) + "x" + std::to_string(height) + " pixels, " + std::to_string(channels) +
+         " channels: needs about " + gib(need) + " of memory to decode, this machine has " + gib(has);
+}
+
 void checkImageMemory(const DeviceInfo& device, const std::string& scenePath, int width, int height, bool aovs,
                       std::uint64_t waveBytes) {
   const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);

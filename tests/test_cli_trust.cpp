@@ -1,0 +1,129 @@
+// test_cli_trust.cpp: through the real command line, inputs that used to cost gigabytes or render
+// wrong values with exit 0 are refused up front with one line, exit 2 and no output: an image
+// file declaring more pixels than the texture budget keeps or than the memory check allows
+// (textures, environment maps, merge inputs; refused from the header, before decoding), and
+// albedo textures with NaN, negative or over-half-float texels (the environment map's rule).
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+
+#include "cli_runner.h"
+#include "image/exr_layers.h"
+#include "image/image_io.h"
+#include "test_images.h"
+
+using montecl_test::CliResult;
+using montecl_test::runMontecl;
+using montecl_test::TempDir;
+namespace fs = std::filesystem;
+
+namespace {
+
+bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
+
+void checkRefused(const CliResult& r, const std::string& out, const std::vector<std::string>& words) {
+  INFO("stderr: " << r.err);
+  CHECK(r.exitCode == 2);
+  CHECK(oneLine(r.err));
+  for (const std::string& w : words) CHECK(r.err.find(w) != std::string::npos);
+  CHECK_FALSE(fs::exists(out));
+}
+
+std::uint32_t crc32(const std::string& bytes) {
+  std::uint32_t c = 0xffffffffu;
+  for (unsigned char b : bytes) {
+    c ^= b;
+    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+  }
+  return ~c;
+}
+
+std::string bigEndian(std::uint32_t v) {
+  return {char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+}
+
+std::string pngChunk(const std::string& type, const std::string& data) {
+  return bigEndian(std::uint32_t(data.size())) + type + data + bigEndian(crc32(type + data));
+}
+
+// A 65-byte PNG whose header declares side x side RGBA pixels (8 bits), with an empty zlib stream
+// as its only IDAT: decoding it would allocate the whole declared image first.
+std::string tinyPng(std::uint32_t side) {
+  const std::string ihdr = bigEndian(side) + bigEndian(side) + std::string("\x08\x06\x00\x00\x00", 5);
+  return std::string("\x89PNG\r\n\x1a\n", 8) + pngChunk("IHDR", ihdr) +
+         pngChunk("IDAT", std::string("\x78\x9c\x03\x00\x00\x00\x00\x01", 8)) + pngChunk("IEND", "");
+}
+
+// A quad with uvs whose material's map_Kd is `texture`.
+std::string writeTexturedQuad(const TempDir& dir, const std::string& texture) {
+  dir.write("quad.obj", "mtllib quad.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                        "usemtl m\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
+  dir.write("quad.mtl", "newmtl m\nKd 1 1 1\nmap_Kd " + texture + "\n");
+  return dir.file("quad.obj");
+}
+
+CliResult render(const std::string& scene, const std::string& out, std::vector<std::string> extra = {},
+                 const std::vector<std::string>& env = {}) {
+  std::vector<std::string> args{"render", scene, "-o", out, "--width", "8", "--height", "8", "--spp", "1", "-q",
+                                "--device", "host"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return runMontecl(args, env);
+}
+
+}  // namespace
+
+TEST_CASE("cli: a texture declaring more texels than --texture-budget keeps is refused from its header" * doctest::test_suite("cli")) {
+  TempDir dir;
+  const std::string scene = writeTexturedQuad(dir, "tex.png"), out = dir.file("out.png");
+  // 256x256 half-float RGBA texels are 512 KiB: over a 0.25 MiB budget (it rendered, levels dropped).
+  montecl_test::writeImage8(dir.file("tex.png"), 256, 256, 3, [](int x, int y, int c) { return (x + y + c) % 256; });
+  checkRefused(render(scene, out, {"--texture-budget", "0.25"}), out,
+               {"tex.png: material 'm' map_Kd", "256x256", "--texture-budget"});
+  CHECK(render(scene, out, {"--texture-budget", "0.5"}).exitCode == 0);  // 512 KiB fits
+  fs::remove(out);
+  // 65 bytes declaring 16384x16384 (2 GiB of texels) under the default 1 GiB budget.
+  dir.write("tex.png", tinyPng(16384));
+  checkRefused(render(scene, out), out, {"tex.png: material 'm' map_Kd", "16384x16384", "--texture-budget"});
+}
+
+TEST_CASE("cli: an environment map or merge input too large for the memory check is refused before decoding" * doctest::test_suite("cli")) {
+  TempDir dir;
+  const std::string out = dir.file("out.png");
+  dir.write("quad.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
+  dir.write("scene.json", R"({"camera": {"position": [0, 0, 3], "target": [0, 0, 0], "fov_y": 45, "width": 8, "height": 8},
+    "meshes": [{"file": "quad.obj"}], "environment": {"file": "sky.exr"}})");
+  // 512x256 RGB: about 6 MB to decode and tabulate, over a machine declared to have 4 MB (an 8x8
+  // render itself fits in that).
+  montecl::writeRgbImage(dir.file("sky.exr"), 512, 256, std::vector<float>(512 * 256 * 3, 0.5f));
+  checkRefused(render(dir.file("scene.json"), out, {}, {"MONTECL_MEMORY_LIMIT=4000000"}), out,
+               {"environment.file", "sky.exr", "512x256", "this machine has"});
+  CHECK(render(dir.file("scene.json"), out, {}, {"MONTECL_MEMORY_LIMIT=40000000"}).exitCode == 0);
+
+  // Merge inputs: 64x64 with 4 channels, about 200 KB each to decode and merge; 100 KB declared.
+  montecl::LayeredImage im;
+  im.width = im.height = 64;
+  for (const char* name : {"R", "G", "B", "samples"}) im.set(name, std::vector<float>(64 * 64, 1.0f));
+  montecl::writeLayeredExr(dir.file("a.exr"), im);
+  montecl::writeLayeredExr(dir.file("b.exr"), im);
+  const std::vector<std::string> merge{"merge", dir.file("a.exr"), dir.file("b.exr"), "-o", dir.file("m.exr"),
+                                       "--force", "-q"};
+  checkRefused(runMontecl(merge, {"MONTECL_MEMORY_LIMIT=100000"}), dir.file("m.exr"), {"a.exr", "64x64"});
+  CHECK(runMontecl(merge, {"MONTECL_MEMORY_LIMIT=10000000"}).exitCode == 0);
+}
+
+TEST_CASE("cli: an albedo texture with NaN, negative or over-half-float texels is refused before rendering" * doctest::test_suite("cli")) {
+  TempDir dir;
+  const std::string scene = writeTexturedQuad(dir, "tex.exr"), out = dir.file("out.png");
+  for (float bad : {std::numeric_limits<float>::quiet_NaN(), -0.5f, 70000.0f, std::numeric_limits<float>::infinity()}) {
+    CAPTURE(bad);
+    std::vector<float> rgb(4 * 4 * 3, 0.5f);
+    rgb[(2 * 4 + 1) * 3 + 1] = bad;  // pixel (1, 2), green
+    montecl::writeRgbImage(dir.file("tex.exr"), 4, 4, rgb);
+    checkRefused(render(scene, out), out, {"tex.exr: material 'm' map_Kd", "pixel (1, 2)"});
+  }
+  montecl::writeRgbImage(dir.file("tex.exr"), 4, 4, std::vector<float>(4 * 4 * 3, 65504.0f));  // the half maximum
+  CHECK(render(scene, out).exitCode == 0);
+}
