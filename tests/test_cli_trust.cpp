@@ -127,3 +127,29 @@ TEST_CASE("cli: an albedo texture with NaN, negative or over-half-float texels i
   montecl::writeRgbImage(dir.file("tex.exr"), 4, 4, std::vector<float>(4 * 4 * 3, 65504.0f));  // the half maximum
   CHECK(render(scene, out).exitCode == 0);
 }
+
+TEST_CASE("cli: a PLY float index that is fractional, NaN or out of range is one line naming the row and the number" * doctest::test_suite("cli")) {
+  TempDir dir;
+  const std::string head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                           "property float z\nelement face 1\nproperty list uchar float vertex_indices\nend_header\n"
+                           "0 0 0\n1 0 0\n0 1 0\n";
+  const std::string out = dir.file("out.png");
+  const std::pair<std::string, std::string> cases[] = {
+      {"3 0 1.5 2\n", "element 'face' row 0: vertex index 1.5 is not a whole number"},
+      {"3 0 nan 2\n", "element 'face' row 0: vertex index nan out of range (3 vertices)"},
+      {"3 0 1 1e30\n", "element 'face' row 0: vertex index 1e+30 out of range"},
+      {"3 0 1 -inf\n", "element 'face' row 0: vertex index -inf out of range"},
+  };
+  for (const auto& [face, needle] : cases) {
+    CAPTURE(face);
+    dir.write("bad.ply", head + face);
+    checkRefused(render(dir.file("bad.ply"), out), out, {dir.file("bad.ply") + ": " + needle});
+  }
+  // An integer list told a fraction, and one whose fraction std::to_string printed as 0.000000.
+  std::string intHead = head;
+  intHead.replace(intHead.find("uchar float"), 11, "uchar int");
+  dir.write("bad.ply", intHead + "3 0 1e-7 2\n");
+  checkRefused(render(dir.file("bad.ply"), out), out, {"element 'face' row 0: expected an integer, got 1e-07"});
+  dir.write("good.ply", head + "3 0 1 2\n");  // whole floats are indices
+  CHECK(render(dir.file("good.ply"), out).exitCode == 0);
+}
