@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 
@@ -152,4 +153,32 @@ TEST_CASE("cli: a PLY float index that is fractional, NaN or out of range is one
   checkRefused(render(dir.file("bad.ply"), out), out, {"element 'face' row 0: expected an integer, got 1e-07"});
   dir.write("good.ply", head + "3 0 1 2\n");  // whole floats are indices
   CHECK(render(dir.file("good.ply"), out).exitCode == 0);
+}
+
+TEST_CASE("cli: the summary after --resume reports the samples the image holds, not only this run's" * doctest::test_suite("cli")) {
+  TempDir dir;
+  // Both runs stop at the time limit, so the checkpoint is partial and the resumed run adds to it.
+  const auto args = [&](const std::string& out, const std::vector<std::string>& extra) {
+    std::vector<std::string> v{"render", montecl_test::demoScene(), "-o", dir.file(out), "--width", "8", "--height",
+                               "8", "--spp", "1000000", "--time", "0.05", "--device", "host", "-q"};
+    v.insert(v.end(), extra.begin(), extra.end());
+    return v;
+  };
+  const CliResult a = runMontecl(args("a.exr", {"--checkpoint", dir.file("c.ckpt"), "--checkpoint-every", "0.000001"}));
+  REQUIRE_MESSAGE(a.exitCode == 0, a.err);
+  const CliResult b = runMontecl(args("b.exr", {"--resume", dir.file("c.ckpt")}));
+  REQUIRE_MESSAGE(b.exitCode == 0, b.err);
+  const montecl::LayeredImage image = montecl::readLayeredImage(dir.file("b.exr"));
+  const std::vector<float>& n = *image.find("samples");
+  const auto [lo, hi] = std::minmax_element(n.begin(), n.end());
+  double sum = 0.0;
+  for (float v : n) sum += v;
+  char expected[128];
+  if (*lo == *hi) std::snprintf(expected, sizeof expected, "; the image now holds %.0f spp", double(*lo));
+  else
+    std::snprintf(expected, sizeof expected, "; the image now holds %.1f spp on average (%.0f..%.0f per pixel)",
+                  sum / double(n.size()), double(*lo), double(*hi));
+  INFO("stdout: " << b.out);
+  CHECK(b.out.find(expected) != std::string::npos);
+  CHECK(a.out.find("the image now holds") == std::string::npos);  // a fresh render's spp are the image's
 }

@@ -264,8 +264,8 @@ int runRender(const RenderArgs& a) {
     writeLayeredExr(output, img);
   else
     writeRgbImage(output, film.width, film.height, film.meanRgb());
-  std::cout << "wrote " << output << ": " << summaryLine(film.width, film.height, scene.render.spp, stats) << outputNote
-            << "\n";
+  std::cout << "wrote " << output << ": " << summaryLine(film.width, film.height, scene.render.spp, stats)
+            << (a.job.resume.empty() ? "" : imageSamplesNote(film.count)) << outputNote << "\n";
   const std::uint64_t pixels = std::uint64_t(film.width) * film.height;
   if (a.targetError > 0.0)
     std::cout << "adaptive: " << stats.converged << " of " << pixels << " pixels within relative error "
