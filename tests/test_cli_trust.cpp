@@ -1,8 +1,15 @@
 // test_cli_trust.cpp: through the real command line, inputs that used to cost gigabytes or render
 // wrong values with exit 0 are refused up front with one line, exit 2 and no output: an image
 // file declaring more pixels than the texture budget keeps or than the memory check allows
-// (textures, environment maps, merge inputs; refused from the header, before decoding), and
-// albedo textures with NaN, negative or over-half-float texels (the environment map's rule).
+// (textures, environment maps, merge inputs; refused from the header, before decoding); albedo
+// textures with NaN, negative or over-half-float texels (the environment map's rule); PLY float
+// indices that are fractional, NaN or out of range; merge inputs holding NaN or inf, a data window
+// off the origin, or a merge output that is one of its inputs. And after --resume the summary says
+// what the image holds.
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -181,4 +188,58 @@ TEST_CASE("cli: the summary after --resume reports the samples the image holds, 
   INFO("stdout: " << b.out);
   CHECK(b.out.find(expected) != std::string::npos);
   CHECK(a.out.find("the image now holds") == std::string::npos);  // a fresh render's spp are the image's
+}
+
+namespace {
+
+// A w x h EXR of R, G, B, samples (all 1) whose data window starts at (x0, y0) (display window at
+// the origin), written through OpenEXR directly (montecl's writer always puts it at the origin).
+void writeOffsetExr(const std::string& path, int w, int h, int x0, int y0) {
+  Imf::Header header(Imath::Box2i(Imath::V2i(0, 0), Imath::V2i(w - 1, h - 1)),
+                     Imath::Box2i(Imath::V2i(x0, y0), Imath::V2i(x0 + w - 1, y0 + h - 1)));
+  std::vector<float> ones(std::size_t(w) * h, 1.0f);
+  Imf::FrameBuffer frame;
+  char* base = reinterpret_cast<char*>(ones.data()) - (std::ptrdiff_t(y0) * w + x0) * std::ptrdiff_t(sizeof(float));
+  for (const char* name : {"R", "G", "B", "samples"}) {
+    header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    frame.insert(name, Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * std::size_t(w)));
+  }
+  Imf::OutputFile out(path.c_str(), header);
+  out.setFrameBuffer(frame);
+  out.writePixels(h);
+}
+
+montecl::LayeredImage onesImage(int w, int h) {
+  montecl::LayeredImage im;
+  im.width = w;
+  im.height = h;
+  for (const char* name : {"R", "G", "B", "samples"}) im.set(name, std::vector<float>(std::size_t(w) * h, 1.0f));
+  return im;
+}
+
+}  // namespace
+
+TEST_CASE("cli: merge refuses NaN or infinite inputs, a data window off the origin and an output that is an input" * doctest::test_suite("cli")) {
+  TempDir dir;
+  montecl::writeLayeredExr(dir.file("a.exr"), onesImage(4, 3));
+  const auto merge = [&](const std::string& b, const std::string& out) {
+    return runMontecl({"merge", dir.file("a.exr"), dir.file(b), "-o", dir.file(out), "--force", "-q"});
+  };
+  REQUIRE(merge("a.exr", "m.exr").exitCode == 0);  // --force: the same file twice is allowed
+  fs::remove(dir.file("m.exr"));
+  for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    montecl::LayeredImage im = onesImage(4, 3);
+    (*im.find(bad == bad ? "samples" : "G"))[2 * 4 + 1] = bad;  // pixel (1, 2)
+    montecl::writeLayeredExr(dir.file("bad.exr"), im);
+    checkRefused(merge("bad.exr", "m.exr"), dir.file("m.exr"),
+                 {dir.file("bad.exr") + ": pixel (1, 2) channel '" + (bad == bad ? "samples" : "G") + "' is not finite"});
+  }
+  writeOffsetExr(dir.file("offset.exr"), 4, 3, 3, 2);
+  checkRefused(merge("offset.exr", "m.exr"), dir.file("m.exr"), {"offset.exr", "data window starts at (3, 2)"});
+  const std::string before = montecl_test::readAll(dir.file("a.exr"));
+  const CliResult self = runMontecl({"merge", dir.file("a.exr"), dir.file("a.exr"), "-o", dir.file("a.exr"), "--force"});
+  CHECK(self.exitCode == 2);
+  CHECK(oneLine(self.err));
+  CHECK(self.err.find("the output is an input") != std::string::npos);
+  CHECK(montecl_test::readAll(dir.file("a.exr")) == before);
 }

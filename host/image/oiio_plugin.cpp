@@ -61,6 +61,10 @@ int readImage(const char* path, montecl::LayeredImage& image, MonteclOiioSizeChe
   if (spec.width <= 0 || spec.height <= 0 || spec.width > kMaxSide || spec.height > kMaxSide)
     return fail(err, errSize, "image is " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
                                   " pixels (at most " + std::to_string(kMaxSide) + " per side)");
+  // Pixels are read as an array from (0, 0): a data window elsewhere would shift the image.
+  if (spec.x != 0 || spec.y != 0)
+    return fail(err, errSize, "data window starts at (" + std::to_string(spec.x) + ", " + std::to_string(spec.y) +
+                                  "), not at (0, 0): crop or re-save the image with its data window at the origin");
   if (spec.nchannels <= 0 || spec.nchannels > kMaxChannels)
     return fail(err, errSize, "image has " + std::to_string(spec.nchannels) + " channels");
   if (check && check(checkContext, spec.width, spec.height, spec.nchannels, err, errSize) != 0) return 1;
