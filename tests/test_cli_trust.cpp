@@ -4,23 +4,27 @@
 // (textures, environment maps, merge inputs; refused from the header, before decoding); albedo
 // textures with NaN, negative or over-half-float texels (the environment map's rule); PLY float
 // indices that are fractional, NaN or out of range; merge inputs holding NaN or inf, a data window
-// off the origin, or a merge output that is one of its inputs. And after --resume the summary says
-// what the image holds.
+// off the origin, or a merge output that is one of its inputs; glTF negative byte offsets, projective
+// node matrices, a string emissiveStrength, %00 in a URI, GLB version 1 and node instancing past the
+// memory check. And after --resume the summary says what the image holds.
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfOutputFile.h>
 #include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <limits>
 
 #include "cli_runner.h"
 #include "image/exr_layers.h"
 #include "image/image_io.h"
+#include "mesh_files.h"
 #include "test_images.h"
 
 using montecl_test::CliResult;
@@ -242,4 +246,57 @@ TEST_CASE("cli: merge refuses NaN or infinite inputs, a data window off the orig
   CHECK(oneLine(self.err));
   CHECK(self.err.find("the output is an input") != std::string::npos);
   CHECK(montecl_test::readAll(dir.file("a.exr")) == before);
+}
+
+TEST_CASE("cli: glTF negative byteOffset, projective matrix, string emissiveStrength, %00 URI, GLB 1 and runaway instancing are refused" * doctest::test_suite("cli")) {
+  TempDir dir;
+  const montecl_test::MeshData mesh = montecl_test::tentMesh();
+  const nlohmann::json good = nlohmann::json::parse(montecl_test::gltfText(mesh, 0.5f, ""));
+  const std::string out = dir.file("out.png");
+  REQUIRE(render((dir.write("good.gltf", good.dump()), dir.file("good.gltf")), out).exitCode == 0);
+  fs::remove(out);
+  struct Case {
+    std::function<void(nlohmann::json&)> edit;
+    std::string key;
+  } cases[] = {
+      {[](nlohmann::json& j) { j["bufferViews"][0]["byteOffset"] = -4; }, "bufferViews[0].byteOffset"},
+      {[](nlohmann::json& j) { j["accessors"][0]["byteOffset"] = -12; }, "accessors[0].byteOffset"},
+      {[](nlohmann::json& j) {
+         j["nodes"][0] = {{"mesh", 0}, {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0.5, 0, 0, 0, 1}}};
+       }, "nodes[0].matrix"},
+      {[](nlohmann::json& j) {
+         j["materials"][0]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = "5";
+       }, "materials[0].extensions.KHR_materials_emissive_strength.emissiveStrength"},
+      {[](nlohmann::json& j) { j["images"] = {{{"uri", "tex%00.png"}}}; }, "images[0].uri"},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.key);
+    nlohmann::json j = good;
+    c.edit(j);
+    dir.write("bad.gltf", j.dump());
+    checkRefused(render(dir.file("bad.gltf"), out), out, {dir.file("bad.gltf") + ": " + c.key});
+  }
+  std::string glb = montecl_test::glbBytes(mesh, 0.5f);
+  glb[4] = 1;  // version 1
+  dir.write("v1.glb", glb);
+  checkRefused(render(dir.file("v1.glb"), out), out, {dir.file("v1.glb") + ": header", "GLB version 1"});
+  // 10000 nodes instancing the 4-triangle mesh: 40000 triangles, megabytes, on a machine declared
+  // to have 2 MB (the 8x8 image fits in it); 10 nodes load.
+  for (int nodes : {10, 10000}) {
+    nlohmann::json j = good;
+    j["nodes"] = nlohmann::json::array();
+    j["scenes"][0]["nodes"] = nlohmann::json::array();
+    for (int i = 0; i < nodes; ++i) {
+      j["nodes"].push_back({{"mesh", 0}, {"translation", {0, 0, -0.001 * i}}});
+      j["scenes"][0]["nodes"].push_back(i);
+    }
+    dir.write("many.gltf", j.dump());
+    const CliResult r = render(dir.file("many.gltf"), out, {}, {"MONTECL_MEMORY_LIMIT=2000000"});
+    if (nodes == 10) {
+      CHECK_MESSAGE(r.exitCode == 0, r.err);
+      fs::remove(out);
+    } else {
+      checkRefused(r, out, {dir.file("many.gltf") + ": nodes[", "triangles", "this machine has"});
+    }
+  }
 }

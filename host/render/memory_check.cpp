@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "render/wave_buffers.h"
+#include "scene/scene.h"
 #include "util/errors.h"
 
 namespace montecl {
@@ -47,6 +48,13 @@ std::string decodeMemoryRefusal(int width, int height, int channels, std::uint64
   if (need <= has) return "";
   return "declares " + std::to_string(width) + "x" + std::to_string(height) + " pixels, " + std::to_string(channels) +
          " channels: needs about " + gib(need) + " of memory to decode, this machine has " + gib(has);
+}
+
+std::string sceneMemoryRefusal(std::uint64_t triangles) {
+  const std::uint64_t need = triangles * (sizeof(SceneTriangle) + 125), has = hostMemoryBytes();
+  if (need <= has) return "";
+  return "gives " + std::to_string(triangles) + " triangles: needs about " + gib(need) +
+         " of memory (triangles and BVH), this machine has " + gib(has);
 }
 
 void checkImageMemory(const DeviceInfo& device, const std::string& scenePath, int width, int height, bool aovs,
