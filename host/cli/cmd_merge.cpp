@@ -14,7 +14,7 @@
 #include "image/exr_layers.h"
 #include "image/image_io.h"
 #include "image/provenance.h"
-#include "render/memory_check.h"
+#include "util/host_memory.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 

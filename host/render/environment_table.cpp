@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "image/exr_layers.h"
-#include "render/memory_check.h"
+#include "util/host_memory.h"
 #include "util/errors.h"
 
 namespace montecl {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cl/devices.h"
+#include "util/host_memory.h"  // hostMemoryBytes, and the checks before expanding inputs
 
 namespace montecl {
 
@@ -17,23 +18,9 @@ struct ImageMemory {
 // Bytes an image of `pixels` needs with waveBytes of per-wave buffers (already budgeted).
 ImageMemory imageMemoryNeed(std::uint64_t pixels, bool aovs, std::uint64_t waveBytes);
 
-// Physical memory of this machine (sysconf), or MONTECL_MEMORY_LIMIT (bytes) when that is set.
-std::uint64_t hostMemoryBytes();
-
 // Throws InputError "<scene>: image WxH: needs about X GiB ..., <where> has Y GiB" when the need
 // exceeds host memory (host backend and CPU OpenCL devices: device + host) or the device's global memory.
 void checkImageMemory(const DeviceInfo& device, const std::string& scenePath, int width, int height, bool aovs,
                       std::uint64_t waveBytes);
-
-// Why an image file declaring width x height pixels of `channels` channels must not be decoded:
-// decoding holds 8 bytes per value (OpenImageIO's interleaved floats and montecl's planes), and
-// the caller keeps extraBytesPerPixel more; "" when that fits hostMemoryBytes(). For
-// readLayeredImage's size check (image/oiio_loader.h), so a tiny file cannot cost gigabytes.
-std::string decodeMemoryRefusal(int width, int height, int channels, std::uint64_t extraBytesPerPixel);
-
-// Why a scene of `triangles` triangles must not be loaded: each costs its SceneTriangle and about
-// 125 bytes at the BVH build's peak (bvh/bvh_build.cpp); "" when that fits hostMemoryBytes().
-// Otherwise "gives N triangles: needs about X GiB of memory, this machine has Y GiB".
-std::string sceneMemoryRefusal(std::uint64_t triangles);
 
 }  // namespace montecl

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "render/memory_check.h"
+#include "util/host_memory.h"
 #include "scene/gltf_model.h"
 #include "scene/load_util.h"
 #include "scene/mesh_loaders.h"
