@@ -2,9 +2,12 @@
 // Reads: a path and montecl::LayeredImage planes. Writes: the image file (to exactly the path it is
 // given; the caller makes the write atomic), or the planes read back. Never throws.
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <exception>
+#include <mutex>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -43,9 +46,52 @@ int writeImage(const char* path, const montecl::LayeredImage& image, char* err, 
   return 0;
 }
 
+// libpng prints its errors to stderr itself ("libpng error: IDAT: ...") before OpenImageIO
+// reports the same error to us: a bad image would be two lines. While any read runs, stderr goes to
+// /dev/null; reads run in parallel (textures), so the first in redirects and the last out restores.
+class QuietStderr {
+ public:
+  QuietStderr() {
+    std::lock_guard<std::mutex> lock(mutex());
+    if (depth()++ > 0) return;
+    std::fflush(stderr);
+    saved() = ::dup(2);
+    const int null = ::open("/dev/null", O_WRONLY);
+    if (saved() >= 0 && null >= 0) ::dup2(null, 2);
+    if (null >= 0) ::close(null);
+  }
+  ~QuietStderr() {
+    std::lock_guard<std::mutex> lock(mutex());
+    if (--depth() > 0) return;
+    std::fflush(stderr);
+    if (saved() >= 0) {
+      ::dup2(saved(), 2);
+      ::close(saved());
+    }
+    saved() = -1;
+  }
+  QuietStderr(const QuietStderr&) = delete;
+  QuietStderr& operator=(const QuietStderr&) = delete;
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  static int& depth() {
+    static int d = 0;
+    return d;
+  }
+  static int& saved() {
+    static int fd = -1;
+    return fd;
+  }
+};
+
 int readImage(const char* path, montecl::LayeredImage& image, MonteclOiioSizeCheckFn check, void* checkContext,
               char* err, std::size_t errSize) {
   using namespace OIIO;
+  const QuietStderr quiet;
   // The reader the file name's extension selects, opened directly: ImageInput::open() would try
   // every other format reader of OpenImageIO in turn on a file its own reader refuses (~10 ms).
   auto in = ImageInput::create(path);
