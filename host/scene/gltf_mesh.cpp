@@ -263,7 +263,7 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
       const tinygltf::Mesh& mesh = m.meshes[std::size_t(node.mesh)];
       // Every node using a mesh adds a copy: a small file can instance gigabytes of triangles.
       instanced += meshTriangles(m, mesh);
-      const std::string tooMany = sceneMemoryRefusal(std::uint64_t(before) + instanced);
+      const std::string tooMany = sceneMemoryRefusal(std::uint64_t(before) + instanced, sizeof(SceneTriangle));
       if (!tooMany.empty()) loadFail(path, itemWhere("nodes", i), "instancing its meshes " + tooMany);
       for (std::size_t p = 0; p < mesh.primitives.size(); ++p)
         l.primitive(mesh.primitives[p], world, itemWhere("meshes", std::size_t(node.mesh)) + ".primitives[" + std::to_string(p) + "]");

@@ -6,8 +6,6 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "scene/scene.h"
-
 namespace montecl {
 
 std::uint64_t hostMemoryBytes() {
@@ -35,8 +33,8 @@ std::string decodeMemoryRefusal(int width, int height, int channels, std::uint64
          " channels: needs about " + gibText(need) + " of memory to decode, this machine has " + gibText(has);
 }
 
-std::string sceneMemoryRefusal(std::uint64_t triangles) {
-  const std::uint64_t need = triangles * (sizeof(SceneTriangle) + 125), has = hostMemoryBytes();
+std::string sceneMemoryRefusal(std::uint64_t triangles, std::uint64_t triangleBytes) {
+  const std::uint64_t need = triangles * (triangleBytes + 125), has = hostMemoryBytes();
   if (need <= has) return "";
   return "gives " + std::to_string(triangles) + " triangles: needs about " + gibText(need) +
          " of memory (triangles and BVH), this machine has " + gibText(has);

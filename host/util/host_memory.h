@@ -20,9 +20,10 @@ std::string gibText(std::uint64_t bytes);
 // readLayeredImage's size check (image/oiio_loader.h), so a tiny file cannot cost gigabytes.
 std::string decodeMemoryRefusal(int width, int height, int channels, std::uint64_t extraBytesPerPixel);
 
-// Why a scene of `triangles` triangles must not be loaded: each costs its SceneTriangle and about
-// 125 bytes at the BVH build's peak (bvh/bvh_build.cpp); "" when that fits hostMemoryBytes().
-// Otherwise "gives N triangles: needs about X GiB of memory ..., this machine has Y GiB".
-std::string sceneMemoryRefusal(std::uint64_t triangles);
+// Why a scene of `triangles` triangles must not be loaded: each costs triangleBytes (the caller's
+// SceneTriangle) and about 125 bytes at the BVH build's peak (bvh/bvh_build.cpp); "" when that
+// fits hostMemoryBytes(). Otherwise "gives N triangles: needs about X GiB of memory ..., this
+// machine has Y GiB".
+std::string sceneMemoryRefusal(std::uint64_t triangles, std::uint64_t triangleBytes);
 
 }  // namespace montecl
