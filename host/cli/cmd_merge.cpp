@@ -5,14 +5,17 @@
 // with the same settings and disjoint samples (--force skips the check); the output carries the union. Bad inputs (unreadable, wrong size, missing channels) are InputErrors naming the file.
 // Merge does not denoise: the inputs' denoised.R/G/B layers (render --denoise) are dropped.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <optional>
 
 #include "cli/commands.h"
+#include "cli/render_output.h"
 #include "image/exr_layers.h"
 #include "image/image_io.h"
 #include "image/provenance.h"
+#include "util/host_memory.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
@@ -38,16 +41,33 @@ struct MergeArgs {
   bool quiet = false, force = false;
 };
 
+// A NaN or infinite value would pass into the merged mean and variance of its pixel unnoticed.
+void checkFinite(const LayeredImage& image, const std::string& path) {
+  for (std::size_t c = 0; c < image.planes.size(); ++c)
+    for (std::size_t p = 0; p < image.planes[c].size(); ++p)
+      if (!std::isfinite(image.planes[c][p]))
+        throwInputError(path, "",
+                        "pixel (" + std::to_string(p % std::size_t(image.width)) + ", " +
+                            std::to_string(p / std::size_t(image.width)) + ") channel '" + image.channels[c] +
+                            "' is not finite");
+}
+
 int runMerge(const MergeArgs& a) {
   checkOutputPath(a.output);
   std::string ext = std::filesystem::path(a.output).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   if (ext != ".exr") throwInputError(a.output, "", "merge writes OpenEXR only (use .exr)");
   checkWritableTarget(a.output);
+  for (const std::string& path : a.inputs)
+    if (sameFile(a.output, path))
+      throwInputError(a.output, "", "the output is an input of the merge ('" + path + "'): refusing to overwrite it");
   std::vector<LayeredImage> images;
+  // Each input's share of the merged output (4 bytes per value) beyond its own decode.
+  const ImageSizeCheck fits = [](int w, int h, int c) { return decodeMemoryRefusal(w, h, c, std::uint64_t(c) * 4); };
   bool dropped = false;
   for (const std::string& path : a.inputs) {
-    images.push_back(readLayeredImage(path));
+    images.push_back(readLayeredImage(path, fits));
+    checkFinite(images.back(), path);
     dropped = dropDenoised(images.back()) || dropped;
   }
   if (dropped && !a.quiet)

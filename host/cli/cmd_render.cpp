@@ -284,7 +284,8 @@ int runRender(const RenderArgs& a) {
     writeLayeredExr(output, img);
   else
     writeRgbImage(output, film.width, film.height, denoised.empty() ? film.meanRgb() : denoised);
-  std::cout << "wrote " << output << ": " << summaryLine(film.width, film.height, scene.render.spp, stats);
+  std::cout << "wrote " << output << ": " << summaryLine(film.width, film.height, scene.render.spp, stats)
+            << (a.job.resume.empty() ? "" : imageSamplesNote(film.count));
   if (!denoised.empty()) {
     char took[64];
     std::snprintf(took, sizeof took, ", denoised in %.3f s", denoiseSeconds);

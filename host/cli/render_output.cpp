@@ -35,8 +35,6 @@ std::string vec3Json(const glm::vec3& v) {
 
 }  // namespace
 
-// Whether a and b name one file: the same file when both exist (hard links too), else the same
-// path once made absolute and normal (a file not yet written).
 bool sameFile(const std::string& a, const std::string& b) {
   namespace fs = std::filesystem;
   std::error_code ec;

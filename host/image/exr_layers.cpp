@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -114,10 +116,26 @@ void checkExrHeader(const std::string& path) {
 
 }  // namespace
 
-LayeredImage readLayeredImage(const std::string& path) {
+LayeredImage readLayeredImage(const std::string& path, const ImageSizeCheck& check) {
   if (!std::filesystem::exists(path)) throwInputError(path, "", "cannot read image: no such file");
   checkExrHeader(path);
-  return oiioRead(path);
+  return oiioRead(path, check);
+}
+
+std::string badPixelValue(const std::vector<const std::vector<float>*>& planes, int width, float maxValue) {
+  const std::size_t count = planes.empty() ? 0 : planes[0]->size();
+  for (std::size_t i = 0; i < count; ++i)
+    for (const std::vector<float>* plane : planes) {
+      const float v = (*plane)[i];
+      if (std::isfinite(v) && v >= 0.0f && v <= maxValue) continue;
+      const std::string where =
+          "pixel (" + std::to_string(i % std::size_t(width)) + ", " + std::to_string(i / std::size_t(width)) + ")";
+      if (!(std::isfinite(v) && v >= 0.0f)) return where + " is negative or not finite";
+      char buf[64];
+      std::snprintf(buf, sizeof buf, " is %g, over %g", double(v), double(maxValue));
+      return where + buf;
+    }
+  return "";
 }
 
 LayeredImage layersFromFilm(const Film& film) {

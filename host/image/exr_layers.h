@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "image/oiio_loader.h"
+
 namespace montecl {
 
 struct Film;
@@ -50,8 +52,15 @@ struct LayeredImage {
 void writeLayeredExr(const std::string& path, const LayeredImage& image);
 
 // Reads every channel of an image (any format OpenImageIO reads; channel names as stored) as float
-// planes. Throws InputError "<path>: cannot read image: ..." (one line) when it cannot be read.
-LayeredImage readLayeredImage(const std::string& path);
+// planes. Throws InputError "<path>: cannot read image: ..." (one line) when it cannot be read or
+// check (image/oiio_loader.h) refuses the size it declares.
+LayeredImage readLayeredImage(const std::string& path, const ImageSizeCheck& check = {});
+
+// The rule for pixels that become radiance or reflectance (environment maps, textures): the first
+// pixel, in row order, whose value in one of planes (width pixels a row) is negative, not finite or
+// over maxValue, as "pixel (x, y) is negative or not finite" / "pixel (x, y) is <v>, over <max>";
+// "" when there is none.
+std::string badPixelValue(const std::vector<const std::vector<float>*>& planes, int width, float maxValue);
 
 // The renderer's AOV image from its film: R, G, B (mean), samples, var.R/G/B (unbiased s^2 of one
 // sample from the sums, clamped at 0). Add optional AOV planes with set() before writing.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <climits>  // PATH_MAX, NAME_MAX
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -39,6 +40,15 @@ void writePfm(const std::string& path, int width, int height, const std::vector<
 }  // namespace
 
 void checkOutputPath(const std::string& path) {
+  // Over the system's limits every later step fails with ENAMETOOLONG (a filesystem exception,
+  // exit 1); the path itself is shortened in the message.
+  if (path.size() >= PATH_MAX)
+    throwInputError(path.substr(0, 40) + "..." + path.substr(path.size() - 20), "", "output path is " + std::to_string(path.size()) + " characters, over the limit of " +
+                                   std::to_string(PATH_MAX - 1));
+  for (const std::filesystem::path& part : std::filesystem::path(path))
+    if (part.native().size() > NAME_MAX)
+      throwInputError(path, "", "a name in the output path is " + std::to_string(part.native().size()) +
+                                     " characters, over the limit of " + std::to_string(NAME_MAX));
   std::string ext = lowerExtension(path);
   if (ext != ".png" && ext != ".exr" && ext != ".pfm")
     throwInputError(path, "", "unsupported image format '" + ext + "' (use .png, .exr or .pfm)");

@@ -3,6 +3,7 @@
 
 #include <dlfcn.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
@@ -74,21 +75,36 @@ void oiioWrite(const std::string& path, const std::string& displayPath, const La
     throw RuntimeError("cannot write " + displayPath + ": " + err);
 }
 
-LayeredImage oiioRead(const std::string& path) {
+namespace {
+
+// The C callback of the plugin's size check: forwards to check; its reason comes back through err.
+int forwardSizeCheck(void* context, int w, int h, int c, char* e, std::size_t n) {
+  const std::string why = (*static_cast<const ImageSizeCheck*>(context))(w, h, c);
+  if (why.empty()) return 0;
+  std::snprintf(e, n, "%s", why.c_str());
+  return 1;
+}
+
+}  // namespace
+
+LayeredImage oiioRead(const std::string& path, const ImageSizeCheck& check) {
   const Module& m = module();
   if (!m.error.empty()) throw RuntimeError("cannot read " + path + ": " + m.error);
   LayeredImage image;
   char err[1024] = {0};
-  if (m.read(path.c_str(), &image, err, sizeof err) != 0) throwInputError(path, "", std::string("cannot read image: ") + err);
+  if (m.read(path.c_str(), &image, check ? forwardSizeCheck : nullptr, const_cast<ImageSizeCheck*>(&check), err,
+             sizeof err) != 0) throwInputError(path, "", std::string("cannot read image: ") + err);
   return image;
 }
 
-LayeredImage oiioReadMemory(const std::string& name, const std::vector<unsigned char>& bytes) {
+LayeredImage oiioReadMemory(const std::string& name, const std::vector<unsigned char>& bytes,
+                            const ImageSizeCheck& check) {
   const Module& m = module();
   if (!m.error.empty()) throw RuntimeError("cannot read " + name + ": " + m.error);
   LayeredImage image;
   char err[1024] = {0};
-  if (m.readMemory(name.c_str(), bytes.data(), bytes.size(), &image, err, sizeof err) != 0)
+  if (m.readMemory(name.c_str(), bytes.data(), bytes.size(), &image, check ? forwardSizeCheck : nullptr,
+                   const_cast<ImageSizeCheck*>(&check), err, sizeof err) != 0)
     throwInputError(name, "", std::string("cannot read image: ") + err);
   return image;
 }

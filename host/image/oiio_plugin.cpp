@@ -3,9 +3,12 @@
 // given; the caller makes the write atomic), or the planes read back. Never throws.
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <exception>
+#include <mutex>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -44,10 +47,53 @@ int writeImage(const char* path, const montecl::LayeredImage& image, char* err, 
   return 0;
 }
 
+// libpng prints its errors to stderr itself ("libpng error: IDAT: ...") before OpenImageIO
+// reports the same error to us: a bad image would be two lines. While any read runs, stderr goes to
+// /dev/null; reads run in parallel (textures), so the first in redirects and the last out restores.
+class QuietStderr {
+ public:
+  QuietStderr() {
+    std::lock_guard<std::mutex> lock(mutex());
+    if (depth()++ > 0) return;
+    std::fflush(stderr);
+    saved() = ::dup(2);
+    const int null = ::open("/dev/null", O_WRONLY);
+    if (saved() >= 0 && null >= 0) ::dup2(null, 2);
+    if (null >= 0) ::close(null);
+  }
+  ~QuietStderr() {
+    std::lock_guard<std::mutex> lock(mutex());
+    if (--depth() > 0) return;
+    std::fflush(stderr);
+    if (saved() >= 0) {
+      ::dup2(saved(), 2);
+      ::close(saved());
+    }
+    saved() = -1;
+  }
+  QuietStderr(const QuietStderr&) = delete;
+  QuietStderr& operator=(const QuietStderr&) = delete;
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  static int& depth() {
+    static int d = 0;
+    return d;
+  }
+  static int& saved() {
+    static int fd = -1;
+    return fd;
+  }
+};
+
 // proxy: the encoded bytes when the image is held in memory (path then only names its format).
-int readImage(const char* path, OIIO::Filesystem::IOProxy* proxy, montecl::LayeredImage& image, char* err,
-              std::size_t errSize) {
+int readImage(const char* path, OIIO::Filesystem::IOProxy* proxy, montecl::LayeredImage& image,
+              MonteclOiioSizeCheckFn check, void* checkContext, char* err, std::size_t errSize) {
   using namespace OIIO;
+  const QuietStderr quiet;
   ImageSpec opened, config;
   // Colour as stored: OpenImageIO would premultiply a PNG's or TGA's unassociated alpha into it.
   config.attribute("oiio:UnassociatedAlpha", 1);
@@ -64,8 +110,13 @@ int readImage(const char* path, OIIO::Filesystem::IOProxy* proxy, montecl::Layer
   if (spec.width <= 0 || spec.height <= 0 || spec.width > kMaxSide || spec.height > kMaxSide)
     return fail(err, errSize, "image is " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
                                   " pixels (at most " + std::to_string(kMaxSide) + " per side)");
+  // Pixels are read as an array from (0, 0): a data window elsewhere would shift the image.
+  if (spec.x != 0 || spec.y != 0)
+    return fail(err, errSize, "data window starts at (" + std::to_string(spec.x) + ", " + std::to_string(spec.y) +
+                                  "), not at (0, 0): crop or re-save the image with its data window at the origin");
   if (spec.nchannels <= 0 || spec.nchannels > kMaxChannels)
     return fail(err, errSize, "image has " + std::to_string(spec.nchannels) + " channels");
+  if (check && check(checkContext, spec.width, spec.height, spec.nchannels, err, errSize) != 0) return 1;
   image.width = spec.width;
   image.height = spec.height;
   const std::size_t count = image.pixelCount(), nch = std::size_t(spec.nchannels);
@@ -102,9 +153,10 @@ __attribute__((visibility("default"))) int montecl_oiio_write(const char* path, 
 }
 
 __attribute__((visibility("default"))) int montecl_oiio_read(const char* path, montecl::LayeredImage* image,
+                                                             MonteclOiioSizeCheckFn check, void* checkContext,
                                                              char* err, std::size_t errSize) {
   try {
-    return readImage(path, nullptr, *image, err, errSize);
+    return readImage(path, nullptr, *image, check, checkContext, err, errSize);
   } catch (const std::exception& e) {
     return fail(err, errSize, e.what());
   }
@@ -112,10 +164,11 @@ __attribute__((visibility("default"))) int montecl_oiio_read(const char* path, m
 
 __attribute__((visibility("default"))) int montecl_oiio_read_memory(const char* name, const unsigned char* data,
                                                                     std::size_t size, montecl::LayeredImage* image,
+                                                                    MonteclOiioSizeCheckFn check, void* checkContext,
                                                                     char* err, std::size_t errSize) {
   try {
     OIIO::Filesystem::IOMemReader proxy(data, size);
-    return readImage(name, &proxy, *image, err, errSize);
+    return readImage(name, &proxy, *image, check, checkContext, err, errSize);
   } catch (const std::exception& e) {
     return fail(err, errSize, e.what());
   }

@@ -18,15 +18,22 @@ extern "C" {
 // image->attributes is written as a string header attribute of that name.
 typedef int (*MonteclOiioWriteFn)(const char* path, const montecl::LayeredImage* image, char* err,
                                   std::size_t errSize);
+// Asked with the size an opened file declares, before any pixel is decoded: 0 to go on, else a
+// one-line reason in err (the read then fails with it). The caller owns the rule (texture budget,
+// memory check), so a tiny file declaring 16384 x 16384 pixels costs no memory.
+typedef int (*MonteclOiioSizeCheckFn)(void* context, int width, int height, int channels, char* err,
+                                      std::size_t errSize);
 // Reads every channel of path as float planes, channel names as stored, and every string header
-// attribute whose name starts with "montecl:" into image->attributes.
-typedef int (*MonteclOiioReadFn)(const char* path, montecl::LayeredImage* image, char* err,
-                                 std::size_t errSize);
+// attribute whose name starts with "montecl:" into image->attributes. check (may be null) is asked
+// first with checkContext.
+typedef int (*MonteclOiioReadFn)(const char* path, montecl::LayeredImage* image, MonteclOiioSizeCheckFn check,
+                                 void* checkContext, char* err, std::size_t errSize);
 // The same from an encoded image held in memory (an image inside a .glb or a data URI): name's
 // extension picks the reader, as a path's does; the bytes are decoded in place, never through a
 // temporary file.
 typedef int (*MonteclOiioReadMemoryFn)(const char* name, const unsigned char* data, std::size_t size,
-                                       montecl::LayeredImage* image, char* err, std::size_t errSize);
+                                       montecl::LayeredImage* image, MonteclOiioSizeCheckFn check,
+                                       void* checkContext, char* err, std::size_t errSize);
 }
 
 #define MONTECL_OIIO_WRITE_SYMBOL "montecl_oiio_write"

@@ -3,9 +3,11 @@
 #include "render/environment_table.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 
 #include "image/exr_layers.h"
+#include "util/host_memory.h"
 #include "util/errors.h"
 
 namespace montecl {
@@ -60,7 +62,8 @@ EnvironmentTable buildEnvironment(const Scene& scene) {
   const std::string where = "environment.file";
   LayeredImage image;
   try {
-    image = readLayeredImage(env.file);
+    // Beyond the decode: the RGB copy, the sampling weights and the CDF rows (about 24 bytes).
+    image = readLayeredImage(env.file, [](int w, int h, int c) { return decodeMemoryRefusal(w, h, c, 24); });
   } catch (const InputError& e) {
     throwInputError(scene.path, where, e.what());
   }
@@ -70,18 +73,12 @@ EnvironmentTable buildEnvironment(const Scene& scene) {
     for (int c = 0; c < 3; ++c)
       planes[c] = &image.planes[std::min<std::size_t>(std::size_t(c), image.planes.size() - 1)];
   }
+  const std::string bad = badPixelValue({planes[0], planes[1], planes[2]}, image.width, FLT_MAX);
+  if (!bad.empty()) throwInputError(scene.path, where, "'" + env.file + "': " + bad);
   const std::size_t count = image.pixelCount();
   std::vector<glm::vec3> rgb(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    for (int c = 0; c < 3; ++c) {
-      const float v = (*planes[c])[i];
-      if (!(std::isfinite(v) && v >= 0.0f))
-        throwInputError(scene.path, where,
-                        "'" + env.file + "': pixel (" + std::to_string(i % std::size_t(image.width)) + ", " +
-                            std::to_string(i / std::size_t(image.width)) + ") is negative or not finite");
-      rgb[i][c] = v;
-    }
-  }
+  for (std::size_t i = 0; i < count; ++i)
+    for (int c = 0; c < 3; ++c) rgb[i][c] = (*planes[c])[i];
   EnvironmentTable t = environmentFromPixels(image.width, image.height, rgb);
   t.radiance = constant.radiance;
   t.rotateY = constant.rotateY;

@@ -1,25 +1,10 @@
 // memory_check.cpp: the image-size memory check (memory_check.h).
 #include "render/memory_check.h"
 
-#include <unistd.h>
-
-#include <cstdio>
-#include <cstdlib>
-
 #include "render/wave_buffers.h"
 #include "util/errors.h"
 
 namespace montecl {
-namespace {
-
-std::string gib(std::uint64_t bytes) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f GiB", double(bytes) / double(1ull << 30));
-  return buf;
-}
-
-}  // namespace
-
 ImageMemory imageMemoryNeed(std::uint64_t pixels, bool aovs, std::uint64_t waveBytes) {
   ImageMemory m;
   // The film's buffers (render/wave_buffers.h) and the active pixel list; then the per-wave buffers.
@@ -28,17 +13,6 @@ ImageMemory imageMemoryNeed(std::uint64_t pixels, bool aovs, std::uint64_t waveB
   // planes (R, G, B, samples, var.R/G/B) + 7 AOV planes, plus the encoder's copy of them.
   m.host = pixels * (filmBytesPerPixel(aovs) + sizeof(std::uint64_t) + 2 * 4 * (7 + (aovs ? 7 : 0)));
   return m;
-}
-
-std::uint64_t hostMemoryBytes() {
-  if (const char* limit = std::getenv("MONTECL_MEMORY_LIMIT")) {
-    char* end = nullptr;
-    unsigned long long v = std::strtoull(limit, &end, 10);
-    if (end != limit && *end == '\0' && v > 0) return v;
-  }
-  const long pages = ::sysconf(_SC_PHYS_PAGES), pageSize = ::sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || pageSize <= 0) return ~std::uint64_t(0);
-  return std::uint64_t(pages) * std::uint64_t(pageSize);
 }
 
 void checkImageMemory(const DeviceInfo& device, const std::string& scenePath, int width, int height, bool aovs,
@@ -54,12 +28,12 @@ void checkImageMemory(const DeviceInfo& device, const std::string& scenePath, in
   const std::uint64_t hostNeeds = need.host + (sharesHostMemory ? need.device : 0);
   if (hostNeeds > hostHas)
     throwInputError(scenePath, where,
-                    "needs about " + gib(hostNeeds) + " of memory" + what + ", this machine has " + gib(hostHas) +
+                    "needs about " + gibText(hostNeeds) + " of memory" + what + ", this machine has " + gibText(hostHas) +
                         "; use a smaller --width/--height");
   if (!device.isHost && device.globalMemBytes > 0 && need.device > device.globalMemBytes)
     throwInputError(scenePath, where,
-                    "needs about " + gib(need.device) + " of device memory" + what + ", " + device.name + " has " +
-                        gib(device.globalMemBytes) + "; use a smaller --width/--height");
+                    "needs about " + gibText(need.device) + " of device memory" + what + ", " + device.name + " has " +
+                        gibText(device.globalMemBytes) + "; use a smaller --width/--height");
 }
 
 }  // namespace montecl

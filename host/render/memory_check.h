@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cl/devices.h"
+#include "util/host_memory.h"  // hostMemoryBytes, and the checks before expanding inputs
 
 namespace montecl {
 
@@ -16,9 +17,6 @@ struct ImageMemory {
 
 // Bytes an image of `pixels` needs with waveBytes of per-wave buffers (already budgeted).
 ImageMemory imageMemoryNeed(std::uint64_t pixels, bool aovs, std::uint64_t waveBytes);
-
-// Physical memory of this machine (sysconf), or MONTECL_MEMORY_LIMIT (bytes) when that is set.
-std::uint64_t hostMemoryBytes();
 
 // Throws InputError "<scene>: image WxH: needs about X GiB ..., <where> has Y GiB" when the need
 // exceeds host memory (host backend and CPU OpenCL devices: device + host) or the device's global memory.

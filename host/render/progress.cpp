@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 
 namespace montecl {
@@ -39,6 +40,18 @@ std::string summaryLine(int width, int height, int spp, const RenderStats& stats
     std::snprintf(sppText, sizeof sppText, "%.1f spp on average", double(stats.samples) / pixels);
   std::snprintf(buf, sizeof buf, "%dx%d, %s: %.3f s, %.2f M rays, %.2f Mrays/s", width, height, sppText,
                 stats.seconds, stats.raysTraced() * 1e-6, mrays);
+  return buf;
+}
+
+std::string imageSamplesNote(const std::vector<std::uint64_t>& count) {
+  if (count.empty()) return "";
+  std::uint64_t lo = count[0], hi = count[0], sum = 0;
+  for (std::uint64_t n : count) lo = std::min(lo, n), hi = std::max(hi, n), sum += n;
+  char buf[128];
+  if (lo == hi) std::snprintf(buf, sizeof buf, "; the image now holds %llu spp", (unsigned long long)lo);
+  else
+    std::snprintf(buf, sizeof buf, "; the image now holds %.1f spp on average (%llu..%llu per pixel)",
+                  double(sum) / double(count.size()), (unsigned long long)lo, (unsigned long long)hi);
   return buf;
 }
 

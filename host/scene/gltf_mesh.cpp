@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "util/host_memory.h"
 #include "scene/gltf_model.h"
 #include "scene/load_util.h"
 #include "scene/mesh_loaders.h"
@@ -43,6 +44,9 @@ glm::dmat4 localTransform(const std::string& file, const tinygltf::Node& n, cons
     glm::dmat4 t;
     for (int c = 0; c < 4; ++c)
       for (int r = 0; r < 4; ++r) t[c][r] = n.matrix[std::size_t(4 * c + r)];  // column-major, as glm
+    // glTF node matrices are affine; a projective one would put vertices through a division.
+    if (t[0][3] != 0.0 || t[1][3] != 0.0 || t[2][3] != 0.0 || t[3][3] != 1.0)
+      loadFail(file, where + ".matrix", "last row must be 0 0 0 1 (an affine transform; this one is projective)");
     return t;
   }
   if (!n.matrix.empty()) loadFail(file, where + ".matrix", "expected 16 numbers");
@@ -205,6 +209,17 @@ void Loader::takeCamera(int index, const glm::dmat4& world) {
   camera = cam;
 }
 
+// The triangles a mesh declares (index or POSITION counts / 3), before any is read.
+std::uint64_t meshTriangles(const Model& m, const tinygltf::Mesh& mesh) {
+  std::uint64_t n = 0;
+  for (const tinygltf::Primitive& p : mesh.primitives) {
+    auto it = p.attributes.find("POSITION");
+    const int a = p.indices >= 0 ? p.indices : it == p.attributes.end() ? -1 : it->second;
+    if (a >= 0 && static_cast<std::size_t>(a) < m.accessors.size()) n += m.accessors[std::size_t(a)].count / 3;
+  }
+  return n;
+}
+
 }  // namespace
 
 bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string>* warnings, Camera* camera) {
@@ -232,6 +247,7 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
       if (!child[i]) roots.push_back(static_cast<int>(i));
   }
   const std::size_t before = scene.triangles.size(), droppedBefore = scene.degenerateDropped;
+  std::uint64_t instanced = 0;  // triangles the meshes of the nodes so far declare
   std::vector<bool> visited(m.nodes.size(), false);
   std::vector<std::pair<int, glm::dmat4>> stack;
   for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, glm::dmat4(1.0));
@@ -248,6 +264,10 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
     if (node.mesh >= 0) {
       if (static_cast<std::size_t>(node.mesh) >= m.meshes.size()) loadFail(path, itemWhere("nodes", i), "mesh index out of range");
       const tinygltf::Mesh& mesh = m.meshes[std::size_t(node.mesh)];
+      // Every node using a mesh adds a copy: a small file can instance gigabytes of triangles.
+      instanced += meshTriangles(m, mesh);
+      const std::string tooMany = sceneMemoryRefusal(std::uint64_t(before) + instanced, sizeof(SceneTriangle));
+      if (!tooMany.empty()) loadFail(path, itemWhere("nodes", i), "instancing its meshes " + tooMany);
       for (std::size_t p = 0; p < mesh.primitives.size(); ++p)
         l.primitive(mesh.primitives[p], world, itemWhere("meshes", std::size_t(node.mesh)) + ".primitives[" + std::to_string(p) + "]");
     }

@@ -2,7 +2,10 @@
 // gltf_model.h).
 #include "scene/gltf_model.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -134,6 +137,48 @@ const tinygltf::Accessor& accessorAt(const std::string& file, const tinygltf::Mo
   return m.accessors[static_cast<std::size_t>(index)];
 }
 
+// What tinygltf accepts silently but montecl must not: it reads a negative byteOffset as 0 and a
+// %00 in a URI would cut the path at the NUL. Checked on the JSON text itself (depth-checked before).
+void checkGltfJson(const std::string& path, const char* text, std::size_t size) {
+  const nlohmann::json j = nlohmann::json::parse(text, text + size, nullptr, false);
+  if (!j.is_object()) return;  // tinygltf reports the parse error with its position
+  const auto each = [&](const char* array, const auto& check) {
+    const auto it = j.find(array);
+    if (it == j.end() || !it->is_array()) return;
+    for (std::size_t i = 0; i < it->size(); ++i)
+      if ((*it)[i].is_object()) check((*it)[i], std::string(array) + "[" + std::to_string(i) + "]");
+  };
+  const auto wholeNumbers = [&](const nlohmann::json& o, const std::string& where, std::initializer_list<const char*> keys) {
+    for (const char* key : keys) {
+      const auto it = o.find(key);
+      if (it != o.end() && !it->is_number_unsigned())
+        loadFail(path, where + "." + key, "must be a whole number >= 0 (got " + oneLine(it->dump(), 40) + ")");
+    }
+  };
+  each("bufferViews", [&](const nlohmann::json& o, const std::string& w) { wholeNumbers(o, w, {"byteOffset", "byteLength", "byteStride"}); });
+  each("accessors", [&](const nlohmann::json& o, const std::string& w) { wholeNumbers(o, w, {"byteOffset", "count"}); });
+  const auto noNul = [&](const nlohmann::json& o, const std::string& where) {
+    const auto it = o.find("uri");
+    if (it == o.end() || !it->is_string()) return;
+    std::string uri = it->get<std::string>();
+    for (char& c : uri) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (uri.compare(0, 5, "data:") != 0 && uri.find("%00") != std::string::npos)
+      loadFail(path, where + ".uri", "contains %00 (a NUL byte): not a file name");
+  };
+  each("images", noNul);
+  each("buffers", noNul);
+  each("materials", [&](const nlohmann::json& o, const std::string& w) {
+    const auto ext = o.find("extensions");
+    if (ext == o.end() || !ext->is_object()) return;
+    const auto es = ext->find("KHR_materials_emissive_strength");
+    if (es == ext->end() || !es->is_object()) return;
+    const auto v = es->find("emissiveStrength");
+    if (v != es->end() && !v->is_number())
+      loadFail(path, w + ".extensions.KHR_materials_emissive_strength.emissiveStrength",
+               "must be a number (got " + oneLine(v->dump(), 40) + ")");
+  });
+}
+
 }  // namespace
 
 tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>* warnings,
@@ -147,9 +192,13 @@ tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>*
   const std::string dir = folderOf(path).empty() ? "." : folderOf(path);
   const bool glb = bytes.compare(0, 4, "glTF") == 0;
   if (glb && bytes.size() >= 20) {  // the JSON chunk: length at byte 12, text from byte 20
-    std::uint32_t length = 0;
+    std::uint32_t version = 0, length = 0;
+    std::memcpy(&version, bytes.data() + 4, 4);
+    if (version != 2)  // GLB 1 (KHR_binary_glTF) has another layout; tinygltf reads it as 2
+      loadFail(path, "header", "GLB version " + std::to_string(version) + " (only version 2 is supported)");
     std::memcpy(&length, bytes.data() + 12, 4);
     checkJsonDepth(path, bytes.data() + 20, std::min<std::size_t>(length, bytes.size() - 20));
+    checkGltfJson(path, bytes.data() + 20, std::min<std::size_t>(length, bytes.size() - 20));
     // tinygltf checks the BIN chunk's length against the GLB header's total but forgets the chunk's
     // own 8-byte header, so a length that fills the file to the end is read past it: check it here.
     std::uint32_t total = 0;
@@ -164,6 +213,7 @@ tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>*
     }
   } else if (!glb) {
     checkJsonDepth(path, bytes.data(), bytes.size());
+    checkGltfJson(path, bytes.data(), bytes.size());
   }
   bool ok = false;
   if (glb) {

@@ -51,7 +51,7 @@ float toFloat(double d, const std::string& file, const PlyRow& row, const char* 
   const float f = static_cast<float>(d);
   if (!std::isfinite(f))
     loadFail(file, "element 'vertex' row " + std::to_string(row.row),
-             std::string(what) + " " + std::to_string(d) + " is not a finite float");
+             std::string(what) + " " + plyNumber(d) + " is not a finite float");
   return f;
 }
 
@@ -77,11 +77,16 @@ struct Builder {
   std::uint32_t material;
   std::size_t zeroNormals = 0;
 
+  std::string where(const PlyRow& r) const {
+    return "element '" + oneLine(r.element->name, 40) + "' row " + std::to_string(r.row);
+  }
   std::uint32_t index(double d, const PlyRow& r) const {
-    if (d < 0 || d >= static_cast<double>(v.pos.size()))
-      loadFail(file, "element '" + oneLine(r.element->name, 40) + "' row " + std::to_string(r.row),
-               "vertex index " + std::to_string(static_cast<long long>(d)) + " out of range (" +
-                   std::to_string(v.pos.size()) + " vertices)");
+    // Float and double index lists are allowed by PLY: NaN or 1.5 must not become a vertex.
+    if (std::isfinite(d) && d != std::floor(d))
+      loadFail(file, where(r), "vertex index " + plyNumber(d) + " is not a whole number");
+    if (!(d >= 0 && d < static_cast<double>(v.pos.size())))  // NaN fails too
+      loadFail(file, where(r),
+               "vertex index " + plyNumber(d) + " out of range (" + std::to_string(v.pos.size()) + " vertices)");
     return static_cast<std::uint32_t>(d);
   }
   void triangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
@@ -103,7 +108,7 @@ struct Builder {
   }
   void face(const std::vector<double>& list, const PlyRow& r) {
     if (list.size() < 3)
-      loadFail(file, "element 'face' row " + std::to_string(r.row),
+      loadFail(file, where(r),
                "face has " + std::to_string(list.size()) + " vertices (at least 3 needed)");
     if (list.size() == 4) {  // along the shorter diagonal (ties: 1-3), as the OBJ loader does
       const std::uint32_t i0 = index(list[0], r), i1 = index(list[1], r), i2 = index(list[2], r), i3 = index(list[3], r);

@@ -5,6 +5,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -101,7 +102,7 @@ struct Cursor {
     if (r.ec != std::errc() || r.ptr != e)
       fail("bad number '" + oneLine(std::string(text.data() + pos, std::min<std::size_t>(end - pos, 40))) + "'");
     pos = end;
-    if (isIntegral(t) && v != std::floor(v)) fail("expected an integer, got " + std::to_string(v));
+    if (isIntegral(t) && v != std::floor(v)) fail("expected an integer, got " + plyNumber(v));
     return v;
   }
 
@@ -202,10 +203,10 @@ void readPlyData(const std::string& file, const std::string& text, const PlyHead
           continue;
         }
         const double n = c.value(p.countType);
-        if (n < 0) c.fail("negative list length " + std::to_string(static_cast<long long>(n)));
+        if (n < 0) c.fail("negative list length " + plyNumber(n));
         const std::size_t itemBytes = header.format == PlyFormat::Ascii ? 2 : typeSize(p.type);
         if (n > static_cast<double>(c.left() / itemBytes + 1))
-          c.fail("list length " + std::to_string(static_cast<unsigned long long>(n)) + " longer than the data left");
+          c.fail("list length " + plyNumber(n) + " longer than the data left");
         std::vector<double>& list = row.lists[k];
         list.resize(static_cast<std::size_t>(n));
         for (double& v : list) v = c.value(p.type);
@@ -217,6 +218,13 @@ void readPlyData(const std::string& file, const std::string& text, const PlyHead
     while (c.pos < text.size() && std::isspace(static_cast<unsigned char>(text[c.pos]))) ++c.pos;
     if (c.pos < text.size()) loadFail(file, "end of data", "unexpected data after the last element");
   }
+}
+
+std::string plyNumber(double v) {
+  char buf[40];
+  if (v == std::floor(v) && std::fabs(v) < 1e18) std::snprintf(buf, sizeof buf, "%.0f", v);  // integers exactly
+  else std::snprintf(buf, sizeof buf, "%.9g", v);  // enough digits to tell any two floats apart
+  return buf;
 }
 
 }  // namespace montecl

@@ -50,6 +50,10 @@ struct PlyRow {
 };
 using PlyRowSink = std::function<void(const PlyRow&)>;
 
+// A PLY value as the file means it, for messages: "3", "1.5", "1e-07", "nan" (std::to_string
+// would print 1e-07 as 0.000000, and a cast to an integer type is undefined for NaN or 1e30).
+std::string plyNumber(double v);
+
 // Reads every element's rows after the header; `wanted(element)` says whose rows go to sink
 // (the others are parsed and skipped). Throws InputError for truncated or malformed data.
 void readPlyData(const std::string& file, const std::string& text, const PlyHeader& header,

@@ -52,6 +52,16 @@ SettingRule colourRule() {
   return r;
 }
 
+// The background is seen by whole pixels: past this a sample's square overflows the EXR's float
+// variance (1e30 failed only when the image was written); 65504, the largest half float, leaves
+// room for any camera ray count and is far above any sky.
+SettingRule backgroundRule() {
+  SettingRule r = colourRule();
+  r.colourMax = 65504.0f;
+  r.text = "3 numbers in [0, 65504]";
+  return r;
+}
+
 // A row whose value is the member `m` of type T (int / uint32_t / float / vec3, or a choice enum
 // through its names).
 template <class T>
@@ -119,7 +129,7 @@ std::vector<RenderSetting> makeTable() {
                 "sobol (Owen-scrambled Sobol points, stratified; var.* and error figures then overstate the "
                 "error of the mean)",
                 samplerNames(), &RenderSettings::sampler),
-      row("background", "", "Radiance of camera rays that hit nothing (without an environment)", colourRule(),
+      row("background", "", "Radiance of camera rays that hit nothing (without an environment)", backgroundRule(),
           &RenderSettings::background),
       // Denoising changes only the added denoised layers, never the estimate: not in the provenance,
       // so denoised and plain renders of one scene merge.
@@ -194,9 +204,13 @@ RenderSettings parseRenderSettings(const JsonCtx& ctx, const nlohmann::json& j) 
         s.set(r, name);
         break;
       }
-      case SettingRule::Colour:
-        s.set(r, getColor(ctx, *v, where));
+      case SettingRule::Colour: {
+        const glm::vec3 c = getColor(ctx, *v, where);
+        if (c.x > rule.colourMax || c.y > rule.colourMax || c.z > rule.colourMax)
+          jsonFail(ctx, where, "must be " + rule.text + ", got " + v->dump());
+        s.set(r, c);
         break;
+      }
       case SettingRule::Bool:
         if (!v->is_boolean()) jsonFail(ctx, where, "expected true or false, got " + v->dump());
         s.set(r, v->get<bool>());
@@ -234,7 +248,7 @@ std::string settingTextProblem(const RenderSetting& s, const std::string& text) 
       char tail = 0;
       const bool ok = std::sscanf(text.c_str(), "%f,%f,%f%c", &c[0], &c[1], &c[2], &tail) == 3 &&
                       std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]) && c[0] >= 0 && c[1] >= 0 &&
-                      c[2] >= 0;
+                      c[2] >= 0 && c[0] <= rule.colourMax && c[1] <= rule.colourMax && c[2] <= rule.colourMax;
       return ok ? std::string() : "must be " + rule.text + " as R,G,B" + got;
     }
     case SettingRule::Bool:

@@ -48,6 +48,7 @@ struct SettingRule {
   long long lo = 0, hi = 0;         // Integer: within [lo, hi] ...
   bool zeroAllowed = true;          // ... and not 0 unless this
   std::vector<std::string> names;   // Choice: the accepted names
+  float colourMax = 3.4028235e38f;  // Colour: each component at most this
   std::string text;                 // the rule in words: "a positive integer up to 1024"
 };
 

@@ -190,6 +190,15 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     if (colour && !m.albedoTexture.empty()) use(m, m.albedoTexture, "map_Kd", true);
     if (!m.alphaTexture.empty()) use(m, m.alphaTexture, "map_d", false);
   }
+  // A file whose finest level alone is over the budget is refused from its header, before it is
+  // decoded: the budget would drop that level anyway, and a 69-byte PNG can declare 16384 x 16384.
+  const ImageSizeCheck fitsBudget = [budgetBytes](int w, int h, int) -> std::string {
+    const std::uint64_t bytes = std::uint64_t(w) * std::uint64_t(h) * 8u;  // half-float RGBA texels
+    if (bytes <= budgetBytes) return "";
+    return "declares " + std::to_string(w) + "x" + std::to_string(h) + " texels, " + std::to_string((bytes + (1u << 20) - 1) >> 20) +
+           " MiB at full resolution, over the texture budget of " + std::to_string(budgetBytes >> 20) + " MiB (" +
+           std::to_string(budgetBytes) + " bytes); raise --texture-budget or use a smaller image";
+  };
   // Read, convert and mip-map in parallel (one file per task); the pixels as read and the float
   // levels are dropped at once (only the half-float pyramids are kept until packing).
   if (!files.empty()) parallelChunks(files.size(), 0, 1, [&](std::size_t, std::size_t b, std::size_t e) {
@@ -198,8 +207,13 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
       try {
         const auto embedded = scene.embeddedImages.find(f.path);
         const LayeredImage image = embedded != scene.embeddedImages.end()
-                                       ? oiioReadMemory(f.path, embedded->second)
-                                       : readLayeredImage(f.path);
+                                       ? oiioReadMemory(f.path, embedded->second, fitsBudget)
+                                       : readLayeredImage(f.path, fitsBudget);
+        // The environment map's rule, and texels are half floats: over 65504 would be infinite.
+        std::vector<const std::vector<float>*> used;
+        for (std::size_t c = 0; c < std::min<std::size_t>(image.planes.size(), 4); ++c) used.push_back(&image.planes[c]);
+        const std::string bad = badPixelValue(used, image.width, 65504.0f);
+        if (!bad.empty()) throwInputError(f.path, "", bad);
         f.integer = isIntegerImage(image);
         f.hasAlpha = image.planes.size() == 2 || image.planes.size() >= 4;
         // Colour: sRGB-decoded when integer. Alpha: the alpha channel (shared with the colour
