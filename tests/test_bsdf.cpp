@@ -11,68 +11,17 @@
 
 #include "kernels/shared/bsdf.h"
 #include "kernels/shared/rng.h"
+#include "bsdf_chi2.h"
 #include "stats.h"
 
 using montecl_test::chiSquareCritical;
+using montecl_test::chiSquareStat;
 using montecl_test::RunningStats;
 
 namespace {
 
 float3 dirFromAngles(double theta, double phi) {
   return float3(float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)), float(std::cos(theta)));
-}
-
-// Chi-square of samples of wi (local frame, n = +z; a pdf-0 sample counts as "absorbed") binned in
-// (cos theta, phi) over the upper hemisphere, against pdf integrated over each bin (midpoint rule
-// on a sub-grid) plus the absorbed mass 1 - integral. Bins expecting < 5 samples are pooled.
-double chiSquareStat(const std::function<bool(float4, float3&)>& sample,
-                     const std::function<double(float3)>& pdf, int count, int& dof) {
-  const int nz = 16, nphi = 32, sub = 12;
-  std::vector<double> observed(nz * nphi + 1, 0.0), expected(nz * nphi + 1, 0.0);
-  for (int i = 0; i < count; ++i) {
-    float3 wi;
-    if (!sample(rng_uniform4(11u, uint(i), 3u, 0u), wi)) {
-      observed[nz * nphi] += 1.0;
-      continue;
-    }
-    double phi = std::atan2(wi.y, wi.x);
-    if (phi < 0) phi += 2.0 * M_PI;
-    int bz = std::min(nz - 1, std::max(0, int(wi.z * nz)));
-    int bp = std::min(nphi - 1, int(phi / (2.0 * M_PI) * nphi));
-    observed[bz * nphi + bp] += 1.0;
-  }
-  double total = 0.0;
-  for (int bz = 0; bz < nz; ++bz)
-    for (int bp = 0; bp < nphi; ++bp) {
-      double sum = 0.0;
-      for (int a = 0; a < sub; ++a)
-        for (int b = 0; b < sub; ++b) {
-          double z = (bz + (a + 0.5) / sub) / nz, phi = 2.0 * M_PI * (bp + (b + 0.5) / sub) / nphi;
-          sum += pdf(dirFromAngles(std::acos(z), phi));
-        }
-      double p = sum / (sub * sub) * (1.0 / nz) * (2.0 * M_PI / nphi);
-      expected[bz * nphi + bp] = p * count;
-      total += p;
-    }
-  expected[nz * nphi] = std::max(0.0, 1.0 - total) * count;
-  double stat = 0.0, poolObs = 0.0, poolExp = 0.0;
-  dof = -1;
-  for (std::size_t k = 0; k < expected.size(); ++k) {
-    if (expected[k] < 5.0) {
-      poolObs += observed[k];
-      poolExp += expected[k];
-      continue;
-    }
-    double d = observed[k] - expected[k];
-    stat += d * d / expected[k];
-    ++dof;
-  }
-  if (poolExp > 0.0) {
-    double d = poolObs - poolExp;
-    stat += d * d / std::max(poolExp, 5.0);
-    ++dof;
-  }
-  return stat;
 }
 
 const float3 kN(0.0f, 0.0f, 1.0f);
@@ -228,6 +177,7 @@ SurfaceFrame tiltedFrame() {
   s.ng = kN;
   s.ns = dirFromAngles(35.0 * M_PI / 180.0, 0.0);
   s.smooth = 1;
+  s.backface = 0;
   return s;
 }
 }  // namespace

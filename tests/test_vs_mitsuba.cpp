@@ -1,7 +1,8 @@
 // test_vs_mitsuba.cpp: the independent-renderer check, scripts/vs_mitsuba.py, through the real
 // command line: montecl and Mitsuba 3 render the shared Cornell box and must agree per pixel
 // (|z| > 4 on <= 0.1% of pixel channels, |mean z| <= 0.1; the script prints PASS/FAIL and exits
-// 1 on FAIL). Skipped unless Mitsuba's venv exists (`scripts/setup.sh --mitsuba`; CI does not
+// 1 on FAIL); the Cornell box with material kinds (glass, rough gold, mirror: scripts/kinds_scene.py)
+// per 8x8 block, and a wrong ior / metal that must fail. Skipped unless Mitsuba's venv exists (`scripts/setup.sh --mitsuba`; CI does not
 // install it by default) and the shared scenes are present. The path-integrator cases also skip
 // while montecl has no `--integrator path`.
 #include <doctest/doctest.h>
@@ -29,9 +30,10 @@ std::string mitsubaVenvPython() {
 
 bool exists(const std::string& path) { return std::ifstream(path).good(); }
 
-CliResult runVsMitsuba(const std::vector<std::string>& extra) {
+CliResult runVsMitsuba(const std::vector<std::string>& extra, const std::string& scene = "") {
   std::vector<std::string> argv = {mitsubaVenvPython(), MONTECL_SOURCE_DIR "/scripts/vs_mitsuba.py",
-                                   sharedScenes() + "/cornell-box/scene.json", "--montecl", MONTECL_EXE,
+                                   scene.empty() ? sharedScenes() + "/cornell-box/scene.json" : scene,
+                                   "--montecl", MONTECL_EXE,
                                    "--width", "64", "--height", "64", "--no-timing"};
   argv.insert(argv.end(), extra.begin(), extra.end());
   return runProgram(argv);
@@ -88,6 +90,50 @@ TEST_CASE("vs_mitsuba: FAIL (exit 1) when montecl's red wall has albedo 0.5 inst
   dir.write("scene.json", montecl_test::readAll(box + "scene.json"));
   CliResult r = runVsMitsuba({"--spp", "64", "--width", "32", "--height", "32", "--integrator", "direct",
                               "--montecl-scene", dir.file("scene.json")});
+  INFO(r.out << r.err);
+  CHECK(r.exitCode == 1);
+  CHECK(r.out.find("FAIL") != std::string::npos);
+}
+
+namespace {
+// The Cornell box with a smooth glass sphere, a rough gold sphere and a mirror sphere
+// (scripts/kinds_scene.py writes the spheres' OBJs and the scene into dir), optionally with extra
+// kinds_scene.py arguments (a wrong ior / metal).
+std::string kindsScene(const montecl_test::TempDir& dir, const std::string& sub, std::vector<std::string> extra) {
+  std::vector<std::string> argv = {mitsubaVenvPython(), MONTECL_SOURCE_DIR "/scripts/kinds_scene.py", dir.file(sub),
+                                   "--cornell", sharedScenes() + "/cornell-box"};
+  argv.insert(argv.end(), extra.begin(), extra.end());
+  const CliResult r = runProgram(argv);
+  REQUIRE_MESSAGE(r.exitCode == 0, r.err);
+  return dir.file(sub) + "/scene.json";
+}
+// Caustics (the mirror's and the glass's on the floor) are heavy tailed: 8 x 8 block means, whose
+// 192 channels' mean z has an SE of ~0.07 and a negative skew (blocks without a rare caustic path
+// have a smaller mean and a smaller sample SE): the mean-z limit is 0.4 (unbiased renders gave
+// -0.1 .. -0.2 at 256 - 1024 spp; the wrong ior / metal fails on |z| > 4).
+const std::vector<std::string> kKindsArgs = {"--spp", "512", "--integrator", "path", "--max-depth", "3",
+                                             "--block", "8", "--mean-z-limit", "0.4"};
+}  // namespace
+
+TEST_CASE("vs_mitsuba: Cornell box with glass, rough gold and mirror spheres, path depth 3, agrees per 8x8 block" *
+          doctest::test_suite("cli shared-scenes slow")) {
+  MCL_SKIP_UNLESS_MITSUBA();
+  montecl_test::TempDir dir;
+  CliResult r = runVsMitsuba(kKindsArgs, kindsScene(dir, "kinds", {}));
+  INFO(r.out << r.err);
+  CHECK(r.exitCode == 0);
+  CHECK(r.out.find("PASS") != std::string::npos);
+}
+
+TEST_CASE("vs_mitsuba: FAIL (exit 1) when montecl's glass has ior 1.3 and its gold is copper" *
+          doctest::test_suite("cli shared-scenes slow")) {
+  MCL_SKIP_UNLESS_MITSUBA();
+  montecl_test::TempDir dir;
+  const std::string right = kindsScene(dir, "kinds", {});
+  const std::string wrong = kindsScene(dir, "wrong", {"--ior", "1.3", "--metal", "Cu"});
+  std::vector<std::string> args = kKindsArgs;
+  args.insert(args.end(), {"--montecl-scene", wrong});
+  CliResult r = runVsMitsuba(args, right);
   INFO(r.out << r.err);
   CHECK(r.exitCode == 1);
   CHECK(r.out.find("FAIL") != std::string::npos);

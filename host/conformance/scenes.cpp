@@ -146,6 +146,33 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
     }
   cases.push_back({"smooth-sphere/glossy-path", withPath(glossySphere, 1)});
   cases.push_back({"polygon-light/path", withPath(light, 2)});
+  // Delta and glossy kinds: the smooth sphere as glass (both interfaces, shading normals), the
+  // occluder a rough gold conductor (path) or a smooth mirror (direct), the floor glTF
+  // metallic-roughness, under the area light and a constant environment.
+  for (int direct = 0; direct < 2; ++direct) {
+    Scene delta = light;
+    delta.path = "<glass and metal scene>";
+    addUvSphere(delta, {-0.4f, 0.22f, 0.45f}, 0.2f, 8, 16, true, 3);
+    MaterialDesc glass{"glass", glm::vec3(1.0f), glm::vec3(0.0f)};
+    glass.kind = MCL_MATERIAL_dielectric;
+    glass.ior = 1.5f;
+    delta.materials.push_back(glass);
+    MaterialDesc& gold = delta.materials[2];
+    gold.kind = MCL_MATERIAL_conductor;
+    gold.eta = {0.143f, 0.375f, 1.442f};
+    gold.k = {3.983f, 2.386f, 1.603f};
+    gold.kindAlpha = direct ? 0.0f : 0.2f;
+    if (!direct) {
+      delta.materials[0].kind = MCL_MATERIAL_metal_rough;
+      delta.materials[0].metallic = 0.3f;
+      delta.materials[0].roughness = 0.5f;
+    }
+    delta.environment.enabled = true;
+    delta.environment.radiance = {0.3f, 0.4f, 0.5f};
+    finishScene(delta);
+    if (direct) cases.push_back({"glass-mirror/direct-mis", withDirect(delta, DirectSampling::Mis, 2)});
+    else cases.push_back({"glass-metal/path", withPath(delta, 1)});
+  }
   cases.push_back(texturedCase(withDirect(light, DirectSampling::Mis, 2), "textured-cutout/direct-mis"));
   cases.push_back(texturedCase(withAo(light, AoSampling::Cosine), "textured-cutout/ao-cosine"));
   cases.push_back(texturedCase(withPath(light, 1), "textured-cutout/path"));

@@ -13,6 +13,17 @@ Material deviceMaterial(const MaterialDesc& m) {
   d.emission = glm::vec4(m.emission, m.twoSidedEmission ? 1.0f : 0.0f);
   d.specular = glm::vec4(m.specular, ggx_alpha_from_ns(m.specularExponent));
   d.alpha = glm::vec4(noTexture, m.alphaCutoff, glm::uintBitsToFloat(0u), glm::uintBitsToFloat(m.kind));
+  // The kinds' parameters, as bsdf_<kind>.h's <kind>_from_material reads them; zero for diffuse.
+  switch (m.kind) {
+    case MCL_MATERIAL_conductor:
+      d.params0 = glm::vec4(m.eta, m.kindAlpha);
+      d.params1 = glm::vec4(m.k, 0.0f);
+      break;
+    case MCL_MATERIAL_dielectric:
+    case MCL_MATERIAL_thin_dielectric: d.params0 = glm::vec4(m.ior, 0.0f, 0.0f, 0.0f); break;
+    case MCL_MATERIAL_metal_rough: d.params0 = glm::vec4(m.metallic, m.roughness, 0.0f, 0.0f); break;
+    default: break;
+  }
   return d;
 }
 

@@ -73,7 +73,7 @@ std::uint32_t Loader::material(int index) {
   const std::string where = itemWhere("materials", i);
   MaterialDesc d;
   d.name = g.name.empty() ? where : g.name;
-  d.kind = MCL_MATERIAL_diffuse;  // the base colour as Lambert: metallic/roughness are not read (below)
+  d.kind = MCL_MATERIAL_diffuse;  // the base colour as Lambert unless metallic/roughness say otherwise (below)
   const auto& pbr = g.pbrMetallicRoughness;
   d.albedo = factor3(pbr.baseColorFactor, 1.0);
   double strength = 1.0;
@@ -121,8 +121,20 @@ std::uint32_t Loader::material(int index) {
     d.alphaTexture = d.albedoTexture;
     if (d.alphaTexture.empty()) unused.add("constant alpha", where, "alphaMode " + g.alphaMode + " without a usable base colour texture: no cut-out");
   }
-  if (pbr.metallicRoughnessTexture.index >= 0 || pbr.metallicFactor != 1.0 || pbr.roughnessFactor != 1.0)
-    unused.add("metallicRoughness", where, "metallic/roughness not used by montecl (Lambertian), ignored");
+  // metallic/roughness factors -> the metal_rough kind. Two factor pairs stay Lambertian, as every
+  // glTF material rendered before the kind existed: (0, 1), which metal_rough nearly is (a rough
+  // dielectric), and the defaults (1, 1), which montecl always drew as Lambert (glTF's rough metal
+  // would change those images; give the factors explicitly, or a scene file's material type).
+  const float metallic = float(pbr.metallicFactor), roughness = float(pbr.roughnessFactor);
+  if (!(metallic >= 0.0f && metallic <= 1.0f)) loadFail(file, where, "metallicFactor must be in [0, 1]");
+  if (!(roughness >= 0.0f && roughness <= 1.0f)) loadFail(file, where, "roughnessFactor must be in [0, 1]");
+  if (roughness != 1.0f || (metallic != 0.0f && metallic != 1.0f)) {
+    d.kind = MCL_MATERIAL_metal_rough;
+    d.metallic = metallic;
+    d.roughness = roughness;
+  }
+  if (pbr.metallicRoughnessTexture.index >= 0)
+    unused.add("metallicRoughnessTexture", where, "metallicRoughnessTexture not used by montecl (the factors are), ignored");
   if (g.normalTexture.index >= 0) unused.add("normalTexture", where, "normalTexture not used by montecl, ignored");
   if (g.occlusionTexture.index >= 0) unused.add("occlusionTexture", where, "occlusionTexture not used by montecl, ignored");
   if (g.emissiveTexture.index >= 0) unused.add("emissiveTexture", where, "emissiveTexture not used by montecl (emissiveFactor only), ignored");

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "scene/load_util.h"
+#include "scene/material_params.h"
 
 namespace montecl {
 namespace {
@@ -37,7 +38,8 @@ void parseMaterial(const JsonCtx& ctx, const json& j, const std::string& prefix,
   requireObject(ctx, j, prefix);
   warnUnknownKeys(ctx, j, prefix,
                   {"type", "albedo", "albedo_texture", "alpha_texture", "alpha_cutoff", "emission",
-                   "two_sided_emission", "specular", "specular_exponent"});
+                   "two_sided_emission", "specular", "specular_exponent", "eta", "k", "metal", "alpha",
+                   "roughness", "ior", "metallic"});
   MaterialDesc& d = o.value;
   if (const json* v = optionalKey(j, "type")) {  // the material kind (kernels/shared/material_kinds.h)
     const std::string name = getString(ctx, *v, prefix + ".type", "a material type");
@@ -45,6 +47,7 @@ void parseMaterial(const JsonCtx& ctx, const json& j, const std::string& prefix,
       jsonFail(ctx, prefix + ".type", "unknown material type '" + oneLine(name, 60) + "' (known: " + materialKindNames() + ")");
     o.kind = true;
   }
+  o.kindParams = parseKindParams(ctx, j, prefix, d);
   if (const json* v = optionalKey(j, "albedo")) o.albedo = true, d.albedo = getColor(ctx, *v, prefix + ".albedo");
   if (const json* v = optionalKey(j, "albedo_texture"))
     o.albedoTexture = true, d.albedoTexture = texturePath(ctx, *v, prefix + ".albedo_texture");
@@ -155,6 +158,10 @@ void overrideMaterials(Scene& scene, std::size_t firstTri, const MeshEntry& mesh
       if (o.twoSided) d.twoSidedEmission = o.value.twoSidedEmission;
       if (o.specular) d.specular = o.value.specular;
       if (o.specularExponent) d.specularExponent = o.value.specularExponent;
+      if (o.kindParams) {
+        d.eta = o.value.eta, d.k = o.value.k, d.ior = o.value.ior, d.kindAlpha = o.value.kindAlpha;
+        d.metallic = o.value.metallic, d.roughness = o.value.roughness;
+      }
       copyOf[m] = static_cast<std::int64_t>(scene.materials.size());
       scene.materials.push_back(d);
     }

@@ -19,11 +19,12 @@ namespace montecl {
 // The material fields a scene file sets for one mesh; the others keep the file's values.
 struct MaterialOverride {
   bool kind = false, albedo = false, albedoTexture = false, alphaTexture = false, alphaCutoff = false,
-       emission = false, twoSided = false, specular = false, specularExponent = false;
+       emission = false, twoSided = false, specular = false, specularExponent = false,
+       kindParams = false;  // eta, k, ior, kindAlpha, metallic, roughness (given with the type)
   MaterialDesc value;
   bool any() const {
     return kind || albedo || albedoTexture || alphaTexture || alphaCutoff || emission || twoSided || specular ||
-           specularExponent;
+           specularExponent || kindParams;
   }
 };
 

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include "scene/glossy_material.h"
 #include "scene/load_util.h"
@@ -20,7 +21,8 @@ bool isBlank(char c) { return c == ' ' || c == '\t'; }
 
 // What montecl reads from an MTL; every other statement is reported once per kind.
 bool isUsed(const std::string& key) {
-  static const std::set<std::string> used = {"newmtl", "Kd", "Ke", "Ks", "Ns", "map_Kd", "map_d"};
+  // Pm / Pr always pick a kind; illum and Ni only for glass (scanMtl, mtlKind).
+  static const std::set<std::string> used = {"newmtl", "Kd", "Ke", "Ks", "Ns", "map_Kd", "map_d", "Pm", "Pr"};
   return used.count(key) > 0;
 }
 
@@ -43,6 +45,16 @@ void scanMtl(const std::string& text, MtlFile& f) {
   MtlBlock current;
   bool named = false;
   std::size_t line = 0;
+  // illum 4, 6, 7 (glass) with Ni makes a dielectric (mtlKind): those are used; any other illum,
+  // and Ni in a block that is not glass, are reported, once the block's end shows which it is.
+  bool glass = false;
+  std::vector<std::pair<std::string, std::string>> pending;  // (key, where) of illum / Ni
+  const auto endBlock = [&]() {
+    for (const auto& k : pending)
+      if (!glass) f.unused.add(k.first, k.second, unusedText(k.first));
+    pending.clear();
+    glass = false;
+  };
   for (std::size_t p = 0; p < text.size();) {
     std::size_t eol = text.find_first_of("\r\n", p);
     if (eol == std::string::npos) eol = text.size();
@@ -57,6 +69,7 @@ void scanMtl(const std::string& text, MtlFile& f) {
     while (e < s.size() && !isBlank(s[e])) ++e;
     const std::string key = s.substr(b, e - b);
     if (key == "newmtl" && e < s.size()) {
+      endBlock();
       if (named) f.blocks.push_back(current);
       current = MtlBlock{};
       named = true;
@@ -70,6 +83,10 @@ void scanMtl(const std::string& text, MtlFile& f) {
       if (v != (key == "d" ? 1.0 : 0.0))
         f.unused.add("dissolve", where,
                      "'" + key + "' (constant opacity) not used by montecl: only map_d cuts out, ignored");
+    } else if (key == "illum" || key == "Ni") {
+      int v = 0;
+      if (key == "illum" && (rest >> v) && (v == 4 || v == 6 || v == 7)) glass = true;
+      pending.emplace_back(key, where);
     } else if (!isUsed(key)) {
       f.unused.add(key, where, unusedText(key));
     } else if (key == "map_Kd" || key == "map_d") {
@@ -82,6 +99,7 @@ void scanMtl(const std::string& text, MtlFile& f) {
         }
     }
   }
+  endBlock();
   f.blocks.push_back(current);
 }
 
@@ -173,6 +191,23 @@ void failOnMissingTextures(const TextureLookup& look) {
   loadFail(look.firstFile, look.firstWhere, all);
 }
 
+// The material kind of an MTL material: illum 4, 6 or 7 (glass, refraction) with Ni -> dielectric
+// of ior Ni; Pm or Pr (the PBR extension) -> metal_rough (base Kd, metallic Pm, default 0;
+// roughness Pr, default 1); otherwise diffuse (Kd + Ks/Ns).
+void mtlKind(const tinyobj::material_t& m, const MaterialSource& src, MaterialDesc& d) {
+  if ((m.illum == 4 || m.illum == 6 || m.illum == 7) && src.has("Ni")) {
+    d.kind = MCL_MATERIAL_dielectric;
+    d.ior = static_cast<float>(m.ior);
+    if (!(d.ior > 0.0f && std::isfinite(d.ior))) src.fail("Ni", "Ni must be a finite number > 0");
+  } else if (src.has("Pm") || src.has("Pr")) {
+    d.kind = MCL_MATERIAL_metal_rough;
+    d.metallic = src.has("Pm") ? static_cast<float>(m.metallic) : 0.0f;
+    d.roughness = src.has("Pr") ? static_cast<float>(m.roughness) : 1.0f;
+    if (!(d.metallic >= 0.0f && d.metallic <= 1.0f)) src.fail("Pm", "Pm must be in [0, 1]");
+    if (!(d.roughness >= 0.0f && d.roughness <= 1.0f)) src.fail("Pr", "Pr must be in [0, 1]");
+  }
+}
+
 }  // namespace
 
 bool MtlReader::operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
@@ -212,7 +247,7 @@ std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<t
     const MaterialSource src = sourceOf(objPath, files, i, m.name);
     MaterialDesc d;
     d.name = m.name;
-    d.kind = MCL_MATERIAL_diffuse;  // Kd + Ks/Ns: every MTL material is this kind today (illum is not read)
+    d.kind = MCL_MATERIAL_diffuse;  // Kd + Ks/Ns, unless mtlKind (below) finds glass or PBR keys
     d.albedo = toVec3(m.diffuse);
     d.emission = toVec3(m.emission);
     d.specular = toVec3(m.specular);
@@ -222,6 +257,7 @@ std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<t
     if (!validColor(d.specular, 1.0f)) src.fail("Ks", "Ks components must be in [0, 1]");
     if (!std::isfinite(d.specularExponent) || d.specularExponent < 0.0f) src.fail("Ns", "Ns must be finite and >= 0");
     if (src.block && !src.has("Ns")) d.specularExponent = 0.0f;  // tinyobj's default is 1
+    mtlKind(m, src, d);
     if (!m.diffuse_texname.empty() || src.has("map_Kd")) {
       d.albedoTexture = texturePath(src, "map_Kd", m.diffuse_texname, look);
       if (src.block && !src.has("Kd")) d.albedo = glm::vec3(1.0f);  // the texture as it is (tinyobj: 0.6)

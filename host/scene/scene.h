@@ -41,6 +41,12 @@ struct MaterialDesc {
   float alphaCutoff = 0.5f;   // a hit whose alpha is below this does not exist for any ray
   glm::vec3 specular{0.0f};   // Ks (the GGX glossy lobe), 0: Lambertian only
   float specularExponent = 0.0f;  // Ns
+  // The kinds' own parameters (scene keys, host/scene/material_params.cpp; docs/scene-format.md);
+  // read only by their kind (deviceMaterial packs them into Material::params0/1).
+  glm::vec3 eta{0.0f}, k{1.0f};  // conductor: complex IOR (default eta 0, k 1: a perfect mirror)
+  float ior = 1.5f;               // dielectric, thin_dielectric: inside / outside
+  float kindAlpha = 0.0f;         // conductor: GGX alpha (0: smooth)
+  float metallic = 0.0f, roughness = 1.0f;  // metal_rough (glTF factors)
 };
 
 // Per-corner attributes of a triangle (SceneTriangle::attributes says which are present).

@@ -63,7 +63,13 @@ std::string sceneDigest(const Scene& scene) {
     bytes.add(m.twoSidedEmission ? "2" : "1");
     // The kind only when it is not the first (diffuse): every scene from before kinds existed keeps
     // its digest, so its checkpoints still resume.
-    if (m.kind != MCL_MATERIAL_diffuse) bytes.add("kind" + std::to_string(m.kind));
+    if (m.kind != MCL_MATERIAL_diffuse) {  // and its parameters (diffuse reads none of them)
+      bytes.add("kind" + std::to_string(m.kind));
+      appendVec(bytes, m.eta);
+      appendVec(bytes, m.k);
+      const float p[4] = {m.ior, m.kindAlpha, m.metallic, m.roughness};
+      append(bytes, p, sizeof p);
+    }
   }
   if (scene.environment.enabled) {  // the map by its content
     const EnvironmentDesc& e = scene.environment;

@@ -10,11 +10,17 @@
 //   bsdf_sample_direction / bsdf_direction_weight    the same sample split over two stages
 //                                                    (the direct integrator; bsdf_common.h)
 //   bsdf_albedo(b)                  the colour of the albedo AOV
+//   bsdf_is_delta(b)                1 when every lobe is a delta lobe (a mirror, smooth glass:
+//                                   eval and pdf are 0, light sampling there is skipped)
 // A tag outside the table (never loaded: the loaders only set tabled kinds) reflects nothing.
 // Switches, not function pointers: OpenCL C 1.2 has none; with one kind the switch folds away.
 #pragma once
 #include "material_kinds.h"
 #include "bsdf_diffuse.h"  // one include per kind: bsdf_<kind>.h
+#include "bsdf_conductor.h"
+#include "bsdf_dielectric.h"
+#include "bsdf_thin_dielectric.h"
+#include "bsdf_metal_rough.h"
 
 // A material kind's tag as the device Material holds it (alpha.w, as uint bits).
 MCL_INLINE uint material_kind(Material m) { return as_uint(m.alpha.w); }
@@ -86,6 +92,7 @@ MCL_INLINE BsdfSample bsdf_sample(Bsdf b, SurfaceFrame s, float3 wo, float u1, f
   none.wi = s.ng;
   none.weight = make_float3(0.0f, 0.0f, 0.0f);
   none.pdf = 0.0f;
+  none.flags = 0;
   return none;
 }
 
@@ -99,6 +106,7 @@ MCL_INLINE BsdfDirection bsdf_sample_direction(Bsdf b, SurfaceFrame s, float3 wo
   BsdfDirection none;
   none.wi = s.ng;
   none.traced = 0;
+  none.flags = 0;
   return none;
 }
 
@@ -123,4 +131,14 @@ MCL_INLINE float3 bsdf_albedo(Bsdf b) {
 #undef MCL_BSDF_CASE
   }
   return make_float3(0.0f, 0.0f, 0.0f);
+}
+
+MCL_INLINE int bsdf_is_delta(Bsdf b) {
+  switch (b.kind) {
+#define MCL_BSDF_CASE(kind, Params) \
+  case MCL_MATERIAL_##kind: return kind##_is_delta(b.p.kind);
+    MCL_MATERIAL_KINDS(MCL_BSDF_CASE)
+#undef MCL_BSDF_CASE
+  }
+  return 0;
 }

@@ -8,11 +8,22 @@
 #include "sampling.h"
 #include "shading.h"
 
+// Lobe flags of a sample (as pbrt's BSDFFlags): a sample from a delta lobe (a mirror, smooth glass)
+// has no solid-angle density: its pdf is the discrete probability of the lobe that was picked, its
+// weight the exact f cos / p of that lobe, and <kind>_eval / _pdf give 0 for every direction (a
+// light sample can never land on it). The integrators skip MIS after such a bounce (the emitter or
+// environment it finds counts fully) and skip light sampling at a surface that is purely delta
+// (<kind>_is_delta). A transmitted sample leaves below the geometric surface: its ray starts on
+// that side (the ray-origin offset follows it).
+#define MCL_BSDF_DELTA 1
+#define MCL_BSDF_TRANSMISSION 2
+
 // A direction drawn by <kind>_sample with its weight.
 typedef struct {
   float3 wi;
   float3 weight;  // f * cos / pdf
-  float pdf;      // solid angle; 0: no direction (the sample is absorbed)
+  float pdf;      // solid angle (delta: the lobe's discrete probability); 0: no direction (absorbed)
+  int flags;      // MCL_BSDF_DELTA | MCL_BSDF_TRANSMISSION; 0 for a non-delta reflection
 } BsdfSample;
 
 // The direct integrator draws its BSDF direction in shade_direct and weighs it in
@@ -23,6 +34,7 @@ typedef struct {
 typedef struct {
   float3 wi;
   int traced;
+  int flags;  // the sample's MCL_BSDF_* flags (the ray's origin side follows TRANSMISSION)
 } BsdfDirection;
 
 typedef struct {
@@ -35,4 +47,51 @@ MCL_INLINE float3 to_local(float3 w, float3 n) {
   float3 t, b;
   make_basis(n, &t, &b);
   return make_float3(dot(w, t), dot(w, b), dot(w, n));
+}
+
+// The usual split pair of a kind whose sample weight can be rebuilt from wi alone.
+MCL_INLINE BsdfDirection bsdf_direction_of(BsdfSample bs) {
+  BsdfDirection d;
+  d.wi = bs.wi;
+  d.traced = bs.pdf > 0.0f;
+  d.flags = bs.flags;
+  return d;
+}
+
+// The ray origin for a ray leaving a hit at p (geometric normal ng facing the incoming ray) with
+// sample flags `flags`: offset to ng's side, or to the other side for a transmitted ray.
+MCL_INLINE float3 bsdf_ray_origin(float3 p, float3 ng, int flags, float scale) {
+  return offset_ray_origin(p, (flags & MCL_BSDF_TRANSMISSION) ? -ng : ng, scale);
+}
+
+// Unpolarised Fresnel reflectance of a dielectric interface for cosI = cos of the incident angle
+// (> 0, on the side of the incident medium) and eta = n_transmitted / n_incident; *cosT receives
+// the cosine of the refracted direction (0 under total internal reflection, where R = 1).
+MCL_INLINE float fresnel_dielectric(float cosI, float eta, float* cosT) {
+  float sin2T = (1.0f - cosI * cosI) / (eta * eta);
+  float c = sqrt(fmax(0.0f, 1.0f - sin2T));
+  float rs = (cosI - eta * c) / (cosI + eta * c);
+  float rp = (eta * cosI - c) / (eta * cosI + c);
+  int tir = sin2T >= 1.0f;
+  *cosT = tir ? 0.0f : c;
+  return tir ? 1.0f : 0.5f * (rs * rs + rp * rp);
+}
+
+// Unpolarised Fresnel reflectance of a conductor of complex index eta + i k (relative to the outside
+// medium) for one channel at cosI in [0, 1]: the exact expression (e.g. pbrt-v3's FrConductor).
+MCL_INLINE float fresnel_conductor1(float cosI, float eta, float k) {
+  float c2 = cosI * cosI, s2 = 1.0f - c2;
+  float e2 = eta * eta, k2 = k * k;
+  float t0 = e2 - k2 - s2;
+  float a2b2 = sqrt(fmax(0.0f, t0 * t0 + 4.0f * e2 * k2));
+  float a = sqrt(fmax(0.0f, 0.5f * (a2b2 + t0)));
+  float t1 = a2b2 + c2, t2 = 2.0f * cosI * a;
+  float rs = (t1 - t2) / fmax(t1 + t2, 1e-30f);
+  float t3 = c2 * a2b2 + s2 * s2, t4 = t2 * s2;
+  float rp = rs * (t3 - t4) / fmax(t3 + t4, 1e-30f);
+  return 0.5f * (rs + rp);
+}
+MCL_INLINE float3 fresnel_conductor(float cosI, float3 eta, float3 k) {
+  return make_float3(fresnel_conductor1(cosI, eta.x, k.x), fresnel_conductor1(cosI, eta.y, k.y),
+                     fresnel_conductor1(cosI, eta.z, k.z));
 }

@@ -44,6 +44,12 @@ MCL_INLINE DiffuseBsdf diffuse_from_material(Material m, float3 albedo) {
   return b;
 }
 
+// No delta lobe (the glossy lobe's alpha is at least MCL_GGX_MIN_ALPHA).
+MCL_INLINE int diffuse_is_delta(DiffuseBsdf b) {
+  (void)b;
+  return 0;
+}
+
 // What the albedo AOV shows: Kd x texture (the glossy lobe is left out, as denoisers expect).
 MCL_INLINE float3 diffuse_albedo(DiffuseBsdf b) { return b.kd; }
 
@@ -83,11 +89,13 @@ MCL_INLINE BsdfSample diffuse_sample_about(DiffuseBsdf b, float3 n, float3 wo, f
     s.wi = to_world(dirLocal, n);
     s.pdf = pdf_cosine_hemisphere(dirLocal.z);
     s.weight = s.pdf > 0.0f ? b.kd : make_float3(0.0f, 0.0f, 0.0f);
+    s.flags = 0;
     return s;
   }
   float3 woL = to_local(wo, n);
   s.weight = make_float3(0.0f, 0.0f, 0.0f);
   s.pdf = 0.0f;
+  s.flags = 0;
   s.wi = n;
   if (!(woL.z > 0.0f)) return s;
   float3 wiL;
@@ -136,6 +144,7 @@ MCL_INLINE BsdfSample diffuse_sample(DiffuseBsdf b, SurfaceFrame s, float3 wo, f
   BsdfSample r;
   r.weight = make_float3(0.0f, 0.0f, 0.0f);
   r.pdf = 0.0f;
+  r.flags = 0;
   r.wi = s.ns;
   if (b.specProb > 0.0f && uLobe < b.specProb) {
     float3 woL = to_local(wo, s.ns);
@@ -157,6 +166,7 @@ MCL_INLINE BsdfSample diffuse_sample(DiffuseBsdf b, SurfaceFrame s, float3 wo, f
 MCL_INLINE BsdfDirection diffuse_sample_direction(DiffuseBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,
                                                   float uLobe) {
   BsdfDirection d;
+  d.flags = 0;
   if (b.specProb == 0.0f) {
     d.wi = frame_sample_direction(s, sample_cosine_hemisphere(u1, u2));
     d.traced = 1;

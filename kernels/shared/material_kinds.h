@@ -16,7 +16,11 @@
 // The first row is the default: a zero tag (a Material{} filled with zeros, and every material
 // before kinds existed) is that kind.
 #define MCL_MATERIAL_KINDS(KIND)                                                                   \
-  KIND(diffuse, DiffuseBsdf) /* Lambert Kd (x albedo texture) + optional GGX glossy lobe Ks */
+  KIND(diffuse, DiffuseBsdf) /* Lambert Kd (x albedo texture) + optional GGX glossy lobe Ks */    \
+  KIND(conductor, ConductorBsdf) /* metal: complex IOR eta + i k; mirror or GGX (alpha) */          \
+  KIND(dielectric, DielectricBsdf) /* smooth glass of index ior: delta reflection + refraction */   \
+  KIND(thin_dielectric, ThinDielectricBsdf) /* thin sheet: delta reflection + straight through */   \
+  KIND(metal_rough, MetalRoughBsdf) /* glTF metallic-roughness: Lambert + Schlick GGX */
 
 #define MCL_MATERIAL_KIND_TAG(kind, Params) MCL_MATERIAL_##kind,
 enum { MCL_MATERIAL_KINDS(MCL_MATERIAL_KIND_TAG) MCL_MATERIAL_KIND_COUNT };

@@ -26,6 +26,9 @@ typedef struct {
   float3 ng;   // geometric normal facing the incoming ray
   float3 ns;   // shading normal on ng's side (ng when the triangle has no normals)
   int smooth;  // 1 when ns came from the triangle's corner normals
+  int backface;  // 1 when the ray arrived at the triangle's back face (the side opposite
+                 // cross(v1 - v0, v2 - v0)): ng is then the triangle's normal negated. Kinds with
+                 // an inside (dielectric) read it; 0 (the front, the outside) when unknown
 } SurfaceFrame;
 
 // Corner normals n0, n1, n2 at barycentrics (1 - u - v, u, v), normalised; the zero vector when the

@@ -56,6 +56,7 @@ MCL_INLINE SurfaceFrame surface_frame(MCL_GLOBAL const Triangle* tris, MCL_GLOBA
   s.ng = orient_facing(xyz(normals[h.tri]), incoming);
   s.ns = s.ng;
   s.smooth = 0;
+  s.backface = dot(xyz(normals[h.tri]), incoming) > 0.0f;
   if (as_uint(tri->e2.w) & MCL_ATTR_NORMALS) {
     MCL_GLOBAL const TriangleShading* a = &shading[h.tri];
     float3 n = interpolate_normal(xyz(a->n0), xyz(a->n1), xyz(a->n2), h.u, h.v);

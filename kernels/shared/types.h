@@ -79,7 +79,11 @@ typedef struct MCL_ALIGN16 {
   float4 alpha;     // x: alpha texture index (as_float bits, MCL_NO_TEXTURE: opaque); y: cutoff;
                     // z: channel of that texture holding alpha (as_float bits); w: the material kind
                     // MCL_MATERIAL_<kind> (as_float bits; shared/material_kinds.h; 0: diffuse)
+  float4 params0;   // the kind's own parameters (bsdf_<kind>.h <kind>_from_material; 0 for diffuse)
+  float4 params1;
 } Material;
+// Floats per Material: the stride of the packet stages' gathers of material fields.
+#define MCL_MATERIAL_FLOATS 24
 
 // A ray: origin.w unused (0), dir.w = tmax.
 typedef struct MCL_ALIGN16 {
@@ -174,7 +178,8 @@ static_assert(offsetof(WideNode, child) == 192, "WideNode layout");
 static_assert(sizeof(Triangle) == 48, "Triangle layout");
 static_assert(sizeof(TriangleShading) == 64, "TriangleShading layout");
 static_assert(offsetof(TriangleShading, tv) == 48, "TriangleShading layout");
-static_assert(sizeof(Material) == 64, "Material layout");
+static_assert(sizeof(Material) == 96 && sizeof(Material) == 4 * MCL_MATERIAL_FLOATS, "Material layout");
+static_assert(offsetof(Material, params0) == 64, "Material layout");
 static_assert(sizeof(Ray) == 32, "Ray layout");
 static_assert(sizeof(Hit) == 16, "Hit layout");
 static_assert(sizeof(ShadowWork) == 48, "ShadowWork layout");

@@ -51,7 +51,7 @@ MCL_INLINE VEmitterSample v_sample_emitter(MCL_CONSTANT const FrameParams* f, MC
   v_gather4_few(tf + 8, lt, 12, &l2x, &l2y, &l2z, &l2w);
   v_gather4_few((MCL_GLOBAL const float*)normals, lt, 4, &lnx, &lny, &lnz, &lnw);
   vfloat lex, ley, lez, lew;
-  v_gather4_few(mf + 4, v_as_uint(l0w), 16, &lex, &ley, &lez, &lew);
+  v_gather4_few(mf + 4, v_as_uint(l0w), MCL_MATERIAL_FLOATS, &lex, &ley, &lez, &lew);
   VEmitterSample s;
   s.le = v3_make(lex, ley, lez);
   vfloat su = sqrt(u2);  // sample_triangle

@@ -33,7 +33,10 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   float3 origin = offset_ray_origin(sf.p, sf.ng, f->offsetScale);
   uint pixel = item_pixel(f, a->active, a->waveStart, i), sample = item_sample(f, a->waveStart, i);
   float nLight = (float)f->lightSamples;
-  bool useLight = f->directSampling != MCL_DIRECT_BRDF && (f->emitterCount > 0 || env_present(f));
+  // Light sampling at a purely delta surface (a mirror, smooth glass) finds nothing (f = 0 for
+  // every light direction): skipped, the BSDF ray (shade_direct_hit) carries it all.
+  bool useLight = f->directSampling != MCL_DIRECT_BRDF && (f->emitterCount > 0 || env_present(f)) &&
+                  !bsdf_is_delta(bsdf);
   bool useBrdf = f->directSampling != MCL_DIRECT_LIGHT;
 
   for (uint k = 0; useLight && k < f->lightSamples; ++k) {
@@ -48,8 +51,9 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   if (useBrdf) {
     float4 u = sample_uniform4(f, pixel, sample, MCL_DIM_BRDF);
     BsdfDirection d = bsdf_sample_direction(bsdf, sf, wo, u.x, u.y, u.z);  // weighed in shade_direct_hit
-    if (d.traced) {  // else absorbed: no BRDF ray
-      bounce.origin = with_w(origin, 0.0f);
+    if (d.traced) {  // else absorbed: no BRDF ray; a transmitted one starts below the surface
+      bounce.origin =
+          with_w((d.flags & MCL_BSDF_TRANSMISSION) ? bsdf_ray_origin(sf.p, sf.ng, d.flags, f->offsetScale) : origin, 0.0f);
       bounce.dir = with_w(d.wi, INFINITY);
     }
   }

@@ -2,7 +2,7 @@
 // camera hit, materials, the attribute buffer, textures and the environment; when the BSDF ray
 // reached an emitter's front face, or escaped to the environment, writes (f cos / p) * Le * w_brdf
 // (f cos / p: bsdf_direction_weight of the surface's BSDF, shared/bsdf.h; w_brdf the MIS weight
-// under mis) to the item's BSDF shadow slot, K.
+// under mis; 1 at a delta surface, docs/estimators.md) to the item's BSDF shadow slot, K.
 #pragma once
 #include "direct_light.h"
 
@@ -23,7 +23,11 @@ MCL_INLINE void stage_shade_direct_hit(const shade_direct_hit_args* a, uint i) {
   float3 wo = -dir;
   Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, dir);
   float pdfBsdf = bsdf_pdf(surf.bsdf, surf.frame, wo, wi);
-  float weight = pdfLight > 0.0f ? power_heuristic(1.0f, pdfBsdf, (float)f->lightSamples, pdfLight) : 1.0f;
+  // A delta surface's BSDF ray is its only strategy (shade_direct skips light sampling there):
+  // weight 1, no MIS.
+  float weight = pdfLight > 0.0f && !bsdf_is_delta(surf.bsdf)
+                     ? power_heuristic(1.0f, pdfBsdf, (float)f->lightSamples, pdfLight)
+                     : 1.0f;
   BsdfWeight fw = bsdf_direction_weight(surf.bsdf, surf.frame, wo, wi, pdfBsdf);
   if (!fw.counts) return;
   a->shadowContrib[i * f->shadowSlots + f->lightSamples] = with_w(fw.weight * le * weight, 0.0f);

@@ -44,11 +44,11 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
   v_gather4((MCL_GLOBAL const float*)a->normals, t, 4, &nx, &ny, &nz, &nw);
   vuint mat = v_as_uint(v0w);  // triangle_material
   vfloat kdx, kdy, kdz, kdw, kex, key, kez, kew, ksx, ksy, ksz, ksw;
-  v_gather4(mf, mat, 16, &kdx, &kdy, &kdz, &kdw);      // albedo: Kd, texture index
-  v_gather4(mf + 4, mat, 16, &kex, &key, &kez, &kew);  // emission: Ke, two-sided
-  v_gather4(mf + 8, mat, 16, &ksx, &ksy, &ksz, &ksw);  // specular: Ks, alpha
+  v_gather4(mf, mat, MCL_MATERIAL_FLOATS, &kdx, &kdy, &kdz, &kdw);      // albedo: Kd, texture index
+  v_gather4(mf + 4, mat, MCL_MATERIAL_FLOATS, &kex, &key, &kez, &kew);  // emission: Ke, two-sided
+  v_gather4(mf + 8, mat, MCL_MATERIAL_FLOATS, &ksx, &ksy, &ksz, &ksw);  // specular: Ks, alpha
   vfloat kax, kay, kaz, kaw;
-  v_gather4(mf + 12, mat, 16, &kax, &kay, &kaz, &kaw);  // alpha test; w: the material kind (uint bits)
+  v_gather4(mf + 12, mat, MCL_MATERIAL_FLOATS, &kax, &kay, &kaz, &kaw);  // alpha test; w: the material kind (uint bits)
   // bsdf_make's specProb, as the scalar body computes it: the packet takes the lanes where it is 0.
   vfloat ls = v_luminance(v3_make(ksx, ksy, ksz)), ld = v_luminance(v3_make(kdx, kdy, kdz));
   vfloat specProb = vsel(ls > 0.0f, ls / (ls + ld), v_f(0.0f));

@@ -1,7 +1,7 @@
 // shade_path: one bounce of the path tracer for each live path k < *rayCount (its ray rays[k],
 // hit hits[k], id pathIds[k], the identity at bounce 0). Reads and writes the path's state by id:
 // radiance[id] (accumulated L) and throughput[id] (rgb: the path weight; w: solid-angle pdf of the
-// BSDF sample that made the ray, 0 for camera rays). Adds emission seen (MIS-weighted against
+// BSDF sample that made the ray, 0 for camera rays and after a delta lobe: no MIS). Adds emission seen (MIS-weighted against
 // light sampling after a BSDF bounce) or the miss radiance (path_miss), pushes lightSamples
 // next-event queries onto the shadow queue (slots id * shadowSlots + k, contributions MIS
 // weighted; lights: emitter triangles and the environment, stages/direct_light.h), samples the
@@ -66,7 +66,10 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
   float3 wo = dir * -1.0f;
   float3 origin = offset_ray_origin(sf.p, sf.ng, f->offsetScale);
   uint pixel = item_pixel(f, a->active, a->waveStart, id), sample = item_sample(f, a->waveStart, id);
-  for (uint s = 0; (f->emitterCount > 0 || env_present(f)) && s < f->lightSamples; ++s) {
+  // No next-event estimation at a purely delta surface (every light direction has f = 0); the
+  // emitter its BSDF sample finds counts fully (throughput.w = 0 below: no MIS).
+  bool nee = (f->emitterCount > 0 || env_present(f)) && !bsdf_is_delta(bsdf);
+  for (uint s = 0; nee && s < f->lightSamples; ++s) {
     float4 u = sample_uniform4(f, pixel, sample, path_dim(bounce, 1u + s));
     LightSample ls = sample_direct_light(f, lights, origin, u);
     if (!(ls.pdf > 0.0f)) continue;
@@ -89,10 +92,11 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
     next = next / q;
   }
   if (!(max_component(next) > 0.0f)) return;
-  a->throughput[id] = with_w(next, pdf);
+  a->throughput[id] = with_w(next, (bs.flags & MCL_BSDF_DELTA) ? 0.0f : pdf);  // w 0: no MIS at the next hit
   uint slot = MCL_ATOMIC_INC(a->nextCount);
   Ray r;
-  r.origin = with_w(origin, 0.0f);
+  r.origin = with_w((bs.flags & MCL_BSDF_TRANSMISSION) ? bsdf_ray_origin(sf.p, sf.ng, bs.flags, f->offsetScale) : origin,
+                    0.0f);
   r.dir = with_w(wi, INFINITY);
   a->nextRays[slot] = r;
   a->nextPathIds[slot] = id;

@@ -47,10 +47,10 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
   v_gather4((MCL_GLOBAL const float*)a->normals, t, 4, &nx, &ny, &nz, &nw);
   vuint mat = v_as_uint(v0w);  // triangle_material
   vfloat kdx, kdy, kdz, kdw, kex, key, kez, kew, ksx, ksy, ksz, ksw, kax, kay, kaz, kaw;
-  v_gather4(mf, mat, 16, &kdx, &kdy, &kdz, &kdw);       // albedo: Kd, texture index
-  v_gather4(mf + 4, mat, 16, &kex, &key, &kez, &kew);   // emission: Ke, two-sided
-  v_gather4(mf + 8, mat, 16, &ksx, &ksy, &ksz, &ksw);   // specular: Ks, alpha
-  v_gather4(mf + 12, mat, 16, &kax, &kay, &kaz, &kaw);  // alpha test; w: the material kind (uint bits)
+  v_gather4(mf, mat, MCL_MATERIAL_FLOATS, &kdx, &kdy, &kdz, &kdw);       // albedo: Kd, texture index
+  v_gather4(mf + 4, mat, MCL_MATERIAL_FLOATS, &kex, &key, &kez, &kew);   // emission: Ke, two-sided
+  v_gather4(mf + 8, mat, MCL_MATERIAL_FLOATS, &ksx, &ksy, &ksz, &ksw);   // specular: Ks, alpha
+  v_gather4(mf + 12, mat, MCL_MATERIAL_FLOATS, &kax, &kay, &kaz, &kaw);  // alpha test; w: the material kind (uint bits)
   vfloat lks = v_luminance(v3_make(ksx, ksy, ksz)), lkd = v_luminance(v3_make(kdx, kdy, kdz));
   vfloat specProb = vsel(lks > 0.0f, lks / (lks + lkd), v_f(0.0f));  // bsdf_make's
   vmask flat = hit & ((v_as_uint(e2w) & MCL_ATTR_NORMALS) == 0u) & (v_as_uint(kdw) == MCL_NO_TEXTURE) &

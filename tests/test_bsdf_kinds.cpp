@@ -1,0 +1,210 @@
+// test_bsdf_kinds.cpp: the conductor, dielectric, thin_dielectric and metal_rough kinds
+// (kernels/shared/bsdf_<kind>.h), compiled as C++: the exact Fresnel terms against closed forms,
+// chi-square tests of the rough lobes' samplers against their pdfs (failing against a wrong pdf),
+// reciprocity of f, white furnaces (reflectance <= 1), and the delta lobes: eval and pdf 0, the
+// mirror's weight F, the smooth dielectric from both sides (reflection picked with probability F,
+// weights 1 and 1 / eta^2, Snell's law), the thin sheet's R' and straight-through transmission.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "bsdf_chi2.h"
+#include "kernels/shared/bsdf.h"
+#include "kernels/shared/rng.h"
+#include "render/device_materials.h"
+#include "stats.h"
+
+using montecl::MaterialDesc;
+using montecl_test::chiDirFromAngles;
+using montecl_test::chiSquareCritical;
+using montecl_test::chiSquareStat;
+using montecl_test::RunningStats;
+
+namespace {
+
+SurfaceFrame flatFrame(int backface) {
+  SurfaceFrame s;
+  s.p = float3(0.0f);
+  s.ng = s.ns = float3(0.0f, 0.0f, 1.0f);
+  s.smooth = 0;
+  s.backface = backface;
+  return s;
+}
+
+Bsdf make(MaterialDesc d, float3 albedo = float3(1.0f)) { return bsdf_from_material(montecl::deviceMaterial(d), albedo); }
+
+MaterialDesc conductorDesc(float alpha) {
+  MaterialDesc d;
+  d.kind = MCL_MATERIAL_conductor;
+  d.eta = glm::vec3(0.143f, 0.375f, 1.442f);  // gold
+  d.k = glm::vec3(3.983f, 2.386f, 1.603f);
+  d.kindAlpha = alpha;
+  return d;
+}
+MaterialDesc metalRoughDesc(glm::vec3 base, float metallic, float roughness) {
+  MaterialDesc d;
+  d.kind = MCL_MATERIAL_metal_rough;
+  d.albedo = base, d.metallic = metallic, d.roughness = roughness;
+  return d;
+}
+MaterialDesc iorDesc(std::uint32_t kind, float ior) {
+  MaterialDesc d;
+  d.kind = kind;
+  d.ior = ior;
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("bsdf: exact Fresnel: the conductor with k = 0 is the dielectric; normal incidence closed forms" *
+          doctest::test_suite("cpu")) {
+  for (float eta : {1.2f, 1.5f, 2.4f})
+    for (float c : {1.0f, 0.8f, 0.4f, 0.1f}) {
+      float cosT;
+      CHECK(fresnel_conductor1(c, eta, 0.0f) == doctest::Approx(fresnel_dielectric(c, eta, &cosT)).epsilon(1e-4));
+    }
+  const float n = 0.2f, k = 3.9f;
+  CHECK(fresnel_conductor1(1.0f, n, k) ==
+        doctest::Approx(((n - 1) * (n - 1) + k * k) / ((n + 1) * (n + 1) + k * k)).epsilon(1e-5));
+  float cosT;
+  CHECK(fresnel_dielectric(1.0f, 1.5f, &cosT) == doctest::Approx(0.04f).epsilon(1e-5));
+  CHECK(cosT == doctest::Approx(1.0f));
+  CHECK(fresnel_dielectric(0.3f, 1.0f / 1.5f, &cosT) == 1.0f);  // total internal reflection
+  CHECK(cosT == 0.0f);
+  CHECK(fresnel_conductor1(0.0f, n, k) == doctest::Approx(1.0f));  // grazing: 1
+}
+
+TEST_CASE("bsdf: rough conductor and metal_rough samplers pass chi-square against their pdfs, fail a wrong one" *
+          doctest::test_suite("cpu")) {
+  const SurfaceFrame s = flatFrame(0);
+  struct Case {
+    const char* what;
+    MaterialDesc right, wrong;  // wrong: a plausible other normalised density
+  };
+  const Case cases[] = {
+      {"conductor alpha 0.3", conductorDesc(0.3f), conductorDesc(0.36f)},
+      {"metal_rough dielectric r 0.5", metalRoughDesc(glm::vec3(0.6f, 0.5f, 0.4f), 0.0f, 0.5f),
+       metalRoughDesc(glm::vec3(0.6f, 0.5f, 0.4f), 0.0f, 0.6f)},
+      {"metal_rough metal r 0.4", metalRoughDesc(glm::vec3(0.9f, 0.6f, 0.3f), 1.0f, 0.4f),
+       metalRoughDesc(glm::vec3(0.9f, 0.6f, 0.3f), 1.0f, 0.48f)},
+  };
+  for (const Case& c : cases)
+    for (double thetaO : {0.35, 1.1}) {
+      const Bsdf b = make(c.right, float3(c.right.albedo.x, c.right.albedo.y, c.right.albedo.z));
+      const Bsdf w = make(c.wrong, float3(c.wrong.albedo.x, c.wrong.albedo.y, c.wrong.albedo.z));
+      const float3 wo = chiDirFromAngles(thetaO, 0.4);
+      const auto sample = [&](float4 u, float3& wi) {
+        const BsdfSample bs = bsdf_sample(b, s, wo, u.x, u.y, u.z);
+        wi = bs.wi;
+        return bs.pdf > 0.0f;
+      };
+      int dof = 0, dofWrong = 0;
+      const double stat = chiSquareStat(sample, [&](float3 wi) { return bsdf_pdf(b, s, wo, wi); }, 300000, dof);
+      const double wrong = chiSquareStat(sample, [&](float3 wi) { return bsdf_pdf(w, s, wo, wi); }, 300000, dofWrong);
+      INFO(c.what << " theta_o " << thetaO << ": chi2 " << stat << " dof " << dof << "; wrong " << wrong << " dof "
+                  << dofWrong);
+      CHECK(stat < chiSquareCritical(dof));
+      CHECK(wrong > chiSquareCritical(dofWrong));
+    }
+}
+
+TEST_CASE("bsdf: conductor and metal_rough are reciprocal; white furnaces reflect at most 1" * doctest::test_suite("cpu")) {
+  const SurfaceFrame s = flatFrame(0);
+  MaterialDesc white = conductorDesc(0.5f);
+  white.eta = glm::vec3(0.0f), white.k = glm::vec3(1.0f);  // F = 1 at every angle
+  const MaterialDesc descs[] = {conductorDesc(0.2f), white, metalRoughDesc(glm::vec3(1.0f), 0.0f, 1.0f),
+                                metalRoughDesc(glm::vec3(1.0f), 1.0f, 0.3f), metalRoughDesc(glm::vec3(1.0f), 0.5f, 0.7f)};
+  for (const MaterialDesc& d : descs) {
+    const Bsdf b = make(d);
+    int asymmetric = 0;
+    for (int i = 0; i < 2000; ++i) {
+      const float4 u = rng_uniform4(5u, uint(i), 0u, 0u);
+      const float3 a = chiDirFromAngles(std::acos(double(u.x)), 6.283 * u.y), c = chiDirFromAngles(std::acos(double(u.z)), 6.283 * u.w);
+      const float3 fac = bsdf_f(b, s, a, c), fca = bsdf_f(b, s, c, a);
+      for (int k = 0; k < 3; ++k) asymmetric += std::fabs(fac[k] - fca[k]) > 1e-4f * std::max(1.0f, std::fabs(fac[k]));
+    }
+    CHECK(asymmetric == 0);
+    for (double thetaO : {0.0, 0.8, 1.45}) {
+      const float3 wo = chiDirFromAngles(thetaO, 1.0);
+      RunningStats r[3];
+      for (int i = 0; i < 100000; ++i) {
+        const float4 u = rng_uniform4(9u, uint(i), 1u, 0u);
+        const BsdfSample bs = bsdf_sample(b, s, wo, u.x, u.y, u.z);
+        for (int k = 0; k < 3; ++k) r[k].add(bs.pdf > 0.0f ? double(bs.weight[k]) : 0.0);
+      }
+      for (int k = 0; k < 3; ++k) {
+        INFO("kind " << d.kind << " theta_o " << thetaO << ": reflectance " << r[k].mean << " +- " << r[k].standardError());
+        CHECK(r[k].mean <= 1.0 + 4.0 * r[k].standardError());
+        CHECK(r[k].mean > 0.3);  // and it reflects (a broken sampler absorbing everything fails)
+      }
+    }
+  }
+}
+
+TEST_CASE("bsdf: delta lobes: eval and pdf 0; mirror weight F; smooth dielectric both sides; thin sheet" *
+          doctest::test_suite("cpu")) {
+  const float3 wo = chiDirFromAngles(0.7, 0.3);
+  const float cosO = wo.z;
+  {  // the smooth conductor: the mirror direction, weight F(cos_o), flagged delta
+    const MaterialDesc d = conductorDesc(0.0f);
+    const Bsdf b = make(d);
+    const SurfaceFrame s = flatFrame(0);
+    REQUIRE(bsdf_is_delta(b));
+    const BsdfSample bs = bsdf_sample(b, s, wo, 0.3f, 0.6f, 0.5f);
+    CHECK(bs.flags == MCL_BSDF_DELTA);
+    CHECK(bs.pdf == 1.0f);
+    CHECK(bs.wi.x == doctest::Approx(-wo.x));
+    CHECK(bs.wi.z == doctest::Approx(wo.z));
+    for (int k = 0; k < 3; ++k) CHECK(bs.weight[k] == doctest::Approx(fresnel_conductor1(cosO, d.eta[k], d.k[k])).epsilon(1e-6));
+    CHECK(bsdf_pdf(b, s, wo, bs.wi) == 0.0f);
+    CHECK(bsdf_eval(b, s, wo, bs.wi).x == 0.0f);
+  }
+  for (int backface : {0, 1}) {  // the smooth dielectric from outside (front) and from inside (back)
+    const Bsdf b = make(iorDesc(MCL_MATERIAL_dielectric, 1.5f));
+    const SurfaceFrame s = flatFrame(backface);
+    const float eta = backface ? 1.0f / 1.5f : 1.5f;
+    const float3 w = backface ? chiDirFromAngles(0.5, 0.3) : wo;  // inside: below the critical angle 0.73
+    float cosT;
+    const float F = fresnel_dielectric(w.z, eta, &cosT);
+    const int n = 200000;
+    int reflected = 0, bad = 0;
+    for (int i = 0; i < n; ++i) {
+      const float4 u = rng_uniform4(21u, uint(i), uint(backface), 0u);
+      const BsdfSample bs = bsdf_sample(b, s, w, u.x, u.y, u.z);
+      bad += !(bs.pdf > 0.0f) || !(bs.flags & MCL_BSDF_DELTA) || bsdf_pdf(b, s, w, bs.wi) != 0.0f;
+      if (bs.wi.z > 0.0f) {
+        ++reflected;
+        bad += bs.weight.x != 1.0f || std::fabs(bs.pdf - F) > 1e-6f || std::fabs(bs.wi.z - w.z) > 1e-6f;
+      } else {
+        const float sinI = std::sqrt(1.0f - w.z * w.z), sinT = std::sqrt(1.0f - bs.wi.z * bs.wi.z);
+        bad += std::fabs(bs.weight.x - 1.0f / (eta * eta)) > 1e-6f || std::fabs(bs.pdf - (1.0f - F)) > 1e-6f;
+        bad += std::fabs(sinT * eta - sinI) > 1e-5f || !(bs.flags & MCL_BSDF_TRANSMISSION);  // Snell
+      }
+      const BsdfWeight dw = bsdf_direction_weight(b, s, w, bs.wi, 0.0f);
+      bad += !dw.counts || dw.weight.x != bs.weight.x;
+    }
+    const double p = double(reflected) / n, se = std::sqrt(double(F) * (1.0 - F) / n);
+    INFO("backface " << backface << ": reflected " << p << ", F " << F);
+    CHECK(bad == 0);
+    CHECK(std::fabs(p - F) < 4.0 * se);
+  }
+  {  // total internal reflection from inside past the critical angle: always reflected, weight 1
+    const Bsdf b = make(iorDesc(MCL_MATERIAL_dielectric, 1.5f));
+    const BsdfSample bs = bsdf_sample(b, flatFrame(1), chiDirFromAngles(1.0, 0.3), 0.5f, 0.5f, 0.999f);
+    CHECK(bs.wi.z > 0.0f);
+    CHECK(bs.weight.x == 1.0f);
+  }
+  {  // the thin sheet: R' = R + T^2 R / (1 - R^2); transmission straight through
+    const Bsdf b = make(iorDesc(MCL_MATERIAL_thin_dielectric, 1.5f));
+    float cosT;
+    const float R = fresnel_dielectric(cosO, 1.5f, &cosT), T = 1.0f - R, R2 = R + T * T * R / (1.0f - R * R);
+    const BsdfSample r = bsdf_sample(b, flatFrame(0), wo, 0.5f, 0.5f, R2 * 0.999f);
+    const BsdfSample t = bsdf_sample(b, flatFrame(1), wo, 0.5f, 0.5f, R2 * 1.001f);
+    CHECK(r.pdf == doctest::Approx(R2).epsilon(1e-6));
+    CHECK(r.wi.z == doctest::Approx(wo.z));
+    CHECK(t.pdf == doctest::Approx(1.0f - R2).epsilon(1e-5));
+    CHECK(t.wi == -wo);
+    CHECK(t.weight.x == 1.0f);
+    CHECK(t.flags == (MCL_BSDF_DELTA | MCL_BSDF_TRANSMISSION));
+  }
+}
