@@ -4,10 +4,11 @@
 // FrameParams and the light records; pure; compiled by the kernels and the host.
 #pragma once
 #include "light_records.h"
+#include "trig.h"
 
 // Falloff at cosTheta = cos(angle from the axis); cone: cos(cutoff), cos(beam), cutoff, 1 / (cutoff - beam).
 MCL_INLINE float spot_falloff(float4 cone, float cosTheta) {
-  float ramp = (cone.z - acos(fmin(fmax(cosTheta, -1.0f), 1.0f))) * cone.w;
+  float ramp = (cone.z - mcl_acos(fmin(fmax(cosTheta, -1.0f), 1.0f))) * cone.w;  // portable acos
   float inBeam = cosTheta >= cone.y ? 1.0f : ramp;
   return cosTheta > cone.x ? inBeam : 0.0f;
 }
