@@ -13,9 +13,10 @@ Mitsuba's scene is built from ours as Python dicts: the pinhole camera from the 
 pixel only, as in montecl), an `independent` sampler, one PLY mesh per (mesh, material) with a
 two-sided Lambertian BSDF of albedo Kd (montecl's surfaces are two-sided) and, where Ke (or the
 mesh's "emission") is non-zero, a one-sided `area` emitter (front face = cross(v1-v0, v2-v0), as
-montecl's). A mesh entry's "material" of type dielectric / thin_dielectric / conductor becomes
-Mitsuba's dielectric / thindielectric / conductor or roughconductor (GGX, visible normals) with the
-same ior or RGB eta, k. --block B compares B x B block means (heavy-tailed caustic pixels). Integrators: montecl `--integrator direct --direct-sampling mis` with K light samples
+montecl's); the scene's "lights" as Mitsuba's `point`, `spot` and `directional` emitters. A mesh
+entry's "material" of type dielectric / thin_dielectric / conductor becomes Mitsuba's dielectric /
+thindielectric / conductor or roughconductor (GGX, visible normals) with the same ior or RGB eta, k.
+--block B compares B x B block means (heavy-tailed caustic pixels). Integrators: montecl `--integrator direct --direct-sampling mis` with K light samples
 = Mitsuba `direct` (emitter_samples K, bsdf_samples 1); `light` = (K, 0); `brdf` = (0, 1);
 montecl `--integrator path --max-depth D --rr-depth R` = Mitsuba `path` (max_depth D, rr_depth R):
 the same depth convention.
@@ -149,7 +150,7 @@ def load_scene(path):
     with open(path) as f:
         s = json.load(f)
     for key in s:
-        if key not in ("camera", "meshes", "render", "environment"):
+        if key not in ("camera", "meshes", "render", "environment", "lights"):
             raise BadInput(f"{path}: {key}: not supported by vs_mitsuba.py")
     cam = s.get("camera")
     if not cam:
@@ -185,7 +186,11 @@ def load_scene(path):
     env = s.get("environment")
     if env is not None and ("radiance" not in env or len(env) != 1):
         raise BadInput(f"{path}: environment: only a constant {{\"radiance\": [r, g, b]}} is supported by vs_mitsuba.py")
-    return {"camera": cam, "shapes": shapes, "render": s.get("render", {}), "environment": env}
+    lights = s.get("lights", [])
+    for li, light in enumerate(lights):
+        if light.get("type") not in ("point", "spot", "directional"):
+            raise BadInput(f"{path}: lights[{li}].type: not supported by vs_mitsuba.py")
+    return {"camera": cam, "shapes": shapes, "render": s.get("render", {}), "environment": env, "lights": lights}
 
 
 # montecl's metal table (host/scene/material_params.cpp: Mitsuba 3's own RGB values for these names).
@@ -248,6 +253,22 @@ def mitsuba_integrator(spec):
     return {"type": "direct", "emitter_samples": em, "bsdf_samples": bs}
 
 
+def mitsuba_light(mi, light):
+    """montecl's point, spot and directional lights as Mitsuba's emitters of the same names (the
+    same radiometric units; spot: the same falloff, its axis the to_world +z)."""
+    rgb = lambda v: {"type": "rgb", "value": v}
+    if light["type"] == "point":
+        return {"type": "point", "position": light["position"], "intensity": rgb(light["intensity"])}
+    if light["type"] == "directional":
+        return {"type": "directional", "direction": light["direction"], "irradiance": rgb(light["irradiance"])}
+    p, d = light["position"], light["direction"]
+    up = [0, 1, 0] if abs(d[1]) < 0.9 * math.sqrt(sum(x * x for x in d)) else [1, 0, 0]
+    cutoff = light.get("cutoff_angle", 20.0)
+    return {"type": "spot", "intensity": rgb(light["intensity"]), "cutoff_angle": cutoff,
+            "beam_width": light.get("beam_width", cutoff * 0.75),
+            "to_world": mi.ScalarTransform4f().look_at(origin=p, target=[p[i] + d[i] for i in range(3)], up=up)}
+
+
 def worker(spec_path):
     import numpy as np
     with open(spec_path) as f:
@@ -284,6 +305,8 @@ def worker(spec_path):
         if any(x > 0 for x in sh["Ke"]):
             s["emitter"] = {"type": "area", "radiance": {"type": "rgb", "value": sh["Ke"]}}
         d[sh["name"]] = s
+    for li, light in enumerate(spec.get("lights", [])):
+        d[f"light{li}"] = mitsuba_light(mi, light)
     if spec["environment"] is not None:
         d["environment"] = {"type": "constant", "radiance": {"type": "rgb", "value": spec["environment"]["radiance"]}}
     msc = mi.load_dict(d)
@@ -465,7 +488,7 @@ def main(argv):
         ply = os.path.join(work, sh["name"] + ".ply")
         write_ply(ply, sh["P"], sh["F"])
         shapes.append({"name": sh["name"], "ply": ply, "Kd": sh["Kd"], "Ke": list(sh["Ke"]), "bsdf": sh["bsdf"]})
-    base = {"camera": cam, "shapes": shapes, "environment": sc["environment"], "width": width, "height": height, "variant": variant,
+    base = {"camera": cam, "shapes": shapes, "environment": sc["environment"], "lights": sc["lights"], "width": width, "height": height, "variant": variant,
             "integrator": integ, "direct_sampling": sampling, "light_samples": rnd.get("light_samples", 1),
             "max_depth": a.max_depth, "rr_depth": a.rr_depth}
 

@@ -37,9 +37,11 @@ struct OneEmitter {
     f.emitterCount = 1;
     f.emitterPower = area * luminance(xyz(materials[0].emission));
     f.environment = env ? float4(0.5f, 0.25f, 1.0f, 1.0f) : float4(0.0f);
+    f.shareEnvironment = env ? 0.5f : 0.0f;  // as the host's light table would pick by power
+    f.shareArea = env ? 0.5f : 1.0f;
   }
   LightScene scene() const {
-    return make_light_scene(tris.data(), normals.data(), materials.data(), emitters.data(), envMap, envCdf);
+    return make_light_scene(tris.data(), normals.data(), materials.data(), emitters.data(), envMap, envCdf, nullptr);
   }
 };
 
@@ -49,7 +51,10 @@ TEST_CASE("light kinds: tags in table order; selection shares; sample pdf and Le
           doctest::test_suite("cpu")) {
   CHECK(MCL_LIGHT_environment == 0);
   CHECK(MCL_LIGHT_area == 1);
-  CHECK(MCL_LIGHT_KIND_COUNT == 2);
+  CHECK(MCL_LIGHT_point == 2);
+  CHECK(MCL_LIGHT_spot == 3);
+  CHECK(MCL_LIGHT_directional == 4);
+  CHECK(MCL_LIGHT_KIND_COUNT == 5);
   for (bool env : {false, true}) {
     CAPTURE(env);
     const OneEmitter s(env);

@@ -192,7 +192,7 @@ int runRender(const RenderArgs& a) {
   buildOptions.splitBudget = a.splitBudget;
   Bvh bvh = buildBvh(scene.triangles, buildOptions);
   const bool lit = integratorDesc(scene.render.integrator).lit &&
-                   !scene.environment.enabled;  // an environment lights the scene by itself
+                   !scene.environment.enabled && scene.lights.empty();  // these light the scene by themselves
   if (lit && !hasEmitter(scene))
     std::cerr << "montecl: warning: " << scene.path << ": integrator " << choiceName(scene.render.integrator)
               << " but nothing emits (no Ke, no mesh "

@@ -203,6 +203,28 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   cases.push_back({"polygon-light/direct-mis-sobol", withSobol(withDirect(light, DirectSampling::Mis, 2))});
   cases.push_back({"glossy-environment/path-sobol", withSobol(withPath(glossy, 2))});
   cases.push_back({"polygon-light/path-depth-3-thin-lens-sobol", withSobol(lens)});
+  // The polygon light with a point, a spot and a directional light beside it (light selection
+  // across kinds by power; delta lights by next-event estimation only).
+  Scene punctual = light;
+  LightDesc point, spot, sun;
+  point.position = {-0.3f, 0.9f, 0.5f};
+  point.color = {0.4f, 0.3f, 0.2f};
+  spot.kind = PunctualKind::Spot;
+  spot.position = {0.2f, 1.2f, -0.4f};
+  spot.direction = glm::normalize(glm::vec3(-0.2f, -1.0f, 0.3f));
+  spot.color = {1.5f, 1.0f, 0.5f};
+  spot.cutoffDegrees = 35.0f;
+  spot.beamDegrees = 20.0f;
+  sun.kind = PunctualKind::Directional;
+  sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.2f));
+  sun.color = {0.2f, 0.25f, 0.3f};
+  punctual.lights = {point, spot, sun};
+  cases.push_back({"punctual-lights/direct-mis", withDirect(punctual, DirectSampling::Mis, 2)});
+  cases.push_back({"punctual-lights/path", withPath(punctual, 2)});
+  Scene onlyPoint = light;
+  onlyPoint.materials[1].emission = glm::vec3(0.0f);  // the quad no longer emits: the point light alone
+  onlyPoint.lights = {point};
+  cases.push_back({"point-light/path", withPath(onlyPoint, 1)});
 
   const std::string path = o.cornellPath.empty() ? defaultCornellPath() : o.cornellPath;
   if (!std::ifstream(path)) {

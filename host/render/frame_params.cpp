@@ -39,6 +39,22 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
   f.envHeight = extras.envHeight;
   f.envRotateY = extras.envRotateY;
   f.textureCount = extras.textureCount;
+  const LightSelection& l = extras.lights;
+  f.shareEnvironment = l.shareEnvironment;
+  f.shareArea = l.shareArea;
+  f.sharePoint = l.sharePoint;
+  f.shareSpot = l.shareSpot;
+  f.shareDirectional = l.shareDirectional;
+  f.shareSun = l.shareSun;
+  f.lightCount = l.lightCount;
+  f.pointFirst = l.pointFirst;
+  f.pointCount = l.pointCount;
+  f.spotFirst = l.spotFirst;
+  f.spotCount = l.spotCount;
+  f.directionalFirst = l.directionalFirst;
+  f.directionalCount = l.directionalCount;
+  f.sunFirst = l.sunFirst;
+  f.sunCount = l.sunCount;
   f.sampler = settings.sampler == Sampler::Sobol ? MCL_SAMPLER_SOBOL : MCL_SAMPLER_INDEPENDENT;
   return f;
 }

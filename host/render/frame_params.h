@@ -6,6 +6,16 @@
 
 namespace montecl {
 
+// Light selection (render/light_table.h): each kind's share of light samples and the light
+// records' ranges (FrameParams share<Kind>, <kind>First, <kind>Count, lightCount).
+struct LightSelection {
+  float shareEnvironment = 0.0f, shareArea = 0.0f, sharePoint = 0.0f, shareSpot = 0.0f;
+  float shareDirectional = 0.0f, shareSun = 0.0f;
+  uint lightCount = 0;
+  uint pointFirst = 0, pointCount = 0, spotFirst = 0, spotCount = 0;
+  uint directionalFirst = 0, directionalCount = 0, sunFirst = 0, sunCount = 0;
+};
+
 // What FrameParams holds besides the camera and the settings, gathered by the renderer first so
 // that the frame is made in one place (defaults: no lights, no textures, unit offsets).
 struct FrameExtras {
@@ -17,6 +27,7 @@ struct FrameExtras {
   uint envWidth = 0, envHeight = 0;
   float envRotateY = 0.0f;
   uint textureCount = 0;
+  LightSelection lights;
 };
 
 FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings, const FrameExtras& extras);

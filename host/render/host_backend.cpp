@@ -38,6 +38,8 @@ class HostStageRunner final : public StageRunner {
     emitters_ = in.emitters;
     envMap_ = in.envMap;
     envCdf_ = in.envCdf;
+    lightRecords_ = in.lightRecords;
+    if (lightRecords_.empty()) lightRecords_.resize(1);
     if (materials_.empty()) materials_.resize(1);
     if (emitters_.empty()) emitters_.resize(1);
     const bool tex = in.textures && !in.textures->textures.empty();
@@ -169,6 +171,7 @@ class HostStageRunner final : public StageRunner {
     b.texels = const_cast<std::uint16_t*>(texels_->data());
     b.envMap = envMap_.data();
     b.envCdf = envCdf_.data();
+    b.lightRecords = lightRecords_.data();
     b.active = active_.data();
 #define MCL_HOST_BIND(name, ...) b.name = name##_.data();
 #define MCL_HOST_BIND_COUNTER(name) b.name = &name##_;
@@ -199,6 +202,7 @@ class HostStageRunner final : public StageRunner {
   std::vector<std::uint16_t> noTexels_ = std::vector<std::uint16_t>(4);
   std::vector<float4> envMap_;
   std::vector<float> envCdf_;
+  std::vector<LightRecord> lightRecords_;
   // The wave buffers, counters and film (render/wave_buffers.h); queueCount_ and nanRays_ are
   // incremented atomically by the stages.
 #define MCL_HOST_VECTOR(name, T, per, need) std::vector<T> name##_;

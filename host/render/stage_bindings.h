@@ -63,6 +63,7 @@ struct StageBindings {
   Array<ushort> texels;
   Array<float4> envMap;  // environment texels (kernels/shared/environment.h)
   Array<float> envCdf;   // its marginal and conditional CDFs
+  Array<LightRecord> lightRecords;  // point, spot, directional lights (render/light_table.h; 1-entry dummy when none)
   Array<uint> active;  // the active-pixel list
   // Per wave item, the counters and the film (render/wave_buffers.h, where each is described).
 #define MCL_BINDING_BUFFER(name, T, per, need) Array<T> name;

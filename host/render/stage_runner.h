@@ -31,6 +31,7 @@ struct StageInputs {
   std::vector<Triangle> triangles;
   std::vector<float4> envMap{float4(0.0f)};  // environment texels and CDFs (never empty)
   std::vector<float> envCdf{0.0f};
+  std::vector<LightRecord> lightRecords{LightRecord{}};  // render/light_table.h (never empty)
   // The wave's size (items) and which buffers it needs (render/wave_buffers.h); its slots and
   // pixels are taken from frame (setupShape).
   WaveShape shape;

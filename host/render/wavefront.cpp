@@ -14,6 +14,7 @@
 #include "render/stage_runner.h"
 #include "render/device_materials.h"
 #include "render/emitters.h"
+#include "render/light_table.h"
 #include "render/environment_table.h"
 #include "render/frame_params.h"
 #include "render/memory_check.h"
@@ -122,6 +123,8 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
   }
   extras.envRotateY = environment.rotateY;
   extras.textureCount = textures ? std::uint32_t(textures->textures.size()) : 0u;
+  LightTable lights = buildLightTable(scene, emitters.totalPower, environment, integrator.lit);
+  extras.lights = lights.selection;
   const FrameParams frame = makeFrameParams(scene.camera, scene.render, extras);
   in.frame = frame;
   in.bvh = &bvh;
@@ -135,6 +138,7 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
   p.emitterCount = emitters.emitters.size();
   in.envMap = std::move(environment.map);
   in.envCdf = std::move(environment.cdf);
+  in.lightRecords = std::move(lights.records);
   in.shape = shape;
   in.initialFilm = part.initialFilm;
 }

@@ -71,12 +71,25 @@ struct EnvironmentDesc {
   float rotateYDegrees = 0.0f;  // "rotate_y": rotation of the map about +y
 };
 
+// A light that is not a triangle (scene key "lights", host/scene/lights_key.cpp; kinds in
+// kernels/shared/light_kinds.h). Radiometric units: W/sr, W/m^2.
+enum class PunctualKind { Point, Spot, Directional };
+struct LightDesc {
+  PunctualKind kind = PunctualKind::Point;
+  glm::vec3 position{0.0f};           // point, spot
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  // unit: the way the light travels (spot: its axis)
+  glm::vec3 color{1.0f};              // intensity (point, spot) or irradiance (directional)
+  float cutoffDegrees = 20.0f;        // spot: no light beyond this angle from the axis
+  float beamDegrees = 15.0f;          // spot: full intensity within this angle
+};
+
 struct Scene {
   std::string path;  // the file it was loaded from
   std::vector<std::string> inputFiles;  // every file read: scene file, meshes, MTLs, buffers, textures (as opened)
   Camera camera;
   RenderSettings render;
   EnvironmentDesc environment;
+  std::vector<LightDesc> lights;  // point, spot, directional (lit integrators only)
   std::vector<MaterialDesc> materials;
   std::vector<SceneTriangle> triangles;  // non-degenerate triangles only
   // Images held inside an input file (a .glb's bufferViews, data URIs), encoded as stored, by the

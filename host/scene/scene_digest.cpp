@@ -80,6 +80,17 @@ std::string sceneDigest(const Scene& scene) {
     append(bytes, &e.scale, sizeof e.scale);
     append(bytes, &e.rotateYDegrees, sizeof e.rotateYDegrees);
   }
+  if (!scene.lights.empty()) {  // (scenes without "lights" keep their digests)
+    bytes.add("lights");
+    for (const LightDesc& l : scene.lights) {
+      bytes.add(std::to_string(int(l.kind)));
+      appendVec(bytes, l.position);
+      appendVec(bytes, l.direction);
+      appendVec(bytes, l.color);
+      append(bytes, &l.cutoffDegrees, sizeof l.cutoffDegrees);
+      append(bytes, &l.beamDegrees, sizeof l.beamDegrees);
+    }
+  }
   bytes.add("camera");
   appendVec(bytes, scene.camera.position);
   appendVec(bytes, scene.camera.target);

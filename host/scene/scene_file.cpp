@@ -22,6 +22,7 @@
 #include "scene/mesh_entry.h"
 #include "scene/mesh_loaders.h"
 #include "scene/environment_key.h"
+#include "scene/lights_key.h"
 #include "scene/scene.h"
 #include "util/errors.h"
 
@@ -277,7 +278,7 @@ Scene loadScene(const std::string& path, std::vector<std::string>& warnings) {
   Ctx ctx{path, warnings};
   json root = parseJson(ctx, readSceneText(ctx));
   requireObject(ctx, root, "(top level)");
-  warnUnknownKeys(ctx, root, "", {"camera", "meshes", "render", "environment"});
+  warnUnknownKeys(ctx, root, "", {"camera", "meshes", "render", "environment", "lights"});
   Scene scene;
   scene.path = path;
   scene.inputFiles.push_back(path);
@@ -289,6 +290,7 @@ Scene loadScene(const std::string& path, std::vector<std::string>& warnings) {
     scene.environment = parseEnvironmentKey(path, *env, warnings);
     if (!scene.environment.file.empty()) scene.inputFiles.push_back(scene.environment.file);
   }
+  if (const json* lights = optionalKey(root, "lights")) scene.lights = parseLightsKey(ctx, *lights);
   Camera meshCamera;
   const bool hasMeshCamera = loadMeshes(ctx, parseMeshes(ctx, root), scene, &meshCamera);
   if (!hasCamera) {

@@ -13,8 +13,8 @@
 // built by host/render/environment_table.cpp. Solid-angle pdf = p(u, v) / (2 pi^2 sin theta).
 // A constant environment is sampled uniformly over the sphere (pdf 1 / (4 pi)).
 // Light selection: a light sample goes to the environment with probability
-// env_pick_probability: 1 without area emitters, else a fixed 1/2 (the other half picks an
-// emitter triangle by power as before). Pure; compiled by the kernels and by the host tests.
+// env_pick_probability = FrameParams::shareEnvironment: 1 without other lights, else its share of
+// the lights' power (host/render/light_table.cpp). Pure; compiled by the kernels and by the host tests.
 #pragma once
 #include "lights.h"
 #include "sampling.h"
@@ -26,8 +26,7 @@
 MCL_INLINE int env_present(MCL_CONSTANT const FrameParams* f) { return f->environment.w != 0.0f; }
 
 MCL_INLINE float env_pick_probability(MCL_CONSTANT const FrameParams* f) {
-  if (!env_present(f)) return 0.0f;
-  return f->emitterCount > 0 ? 0.5f : 1.0f;
+  return env_present(f) ? f->shareEnvironment : 0.0f;
 }
 
 // d rotated by angle a (radians) about +y (right-handed).

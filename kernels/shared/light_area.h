@@ -23,9 +23,9 @@ MCL_INLINE float emitter_cosine(float3 n, MCL_GLOBAL const Material* m, float3 w
   return m->emission.w != 0.0f ? fabs(c) : c;
 }
 
-// The share of light samples left by the environment (light_environment.h), when there are emitters.
+// The emitters' share of the lights' power (all samples without other lights).
 MCL_INLINE float area_light_probability(MCL_CONSTANT const FrameParams* f) {
-  return f->emitterCount > 0u ? 1.0f - env_pick_probability(f) : 0.0f;
+  return f->emitterCount > 0u ? f->shareArea : 0.0f;
 }
 
 // An emitter by power (u0), a uniform point on it (u1, u2); pdf per solid angle within the kind.

@@ -5,7 +5,7 @@
 #include "environment.h"
 #include "light_scene.h"
 
-// All light samples without area emitters, half with them, none without an environment.
+// Its share of the lights' power (all samples without other lights), none without an environment.
 MCL_INLINE float environment_light_probability(MCL_CONSTANT const FrameParams* f) { return env_pick_probability(f); }
 
 // A direction by the map's luminance (u1, u2; u0 unused); pdf per solid angle within the kind.

@@ -12,11 +12,13 @@ typedef struct {
   MCL_GLOBAL const Emitter* emitters;   // may be null where nothing samples (shade_direct_hit)
   MCL_GLOBAL const float4* envMap;
   MCL_GLOBAL const float* envCdf;       // may be null where nothing samples
+  MCL_GLOBAL const LightRecord* records;  // point, spot, directional, sun; may be null where nothing samples
 } LightScene;
 
 MCL_INLINE LightScene make_light_scene(MCL_GLOBAL const Triangle* tris, MCL_GLOBAL const float4* normals,
                                        MCL_GLOBAL const Material* materials, MCL_GLOBAL const Emitter* emitters,
-                                       MCL_GLOBAL const float4* envMap, MCL_GLOBAL const float* envCdf) {
+                                       MCL_GLOBAL const float4* envMap, MCL_GLOBAL const float* envCdf,
+                                       MCL_GLOBAL const LightRecord* records) {
   LightScene s;
   s.tris = tris;
   s.normals = normals;
@@ -24,6 +26,7 @@ MCL_INLINE LightScene make_light_scene(MCL_GLOBAL const Triangle* tris, MCL_GLOB
   s.emitters = emitters;
   s.envMap = envMap;
   s.envCdf = envCdf;
+  s.records = records;
   return s;
 }
 
@@ -32,10 +35,12 @@ typedef struct {
   float3 le;    // radiance arriving along -wi if unoccluded
   float pdf;    // solid angle, light selection included; 0: no sample
   float tmax;   // shadow ray length (INFINITY for the environment)
+  int delta;    // 1: a delta light (point, spot, directional): pdf is the discrete probability of
+                // picking it, no BSDF ray can reach it, so the sample takes no MIS weight
 } LightSample;
 
 // The light a ray from a shading point along wi reached: a triangle tri at distance t (kind area;
-// it may emit nothing), or nothing (kind environment).
+// it may emit nothing), or nothing (kind environment). Delta lights are never hit.
 typedef struct {
   uint kind;  // MCL_LIGHT_<kind>
   uint tri;
@@ -49,5 +54,6 @@ MCL_INLINE LightSample no_light_sample(void) {
   s.tmax = INFINITY;
   s.wi = make_float3(0.0f, 0.0f, 1.0f);
   s.le = make_float3(0.0f, 0.0f, 0.0f);
+  s.delta = 0;
   return s;
 }

@@ -80,6 +80,7 @@
   ARG(MCL_GLOBAL float4*, shadowContrib) ARG(MCL_GLOBAL ShadowWork*, queue)                        \
   ARG(MCL_GLOBAL volatile uint*, queueCount) ARG(MCL_GLOBAL Ray*, bounce)                        \
   ARG(MCL_GLOBAL const float4*, envMap) ARG(MCL_GLOBAL const float*, envCdf) \
+  ARG(MCL_GLOBAL const LightRecord*, lightRecords) \
   MCL_TEXTURE_ARGS(ARG)
 
 #define MCL_ARGS_shade_direct_hit(ARG)                                                             \
@@ -127,7 +128,7 @@
   ARG(MCL_GLOBAL ShadowWork*, queue) ARG(MCL_GLOBAL volatile uint*, queueCount)                    \
   ARG(MCL_GLOBAL Ray*, nextRays) ARG(MCL_GLOBAL uint*, nextPathIds)                                \
   ARG(MCL_GLOBAL volatile uint*, nextCount) ARG(MCL_GLOBAL const float4*, envMap)                   \
-  ARG(MCL_GLOBAL const float*, envCdf) \
+  ARG(MCL_GLOBAL const float*, envCdf) ARG(MCL_GLOBAL const LightRecord*, lightRecords) \
   MCL_TEXTURE_ARGS(ARG)
 
 #define MCL_ARGS_path_gather(ARG)                                                                  \

@@ -24,3 +24,17 @@ MCL_INLINE void mcl_sincos_turns(float t, float* s, float* c) {
   *s = k == 0 ? sn : k == 1 ? cs : k == 2 ? -sn : -cs;
   *c = k == 0 ? cs : k == 1 ? -sn : k == 2 ? -cs : sn;
 }
+
+// acos(x) for x in [-1, 1] from a polynomial and one sqrt (Abramowitz and Stegun 4.4.46, error
+// below 2e-8 rad on [0, 1]; acos(-x) = pi - acos(x)), so every device gets the same bits (the
+// spot light's falloff). Branch-free: selects only.
+MCL_INLINE float mcl_acos(float x) {
+  float a = fmin(fabs(x), 1.0f);
+  float p = 1.5707963050f +
+            a * (-0.2145988016f +
+                 a * (0.0889789874f +
+                      a * (-0.0501743046f +
+                           a * (0.0308918810f + a * (-0.0170881256f + a * (0.0066700901f + a * -0.0012624911f))))));
+  float r = sqrt(1.0f - a) * p;
+  return x < 0.0f ? 3.14159265358979323846f - r : r;
+}

@@ -132,6 +132,14 @@ typedef struct MCL_ALIGN16 {
   uint envWidth, envHeight;  // environment map size, 0 x 0 for a constant environment
   float envRotateY;          // environment rotation about +y, radians
   uint textureCount;         // entries of the texture table
+  // Light selection (kernels/stages/direct_light.h): each light kind's share of next-event samples,
+  // proportional to its power (host/render/light_table.cpp); a scene with one kind gives it 1.
+  float shareEnvironment, shareArea, sharePoint, shareSpot;
+  float shareDirectional, shareSun;
+  uint lightCount;  // entries of the light-record table (point, spot, directional, sun; kind by kind)
+  uint lightPad;
+  uint pointFirst, pointCount, spotFirst, spotCount;  // each kind's range of light records
+  uint directionalFirst, directionalCount, sunFirst, sunCount;
   uint sampler;              // MCL_SAMPLER_INDEPENDENT | MCL_SAMPLER_SOBOL
   uint pad0, pad1, pad2;
 } FrameParams;
@@ -144,6 +152,18 @@ typedef struct MCL_ALIGN16 {
   float area;
   float pad;
 } Emitter;
+
+// One light of the scene file's "lights" list that is not a triangle (kinds point, spot, directional,
+// sun; kernels/shared/light_<kind>.h). Records are grouped by kind (FrameParams <kind>First,
+// <kind>Count); within its kind a record is picked with probability direction.w (its power over
+// the kind's), position.w the running sum of those up to and including it.
+typedef struct MCL_ALIGN16 {
+  float4 position;   // xyz: position (point, spot); w: cdf within the kind
+  float4 direction;  // xyz: unit direction the light travels (spot: its axis); w: pick probability within the kind
+  float4 intensity;  // rgb: intensity W/sr (point, spot), irradiance W/m^2 (directional), radiance (sun)
+  float4 cone;       // spot: x cos(cutoff), y cos(beam width), z cutoff (radians), w 1 / (cutoff - beam width)
+                     // (0 when they are equal); sun: x cos(half angle), y solid angle of the disk
+} LightRecord;
 
 // Textures (kernels/shared/texture.h, host/texture/): every mip level of every texture is one
 // block of RGBA half-float texels (linear: 8- and 16-bit images were sRGB-decoded before the
@@ -183,7 +203,10 @@ static_assert(offsetof(Material, params0) == 64, "Material layout");
 static_assert(sizeof(Ray) == 32, "Ray layout");
 static_assert(sizeof(Hit) == 16, "Hit layout");
 static_assert(sizeof(ShadowWork) == 48, "ShadowWork layout");
-static_assert(sizeof(FrameParams) == 192, "FrameParams layout");
+static_assert(sizeof(FrameParams) == 256, "FrameParams layout");
+static_assert(offsetof(FrameParams, shareEnvironment) == 176, "FrameParams layout");
+static_assert(offsetof(FrameParams, sampler) == 240, "FrameParams layout");
+static_assert(sizeof(LightRecord) == 64, "LightRecord layout");
 static_assert(sizeof(Emitter) == 16, "Emitter layout");
 static_assert(sizeof(TextureDesc) == 16, "TextureDesc layout");
 static_assert(sizeof(TextureLevel) == 16, "TextureLevel layout");

@@ -6,8 +6,11 @@
 // and areas, materials and the environment's tables (LightScene); writes nothing.
 #pragma once
 #include "../shared/light_area.h"
+#include "../shared/light_directional.h"
 #include "../shared/light_environment.h"
 #include "../shared/light_kinds.h"
+#include "../shared/light_point.h"
+#include "../shared/light_spot.h"
 #include "stage_common.h"
 
 // The light of a ray along wi that got hit h: the triangle hit (an area light, emitting or not),

@@ -1,8 +1,8 @@
 // shade_direct: reads camera rays, hits, materials, the emitter table, the environment, the
 // attribute buffer and textures; for camera item i writes radiance[i] (on a miss the environment,
 // or the background without one; else Le seen directly), pushes K light-sample occlusion queries
-// onto the shadow queue (light / mis; lights: the environment and emitter triangles,
-// stages/direct_light.h) and writes the BSDF ray bounce[i] (brdf / mis; otherwise an empty ray
+// onto the shadow queue (light / mis; lights: the environment, emitter triangles and the light
+// records: point, spot, directional, the delta ones by light sampling only; stages/direct_light.h) and writes the BSDF ray bounce[i] (brdf / mis; otherwise an empty ray
 // with tmax < 0). Surfaces: surface_at (shared/surface.h): the shading frame and the material
 // kind's BSDF (shared/bsdf.h; light directions below the geometric surface are zero).
 // Shadow slots per sample: [0, K) light samples, K the BSDF sample (shade_direct_hit); each
@@ -15,7 +15,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   MCL_CONSTANT const FrameParams* f = a->frame;
   Hit h = a->hits[i];
   float3 dir = xyz(a->rays[i].dir);
-  LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf);
+  LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf, a->lightRecords);
   Ray bounce;  // no BRDF ray unless set below; stored once on every way out
   bounce.origin = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
   bounce.dir = make_float4(0.0f, 0.0f, 1.0f, -1.0f);
@@ -35,7 +35,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   float nLight = (float)f->lightSamples;
   // Light sampling at a purely delta surface (a mirror, smooth glass) finds nothing (f = 0 for
   // every light direction): skipped, the BSDF ray (shade_direct_hit) carries it all.
-  bool useLight = f->directSampling != MCL_DIRECT_BRDF && (f->emitterCount > 0 || env_present(f)) &&
+  bool useLight = f->directSampling != MCL_DIRECT_BRDF && (f->emitterCount > 0 || env_present(f) || f->lightCount > 0) &&
                   !bsdf_is_delta(bsdf);
   bool useBrdf = f->directSampling != MCL_DIRECT_LIGHT;
 
@@ -44,7 +44,8 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
     LightSample ls = sample_direct_light(f, lights, origin, u);
     float cosSurf = frame_cosine(sf, ls.wi);  // 0 below the geometric surface
     if (!(ls.pdf > 0.0f && cosSurf > 0.0f)) continue;
-    float weight = useBrdf ? power_heuristic(nLight, ls.pdf, 1.0f, bsdf_pdf(bsdf, sf, wo, ls.wi)) : 1.0f;
+    // A delta light: no BSDF sample can reach it, so no MIS weight.
+    float weight = useBrdf && !ls.delta ? power_heuristic(nLight, ls.pdf, 1.0f, bsdf_pdf(bsdf, sf, wo, ls.wi)) : 1.0f;
     float3 c = bsdf_f(bsdf, sf, wo, ls.wi) * ls.le * (cosSurf * weight / (ls.pdf * nLight));
     push_shadow_query(a->queue, a->queueCount, origin, ls.wi, ls.tmax, c, i * f->shadowSlots + k);
   }

@@ -4,7 +4,8 @@
 // BSDF sample that made the ray, 0 for camera rays and after a delta lobe: no MIS). Adds emission seen (MIS-weighted against
 // light sampling after a BSDF bounce) or the miss radiance (path_miss), pushes lightSamples
 // next-event queries onto the shadow queue (slots id * shadowSlots + k, contributions MIS
-// weighted; lights: emitter triangles and the environment, stages/direct_light.h), samples the
+// weighted but for delta lights; lights: emitter triangles, the environment and the light records,
+// stages/direct_light.h), samples the
 // BSDF (surface_at, kernels/shared/surface.h: the material kind's BSDF around the shading frame;
 // textures filtered with the camera's ray-cone width at this segment's length, a lower bound after
 // diffuse bounces), applies Russian roulette from depth
@@ -43,7 +44,7 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
   float3 L = bounce == 0 ? make_float3(0.0f, 0.0f, 0.0f) : xyz(a->radiance[id]);
   Hit h = a->hits[k];
   float3 dir = xyz(a->rays[k].dir);
-  LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf);
+  LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf, a->lightRecords);
   LightHit lh = light_hit(h, dir);  // the environment on a miss, else the hit triangle
   if (h.tri == MCL_NO_HIT) {
     a->radiance[id] = with_w(L + beta * path_miss(f, lights, lh, bounce, beta4.w), 0.0f);
@@ -68,14 +69,15 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
   uint pixel = item_pixel(f, a->active, a->waveStart, id), sample = item_sample(f, a->waveStart, id);
   // No next-event estimation at a purely delta surface (every light direction has f = 0); the
   // emitter its BSDF sample finds counts fully (throughput.w = 0 below: no MIS).
-  bool nee = (f->emitterCount > 0 || env_present(f)) && !bsdf_is_delta(bsdf);
+  bool nee = (f->emitterCount > 0 || env_present(f) || f->lightCount > 0) && !bsdf_is_delta(bsdf);
   for (uint s = 0; nee && s < f->lightSamples; ++s) {
     float4 u = sample_uniform4(f, pixel, sample, path_dim(bounce, 1u + s));
     LightSample ls = sample_direct_light(f, lights, origin, u);
     if (!(ls.pdf > 0.0f)) continue;
     float3 fcos = bsdf_eval(bsdf, sf, wo, ls.wi);
     if (!(max_component(fcos) > 0.0f)) continue;
-    float weight = power_heuristic(nLight, ls.pdf, 1.0f, bsdf_pdf(bsdf, sf, wo, ls.wi));
+    // A delta light: no BSDF sample can reach it, so no MIS weight.
+    float weight = ls.delta ? 1.0f : power_heuristic(nLight, ls.pdf, 1.0f, bsdf_pdf(bsdf, sf, wo, ls.wi));
     float3 c = beta * fcos * ls.le * (weight / (ls.pdf * nLight));
     push_shadow_query(a->queue, a->queueCount, origin, ls.wi, ls.tmax, c, id * f->shadowSlots + s);
   }
