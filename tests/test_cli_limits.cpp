@@ -24,8 +24,9 @@ bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size
 const char* kQuad = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n";
 
 CliResult render(const std::string& scene, const std::string& out) {
+  // direct: an integrator that reads colour textures (AO loads none).
   return runMontecl({"render", scene, "-o", out, "--width", "8", "--height", "8", "--spp", "1", "-q", "--device",
-                     "host"});
+                     "host", "--integrator", "direct"});
 }
 
 }  // namespace
@@ -63,7 +64,8 @@ TEST_CASE("cli: a truncated PNG texture is one line (libpng's own message is not
   // stderr is back after the read: the texture budget warning of a good texture still shows.
   dir.write("tex.png", png);
   const CliResult ok = runMontecl({"render", dir.file("quad.obj"), "-o", dir.file("out.png"), "--width", "8",
-                                   "--height", "8", "--spp", "1", "-q", "--device", "host", "--texture-budget", "0.035"});
+                                   "--height", "8", "--spp", "1", "-q", "--device", "host", "--texture-budget", "0.035",
+                                   "--integrator", "direct"});
   CHECK(ok.exitCode == 0);
   CHECK(ok.err.find("texture budget") != std::string::npos);
 }

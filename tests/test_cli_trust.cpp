@@ -79,8 +79,9 @@ std::string writeTexturedQuad(const TempDir& dir, const std::string& texture) {
 
 CliResult render(const std::string& scene, const std::string& out, std::vector<std::string> extra = {},
                  const std::vector<std::string>& env = {}) {
+  // direct: an integrator that reads colour textures (AO loads none).
   std::vector<std::string> args{"render", scene, "-o", out, "--width", "8", "--height", "8", "--spp", "1", "-q",
-                                "--device", "host"};
+                                "--device", "host", "--integrator", "direct"};
   args.insert(args.end(), extra.begin(), extra.end());
   return runMontecl(args, env);
 }

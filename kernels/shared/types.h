@@ -211,5 +211,4 @@ static_assert(sizeof(Emitter) == 16, "Emitter layout");
 static_assert(sizeof(TextureDesc) == 16, "TextureDesc layout");
 static_assert(sizeof(TextureLevel) == 16, "TextureLevel layout");
 static_assert(offsetof(FrameParams, width) == 80, "FrameParams layout");
-static_assert(offsetof(FrameParams, sampler) == 176, "FrameParams layout");
 #endif
