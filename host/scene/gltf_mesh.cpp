@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "util/host_memory.h"
+#include "scene/gltf_lights.h"
 #include "scene/gltf_model.h"
 #include "scene/load_util.h"
 #include "scene/mesh_loaders.h"
@@ -241,7 +242,7 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
   scene.inputFiles.insert(scene.inputFiles.end(), opened.begin(), opened.end());
   Loader l{path, m, scene, KindWarnings(path), std::vector<std::int64_t>(m.materials.size(), -1), false, Camera{}};
   for (const std::string& e : m.extensionsUsed)
-    if (e != "KHR_materials_emissive_strength")
+    if (e != "KHR_materials_emissive_strength" && e != "KHR_lights_punctual")
       l.unused.add("extension " + e, "extensionsUsed", "extension '" + oneLine(e, 60) + "' not used by montecl, ignored");
   if (!m.animations.empty()) l.unused.add("animations", "animations", "animations not used by montecl (the rest pose is rendered)");
   if (!m.skins.empty()) l.unused.add("skins", "skins", "skins not used by montecl (the rest pose is rendered)");
@@ -273,6 +274,7 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
     const tinygltf::Node& node = m.nodes[i];
     const glm::dmat4 world = parent * localTransform(path, node, itemWhere("nodes", i));
     if (node.camera >= 0) l.takeCamera(node.camera, world);
+    if (const int light = gltfNodeLight(node); light != -1) addGltfLight(path, m, light, world, scene, l.unused);
     if (node.mesh >= 0) {
       if (static_cast<std::size_t>(node.mesh) >= m.meshes.size()) loadFail(path, itemWhere("nodes", i), "mesh index out of range");
       const tinygltf::Mesh& mesh = m.meshes[std::size_t(node.mesh)];

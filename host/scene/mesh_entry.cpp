@@ -197,8 +197,23 @@ MeshEntry parseMeshEntry(const JsonCtx& ctx, const json& j, const std::string& p
   return m;
 }
 
-void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, const MeshEntry& mesh) {
+// The lights a glTF mesh brought, placed by the entry's transform as its triangles are (a spot's
+// axis and a directional light's direction turned by it).
+void transformLights(const JsonCtx& ctx, Scene& scene, std::size_t firstLight, const MeshEntry& mesh) {
+  for (std::size_t i = firstLight; i < scene.lights.size(); ++i) {
+    LightDesc& l = scene.lights[i];
+    l.position = glm::vec3(mesh.transform * glm::dvec4(glm::dvec3(l.position), 1.0));
+    const glm::dvec3 d = glm::dmat3(mesh.transform) * glm::dvec3(l.direction);
+    if (!finite(l.position) || !(glm::length(d) > 0.0))
+      jsonFail(ctx, mesh.prefix + ".transform", "moves a light of the mesh out of float range");
+    l.direction = glm::vec3(glm::normalize(d));
+  }
+}
+
+void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, std::size_t firstLight,
+                    const MeshEntry& mesh) {
   if (mesh.hasTransform) transformTriangles(ctx, scene, firstTri, mesh);
+  if (mesh.hasTransform) transformLights(ctx, scene, firstLight, mesh);
   if (mesh.material.any()) overrideMaterials(scene, firstTri, mesh);
   // The override's textures are read by the render like any other: inputs the output must not replace.
   if (mesh.material.albedoTexture) scene.inputFiles.push_back(mesh.material.value.albedoTexture);

@@ -39,10 +39,12 @@ struct MeshEntry {
 
 MeshEntry parseMeshEntry(const JsonCtx& ctx, const nlohmann::json& j, const std::string& prefix);
 
-// Applies the entry to triangles [firstTri, end) of scene (transform, then material overrides).
+// Applies the entry to triangles [firstTri, end) of scene (transform, then material overrides)
+// and places lights [firstLight, end) (a glTF's KHR_lights_punctual) by its transform.
 // Triangles that the transform makes degenerate are dropped and counted. Does not update the
 // bounds: call recomputeBounds() when all meshes are in.
-void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, const MeshEntry& mesh);
+void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, std::size_t firstLight,
+                    const MeshEntry& mesh);
 
 void recomputeBounds(Scene& scene);
 

@@ -194,7 +194,7 @@ bool loadMeshes(const Ctx& ctx, const std::vector<MeshEntry>& meshes, Scene& sce
   std::string emptiedBy;  // the first entry whose transform dropped all of its mesh's triangles
   std::size_t emptiedCount = 0;
   for (const MeshEntry& m : meshes) {
-    std::size_t firstTri = scene.triangles.size();
+    std::size_t firstTri = scene.triangles.size(), firstLight = scene.lights.size();
     Camera cam;
     if (loadMeshFile(m.path, scene, &ctx.warnings, &cam) && !hasCamera) {
       hasCamera = true;
@@ -207,7 +207,7 @@ bool loadMeshes(const Ctx& ctx, const std::vector<MeshEntry>& meshes, Scene& sce
       camera->height = cam.height;
     }
     const std::size_t loaded = scene.triangles.size() - firstTri;
-    applyMeshEntry(ctx, scene, firstTri, m);
+    applyMeshEntry(ctx, scene, firstTri, firstLight, m);
     if (scene.triangles.size() == firstTri && emptiedBy.empty()) {
       emptiedBy = m.prefix + ".transform";
       emptiedCount = loaded;

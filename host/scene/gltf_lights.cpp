@@ -1,0 +1,52 @@
+// gltf_lights.cpp: KHR_lights_punctual lights onto scene.lights (see gltf_lights.h).
+#include "scene/gltf_lights.h"
+
+#include <cmath>
+
+namespace montecl {
+
+int gltfNodeLight(const tinygltf::Node& node) {
+  const auto it = node.extensions.find("KHR_lights_punctual");
+  if (it == node.extensions.end() || !it->second.IsObject() || !it->second.Has("light")) return -1;
+  const tinygltf::Value& v = it->second.Get("light");
+  return v.IsNumber() || v.IsInt() ? v.GetNumberAsInt() : -2;  // -2: present but not an index
+}
+
+void addGltfLight(const std::string& file, const tinygltf::Model& m, int index, const glm::dmat4& world, Scene& scene,
+                  KindWarnings& unused) {
+  const std::string where = "KHR_lights_punctual.lights[" + std::to_string(index) + "]";
+  if (index < 0 || static_cast<std::size_t>(index) >= m.lights.size())
+    loadFail(file, "KHR_lights_punctual.light", "light index " + std::to_string(index) + " out of range");
+  const tinygltf::Light& g = m.lights[static_cast<std::size_t>(index)];
+  LightDesc l;
+  if (g.type == "point") l.kind = PunctualKind::Point;
+  else if (g.type == "spot") l.kind = PunctualKind::Spot;
+  else if (g.type == "directional") l.kind = PunctualKind::Directional;
+  else loadFail(file, where + ".type", "unknown light type '" + oneLine(g.type, 40) + "' (point, spot, directional)");
+  glm::dvec3 colour(1.0);
+  if (!g.color.empty()) {
+    if (g.color.size() != 3) loadFail(file, where + ".color", "expected 3 numbers");
+    colour = glm::dvec3(g.color[0], g.color[1], g.color[2]);
+  }
+  for (int c = 0; c < 3; ++c)
+    if (!(std::isfinite(colour[c]) && colour[c] >= 0.0)) loadFail(file, where + ".color", "components must be finite and >= 0");
+  if (!(std::isfinite(g.intensity) && g.intensity >= 0.0)) loadFail(file, where + ".intensity", "must be finite and >= 0");
+  l.color = glm::vec3(colour * g.intensity);
+  l.position = glm::vec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+  const glm::dvec3 axis = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
+  if (!(glm::length(axis) > 0.0) || !std::isfinite(glm::length(axis)))
+    loadFail(file, where, "its node's transform leaves it no direction");
+  l.direction = glm::vec3(glm::normalize(axis));
+  if (l.kind == PunctualKind::Spot) {
+    const double inner = g.spot.innerConeAngle, outer = g.spot.outerConeAngle;
+    if (!(outer > 0.0 && outer <= M_PI / 2 + 1e-9)) loadFail(file, where + ".spot.outerConeAngle", "must be in (0, pi/2]");
+    if (!(inner >= 0.0 && inner < outer)) loadFail(file, where + ".spot.innerConeAngle", "must be in [0, outerConeAngle)");
+    l.cutoffDegrees = float(outer * 180.0 / M_PI);
+    l.beamDegrees = float(inner * 180.0 / M_PI);
+  }
+  if (g.range > 0.0)
+    unused.add("light range", where + ".range", "range not used by montecl (lights fall off as 1/d^2 without a cut-off)");
+  scene.lights.push_back(l);
+}
+
+}  // namespace montecl
