@@ -39,8 +39,13 @@ MCL_INLINE float area_to_solid_angle(float pdfArea, float dist2, float cosLight)
   return pdfArea * dist2 / cosLight;
 }
 
-// Veach's power heuristic (beta = 2) for nf samples of pdf fPdf against ng samples of gPdf.
+// Veach's power heuristic (beta = 2) for nf samples of pdf fPdf against ng samples of gPdf. The
+// squares overflow for pdfs above ~1.8e19 (an emitter of area ~1e-19 seen from ~1 away): inf / inf
+// would be NaN, so there the same weight comes from the ratio, 1 / (1 + (g / f)^2). Below that the
+// operations are the plain formula's (the images of ordinary scenes keep their bits).
 MCL_INLINE float power_heuristic(float nf, float fPdf, float ng, float gPdf) {
   float f = nf * fPdf, g = ng * gPdf;
-  return (f * f) / (f * f + g * g);
+  float sum = f * f + g * g;
+  float r = g / f;
+  return sum < INFINITY ? (f * f) / sum : 1.0f / (1.0f + r * r);
 }

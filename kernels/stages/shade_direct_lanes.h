@@ -96,7 +96,7 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
       if (useBrdf) {  // power_heuristic(nLight, pdf, 1, bsdf_pdf): the Lambert pdf of wi
         vfloat bsdfPdf = fmax(cosSurf, v_f(0.0f)) * MCL_INV_PI;
         vfloat fw = nLight * pdf, gw = 1.0f * bsdfPdf;
-        weight = (fw * fw) / (fw * fw + gw * gw);
+        weight = v_power_heuristic(fw, gw);
       }
       vmask lit = cosSurf > 0.0f;  // bsdf_f: Kd / pi above the surface
       vfloat3 fr = v3_make(vsel(lit, kd.x * MCL_INV_PI, v_f(0.0f)), vsel(lit, kd.y * MCL_INV_PI, v_f(0.0f)),

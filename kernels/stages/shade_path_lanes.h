@@ -96,7 +96,7 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
       vfloat pick = nw * v_luminance(v3_make(kex, key, kez)) / f->emitterPower;  // emitter_pick_probability
       vfloat lpdf = area_light_probability(f) * (pick / nw * (ht * ht) / cosLight);
       vfloat fw = 1.0f * lastPdf, gw = nLight * lpdf;
-      weight = vsel(lastPdf > 0.0f, (fw * fw) / (fw * fw + gw * gw), weight);
+      weight = vsel(lastPdf > 0.0f, v_power_heuristic(fw, gw), weight);
     }
     L = v3_select(glows, v3_add(L, v3_scale(v3_mul(beta, le), weight)), L);
   }
@@ -154,7 +154,7 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
       if (!v_any(push)) continue;
       vfloat bsdfPdf = fmax(cosI, v_f(0.0f)) * MCL_INV_PI;  // pdf_cosine_hemisphere
       vfloat fw = nLight * pdf, gw = 1.0f * bsdfPdf;
-      vfloat weight = (fw * fw) / (fw * fw + gw * gw);
+      vfloat weight = v_power_heuristic(fw, gw);
       vfloat3 contrib = v3_scale(v3_mul(v3_mul(beta, fcos), lle), weight / (pdf * nLight));
       v_push_shadow_queries(a->queue, a->queueCount, push, origin, wi, tmax, contrib, slot0 + s);
     }

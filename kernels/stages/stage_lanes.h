@@ -15,6 +15,13 @@
 inline uint MCL_ATOMIC_ADD(volatile uint* p, uint n) { return __atomic_fetch_add(p, n, __ATOMIC_RELAXED); }
 #endif
 
+// power_heuristic (shared/lights.h) per lane, for the weights f = nf * fPdf and g = ng * gPdf.
+MCL_INLINE vfloat v_power_heuristic(vfloat f, vfloat g) {
+  vfloat sum = f * f + g * g;
+  vfloat r = g / f;
+  return vsel(sum < INFINITY, (f * f) / sum, 1.0f / (1.0f + r * r));
+}
+
 // 1 when the packet starting at `first` does not lie wholly below count (W = 1: never).
 MCL_INLINE int v_packet_partial(uint first, uint count) { return MCL_LANES > 1 && count - first < MCL_LANES; }
 
