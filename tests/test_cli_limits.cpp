@@ -56,7 +56,12 @@ TEST_CASE("cli: a truncated PNG texture is one line (libpng's own message is not
   montecl_test::writeImage8(dir.file("tex.png"), 64, 64, 3, [](int x, int y, int c) { return (x * 7 + y * 13 + c * 5) % 256; });
   const std::string png = montecl_test::readAll(dir.file("tex.png"));
   dir.write("tex.png", png.substr(0, png.size() / 2));
-  const CliResult r = render(dir.file("quad.obj"), dir.file("out.png"));
+  // libpng's error longjmp skips a destructor inside OpenImageIO's PNG reader (a 31-byte string);
+  // its stack cannot be unwound to the library, so the suppression of OpenImageIO's leaks misses
+  // it: leak checking is off for this one run of the sanitizer build (nothing of montecl's is lost).
+  const CliResult r = runMontecl({"render", dir.file("quad.obj"), "-o", dir.file("out.png"), "--width", "8", "--height",
+                                  "8", "--spp", "1", "-q", "--device", "host", "--integrator", "direct"},
+                                 {"ASAN_OPTIONS=detect_leaks=0"});
   INFO("stderr: " << r.err);
   CHECK(r.exitCode == 2);
   CHECK(oneLine(r.err));

@@ -38,8 +38,16 @@ double rmse(const std::vector<float>& a, const std::vector<float>& b) {
 
 }  // namespace
 
+// Under AddressSanitizer the filter cannot run: OIDN's TBB dlopens libtbbbind with RTLD_DEEPBIND,
+// which the ASan runtime refuses (google/sanitizers#611), so those cases skip there (the release
+// suite runs them).
+#if defined(__SANITIZE_ADDRESS__)
+#define MCL_SKIP_UNLESS_OIDN() \
+  MCL_SKIP_UNLESS(false, "under AddressSanitizer: OIDN's TBB dlopens libtbbbind with RTLD_DEEPBIND, which ASan refuses")
+#else
 #define MCL_SKIP_UNLESS_OIDN() \
   MCL_SKIP_UNLESS(oidnProblem().empty(), oidnProblem())
+#endif
 
 TEST_CASE("denoise: without the library --denoise is one line naming the set-up command, exit 2, nothing written" *
           doctest::test_suite("cli")) {

@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -107,10 +108,23 @@ TEST_CASE("glTF: a texture as a file, a data URI or a GLB bufferView renders bit
 
   // An embedded image in a format montecl does not read: one line naming the file and the image.
   g["images"][0]["mimeType"] = "image/ktx2";
+  g["bufferViews"].back()["byteLength"] = 16;
   dir.write("ktx.glb", glb(g, bin + std::string(16, 'k')));
   const CliResult bad = runMontecl({"render", dir.file("ktx.glb"), "-o", dir.file("ktx.png"), "-q"});
+  INFO(bad.err);
   CHECK(bad.exitCode == 2);
   CHECK(bad.err.find(dir.file("ktx.glb") + ": images[0]: embedded image of type 'image/ktx2'") != std::string::npos);
   CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
   CHECK_FALSE(std::filesystem::exists(dir.file("ktx.png")));
+
+  // An image bufferView that runs past its buffer (tinygltf does not check it): one line, never read.
+  g["images"][0]["mimeType"] = "image/png";
+  g["bufferViews"].back()["byteLength"] = 4096;
+  dir.write("short.glb", glb(g, bin + png));
+  const CliResult shortView = runMontecl({"render", dir.file("short.glb"), "-o", dir.file("short.png"), "-q"});
+  INFO(shortView.err);
+  CHECK(shortView.exitCode == 2);
+  CHECK(shortView.err.find(dir.file("short.glb") + ": images[0]: bufferView " + std::to_string(g["bufferViews"].size() - 1) +
+                           " runs past the end of its buffer") != std::string::npos);
+  CHECK(std::count(shortView.err.begin(), shortView.err.end(), '\n') == 1);
 }

@@ -43,11 +43,13 @@ bool writeNothing(std::string* err, const std::string&, const std::vector<unsign
 }
 
 // Images are decoded later, by the texture loader: an image in a file of its own is opened there by
-// path (its bytes are dropped here); an embedded one (a bufferView, a data URI: no uri is kept for
-// it) keeps its encoded bytes in image->image until gltfImagePath hands them to the scene.
+// path (its bytes are dropped here); a data URI's (no uri is kept for it) keeps its decoded bytes in
+// image->image until gltfImagePath hands them to the scene. A bufferView's bytes are not taken
+// here: tinygltf passes its byteLength unchecked against the buffer, so gltfImagePath reads the
+// view itself, bounds checked.
 bool keepImageUndecoded(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
                         const unsigned char* bytes, int size, void*) {
-  if ((image->uri.empty() || image->uri.compare(0, 5, "data:") == 0) && bytes && size > 0) {
+  if (image->bufferView < 0 && (image->uri.empty() || image->uri.compare(0, 5, "data:") == 0) && bytes && size > 0) {
     image->image.assign(bytes, bytes + size);
     image->as_is = true;
   }
@@ -295,12 +297,24 @@ std::string gltfImagePath(const std::string& file, const tinygltf::Model& m, int
   const std::string where = "images[" + std::to_string(index) + "]";
   if (!img.uri.empty() && img.uri.compare(0, 5, "data:") != 0 && img.bufferView < 0)
     return besideFile(file, percentDecode(img.uri));
-  if (img.image.empty()) loadFail(file, where, "embedded image holds no bytes");
-  const std::string ext = embeddedImageExtension(img);
+  tinygltf::Image held = img;  // the bytes: a data URI's as decoded, or the bufferView's
+  if (img.bufferView >= 0) {
+    if (static_cast<std::size_t>(img.bufferView) >= m.bufferViews.size())
+      loadFail(file, where, "bufferView " + std::to_string(img.bufferView) + " out of range");
+    const tinygltf::BufferView& v = m.bufferViews[static_cast<std::size_t>(img.bufferView)];
+    if (v.buffer < 0 || static_cast<std::size_t>(v.buffer) >= m.buffers.size())
+      loadFail(file, where, "bufferView " + std::to_string(img.bufferView) + " names no valid buffer");
+    const std::vector<unsigned char>& data = m.buffers[static_cast<std::size_t>(v.buffer)].data;
+    if (v.byteOffset > data.size() || v.byteLength > data.size() - v.byteOffset)
+      loadFail(file, where, "bufferView " + std::to_string(img.bufferView) + " runs past the end of its buffer");
+    held.image.assign(data.begin() + std::ptrdiff_t(v.byteOffset), data.begin() + std::ptrdiff_t(v.byteOffset + v.byteLength));
+  }
+  if (held.image.empty()) loadFail(file, where, "embedded image holds no bytes");
+  const std::string ext = embeddedImageExtension(held);
   if (ext.empty())
     loadFail(file, where, "embedded image of type '" + img.mimeType + "': montecl reads PNG and JPEG images");
   const std::string name = file + "#" + where + "." + ext;
-  scene.embeddedImages.emplace(name, img.image);
+  scene.embeddedImages.emplace(name, std::move(held.image));
   return name;
 }
 
