@@ -42,14 +42,18 @@ MCL_INLINE float u32_to_unit(uint u) { return (float)(u >> 8) * (1.0f / 16777216
 // carries them upwards, so groups 0 and 0x80000000 (camera jitter and the first path bounce) gave
 // numbers with correlation 0.26 overall and 0.6 within one pixel, which biased edge pixels of
 // path-traced images. The group goes through this mix first (distinct groups stay distinct).
-MCL_INLINE uint mcl_mix32(uint x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
+// Written once for any unsigned 32-bit type T (uint here; the packet stages' vuint lanes,
+// kernels/stages/stage_lanes.h): the same operations, so each lane gives the scalar bits.
+#define MCL_DEFINE_MIX32(name, T) \
+  MCL_INLINE T name(T x) {        \
+    x ^= x >> 16;                 \
+    x *= 0x7feb352du;             \
+    x ^= x >> 15;                 \
+    x *= 0x846ca68bu;             \
+    x ^= x >> 16;                 \
+    return x;                     \
+  }
+MCL_DEFINE_MIX32(mcl_mix32, uint)
 
 // Four uniform numbers in [0, 1) for dimension group `group` of the given sample.
 MCL_INLINE float4 rng_uniform4(uint seed, uint pixel, uint sample, uint group) {

@@ -9,28 +9,33 @@
 #pragma once
 #include "rng.h"
 
-// Bit i to bit 31 - i.
-MCL_INLINE uint mcl_reverse_bits(uint x) {
-  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
-  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
-  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
-  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
-  return (x >> 16) | (x << 16);
-}
+// Bit i to bit 31 - i. Written once for any unsigned 32-bit type T (uint here, the lanes' vuint in
+// kernels/stages/stage_lanes.h), as mcl_mix32 is.
+#define MCL_DEFINE_REVERSE_BITS(name, T)                                 \
+  MCL_INLINE T name(T x) {                                               \
+    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);             \
+    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);             \
+    x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);             \
+    x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);             \
+    return (x >> 16) | (x << 16);                                        \
+  }
 
 // Nested uniform (Owen) scramble of a 32-bit fixed-point value: bit k of the result (counted from
 // the most significant) is bit k flipped by a hash of the seed and the bits above it. On the
 // bit-reversed value that is a map whose bit k depends only on bits below k: adding a number and
 // x ^= x * even carry information upwards only (Burley's Laine-Karras style hash and constants).
-MCL_INLINE uint mcl_owen_scramble(uint x, uint seed) {
-  x = mcl_reverse_bits(x);
-  x += seed;
-  x ^= x * 0x6c50b47cu;
-  x ^= x * 0xb82f1e52u;
-  x ^= x * 0xc7afe638u;
-  x ^= x * 0x8d22f6e6u;
-  return mcl_reverse_bits(x);
-}
+#define MCL_DEFINE_OWEN_SCRAMBLE(name, T, reverse) \
+  MCL_INLINE T name(T x, T seed) {                 \
+    x = reverse(x);                                \
+    x += seed;                                     \
+    x ^= x * 0x6c50b47cu;                          \
+    x ^= x * 0xb82f1e52u;                          \
+    x ^= x * 0xc7afe638u;                          \
+    x ^= x * 0x8d22f6e6u;                          \
+    return reverse(x);                             \
+  }
+MCL_DEFINE_REVERSE_BITS(mcl_reverse_bits, uint)
+MCL_DEFINE_OWEN_SCRAMBLE(mcl_owen_scramble, uint, mcl_reverse_bits)
 
 // Sobol dimensions 1..3 of index i as 32-bit fixed point. The direction numbers v_k (left-aligned,
 // k = 1, 2, ...) follow from each primitive polynomial's recurrence, so no table is needed:

@@ -78,32 +78,9 @@ MCL_INLINE vfloat4 v_rng_uniform4(uint seed, vuint pixel, vuint sample, uint gro
 }
 
 // --- Sobol (shared/sobol.h, shared/sampler.h), the same uint operations per lane --------------
-MCL_INLINE vuint v_mix32(vuint x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
-
-MCL_INLINE vuint v_reverse_bits(vuint x) {
-  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
-  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
-  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
-  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
-  return (x >> 16) | (x << 16);
-}
-
-MCL_INLINE vuint v_owen_scramble(vuint x, vuint seed) {
-  x = v_reverse_bits(x);
-  x += seed;
-  x ^= x * 0x6c50b47cu;
-  x ^= x * 0xb82f1e52u;
-  x ^= x * 0xc7afe638u;
-  x ^= x * 0x8d22f6e6u;
-  return v_reverse_bits(x);
-}
+MCL_DEFINE_MIX32(v_mix32, vuint)
+MCL_DEFINE_REVERSE_BITS(v_reverse_bits, vuint)
+MCL_DEFINE_OWEN_SCRAMBLE(v_owen_scramble, vuint, v_reverse_bits)
 
 MCL_INLINE vRngOut v_sobol4(vuint i) {
   uint d1 = 0x80000000u;  // the direction numbers are the same in every lane
