@@ -260,8 +260,9 @@ TEST_CASE("cli: the default output of a scene.json is named after its folder and
 TEST_CASE("cli: -v prints the camera as scene JSON; pasted into a scene file it renders the same image" * doctest::test_suite("cli")) {
   TempDir dir;
   const std::string obj = std::string(MONTECL_SOURCE_DIR) + "/scenes/test/good/quad.obj";
+  // AO, the scene file's default integrator (a bare model's is path under a sky: test_cli_view_env).
   CliResult bare = runMontecl({"render", obj, "-v", "-q", "--width", "12", "--height", "10", "--spp", "2", "--device",
-                               "host", "-o", dir.file("bare.pfm")});
+                               "host", "--integrator", "ao", "-o", dir.file("bare.pfm")});
   INFO("stderr: " << bare.err);
   REQUIRE(bare.exitCode == 0);
   const std::size_t at = bare.err.find("montecl: \"camera\": {");

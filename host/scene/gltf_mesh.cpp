@@ -1,6 +1,6 @@
 // gltf_mesh.cpp: loadGltfInto(): a glTF 2.0 scene (gltf_model.h) into a Scene. Walks the default
-// scene's node hierarchy (TRS or matrix transforms); TRIANGLES primitives (indexed or not) give
-// triangles with POSITION, NORMAL (kHasNormals) and TEXCOORD_0 (kHasUv, v flipped to OBJ's
+// scene's node hierarchy (TRS or matrix transforms); TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN
+// primitives (indexed or not) give triangles with POSITION, NORMAL (kHasNormals) and TEXCOORD_0 (kHasUv, v flipped to OBJ's
 // convention: v = 1 - v_gltf). Materials: baseColorFactor x baseColorTexture -> albedo and
 // albedoTexture; alphaMode MASK (+ alphaCutoff) -> alphaTexture = the base colour texture, BLEND
 // treated as MASK with a warning; emissiveFactor x KHR_materials_emissive_strength -> emission
@@ -145,8 +145,10 @@ std::uint32_t Loader::material(int index) {
 }
 
 void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, const std::string& where) {
-  if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != -1) {
-    unused.add("mode " + std::to_string(p.mode), where, "primitive mode " + std::to_string(p.mode) + " (not TRIANGLES) skipped");
+  const int mode = p.mode == -1 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    unused.add("mode " + std::to_string(p.mode), where,
+               "primitive mode " + std::to_string(p.mode) + " (points or lines, not triangles) skipped");
     return;
   }
   auto attr = [&](const char* name) {
@@ -158,17 +160,27 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
       unused.add("attribute " + a.first, where, "attribute " + oneLine(a.first, 40) + " not used by montecl, ignored");
   if (!p.targets.empty()) unused.add("morph", where, "morph targets not used by montecl (the base mesh is rendered)");
   if (attr("POSITION") < 0) loadFail(file, where, "primitive without POSITION");
-  const std::vector<float> pos = readFloatAccessor(file, m, attr("POSITION"), 3, where + ".POSITION");
+  const std::vector<float> pos = readFloatAccessor(file, m, attr("POSITION"), 3, where + ".POSITION", AccessorUse::Position);
   const std::size_t n = pos.size() / 3;
   std::vector<float> nor, uv;
-  if (attr("NORMAL") >= 0) nor = readFloatAccessor(file, m, attr("NORMAL"), 3, where + ".NORMAL");
-  if (attr("TEXCOORD_0") >= 0) uv = readFloatAccessor(file, m, attr("TEXCOORD_0"), 2, where + ".TEXCOORD_0");
+  if (attr("NORMAL") >= 0) nor = readFloatAccessor(file, m, attr("NORMAL"), 3, where + ".NORMAL", AccessorUse::Normal);
+  if (attr("TEXCOORD_0") >= 0) uv = readFloatAccessor(file, m, attr("TEXCOORD_0"), 2, where + ".TEXCOORD_0", AccessorUse::TexCoord);
   if ((!nor.empty() && nor.size() / 3 != n) || (!uv.empty() && uv.size() / 2 != n))
     loadFail(file, where, "attributes have different counts");
   std::vector<std::uint32_t> idx;
   if (p.indices >= 0) idx = readIndexAccessor(file, m, p.indices, where + ".indices");
-  const std::size_t corners = p.indices >= 0 ? idx.size() : n;
-  if (corners % 3 != 0) loadFail(file, where, std::to_string(corners) + " vertices do not make whole triangles");
+  const std::size_t count = p.indices >= 0 ? idx.size() : n;  // the primitive's vertices, in order
+  if (mode == TINYGLTF_MODE_TRIANGLES && count % 3 != 0)
+    loadFail(file, where, std::to_string(count) + " vertices do not make whole triangles");
+  const std::size_t corners = mode == TINYGLTF_MODE_TRIANGLES ? count : 3 * (count >= 3 ? count - 2 : 0);
+  // Corner k of triangle i, as the glTF specification orders strips (every other one flipped, so
+  // all keep the first one's winding) and fans (v[i+1], v[i+2], v[0]).
+  const auto cornerOf = [mode](std::size_t c) {
+    const std::size_t i = c / 3, k = c % 3;
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) return k == 0 ? i : k == 1 ? i + 1 + i % 2 : i + 2 - i % 2;
+    if (mode == TINYGLTF_MODE_TRIANGLE_FAN) return k == 2 ? std::size_t(0) : i + k + 1;
+    return c;
+  };
   const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(world)));
   const bool mirror = glm::determinant(glm::dmat3(world)) < 0.0;
   const std::uint32_t mat = material(p.material);
@@ -176,7 +188,8 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
     SceneTriangle t{};
     bool normals = !nor.empty();
     for (int k = 0; k < 3; ++k) {
-      const std::size_t v = p.indices >= 0 ? idx[c + std::size_t(k)] : c + std::size_t(k);
+      const std::size_t j = cornerOf(c + std::size_t(k));
+      const std::size_t v = p.indices >= 0 ? idx[j] : j;
       if (v >= n) loadFail(file, where + ".indices", "index " + std::to_string(v) + " out of range (" + std::to_string(n) + " vertices)");
       const int kk = mirror && k > 0 ? 3 - k : k;  // a mirroring transform swaps corners 1 and 2
       t.v[kk] = glm::vec3(world * glm::dvec4(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2], 1.0));
@@ -228,7 +241,10 @@ std::uint64_t meshTriangles(const Model& m, const tinygltf::Mesh& mesh) {
   for (const tinygltf::Primitive& p : mesh.primitives) {
     auto it = p.attributes.find("POSITION");
     const int a = p.indices >= 0 ? p.indices : it == p.attributes.end() ? -1 : it->second;
-    if (a >= 0 && static_cast<std::size_t>(a) < m.accessors.size()) n += m.accessors[std::size_t(a)].count / 3;
+    if (a < 0 || static_cast<std::size_t>(a) >= m.accessors.size()) continue;
+    const std::uint64_t count = m.accessors[std::size_t(a)].count;
+    if (p.mode == TINYGLTF_MODE_TRIANGLES || p.mode == -1) n += count / 3;
+    else if ((p.mode == TINYGLTF_MODE_TRIANGLE_STRIP || p.mode == TINYGLTF_MODE_TRIANGLE_FAN) && count >= 3) n += count - 2;
   }
   return n;
 }
@@ -242,7 +258,7 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
   scene.inputFiles.insert(scene.inputFiles.end(), opened.begin(), opened.end());
   Loader l{path, m, scene, KindWarnings(path), std::vector<std::int64_t>(m.materials.size(), -1), false, Camera{}};
   for (const std::string& e : m.extensionsUsed)
-    if (e != "KHR_materials_emissive_strength" && e != "KHR_lights_punctual")
+    if (!gltfExtensionSupported(e))
       l.unused.add("extension " + e, "extensionsUsed", "extension '" + oneLine(e, 60) + "' not used by montecl, ignored");
   if (!m.animations.empty()) l.unused.add("animations", "animations", "animations not used by montecl (the rest pose is rendered)");
   if (!m.skins.empty()) l.unused.add("skins", "skins", "skins not used by montecl (the rest pose is rendered)");

@@ -239,7 +239,8 @@ std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<t
   for (const MtlFile& f : files) f.unused.flush(warnings);
   auto base = static_cast<std::uint32_t>(scene.materials.size());
   std::set<std::string> textures;
-  GlossyScaling scaled;  // Kd + Ks > 1: one warning per file
+  GlossyScaling scaled;  // Kd + Ks > 1: one warning per OBJ
+  std::string scaledAt;  // where the first scaled material is
   TextureLookup look;
   look.warnings = warnings;
   for (std::size_t i = 0; i < mats.size(); ++i) {
@@ -266,11 +267,16 @@ std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<t
     for (const std::string* t : {&d.albedoTexture, &d.alphaTexture})
       if (!t->empty() && textures.insert(*t).second) scene.inputFiles.push_back(*t);
     const std::string where = "material '" + oneLine(m.name, 60) + "'";
-    scaled.note(oneLine(m.name, 60), checkGlossyMaterial(oneLine(objPath, 4096), where, d));
+    const float factor = checkGlossyMaterial(oneLine(src.file, 4096), where, d);
+    if (factor != 1.0f && scaled.count == 0) {  // the warning names the MTL and the first one's Ks line
+      const std::string line = src.where("Ks");
+      scaledAt = oneLine(src.file, 4096) + (line.empty() ? "" : ": " + line);
+    }
+    scaled.note(oneLine(m.name, 60), factor);
     scene.materials.push_back(d);
   }
   failOnMissingTextures(look);
-  scaled.warn(oneLine(objPath, 4096), warnings);
+  scaled.warn(scaledAt, warnings);
   return base;
 }
 

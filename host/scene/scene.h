@@ -106,6 +106,13 @@ struct Scene {
 // appended to warnings ("<file>: <key>: unknown key, ignored").
 Scene loadScene(const std::string& path, std::vector<std::string>& warnings);
 
+// What a bare mesh (a model file given without a scene file) renders with, the one rule for it:
+// integrator path, and, when the model has no light of its own (no emitting material, no glTF
+// punctual light), a constant white sky of radiance kDefaultSkyRadiance (a diffuse surface open
+// to all of it shows its albedo). The command line's --integrator and --env replace these.
+constexpr float kDefaultSkyRadiance = 1.0f;
+void applyBareModelDefaults(Scene& scene);
+
 // Appends the triangles and materials of one OBJ (+ its MTL) to scene, drops degenerate triangles
 // (counted in degenerateDropped) and grows the bounds. Throws InputError "<obj>: line N: <problem>".
 // Non-fatal problems (missing MTL, unknown statements) are appended to warnings when given.
