@@ -2,7 +2,8 @@
 // external or a data-URI buffer and .glb give exactly the OBJ's triangles (v flipped back to OBJ's
 // convention); node hierarchies with TRS and matrices; materials (base colour x texture, MASK and
 // BLEND cut-outs, emission x KHR_materials_emissive_strength, embedded images held in memory); the first
-// perspective camera; one warning per unused kind; malformed files as one InputError line.
+// perspective camera; triangle strips and fans as their TRIANGLES lists; one warning per unused kind;
+// malformed files as one InputError line.
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
