@@ -4,7 +4,8 @@
 // convention: v = 1 - v_gltf). Materials: baseColorFactor x baseColorTexture -> albedo and
 // albedoTexture; alphaMode MASK (+ alphaCutoff) -> alphaTexture = the base colour texture, BLEND
 // treated as MASK with a warning; emissiveFactor x KHR_materials_emissive_strength -> emission
-// (two-sided when doubleSided). The first perspective camera met in the hierarchy is returned.
+// (two-sided when doubleSided), emissiveTexture -> emissionTexture; metallic/roughness factors (x
+// metallicRoughnessTexture) -> the metal_rough kind. The first perspective camera met in the hierarchy is returned.
 // Everything else the file uses is one warning per kind.
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -89,9 +90,11 @@ std::uint32_t Loader::material(int index) {
     if (!std::isfinite(d.albedo[c]) || d.albedo[c] < 0) loadFail(file, where, "baseColorFactor must be finite and >= 0");
     if (!std::isfinite(d.emission[c]) || d.emission[c] < 0) loadFail(file, where, "emissiveFactor x emissiveStrength must be finite and >= 0");
   }
-  const int tex = pbr.baseColorTexture.index;
-  if (tex >= 0) {
-    if (static_cast<std::size_t>(tex) >= m.textures.size()) loadFail(file, where, "baseColorTexture index out of range");
+  // A texture of this material (key names it in messages): the path of its image, checked now
+  // when it is a file of its own (then an input file); texCoord other than 0 and wrap modes other
+  // than REPEAT are warned about.
+  const auto texturePath = [&](int tex, int texCoord, const char* key) {
+    if (static_cast<std::size_t>(tex) >= m.textures.size()) loadFail(file, where, std::string(key) + " index out of range");
     const tinygltf::Texture& t = m.textures[static_cast<std::size_t>(tex)];
     if (t.source < 0 || static_cast<std::size_t>(t.source) >= m.images.size())
       loadFail(file, itemWhere("textures", std::size_t(tex)), "source image missing or out of range");
@@ -107,14 +110,20 @@ std::uint32_t Loader::material(int index) {
       }
       scene.inputFiles.push_back(path);
     }
-    d.albedoTexture = path;
-    if (pbr.baseColorTexture.texCoord != 0) unused.add("texCoord", where, "texCoord other than 0 not used by montecl (TEXCOORD_0 used)");
+    if (texCoord != 0) unused.add("texCoord", where, "texCoord other than 0 not used by montecl (TEXCOORD_0 used)");
     if (t.sampler >= 0 && static_cast<std::size_t>(t.sampler) < m.samplers.size()) {
       const tinygltf::Sampler& s = m.samplers[static_cast<std::size_t>(t.sampler)];
       if (s.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT || s.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT)
         unused.add("wrap", itemWhere("samplers", std::size_t(t.sampler)), "wrap modes other than REPEAT not used by montecl (it repeats)");
     }
-  }
+    return path;
+  };
+  if (pbr.baseColorTexture.index >= 0)
+    d.albedoTexture = texturePath(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, "baseColorTexture");
+  // emissiveFactor x emissiveTexture (x strength); with a black factor the texture emits nothing:
+  // not read at all.
+  if (g.emissiveTexture.index >= 0 && d.emission != glm::vec3(0.0f))
+    d.emissionTexture = texturePath(g.emissiveTexture.index, g.emissiveTexture.texCoord, "emissiveTexture");
   if (g.alphaMode == "MASK" || g.alphaMode == "BLEND") {
     if (g.alphaMode == "BLEND") unused.add("BLEND", where, "alphaMode BLEND treated as MASK (cut-out at alphaCutoff)");
     d.alphaCutoff = static_cast<float>(g.alphaCutoff);
@@ -129,16 +138,18 @@ std::uint32_t Loader::material(int index) {
   const float metallic = float(pbr.metallicFactor), roughness = float(pbr.roughnessFactor);
   if (!(metallic >= 0.0f && metallic <= 1.0f)) loadFail(file, where, "metallicFactor must be in [0, 1]");
   if (!(roughness >= 0.0f && roughness <= 1.0f)) loadFail(file, where, "roughnessFactor must be in [0, 1]");
-  if (roughness != 1.0f || (metallic != 0.0f && metallic != 1.0f)) {
+  // A metallicRoughnessTexture (B metallic, G roughness, x the factors) always means metal_rough.
+  const bool mrTexture = pbr.metallicRoughnessTexture.index >= 0 && (metallic > 0.0f || roughness > 0.0f);
+  if (roughness != 1.0f || (metallic != 0.0f && metallic != 1.0f) || mrTexture) {
     d.kind = MCL_MATERIAL_metal_rough;
     d.metallic = metallic;
     d.roughness = roughness;
   }
-  if (pbr.metallicRoughnessTexture.index >= 0)
-    unused.add("metallicRoughnessTexture", where, "metallicRoughnessTexture not used by montecl (the factors are), ignored");
+  if (mrTexture)
+    d.metallicRoughnessTexture = texturePath(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                                             "metallicRoughnessTexture");
   if (g.normalTexture.index >= 0) unused.add("normalTexture", where, "normalTexture not used by montecl, ignored");
   if (g.occlusionTexture.index >= 0) unused.add("occlusionTexture", where, "occlusionTexture not used by montecl, ignored");
-  if (g.emissiveTexture.index >= 0) unused.add("emissiveTexture", where, "emissiveTexture not used by montecl (emissiveFactor only), ignored");
   materialIndex[i] = static_cast<std::int64_t>(scene.materials.size());
   scene.materials.push_back(d);
   return static_cast<std::uint32_t>(materialIndex[i]);

@@ -18,7 +18,9 @@ namespace montecl {
 
 bool sceneHasTextures(const Scene& scene) {
   for (const MaterialDesc& m : scene.materials)
-    if (!m.albedoTexture.empty() || !m.alphaTexture.empty()) return true;
+    if (!m.albedoTexture.empty() || !m.alphaTexture.empty() || !m.emissionTexture.empty() ||
+        !m.metallicRoughnessTexture.empty())
+      return true;
   return false;
 }
 
@@ -63,6 +65,8 @@ void setTextureIndices(std::vector<Material>& materials, const SceneTextures& te
     materials[i].albedo.w = glm::uintBitsToFloat(t.albedo);
     materials[i].alpha.x = glm::uintBitsToFloat(t.alpha);
     materials[i].alpha.z = glm::uintBitsToFloat(t.alphaChannel);
+    materials[i].maps.x = glm::uintBitsToFloat(t.emission);
+    materials[i].maps.y = glm::uintBitsToFloat(t.metallicRoughness);
   }
 }
 
@@ -168,6 +172,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     std::string path, material;
     const char* key = "";
     bool asColour = false, asAlpha = false;
+    bool asLinear = false;  // a data texture read linear: a File of its own (fileIndex key + kLinear)
     // After reading: the file's textures (sRGB-decoded colour and/or linear alpha; one when they
     // coincide), mip-mapped, and whether it has an alpha channel.
     std::vector<HalfChain> images;
@@ -176,6 +181,17 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
   };
   std::vector<File> files;
   std::map<std::string, std::size_t> fileIndex;
+  const std::string kLinear = std::string(1, '\0') + "linear";
+  const auto useLinear = [&](const MaterialDesc& m, const std::string& path, const char* key) {
+    auto [it, added] = fileIndex.emplace(path + kLinear, files.size());
+    if (added) {
+      files.emplace_back();
+      files.back().path = path;
+      files.back().material = m.name;
+      files.back().key = key;
+      files.back().asLinear = true;
+    }
+  };
   const auto use = [&](const MaterialDesc& m, const std::string& path, const char* key, bool colour) {
     auto [it, added] = fileIndex.emplace(path, files.size());
     if (added) {
@@ -189,6 +205,9 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
   for (const MaterialDesc& m : scene.materials) {
     if (colour && !m.albedoTexture.empty()) use(m, m.albedoTexture, "map_Kd", true);
     if (!m.alphaTexture.empty()) use(m, m.alphaTexture, "map_d", false);
+    if (colour && !m.emissionTexture.empty()) use(m, m.emissionTexture, "map_Ke", true);
+    if (colour && !m.metallicRoughnessTexture.empty())
+      useLinear(m, m.metallicRoughnessTexture, "metallicRoughnessTexture");
   }
   // A file whose finest level alone is over the budget is refused from its header, before it is
   // decoded: the budget would drop that level anyway, and a 69-byte PNG can declare 16384 x 16384.
@@ -223,6 +242,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
         if (f.asColour || (f.asAlpha && alphaDecode == colourDecode))
           f.images.push_back(halfChain(rgbaFromImage(image, colourDecode)));
         if (f.asAlpha && alphaDecode != colourDecode) f.images.push_back(halfChain(rgbaFromImage(image, alphaDecode)));
+        if (f.asLinear) f.images.push_back(halfChain(rgbaFromImage(image, false)));
       } catch (const InputError& e) {
         std::string why = e.what();
         const std::string prefix = f.path + ": ";
@@ -246,6 +266,9 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
     const MaterialDesc& m = scene.materials[i];
     if (colour && !m.albedoTexture.empty()) out.materials[i].albedo = first[fileIndex.at(m.albedoTexture)];
+    if (colour && !m.emissionTexture.empty()) out.materials[i].emission = first[fileIndex.at(m.emissionTexture)];
+    if (colour && !m.metallicRoughnessTexture.empty())
+      out.materials[i].metallicRoughness = first[fileIndex.at(m.metallicRoughnessTexture + kLinear)];
     if (!m.alphaTexture.empty()) {
       const std::size_t k = fileIndex.at(m.alphaTexture);
       const File& f = files[k];

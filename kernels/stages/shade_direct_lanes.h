@@ -4,8 +4,8 @@
 // light samples (an emitter by power, a uniform point on it; one atomic per packet per light
 // sample) and the BSDF ray (cosine lobe). Lanes that hit anything else (shading normals, an albedo
 // texture, a glossy lobe) run the scalar body after the packet; so does every item of a packet
-// when an environment or a light record (point, spot, directional) lights the scene, and of a
-// partial last packet.
+// when an environment or a light record (point, spot, directional) lights the scene or an emission
+// is textured, and of a partial last packet.
 #pragma once
 #include "shade_direct.h"
 #include "light_area_lanes.h"
@@ -14,7 +14,7 @@
 MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first) {
   if (first >= a->waveCount) return;
   MCL_CONSTANT const FrameParams* f = a->frame;
-  if (v_packet_partial(first, a->waveCount) || env_present(f) || f->lightCount > 0u) {
+  if (v_packet_partial(first, a->waveCount) || env_present(f) || f->lightCount > 0u || f->emissionTextured) {
     for (uint k = 0; k < MCL_LANES && first + k < a->waveCount; ++k) stage_shade_direct(a, first + k);
     return;
   }

@@ -6,8 +6,8 @@
 // next-event light samples (an emitter by power, a uniform point on it; one atomic per packet per
 // light sample), the cosine-lobe continuation with Russian roulette (one atomic per packet). Lanes
 // that hit anything else run the scalar body after the packet; so does every entry of a packet
-// when an environment or a light record (point, spot, directional) lights the scene or there are
-// no emitters, and of a partial last packet.
+// when an environment or a light record (point, spot, directional) lights the scene, there are
+// no emitters or an emission is textured, and of a partial last packet.
 // Queue order: the packet's shadow queries and continuations fill their entries in lane order, so
 // the next queue's order can differ from the scalar stage's; nothing depends on it (shadow queries
 // name their slot, path_gather adds slots in slot order, every random number comes from the
@@ -28,7 +28,8 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
   const uint ac = f->activeCount;
   const ulong q0 = a->waveStart / ac;
   const uint r0 = (uint)(a->waveStart % ac);
-  if (v_packet_partial(first, count) || env_present(f) || f->emitterCount == 0u || f->lightCount > 0u) {
+  if (v_packet_partial(first, count) || env_present(f) || f->emitterCount == 0u || f->lightCount > 0u ||
+      f->emissionTextured) {
     for (uint k = 0; k < MCL_LANES && first + k < count; ++k) stage_shade_path(a, first + k);
     return;
   }
