@@ -141,7 +141,8 @@ typedef struct MCL_ALIGN16 {
   uint pointFirst, pointCount, spotFirst, spotCount;  // each kind's range of light records
   uint directionalFirst, directionalCount, sunFirst, sunCount;
   uint sampler;              // MCL_SAMPLER_INDEPENDENT | MCL_SAMPLER_SOBOL
-  uint pad0, pad1, pad2;
+  uint sobolSplits;          // sobol: independently scrambled sub-sequences, sample s in s % this (>= 1)
+  uint pad1, pad2;
 } FrameParams;
 
 // One emitting triangle. It is picked with probability area * luminance(Le) / emitterPower;
