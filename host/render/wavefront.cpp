@@ -362,7 +362,7 @@ double relativeStandardError(const Film& film, std::size_t p, double errorFloor)
   double mean = 0.0, se = 0.0;
   for (int c = 0; c < 3; ++c) {
     mean += w[c] * film.mean[p][c];
-    se += w[c] * std::sqrt(film.variance(p, c) / n);
+    se += w[c] * std::sqrt(film.meanVariance(p, c));
   }
   return se / std::max(mean, errorFloor);
 }

@@ -146,7 +146,8 @@ typedef struct MCL_ALIGN16 {
   uint directionalFirst, directionalCount, sunFirst, sunCount;
   uint sampler;              // MCL_SAMPLER_INDEPENDENT | MCL_SAMPLER_SOBOL
   uint emissionTextured;     // 1 when a material's emission is textured (the packet stages then run scalar)
-  uint pad1, pad2;
+  uint sobolSplits;          // sobol: independently scrambled sub-sequences, sample s in s % this (>= 1)
+  uint pad2;
 } FrameParams;
 
 // One emitting triangle. It is picked with probability area * luminance(Le) / emitterPower;
