@@ -85,7 +85,7 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
   WaveShape shape = waveShapeFor(scene, 1, o.aovs);
   shape.items = waveCap(o, device, maxAlloc, shape, pixels * std::uint64_t(scene.render.spp));
   checkImageMemory(device, scene.path, scene.camera.width, scene.camera.height, o.aovs,
-                   shape.items * waveBytesPerItem(shape));
+                   shape.items * waveBytesPerItem(shape), shape.splits);
 
   StageInputs& in = p.inputs;
   PreparedTriangles own;
