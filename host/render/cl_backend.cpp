@@ -108,8 +108,11 @@ class ClStageRunner final : public StageRunner {
     cl_.queue().finish();  // (zeros is about to go)
   }
 
-  void setActivePixels(const std::vector<std::uint32_t>& pixels) override {
+  unsigned lanes() const override { return program_.lanes(); }
+
+  void setActivePixels(const std::vector<std::uint32_t>& pixels, unsigned blockShift) override {
     frame_.activeCount = cl_uint(pixels.size());
+    frame_.sampleBlockShift = blockShift;
     cl_.queue().enqueueWriteBuffer(bindings_.frame.buffer, CL_TRUE, 0, sizeof(FrameParams), &frame_);
     if (!pixels.empty())
       cl_.queue().enqueueWriteBuffer(bindings_.active.buffer, CL_TRUE, 0, pixels.size() * sizeof(cl_uint),

@@ -76,10 +76,11 @@ class HostStageRunner final : public StageRunner {
     bind();
   }
 
-  void setActivePixels(const std::vector<std::uint32_t>& pixels) override {
+  void setActivePixels(const std::vector<std::uint32_t>& pixels, unsigned blockShift) override {
     active_ = pixels;
     if (active_.empty()) active_.resize(1);
     frame_.activeCount = uint(pixels.size());
+    frame_.sampleBlockShift = blockShift;
     bind();
   }
 

@@ -74,9 +74,12 @@ class StageRunner {
   // Allocates the wave buffers and uploads frame, BVH, attributes, materials and emitters; clears the film
   // (or loads in.initialFilm).
   virtual void setup(const StageInputs& in) = 0;
+  // The packet stages' width W (1: scalar stage bodies only).
+  virtual unsigned lanes() const { return 1; }
   // Replaces the active-pixel list the waves walk (setup starts with every pixel, in order) and
-  // sets FrameParams::activeCount to its size.
-  virtual void setActivePixels(const std::vector<std::uint32_t>& pixels) = 0;
+  // sets FrameParams::activeCount to its size and sampleBlockShift (the item order,
+  // kernels/stages/stage_common.h) to blockShift.
+  virtual void setActivePixels(const std::vector<std::uint32_t>& pixels, unsigned blockShift = 0) = 0;
   // Starts a wave of `count` items from global sample index waveStart: sets the bindings'
   // waveStart and waveCount, resets the ray count to `count` and the shadow queue count to 0.
   virtual void beginWave(std::uint64_t waveStart, std::uint32_t count) = 0;

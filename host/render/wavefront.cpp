@@ -11,6 +11,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "kernels/stages/stage_common.h"
 #include "render/stage_runner.h"
 #include "render/device_materials.h"
 #include "render/emitters.h"
@@ -178,9 +179,11 @@ class WaveLoop {
     return (o_.interrupt && *o_.interrupt) || (o_.timeLimit > 0.0 && elapsed() >= o_.timeLimit);
   }
   // The active list has activeCount pixels; expected: the samples the whole render will have.
-  void setActive(std::uint64_t activeCount, std::uint64_t expected) {
+  // blockShift: the round's item order (kernels/stages/stage_common.h).
+  void setActive(std::uint64_t activeCount, std::uint64_t expected, unsigned blockShift) {
     activeCount_ = activeCount;
     expected_ = expected;
+    blockShift_ = blockShift;
   }
 
   // Runs the active list's samples [sampleBase, sampleBase + spp) in waves; false if stopped early.
@@ -194,6 +197,9 @@ class WaveLoop {
         const double timeLeft = o_.timeLimit > 0.0 ? o_.timeLimit - elapsed() : INFINITY;
         size = planWave(o_.planner, wave_, count - done, rate_, timeLeft);
         if (size == 0) return false;  // the time limit is (about) reached (never ahead: none queued)
+        // Whole blocks, so that every wave starts a pixel's block and packets stay one pixel's.
+        const std::uint64_t block = std::uint64_t(1) << blockShift_;
+        if (size > block) size -= size % block;
       }
       const std::uint32_t n = std::uint32_t(size);
       queued_[waiting_++] = Queued{n, elapsed()};
@@ -201,7 +207,7 @@ class WaveLoop {
       run_.launch(Stage::generate, n);
       PathWaveCounts pathCounts;
       integrator_.launchWave(run_, n, frame_.shadowSlots, o_.aovs, pathCounts);
-      const std::uint64_t touched = std::min<std::uint64_t>(n, activeCount_);  // pixels in the wave
+      const std::uint64_t touched = wave_touched_pixels(first + done, n, blockShift_, uint(activeCount_));
       run_.launch(Stage::accumulate, touched);
       if (o_.aovs) run_.launch(Stage::accumulate_aov, touched);
       run_.submitWave();
@@ -262,6 +268,7 @@ class WaveLoop {
   double rate_ = 0.0;  // pixel samples per second of the last wave (0: none yet)
   double lastBooked_ = 0.0;
   std::uint64_t activeCount_ = 0, expected_ = 0;
+  unsigned blockShift_ = 0;
   Queued queued_[2] = {};
   int waiting_ = 0;
 };
@@ -315,9 +322,12 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
     if (adaptive && !filmCurrent) run.readFilm(film);
     filmCurrent = false;
     if (!schedule.next(film, active, from, to, remaining)) break;
-    loop.setActive(active.size(), stats.samples + remaining);
-    run.setActivePixels(active);
-    going = loop.runSamples(m.options.firstSample + from, to - from);
+    const std::uint64_t sampleBase = m.options.firstSample + from;
+    // Blocks of up to W samples per pixel: a packet's items are then one pixel's samples.
+    const unsigned blockShift = sample_block_shift(run.lanes(), sampleBase, to - from);
+    loop.setActive(active.size(), stats.samples + remaining, blockShift);
+    run.setActivePixels(active, blockShift);
+    going = loop.runSamples(sampleBase, to - from);
     schedule.done(active, to);
     stats.rounds++;
   }

@@ -147,7 +147,8 @@ typedef struct MCL_ALIGN16 {
   uint sampler;              // MCL_SAMPLER_INDEPENDENT | MCL_SAMPLER_SOBOL
   uint emissionTextured;     // 1 when a material's emission is textured (the packet stages then run scalar)
   uint sobolSplits;          // sobol: independently scrambled sub-sequences, sample s in s % this (>= 1)
-  uint pad2;
+  uint sampleBlockShift;     // wave item order: runs of 2^this consecutive items are one pixel's samples
+                             // (kernels/stages/stage_common.h; set per round of samples)
 } FrameParams;
 
 // One emitting triangle. It is picked with probability area * luminance(Le) / emitterPower;

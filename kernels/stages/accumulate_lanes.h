@@ -2,7 +2,9 @@
 // consecutive touched pixels j, one per lane, each walking its samples in the wave in sample order
 // (the lanes of a packet step together; a lane whose samples are done is masked). The film is
 // gathered and scattered per lane (the active list may be any order); radiance and shadow slots of
-// consecutive items are whole vector loads. A partial last packet runs the scalar body per pixel.
+// consecutive items are whole vector loads (with blocks of C samples per pixel, stage_common.h, a
+// lane's C items are C consecutive items, the lanes' C apart: one float4 load per lane and step). A
+// partial last packet, and waves that cut a packet's blocks, run the scalar body per pixel.
 #pragma once
 #include "accumulate.h"
 #include "stage_lanes.h"
@@ -46,19 +48,60 @@ MCL_INLINE void v_welford(vmask m, vfloat value, vfloat nf, vffloat* mean, vfflo
   *m2 = v_ff_select(m, m2New, *m2);
 }
 
+// The radiance plus shadow slots of item i0 + k stride for each lane k (stride 1: whole vector loads).
+MCL_INLINE void v_item_values(const accumulate_args* a, uint slots, uint i0, uint stride, vfloat* vx, vfloat* vy,
+                              vfloat* vz) {
+  MCL_GLOBAL const float* rad = (MCL_GLOBAL const float*)a->radiance;
+  MCL_GLOBAL const float* sc = (MCL_GLOBAL const float*)a->shadowContrib;
+  vfloat vw, sx, sy, sz, sw;
+  if (stride == 1u) v_load4(rad + (ulong)i0 * 4, vx, vy, vz, &vw);
+  else v_load4_stride(rad + (ulong)i0 * 4, stride * 4, vx, vy, vz, &vw);
+  if (slots == 1 && stride == 1u) {  // AO
+    v_load4(sc + (ulong)i0 * 4, &sx, &sy, &sz, &sw);
+    *vx = *vx + sx;
+    *vy = *vy + sy;
+    *vz = *vz + sz;
+  } else if (slots == 2 && stride == 1u) {  // direct lighting with one light sample
+    vfloat tx, ty, tz, tw;
+    v_load4_pairs(sc + (ulong)i0 * 8, &sx, &sy, &sz, &sw, &tx, &ty, &tz, &tw);
+    *vx = *vx + sx + tx;
+    *vy = *vy + sy + ty;
+    *vz = *vz + sz + tz;
+  } else {
+    for (uint k = 0; k < slots; ++k) {
+      v_load4_stride(sc + ((ulong)i0 * slots + k) * 4, stride * slots * 4, &sx, &sy, &sz, &sw);
+      *vx = *vx + sx;
+      *vy = *vy + sy;
+      *vz = *vz + sz;
+    }
+  }
+}
+
 MCL_INLINE void stage_accumulate_lanes(const accumulate_args* a, uint j0) {
   MCL_CONSTANT const FrameParams* f = a->frame;
-  const uint ac = f->activeCount, count = a->waveCount;
-  const uint limit = count < ac ? count : ac;  // pixels touched by the wave
+  const uint ac = f->activeCount, count = a->waveCount, shift = f->sampleBlockShift;
+  const uint limit = wave_touched_pixels(a->waveStart, count, shift, ac);
   if (j0 >= limit) return;
+  // Blocks of C = 2^shift samples per pixel: lane k's samples are items (j0 + k) C .. + C - 1, the
+  // packet's when the wave starts a block, holds the W pixels' whole runs and no second run of any.
+  const uint block = 1u << shift;
+  const int blocks = shift != 0u && (a->waveStart & (block - 1u)) == 0u &&
+                     ((ulong)j0 + MCL_LANES) * block <= count && ((ulong)j0 + ac) * block >= count;
   // The sobol sampler's sub-sequence accumulators (accumulate.h) are updated by the scalar body:
   // per lane, the same bits.
-  if (v_packet_partial(j0, limit) || (f->sampler == MCL_SAMPLER_SOBOL && f->sobolSplits > 1u)) {
+  if (v_packet_partial(j0, limit) || (f->sampler == MCL_SAMPLER_SOBOL && f->sobolSplits > 1u) ||
+      (shift != 0u && !blocks)) {
     for (uint k = 0; k < MCL_LANES; ++k) stage_accumulate(a, j0 + k);
     return;
   }
-  vuint pixel, sample;
-  v_item_pixel_sample(f, a->active, a->waveStart, j0, &pixel, &sample);
+  vuint pixel;
+  if (blocks) {  // lane k: run q0 + j0 + k (ac >= W here, so at most one wrap)
+    vuint r = (uint)(((a->waveStart >> shift) + j0) % ac) + v_lane_index();
+    pixel = v_gather_uint(a->active, vsel(r >= ac, r - ac, r));
+  } else {
+    vuint sample;
+    v_item_pixel_sample(f, a->active, a->waveStart, j0, &pixel, &sample);
+  }
   // Consecutive pixels (the active list of a render without adaptive sampling): whole vector
   // loads and stores of the film; otherwise per-lane gathers and scatters.
   const uint p0 = v_first_lane(pixel);
@@ -81,33 +124,25 @@ MCL_INLINE void stage_accumulate_lanes(const accumulate_args* a, uint j0) {
   vffloat meanX = v_ff_make(mhx, mlx), meanY = v_ff_make(mhy, mly), meanZ = v_ff_make(mhz, mlz);
   vffloat m2X = v_ff_make(shx, slx), m2Y = v_ff_make(shy, sly), m2Z = v_ff_make(shz, slz), m2W = v_ff_make(shw, slw);
   const uint slots = f->shadowSlots;
+  for (uint step = 0; blocks && step < block; ++step) {
+    vfloat vx, vy, vz;
+    v_item_values(a, slots, j0 * block + step, block, &vx, &vy, &vz);
+    vmask live = v_lane_index() == v_lane_index();
+    n += 1u;
+    vfloat nf = v_cvt_f_ul(n);
+    v_welford(live, vx, nf, &meanX, &m2X);
+    v_welford(live, vy, nf, &meanY, &m2Y);
+    v_welford(live, vz, nf, &meanZ, &m2Z);
+    m2W = v_ff_add_float(m2W, v_f(0.0f) * (v_f(0.0f) - v_f(0.0f) - v_f(0.0f)));  // as below
+  }
   MCL_GLOBAL const float* rad = (MCL_GLOBAL const float*)a->radiance;
   MCL_GLOBAL const float* sc = (MCL_GLOBAL const float*)a->shadowContrib;
-  for (uint i0 = j0; i0 < count; i0 += ac) {
+  for (uint i0 = j0; !blocks && i0 < count; i0 += ac) {
     vuint i = i0 + v_lane_index();
     vmask live = i < count;
     vfloat vx, vy, vz, vw, sx, sy, sz, sw;
     if (count - i0 >= MCL_LANES) {  // the packet's items i0 .. i0 + W - 1 all exist
-      v_load4(rad + (ulong)i0 * 4, &vx, &vy, &vz, &vw);
-      if (slots == 1) {  // AO
-        v_load4(sc + (ulong)i0 * 4, &sx, &sy, &sz, &sw);
-        vx = vx + sx;
-        vy = vy + sy;
-        vz = vz + sz;
-      } else if (slots == 2) {  // direct lighting with one light sample
-        vfloat tx, ty, tz, tw;
-        v_load4_pairs(sc + (ulong)i0 * 8, &sx, &sy, &sz, &sw, &tx, &ty, &tz, &tw);
-        vx = vx + sx + tx;
-        vy = vy + sy + ty;
-        vz = vz + sz + tz;
-      } else {
-        for (uint k = 0; k < slots; ++k) {
-          v_load4_stride(sc + ((ulong)i0 * slots + k) * 4, slots * 4, &sx, &sy, &sz, &sw);
-          vx = vx + sx;
-          vy = vy + sy;
-          vz = vz + sz;
-        }
-      }
+      v_item_values(a, slots, i0, 1u, &vx, &vy, &vz);
     } else {  // lanes past the wave read item i0 (and are masked)
       vuint at = vsel(live, i, v_u(i0));
       v_gather4(rad, at, 4, &vx, &vy, &vz, &vw);

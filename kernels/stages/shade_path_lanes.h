@@ -25,9 +25,6 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
   MCL_CONSTANT const FrameParams* f = a->frame;
   const uint bounce = a->pathBounce;
   const uint slots = f->shadowSlots;
-  const uint ac = f->activeCount;
-  const ulong q0 = a->waveStart / ac;
-  const uint r0 = (uint)(a->waveStart % ac);
   if (v_packet_partial(first, count) || env_present(f) || f->emitterCount == 0u || f->lightCount > 0u ||
       f->emissionTextured) {
     for (uint k = 0; k < MCL_LANES && first + k < count; ++k) stage_shade_path(a, first + k);
@@ -117,15 +114,8 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
     vfloat3 ng = v_orient_facing(n, dir);  // flat: ns = ng
     vfloat3 kd = v3_make(kdx, kdy, kdz);
     vfloat3 origin = v_offset_ray_origin(p, ng, f->offsetScale);
-    // item_pixel, item_sample of id: waveStart = q0 ac + r0, so waveStart + id = q0 ac + (r0 + id).
     vuint pixel, sample;
-    vuint g = r0 + id;
-    if (!v_any(g < r0)) {  // r0 + id did not wrap
-      vuint qq, rr;
-      v_divmod(g, ac, &qq, &rr);
-      sample = (uint)q0 + qq;
-      pixel = v_gather_uint(a->active, rr);
-    } else {
+    if (!v_items_pixel_sample(f, a->active, a->waveStart, id, &pixel, &sample)) {
       uint px[MCL_LANES] MCL_LANE_ALIGN, sm[MCL_LANES] MCL_LANE_ALIGN;
       for (uint j = 0; j < MCL_LANES; ++j) {
         px[j] = item_pixel(f, a->active, a->waveStart, ids[j]);

@@ -29,18 +29,37 @@ MCL_INLINE int v_packet_partial(uint first, uint count) { return MCL_LANES > 1 &
 // one 64-bit division per packet, then each lane steps on from the packet's first item.
 MCL_INLINE void v_item_pixel_sample(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const uint* active,
                                     ulong waveStart, uint first, vuint* pixel, vuint* sample) {
-  uint ac = f->activeCount;
-  ulong g0 = waveStart + first;
-  uint r0 = (uint)(g0 % ac);
-  vuint r = r0 + v_lane_index();
-  vuint s = v_u((uint)(g0 / ac));
-  while (v_any(r >= ac)) {  // a lane past the end of the active list wraps to the next sample
+  const uint ac = f->activeCount, c = f->sampleBlockShift;
+  const ulong g0 = waveStart + first, q0 = g0 >> c;
+  const uint r0 = (uint)(q0 % ac);
+  vuint t = ((uint)g0 & ((1u << c) - 1u)) + v_lane_index();  // lane's offset from run q0's start
+  vuint r = r0 + (t >> c);
+  vuint s = v_u((uint)(q0 / ac));
+  while (v_any(r >= ac)) {  // a lane past the end of the active list wraps to the next block
     vmask m = r >= ac;
     r = vsel(m, r - ac, r);
     s = vsel(m, s + 1u, s);
   }
-  *sample = s;
-  *pixel = r0 + MCL_LANES <= ac ? v_load_uints(active + r0) : v_gather_uint(active, r);
+  *sample = (s << c) | (t & ((1u << c) - 1u));
+  *pixel = c == 0u && r0 + MCL_LANES <= ac ? v_load_uints(active + r0) : v_gather_uint(active, r);
+}
+
+// The same for any wave items id (one per lane, each below 2^31): 1, or 0 when a lane's run index
+// leaves 32 bits (the caller then asks item_pixel and item_sample per lane).
+MCL_INLINE int v_items_pixel_sample(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const uint* active,
+                                    ulong waveStart, vuint id, vuint* pixel, vuint* sample) {
+  // waveStart = (q0 ac + r0) C + o0, so waveStart + id lies in run q0 ac + r0 + (o0 + id) / C.
+  const uint ac = f->activeCount, c = f->sampleBlockShift;
+  const ulong q = waveStart >> c;
+  const uint q0 = (uint)(q / ac), r0 = (uint)(q % ac);
+  vuint t = ((uint)waveStart & ((1u << c) - 1u)) + id;
+  vuint g = r0 + (t >> c);
+  if (v_any(g < r0)) return 0;  // r0 + run offset wrapped
+  vuint qq, rr;
+  v_divmod(g, ac, &qq, &rr);
+  *sample = ((q0 + qq) << c) | (t & ((1u << c) - 1u));
+  *pixel = v_gather_uint(active, rr);
+  return 1;
 }
 
 // --- RNG (shared/rng.h, shared/sampler.h) ----------------------------------------------------
