@@ -2,7 +2,7 @@
 // so far (a pure function; the wave loop in render/wavefront.cpp calls it before every wave).
 // Waves last about WavePlanner::waveSeconds each, so the progress bar moves several times a
 // second, and with a time limit they are sized so the last one ends at the limit. The image does
-// not depend on the plan: items are sample-major, so any sequence of wave sizes renders the same.
+// not depend on the plan: every pixel's samples are accumulated in sample order (kernels/stages/stage_common.h), so any sequence of wave sizes renders the same.
 #pragma once
 #include <cstdint>
 

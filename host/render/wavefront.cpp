@@ -59,7 +59,7 @@ std::uint64_t waveCap(const RenderOptions& o, const DeviceInfo& device, std::uin
                       const WaveShape& shape, std::uint64_t total) {
   std::uint64_t wave = o.waveSize;
   if (wave == 0) {
-    const std::uint64_t cap = o.maxWaveItems ? o.maxWaveItems : defaultMaxWaveItems(device);
+    const std::uint64_t cap = o.maxWaveItems ? o.maxWaveItems : defaultMaxWaveItems(device, shape.path);
     wave = std::max<std::uint64_t>(1, std::min(cap, o.memoryBudget / waveBytesPerItem(shape)));
   }
   wave = std::min<std::uint64_t>(wave, maxAlloc / (shape.slots * sizeof(ShadowWork)));
@@ -357,9 +357,12 @@ std::uint64_t defaultTextureBudget(const DeviceInfo& device) {
   return device.isHost ? kDefaultTextureBudget : std::min(kDefaultTextureBudget, device.maxAllocBytes);
 }
 
-std::uint64_t defaultMaxWaveItems(const DeviceInfo& device) {
+std::uint64_t defaultMaxWaveItems(const DeviceInfo& device, bool path) {
   if (device.isGpu && !device.isHost) return 1ull << 20;
-  return std::max<std::uint64_t>(16384, 8192ull * std::max<std::uint32_t>(1, device.computeUnits));
+  // Path tracing: four times that, since each bounce costs four launches and a read-back of the
+  // next bounce's count, and after the Russian roulette depth few paths are left per launch.
+  const std::uint64_t cap = std::max<std::uint64_t>(16384, 8192ull * std::max<std::uint32_t>(1, device.computeUnits));
+  return path ? 4 * cap : cap;
 }
 
 double relativeStandardError(const Film& film, std::size_t p, double errorFloor) {

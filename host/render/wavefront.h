@@ -25,8 +25,10 @@ namespace montecl {
 // The default cap on a wave's items (RenderOptions::maxWaveItems 0), from a sweep of wave sizes
 // on Sponza (docs/performance.md, "Wave size and memory"): on CPUs (and the host backend) 8192
 // items per compute unit, at least 16384: a wave's state then stays in the caches, and larger
-// waves were slower and cost memory; on GPUs 2^20 items, enough to fill one.
-std::uint64_t defaultMaxWaveItems(const DeviceInfo& device);
+// waves were slower and cost memory; on GPUs 2^20 items, enough to fill one. Path tracing on
+// CPUs: four times the CPU cap (fewer waves, so fewer of the per-bounce launches and read-backs;
+// bench/journal/lanes.md, "Sample blocks and path waves").
+std::uint64_t defaultMaxWaveItems(const DeviceInfo& device, bool path = false);
 
 struct RenderOptions {
   // Wave items (pixel samples). 0: the buffers hold maxWaveItems (0: defaultMaxWaveItems; or what
