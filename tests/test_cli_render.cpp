@@ -99,7 +99,7 @@ TEST_CASE("--time stops after the wave that crosses the limit and writes the ima
   const std::vector<float>& n = *img.find("samples");
   float lo = *std::min_element(n.begin(), n.end()), hi = *std::max_element(n.begin(), n.end());
   CHECK(lo >= 1.0f);
-  CHECK(hi - lo <= 1.0f);  // sample-major waves: counts differ by at most one
+  CHECK(hi - lo <= 16.0f);  // waves of whole blocks of up to 16 samples per pixel: counts differ by one block at most
   CHECK(hi < 1000000.0f);
 }
 
@@ -128,7 +128,7 @@ TEST_CASE("SIGINT finishes the wave, writes a valid image with its true sample c
   CHECK(img.width == 64);
   const std::vector<float>& n = *img.find("samples");
   float lo = *std::min_element(n.begin(), n.end()), hi = *std::max_element(n.begin(), n.end());
-  CHECK(hi - lo <= 1.0f);
+  CHECK(hi - lo <= 16.0f);  // at most one block of samples (up to 16, the widest packet)
   CHECK(hi < 1000000.0f);
   // The mean is finite everywhere a sample was taken.
   for (float v : *img.find("R")) REQUIRE(std::isfinite(v));
