@@ -4,7 +4,8 @@
 (OBJ, outward winding, written here): smooth glass on the short box, a rough gold conductor and a
 smooth mirror on the floor. Never copies the shared scene: the box is referenced by its path.
 
-    scripts/kinds_scene.py OUTDIR --cornell DIR [--ior 1.5] [--gold-alpha 0.1] [--metal Au]
+    scripts/kinds_scene.py OUTDIR --cornell DIR [--ior 1.5] [--glass-alpha 0] [--gold-alpha 0.1] [--metal Au]
+--glass-alpha A > 0 makes the glass sphere rough (GGX, alpha A).
 Writes OUTDIR/scene.json and OUTDIR/sphere_*.obj.
 """
 import argparse
@@ -46,11 +47,13 @@ def main():
     p.add_argument("out")
     p.add_argument("--cornell", required=True, help="folder of the shared Cornell box")
     p.add_argument("--ior", type=float, default=1.5)
+    p.add_argument("--glass-alpha", type=float, default=0.0)
     p.add_argument("--gold-alpha", type=float, default=0.1)
     p.add_argument("--metal", default="Au")
     a = p.parse_args()
     os.makedirs(a.out, exist_ok=True)
-    spheres = [("glass", 0.25, (0.33, 0.85, 0.38), {"type": "dielectric", "ior": a.ior}),
+    spheres = [("glass", 0.25, (0.33, 0.85, 0.38), dict({"type": "dielectric", "ior": a.ior},
+                                                      **({"alpha": a.glass_alpha} if a.glass_alpha > 0 else {}))),
                ("gold", 0.25, (-0.45, 0.25, 0.45), {"type": "conductor", "metal": a.metal, "alpha": a.gold_alpha}),
                ("mirror", 0.17, (0.55, 0.17, -0.5), {"type": "conductor", "alpha": 0})]
     with open(os.path.join(a.cornell, "scene.json")) as f:
