@@ -55,7 +55,10 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
     float3 c = below ? fcosBelow * ls.le * (weight / (ls.pdf * nLight))
                      : bsdf_f(bsdf, sf, wo, ls.wi) * ls.le * (cosSurf * weight / (ls.pdf * nLight));
     float3 from = below ? bsdf_ray_origin(sf.p, sf.ng, MCL_BSDF_TRANSMISSION, f->offsetScale) : origin;
-    push_shadow_query(a->queue, a->queueCount, from, ls.wi, ls.tmax, c, i * f->shadowSlots + k);
+    float tmaxFrom;
+    float3 dirFrom = shadow_dir_from(origin, from, ls.wi, ls.tmax, &tmaxFrom);
+    push_shadow_query(a->queue, a->queueCount, from, below ? dirFrom : ls.wi, below ? tmaxFrom : ls.tmax, c,
+                      i * f->shadowSlots + k);
   }
   if (useBrdf) {
     float4 u = sample_uniform4(f, pixel, sample, MCL_DIM_BRDF);
