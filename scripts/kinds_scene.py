@@ -4,8 +4,12 @@
 (OBJ, outward winding, written here): smooth glass on the short box, a rough gold conductor and a
 smooth mirror on the floor. Never copies the shared scene: the box is referenced by its path.
 
-    scripts/kinds_scene.py OUTDIR --cornell DIR [--ior 1.5] [--gold-alpha 0.1] [--metal Au]
-Writes OUTDIR/scene.json and OUTDIR/sphere_*.obj.
+    scripts/kinds_scene.py OUTDIR --cornell DIR [--ior 1.5] [--glass-alpha 0] [--gold-alpha 0.1] [--metal Au]
+        [--pane-alpha A] [--no-spheres]
+--glass-alpha A > 0 makes the glass sphere rough (GGX, alpha A). --pane-alpha A adds a rough glass
+pane (index --ior, alpha A, front face down) just below the ceiling light, so the box is lit only
+through it; --no-spheres leaves the spheres out.
+Writes OUTDIR/scene.json, OUTDIR/sphere_*.obj (and OUTDIR/pane.obj).
 """
 import argparse
 import json
@@ -46,20 +50,30 @@ def main():
     p.add_argument("out")
     p.add_argument("--cornell", required=True, help="folder of the shared Cornell box")
     p.add_argument("--ior", type=float, default=1.5)
+    p.add_argument("--glass-alpha", type=float, default=0.0)
     p.add_argument("--gold-alpha", type=float, default=0.1)
     p.add_argument("--metal", default="Au")
+    p.add_argument("--pane-alpha", type=float, default=None)
+    p.add_argument("--no-spheres", action="store_true")
     a = p.parse_args()
     os.makedirs(a.out, exist_ok=True)
-    spheres = [("glass", 0.25, (0.33, 0.85, 0.38), {"type": "dielectric", "ior": a.ior}),
+    spheres = [("glass", 0.25, (0.33, 0.85, 0.38), dict({"type": "dielectric", "ior": a.ior},
+                                                      **({"alpha": a.glass_alpha} if a.glass_alpha > 0 else {}))),
                ("gold", 0.25, (-0.45, 0.25, 0.45), {"type": "conductor", "metal": a.metal, "alpha": a.gold_alpha}),
                ("mirror", 0.17, (0.55, 0.17, -0.5), {"type": "conductor", "alpha": 0})]
     with open(os.path.join(a.cornell, "scene.json")) as f:
         box = json.load(f)
     meshes = [{"file": os.path.abspath(os.path.join(a.cornell, m["file"]))} for m in box["meshes"]]
-    for name, r, c, mat in spheres:
+    for name, r, c, mat in ([] if a.no_spheres else spheres):
         with open(os.path.join(a.out, f"sphere_{name}.obj"), "w") as f:
             f.write(icosphere(3, r, c))
         meshes.append({"file": f"sphere_{name}.obj", "material": mat})
+    if a.pane_alpha is not None:
+        # Below the light (y 1.98, x -0.24 .. 0.23, z -0.22 .. 0.16) and larger; wound so that
+        # cross(v1 - v0, v2 - v0) points down: the box is the outside (index 1).
+        with open(os.path.join(a.out, "pane.obj"), "w") as f:
+            f.write("v -0.4 1.9 -0.4\nv 0.4 1.9 -0.4\nv 0.4 1.9 0.35\nv -0.4 1.9 0.35\nf 1 2 3\nf 1 3 4\n")
+        meshes.append({"file": "pane.obj", "material": {"type": "dielectric", "ior": a.ior, "alpha": a.pane_alpha}})
     scene = {"camera": box["camera"], "meshes": meshes, "render": box.get("render", {})}
     with open(os.path.join(a.out, "scene.json"), "w") as f:
         json.dump(scene, f, indent=1)

@@ -14,8 +14,9 @@ pixel only, as in montecl), an `independent` sampler, one PLY mesh per (mesh, ma
 two-sided Lambertian BSDF of albedo Kd (montecl's surfaces are two-sided) and, where Ke (or the
 mesh's "emission") is non-zero, a one-sided `area` emitter (front face = cross(v1-v0, v2-v0), as
 montecl's); the scene's "lights" as Mitsuba's `point`, `spot` and `directional` emitters. A mesh
-entry's "material" of type dielectric / thin_dielectric / conductor becomes Mitsuba's dielectric /
-thindielectric / conductor or roughconductor (GGX, visible normals) with the same ior or RGB eta, k.
+entry's "material" of type dielectric / thin_dielectric / conductor becomes Mitsuba's dielectric or
+roughdielectric / thindielectric / conductor or roughconductor (the rough ones GGX, visible normals,
+for alpha > 0) with the same ior or RGB eta, k.
 --block B compares B x B block means (heavy-tailed caustic pixels). Integrators: montecl `--integrator direct --direct-sampling mis` with K light samples
 = Mitsuba `direct` (emitter_samples K, bsdf_samples 1); `light` = (K, 0); `brdf` = (0, 1);
 montecl `--integrator path --max-depth D --rr-depth R` = Mitsuba `path` (max_depth D, rr_depth R):
@@ -203,8 +204,9 @@ METALS = {"Au": ([0.143036, 0.375307, 1.44205], [3.983, 2.38556, 1.60336]),
 
 def mitsuba_kind_bsdf(path, index, mat):
     """The Mitsuba BSDF of a mesh entry's material override (None: the file's diffuse materials).
-    dielectric -> dielectric (int_ior, ext_ior 1), thin_dielectric -> thindielectric, conductor ->
-    conductor (alpha 0) or roughconductor (GGX, visible normals) with montecl's RGB eta / k."""
+    dielectric -> dielectric (int_ior, ext_ior 1) or, with alpha (or roughness^2) > 0, roughdielectric
+    (GGX, visible normals), thin_dielectric -> thindielectric, conductor -> conductor (alpha 0) or
+    roughconductor (GGX, visible normals) with montecl's RGB eta / k."""
     if mat is None:
         return None
     where = f"{path}: meshes[{index}].material"
@@ -212,12 +214,15 @@ def mitsuba_kind_bsdf(path, index, mat):
     for key in mat:
         if key not in ("type", "ior", "eta", "k", "metal", "alpha", "roughness"):
             raise BadInput(f"{where}.{key}: not supported by vs_mitsuba.py")
+    alpha = float(mat["roughness"]) ** 2 if "roughness" in mat else float(mat.get("alpha", 0.0))
+    if kind == "dielectric" and alpha > 0:
+        return {"type": "roughdielectric", "distribution": "ggx", "alpha": alpha, "sample_visible": True,
+                "int_ior": float(mat.get("ior", 1.5)), "ext_ior": 1.0}
     if kind in ("dielectric", "thin_dielectric"):
         return {"type": "dielectric" if kind == "dielectric" else "thindielectric",
                 "int_ior": float(mat.get("ior", 1.5)), "ext_ior": 1.0}
     if kind == "conductor":
         eta, k = METALS[mat["metal"]] if "metal" in mat else (mat.get("eta", [0.0] * 3), mat.get("k", [1.0] * 3))
-        alpha = float(mat["roughness"]) ** 2 if "roughness" in mat else float(mat.get("alpha", 0.0))
         b = {"eta": {"type": "rgb", "value": eta}, "k": {"type": "rgb", "value": k}}
         if alpha > 0:
             b.update(type="roughconductor", distribution="ggx", alpha=alpha, sample_visible=True)

@@ -83,8 +83,14 @@ std::vector<KindCase> kindCases_conductor() {
 std::vector<KindCase> kindCases_dielectric() {
   // From the front (outside): weights F x 1 + (1 - F) x 1 / 1.5^2 <= 1 (the other side, whose
   // refraction weight exceeds 1, is test_bsdf_kinds.cpp's).
+  // Rough (alpha > 0, GGX): weights F G1(wi) + (1 - F) G1(wi) / eta^2 from the front, also <= 1.
+  MaterialDesc rough = withIor(MCL_MATERIAL_dielectric, 1.5f), roughWater = withIor(MCL_MATERIAL_dielectric, 1.33f);
+  rough.kindAlpha = 0.3f;
+  roughWater.kindAlpha = 0.1f;
   return {{"glass 1.5", withIor(MCL_MATERIAL_dielectric, 1.5f), float3(1.0f), false},
-          {"glass 1.33", withIor(MCL_MATERIAL_dielectric, 1.33f), float3(1.0f), false}};
+          {"glass 1.33", withIor(MCL_MATERIAL_dielectric, 1.33f), float3(1.0f), false},
+          {"rough glass 1.5 alpha 0.3", rough, float3(1.0f), false},
+          {"rough glass 1.33 alpha 0.1", roughWater, float3(1.0f), false}};
 }
 std::vector<KindCase> kindCases_thin_dielectric() {
   return {{"sheet 1.5", withIor(MCL_MATERIAL_thin_dielectric, 1.5f), float3(1.0f), false}};

@@ -2,7 +2,8 @@
 // command line: montecl and Mitsuba 3 render the shared Cornell box and must agree per pixel
 // (|z| > 4 on <= 0.1% of pixel channels, |mean z| <= 0.1; the script prints PASS/FAIL and exits
 // 1 on FAIL); the Cornell box with material kinds (glass, rough gold, mirror: scripts/kinds_scene.py)
-// per 8x8 block, and a wrong ior / metal that must fail. Skipped unless Mitsuba's venv exists (`scripts/setup.sh --mitsuba`; CI does not
+// per 8x8 block, and a wrong ior / metal that must fail; the same with a rough glass sphere, and the
+// box lit through a rough glass pane (with a wrong ior that must fail). Skipped unless Mitsuba's venv exists (`scripts/setup.sh --mitsuba`; CI does not
 // install it by default) and the shared scenes are present. The path-integrator cases also skip
 // while montecl has no `--integrator path`.
 #include <doctest/doctest.h>
@@ -132,6 +133,52 @@ TEST_CASE("vs_mitsuba: FAIL (exit 1) when montecl's glass has ior 1.3 and its go
   const std::string right = kindsScene(dir, "kinds", {});
   const std::string wrong = kindsScene(dir, "wrong", {"--ior", "1.3", "--metal", "Cu"});
   std::vector<std::string> args = kKindsArgs;
+  args.insert(args.end(), {"--montecl-scene", wrong});
+  CliResult r = runVsMitsuba(args, right);
+  INFO(r.out << r.err);
+  CHECK(r.exitCode == 1);
+  CHECK(r.out.find("FAIL") != std::string::npos);
+}
+
+// The rough dielectric (GGX transmission, Mitsuba's roughdielectric): the glass sphere with alpha
+// 0.3; at depth 3 the light is sampled through the glass from inside the sphere (a transmitted
+// light direction, its shadow ray leaving from the outside).
+TEST_CASE("vs_mitsuba: Cornell box with a rough glass sphere (alpha 0.3), path depth 3, agrees per 8x8 block" *
+          doctest::test_suite("cli shared-scenes slow")) {
+  MCL_SKIP_UNLESS_MITSUBA();
+  montecl_test::TempDir dir;
+  CliResult r = runVsMitsuba(kKindsArgs, kindsScene(dir, "rough", {"--glass-alpha", "0.3"}));
+  INFO(r.out << r.err);
+  CHECK(r.exitCode == 0);
+  CHECK(r.out.find("PASS") != std::string::npos);
+}
+
+namespace {
+// The Cornell box lit only through a rough glass pane (alpha 0.2) under its light: direct MIS per
+// pixel (the light seen through the pane: next-event estimation through the transmitted lobe) and
+// path depth 3 per 8x8 block (the box lit through the pane); a wrong ior must fail.
+const std::vector<std::string> kPaneDirectArgs = {"--spp", "256", "--integrator", "direct", "--direct-sampling", "mis"};
+}  // namespace
+
+TEST_CASE("vs_mitsuba: Cornell box lit through a rough glass pane, direct MIS per pixel and path depth 3 per block" *
+          doctest::test_suite("cli shared-scenes slow")) {
+  MCL_SKIP_UNLESS_MITSUBA();
+  montecl_test::TempDir dir;
+  const std::string pane = kindsScene(dir, "pane", {"--pane-alpha", "0.2", "--no-spheres"});
+  for (const std::vector<std::string>* args : {&kPaneDirectArgs, &kKindsArgs}) {
+    CliResult r = runVsMitsuba(*args, pane);
+    INFO(r.out << r.err);
+    CHECK(r.exitCode == 0);
+    CHECK(r.out.find("PASS") != std::string::npos);
+  }
+}
+
+TEST_CASE("vs_mitsuba: FAIL (exit 1) when montecl's rough glass pane has ior 1.3" * doctest::test_suite("cli shared-scenes slow")) {
+  MCL_SKIP_UNLESS_MITSUBA();
+  montecl_test::TempDir dir;
+  const std::string right = kindsScene(dir, "pane", {"--pane-alpha", "0.2", "--no-spheres"});
+  const std::string wrong = kindsScene(dir, "wrong", {"--pane-alpha", "0.2", "--no-spheres", "--ior", "1.3"});
+  std::vector<std::string> args = kPaneDirectArgs;
   args.insert(args.end(), {"--montecl-scene", wrong});
   CliResult r = runVsMitsuba(args, right);
   INFO(r.out << r.err);

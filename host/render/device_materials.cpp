@@ -20,7 +20,7 @@ Material deviceMaterial(const MaterialDesc& m) {
       d.params0 = glm::vec4(m.eta, m.kindAlpha);
       d.params1 = glm::vec4(m.k, 0.0f);
       break;
-    case MCL_MATERIAL_dielectric:
+    case MCL_MATERIAL_dielectric: d.params0 = glm::vec4(m.ior, m.kindAlpha, 0.0f, 0.0f); break;
     case MCL_MATERIAL_thin_dielectric: d.params0 = glm::vec4(m.ior, 0.0f, 0.0f, 0.0f); break;
     case MCL_MATERIAL_metal_rough: d.params0 = glm::vec4(m.metallic, m.roughness, 0.0f, 0.0f); break;
     default: break;

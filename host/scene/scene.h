@@ -46,7 +46,7 @@ struct MaterialDesc {
   // read only by their kind (deviceMaterial packs them into Material::params0/1).
   glm::vec3 eta{0.0f}, k{1.0f};  // conductor: complex IOR (default eta 0, k 1: a perfect mirror)
   float ior = 1.5f;               // dielectric, thin_dielectric: inside / outside
-  float kindAlpha = 0.0f;         // conductor: GGX alpha (0: smooth)
+  float kindAlpha = 0.0f;         // conductor, dielectric: GGX alpha (0: smooth)
   float metallic = 0.0f, roughness = 1.0f;  // metal_rough (glTF factors)
   std::string metallicRoughnessTexture;  // glTF metallicRoughnessTexture (linear; B x metallic, G x roughness)
 };

@@ -1,56 +1,147 @@
-// bsdf_dielectric.h: the material kind "dielectric" (material_kinds.h): a smooth interface between
+// bsdf_dielectric.h: the material kind "dielectric" (material_kinds.h): an interface between
 // the outside (index 1, the triangle's front face: the side of cross(v1 - v0, v2 - v0)) and the
-// inside (index ior), with one delta reflection and one delta refraction lobe, picked with the
-// Fresnel reflectance F (bsdf_common.h fresnel_dielectric) as probability, so both weights are
-// exact: reflection 1, refraction 1 / eta^2 (radiance transport: radiance is scaled by
-// (n_i / n_t)^2 across the interface, as Mitsuba's dielectric and pbrt's DielectricBxDF do).
-// Reads a Material's params0.x (ior); the side from SurfaceFrame::backface. Pure; compiled by the
-// kernels and the host tests. Around the shading normal ns: a reflection below the geometric
-// surface, or a refraction above it, is absorbed. Written with selects (no early returns).
+// inside (index ior). Reads a Material's params0 (x: ior, y: alpha); the side from
+// SurfaceFrame::backface. Pure; compiled by the kernels and the host tests. Written with selects
+// (no early returns).
+// alpha 0 (smooth): one delta reflection and one delta refraction lobe, picked with the Fresnel
+// reflectance F (bsdf_common.h fresnel_dielectric) as probability, so both weights are exact:
+// reflection 1, refraction 1 / eta^2 (radiance transport: radiance is scaled by (n_i / n_t)^2
+// across the interface, as Mitsuba's dielectric and pbrt's DielectricBxDF do). Around the shading
+// normal ns: a reflection below the geometric surface, or a refraction above it, is absorbed.
+// alpha > 0 (rough): GGX microfacet reflection and transmission (Walter et al. 2007, "Microfacet
+// Models for Refraction through Rough Surfaces"; Mitsuba's roughdielectric with distribution ggx,
+// sample_visible): a visible normal h (microfacet.h), then reflection about h with probability
+// F(wo.h), else refraction through h; the separable Smith G = G1(wo) G1(wi); the refracted lobe
+// scaled by 1 / eta^2 as the smooth one. Not delta: eval and pdf are densities for directions on
+// both sides (a reflection must leave above the geometric surface, a transmission below it).
 #pragma once
 #include "bsdf_common.h"
+#include "microfacet.h"
 
 typedef struct {
-  float ior;  // inside / outside
+  float ior;    // inside / outside
+  float alpha;  // GGX roughness of the rough kind, at least MCL_GGX_MIN_ALPHA
+  int smooth;   // alpha == 0: the delta lobes
 } DielectricBsdf;
 
-MCL_INLINE DielectricBsdf dielectric_from_material(Material m, float3 albedo) {
-  (void)albedo;
+MCL_INLINE DielectricBsdf dielectric_make(float ior, float alpha) {
   DielectricBsdf b;
-  b.ior = m.params0.x;
+  b.ior = ior;
+  b.smooth = !(alpha > 0.0f);
+  b.alpha = fmax(alpha, MCL_GGX_MIN_ALPHA);
   return b;
 }
 
-MCL_INLINE int dielectric_is_delta(DielectricBsdf b) {
-  (void)b;
-  return 1;
+MCL_INLINE DielectricBsdf dielectric_from_material(Material m, float3 albedo) {
+  (void)albedo;
+  return dielectric_make(m.params0.x, m.params0.y);
 }
+
+MCL_INLINE int dielectric_is_delta(DielectricBsdf b) { return b.smooth; }
 // The albedo AOV: 1 (clear glass reflects and transmits everything).
 MCL_INLINE float3 dielectric_albedo(DielectricBsdf b) {
   (void)b;
   return make_float3(1.0f, 1.0f, 1.0f);
 }
 
-// Delta lobes only: f, eval and pdf are 0 for every direction.
-MCL_INLINE float3 dielectric_f(DielectricBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
-  (void)b; (void)s; (void)wi; (void)wo;
-  return make_float3(0.0f, 0.0f, 0.0f);
-}
-MCL_INLINE float3 dielectric_eval(DielectricBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
-  (void)b; (void)s; (void)wi; (void)wo;
-  return make_float3(0.0f, 0.0f, 0.0f);
-}
-MCL_INLINE float dielectric_pdf(DielectricBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
-  (void)b; (void)s; (void)wi; (void)wo;
-  return 0.0f;
-}
-
 // eta = n_transmitted / n_incident for a ray arriving on the side s.backface says.
 MCL_INLINE float dielectric_eta(DielectricBsdf b, SurfaceFrame s) { return s.backface ? 1.0f / b.ior : b.ior; }
 
+// The rough lobes at local wo (above: wo.z > 0, the side of index n_i), wi, for eta = n_t / n_i:
+// f * |cos_i| (returned) and the solid-angle pdf of dielectric_sample's rough branch (*pdf). The
+// half vector is the generalised one, h ~ wo + eta' wi (eta' = 1 for a reflection, eta for a
+// transmission), turned to +z; wo must see h (wo.h > 0) and wi lie on the side of h its lobe
+// leaves by. With D = D(h), G = G1(wo) G1(wi), F = F(wo.h), c = wi.h + wo.h / eta:
+//   reflection:   f cos = F D G / (4 wo.z),                pdf = F G1(wo) D / (4 wo.z)
+//   transmission: f cos = (1 - F) D G |wi.h| wo.h / (wo.z c^2 eta^2),
+//                 pdf = (1 - F) G1(wo) D wo.h / wo.z * |wi.h| / c^2
+// (pdf: the visible-normal density D_wo(h) = G1(wo) D wo.h / wo.z times the lobe's probability
+// and the Jacobian dh / dwi, 1 / (4 wo.h) and |wi.h| / c^2). So f cos / pdf = G1(wi), and
+// G1(wi) / eta^2 for a transmission. side: the geometric side test of wi (0: nothing).
+MCL_INLINE float rough_dielectric_eval_local(float3 wo, float3 wi, float eta, float alpha, int side, float* pdf) {
+  int refl = wi.z > 0.0f;
+  float etaP = refl ? 1.0f : eta;
+  float3 hr = wo + wi * etaP;
+  float len2 = dot(hr, hr);
+  float3 h = hr * (1.0f / sqrt(fmax(len2, 1e-30f)));
+  h = h.z < 0.0f ? -h : h;
+  float dO = dot(wo, h), dI = dot(wi, h);
+  int ok = side && wo.z > 0.0f && wi.z != 0.0f && len2 > 1e-30f && dO > 0.0f && (refl ? dI > 0.0f : dI < 0.0f);
+  float cosT;
+  float F = fresnel_dielectric(fmin(fmax(dO, 0.0f), 1.0f), eta, &cosT);
+  float d = ggx_d(h, alpha);
+  float g1o = ggx_g1(wo, alpha);
+  float g1i = ggx_g1(wi, alpha);
+  float c = dI + dO / eta;
+  float c2 = fmax(c * c, 1e-30f);
+  float cosO = fmax(wo.z, 1e-30f);
+  float pr = F * g1o * d / (4.0f * cosO);
+  float pt = (1.0f - F) * g1o * d * dO / cosO * (fabs(dI) / c2);
+  float p = refl ? pr : pt;
+  float w = refl ? g1i : g1i / (eta * eta);
+  *pdf = ok ? p : 0.0f;
+  return ok ? p * w : 0.0f;
+}
+
+// f * |cos(ns, wi)| of the rough lobes around ns and their pdf (*pdf); 0 for the smooth kind
+// (delta lobes only) and for a reflection below the geometric surface or a transmission above it.
+MCL_INLINE float dielectric_eval_pdf(DielectricBsdf b, SurfaceFrame s, float3 wo, float3 wi, float* pdf) {
+  float3 woL = to_local(wo, s.ns), wiL = to_local(wi, s.ns);
+  int side = wiL.z > 0.0f ? above_surface(s.ng, wi) : dot(s.ng, wi) < 0.0f;
+  float p;
+  float fcos = rough_dielectric_eval_local(woL, wiL, dielectric_eta(b, s), b.alpha, side && !b.smooth, &p);
+  *pdf = p;
+  return fcos;
+}
+
+MCL_INLINE float3 dielectric_eval(DielectricBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
+  float p;
+  float fcos = dielectric_eval_pdf(b, s, wo, wi, &p);
+  return make_float3(fcos, fcos, fcos);
+}
+MCL_INLINE float dielectric_pdf(DielectricBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
+  float p;
+  (void)dielectric_eval_pdf(b, s, wo, wi, &p);
+  return p;
+}
+// f = eval / |cos(ns, wi)| (a transmitted wi has a negative cosine).
+MCL_INLINE float3 dielectric_f(DielectricBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
+  float c = fabs(dot(s.ns, wi));
+  return c > 0.0f ? dielectric_eval(b, s, wo, wi) * (1.0f / c) : make_float3(0.0f, 0.0f, 0.0f);
+}
+
+// The rough lobes' sample: a visible normal h for wo, then uLobe < F(wo.h) reflects wo about h,
+// else wo refracts through h (flag transmission); weight eval / pdf (G1(wi), over eta^2 for a
+// transmission), pdf dielectric_pdf's. A direction on the wrong geometric side is absorbed.
+MCL_INLINE BsdfSample dielectric_sample_rough(DielectricBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,
+                                              float uLobe) {
+  float eta = dielectric_eta(b, s);
+  float3 woL = to_local(wo, s.ns);
+  int up = woL.z > 0.0f;
+  float3 hL = ggx_sample_visible_normal(up ? woL : make_float3(0.0f, 0.0f, 1.0f), b.alpha, u1, u2);
+  float cosI = dot(woL, hL);
+  float cosT;
+  float F = fresnel_dielectric(fmin(fmax(cosI, 0.0f), 1.0f), eta, &cosT);
+  int refl = uLobe < F;
+  float3 wr = reflect_about(woL, hL);
+  float3 wt = hL * (cosI / eta - cosT) - woL * (1.0f / eta);
+  float3 wiL = refl ? wr : normalize(wt);
+  BsdfSample r;
+  r.wi = to_world(wiL, s.ns);
+  float pdf;
+  float fcos = dielectric_eval_pdf(b, s, wo, r.wi, &pdf);
+  // The lobe drawn must be the lobe evaluated (a refraction that rounding put above ns is lost).
+  int ok = up && pdf > 0.0f && (refl ? wiL.z > 0.0f : wiL.z < 0.0f);
+  float w = fcos * (1.0f / fmax(pdf, 1e-30f));
+  r.pdf = ok ? pdf : 0.0f;
+  r.weight = ok ? make_float3(w, w, w) : make_float3(0.0f, 0.0f, 0.0f);
+  r.flags = refl ? 0 : MCL_BSDF_TRANSMISSION;
+  return r;
+}
+
 // uLobe < F: the mirror direction (weight 1, pdf F); else the refracted one (weight 1 / eta^2,
 // pdf 1 - F, flag transmission). Both flagged delta.
-MCL_INLINE BsdfSample dielectric_sample(DielectricBsdf b, SurfaceFrame s, float3 wo, float u1, float u2, float uLobe) {
+MCL_INLINE BsdfSample dielectric_sample_smooth(DielectricBsdf b, SurfaceFrame s, float3 wo, float u1, float u2, float uLobe) {
   (void)u1; (void)u2;
   float eta = dielectric_eta(b, s);
   float cosI = dot(wo, s.ns);
@@ -69,19 +160,27 @@ MCL_INLINE BsdfSample dielectric_sample(DielectricBsdf b, SurfaceFrame s, float3
   return r;
 }
 
+MCL_INLINE BsdfSample dielectric_sample(DielectricBsdf b, SurfaceFrame s, float3 wo, float u1, float u2, float uLobe) {
+  BsdfSample smooth = dielectric_sample_smooth(b, s, wo, u1, u2, uLobe);
+  BsdfSample rough = dielectric_sample_rough(b, s, wo, u1, u2, uLobe);
+  return b.smooth ? smooth : rough;
+}
+
 MCL_INLINE BsdfDirection dielectric_sample_direction(DielectricBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,
                                                      float uLobe) {
   return bsdf_direction_of(dielectric_sample(b, s, wo, u1, u2, uLobe));
 }
 
-// The weight of a direction dielectric_sample drew, rebuilt from its side: above the geometric
-// surface the reflection (1), below it the refraction (1 / eta^2).
+// The weight of a direction dielectric_sample drew. Smooth: rebuilt from its side: above the
+// geometric surface the reflection (1), below it the refraction (1 / eta^2). Rough: eval / pdf
+// (pdf: dielectric_pdf of wi).
 MCL_INLINE BsdfWeight dielectric_direction_weight(DielectricBsdf b, SurfaceFrame s, float3 wo, float3 wi, float pdf) {
-  (void)pdf; (void)wo;
   float eta = dielectric_eta(b, s);
   float w = above_surface(s.ng, wi) ? 1.0f : 1.0f / (eta * eta);
+  float wr = dielectric_eval(b, s, wo, wi).x * (1.0f / fmax(pdf, 1e-30f));
   BsdfWeight r;
-  r.counts = 1;
+  r.counts = b.smooth ? 1 : pdf > 0.0f;
+  w = b.smooth ? w : wr;
   r.weight = make_float3(w, w, w);
   return r;
 }

@@ -14,6 +14,21 @@
 #include "../shared/light_sun.h"
 #include "stage_common.h"
 
+// The shadow ray of a light sample drawn from `origin` (direction wi, length tmax) that leaves
+// from `from` instead (the far side of the surface, for a light seen through a transmitting lobe):
+// aimed at the same light point, origin + wi * tmax / (1 - 1e-4) (the samplers' margin), and
+// stopping short of it by the same margin; *tmaxFrom receives its length. Keeping wi and tmax
+// would overshoot a nearby light by the offset, and the light's own triangle would block it. A
+// light at infinity (tmax INFINITY) keeps wi.
+MCL_INLINE float3 shadow_dir_from(float3 origin, float3 from, float3 wi, float tmax, float* tmaxFrom) {
+  int finite = tmax < INFINITY;
+  float3 d = origin + wi * (finite ? tmax * (1.0f / (1.0f - 1e-4f)) : 0.0f) - from;
+  float len = sqrt(dot(d, d));
+  int ok = finite && len > 0.0f;
+  *tmaxFrom = ok ? len * (1.0f - 1e-4f) : tmax;
+  return ok ? d * (1.0f / len) : wi;
+}
+
 // The light of a ray along wi that got hit h: the triangle hit (an area light, emitting or not),
 // or the environment on a miss.
 MCL_INLINE LightHit light_hit(Hit h, float3 wi) {

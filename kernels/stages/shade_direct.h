@@ -4,7 +4,8 @@
 // onto the shadow queue (light / mis; lights: the environment, emitter triangles and the light
 // records: point, spot, directional, the delta ones by light sampling only; stages/direct_light.h) and writes the BSDF ray bounce[i] (brdf / mis; otherwise an empty ray
 // with tmax < 0). Surfaces: surface_at (shared/surface.h): the shading frame and the material
-// kind's BSDF (shared/bsdf.h; light directions below the geometric surface are zero).
+// kind's BSDF (shared/bsdf.h; light directions below the geometric surface count only through a
+// transmitting lobe, their shadow rays leaving from the far side).
 // Shadow slots per sample: [0, K) light samples, K the BSDF sample (shade_direct_hit); each
 // strategy leaves the slots it does not use at 0.
 #pragma once
@@ -44,11 +45,20 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
     float4 u = sample_uniform4(f, pixel, sample, MCL_DIM_LIGHT + k);
     LightSample ls = sample_direct_light(f, lights, origin, u);
     float cosSurf = frame_cosine(sf, ls.wi);  // 0 below the geometric surface
-    if (!(ls.pdf > 0.0f && cosSurf > 0.0f)) continue;
+    // A light below the geometric surface is seen through it (a transmitting lobe, e.g. rough
+    // glass): the BSDF's own f |cos| (0 for a reflecting kind), the shadow ray from the far side.
+    int below = !above_surface(sf.ng, ls.wi);
+    float3 fcosBelow = below ? bsdf_eval(bsdf, sf, wo, ls.wi) : make_float3(0.0f, 0.0f, 0.0f);
+    if (!(ls.pdf > 0.0f && (below ? fmax(fcosBelow.x, fmax(fcosBelow.y, fcosBelow.z)) > 0.0f : cosSurf > 0.0f))) continue;
     // A delta light: no BSDF sample can reach it, so no MIS weight.
     float weight = useBrdf && !ls.delta ? power_heuristic(nLight, ls.pdf, 1.0f, bsdf_pdf(bsdf, sf, wo, ls.wi)) : 1.0f;
-    float3 c = bsdf_f(bsdf, sf, wo, ls.wi) * ls.le * (cosSurf * weight / (ls.pdf * nLight));
-    push_shadow_query(a->queue, a->queueCount, origin, ls.wi, ls.tmax, c, i * f->shadowSlots + k);
+    float3 c = below ? fcosBelow * ls.le * (weight / (ls.pdf * nLight))
+                     : bsdf_f(bsdf, sf, wo, ls.wi) * ls.le * (cosSurf * weight / (ls.pdf * nLight));
+    float3 from = below ? bsdf_ray_origin(sf.p, sf.ng, MCL_BSDF_TRANSMISSION, f->offsetScale) : origin;
+    float tmaxFrom;
+    float3 dirFrom = shadow_dir_from(origin, from, ls.wi, ls.tmax, &tmaxFrom);
+    push_shadow_query(a->queue, a->queueCount, from, below ? dirFrom : ls.wi, below ? tmaxFrom : ls.tmax, c,
+                      i * f->shadowSlots + k);
   }
   if (useBrdf) {
     float4 u = sample_uniform4(f, pixel, sample, MCL_DIM_BRDF);

@@ -80,7 +80,14 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
     // A delta light: no BSDF sample can reach it, so no MIS weight.
     float weight = ls.delta ? 1.0f : power_heuristic(nLight, ls.pdf, 1.0f, bsdf_pdf(bsdf, sf, wo, ls.wi));
     float3 c = beta * fcos * ls.le * (weight / (ls.pdf * nLight));
-    push_shadow_query(a->queue, a->queueCount, origin, ls.wi, ls.tmax, c, id * f->shadowSlots + s);
+    // A light below the geometric surface (seen through a transmitting lobe): the shadow ray
+    // leaves from the far side, as a transmitted BSDF ray does.
+    int above = above_surface(sf.ng, ls.wi);
+    float3 from = above ? origin : bsdf_ray_origin(sf.p, sf.ng, MCL_BSDF_TRANSMISSION, f->offsetScale);
+    float tmaxFrom;
+    float3 dirFrom = shadow_dir_from(origin, from, ls.wi, ls.tmax, &tmaxFrom);
+    push_shadow_query(a->queue, a->queueCount, from, above ? ls.wi : dirFrom, above ? ls.tmax : tmaxFrom, c,
+                      id * f->shadowSlots + s);
   }
 
   float4 u = sample_uniform4(f, pixel, sample, path_dim(bounce, 0u));  // z: roulette, w: lobe
