@@ -24,6 +24,7 @@ Material deviceMaterial(const MaterialDesc& m) {
     case MCL_MATERIAL_metal_rough: d.params0 = glm::vec4(m.metallic, m.roughness, 0.0f, 0.0f); break;
     default: break;
   }
+  d.params1.w = noTexture;  // the normal map's index (setTextureIndices); no other field reads w
   return d;
 }
 

@@ -89,9 +89,9 @@ std::uint32_t Loader::material(int index) {
     if (!std::isfinite(d.albedo[c]) || d.albedo[c] < 0) loadFail(file, where, "baseColorFactor must be finite and >= 0");
     if (!std::isfinite(d.emission[c]) || d.emission[c] < 0) loadFail(file, where, "emissiveFactor x emissiveStrength must be finite and >= 0");
   }
-  const int tex = pbr.baseColorTexture.index;
-  if (tex >= 0) {
-    if (static_cast<std::size_t>(tex) >= m.textures.size()) loadFail(file, where, "baseColorTexture index out of range");
+  // The image file (or embedded image) of texture tex, checked now: a file of its own is an input.
+  const auto texturePath = [&](int tex, const char* key) {
+    if (static_cast<std::size_t>(tex) >= m.textures.size()) loadFail(file, where, std::string(key) + " index out of range");
     const tinygltf::Texture& t = m.textures[static_cast<std::size_t>(tex)];
     if (t.source < 0 || static_cast<std::size_t>(t.source) >= m.images.size())
       loadFail(file, itemWhere("textures", std::size_t(tex)), "source image missing or out of range");
@@ -107,6 +107,12 @@ std::uint32_t Loader::material(int index) {
       }
       scene.inputFiles.push_back(path);
     }
+    return path;
+  };
+  const int tex = pbr.baseColorTexture.index;
+  if (tex >= 0) {
+    const std::string path = texturePath(tex, "baseColorTexture");
+    const tinygltf::Texture& t = m.textures[static_cast<std::size_t>(tex)];
     d.albedoTexture = path;
     if (pbr.baseColorTexture.texCoord != 0) unused.add("texCoord", where, "texCoord other than 0 not used by montecl (TEXCOORD_0 used)");
     if (t.sampler >= 0 && static_cast<std::size_t>(t.sampler) < m.samplers.size()) {
@@ -136,7 +142,12 @@ std::uint32_t Loader::material(int index) {
   }
   if (pbr.metallicRoughnessTexture.index >= 0)
     unused.add("metallicRoughnessTexture", where, "metallicRoughnessTexture not used by montecl (the factors are), ignored");
-  if (g.normalTexture.index >= 0) unused.add("normalTexture", where, "normalTexture not used by montecl, ignored");
+  if (g.normalTexture.index >= 0) {
+    d.normalScale = static_cast<float>(g.normalTexture.scale);
+    if (!std::isfinite(d.normalScale)) loadFail(file, where, "normalTexture scale must be finite");
+    d.normalTexture = texturePath(g.normalTexture.index, "normalTexture");
+    if (g.normalTexture.texCoord != 0) unused.add("texCoord", where, "texCoord other than 0 not used by montecl (TEXCOORD_0 used)");
+  }
   if (g.occlusionTexture.index >= 0) unused.add("occlusionTexture", where, "occlusionTexture not used by montecl, ignored");
   if (g.emissiveTexture.index >= 0) unused.add("emissiveTexture", where, "emissiveTexture not used by montecl (emissiveFactor only), ignored");
   materialIndex[i] = static_cast<std::int64_t>(scene.materials.size());

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <sstream>
@@ -18,7 +19,7 @@ namespace montecl {
 
 bool sceneHasTextures(const Scene& scene) {
   for (const MaterialDesc& m : scene.materials)
-    if (!m.albedoTexture.empty() || !m.alphaTexture.empty()) return true;
+    if (!m.albedoTexture.empty() || !m.alphaTexture.empty() || !m.normalTexture.empty()) return true;
   return false;
 }
 
@@ -63,6 +64,7 @@ void setTextureIndices(std::vector<Material>& materials, const SceneTextures& te
     materials[i].albedo.w = glm::uintBitsToFloat(t.albedo);
     materials[i].alpha.x = glm::uintBitsToFloat(t.alpha);
     materials[i].alpha.z = glm::uintBitsToFloat(t.alphaChannel);
+    materials[i].params1.w = glm::uintBitsToFloat(t.normal);
   }
 }
 
@@ -168,6 +170,10 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     std::string path, material;
     const char* key = "";
     bool asColour = false, asAlpha = false;
+    // A normal map: its own entry per (path, scale), never shared with colour or alpha, texels the
+    // decoded tangent-space vectors with the scale baked in (normal_map.h).
+    bool asNormal = false;
+    float normalScale = 1.0f;
     // After reading: the file's textures (sRGB-decoded colour and/or linear alpha; one when they
     // coincide), mip-mapped, and whether it has an alpha channel.
     std::vector<HalfChain> images;
@@ -186,9 +192,25 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     }
     (colour ? files[it->second].asColour : files[it->second].asAlpha) = true;
   };
+  const auto normalKey = [](const MaterialDesc& m) {
+    char scale[32];
+    std::snprintf(scale, sizeof scale, "%a", double(m.normalScale));
+    return std::string("normal\n") + scale + "\n" + m.normalTexture;
+  };
   for (const MaterialDesc& m : scene.materials) {
     if (colour && !m.albedoTexture.empty()) use(m, m.albedoTexture, "map_Kd", true);
     if (!m.alphaTexture.empty()) use(m, m.alphaTexture, "map_d", false);
+    if (!m.normalTexture.empty()) {
+      auto [it, added] = fileIndex.emplace(normalKey(m), files.size());
+      if (added) {
+        files.emplace_back();
+        files.back().path = m.normalTexture;
+        files.back().material = m.name;
+        files.back().key = "normal texture";
+        files.back().asNormal = true;
+        files.back().normalScale = m.normalScale;
+      }
+    }
   }
   // A file whose finest level alone is over the budget is refused from its header, before it is
   // decoded: the budget would drop that level anyway, and a 69-byte PNG can declare 16384 x 16384.
@@ -218,6 +240,13 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
         f.hasAlpha = image.planes.size() == 2 || image.planes.size() >= 4;
         // Colour: sRGB-decoded when integer. Alpha: the alpha channel (shared with the colour
         // texture), else the first channel, never decoded.
+        if (f.asNormal) {
+          RgbaImage n = rgbaFromImage(image, false);
+          const float s = f.normalScale;
+          for (glm::vec4& t : n.texels) t = glm::vec4((2.0f * t.x - 1.0f) * s, (2.0f * t.y - 1.0f) * s, 2.0f * t.z - 1.0f, 1.0f);
+          f.images.push_back(halfChain(std::move(n)));
+          continue;
+        }
         const bool colourDecode = f.integer;
         const bool alphaDecode = f.hasAlpha && f.integer;
         if (f.asColour || (f.asAlpha && alphaDecode == colourDecode))
@@ -254,6 +283,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
       out.materials[i].alpha = first[k] + (second ? 1u : 0u);
       out.materials[i].alphaChannel = f.hasAlpha ? 3u : 0u;
     }
+    if (!m.normalTexture.empty()) out.materials[i].normal = first[fileIndex.at(normalKey(m))];
   }
   packChains(out, std::move(images), budgetBytes, warnings);
   return out;

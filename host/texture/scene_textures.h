@@ -22,6 +22,7 @@ struct MaterialTextures {
   std::uint32_t albedo = MCL_NO_TEXTURE;
   std::uint32_t alpha = MCL_NO_TEXTURE;
   std::uint32_t alphaChannel = 0;
+  std::uint32_t normal = MCL_NO_TEXTURE;  // decoded tangent-space vectors (normal_map.h)
 };
 
 struct SceneTextures {
