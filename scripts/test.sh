@@ -2,7 +2,10 @@
 # One command on a fresh Debian 12 machine: installs what is missing, builds, and runs the whole
 # test suite (doctest through CTest, on PoCL); then builds the suite again with ASan + UBSan
 # (build-asan, cmake -DMONTECL_SANITIZE=ON) and runs it there (docs/fuzzing.md says what runs).
-# MONTECL_SKIP_SANITIZE=1 skips the sanitizer pass (a quick local run). Also installs Intel's CPU
+# Then builds the libFuzzer harnesses (clang-14, build-fuzz) and runs each loader's harness for a
+# short fixed number of inputs (scripts/fuzz_smoke.sh), so a harness that stops linking fails CI.
+# MONTECL_SKIP_SANITIZE=1 skips the sanitizer pass and MONTECL_SKIP_FUZZ=1 the fuzz pass (a quick
+# local run). Also installs Intel's CPU
 # OpenCL runtime (setup.sh --intel-opencl: a cached venv, about 270 MB from PyPI once), so the
 # conformance tests run on two OpenCL implementations plus Oclgrind; where that install fails (no
 # PyPI, not x86-64) its test skips with the reason. MONTECL_NO_INTEL_OPENCL=1 does not install it.
@@ -31,4 +34,7 @@ bash scripts/build.sh
 ctest --test-dir build --output-on-failure -j"$(nproc)"
 if [ "${MONTECL_SKIP_SANITIZE:-0}" != 1 ]; then
   bash scripts/sanitize.sh
+fi
+if [ "${MONTECL_SKIP_FUZZ:-0}" != 1 ]; then
+  bash scripts/fuzz_smoke.sh
 fi

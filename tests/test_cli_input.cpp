@@ -175,6 +175,10 @@ TEST_CASE("memory check: an OpenCL device's global memory bounds the film; the h
   // The film: mean, meanLo, m2, m2Lo (float4 each) and the active list's uint per pixel.
   CHECK(need.device == 4096ull * 4096 * (4 * 16 + 4) + (256ull << 20));
   CHECK(need.host > 4096ull * 4096 * (4 * 16 + 8));
+  // The sobol sampler's sub-sequences: K float4 per pixel more on the device, and their planes on the host.
+  const montecl::ImageMemory split = montecl::imageMemoryNeed(4096ull * 4096, false, 256ull << 20, 8);
+  CHECK(split.device == need.device + 4096ull * 4096 * 8 * 16);
+  CHECK(split.host >= need.host + 4096ull * 4096 * (8 * 16 + 2 * 4 * (4 * 8 + 3)));
   CHECK_NOTHROW(montecl::checkImageMemory(dev, "s.json", 1024, 1024, true, 256ull << 20));
   try {
     montecl::checkImageMemory(dev, "s.json", 8192, 4096, false, 256ull << 20);
@@ -260,8 +264,9 @@ TEST_CASE("cli: the default output of a scene.json is named after its folder and
 TEST_CASE("cli: -v prints the camera as scene JSON; pasted into a scene file it renders the same image" * doctest::test_suite("cli")) {
   TempDir dir;
   const std::string obj = std::string(MONTECL_SOURCE_DIR) + "/scenes/test/good/quad.obj";
+  // AO, the scene file's default integrator (a bare model's is path under a sky: test_cli_view_env).
   CliResult bare = runMontecl({"render", obj, "-v", "-q", "--width", "12", "--height", "10", "--spp", "2", "--device",
-                               "host", "-o", dir.file("bare.pfm")});
+                               "host", "--integrator", "ao", "-o", dir.file("bare.pfm")});
   INFO("stderr: " << bare.err);
   REQUIRE(bare.exitCode == 0);
   const std::size_t at = bare.err.find("montecl: \"camera\": {");

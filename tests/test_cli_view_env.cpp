@@ -2,7 +2,8 @@
 // environment) and --view (the automatic framing from another side), through the real command:
 // a constant --env lights a bare model as the same environment in a scene file does (bit for bit);
 // each --view sees the model (it fills the frame) and differs from the front; bad values are one
-// line, exit 2.
+// line, exit 2; a bare model's defaults (path under the white sky) equal a scene file that writes
+// them out with "camera": "auto".
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -29,6 +30,11 @@ const char* kBox =
 std::vector<std::string> args(const TempDir& dir, const std::string& in, const std::string& out) {
   return {"render", dir.file(in), "-o", dir.file(out), "--width", "16", "--height", "16", "--spp", "2", "-q",
           "--overwrite", "--aov", "depth"};
+}
+
+std::string fileText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 std::vector<float> plane(const std::string& exr, const char* name) { return *montecl::readLayeredImage(exr).find(name); }
@@ -90,4 +96,36 @@ TEST_CASE("cli: --env lights a bare model as a scene file's environment does; --
     CHECK(r.err.find(bad[0] == "--env" && bad.size() > 2 ? "--env-scale" : bad[0]) != std::string::npos);
     CHECK_FALSE(std::filesystem::exists(dir.file("bad.exr")));
   }
+}
+
+TEST_CASE("cli: a bare model path-traces under the default white sky, as a scene file with camera \"auto\" says; "
+          "--integrator ao renders AO as a scene file does" *
+          doctest::test_suite("cli")) {
+  TempDir dir;
+  dir.write("box.obj", kBox);
+  const auto render = [&](const std::string& in, const std::string& out, std::vector<std::string> extra) {
+    std::vector<std::string> a = {"render", dir.file(in), "-o", dir.file(out), "--width", "16", "--height", "12",
+                                  "--spp", "2", "--device", "host", "-q", "--overwrite"};
+    a.insert(a.end(), extra.begin(), extra.end());
+    const CliResult r = runMontecl(a);
+    INFO(in << ": " << r.err);
+    CHECK(r.exitCode == 0);
+    return r;
+  };
+  const std::string mesh = R"("meshes": [{"file": "box.obj"}])";
+  // The documented rule written out: integrator path, a constant environment of radiance 1.
+  dir.write("sky.json", R"({"camera": "auto", )" + mesh +
+                            R"(, "render": {"integrator": "path"}, "environment": {"radiance": [1, 1, 1]}})");
+  dir.write("ao.json", R"({"camera": "auto", )" + mesh + "}");
+  const CliResult bare = render("box.obj", "bare.pfm", {});
+  CHECK(bare.err.find("warning") == std::string::npos);  // nothing to warn: it is lit
+  render("sky.json", "sky.pfm", {});
+  CHECK(fileText(dir.file("bare.pfm")) == fileText(dir.file("sky.pfm")));
+  render("box.obj", "bare-ao.pfm", {"--integrator", "ao"});
+  render("ao.json", "ao.pfm", {});
+  CHECK(fileText(dir.file("bare-ao.pfm")) == fileText(dir.file("ao.pfm")));
+  CHECK(fileText(dir.file("bare-ao.pfm")) != fileText(dir.file("bare.pfm")));
+  // --env replaces the default sky.
+  render("box.obj", "dim.pfm", {"--env", "0.25,0.25,0.25"});
+  CHECK(fileText(dir.file("dim.pfm")) != fileText(dir.file("bare.pfm")));
 }

@@ -235,7 +235,8 @@ TEST_CASE("cli: Kd + Ks above 1 is scaled down with one warning naming the file;
   CliResult r = runMontecl({"render", scene, "-o", dir.file("out.pfm"), "--spp", "4"});
   INFO(r.err);
   CHECK(r.exitCode == 0);
-  CHECK(r.err.find("quad.obj: material 'm': Kd + Ks > 1, both scaled by 0.769") != std::string::npos);
+  // Named by the MTL and the line of the material's Ks, where the fix goes.
+  CHECK(r.err.find(dir.file("quad.mtl") + ": line 3: material 'm': Kd + Ks > 1, both scaled by 0.769") != std::string::npos);
   CHECK(std::filesystem::exists(dir.file("out.pfm")));
 }
 

@@ -2,7 +2,8 @@
 // external or a data-URI buffer and .glb give exactly the OBJ's triangles (v flipped back to OBJ's
 // convention); node hierarchies with TRS and matrices; materials (base colour x texture, MASK and
 // BLEND cut-outs, emission x KHR_materials_emissive_strength, embedded images held in memory); the first
-// perspective camera; one warning per unused kind; malformed files as one InputError line.
+// perspective camera; triangle strips and fans as their TRIANGLES lists; one warning per unused kind;
+// malformed files as one InputError line.
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
@@ -129,7 +130,7 @@ TEST_CASE("glTF: node hierarchy with TRS and matrices; mirrors keep faces' sides
   CHECK(loadGltf(dir.file("lines.gltf"), &warnings).triangles.size() == 4);
   INFO(allLines(warnings));
   CHECK(warnings.size() == 1);
-  CHECK(countContaining(warnings, "meshes[0].primitives[1]: primitive mode 1 (not TRIANGLES) skipped (1 more)") == 1);
+  CHECK(countContaining(warnings, "meshes[0].primitives[1]: primitive mode 1 (points or lines, not triangles) skipped (1 more)") == 1);
 }
 
 TEST_CASE("glTF: base colour x texture, MASK/BLEND cut-outs, emission x strength, embedded images kept in memory" *
@@ -270,4 +271,66 @@ TEST_CASE("glTF: a scene file without a camera takes the glTF mesh's, moved by t
   } catch (const montecl::InputError& e) {
     CHECK(std::string(e.what()).find(dir.file("nocam.json") + ": camera: missing required key (and no glTF mesh has a camera)") == 0);
   }
+}
+
+TEST_CASE("glTF: a triangle strip and a fan give the triangles of the equivalent TRIANGLES list, winding kept" *
+          doctest::test_suite("cpu")) {
+  TempDir dir;
+  // The strip zigzags along x; the fan is a hexagon: centre, then six ring points and the first again.
+  std::vector<float> strip, fan;
+  for (int i = 0; i < 8; ++i) strip.insert(strip.end(), {float(i / 2), float(i % 2), 0.0f});
+  fan.insert(fan.end(), {0.0f, 0.0f, 0.0f});
+  const float ring[7][2] = {{1, 0}, {0.5f, 0.75f}, {-0.5f, 0.75f}, {-1, 0}, {-0.5f, -0.75f}, {0.5f, -0.75f}, {1, 0}};
+  for (const auto& r : ring) fan.insert(fan.end(), {r[0], r[1], 0.0f});
+  // The same triangles written out as lists, in the order the glTF specification gives: strip
+  // triangle i is (i, i+1+i%2, i+2-i%2), fan triangle i is (i+1, i+2, 0).
+  const std::vector<std::uint32_t> stripList = {0, 1, 2, 1, 3, 2, 2, 3, 4, 3, 5, 4, 4, 5, 6, 5, 7, 6};
+  const std::vector<std::uint32_t> fanList = {1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 5, 0, 5, 6, 0, 6, 7, 0};
+  std::string bin;
+  const auto put = [&bin](const void* p, std::size_t n) { bin.append(static_cast<const char*>(p), n); };
+  put(strip.data(), 96);
+  put(fan.data(), 96);
+  put(stripList.data(), 72);
+  put(fanList.data(), 72);
+  json base = {{"asset", {{"version", "2.0"}}}, {"scene", 0}, {"scenes", {{{"nodes", {0}}}}}, {"nodes", {{{"mesh", 0}}}},
+               {"buffers", {{{"uri", "data:application/octet-stream;base64," + montecl_test::base64(bin)}, {"byteLength", bin.size()}}}},
+               {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 96}},
+                                {{"buffer", 0}, {"byteOffset", 96}, {"byteLength", 96}},
+                                {{"buffer", 0}, {"byteOffset", 192}, {"byteLength", 72}},
+                                {{"buffer", 0}, {"byteOffset", 264}, {"byteLength", 72}}}}};
+  for (int v = 0; v < 2; ++v)
+    base["accessors"].push_back({{"bufferView", v}, {"componentType", 5126}, {"count", 8}, {"type", "VEC3"},
+                                 {"min", {-1, -0.75, 0}}, {"max", {3, 1, 0}}});
+  for (int v = 2; v < 4; ++v) base["accessors"].push_back({{"bufferView", v}, {"componentType", 5125}, {"count", 18}, {"type", "SCALAR"}});
+  const auto load = [&](const std::string& name, json primitive) {
+    json g = base;
+    g["meshes"] = {{{"primitives", {primitive}}}};
+    dir.write(name, g.dump());
+    std::vector<std::string> warnings;
+    Scene s = loadGltf(dir.file(name), &warnings);
+    INFO(name << ": " << allLines(warnings));
+    CHECK(warnings.empty());
+    return s;
+  };
+  for (int shape = 0; shape < 2; ++shape) {
+    const int mode = shape == 0 ? 5 : 6;
+    INFO("mode " << mode);
+    const Scene list = load("list.gltf", {{"attributes", {{"POSITION", shape}}}, {"indices", 2 + shape}});
+    const Scene direct = load("direct.gltf", {{"attributes", {{"POSITION", shape}}}, {"mode", mode}});
+    REQUIRE(list.triangles.size() == 6);
+    REQUIRE(direct.triangles.size() == 6);
+    for (std::size_t i = 0; i < 6; ++i)
+      for (int k = 0; k < 3; ++k) CHECK(direct.triangles[i].v[k] == list.triangles[i].v[k]);
+    // Every triangle faces the way the first does (a strip's every other triangle is flipped back).
+    for (const montecl::SceneTriangle& t : direct.triangles) {
+      const montecl::SceneTriangle& f = direct.triangles[0];
+      CHECK(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]).z * glm::cross(f.v[1] - f.v[0], f.v[2] - f.v[0]).z > 0.0f);
+    }
+  }
+  // Fewer than three vertices make no triangle (and no error); points and lines stay skipped.
+  base["accessors"][0]["count"] = 2;
+  json g = base;
+  g["meshes"] = {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"mode", 5}}, {{"attributes", {{"POSITION", 1}}}, {"mode", 6}}}}}};
+  dir.write("short.gltf", g.dump());
+  CHECK(loadGltf(dir.file("short.gltf")).triangles.size() == 6);
 }

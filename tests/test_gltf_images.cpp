@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -127,4 +128,45 @@ TEST_CASE("glTF: a texture as a file, a data URI or a GLB bufferView renders bit
   CHECK(shortView.err.find(dir.file("short.glb") + ": images[0]: bufferView " + std::to_string(g["bufferViews"].size() - 1) +
                            " runs past the end of its buffer") != std::string::npos);
   CHECK(std::count(shortView.err.begin(), shortView.err.end(), '\n') == 1);
+}
+
+TEST_CASE("glTF: a bare textured .glb renders coloured by default (lit by the default sky), with no warning; "
+          "--integrator ao stays grey" *
+          doctest::test_suite("cli")) {
+  TempDir dir;
+  // Red and blue halves: a grey image (AO, or an untextured base colour) has R == B everywhere.
+  montecl_test::writeImage8(dir.file("tex.png"), 8, 8, 3, [](int x, int, int c) { return c == (x < 4 ? 0 : 2) ? 230 : 20; });
+  const std::string png = fileBytes(dir.file("tex.png"));
+  std::string bin = montecl_test::gltfBuffer(montecl_test::tentMesh());
+  while (bin.size() % 4) bin += '\0';
+  json g = texturedTent({});
+  g["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", png.size()}});
+  g["images"][0] = {{"bufferView", g["bufferViews"].size() - 1}, {"mimeType", "image/png"}};
+  dir.write("tent.glb", glb(g, bin + png));
+  const auto render = [&](const std::string& out, std::vector<std::string> extra) {
+    std::vector<std::string> a = {"render", dir.file("tent.glb"), "-o", dir.file(out), "--width", "16", "--height",
+                                  "16", "--spp", "4", "--aov", "albedo", "--overwrite"};
+    a.insert(a.end(), extra.begin(), extra.end());
+    const CliResult r = runMontecl(a);
+    INFO(r.err);
+    CHECK(r.exitCode == 0);
+    CHECK(r.err.find("warning") == std::string::npos);
+    return montecl::readLayeredImage(dir.file(out));
+  };
+  // How far the image is from grey, and whether the model's pixels are lit at all.
+  const auto colourfulness = [](const montecl::LayeredImage& im, const char* r, const char* b) {
+    float most = 0.0f;
+    const std::vector<float>& R = *im.find(r);
+    const std::vector<float>& B = *im.find(b);
+    for (std::size_t i = 0; i < R.size(); ++i) most = std::max(most, std::fabs(R[i] - B[i]));
+    return most;
+  };
+  const montecl::LayeredImage lit = render("lit.exr", {});
+  CHECK(colourfulness(lit, "R", "B") > 0.2f);
+  CHECK(colourfulness(lit, "albedo.R", "albedo.B") > 0.5f);
+  // The albedo AOV is the texture as AO's albedo AOV reads it; AO's own image is grey.
+  const montecl::LayeredImage ao = render("ao.exr", {"--integrator", "ao"});
+  CHECK(*ao.find("albedo.R") == *lit.find("albedo.R"));
+  CHECK(*ao.find("albedo.B") == *lit.find("albedo.B"));
+  CHECK(colourfulness(ao, "R", "B") == 0.0f);
 }

@@ -31,6 +31,7 @@ struct OneEmitter {
     const float area = triangle_area_of(e1, e2);
     normals[0] = with_w(triangle_unit_normal(e1, e2), area);
     materials[0].emission = float4(2.0f, 3.0f, 4.0f, 0.0f);
+    materials[0].maps = float4(as_float(MCL_NO_TEXTURE), as_float(MCL_NO_TEXTURE), 0.0f, 0.0f);
     emitters[0].tri = 0;
     emitters[0].cdf = 1.0f;
     emitters[0].area = area;
@@ -41,7 +42,8 @@ struct OneEmitter {
     f.shareArea = env ? 0.5f : 1.0f;
   }
   LightScene scene() const {
-    return make_light_scene(tris.data(), normals.data(), materials.data(), emitters.data(), envMap, envCdf, nullptr);
+    return make_light_scene(tris.data(), normals.data(), materials.data(), emitters.data(), envMap, envCdf, nullptr, nullptr,
+                            TextureTables{});
   }
 };
 
@@ -54,7 +56,8 @@ TEST_CASE("light kinds: tags in table order; selection shares; sample pdf and Le
   CHECK(MCL_LIGHT_point == 2);
   CHECK(MCL_LIGHT_spot == 3);
   CHECK(MCL_LIGHT_directional == 4);
-  CHECK(MCL_LIGHT_KIND_COUNT == 5);
+  CHECK(MCL_LIGHT_sun == 5);
+  CHECK(MCL_LIGHT_KIND_COUNT == 6);
   for (bool env : {false, true}) {
     CAPTURE(env);
     const OneEmitter s(env);

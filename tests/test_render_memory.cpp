@@ -32,6 +32,7 @@ Film twoWaves(StageRunner& run, const Scene& scene, const Bvh& bvh, Film* before
   const float noTexture = glm::uintBitsToFloat(MCL_NO_TEXTURE);
   grey.albedo = glm::vec4(0.5f, 0.5f, 0.5f, noTexture);
   grey.alpha = glm::vec4(noTexture, 0.0f, 0.0f, 0.0f);
+  grey.maps = glm::vec4(noTexture, noTexture, 0.0f, 0.0f);  // no emission or metallic-roughness texture
   in.materials = {grey};
   in.shape.items = in.frame.width * in.frame.height;
   in.shape.aovs = true;

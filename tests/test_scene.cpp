@@ -323,6 +323,59 @@ TEST_CASE("bare OBJ: default camera and render settings, camera frames the bound
   CHECK(scene.boundsMin == glm::vec3(-3, 10, -7));
   CHECK(scene.boundsMax == glm::vec3(5, 14, 2));
   checkFramed(scene.camera, scene.boundsMin, scene.boundsMax);
+  // Nothing in it emits: path-traced under the default white sky.
+  CHECK(scene.render.integrator == montecl::Integrator::Path);
+  CHECK(scene.environment.enabled);
+  CHECK(scene.environment.file.empty());
+  CHECK(scene.environment.radiance * scene.environment.scale == glm::vec3(montecl::kDefaultSkyRadiance));
+}
+
+TEST_CASE("bare OBJ with an emitter: path-traced by its own light, no default sky" * doctest::test_suite("cpu")) {
+  TempDir dir;
+  dir.write("lamp.mtl", "newmtl lamp\nKe 4 4 4\n");
+  dir.write("lamp.obj", "mtllib lamp.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 -1\nv 1 0 -1\nv 0 1 -1\n"
+                        "f 1 2 3\nusemtl lamp\nf 4 5 6\n");
+  Scene scene = load(dir.file("lamp.obj"));
+  CHECK(scene.render.integrator == montecl::Integrator::Path);
+  CHECK_FALSE(scene.environment.enabled);
+}
+
+TEST_CASE("scene file camera: \"auto\" and missing keys come from the automatic framing" * doctest::test_suite("cpu")) {
+  TempDir dir;
+  dir.write("tri.obj", "v -3 10 2\nv 5 10 2\nv 5 14 -7\nf 1 2 3\n");
+  const auto sceneWith = [&](const std::string& camera) {
+    dir.write("scene.json", "{\"camera\": " + camera + ", \"meshes\": [{\"file\": \"tri.obj\"}]}");
+    return load(dir.file("scene.json"));
+  };
+  const glm::vec3 lo(-3, 10, -7), hi(5, 14, 2);
+  const Camera front = montecl::defaultCamera(lo, hi, 512, 512);
+  const Camera wide = montecl::defaultCamera(lo, hi, 24, 16);
+  const auto same = [](const Camera& a, const Camera& b) {
+    CHECK(a.position == b.position);
+    CHECK(a.target == b.target);
+    CHECK(a.up == b.up);
+    CHECK(a.fovY == b.fovY);
+    CHECK(a.width == b.width);
+    CHECK(a.height == b.height);
+  };
+  same(sceneWith("\"auto\"").camera, front);
+  same(sceneWith("{}").camera, front);
+  same(sceneWith(R"({"width": 24, "height": 16})").camera, wide);
+  // Given keys win; the rest is still the framing (for the given image size).
+  Camera c = sceneWith(R"({"position": [0, 30, 40], "fov_y": 25, "width": 24, "height": 16})").camera;
+  CHECK(c.position == glm::vec3(0, 30, 40));
+  CHECK(c.fovY == 25.0f);
+  CHECK(c.target == wide.target);
+  // A scene file's integrator stays its own: the bare-model defaults are for bare models only.
+  CHECK(sceneWith("\"auto\"").render.integrator == montecl::RenderSettings{}.integrator);
+  CHECK_FALSE(sceneWith("\"auto\"").environment.enabled);
+  // Any other string is one line naming the key.
+  try {
+    sceneWith("\"front\"");
+    FAIL("expected an InputError");
+  } catch (const montecl::InputError& e) {
+    CHECK(std::string(e.what()).find(dir.file("scene.json") + ": camera: expected an object or \"auto\"") == 0);
+  }
 }
 
 TEST_CASE("defaultCamera frames boxes of any shape for any aspect ratio" * doctest::test_suite("cpu")) {

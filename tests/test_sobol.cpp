@@ -206,6 +206,7 @@ TEST_CASE("sobol: pixels, seeds and sets get different scrambles; sets are uncor
 TEST_CASE("sampler: independent is rng_uniform4 bit for bit; sobol couples the first light sample to the camera set" * doctest::test_suite("cpu")) {
   FrameParams f{};
   f.seed = 11u;
+  f.sobolSplits = 1u;  // one sequence per pixel: the points are sobol_owen4_bits' own
   for (uint group : {MCL_DIM_CAMERA, MCL_DIM_LIGHT, MCL_DIM_LIGHT + 1u, MCL_DIM_PATH + 1u, MCL_DIM_LENS})
     for (uint i = 0; i < 256; ++i) {
       f.sampler = MCL_SAMPLER_INDEPENDENT;

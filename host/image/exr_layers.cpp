@@ -32,7 +32,55 @@ bool isVarianceChannel(const std::string& name) {
   return false;
 }
 
+// split<k>.n (a sub-sequence's sample count): the prefix split<k>.
+bool isSplitCountChannel(const std::string& name, std::string& prefix) {
+  if (name.rfind("split", 0) != 0 || name.size() < 8 || name.compare(name.size() - 2, 2, ".n") != 0) return false;
+  prefix = name.substr(0, name.size() - 2);
+  return true;
+}
+
+// split<k>.R/G/B: the prefix split<k>.
+bool isSplitMeanChannel(const std::string& name, std::string& prefix) {
+  if (name.rfind("split", 0) != 0 || name.size() < 8 || name[name.size() - 2] != '.') return false;
+  const char c = name.back();
+  if (c != 'R' && c != 'G' && c != 'B') return false;
+  prefix = name.substr(0, name.size() - 2);
+  return true;
+}
+
+bool isErrorChannel(const std::string& name) {
+  for (const char* e : channel::kMeanError)
+    if (name == e) return true;
+  return false;
+}
+
+// err.R/G/B from the split<k> planes (Film::meanVariance's formula), where the image has them.
+void setMeanErrorFromSplits(LayeredImage& image) {
+  std::vector<const std::vector<float>*> counts, means[3];
+  for (std::size_t k = 0;; ++k) {
+    const std::string prefix = channel::splitPrefix(k);
+    const std::vector<float>* n = image.find(prefix + ".n");
+    if (!n) break;
+    counts.push_back(n);
+    for (int c = 0; c < 3; ++c) means[c].push_back(image.find(prefix + "." + channel::kMean[c]));
+  }
+  if (counts.size() < 2) return;
+  const std::size_t pixels = image.pixelCount(), k = counts.size();
+  std::vector<double> ns(k), ms(k);
+  for (int c = 0; c < 3; ++c) {
+    std::vector<float> err(pixels, 0.0f);
+    for (std::size_t p = 0; p < pixels; ++p) {
+      for (std::size_t i = 0; i < k; ++i) ns[i] = (*counts[i])[p], ms[i] = means[c][i] ? (*means[c][i])[p] : 0.0;
+      const double v = splitMeanVariance(ns.data(), ms.data(), k);
+      err[p] = std::isfinite(v) ? float(v) : 0.0f;
+    }
+    image.set(channel::kMeanError[c], std::move(err));
+  }
+}
+
 }  // namespace
+
+std::string channel::splitPrefix(std::size_t k) { return "split" + std::to_string(k); }
 
 const std::vector<float>* LayeredImage::find(const std::string& name) const {
   for (std::size_t c = 0; c < channels.size(); ++c)
@@ -160,6 +208,30 @@ LayeredImage layersFromFilm(const Film& film) {
   for (int c = 0; c < 3; ++c) image.set(channel::kMean[c], std::move(mean[c]));
   image.set(channel::kSamples, std::move(samples));
   for (int c = 0; c < 3; ++c) image.set(channel::kVariance[c], std::move(var[c]));
+  // The sobol sampler's sub-sequences (Film::split): each one's mean and count, and the error of
+  // the mean estimated from their spread; renders without them keep exactly the layers above.
+  const std::size_t splits = film.splits();
+  if (splits > 1) {
+    for (std::size_t k = 0; k < splits; ++k) {
+      std::vector<float> sub[3], n(count, 0.0f);
+      for (int c = 0; c < 3; ++c) sub[c].assign(count, 0.0f);
+      for (std::size_t p = 0; p < count; ++p) {
+        n[p] = float(film.splitCount(p, k));
+        for (int c = 0; c < 3; ++c) sub[c][p] = film.split[splits * p + k][c];
+      }
+      const std::string prefix = channel::splitPrefix(k);
+      for (int c = 0; c < 3; ++c) image.set(prefix + "." + channel::kMean[c], std::move(sub[c]));
+      image.set(prefix + ".n", std::move(n));
+    }
+    for (int c = 0; c < 3; ++c) {
+      std::vector<float> err(count, 0.0f);
+      for (std::size_t p = 0; p < count; ++p) {
+        const double v = film.count[p] > 0 ? film.meanVariance(p, c) : 0.0;
+        err[p] = std::isfinite(v) ? float(v) : 0.0f;
+      }
+      image.set(channel::kMeanError[c], std::move(err));
+    }
+  }
   return image;
 }
 
@@ -246,8 +318,25 @@ LayeredImage mergeLayeredImages(const std::vector<LayeredImage>& images, const s
         dst[p] = float(s.mean);
         if (varDst) (*varDst)[p] = float(s.variance);
       }
-    } else if (isVarianceChannel(name)) {
-      continue;  // written with its mean channel
+    } else if (isVarianceChannel(name) || isErrorChannel(name)) {
+      continue;  // written with its mean channel; err.* from the merged sub-sequences below
+    } else if (std::string prefix; isSplitCountChannel(name, prefix)) {
+      for (std::size_t p = 0; p < count; ++p) {
+        double n = 0.0;
+        for (std::size_t i = 0; i < k; ++i) n += std::max(0.0f, (*images[i].find(name))[p]);
+        dst[p] = float(n);
+      }
+    } else if (isSplitMeanChannel(name, prefix) && first.find(prefix + ".n")) {
+      // A sub-sequence's mean, weighted by its own counts.
+      for (std::size_t p = 0; p < count; ++p) {
+        double n = 0.0, sum = 0.0;
+        for (std::size_t i = 0; i < k; ++i) {
+          const double ni = std::max(0.0f, (*images[i].find(prefix + ".n"))[p]);
+          n += ni;
+          sum += ni * (*images[i].find(name))[p];
+        }
+        dst[p] = float(n > 0.0 ? sum / n : 0.0);
+      }
     } else {
       std::vector<const std::vector<float>*> src(k);
       for (std::size_t i = 0; i < k; ++i) src[i] = images[i].find(name);
@@ -263,6 +352,7 @@ LayeredImage mergeLayeredImages(const std::vector<LayeredImage>& images, const s
       }
     }
   }
+  setMeanErrorFromSplits(out);
   return out;
 }
 

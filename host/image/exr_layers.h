@@ -20,10 +20,16 @@ struct Film;
 //   var.R var.G var.B   unbiased sample variance of ONE sample, s^2 = sum (x - mean)^2 / (n - 1)
 //                       (0 where n < 2); the variance of the mean is var / n
 //   albedo.R/G/B, N.X/Y/Z, Z   optional AOVs (first-hit albedo, normal, depth): averaged by n
+// With the sobol sampler's K > 1 sub-sequences (render.sobol_splits) also:
+//   split<k>.R/G/B split<k>.n   sub-sequence k's mean and sample count (k = 0 .. K-1)
+//   err.R err.G err.B   the estimated squared standard error of the mean R G B, from the spread
+//                       of the sub-means (Film::meanVariance; var / n overstates it under sobol)
 namespace channel {
 constexpr const char* kSamples = "samples";
 inline const char* const kMean[3] = {"R", "G", "B"};
 inline const char* const kVariance[3] = {"var.R", "var.G", "var.B"};
+inline const char* const kMeanError[3] = {"err.R", "err.G", "err.B"};
+std::string splitPrefix(std::size_t k);  // split<k>
 }  // namespace channel
 
 // width x height float planes, one per named channel, each width * height, row 0 at the top.

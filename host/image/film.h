@@ -5,11 +5,32 @@
 #pragma once
 #include <glm/glm.hpp>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <vector>
 
 namespace montecl {
+
+// The squared standard error of a mean over K independent sub-sequences with counts n_k and
+// means m_k (the mean m = sum n_k m_k / n): sum_k (n_k / n)^2 K'/(K'-1) (m_k - m)^2 over the K'
+// sub-sequences with samples, which for equal counts is sum_k (m_k - m)^2 / (K (K-1)): unbiased
+// for equal counts whatever the correlation of the samples within a sub-sequence. Infinite with
+// fewer than two sub-sequences holding samples.
+inline double splitMeanVariance(const double* n, const double* m, std::size_t k) {
+  double total = 0.0, mean = 0.0, sum = 0.0;
+  std::size_t filled = 0;
+  for (std::size_t i = 0; i < k; ++i)
+    if (n[i] > 0.0) total += n[i], mean += n[i] * m[i], ++filled;
+  if (filled < 2) return INFINITY;
+  mean /= total;
+  for (std::size_t i = 0; i < k; ++i) {
+    if (!(n[i] > 0.0)) continue;
+    const double w = n[i] / total, d = m[i] - mean;
+    sum += w * w * d * d;
+  }
+  return sum * double(filled) / double(filled - 1);
+}
 
 struct Film {
   int width = 0, height = 0;
@@ -18,6 +39,17 @@ struct Film {
   std::vector<std::uint64_t> count;     // samples per pixel
   // With AOVs: 2 per pixel, sums over samples of (albedo, depth) and (normal, 0); else empty.
   std::vector<glm::vec4> aovSum;
+  // With the sobol sampler's K > 1 sub-sequences: K per pixel, split[K p + k] = sub-sequence k's
+  // mean (rgb) and its sample count (w, uint bits); else empty.
+  std::vector<glm::vec4> split;
+
+  // Sub-sequences per pixel (0 without split accumulators).
+  std::size_t splits() const { return count.empty() ? 0 : split.size() / count.size(); }
+  std::uint32_t splitCount(std::size_t p, std::size_t k) const {
+    std::uint32_t c;
+    std::memcpy(&c, &split[splits() * p + k].w, 4);
+    return c;
+  }
 
   std::size_t pixelCount() const { return count.size(); }
   // Mean of channel c in double (hi + lo).
@@ -31,6 +63,18 @@ struct Film {
     if (!(n > 1.0)) return 0.0;
     const double v = m2Of(p, c) / (n - 1.0);
     return v < 0.0 ? 0.0 : v;
+  }
+
+  // The squared standard error of the pixel's mean of channel c: with sub-sequences, from the
+  // spread of their K independent means (splitMeanVariance); without them variance / n, which
+  // assumes independent samples.
+  double meanVariance(std::size_t p, int c) const {
+    const std::size_t k = splits();
+    const double n = double(count[p]);
+    if (k == 0) return n > 1.0 ? variance(p, c) / n : 0.0;
+    double ns[64], ms[64];
+    for (std::size_t i = 0; i < k && i < 64; ++i) ns[i] = double(splitCount(p, i)), ms[i] = double(split[k * p + i][c]);
+    return splitMeanVariance(ns, ms, std::min<std::size_t>(k, 64));
   }
 
   // Mean radiance per pixel, interleaved RGB (0 where a pixel has no samples).

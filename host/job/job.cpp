@@ -133,13 +133,15 @@ void Job::exchange(bool finished, const std::function<Film()>& readFilm) {
 
 Film Job::gather(const Film& mine) const {
   const World& w = world();
-  const std::size_t bytes = pixelBytes(aovs_);
+  const std::size_t splits = mine.splits();  // the same on every rank (one scene and settings)
+  const std::size_t bytes = pixelBytes(aovs_) + splits * 16;
   std::string send(pixels_.size() * bytes, '\0');
   char* at = send.data();
   for (std::uint32_t p : pixels_) {
     for (const auto* v : {&mine.mean, &mine.meanLo, &mine.m2, &mine.m2Lo}) std::memcpy(at, &(*v)[p], 16), at += 16;
     std::memcpy(at, &mine.count[p], 8), at += 8;
     if (aovs_) std::memcpy(at, &mine.aovSum[2 * p], 32), at += 32;
+    if (splits) std::memcpy(at, &mine.split[splits * p], 16 * splits), at += 16 * splits;
   }
   const std::uint64_t pixels = std::uint64_t(width_) * height_;
   std::vector<int> sizes, offsets;
@@ -163,12 +165,14 @@ Film Job::gather(const Film& mine) const {
   full.meanLo = full.m2 = full.m2Lo = full.mean;
   full.count.assign(pixels, 0);
   if (aovs_) full.aovSum.assign(2 * pixels, glm::vec4(0.0f));
+  full.split.assign(splits * pixels, glm::vec4(0.0f));
   const char* from = recv.data();
   for (int r = 0; r < w.size; ++r) {
     for (std::uint32_t p : lists[std::size_t(r)]) {
       for (auto* v : {&full.mean, &full.meanLo, &full.m2, &full.m2Lo}) std::memcpy(&(*v)[p], from, 16), from += 16;
       std::memcpy(&full.count[p], from, 8), from += 8;
       if (aovs_) std::memcpy(&full.aovSum[2 * p], from, 32), from += 32;
+      if (splits) std::memcpy(&full.split[splits * p], from, 16 * splits), from += 16 * splits;
     }
   }
   return full;

@@ -24,7 +24,7 @@ struct Header {
   char magic[8];
   std::uint32_t version, headerBytes;
   std::uint64_t key;
-  std::uint32_t width, height, aovs, seed, spp, firstSample, integrator, minSpp, maxSpp, pad;
+  std::uint32_t width, height, aovs, seed, spp, firstSample, integrator, minSpp, maxSpp, splits;
   double targetError;
   std::uint64_t samplesDone, payloadHash;
 };
@@ -41,6 +41,7 @@ std::string payloadOf(const Film& film, bool aovs) {
   for (const auto* v : {&film.mean, &film.meanLo, &film.m2, &film.m2Lo}) append(out, v->data(), n);
   append(out, film.count.data(), n);
   if (aovs) append(out, film.aovSum.data(), 2 * n);
+  append(out, film.split.data(), film.split.size());
   return out;
 }
 
@@ -86,6 +87,7 @@ void writeCheckpoint(const std::string& path, const CheckpointInfo& info, const 
   h.seed = info.seed;
   h.spp = info.spp;
   h.firstSample = info.firstSample;
+  h.splits = std::uint32_t(film.splits());
   for (std::uint64_t c : film.count) h.samplesDone += c;
   const std::string payload = payloadOf(film, info.aovs);
   h.payloadHash = fnv1a64(payload);
@@ -136,7 +138,8 @@ Film readCheckpoint(const std::string& path, const CheckpointInfo& expected, int
   film.width = width;
   film.height = height;
   const std::size_t n = std::size_t(width) * height;
-  const std::size_t need = sizeof h + n * (4 * 16 + 8) + (h.aovs ? 2 * n * 16 : 0);
+  if (h.splits > 64) throwInputError(path, "--resume", "damaged checkpoint (" + std::to_string(h.splits) + " sub-sequences)");
+  const std::size_t need = sizeof h + n * (4 * 16 + 8) + (h.aovs ? 2 * n * 16 : 0) + std::size_t(h.splits) * n * 16;
   if (std::uint64_t(st.st_size) != need) throwInputError(path, "--resume", "damaged checkpoint (wrong size)");
   std::string payload(need - sizeof h, '\0');
   if (!in.read(payload.data(), std::streamsize(payload.size())))
@@ -154,6 +157,7 @@ Film readCheckpoint(const std::string& path, const CheckpointInfo& expected, int
   take(film.m2Lo, n);
   take(film.count, n);
   if (h.aovs) take(film.aovSum, 2 * n);
+  if (h.splits) take(film.split, std::size_t(h.splits) * n);
   return film;
 }
 

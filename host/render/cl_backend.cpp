@@ -41,6 +41,7 @@ class ClStageRunner final : public StageRunner {
     frame_ = in.frame;
     firstSubmitted_ = submittedCount_ = 0;
     aovs_ = shape.aovs;
+    splits_ = shape.splits;
     ClBindings& b = bindings_;
     b.frame = {cl_.upload(std::vector<FrameParams>{in.frame})};
     const bool binary = program_.layout() == BvhLayout::Binary;
@@ -80,21 +81,27 @@ class ClStageRunner final : public StageRunner {
     const std::uint64_t words[] = {MCL_FILM_BUFFERS(MCL_CL_FILM_WORDS)};
 #undef MCL_CL_FILM_BUFFER
 #undef MCL_CL_FILM_WORDS
-    static_assert(sizeof(films) / sizeof(films[0]) == 5, "the film's parts: mean, meanLo, m2, m2Lo, aovSum");
+    static_assert(sizeof(films) / sizeof(films[0]) == 6, "the film's parts: mean, meanLo, m2, m2Lo, aovSum, split");
+    bool loaded[6] = {false, false, false, false, false, false};
     if (const Film* f = in.initialFilm) {
       std::vector<glm::vec4> meanWords, meanLoWords;
       f->packCounts(meanWords, meanLoWords);
-      const void* from[] = {meanWords.data(), meanLoWords.data(), f->m2.data(), f->m2Lo.data(), f->aovSum.data()};
-      for (int i = 0; i < 5; ++i)
-        if (words[i]) cl_.queue().enqueueWriteBuffer(*films[i], CL_TRUE, 0, words[i] * sizeof(cl_float4), from[i]);
-      return;
+      const void* from[] = {meanWords.data(), meanLoWords.data(), f->m2.data(), f->m2Lo.data(), f->aovSum.data(),
+                            f->split.data()};
+      const std::size_t has[] = {meanWords.size(), meanLoWords.size(), f->m2.size(), f->m2Lo.size(), f->aovSum.size(),
+                                 f->split.size()};
+      for (int i = 0; i < 6; ++i)
+        if (words[i] && has[i] >= words[i]) {
+          cl_.queue().enqueueWriteBuffer(*films[i], CL_TRUE, 0, words[i] * sizeof(cl_float4), from[i]);
+          loaded[i] = true;
+        }
     }
     // One write per part where it fits the block: Oclgrind resets a buffer's definedness only on a
     // write at offset 0 (cl_session.h scratch), so the AOV sums (two per pixel) must not come in two.
     const std::vector<cl_float4> zeros(std::min<std::uint64_t>(*std::max_element(std::begin(words), std::end(words)), 65536),
                                        cl_float4{{0.0f, 0.0f, 0.0f, 0.0f}});
-    for (int i = 0; i < 5; ++i)
-      for (std::uint64_t at = 0; at < words[i]; at += zeros.size())
+    for (int i = 0; i < 6; ++i)
+      for (std::uint64_t at = 0; !loaded[i] && at < words[i]; at += zeros.size())
         cl_.queue().enqueueWriteBuffer(*films[i], CL_FALSE, at * sizeof(cl_float4),
                                        std::min<std::uint64_t>(zeros.size(), words[i] - at) * sizeof(cl_float4),
                                        zeros.data());
@@ -200,6 +207,10 @@ class ClStageRunner final : public StageRunner {
       cl_.queue().enqueueReadBuffer(bindings_.aovSum.buffer, CL_TRUE, 0, 2 * pixels_ * sizeof(cl_float4),
                                     film.aovSum.data());
     }
+    film.split.resize(splits_ * pixels_);
+    if (splits_)
+      cl_.queue().enqueueReadBuffer(bindings_.split.buffer, CL_TRUE, 0, splits_ * pixels_ * sizeof(cl_float4),
+                                    film.split.data());
   }
 
   // The last read: every buffer but the film's is released first (the scene's arrays may be used
@@ -210,11 +221,13 @@ class ClStageRunner final : public StageRunner {
     ClBindings& b = bindings_;
     std::pair<cl::Buffer, std::vector<glm::vec4>*> parts[] = {
         {b.mean.buffer, &film.mean}, {b.meanLo.buffer, &film.meanLo}, {b.m2.buffer, &film.m2},
-        {b.m2Lo.buffer, &film.m2Lo}, {b.aovSum.buffer, &film.aovSum}};
+        {b.m2Lo.buffer, &film.m2Lo}, {b.aovSum.buffer, &film.aovSum}, {b.split.buffer, &film.split}};
     releaseBuffersAndWaves();
     trimHeap();
     for (auto& [device, host] : parts) {
-      const std::uint64_t words = host == &film.aovSum ? (aovs_ ? 2 * pixels_ : 0) : pixels_;
+      const std::uint64_t words = host == &film.aovSum ? (aovs_ ? 2 * pixels_ : 0)
+                                  : host == &film.split ? splits_ * pixels_
+                                                        : pixels_;
       host->resize(words);
       if (words)
         cl_.queue().enqueueReadBuffer(device, CL_TRUE, 0, words * sizeof(cl_float4), host->data());
@@ -249,6 +262,7 @@ class ClStageRunner final : public StageRunner {
   std::array<cl::Kernel, kStageCount> kernels_;
   ClBindings bindings_;
   bool aovs_ = false;
+  std::uint64_t splits_ = 0;  // sobol sub-sequences with film accumulators (Film::split)
   static constexpr cl_uint kZero = 0;  // what the counter resets write
   std::vector<std::pair<std::string, cl::Event>> launched_;  // this wave's launches (profiling)
   // A wave between beginWave and waitWave: its ray count as written, its counts as read, the read's

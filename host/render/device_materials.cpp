@@ -13,6 +13,7 @@ Material deviceMaterial(const MaterialDesc& m) {
   d.emission = glm::vec4(m.emission, m.twoSidedEmission ? 1.0f : 0.0f);
   d.specular = glm::vec4(m.specular, ggx_alpha_from_ns(m.specularExponent));
   d.alpha = glm::vec4(noTexture, m.alphaCutoff, glm::uintBitsToFloat(0u), glm::uintBitsToFloat(m.kind));
+  d.maps = glm::vec4(noTexture, noTexture, 0.0f, 0.0f);
   // The kinds' parameters, as bsdf_<kind>.h's <kind>_from_material reads them; zero for diffuse.
   switch (m.kind) {
     case MCL_MATERIAL_conductor:
@@ -24,7 +25,6 @@ Material deviceMaterial(const MaterialDesc& m) {
     case MCL_MATERIAL_metal_rough: d.params0 = glm::vec4(m.metallic, m.roughness, 0.0f, 0.0f); break;
     default: break;
   }
-  d.params1.w = noTexture;  // the normal map's index (setTextureIndices); no other field reads w
   return d;
 }
 

@@ -34,6 +34,7 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
   f.focusDistance = camera.focusDistance > 0.0f ? camera.focusDistance : glm::length(camera.target - camera.position);
   f.emitterCount = extras.emitterCount;
   f.emitterPower = extras.emitterPower;
+  f.emissionTextured = extras.emissionTextured ? 1u : 0u;
   f.environment = extras.environment;
   f.envWidth = extras.envWidth;
   f.envHeight = extras.envHeight;
@@ -56,6 +57,7 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
   f.sunFirst = l.sunFirst;
   f.sunCount = l.sunCount;
   f.sampler = settings.sampler == Sampler::Sobol ? MCL_SAMPLER_SOBOL : MCL_SAMPLER_INDEPENDENT;
+  f.sobolSplits = settings.sampler == Sampler::Sobol ? std::uint32_t(std::max(1, settings.sobolSplits)) : 1u;
   return f;
 }
 

@@ -23,6 +23,7 @@ struct FrameExtras {
   float offsetScale = 1.0f; // offsetScaleFor(the scene's triangles)
   uint emitterCount = 0;    // the emitter table (render/emitters.h) ...
   float emitterPower = 0.0f;
+  bool emissionTextured = false;  // a material's emission is textured (FrameParams::emissionTextured)
   float4 environment{0.0f};  // ... and the environment (render/environment_table.h), for lit integrators
   uint envWidth = 0, envHeight = 0;
   float envRotateY = 0.0f;

@@ -58,6 +58,7 @@ class HostStageRunner final : public StageRunner {
     active_.resize(pixels);
     for (std::uint64_t p = 0; p < pixels; ++p) active_[p] = uint(p);
     aovs_ = shape.aovs;
+    splits_ = shape.splits;
     if (const Film* f = in.initialFilm) {  // a resumed film: its words, count bits in the w lanes
       std::vector<glm::vec4> meanWords, meanLoWords;
       f->packCounts(meanWords, meanLoWords);
@@ -70,6 +71,7 @@ class HostStageRunner final : public StageRunner {
       load(m2_, f->m2);
       load(m2Lo_, f->m2Lo);
       if (aovs_) load(aovSum_, f->aovSum);
+      if (splits_) load(split_, f->split);
     }
     bind();
   }
@@ -131,6 +133,7 @@ class HostStageRunner final : public StageRunner {
     film.m2Lo = m2Lo_;
     film.unpackCounts();
     if (aovs_) film.aovSum.assign(aovSum_.begin(), aovSum_.end());
+    if (splits_) film.split.assign(split_.begin(), split_.end());
   }
 
   // The film's vectors move out (no copy); every other buffer is freed.
@@ -141,6 +144,7 @@ class HostStageRunner final : public StageRunner {
     film.m2Lo = std::move(m2Lo_);
     film.unpackCounts();
     if (aovs_) film.aovSum = std::move(aovSum_);
+    if (splits_) film.split = std::move(split_);
 #define MCL_HOST_RELEASE(name, ...) name##_ = {};
     MCL_WAVE_BUFFERS(MCL_HOST_RELEASE)
     MCL_FILM_BUFFERS(MCL_HOST_RELEASE)
@@ -186,6 +190,7 @@ class HostStageRunner final : public StageRunner {
   HostBindings bindings_;
   FrameParams frame_{};
   bool aovs_ = false;
+  std::uint64_t splits_ = 0;  // sobol sub-sequences with film accumulators (Film::split)
   std::vector<uint> active_;
   std::vector<WideNode> nodes_;
   std::vector<Triangle> tris_;

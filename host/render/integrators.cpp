@@ -63,6 +63,8 @@ WaveShape waveShapeFor(const Scene& scene, std::uint64_t items, bool aovs) {
   s.bounce = d.bounce;
   s.path = d.path;
   s.aovs = aovs;
+  if (scene.render.sampler == Sampler::Sobol && scene.render.sobolSplits > 1)
+    s.splits = std::uint64_t(scene.render.sobolSplits);
   return s;
 }
 

@@ -39,7 +39,8 @@ double lightPower(const LightDesc& l, double sceneRadius) {
       const double cc = std::cos(double(l.cutoffDegrees) * kPi / 180.0);
       return 2.0 * kPi * li * (1.0 - 0.5 * (cb + cc));
     }
-    case PunctualKind::Directional: return kPi * sceneRadius * sceneRadius * li;
+    case PunctualKind::Directional:
+    case PunctualKind::Sun: return kPi * sceneRadius * sceneRadius * li;  // E over the scene's disk
   }
   return 0.0;
 }
@@ -54,6 +55,13 @@ LightRecord makeRecord(const LightDesc& l) {
     const float cutoff = l.cutoffDegrees * degToRad, beam = l.beamDegrees * degToRad;
     r.cone = float4(std::cos(cutoff), std::cos(beam), cutoff, cutoff > beam ? 1.0f / (cutoff - beam) : 0.0f);
   }
+  if (l.kind == PunctualKind::Sun) {  // light_sun.h: radiance E / (pi sin^2 alpha), the cone in double
+    const double alpha = 0.5 * double(l.angleDegrees) * kPi / 180.0;
+    const double s = std::sin(alpha), oneMinusCos = 2.0 * std::sin(0.5 * alpha) * std::sin(0.5 * alpha);
+    const glm::dvec3 radiance = glm::dvec3(l.color) / (kPi * s * s);
+    r.intensity = float4(float(radiance.x), float(radiance.y), float(radiance.z), 0.0f);
+    r.cone = float4(float(std::cos(alpha)), float(2.0 * kPi * oneMinusCos), float(oneMinusCos), 0.0f);
+  }
   return r;
 }
 
@@ -65,12 +73,12 @@ LightTable buildLightTable(const Scene& scene, float emitterPower, const Environ
   if (!lit) return t;
   const double radius = std::max(0.5 * double(glm::length(scene.boundsMax - scene.boundsMin)), 1e-6);
   const bool env = environment.radiance.w != 0.0f;
-  double kindPower[5] = {env ? 4.0 * kPi * kPi * radius * radius * environmentMeanLuminance(environment) : 0.0,
-                         kPi * double(emitterPower), 0.0, 0.0, 0.0};
-  uint* first[3] = {&s.pointFirst, &s.spotFirst, &s.directionalFirst};
-  uint* count[3] = {&s.pointCount, &s.spotCount, &s.directionalCount};
-  const PunctualKind kinds[3] = {PunctualKind::Point, PunctualKind::Spot, PunctualKind::Directional};
-  for (int k = 0; k < 3; ++k) {
+  double kindPower[6] = {env ? 4.0 * kPi * kPi * radius * radius * environmentMeanLuminance(environment) : 0.0,
+                         kPi * double(emitterPower), 0.0, 0.0, 0.0, 0.0};
+  uint* first[4] = {&s.pointFirst, &s.spotFirst, &s.directionalFirst, &s.sunFirst};
+  uint* count[4] = {&s.pointCount, &s.spotCount, &s.directionalCount, &s.sunCount};
+  const PunctualKind kinds[4] = {PunctualKind::Point, PunctualKind::Spot, PunctualKind::Directional, PunctualKind::Sun};
+  for (int k = 0; k < 4; ++k) {
     *first[k] = uint(t.records.size());
     std::vector<double> power;
     double total = 0.0;
@@ -98,8 +106,8 @@ LightTable buildLightTable(const Scene& scene, float emitterPower, const Environ
     s.shareEnvironment = env ? 1.0f : 0.0f;
     return t;
   }
-  float* share[5] = {&s.shareEnvironment, &s.shareArea, &s.sharePoint, &s.shareSpot, &s.shareDirectional};
-  for (int k = 0; k < 5; ++k) *share[k] = float(kindPower[k] / all);  // one kind alone: exactly 1
+  float* share[6] = {&s.shareEnvironment, &s.shareArea, &s.sharePoint, &s.shareSpot, &s.shareDirectional, &s.shareSun};
+  for (int k = 0; k < 6; ++k) *share[k] = float(kindPower[k] / all);  // one kind alone: exactly 1
   return t;
 }
 

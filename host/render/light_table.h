@@ -1,9 +1,9 @@
 // light_table.h: light selection for next-event estimation across the light kinds
-// (kernels/shared/light_kinds.h): the table of light records (point, spot, directional; grouped
+// (kernels/shared/light_kinds.h): the table of light records (point, spot, directional, sun; grouped
 // by kind, each picked within its kind by power) and each kind's share of the light samples,
 // proportional to its power, as pbrt estimates it: emitters pi * sum(area * luminance(Le)),
 // point 4 pi luminance(I), spot 2 pi luminance(I) (1 - (cos beam + cos cutoff) / 2), directional
-// pi R^2 luminance(E), the environment 4 pi * pi R^2 * mean luminance(L) over the sphere (R: the
+// and sun pi R^2 luminance(E), the environment 4 pi * pi R^2 * mean luminance(L) over the sphere (R: the
 // scene's bounding-sphere radius). A scene with one kind of light gives that kind exactly 1, so
 // its samples are those of a renderer without the others.
 #pragma once

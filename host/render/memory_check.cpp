@@ -5,20 +5,22 @@
 #include "util/errors.h"
 
 namespace montecl {
-ImageMemory imageMemoryNeed(std::uint64_t pixels, bool aovs, std::uint64_t waveBytes) {
+ImageMemory imageMemoryNeed(std::uint64_t pixels, bool aovs, std::uint64_t waveBytes, std::uint64_t splits) {
   ImageMemory m;
   // The film's buffers (render/wave_buffers.h) and the active pixel list; then the per-wave buffers.
-  m.device = pixels * (filmBytesPerPixel(aovs) + sizeof(std::uint32_t)) + waveBytes;
+  m.device = pixels * (filmBytesPerPixel(aovs, splits) + sizeof(std::uint32_t)) + waveBytes;
   // The film read back (its buffers and the 64-bit sample counts), and the output: up to 7 float
-  // planes (R, G, B, samples, var.R/G/B) + 7 AOV planes, plus the encoder's copy of them.
-  m.host = pixels * (filmBytesPerPixel(aovs) + sizeof(std::uint64_t) + 2 * 4 * (7 + (aovs ? 7 : 0)));
+  // planes (R, G, B, samples, var.R/G/B) + 7 AOV planes (+ 4 per sub-sequence and err.R/G/B),
+  // plus the encoder's copy of them.
+  const std::uint64_t splitPlanes = splits > 1 ? 4 * splits + 3 : 0;
+  m.host = pixels * (filmBytesPerPixel(aovs, splits) + sizeof(std::uint64_t) + 2 * 4 * (7 + (aovs ? 7 : 0) + splitPlanes));
   return m;
 }
 
 void checkImageMemory(const DeviceInfo& device, const std::string& scenePath, int width, int height, bool aovs,
-                      std::uint64_t waveBytes) {
+                      std::uint64_t waveBytes, std::uint64_t splits) {
   const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
-  const ImageMemory need = imageMemoryNeed(pixels, aovs, waveBytes);
+  const ImageMemory need = imageMemoryNeed(pixels, aovs, waveBytes, splits);
   const std::string where = "image " + std::to_string(width) + "x" + std::to_string(height);
   const std::string what = aovs ? " (film, AOVs and output image)" : " (film and output image)";
   const std::uint64_t hostHas = hostMemoryBytes();

@@ -16,11 +16,12 @@ struct ImageMemory {
 };
 
 // Bytes an image of `pixels` needs with waveBytes of per-wave buffers (already budgeted).
-ImageMemory imageMemoryNeed(std::uint64_t pixels, bool aovs, std::uint64_t waveBytes);
+// splits: the sobol sampler's sub-sequences per pixel (WaveShape::splits; 0 or 1: none).
+ImageMemory imageMemoryNeed(std::uint64_t pixels, bool aovs, std::uint64_t waveBytes, std::uint64_t splits = 0);
 
 // Throws InputError "<scene>: image WxH: needs about X GiB ..., <where> has Y GiB" when the need
 // exceeds host memory (host backend and CPU OpenCL devices: device + host) or the device's global memory.
 void checkImageMemory(const DeviceInfo& device, const std::string& scenePath, int width, int height, bool aovs,
-                      std::uint64_t waveBytes);
+                      std::uint64_t waveBytes, std::uint64_t splits = 0);
 
 }  // namespace montecl

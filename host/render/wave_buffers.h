@@ -14,9 +14,9 @@ namespace montecl {
 
 // How many elements a buffer holds, for a wave of `items` items with `slots` occlusion queries
 // each, on an image of `pixels` pixels.
-enum class Per { Item, Slot, TwoPerItem, Pixel, TwoPerPixel, One };
+enum class Per { Item, Slot, TwoPerItem, Pixel, TwoPerPixel, SplitsPerPixel, One };
 // Which renders need it; the others get a 1-element dummy (OpenCL has no empty buffers).
-enum class Need { Always, Bounce, Path, Aovs };
+enum class Need { Always, Bounce, Path, Aovs, Splits };
 
 // WAVE_BUFFER(name, element type, Per, Need): written and read by the stages only.
 // bounce / bounceHits: direct lighting's BRDF rays and their hits; throughput, nextRays, pathIds,
@@ -43,13 +43,16 @@ enum class Need { Always, Bounce, Path, Aovs };
 
 // FILM_BUFFER(name, Per, Need): the film, per pixel, float4 (kernels/stages/accumulate.h:
 // float-float mean and M2 with the 64-bit count in the w lanes, AOV sums), cleared or loaded from
-// a resumed film at setup and read back by readFilm / finish.
+// a resumed film at setup and read back by readFilm / finish. split: with the sobol sampler's
+// sub-sequences (FrameParams::sobolSplits K > 1), K per pixel, sub-sequence k at K pixel + k: rgb
+// its running mean, w its sample count (uint bits).
 #define MCL_FILM_BUFFERS(F)      \
   F(mean, Pixel, Always)         \
   F(meanLo, Pixel, Always)       \
   F(m2, Pixel, Always)           \
   F(m2Lo, Pixel, Always)         \
-  F(aovSum, TwoPerPixel, Aovs)
+  F(aovSum, TwoPerPixel, Aovs)   \
+  F(split, SplitsPerPixel, Splits)
 
 // What a render needs of these lists: the wave's size and what its integrator and options ask for.
 struct WaveShape {
@@ -59,11 +62,13 @@ struct WaveShape {
   bool bounce = false;       // the integrator traces BRDF rays within a wave (direct lighting)
   bool path = false;         // the integrator keeps path state (path tracing)
   bool aovs = false;         // first-hit AOVs are recorded
+  std::uint64_t splits = 0;  // sobol sub-sequences with their own film accumulators (0: none)
 };
 
 constexpr bool needed(Need need, const WaveShape& s) {
   return need == Need::Always || (need == Need::Bounce && s.bounce) || (need == Need::Path && s.path) ||
-         (need == Need::Aovs && s.aovs);
+         (need == Need::Aovs && s.aovs) ||
+         (need == Need::Splits && s.splits > 0);
 }
 
 // Elements of a buffer with this rule: its count when needed, else 1 (the dummy).
@@ -75,6 +80,7 @@ constexpr std::uint64_t bufferCount(Per per, Need need, const WaveShape& s) {
     case Per::TwoPerItem: return 2 * s.items;
     case Per::Pixel: return s.pixels;
     case Per::TwoPerPixel: return 2 * s.pixels;
+    case Per::SplitsPerPixel: return s.splits * s.pixels;
     case Per::One: return 1;
   }
   return 1;
@@ -94,10 +100,11 @@ constexpr std::uint64_t waveBytesPerItem(WaveShape s) {
 }
 
 // Bytes of the film per pixel on the device (and, read back, on the host).
-constexpr std::uint64_t filmBytesPerPixel(bool aovs) {
+constexpr std::uint64_t filmBytesPerPixel(bool aovs, std::uint64_t splits = 0) {
   WaveShape s;
   s.pixels = 1;
   s.aovs = aovs;
+  s.splits = splits;
   std::uint64_t bytes = 0;
 #define MCL_FILM_BYTES(name, per, need) \
   if (needed(Need::need, s)) bytes += bufferCount(Per::per, Need::need, s) * sizeof(float4);

@@ -85,13 +85,12 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
   WaveShape shape = waveShapeFor(scene, 1, o.aovs);
   shape.items = waveCap(o, device, maxAlloc, shape, pixels * std::uint64_t(scene.render.spp));
   checkImageMemory(device, scene.path, scene.camera.width, scene.camera.height, o.aovs,
-                   shape.items * waveBytesPerItem(shape));
+                   shape.items * waveBytesPerItem(shape), shape.splits);
 
   StageInputs& in = p.inputs;
   PreparedTriangles own;
   if (!part.triangles) own = prepareTriangles(scene, bvh);
   PreparedTriangles& triangles = part.triangles ? *part.triangles : own;
-  const EmitterTable emitters = integrator.lit ? buildEmitterTable(bvh, scene.materials) : EmitterTable{};
   EnvironmentTable environment = buildEnvironment(scene);  // read (and checked) for any integrator
   for (std::uint64_t bytes : {pixels * sizeof(float4), std::uint64_t(bvhNodeBytes(bvh, run.bvhLayout())),
                               bvh.triangles.size() * sizeof(Triangle), environment.map.size() * sizeof(float4),
@@ -111,7 +110,21 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
     throw RuntimeError("textures of " + std::to_string(textures->bytes()) + " bytes do not fit the device's maximum "
                        "allocation of " + std::to_string(maxAlloc) + " bytes; lower --texture-budget");
 
+  in.materials = deviceMaterials(scene.materials);
+  if (textures) setTextureIndices(in.materials, *textures);
+  // Textured emitters are weighted by their mean emission (written into in.shading for the pdfs).
+  EmissionTextures emission;
+  emission.materials = &in.materials;
+  emission.shading = &in.shading;
+  bool emissionTextured = false;
+  for (const Material& m : in.materials) emissionTextured |= as_uint(m.maps.x) != MCL_NO_TEXTURE;
+  if (emissionTextured)
+    emission.tables = make_texture_tables(textures->textures.data(), textures->levels.data(), textures->texels.data());
+  const EmitterTable emitters =
+      integrator.lit ? buildEmitterTable(bvh, scene.materials, emissionTextured ? &emission : nullptr) : EmitterTable{};
+
   FrameExtras extras;
+  extras.emissionTextured = emissionTextured && integrator.lit;
   extras.shadowSlots = std::uint32_t(shape.slots);
   extras.offsetScale = triangles.offsetScale;
   extras.emitterCount = uint(emitters.emitters.size());
@@ -128,9 +141,7 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
   const FrameParams frame = makeFrameParams(scene.camera, scene.render, extras);
   in.frame = frame;
   in.bvh = &bvh;
-  in.materials = deviceMaterials(scene.materials);
   if (textures) {
-    setTextureIndices(in.materials, *textures);
     in.textures = textures;
     in.triangles = alphaFlaggedTriangles(bvh.triangles, *textures);
   }
@@ -351,7 +362,7 @@ double relativeStandardError(const Film& film, std::size_t p, double errorFloor)
   double mean = 0.0, se = 0.0;
   for (int c = 0; c < 3; ++c) {
     mean += w[c] * film.mean[p][c];
-    se += w[c] * std::sqrt(film.variance(p, c) / n);
+    se += w[c] * std::sqrt(film.meanVariance(p, c));
   }
   return se / std::max(mean, errorFloor);
 }

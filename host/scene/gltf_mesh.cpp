@@ -1,10 +1,11 @@
 // gltf_mesh.cpp: loadGltfInto(): a glTF 2.0 scene (gltf_model.h) into a Scene. Walks the default
-// scene's node hierarchy (TRS or matrix transforms); TRIANGLES primitives (indexed or not) give
-// triangles with POSITION, NORMAL (kHasNormals) and TEXCOORD_0 (kHasUv, v flipped to OBJ's
+// scene's node hierarchy (TRS or matrix transforms); TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN
+// primitives (indexed or not) give triangles with POSITION, NORMAL (kHasNormals) and TEXCOORD_0 (kHasUv, v flipped to OBJ's
 // convention: v = 1 - v_gltf). Materials: baseColorFactor x baseColorTexture -> albedo and
 // albedoTexture; alphaMode MASK (+ alphaCutoff) -> alphaTexture = the base colour texture, BLEND
 // treated as MASK with a warning; emissiveFactor x KHR_materials_emissive_strength -> emission
-// (two-sided when doubleSided). The first perspective camera met in the hierarchy is returned.
+// (two-sided when doubleSided), emissiveTexture -> emissionTexture; metallic/roughness factors (x
+// metallicRoughnessTexture) -> the metal_rough kind. The first perspective camera met in the hierarchy is returned.
 // Everything else the file uses is one warning per kind.
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -89,8 +90,10 @@ std::uint32_t Loader::material(int index) {
     if (!std::isfinite(d.albedo[c]) || d.albedo[c] < 0) loadFail(file, where, "baseColorFactor must be finite and >= 0");
     if (!std::isfinite(d.emission[c]) || d.emission[c] < 0) loadFail(file, where, "emissiveFactor x emissiveStrength must be finite and >= 0");
   }
-  // The image file (or embedded image) of texture tex, checked now: a file of its own is an input.
-  const auto texturePath = [&](int tex, const char* key) {
+  // A texture of this material (key names it in messages): the path of its image, checked now
+  // when it is a file of its own (then an input file); texCoord other than 0 and wrap modes other
+  // than REPEAT are warned about.
+  const auto texturePath = [&](int tex, int texCoord, const char* key) {
     if (static_cast<std::size_t>(tex) >= m.textures.size()) loadFail(file, where, std::string(key) + " index out of range");
     const tinygltf::Texture& t = m.textures[static_cast<std::size_t>(tex)];
     if (t.source < 0 || static_cast<std::size_t>(t.source) >= m.images.size())
@@ -107,20 +110,20 @@ std::uint32_t Loader::material(int index) {
       }
       scene.inputFiles.push_back(path);
     }
-    return path;
-  };
-  const int tex = pbr.baseColorTexture.index;
-  if (tex >= 0) {
-    const std::string path = texturePath(tex, "baseColorTexture");
-    const tinygltf::Texture& t = m.textures[static_cast<std::size_t>(tex)];
-    d.albedoTexture = path;
-    if (pbr.baseColorTexture.texCoord != 0) unused.add("texCoord", where, "texCoord other than 0 not used by montecl (TEXCOORD_0 used)");
+    if (texCoord != 0) unused.add("texCoord", where, "texCoord other than 0 not used by montecl (TEXCOORD_0 used)");
     if (t.sampler >= 0 && static_cast<std::size_t>(t.sampler) < m.samplers.size()) {
       const tinygltf::Sampler& s = m.samplers[static_cast<std::size_t>(t.sampler)];
       if (s.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT || s.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT)
         unused.add("wrap", itemWhere("samplers", std::size_t(t.sampler)), "wrap modes other than REPEAT not used by montecl (it repeats)");
     }
-  }
+    return path;
+  };
+  if (pbr.baseColorTexture.index >= 0)
+    d.albedoTexture = texturePath(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, "baseColorTexture");
+  // emissiveFactor x emissiveTexture (x strength); with a black factor the texture emits nothing:
+  // not read at all.
+  if (g.emissiveTexture.index >= 0 && d.emission != glm::vec3(0.0f))
+    d.emissionTexture = texturePath(g.emissiveTexture.index, g.emissiveTexture.texCoord, "emissiveTexture");
   if (g.alphaMode == "MASK" || g.alphaMode == "BLEND") {
     if (g.alphaMode == "BLEND") unused.add("BLEND", where, "alphaMode BLEND treated as MASK (cut-out at alphaCutoff)");
     d.alphaCutoff = static_cast<float>(g.alphaCutoff);
@@ -135,29 +138,32 @@ std::uint32_t Loader::material(int index) {
   const float metallic = float(pbr.metallicFactor), roughness = float(pbr.roughnessFactor);
   if (!(metallic >= 0.0f && metallic <= 1.0f)) loadFail(file, where, "metallicFactor must be in [0, 1]");
   if (!(roughness >= 0.0f && roughness <= 1.0f)) loadFail(file, where, "roughnessFactor must be in [0, 1]");
-  if (roughness != 1.0f || (metallic != 0.0f && metallic != 1.0f)) {
+  // A metallicRoughnessTexture (B metallic, G roughness, x the factors) always means metal_rough.
+  const bool mrTexture = pbr.metallicRoughnessTexture.index >= 0 && (metallic > 0.0f || roughness > 0.0f);
+  if (roughness != 1.0f || (metallic != 0.0f && metallic != 1.0f) || mrTexture) {
     d.kind = MCL_MATERIAL_metal_rough;
     d.metallic = metallic;
     d.roughness = roughness;
   }
-  if (pbr.metallicRoughnessTexture.index >= 0)
-    unused.add("metallicRoughnessTexture", where, "metallicRoughnessTexture not used by montecl (the factors are), ignored");
+  if (mrTexture)
+    d.metallicRoughnessTexture = texturePath(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                                             "metallicRoughnessTexture");
   if (g.normalTexture.index >= 0) {
     d.normalScale = static_cast<float>(g.normalTexture.scale);
     if (!std::isfinite(d.normalScale)) loadFail(file, where, "normalTexture scale must be finite");
-    d.normalTexture = texturePath(g.normalTexture.index, "normalTexture");
-    if (g.normalTexture.texCoord != 0) unused.add("texCoord", where, "texCoord other than 0 not used by montecl (TEXCOORD_0 used)");
+    d.normalTexture = texturePath(g.normalTexture.index, g.normalTexture.texCoord, "normalTexture");
   }
   if (g.occlusionTexture.index >= 0) unused.add("occlusionTexture", where, "occlusionTexture not used by montecl, ignored");
-  if (g.emissiveTexture.index >= 0) unused.add("emissiveTexture", where, "emissiveTexture not used by montecl (emissiveFactor only), ignored");
   materialIndex[i] = static_cast<std::int64_t>(scene.materials.size());
   scene.materials.push_back(d);
   return static_cast<std::uint32_t>(materialIndex[i]);
 }
 
 void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, const std::string& where) {
-  if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != -1) {
-    unused.add("mode " + std::to_string(p.mode), where, "primitive mode " + std::to_string(p.mode) + " (not TRIANGLES) skipped");
+  const int mode = p.mode == -1 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    unused.add("mode " + std::to_string(p.mode), where,
+               "primitive mode " + std::to_string(p.mode) + " (points or lines, not triangles) skipped");
     return;
   }
   auto attr = [&](const char* name) {
@@ -169,17 +175,27 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
       unused.add("attribute " + a.first, where, "attribute " + oneLine(a.first, 40) + " not used by montecl, ignored");
   if (!p.targets.empty()) unused.add("morph", where, "morph targets not used by montecl (the base mesh is rendered)");
   if (attr("POSITION") < 0) loadFail(file, where, "primitive without POSITION");
-  const std::vector<float> pos = readFloatAccessor(file, m, attr("POSITION"), 3, where + ".POSITION");
+  const std::vector<float> pos = readFloatAccessor(file, m, attr("POSITION"), 3, where + ".POSITION", AccessorUse::Position);
   const std::size_t n = pos.size() / 3;
   std::vector<float> nor, uv;
-  if (attr("NORMAL") >= 0) nor = readFloatAccessor(file, m, attr("NORMAL"), 3, where + ".NORMAL");
-  if (attr("TEXCOORD_0") >= 0) uv = readFloatAccessor(file, m, attr("TEXCOORD_0"), 2, where + ".TEXCOORD_0");
+  if (attr("NORMAL") >= 0) nor = readFloatAccessor(file, m, attr("NORMAL"), 3, where + ".NORMAL", AccessorUse::Normal);
+  if (attr("TEXCOORD_0") >= 0) uv = readFloatAccessor(file, m, attr("TEXCOORD_0"), 2, where + ".TEXCOORD_0", AccessorUse::TexCoord);
   if ((!nor.empty() && nor.size() / 3 != n) || (!uv.empty() && uv.size() / 2 != n))
     loadFail(file, where, "attributes have different counts");
   std::vector<std::uint32_t> idx;
   if (p.indices >= 0) idx = readIndexAccessor(file, m, p.indices, where + ".indices");
-  const std::size_t corners = p.indices >= 0 ? idx.size() : n;
-  if (corners % 3 != 0) loadFail(file, where, std::to_string(corners) + " vertices do not make whole triangles");
+  const std::size_t count = p.indices >= 0 ? idx.size() : n;  // the primitive's vertices, in order
+  if (mode == TINYGLTF_MODE_TRIANGLES && count % 3 != 0)
+    loadFail(file, where, std::to_string(count) + " vertices do not make whole triangles");
+  const std::size_t corners = mode == TINYGLTF_MODE_TRIANGLES ? count : 3 * (count >= 3 ? count - 2 : 0);
+  // Corner k of triangle i, as the glTF specification orders strips (every other one flipped, so
+  // all keep the first one's winding) and fans (v[i+1], v[i+2], v[0]).
+  const auto cornerOf = [mode](std::size_t c) {
+    const std::size_t i = c / 3, k = c % 3;
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) return k == 0 ? i : k == 1 ? i + 1 + i % 2 : i + 2 - i % 2;
+    if (mode == TINYGLTF_MODE_TRIANGLE_FAN) return k == 2 ? std::size_t(0) : i + k + 1;
+    return c;
+  };
   const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(world)));
   const bool mirror = glm::determinant(glm::dmat3(world)) < 0.0;
   const std::uint32_t mat = material(p.material);
@@ -187,7 +203,8 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
     SceneTriangle t{};
     bool normals = !nor.empty();
     for (int k = 0; k < 3; ++k) {
-      const std::size_t v = p.indices >= 0 ? idx[c + std::size_t(k)] : c + std::size_t(k);
+      const std::size_t j = cornerOf(c + std::size_t(k));
+      const std::size_t v = p.indices >= 0 ? idx[j] : j;
       if (v >= n) loadFail(file, where + ".indices", "index " + std::to_string(v) + " out of range (" + std::to_string(n) + " vertices)");
       const int kk = mirror && k > 0 ? 3 - k : k;  // a mirroring transform swaps corners 1 and 2
       t.v[kk] = glm::vec3(world * glm::dvec4(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2], 1.0));
@@ -239,7 +256,10 @@ std::uint64_t meshTriangles(const Model& m, const tinygltf::Mesh& mesh) {
   for (const tinygltf::Primitive& p : mesh.primitives) {
     auto it = p.attributes.find("POSITION");
     const int a = p.indices >= 0 ? p.indices : it == p.attributes.end() ? -1 : it->second;
-    if (a >= 0 && static_cast<std::size_t>(a) < m.accessors.size()) n += m.accessors[std::size_t(a)].count / 3;
+    if (a < 0 || static_cast<std::size_t>(a) >= m.accessors.size()) continue;
+    const std::uint64_t count = m.accessors[std::size_t(a)].count;
+    if (p.mode == TINYGLTF_MODE_TRIANGLES || p.mode == -1) n += count / 3;
+    else if ((p.mode == TINYGLTF_MODE_TRIANGLE_STRIP || p.mode == TINYGLTF_MODE_TRIANGLE_FAN) && count >= 3) n += count - 2;
   }
   return n;
 }
@@ -253,7 +273,7 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
   scene.inputFiles.insert(scene.inputFiles.end(), opened.begin(), opened.end());
   Loader l{path, m, scene, KindWarnings(path), std::vector<std::int64_t>(m.materials.size(), -1), false, Camera{}};
   for (const std::string& e : m.extensionsUsed)
-    if (e != "KHR_materials_emissive_strength" && e != "KHR_lights_punctual")
+    if (!gltfExtensionSupported(e))
       l.unused.add("extension " + e, "extensionsUsed", "extension '" + oneLine(e, 60) + "' not used by montecl, ignored");
   if (!m.animations.empty()) l.unused.add("animations", "animations", "animations not used by montecl (the rest pose is rendered)");
   if (!m.skins.empty()) l.unused.add("skins", "skins", "skins not used by montecl (the rest pose is rendered)");

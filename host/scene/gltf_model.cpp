@@ -167,6 +167,17 @@ void checkGltfJson(const std::string& path, const char* text, std::size_t size) 
     if (uri.compare(0, 5, "data:") != 0 && uri.find("%00") != std::string::npos)
       loadFail(path, where + ".uri", "contains %00 (a NUL byte): not a file name");
   };
+  // A required extension montecl does not read changes what the file means: refused, by name,
+  // before tinygltf reports what it trips over instead (a Draco mesh's accessors have no bufferView).
+  if (const auto req = j.find("extensionsRequired"); req != j.end() && req->is_array())
+    for (std::size_t i = 0; i < req->size(); ++i) {
+      const std::string name = (*req)[i].is_string() ? (*req)[i].get<std::string>() : (*req)[i].dump();
+      if (gltfExtensionSupported(name)) continue;
+      const bool draco = name == "KHR_draco_mesh_compression";
+      loadFail(path, "extensionsRequired[" + std::to_string(i) + "]",
+               "extension '" + oneLine(name, 60) + "' is required by the file and not supported by montecl" +
+                   (draco ? " (Draco-compressed meshes: decompress the file first, e.g. with glTF-Transform)" : ""));
+    }
   each("images", noNul);
   each("buffers", noNul);
   each("materials", [&](const nlohmann::json& o, const std::string& w) {
@@ -237,15 +248,29 @@ tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>*
   return model;
 }
 
+bool gltfExtensionSupported(const std::string& name) {
+  return name == "KHR_materials_emissive_strength" || name == "KHR_lights_punctual" || name == "KHR_mesh_quantization";
+}
+
 std::vector<float> readFloatAccessor(const std::string& file, const tinygltf::Model& m, int index, int components,
-                                     const std::string& where) {
+                                     const std::string& where, AccessorUse use) {
   const tinygltf::Accessor& a = accessorAt(file, m, index, where);
   const int type = components == 2 ? TINYGLTF_TYPE_VEC2 : TINYGLTF_TYPE_VEC3;
   if (a.type != type) loadFail(file, where, "expected a VEC" + std::to_string(components) + " accessor");
   const int ct = a.componentType;
   const bool isFloat = ct == TINYGLTF_COMPONENT_TYPE_FLOAT;
-  const bool isNormInt = a.normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
-  if (!isFloat && !isNormInt) loadFail(file, where, "expected FLOAT (or normalized unsigned) components");
+  const bool isSigned = ct == TINYGLTF_COMPONENT_TYPE_BYTE || ct == TINYGLTF_COMPONENT_TYPE_SHORT;
+  const bool isUnsigned = ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  bool allowed = isFloat || (a.normalized && isUnsigned);  // core glTF
+  const char* rule = "FLOAT (or normalized unsigned byte / short)";
+  if (use == AccessorUse::Position || use == AccessorUse::TexCoord) {
+    allowed = isFloat || isSigned || isUnsigned;
+    rule = "FLOAT or (KHR_mesh_quantization) byte / short, signed or unsigned, normalized or not";
+  } else if (use == AccessorUse::Normal) {
+    allowed = isFloat || (a.normalized && isSigned);
+    rule = "FLOAT or (KHR_mesh_quantization) normalized signed byte / short";
+  }
+  if (!allowed) loadFail(file, where, std::string("expected ") + rule + " components");
   const std::size_t size = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(ct)));
   std::size_t stride = 0;
   const unsigned char* p = accessorBytes(file, m, a, size * components, stride, where);
@@ -254,12 +279,16 @@ std::vector<float> readFloatAccessor(const std::string& file, const tinygltf::Mo
     for (int c = 0; c < components; ++c) {
       const unsigned char* q = p + i * stride + static_cast<std::size_t>(c) * size;
       float f = 0.0f;
-      if (isFloat) std::memcpy(&f, q, 4);
-      else if (size == 1) f = *q / 255.0f;
-      else {
+      if (isFloat) {
+        std::memcpy(&f, q, 4);
+      } else if (size == 1) {
+        const float v = isSigned ? float(std::int8_t(*q)) : float(*q);
+        f = !a.normalized ? v : isSigned ? std::max(v / 127.0f, -1.0f) : v / 255.0f;
+      } else {
         std::uint16_t u;
         std::memcpy(&u, q, 2);
-        f = u / 65535.0f;
+        const float v = isSigned ? float(std::int16_t(u)) : float(u);
+        f = !a.normalized ? v : isSigned ? std::max(v / 32767.0f, -1.0f) : v / 65535.0f;
       }
       if (!std::isfinite(f)) loadFail(file, where, "element " + std::to_string(i) + " is not finite");
       out[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)] = f;

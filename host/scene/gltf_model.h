@@ -21,10 +21,20 @@ namespace montecl {
 tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>* warnings,
                               std::vector<std::string>* opened = nullptr);
 
+// The glTF extensions montecl reads; a file that lists any other in extensionsRequired is refused
+// with one line naming it (extensionsUsed alone: a warning).
+bool gltfExtensionSupported(const std::string& name);
+
+// Which component types an attribute accepts: Any is core glTF's float-or-normalized-unsigned
+// rule; Position, Normal and TexCoord add the integer types KHR_mesh_quantization lists for them
+// (POSITION and TEXCOORD: signed or unsigned byte / short, normalized or not; NORMAL: normalized
+// signed byte / short). Normalized signed values are max(c / (2^(b-1) - 1), -1), as glTF defines.
+enum class AccessorUse { Any, Position, Normal, TexCoord };
+
 // Accessor `index` as floats with `components` components per element (VEC2: 2, VEC3: 3), from
-// FLOAT data or normalized integer data; where names the attribute for messages.
+// FLOAT data or the integer data `use` allows; where names the attribute for messages.
 std::vector<float> readFloatAccessor(const std::string& file, const tinygltf::Model& m, int index, int components,
-                                     const std::string& where);
+                                     const std::string& where, AccessorUse use = AccessorUse::Any);
 
 // Accessor `index` as vertex indices (SCALAR UNSIGNED_BYTE / SHORT / INT).
 std::vector<std::uint32_t> readIndexAccessor(const std::string& file, const tinygltf::Model& m, int index,

@@ -36,11 +36,19 @@ LightDesc parseLight(const JsonCtx& ctx, const json& obj, const std::string& pre
     l.kind = type == "point" ? PunctualKind::Point : PunctualKind::Spot;
     l.position = getVec3(ctx, requireKey(ctx, obj, prefix, "position"), childKey(prefix, "position"));
     l.color = getColor(ctx, requireKey(ctx, obj, prefix, "intensity"), childKey(prefix, "intensity"));
-  } else if (type == "directional") {
-    l.kind = PunctualKind::Directional;
+  } else if (type == "directional" || type == "sun") {
+    l.kind = type == "sun" ? PunctualKind::Sun : PunctualKind::Directional;
     l.color = getColor(ctx, requireKey(ctx, obj, prefix, "irradiance"), childKey(prefix, "irradiance"));
   } else {
-    jsonFail(ctx, typeKey, "unknown light type \"" + type + "\" (expected \"point\", \"spot\" or \"directional\")");
+    jsonFail(ctx, typeKey,
+             "unknown light type \"" + type + "\" (expected \"point\", \"spot\", \"directional\" or \"sun\")");
+  }
+  if (l.kind == PunctualKind::Sun) {
+    if (const json* v = optionalKey(obj, "angle")) {
+      l.angleDegrees = getFloat(ctx, *v, childKey(prefix, "angle"));
+      if (!(l.angleDegrees > 0.0f && l.angleDegrees < 180.0f))
+        jsonFail(ctx, childKey(prefix, "angle"), "must be an angular diameter in degrees in (0, 180)");
+    }
   }
   if (l.kind != PunctualKind::Point) l.direction = unitDirection(ctx, obj, prefix);
   if (l.kind == PunctualKind::Spot) {
@@ -55,6 +63,7 @@ LightDesc parseLight(const JsonCtx& ctx, const json& obj, const std::string& pre
       warnUnknownKeys(ctx, obj, prefix, {"type", "position", "direction", "intensity", "cutoff_angle", "beam_width"});
       break;
     case PunctualKind::Directional: warnUnknownKeys(ctx, obj, prefix, {"type", "direction", "irradiance"}); break;
+    case PunctualKind::Sun: warnUnknownKeys(ctx, obj, prefix, {"type", "direction", "irradiance", "angle"}); break;
   }
   return l;
 }

@@ -39,7 +39,7 @@ void parseMaterial(const JsonCtx& ctx, const json& j, const std::string& prefix,
   warnUnknownKeys(ctx, j, prefix,
                   {"type", "albedo", "albedo_texture", "alpha_texture", "alpha_cutoff", "emission",
                    "two_sided_emission", "specular", "specular_exponent", "eta", "k", "metal", "alpha",
-                   "roughness", "ior", "metallic"});
+                   "roughness", "ior", "metallic", "emission_texture"});
   MaterialDesc& d = o.value;
   if (const json* v = optionalKey(j, "type")) {  // the material kind (kernels/shared/material_kinds.h)
     const std::string name = getString(ctx, *v, prefix + ".type", "a material type");
@@ -58,6 +58,8 @@ void parseMaterial(const JsonCtx& ctx, const json& j, const std::string& prefix,
   if (const json* v = optionalKey(j, "emission")) o.emission = true, d.emission = getColor(ctx, *v, prefix + ".emission");
   if (const json* v = optionalKey(j, "two_sided_emission"))
     o.twoSided = true, d.twoSidedEmission = getBool(ctx, *v, prefix + ".two_sided_emission");
+  if (const json* v = optionalKey(j, "emission_texture"))
+    o.emissionTexture = true, d.emissionTexture = texturePath(ctx, *v, prefix + ".emission_texture");
   if (const json* v = optionalKey(j, "specular")) {
     o.specular = true;
     d.specular = getColor(ctx, *v, prefix + ".specular");
@@ -155,6 +157,10 @@ void overrideMaterials(Scene& scene, std::size_t firstTri, const MeshEntry& mesh
       if (o.alphaTexture) d.alphaTexture = o.value.alphaTexture;
       if (o.alphaCutoff) d.alphaCutoff = o.value.alphaCutoff;
       if (o.emission) d.emission = o.value.emission;
+      if (o.emissionTexture) {
+        d.emissionTexture = o.value.emissionTexture;
+        if (!o.emission) d.emission = glm::vec3(1.0f);  // the texture as it is
+      }
       if (o.twoSided) d.twoSidedEmission = o.value.twoSidedEmission;
       if (o.specular) d.specular = o.value.specular;
       if (o.specularExponent) d.specularExponent = o.value.specularExponent;
@@ -218,6 +224,7 @@ void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, std:
   // The override's textures are read by the render like any other: inputs the output must not replace.
   if (mesh.material.albedoTexture) scene.inputFiles.push_back(mesh.material.value.albedoTexture);
   if (mesh.material.alphaTexture) scene.inputFiles.push_back(mesh.material.value.alphaTexture);
+  if (mesh.material.emissionTexture) scene.inputFiles.push_back(mesh.material.value.emissionTexture);
 }
 
 void recomputeBounds(Scene& scene) {

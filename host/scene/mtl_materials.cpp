@@ -22,7 +22,7 @@ bool isBlank(char c) { return c == ' ' || c == '\t'; }
 // What montecl reads from an MTL; every other statement is reported once per kind.
 bool isUsed(const std::string& key) {
   // Pm / Pr always pick a kind; illum and Ni only for glass (scanMtl, mtlKind).
-  static const std::set<std::string> used = {"newmtl", "Kd", "Ke", "Ks", "Ns", "map_Kd", "map_d", "Pm", "Pr"};
+  static const std::set<std::string> used = {"newmtl", "Kd", "Ke", "Ks", "Ns", "map_Kd", "map_d", "map_Ke", "Pm", "Pr"};
   return used.count(key) > 0;
 }
 
@@ -32,7 +32,7 @@ std::string unusedText(const std::string& key) {
       {"Tf", "transmission filter"},     {"map_Ka", "ambient texture"},    {"map_Ks", "specular texture"},
       {"map_Ns", "exponent texture"},    {"bump", "bump map"},             {"map_bump", "bump map"},
       {"map_Bump", "bump map"},          {"disp", "displacement map"},     {"norm", "normal map"},
-      {"refl", "reflection map"},        {"map_Ke", "emission texture"},   {"Pr", "PBR roughness"},
+      {"refl", "reflection map"},        {"Pr", "PBR roughness"},
       {"Pm", "PBR metallic"},            {"map_Pr", "roughness texture"},  {"map_Pm", "metallic texture"}};
   auto it = what.find(key);
   return "'" + key + "'" + (it == what.end() ? "" : " (" + it->second + ")") + " not used by montecl, ignored";
@@ -239,7 +239,8 @@ std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<t
   for (const MtlFile& f : files) f.unused.flush(warnings);
   auto base = static_cast<std::uint32_t>(scene.materials.size());
   std::set<std::string> textures;
-  GlossyScaling scaled;  // Kd + Ks > 1: one warning per file
+  GlossyScaling scaled;  // Kd + Ks > 1: one warning per OBJ
+  std::string scaledAt;  // where the first scaled material is
   TextureLookup look;
   look.warnings = warnings;
   for (std::size_t i = 0; i < mats.size(); ++i) {
@@ -263,14 +264,24 @@ std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<t
       if (src.block && !src.has("Kd")) d.albedo = glm::vec3(1.0f);  // the texture as it is (tinyobj: 0.6)
     }
     if (!m.alpha_texname.empty() || src.has("map_d")) d.alphaTexture = texturePath(src, "map_d", m.alpha_texname, look);
-    for (const std::string* t : {&d.albedoTexture, &d.alphaTexture})
+    // map_Ke multiplies Ke; without a Ke statement the texture is the emission as it is (Ke 1).
+    if (!m.emissive_texname.empty() || src.has("map_Ke")) {
+      if (src.block && !src.has("Ke")) d.emission = glm::vec3(1.0f);
+      if (d.emission != glm::vec3(0.0f)) d.emissionTexture = texturePath(src, "map_Ke", m.emissive_texname, look);
+    }
+    for (const std::string* t : {&d.albedoTexture, &d.alphaTexture, &d.emissionTexture})
       if (!t->empty() && textures.insert(*t).second) scene.inputFiles.push_back(*t);
     const std::string where = "material '" + oneLine(m.name, 60) + "'";
-    scaled.note(oneLine(m.name, 60), checkGlossyMaterial(oneLine(objPath, 4096), where, d));
+    const float factor = checkGlossyMaterial(oneLine(src.file, 4096), where, d);
+    if (factor != 1.0f && scaled.count == 0) {  // the warning names the MTL and the first one's Ks line
+      const std::string line = src.where("Ks");
+      scaledAt = oneLine(src.file, 4096) + (line.empty() ? "" : ": " + line);
+    }
+    scaled.note(oneLine(m.name, 60), factor);
     scene.materials.push_back(d);
   }
   failOnMissingTextures(look);
-  scaled.warn(oneLine(objPath, 4096), warnings);
+  scaled.warn(scaledAt, warnings);
   return base;
 }
 

@@ -126,9 +126,14 @@ std::vector<RenderSetting> makeTable() {
           integerRule(1, intMax, "a positive integer"), &RenderSettings::rrDepth, path),
       choiceRow("sampler", "--sampler",
                 "Where the uniform numbers come from: independent (a hash per sample and dimension) or "
-                "sobol (Owen-scrambled Sobol points, stratified; var.* and error figures then overstate the "
-                "error of the mean)",
+                "sobol (Owen-scrambled Sobol points, stratified; the error figures then come from the spread "
+                "of sobol_splits sub-sequences)",
                 samplerNames(), &RenderSettings::sampler),
+      row("sobol_splits", "--sobol-splits",
+          "With sobol: independently scrambled sub-sequences per pixel (sample s in s mod K); the error of the "
+          "mean comes from the spread of their means (EXR layers split0.* ..., err.*); 1: one sequence, error "
+          "figures from var.* (they overstate it)",
+          integerRule(1, 64, "an integer in [1, 64]"), &RenderSettings::sobolSplits),
       row("background", "", "Radiance of camera rays that hit nothing (without an environment)", backgroundRule(),
           &RenderSettings::background),
       // Denoising changes only the added denoised layers, never the estimate: not in the provenance,
@@ -277,7 +282,8 @@ std::string settingValueText(const SettingValue& v) { return valueText(v, 9); }
 std::string integratorSettings(const RenderSettings& r) {
   std::string out;
   for (const RenderSetting& s : renderSettings())
-    if (s.provenance && (s.integrators & integratorBit(r.integrator)))
+    if (s.provenance && (s.integrators & integratorBit(r.integrator)) &&
+        (s.key != "sobol_splits" || r.sampler == Sampler::Sobol))  // used by sobol only
       out += (out.empty() ? "" : " ") + s.key + "=" + settingValueText(s.get(r));
   return out;
 }

@@ -38,6 +38,7 @@ struct MaterialDesc {
   // top-origin formats (glTF) flip v when they read it.
   std::string albedoTexture;  // map_Kd, glTF baseColorTexture (8-bit: sRGB-encoded)
   std::string alphaTexture;   // map_d, or the albedo texture's alpha (glTF MASK); empty: opaque
+  std::string emissionTexture;  // map_Ke, glTF emissiveTexture (colour, like the albedo's): Le = Ke x it
   float alphaCutoff = 0.5f;   // a hit whose alpha is below this does not exist for any ray
   // Tangent-space normal map (glTF normalTexture, MTL norm; read linear, never sRGB-decoded):
   // n = ((2r - 1) normalScale, (2g - 1) normalScale, 2b - 1) in the triangle's UV tangent frame.
@@ -51,6 +52,7 @@ struct MaterialDesc {
   float ior = 1.5f;               // dielectric, thin_dielectric: inside / outside
   float kindAlpha = 0.0f;         // conductor: GGX alpha (0: smooth)
   float metallic = 0.0f, roughness = 1.0f;  // metal_rough (glTF factors)
+  std::string metallicRoughnessTexture;  // glTF metallicRoughnessTexture (linear; B x metallic, G x roughness)
 };
 
 // Per-corner attributes of a triangle (SceneTriangle::attributes says which are present).
@@ -77,14 +79,15 @@ struct EnvironmentDesc {
 
 // A light that is not a triangle (scene key "lights", host/scene/lights_key.cpp; kinds in
 // kernels/shared/light_kinds.h). Radiometric units: W/sr, W/m^2.
-enum class PunctualKind { Point, Spot, Directional };
+enum class PunctualKind { Point, Spot, Directional, Sun };
 struct LightDesc {
   PunctualKind kind = PunctualKind::Point;
   glm::vec3 position{0.0f};           // point, spot
   glm::vec3 direction{0.0f, 0.0f, -1.0f};  // unit: the way the light travels (spot: its axis)
-  glm::vec3 color{1.0f};              // intensity (point, spot) or irradiance (directional)
+  glm::vec3 color{1.0f};              // intensity (point, spot) or irradiance (directional, sun)
   float cutoffDegrees = 20.0f;        // spot: no light beyond this angle from the axis
   float beamDegrees = 15.0f;          // spot: full intensity within this angle
+  float angleDegrees = 0.53f;         // sun: angular diameter of its disk, in (0, 180)
 };
 
 struct Scene {
@@ -109,6 +112,13 @@ struct Scene {
 // with one line "<file>: <key or line>: <problem>" for any bad input; unknown JSON keys are
 // appended to warnings ("<file>: <key>: unknown key, ignored").
 Scene loadScene(const std::string& path, std::vector<std::string>& warnings);
+
+// What a bare mesh (a model file given without a scene file) renders with, the one rule for it:
+// integrator path, and, when the model has no light of its own (no emitting material, no glTF
+// punctual light), a constant white sky of radiance kDefaultSkyRadiance (a diffuse surface open
+// to all of it shows its albedo). The command line's --integrator and --env replace these.
+constexpr float kDefaultSkyRadiance = 1.0f;
+void applyBareModelDefaults(Scene& scene);
 
 // Appends the triangles and materials of one OBJ (+ its MTL) to scene, drops degenerate triangles
 // (counted in degenerateDropped) and grows the bounds. Throws InputError "<obj>: line N: <problem>".

@@ -61,6 +61,11 @@ std::string sceneDigest(const Scene& scene) {
     const std::uint64_t textures[2] = {fileContentHash(m.albedoTexture, files), fileContentHash(m.alphaTexture, files)};
     append(bytes, textures, sizeof textures);
     bytes.add(m.twoSidedEmission ? "2" : "1");
+    if (!m.emissionTexture.empty()) {  // only when there is one: the digests of other scenes stay
+      bytes.add("emission_texture");
+      const std::uint64_t e = fileContentHash(m.emissionTexture, files);
+      append(bytes, &e, sizeof e);
+    }
     // The kind only when it is not the first (diffuse): every scene from before kinds existed keeps
     // its digest, so its checkpoints still resume.
     if (m.kind != MCL_MATERIAL_diffuse) {  // and its parameters (diffuse reads none of them)
@@ -69,6 +74,10 @@ std::string sceneDigest(const Scene& scene) {
       appendVec(bytes, m.k);
       const float p[4] = {m.ior, m.kindAlpha, m.metallic, m.roughness};
       append(bytes, p, sizeof p);
+      if (!m.metallicRoughnessTexture.empty()) {
+        const std::uint64_t mr = fileContentHash(m.metallicRoughnessTexture, files);
+        append(bytes, &mr, sizeof mr);
+      }
     }
   }
   if (scene.environment.enabled) {  // the map by its content
@@ -89,6 +98,7 @@ std::string sceneDigest(const Scene& scene) {
       appendVec(bytes, l.color);
       append(bytes, &l.cutoffDegrees, sizeof l.cutoffDegrees);
       append(bytes, &l.beamDegrees, sizeof l.beamDegrees);
+      if (l.kind == PunctualKind::Sun) append(bytes, &l.angleDegrees, sizeof l.angleDegrees);
     }
   }
   bytes.add("camera");

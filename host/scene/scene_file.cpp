@@ -138,29 +138,58 @@ json parseJson(const Ctx& ctx, const std::string& text) {
 
 // ---- camera ---------------------------------------------------------------------------------
 
-Camera parseCamera(const Ctx& ctx, const json& root) {
-  const json& j = requireObject(ctx, requireKey(ctx, root, "", "camera"), "camera");
+// The scene file's camera: "auto", or an object whose missing position / target / up / fov_y come
+// from the automatic framing (defaultCamera, the front view) once the meshes are loaded, and whose
+// missing width / height are 512 (what a bare mesh gets).
+struct CameraKeys {
+  Camera cam;
+  bool position = false, target = false, up = false, fovY = false;
+  bool framed() const { return !(position && target && fovY); }  // needs the automatic framing
+};
+
+CameraKeys parseCamera(const Ctx& ctx, const json& root) {
+  const json& v = requireKey(ctx, root, "", "camera");
+  CameraKeys k;
+  if (v.is_string() && v.get<std::string>() == "auto") return k;
+  if (v.is_string()) fail(ctx, "camera", "expected an object or \"auto\", got '" + oneLine(v.get<std::string>(), 40) + "'");
+  const json& j = requireObject(ctx, v, "camera");
   warnUnknownKeys(ctx, j, "camera",
                   {"position", "target", "up", "fov_y", "width", "height", "aperture_radius", "focus_distance"});
-  Camera cam;
-  cam.position = getVec3(ctx, requireKey(ctx, j, "camera", "position"), "camera.position");
-  cam.target = getVec3(ctx, requireKey(ctx, j, "camera", "target"), "camera.target");
-  if (const json* up = optionalKey(j, "up")) cam.up = getVec3(ctx, *up, "camera.up");
-  cam.fovY = getFloat(ctx, requireKey(ctx, j, "camera", "fov_y"), "camera.fov_y");
+  Camera& cam = k.cam;
+  if (const json* p = optionalKey(j, "position")) cam.position = getVec3(ctx, *p, "camera.position"), k.position = true;
+  if (const json* t = optionalKey(j, "target")) cam.target = getVec3(ctx, *t, "camera.target"), k.target = true;
+  if (const json* up = optionalKey(j, "up")) cam.up = getVec3(ctx, *up, "camera.up"), k.up = true;
+  if (const json* f = optionalKey(j, "fov_y")) cam.fovY = getFloat(ctx, *f, "camera.fov_y"), k.fovY = true;
   const std::string sideRule = "a positive integer up to " + std::to_string(kMaxImageSide);
   const char* side = sideRule.c_str();
-  cam.width = getPositiveInt(ctx, requireKey(ctx, j, "camera", "width"), "camera.width", kMaxImageSide, side);
-  cam.height = getPositiveInt(ctx, requireKey(ctx, j, "camera", "height"), "camera.height", kMaxImageSide, side);
-  const CameraProblem p = cameraBasisProblem(cam);  // the one camera rule (scene/camera_basis.h)
-  if (!p.empty()) fail(ctx, p.key, p.problem);
-  if (const json* v = optionalKey(j, "aperture_radius")) {
-    cam.apertureRadius = getFloat(ctx, *v, "camera.aperture_radius");
+  if (const json* w = optionalKey(j, "width")) cam.width = getPositiveInt(ctx, *w, "camera.width", kMaxImageSide, side);
+  if (const json* h = optionalKey(j, "height")) cam.height = getPositiveInt(ctx, *h, "camera.height", kMaxImageSide, side);
+  if (!k.framed()) {
+    const CameraProblem p = cameraBasisProblem(cam);  // the one camera rule (scene/camera_basis.h)
+    if (!p.empty()) fail(ctx, p.key, p.problem);
+  }
+  if (const json* a = optionalKey(j, "aperture_radius")) {
+    cam.apertureRadius = getFloat(ctx, *a, "camera.aperture_radius");
     if (!(cam.apertureRadius >= 0.0f)) fail(ctx, "camera.aperture_radius", "must be >= 0");
   }
-  if (const json* v = optionalKey(j, "focus_distance")) {
-    cam.focusDistance = getFloat(ctx, *v, "camera.focus_distance");
+  if (const json* f = optionalKey(j, "focus_distance")) {
+    cam.focusDistance = getFloat(ctx, *f, "camera.focus_distance");
     if (!(cam.focusDistance > 0.0f)) fail(ctx, "camera.focus_distance", "must be > 0");
   }
+  return k;
+}
+
+// The keys a scene file left out, from the automatic framing of the loaded scene's bounds.
+Camera completeCamera(const Ctx& ctx, const Scene& scene, const CameraKeys& k) {
+  if (!k.framed()) return k.cam;
+  const Camera a = defaultCamera(scene.boundsMin, scene.boundsMax, k.cam.width, k.cam.height);
+  Camera cam = k.cam;
+  if (!k.position) cam.position = a.position;
+  if (!k.target) cam.target = a.target;
+  if (!k.up) cam.up = a.up;
+  if (!k.fovY) cam.fovY = a.fovY;
+  const CameraProblem p = cameraBasisProblem(cam);
+  if (!p.empty()) fail(ctx, p.key, p.problem + " (with the automatic framing for the keys not given)");
   return cam;
 }
 
@@ -268,10 +297,22 @@ Scene loadBareMesh(const std::string& path, std::vector<std::string>& warnings) 
                     "cannot frame the model: " + p.key + " " + p.problem +
                         "; write a scene file with a camera for it");
   checkEmissionPower(scene);
+  applyBareModelDefaults(scene);
   return scene;
 }
 
 }  // namespace
+
+void applyBareModelDefaults(Scene& scene) {
+  scene.render.integrator = Integrator::Path;
+  bool lit = !scene.lights.empty();
+  for (const SceneTriangle& t : scene.triangles)
+    lit = lit || scene.materials[t.material].emission != glm::vec3(0.0f);
+  if (lit) return;
+  scene.environment = EnvironmentDesc{};
+  scene.environment.enabled = true;
+  scene.environment.radiance = glm::vec3(kDefaultSkyRadiance);
+}
 
 Scene loadScene(const std::string& path, std::vector<std::string>& warnings) {
   if (meshFormatOf(path) != MeshFormat::Unknown) return loadBareMesh(path, warnings);
@@ -284,7 +325,8 @@ Scene loadScene(const std::string& path, std::vector<std::string>& warnings) {
   scene.inputFiles.push_back(path);
   // The camera is required unless a glTF mesh brings one (the scene file's wins when both are given).
   const bool hasCamera = optionalKey(root, "camera") != nullptr;
-  if (hasCamera) scene.camera = parseCamera(ctx, root);
+  CameraKeys cameraKeys;
+  if (hasCamera) cameraKeys = parseCamera(ctx, root);
   scene.render = parseRender(ctx, root);
   if (const json* env = optionalKey(root, "environment")) {
     scene.environment = parseEnvironmentKey(path, *env, warnings);
@@ -293,8 +335,10 @@ Scene loadScene(const std::string& path, std::vector<std::string>& warnings) {
   if (const json* lights = optionalKey(root, "lights")) scene.lights = parseLightsKey(ctx, *lights);
   Camera meshCamera;
   const bool hasMeshCamera = loadMeshes(ctx, parseMeshes(ctx, root), scene, &meshCamera);
+  if (hasCamera) scene.camera = completeCamera(ctx, scene, cameraKeys);
   if (!hasCamera) {
-    if (!hasMeshCamera) fail(ctx, "camera", "missing required key (and no glTF mesh has a camera)");
+    if (!hasMeshCamera)
+      fail(ctx, "camera", "missing required key (and no glTF mesh has a camera); \"camera\": \"auto\" frames the scene");
     const CameraProblem p = cameraBasisProblem(meshCamera);
     if (!p.empty())
       fail(ctx, "camera", "missing, and the glTF mesh's camera cannot be used (" + p.key + " " + p.problem + ")");

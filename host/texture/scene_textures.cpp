@@ -19,7 +19,9 @@ namespace montecl {
 
 bool sceneHasTextures(const Scene& scene) {
   for (const MaterialDesc& m : scene.materials)
-    if (!m.albedoTexture.empty() || !m.alphaTexture.empty() || !m.normalTexture.empty()) return true;
+    if (!m.albedoTexture.empty() || !m.alphaTexture.empty() || !m.emissionTexture.empty() ||
+        !m.metallicRoughnessTexture.empty() || !m.normalTexture.empty())
+      return true;
   return false;
 }
 
@@ -64,7 +66,10 @@ void setTextureIndices(std::vector<Material>& materials, const SceneTextures& te
     materials[i].albedo.w = glm::uintBitsToFloat(t.albedo);
     materials[i].alpha.x = glm::uintBitsToFloat(t.alpha);
     materials[i].alpha.z = glm::uintBitsToFloat(t.alphaChannel);
-    materials[i].params1.w = glm::uintBitsToFloat(t.normal);
+    materials[i].maps.x = glm::uintBitsToFloat(t.emission);
+    materials[i].maps.y = glm::uintBitsToFloat(t.metallicRoughness);
+    // One more than the index, 0 none: a zeroed Material (hand-made in tests) has no normal map.
+    materials[i].maps.z = glm::uintBitsToFloat(t.normal == MCL_NO_TEXTURE ? 0u : t.normal + 1u);
   }
 }
 
@@ -170,8 +175,9 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     std::string path, material;
     const char* key = "";
     bool asColour = false, asAlpha = false;
-    // A normal map: its own entry per (path, scale), never shared with colour or alpha, texels the
-    // decoded tangent-space vectors with the scale baked in (normal_map.h).
+    bool asLinear = false;  // a data texture read linear: a File of its own (fileIndex key + kLinear)
+    // A normal map: a File of its own per (path, scale), texels the decoded tangent-space vectors
+    // with the scale baked in (normal_map.h).
     bool asNormal = false;
     float normalScale = 1.0f;
     // After reading: the file's textures (sRGB-decoded colour and/or linear alpha; one when they
@@ -182,6 +188,17 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
   };
   std::vector<File> files;
   std::map<std::string, std::size_t> fileIndex;
+  const std::string kLinear = std::string(1, '\0') + "linear";
+  const auto useLinear = [&](const MaterialDesc& m, const std::string& path, const char* key) {
+    auto [it, added] = fileIndex.emplace(path + kLinear, files.size());
+    if (added) {
+      files.emplace_back();
+      files.back().path = path;
+      files.back().material = m.name;
+      files.back().key = key;
+      files.back().asLinear = true;
+    }
+  };
   const auto use = [&](const MaterialDesc& m, const std::string& path, const char* key, bool colour) {
     auto [it, added] = fileIndex.emplace(path, files.size());
     if (added) {
@@ -195,22 +212,26 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
   const auto normalKey = [](const MaterialDesc& m) {
     char scale[32];
     std::snprintf(scale, sizeof scale, "%a", double(m.normalScale));
-    return std::string("normal\n") + scale + "\n" + m.normalTexture;
+    return m.normalTexture + std::string(1, '\0') + "normal " + scale;
+  };
+  const auto useNormal = [&](const MaterialDesc& m) {
+    auto [it, added] = fileIndex.emplace(normalKey(m), files.size());
+    if (added) {
+      files.emplace_back();
+      files.back().path = m.normalTexture;
+      files.back().material = m.name;
+      files.back().key = "normal texture";
+      files.back().asNormal = true;
+      files.back().normalScale = m.normalScale;
+    }
   };
   for (const MaterialDesc& m : scene.materials) {
     if (colour && !m.albedoTexture.empty()) use(m, m.albedoTexture, "map_Kd", true);
     if (!m.alphaTexture.empty()) use(m, m.alphaTexture, "map_d", false);
-    if (!m.normalTexture.empty()) {
-      auto [it, added] = fileIndex.emplace(normalKey(m), files.size());
-      if (added) {
-        files.emplace_back();
-        files.back().path = m.normalTexture;
-        files.back().material = m.name;
-        files.back().key = "normal texture";
-        files.back().asNormal = true;
-        files.back().normalScale = m.normalScale;
-      }
-    }
+    if (colour && !m.emissionTexture.empty()) use(m, m.emissionTexture, "map_Ke", true);
+    if (colour && !m.metallicRoughnessTexture.empty())
+      useLinear(m, m.metallicRoughnessTexture, "metallicRoughnessTexture");
+    if (colour && !m.normalTexture.empty()) useNormal(m);
   }
   // A file whose finest level alone is over the budget is refused from its header, before it is
   // decoded: the budget would drop that level anyway, and a 69-byte PNG can declare 16384 x 16384.
@@ -240,18 +261,18 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
         f.hasAlpha = image.planes.size() == 2 || image.planes.size() >= 4;
         // Colour: sRGB-decoded when integer. Alpha: the alpha channel (shared with the colour
         // texture), else the first channel, never decoded.
-        if (f.asNormal) {
-          RgbaImage n = rgbaFromImage(image, false);
-          const float s = f.normalScale;
-          for (glm::vec4& t : n.texels) t = glm::vec4((2.0f * t.x - 1.0f) * s, (2.0f * t.y - 1.0f) * s, 2.0f * t.z - 1.0f, 1.0f);
-          f.images.push_back(halfChain(std::move(n)));
-          continue;
-        }
         const bool colourDecode = f.integer;
         const bool alphaDecode = f.hasAlpha && f.integer;
         if (f.asColour || (f.asAlpha && alphaDecode == colourDecode))
           f.images.push_back(halfChain(rgbaFromImage(image, colourDecode)));
         if (f.asAlpha && alphaDecode != colourDecode) f.images.push_back(halfChain(rgbaFromImage(image, alphaDecode)));
+        if (f.asLinear) f.images.push_back(halfChain(rgbaFromImage(image, false)));
+        if (f.asNormal) {  // linear texels (never sRGB), decoded: n = ((2r - 1) s, (2g - 1) s, 2b - 1)
+          RgbaImage n = rgbaFromImage(image, false);
+          const float sc = f.normalScale;
+          for (glm::vec4& t : n.texels) t = glm::vec4((2.0f * t.x - 1.0f) * sc, (2.0f * t.y - 1.0f) * sc, 2.0f * t.z - 1.0f, 1.0f);
+          f.images.push_back(halfChain(std::move(n)));
+        }
       } catch (const InputError& e) {
         std::string why = e.what();
         const std::string prefix = f.path + ": ";
@@ -275,6 +296,10 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
     const MaterialDesc& m = scene.materials[i];
     if (colour && !m.albedoTexture.empty()) out.materials[i].albedo = first[fileIndex.at(m.albedoTexture)];
+    if (colour && !m.emissionTexture.empty()) out.materials[i].emission = first[fileIndex.at(m.emissionTexture)];
+    if (colour && !m.metallicRoughnessTexture.empty())
+      out.materials[i].metallicRoughness = first[fileIndex.at(m.metallicRoughnessTexture + kLinear)];
+    if (colour && !m.normalTexture.empty()) out.materials[i].normal = first[fileIndex.at(normalKey(m))];
     if (!m.alphaTexture.empty()) {
       const std::size_t k = fileIndex.at(m.alphaTexture);
       const File& f = files[k];
@@ -283,7 +308,6 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
       out.materials[i].alpha = first[k] + (second ? 1u : 0u);
       out.materials[i].alphaChannel = f.hasAlpha ? 3u : 0u;
     }
-    if (!m.normalTexture.empty()) out.materials[i].normal = first[fileIndex.at(normalKey(m))];
   }
   packChains(out, std::move(images), budgetBytes, warnings);
   return out;

@@ -1,7 +1,7 @@
 // scene_textures.h: every texture a scene's materials name, loaded once each through
 // OpenImageIO, sRGB-decoded (integer images), mip-mapped and packed into the device's texture
 // tables (kernels/shared/types.h TextureDesc / TextureLevel, RGBA half texels) under a byte budget.
-// Reads Scene::materials' albedoTexture / alphaTexture; writes SceneTextures.
+// Reads Scene::materials' albedoTexture / alphaTexture / emissionTexture; writes SceneTextures.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -22,6 +22,8 @@ struct MaterialTextures {
   std::uint32_t albedo = MCL_NO_TEXTURE;
   std::uint32_t alpha = MCL_NO_TEXTURE;
   std::uint32_t alphaChannel = 0;
+  std::uint32_t emission = MCL_NO_TEXTURE;  // emission texture (colour, like the albedo's)
+  std::uint32_t metallicRoughness = MCL_NO_TEXTURE;  // read linear (no sRGB decode)
   std::uint32_t normal = MCL_NO_TEXTURE;  // decoded tangent-space vectors (normal_map.h)
 };
 
@@ -52,7 +54,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes,
 std::vector<Triangle> alphaFlaggedTriangles(const std::vector<Triangle>& tris, const SceneTextures& textures);
 
 // Writes the texture indices and alpha channel of textures.materials[i] into device material i
-// (kernels/shared/types.h Material: albedo.w, alpha.x, alpha.z).
+// (kernels/shared/types.h Material: albedo.w, alpha.x, alpha.z, maps.x, maps.y).
 void setTextureIndices(std::vector<Material>& materials, const SceneTextures& textures);
 
 // Packs already decoded level-0 images (files names them in messages) the same way: what

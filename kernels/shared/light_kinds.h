@@ -19,7 +19,8 @@
   LIGHT(area)        /* emitting triangles, picked by power, a uniform point on one */         \
   LIGHT(point)       /* isotropic points (W/sr); delta */                                     \
   LIGHT(spot)        /* points with Mitsuba 3's spot falloff; delta */                        \
-  LIGHT(directional) /* one direction from infinitely far away (W/m^2); delta */
+  LIGHT(directional) /* one direction from infinitely far away (W/m^2); delta */                \
+  LIGHT(sun)         /* a distant disk (W/m^2 in all), sampled by solid angle; NEE only */
 
 #define MCL_LIGHT_KIND_TAG(kind) MCL_LIGHT_##kind,
 enum { MCL_LIGHT_KINDS(MCL_LIGHT_KIND_TAG) MCL_LIGHT_KIND_COUNT };

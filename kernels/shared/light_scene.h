@@ -3,7 +3,7 @@
 // sample for next-event estimation) and LightHit (where a BSDF ray found a light). Pure types;
 // compiled by the kernels and by the host.
 #pragma once
-#include "types.h"
+#include "texture.h"
 
 typedef struct {
   MCL_GLOBAL const Triangle* tris;      // BVH order
@@ -13,12 +13,15 @@ typedef struct {
   MCL_GLOBAL const float4* envMap;
   MCL_GLOBAL const float* envCdf;       // may be null where nothing samples
   MCL_GLOBAL const LightRecord* records;  // point, spot, directional, sun; may be null where nothing samples
+  MCL_GLOBAL const TriangleShading* shading;  // per triangle (BVH order): UVs of textured emitters
+  TextureTables tex;                          // emission textures
 } LightScene;
 
 MCL_INLINE LightScene make_light_scene(MCL_GLOBAL const Triangle* tris, MCL_GLOBAL const float4* normals,
                                        MCL_GLOBAL const Material* materials, MCL_GLOBAL const Emitter* emitters,
                                        MCL_GLOBAL const float4* envMap, MCL_GLOBAL const float* envCdf,
-                                       MCL_GLOBAL const LightRecord* records) {
+                                       MCL_GLOBAL const LightRecord* records, MCL_GLOBAL const TriangleShading* shading,
+                                       TextureTables tex) {
   LightScene s;
   s.tris = tris;
   s.normals = normals;
@@ -27,6 +30,8 @@ MCL_INLINE LightScene make_light_scene(MCL_GLOBAL const Triangle* tris, MCL_GLOB
   s.envMap = envMap;
   s.envCdf = envCdf;
   s.records = records;
+  s.shading = shading;
+  s.tex = tex;
   return s;
 }
 
@@ -45,6 +50,7 @@ typedef struct {
   uint kind;  // MCL_LIGHT_<kind>
   uint tri;
   float t;
+  float u, v;  // barycentrics of the hit on tri (where an emission texture is read)
   float3 wi;
 } LightHit;
 

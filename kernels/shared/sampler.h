@@ -15,7 +15,15 @@ MCL_INLINE uint sampler_coupled_to_camera(uint group) {
   return group == MCL_DIM_LIGHT || group == MCL_DIM_PATH + 1u;
 }
 
-MCL_INLINE float4 sobol_uniform4(uint seed, uint pixel, uint sample, uint group) {
+// Sub-sequences: sample s belongs to sub-sequence k = s % splits and is point s / splits of it;
+// each sub-sequence has its own scramble seeds (the seed offset by k), so the K sub-means of a
+// pixel are independent and their spread estimates the error of the pixel's mean (the film's
+// split accumulators, kernels/stages/accumulate.h). splits = 1 is the one sequence per pixel.
+MCL_INLINE uint sobol_split_seed(uint seed, uint splits, uint sample) { return seed + (sample % splits) * 0x9e3779b9u; }
+
+MCL_INLINE float4 sobol_uniform4(uint seed, uint splits, uint pixel, uint sample, uint group) {
+  seed = sobol_split_seed(seed, splits, sample);
+  sample /= splits;
   RngOut p = sobol_owen4_bits(seed, pixel, sample, group);
   if (sampler_coupled_to_camera(group)) {
     RngOut c = sobol_owen4_bits(seed, pixel, sample, MCL_DIM_CAMERA);
@@ -27,6 +35,6 @@ MCL_INLINE float4 sobol_uniform4(uint seed, uint pixel, uint sample, uint group)
 }
 
 MCL_INLINE float4 sample_uniform4(MCL_CONSTANT const FrameParams* f, uint pixel, uint sample, uint group) {
-  if (f->sampler == MCL_SAMPLER_SOBOL) return sobol_uniform4(f->seed, pixel, sample, group);
+  if (f->sampler == MCL_SAMPLER_SOBOL) return sobol_uniform4(f->seed, f->sobolSplits, pixel, sample, group);
   return rng_uniform4(f->seed, pixel, sample, group);
 }

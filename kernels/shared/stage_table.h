@@ -102,7 +102,7 @@
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
   ARG(MCL_GLOBAL const float4*, radiance) ARG(MCL_GLOBAL const float4*, shadowContrib)             \
   ARG(MCL_GLOBAL float4*, mean) ARG(MCL_GLOBAL float4*, meanLo) ARG(MCL_GLOBAL float4*, m2)          \
-  ARG(MCL_GLOBAL float4*, m2Lo)
+  ARG(MCL_GLOBAL float4*, m2Lo) ARG(MCL_GLOBAL float4*, split)
 
 #define MCL_ARGS_record_aov(ARG)                                                                   \
   ARG(uint, waveCount) ARG(MCL_GLOBAL const Triangle*, tris)                                       \

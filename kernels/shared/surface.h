@@ -83,6 +83,8 @@ MCL_INLINE Surface surface_at(SurfaceScene sc, MCL_CONSTANT const FrameParams* f
   Surface s;
   s.frame = surface_frame(sc.tris, sc.normals, sc.shading, h, dir);
   s.frame = apply_normal_map(s.frame, sc.tex, m, tri, &sc.shading[h.tri], xyz(sc.normals[h.tri]), h);
-  s.bsdf = bsdf_from_material(m, hit_albedo(sc.tex, f, m, tri, sc.normals[h.tri], &sc.shading[h.tri], h, dir));
+  float3 albedo = hit_albedo(sc.tex, f, m, tri, sc.normals[h.tri], &sc.shading[h.tri], h, dir);
+  m = hit_metal_rough(sc.tex, f, m, tri, sc.normals[h.tri], &sc.shading[h.tri], h, dir);
+  s.bsdf = bsdf_from_material(m, albedo);
   return s;
 }

@@ -5,6 +5,7 @@
 // the host backend and the host tests.
 #pragma once
 #include "geometry.h"
+#include "lights.h"
 #include "texture.h"
 
 // Texture coordinates of triangle tri (attributes sh) at barycentrics (u, v) of v1 and v2.
@@ -25,16 +26,64 @@ MCL_INLINE float uv_area(MCL_GLOBAL const Triangle* tri, MCL_GLOBAL const Triang
 // (trilinear, footprint from the camera's ray cone, camera_spread_angle(f) * h.t wide there), or
 // Kd without one (then nothing else is read or computed: no cone, no UVs). nA: the triangle's unit
 // geometric normal (xyz) and area (w), as triangle_unit_normal and triangle_area_of give them.
+// Texture tex (not MCL_NO_TEXTURE) at hit h of a camera ray along unit direction dir: trilinear,
+// footprint from the camera's ray cone (as hit_albedo).
+MCL_INLINE float4 hit_texture(TextureTables tt, MCL_CONSTANT const FrameParams* f, uint tex,
+                              MCL_GLOBAL const Triangle* tri, float4 nA, MCL_GLOBAL const TriangleShading* sh,
+                              Hit h, float3 dir) {
+  float coneWidth = camera_spread_angle(f) * h.t;
+  float2 uv = surface_uv(tri, sh, h.u, h.v);
+  float fp = texture_footprint(coneWidth, uv_area(tri, sh), nA.w, dot(xyz(nA), dir));
+  return texture_sample(tt, tex, uv.x, uv.y, fp);
+}
+
 MCL_INLINE float3 hit_albedo(TextureTables tt, MCL_CONSTANT const FrameParams* f, Material m,
                              MCL_GLOBAL const Triangle* tri, float4 nA, MCL_GLOBAL const TriangleShading* sh,
                              Hit h, float3 dir) {
   float3 kd = xyz(m.albedo);
   uint tex = as_uint(m.albedo.w);
   if (tex == MCL_NO_TEXTURE) return kd;
-  float coneWidth = camera_spread_angle(f) * h.t;
-  float2 uv = surface_uv(tri, sh, h.u, h.v);
-  float fp = texture_footprint(coneWidth, uv_area(tri, sh), nA.w, dot(xyz(nA), dir));
-  return kd * xyz(texture_sample(tt, tex, uv.x, uv.y, fp));
+  return kd * xyz(hit_texture(tt, f, tex, tri, nA, sh, h, dir));
+}
+
+// Material m with its metallic-roughness texture applied at hit h (glTF: B metallic, G roughness,
+// multiplying the factors in params0.x, .y; read by the metal_rough kind only); m unchanged without one.
+MCL_INLINE Material hit_metal_rough(TextureTables tt, MCL_CONSTANT const FrameParams* f, Material m,
+                                    MCL_GLOBAL const Triangle* tri, float4 nA, MCL_GLOBAL const TriangleShading* sh,
+                                    Hit h, float3 dir) {
+  uint tex = as_uint(m.maps.y);
+  if (tex == MCL_NO_TEXTURE) return m;
+  float4 t = hit_texture(tt, f, tex, tri, nA, sh, h, dir);
+  m.params0.x *= fmin(fmax(t.z, 0.0f), 1.0f);
+  m.params0.y *= fmin(fmax(t.y, 0.0f), 1.0f);
+  return m;
+}
+
+// Emission of material m on triangle tri (attributes sh) at barycentrics (u, v): Ke, times the
+// emission texture's colour there when the material has one (finest level kept, bilinear: one
+// function of the point, the same for a light sample and for a ray that hits the emitter, so the
+// two strategies of MIS estimate the same integral).
+MCL_INLINE float3 material_emission(TextureTables tt, MCL_GLOBAL const Material* m, MCL_GLOBAL const Triangle* tri,
+                                    MCL_GLOBAL const TriangleShading* sh, float u, float v) {
+  float3 ke = xyz(m->emission);
+  uint tex = as_uint(m->maps.x);
+  bool emits = ke.x > 0.0f || ke.y > 0.0f || ke.z > 0.0f;
+  if (tex == MCL_NO_TEXTURE || !emits) return ke;  // no texture read where Ke is 0
+  float2 uv = surface_uv(tri, sh, u, v);
+  return ke * xyz(texture_bilinear(tt, tt.textures[tex].firstLevel, uv.x, uv.y));
+}
+
+// Luminance per unit area by which the emitter table weights triangle tri of material m: that of
+// Ke, or with an emission texture its mean over the triangle (the host's emitters.cpp keeps it in
+// the attributes' tv.w; a triangle without UVs emits one colour, read at uv (0, 0)).
+MCL_INLINE float emitter_luminance(TextureTables tt, MCL_GLOBAL const Material* m, MCL_GLOBAL const Triangle* tri,
+                                   MCL_GLOBAL const TriangleShading* sh) {
+  float3 ke = xyz(m->emission);
+  bool emits = ke.x > 0.0f || ke.y > 0.0f || ke.z > 0.0f;
+  if (as_uint(m->maps.x) == MCL_NO_TEXTURE || !emits) return luminance(ke);
+  if (as_uint(tri->e2.w) & MCL_ATTR_UV) return sh->tv.w;
+  float3 e = material_emission(tt, m, tri, sh, 0.0f, 0.0f);
+  return luminance(e);
 }
 
 MCL_INLINE TextureTables make_texture_tables(MCL_GLOBAL const TextureDesc* textures,

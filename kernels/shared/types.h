@@ -68,7 +68,8 @@ typedef struct MCL_ALIGN16 {
   float4 n0;  // xyz: normal at v0; w: u of v0
   float4 n1;  // xyz: normal at v1; w: u of v1
   float4 n2;  // xyz: normal at v2; w: u of v2
-  float4 tv;  // x, y, z: v of v0, v1, v2; w: 0
+  float4 tv;  // x, y, z: v of v0, v1, v2; w: a textured emitter's mean emission luminance over the
+              // triangle (its light-selection weight per area, host emitters.cpp), else 0
 } TriangleShading;
 
 #define MCL_NO_TEXTURE 0xffffffffu
@@ -81,9 +82,14 @@ typedef struct MCL_ALIGN16 {
                     // MCL_MATERIAL_<kind> (as_float bits; shared/material_kinds.h; 0: diffuse)
   float4 params0;   // the kind's own parameters (bsdf_<kind>.h <kind>_from_material; 0 for diffuse)
   float4 params1;
+  float4 maps;      // x: emission texture index (as_float bits, MCL_NO_TEXTURE: Ke alone; Le = Ke x its
+                    // colour, surface_texture.h material_emission); y: metallic-roughness texture
+                    // index (B metallic, G roughness, times the factors; MCL_NO_TEXTURE: none); z: normal
+                    // map index + 1 (as_float bits; 0: none, so a zeroed Material has none; decoded
+                    // tangent-space vectors, normal_map.h); w: 0
 } Material;
 // Floats per Material: the stride of the packet stages' gathers of material fields.
-#define MCL_MATERIAL_FLOATS 24
+#define MCL_MATERIAL_FLOATS 28
 
 // A ray: origin.w unused (0), dir.w = tmax.
 typedef struct MCL_ALIGN16 {
@@ -141,7 +147,9 @@ typedef struct MCL_ALIGN16 {
   uint pointFirst, pointCount, spotFirst, spotCount;  // each kind's range of light records
   uint directionalFirst, directionalCount, sunFirst, sunCount;
   uint sampler;              // MCL_SAMPLER_INDEPENDENT | MCL_SAMPLER_SOBOL
-  uint pad0, pad1, pad2;
+  uint emissionTextured;     // 1 when a material's emission is textured (the packet stages then run scalar)
+  uint sobolSplits;          // sobol: independently scrambled sub-sequences, sample s in s % this (>= 1)
+  uint pad2;
 } FrameParams;
 
 // One emitting triangle. It is picked with probability area * luminance(Le) / emitterPower;
@@ -198,7 +206,7 @@ static_assert(offsetof(WideNode, child) == 192, "WideNode layout");
 static_assert(sizeof(Triangle) == 48, "Triangle layout");
 static_assert(sizeof(TriangleShading) == 64, "TriangleShading layout");
 static_assert(offsetof(TriangleShading, tv) == 48, "TriangleShading layout");
-static_assert(sizeof(Material) == 96 && sizeof(Material) == 4 * MCL_MATERIAL_FLOATS, "Material layout");
+static_assert(sizeof(Material) == 112 && sizeof(Material) == 4 * MCL_MATERIAL_FLOATS, "Material layout");
 static_assert(offsetof(Material, params0) == 64, "Material layout");
 static_assert(sizeof(Ray) == 32, "Ray layout");
 static_assert(sizeof(Hit) == 16, "Hit layout");

@@ -9,6 +9,9 @@
 // every pixel's samples are added one by one in sample order. One work item per touched pixel.
 // Film state per pixel (four float4): mean = rgb hi part, w = count bits 0..31 (as_float);
 // meanLo = rgb lo part, w = count bits 32..63; m2, m2Lo = M2's hi and lo parts, w = 0.
+// With the sobol sampler's K > 1 sub-sequences (FrameParams::sobolSplits; sample s belongs to
+// s % K), also split[K pixel + k]: sub-sequence k's running mean (rgb, float) and count (w, uint
+// bits), from which the film estimates the error of the mean (image/film.h meanVariance).
 #pragma once
 #include "../shared/ffloat.h"
 #include "stage_common.h"
@@ -23,10 +26,20 @@ MCL_INLINE void stage_accumulate(const accumulate_args* a, uint j) {
   // The w lanes compute like the others: zero them (a count's bits as a float may be a denormal).
   mean.hi.w = 0.0f;
   mean.lo.w = 0.0f;
+  const uint splits = f->sobolSplits;
   for (uint i = j; i < a->waveCount; i += f->activeCount) {
     float4 value = a->radiance[i];
     for (uint k = 0; k < f->shadowSlots; ++k) value += a->shadowContrib[i * f->shadowSlots + k];
     value.w = 0.0f;
+    if (f->sampler == MCL_SAMPLER_SOBOL && splits > 1u) {
+      uint at = pixel * splits + item_sample(f, a->waveStart, i) % splits;
+      float4 sub = a->split[at];
+      uint c = as_uint(sub.w) + 1u;
+      sub.w = 0.0f;
+      sub += (value - sub) / (float)c;
+      sub.w = as_float(c);
+      a->split[at] = sub;
+    }
     n += 1;
     float4 delta = (value - mean.hi) - mean.lo;
     mean = ff_add_float(mean, delta / (float)n);

@@ -51,7 +51,9 @@ MCL_INLINE void stage_accumulate_lanes(const accumulate_args* a, uint j0) {
   const uint ac = f->activeCount, count = a->waveCount;
   const uint limit = count < ac ? count : ac;  // pixels touched by the wave
   if (j0 >= limit) return;
-  if (v_packet_partial(j0, limit)) {
+  // The sobol sampler's sub-sequence accumulators (accumulate.h) are updated by the scalar body:
+  // per lane, the same bits.
+  if (v_packet_partial(j0, limit) || (f->sampler == MCL_SAMPLER_SOBOL && f->sobolSplits > 1u)) {
     for (uint k = 0; k < MCL_LANES; ++k) stage_accumulate(a, j0 + k);
     return;
   }

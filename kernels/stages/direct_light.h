@@ -11,6 +11,7 @@
 #include "../shared/light_kinds.h"
 #include "../shared/light_point.h"
 #include "../shared/light_spot.h"
+#include "../shared/light_sun.h"
 #include "stage_common.h"
 
 // The light of a ray along wi that got hit h: the triangle hit (an area light, emitting or not),
@@ -20,6 +21,8 @@ MCL_INLINE LightHit light_hit(Hit h, float3 wi) {
   l.kind = h.tri == MCL_NO_HIT ? MCL_LIGHT_environment : MCL_LIGHT_area;
   l.tri = h.tri;
   l.t = h.t;
+  l.u = h.u;
+  l.v = h.v;
   l.wi = wi;
   return l;
 }

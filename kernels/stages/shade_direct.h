@@ -15,7 +15,8 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   MCL_CONSTANT const FrameParams* f = a->frame;
   Hit h = a->hits[i];
   float3 dir = xyz(a->rays[i].dir);
-  LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf, a->lightRecords);
+  LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf, a->lightRecords,
+                                       a->shading, make_texture_tables(a->textures, a->textureLevels, a->texels));
   Ray bounce;  // no BRDF ray unless set below; stored once on every way out
   bounce.origin = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
   bounce.dir = make_float4(0.0f, 0.0f, 1.0f, -1.0f);

@@ -13,7 +13,8 @@ MCL_INLINE void stage_shade_direct_hit(const shade_direct_hit_args* a, uint i) {
   if (!(a->bounce[i].dir.w > 0.0f)) return;
   float3 wi = xyz(a->bounce[i].dir);
   // Nothing here samples a light: no emitter table, no environment CDF.
-  LightScene lights = make_light_scene(a->tris, a->normals, a->materials, 0, a->envMap, 0, 0);
+  LightScene lights = make_light_scene(a->tris, a->normals, a->materials, 0, a->envMap, 0, 0, a->shading,
+                                       make_texture_tables(a->textures, a->textureLevels, a->texels));
   LightHit lh = light_hit(bh, wi);  // the environment on a miss (no Le without one)
   float3 le = light_eval(f, lights, lh);
   if (!(le.x > 0.0f || le.y > 0.0f || le.z > 0.0f)) return;

@@ -44,7 +44,8 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
   float3 L = bounce == 0 ? make_float3(0.0f, 0.0f, 0.0f) : xyz(a->radiance[id]);
   Hit h = a->hits[k];
   float3 dir = xyz(a->rays[k].dir);
-  LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf, a->lightRecords);
+  LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf, a->lightRecords,
+                                       a->shading, make_texture_tables(a->textures, a->textureLevels, a->texels));
   LightHit lh = light_hit(h, dir);  // the environment on a miss, else the hit triangle
   if (h.tri == MCL_NO_HIT) {
     a->radiance[id] = with_w(L + beta * path_miss(f, lights, lh, bounce, beta4.w), 0.0f);

@@ -109,8 +109,8 @@ MCL_INLINE vRngOut v_sobol4(vuint i) {
   return r;
 }
 
-MCL_INLINE vRngOut v_sobol_owen4_bits(uint seed, vuint pixel, vuint sample, uint set) {
-  vRngOut h = v_pcg4d(pixel, v_u(mcl_mix32(set)), v_u(seed), v_u(0x50b01u));
+MCL_INLINE vRngOut v_sobol_owen4_bits(vuint seed, vuint pixel, vuint sample, uint set) {
+  vRngOut h = v_pcg4d(pixel, v_u(mcl_mix32(set)), seed, v_u(0x50b01u));
   vRngOut p = v_sobol4(v_owen_scramble(sample, h.x));
   p.x = v_owen_scramble(p.x, h.y);
   p.y = v_owen_scramble(p.y, h.z);
@@ -119,10 +119,12 @@ MCL_INLINE vRngOut v_sobol_owen4_bits(uint seed, vuint pixel, vuint sample, uint
   return p;
 }
 
-MCL_INLINE vfloat4 v_sobol_uniform4(uint seed, vuint pixel, vuint sample, uint group) {
-  vRngOut p = v_sobol_owen4_bits(seed, pixel, sample, group);
+MCL_INLINE vfloat4 v_sobol_uniform4(uint seed, uint splits, vuint pixel, vuint sample, uint group) {
+  vuint seeds = seed + (sample % splits) * 0x9e3779b9u;  // sobol_split_seed
+  sample = sample / splits;
+  vRngOut p = v_sobol_owen4_bits(seeds, pixel, sample, group);
   if (sampler_coupled_to_camera(group)) {
-    vRngOut c = v_sobol_owen4_bits(seed, pixel, sample, MCL_DIM_CAMERA);
+    vRngOut c = v_sobol_owen4_bits(seeds, pixel, sample, MCL_DIM_CAMERA);
     p.w = p.y;
     p.y = c.z;
     p.z = c.w;
@@ -137,7 +139,7 @@ MCL_INLINE vfloat4 v_sobol_uniform4(uint seed, vuint pixel, vuint sample, uint g
 
 // sample_uniform4 (shared/sampler.h) per lane.
 MCL_INLINE vfloat4 v_sample_uniform4(MCL_CONSTANT const FrameParams* f, vuint pixel, vuint sample, uint group) {
-  if (f->sampler == MCL_SAMPLER_SOBOL) return v_sobol_uniform4(f->seed, pixel, sample, group);
+  if (f->sampler == MCL_SAMPLER_SOBOL) return v_sobol_uniform4(f->seed, f->sobolSplits, pixel, sample, group);
   return v_rng_uniform4(f->seed, pixel, sample, group);
 }
 
