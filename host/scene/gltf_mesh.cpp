@@ -148,7 +148,11 @@ std::uint32_t Loader::material(int index) {
   if (mrTexture)
     d.metallicRoughnessTexture = texturePath(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
                                              "metallicRoughnessTexture");
-  if (g.normalTexture.index >= 0) unused.add("normalTexture", where, "normalTexture not used by montecl, ignored");
+  if (g.normalTexture.index >= 0) {
+    d.normalScale = static_cast<float>(g.normalTexture.scale);
+    if (!std::isfinite(d.normalScale)) loadFail(file, where, "normalTexture scale must be finite");
+    d.normalTexture = texturePath(g.normalTexture.index, g.normalTexture.texCoord, "normalTexture");
+  }
   if (g.occlusionTexture.index >= 0) unused.add("occlusionTexture", where, "occlusionTexture not used by montecl, ignored");
   materialIndex[i] = static_cast<std::int64_t>(scene.materials.size());
   scene.materials.push_back(d);
@@ -168,7 +172,9 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
   };
   for (const auto& a : p.attributes)
     if (a.first != "POSITION" && a.first != "NORMAL" && a.first != "TEXCOORD_0")
-      unused.add("attribute " + a.first, where, "attribute " + oneLine(a.first, 40) + " not used by montecl, ignored");
+      unused.add("attribute " + a.first, where,
+                 a.first == "TANGENT" ? "attribute TANGENT not used by montecl (normal maps use tangents made per triangle from TEXCOORD_0), ignored"
+                                      : "attribute " + oneLine(a.first, 40) + " not used by montecl, ignored");
   if (!p.targets.empty()) unused.add("morph", where, "morph targets not used by montecl (the base mesh is rendered)");
   if (attr("POSITION") < 0) loadFail(file, where, "primitive without POSITION");
   const std::vector<float> pos = readFloatAccessor(file, m, attr("POSITION"), 3, where + ".POSITION", AccessorUse::Position);

@@ -181,6 +181,10 @@ void checkGltfJson(const std::string& path, const char* text, std::size_t size) 
   each("images", noNul);
   each("buffers", noNul);
   each("materials", [&](const nlohmann::json& o, const std::string& w) {
+    // tinygltf keeps the default 1 for a normalTexture scale that is not a number.
+    if (const auto nt = o.find("normalTexture"); nt != o.end() && nt->is_object())
+      if (const auto sc = nt->find("scale"); sc != nt->end() && !sc->is_number())
+        loadFail(path, w + ".normalTexture.scale", "must be a number (got " + oneLine(sc->dump(), 40) + ")");
     const auto ext = o.find("extensions");
     if (ext == o.end() || !ext->is_object()) return;
     const auto es = ext->find("KHR_materials_emissive_strength");

@@ -39,7 +39,7 @@ void parseMaterial(const JsonCtx& ctx, const json& j, const std::string& prefix,
   warnUnknownKeys(ctx, j, prefix,
                   {"type", "albedo", "albedo_texture", "alpha_texture", "alpha_cutoff", "emission",
                    "two_sided_emission", "specular", "specular_exponent", "eta", "k", "metal", "alpha",
-                   "roughness", "ior", "metallic", "emission_texture"});
+                   "roughness", "ior", "metallic", "emission_texture", "normal_texture", "normal_scale"});
   MaterialDesc& d = o.value;
   if (const json* v = optionalKey(j, "type")) {  // the material kind (kernels/shared/material_kinds.h)
     const std::string name = getString(ctx, *v, prefix + ".type", "a material type");
@@ -60,6 +60,13 @@ void parseMaterial(const JsonCtx& ctx, const json& j, const std::string& prefix,
     o.twoSided = true, d.twoSidedEmission = getBool(ctx, *v, prefix + ".two_sided_emission");
   if (const json* v = optionalKey(j, "emission_texture"))
     o.emissionTexture = true, d.emissionTexture = texturePath(ctx, *v, prefix + ".emission_texture");
+  if (const json* v = optionalKey(j, "normal_texture"))
+    o.normalTexture = true, d.normalTexture = texturePath(ctx, *v, prefix + ".normal_texture");
+  if (const json* v = optionalKey(j, "normal_scale")) {
+    o.normalScale = true;
+    d.normalScale = getFloat(ctx, *v, prefix + ".normal_scale");
+    if (!std::isfinite(d.normalScale)) jsonFail(ctx, prefix + ".normal_scale", "must be finite");
+  }
   if (const json* v = optionalKey(j, "specular")) {
     o.specular = true;
     d.specular = getColor(ctx, *v, prefix + ".specular");
@@ -161,6 +168,8 @@ void overrideMaterials(Scene& scene, std::size_t firstTri, const MeshEntry& mesh
         d.emissionTexture = o.value.emissionTexture;
         if (!o.emission) d.emission = glm::vec3(1.0f);  // the texture as it is
       }
+      if (o.normalTexture) d.normalTexture = o.value.normalTexture;
+      if (o.normalScale) d.normalScale = o.value.normalScale;
       if (o.twoSided) d.twoSidedEmission = o.value.twoSidedEmission;
       if (o.specular) d.specular = o.value.specular;
       if (o.specularExponent) d.specularExponent = o.value.specularExponent;
@@ -225,6 +234,7 @@ void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, std:
   if (mesh.material.albedoTexture) scene.inputFiles.push_back(mesh.material.value.albedoTexture);
   if (mesh.material.alphaTexture) scene.inputFiles.push_back(mesh.material.value.alphaTexture);
   if (mesh.material.emissionTexture) scene.inputFiles.push_back(mesh.material.value.emissionTexture);
+  if (mesh.material.normalTexture) scene.inputFiles.push_back(mesh.material.value.normalTexture);
 }
 
 void recomputeBounds(Scene& scene) {

@@ -22,7 +22,7 @@ bool isBlank(char c) { return c == ' ' || c == '\t'; }
 // What montecl reads from an MTL; every other statement is reported once per kind.
 bool isUsed(const std::string& key) {
   // Pm / Pr always pick a kind; illum and Ni only for glass (scanMtl, mtlKind).
-  static const std::set<std::string> used = {"newmtl", "Kd", "Ke", "Ks", "Ns", "map_Kd", "map_d", "map_Ke", "Pm", "Pr"};
+  static const std::set<std::string> used = {"newmtl", "Kd", "Ke", "Ks", "Ns", "map_Kd", "map_d", "map_Ke", "Pm", "Pr", "norm"};
   return used.count(key) > 0;
 }
 
@@ -31,7 +31,7 @@ std::string unusedText(const std::string& key) {
       {"Ka", "ambient colour"},          {"illum", "illumination model"},  {"Ni", "index of refraction"},
       {"Tf", "transmission filter"},     {"map_Ka", "ambient texture"},    {"map_Ks", "specular texture"},
       {"map_Ns", "exponent texture"},    {"bump", "bump map"},             {"map_bump", "bump map"},
-      {"map_Bump", "bump map"},          {"disp", "displacement map"},     {"norm", "normal map"},
+      {"map_Bump", "bump map"},          {"disp", "displacement map"},
       {"refl", "reflection map"},        {"Pr", "PBR roughness"},
       {"Pm", "PBR metallic"},            {"map_Pr", "roughness texture"},  {"map_Pm", "metallic texture"}};
   auto it = what.find(key);
@@ -269,7 +269,13 @@ std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<t
       if (src.block && !src.has("Ke")) d.emission = glm::vec3(1.0f);
       if (d.emission != glm::vec3(0.0f)) d.emissionTexture = texturePath(src, "map_Ke", m.emissive_texname, look);
     }
-    for (const std::string* t : {&d.albedoTexture, &d.alphaTexture, &d.emissionTexture})
+    // norm: a tangent-space normal map (linear), -bm its scale (glTF's normalTexture scale).
+    if (!m.normal_texname.empty() || src.has("norm")) {
+      d.normalTexture = texturePath(src, "norm", m.normal_texname, look);
+      d.normalScale = static_cast<float>(m.normal_texopt.bump_multiplier);
+      if (!std::isfinite(d.normalScale)) src.fail("norm", "norm -bm must be a finite number");
+    }
+    for (const std::string* t : {&d.albedoTexture, &d.alphaTexture, &d.emissionTexture, &d.normalTexture})
       if (!t->empty() && textures.insert(*t).second) scene.inputFiles.push_back(*t);
     const std::string where = "material '" + oneLine(m.name, 60) + "'";
     const float factor = checkGlossyMaterial(oneLine(src.file, 4096), where, d);

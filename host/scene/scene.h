@@ -40,6 +40,10 @@ struct MaterialDesc {
   std::string alphaTexture;   // map_d, or the albedo texture's alpha (glTF MASK); empty: opaque
   std::string emissionTexture;  // map_Ke, glTF emissiveTexture (colour, like the albedo's): Le = Ke x it
   float alphaCutoff = 0.5f;   // a hit whose alpha is below this does not exist for any ray
+  // Tangent-space normal map (glTF normalTexture, MTL norm; read linear, never sRGB-decoded):
+  // n = ((2r - 1) normalScale, (2g - 1) normalScale, 2b - 1) in the triangle's UV tangent frame.
+  std::string normalTexture;
+  float normalScale = 1.0f;
   glm::vec3 specular{0.0f};   // Ks (the GGX glossy lobe), 0: Lambertian only
   float specularExponent = 0.0f;  // Ns
   // The kinds' own parameters (scene keys, host/scene/material_params.cpp; docs/scene-format.md);

@@ -66,6 +66,12 @@ std::string sceneDigest(const Scene& scene) {
       const std::uint64_t e = fileContentHash(m.emissionTexture, files);
       append(bytes, &e, sizeof e);
     }
+    if (!m.normalTexture.empty()) {  // only when there is one, as the emission texture's
+      bytes.add("normal_texture");
+      const std::uint64_t n = fileContentHash(m.normalTexture, files);
+      append(bytes, &n, sizeof n);
+      append(bytes, &m.normalScale, sizeof m.normalScale);
+    }
     // The kind only when it is not the first (diffuse): every scene from before kinds existed keeps
     // its digest, so its checkpoints still resume.
     if (m.kind != MCL_MATERIAL_diffuse) {  // and its parameters (diffuse reads none of them)

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <sstream>
@@ -19,7 +20,7 @@ namespace montecl {
 bool sceneHasTextures(const Scene& scene) {
   for (const MaterialDesc& m : scene.materials)
     if (!m.albedoTexture.empty() || !m.alphaTexture.empty() || !m.emissionTexture.empty() ||
-        !m.metallicRoughnessTexture.empty())
+        !m.metallicRoughnessTexture.empty() || !m.normalTexture.empty())
       return true;
   return false;
 }
@@ -67,6 +68,8 @@ void setTextureIndices(std::vector<Material>& materials, const SceneTextures& te
     materials[i].alpha.z = glm::uintBitsToFloat(t.alphaChannel);
     materials[i].maps.x = glm::uintBitsToFloat(t.emission);
     materials[i].maps.y = glm::uintBitsToFloat(t.metallicRoughness);
+    // One more than the index, 0 none: a zeroed Material (hand-made in tests) has no normal map.
+    materials[i].maps.z = glm::uintBitsToFloat(t.normal == MCL_NO_TEXTURE ? 0u : t.normal + 1u);
   }
 }
 
@@ -173,6 +176,10 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     const char* key = "";
     bool asColour = false, asAlpha = false;
     bool asLinear = false;  // a data texture read linear: a File of its own (fileIndex key + kLinear)
+    // A normal map: a File of its own per (path, scale), texels the decoded tangent-space vectors
+    // with the scale baked in (normal_map.h).
+    bool asNormal = false;
+    float normalScale = 1.0f;
     // After reading: the file's textures (sRGB-decoded colour and/or linear alpha; one when they
     // coincide), mip-mapped, and whether it has an alpha channel.
     std::vector<HalfChain> images;
@@ -202,12 +209,29 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     }
     (colour ? files[it->second].asColour : files[it->second].asAlpha) = true;
   };
+  const auto normalKey = [](const MaterialDesc& m) {
+    char scale[32];
+    std::snprintf(scale, sizeof scale, "%a", double(m.normalScale));
+    return m.normalTexture + std::string(1, '\0') + "normal " + scale;
+  };
+  const auto useNormal = [&](const MaterialDesc& m) {
+    auto [it, added] = fileIndex.emplace(normalKey(m), files.size());
+    if (added) {
+      files.emplace_back();
+      files.back().path = m.normalTexture;
+      files.back().material = m.name;
+      files.back().key = "normal texture";
+      files.back().asNormal = true;
+      files.back().normalScale = m.normalScale;
+    }
+  };
   for (const MaterialDesc& m : scene.materials) {
     if (colour && !m.albedoTexture.empty()) use(m, m.albedoTexture, "map_Kd", true);
     if (!m.alphaTexture.empty()) use(m, m.alphaTexture, "map_d", false);
     if (colour && !m.emissionTexture.empty()) use(m, m.emissionTexture, "map_Ke", true);
     if (colour && !m.metallicRoughnessTexture.empty())
       useLinear(m, m.metallicRoughnessTexture, "metallicRoughnessTexture");
+    if (colour && !m.normalTexture.empty()) useNormal(m);
   }
   // A file whose finest level alone is over the budget is refused from its header, before it is
   // decoded: the budget would drop that level anyway, and a 69-byte PNG can declare 16384 x 16384.
@@ -243,6 +267,12 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
           f.images.push_back(halfChain(rgbaFromImage(image, colourDecode)));
         if (f.asAlpha && alphaDecode != colourDecode) f.images.push_back(halfChain(rgbaFromImage(image, alphaDecode)));
         if (f.asLinear) f.images.push_back(halfChain(rgbaFromImage(image, false)));
+        if (f.asNormal) {  // linear texels (never sRGB), decoded: n = ((2r - 1) s, (2g - 1) s, 2b - 1)
+          RgbaImage n = rgbaFromImage(image, false);
+          const float sc = f.normalScale;
+          for (glm::vec4& t : n.texels) t = glm::vec4((2.0f * t.x - 1.0f) * sc, (2.0f * t.y - 1.0f) * sc, 2.0f * t.z - 1.0f, 1.0f);
+          f.images.push_back(halfChain(std::move(n)));
+        }
       } catch (const InputError& e) {
         std::string why = e.what();
         const std::string prefix = f.path + ": ";
@@ -269,6 +299,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     if (colour && !m.emissionTexture.empty()) out.materials[i].emission = first[fileIndex.at(m.emissionTexture)];
     if (colour && !m.metallicRoughnessTexture.empty())
       out.materials[i].metallicRoughness = first[fileIndex.at(m.metallicRoughnessTexture + kLinear)];
+    if (colour && !m.normalTexture.empty()) out.materials[i].normal = first[fileIndex.at(normalKey(m))];
     if (!m.alphaTexture.empty()) {
       const std::size_t k = fileIndex.at(m.alphaTexture);
       const File& f = files[k];

@@ -24,6 +24,7 @@ struct MaterialTextures {
   std::uint32_t alphaChannel = 0;
   std::uint32_t emission = MCL_NO_TEXTURE;  // emission texture (colour, like the albedo's)
   std::uint32_t metallicRoughness = MCL_NO_TEXTURE;  // read linear (no sRGB decode)
+  std::uint32_t normal = MCL_NO_TEXTURE;  // decoded tangent-space vectors (normal_map.h)
 };
 
 struct SceneTextures {

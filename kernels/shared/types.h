@@ -84,7 +84,9 @@ typedef struct MCL_ALIGN16 {
   float4 params1;
   float4 maps;      // x: emission texture index (as_float bits, MCL_NO_TEXTURE: Ke alone; Le = Ke x its
                     // colour, surface_texture.h material_emission); y: metallic-roughness texture
-                    // index (B metallic, G roughness, times the factors; MCL_NO_TEXTURE: none); zw: 0
+                    // index (B metallic, G roughness, times the factors; MCL_NO_TEXTURE: none); z: normal
+                    // map index + 1 (as_float bits; 0: none, so a zeroed Material has none; decoded
+                    // tangent-space vectors, normal_map.h); w: 0
 } Material;
 // Floats per Material: the stride of the packet stages' gathers of material fields.
 #define MCL_MATERIAL_FLOATS 28

@@ -3,7 +3,7 @@
 // untextured, Lambertian surfaces of the diffuse kind (no glossy lobe) lit by emitter triangles: Le seen directly, the
 // light samples (an emitter by power, a uniform point on it; one atomic per packet per light
 // sample) and the BSDF ray (cosine lobe). Lanes that hit anything else (shading normals, an albedo
-// texture, a glossy lobe) run the scalar body after the packet; so does every item of a packet
+// texture, a normal map, a glossy lobe) run the scalar body after the packet; so does every item of a packet
 // when an environment or a light record (point, spot, directional) lights the scene or an emission
 // is textured, and of a partial last packet.
 #pragma once
@@ -50,11 +50,14 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
   v_gather4(mf + 8, mat, MCL_MATERIAL_FLOATS, &ksx, &ksy, &ksz, &ksw);  // specular: Ks, alpha
   vfloat kax, kay, kaz, kaw;
   v_gather4(mf + 12, mat, MCL_MATERIAL_FLOATS, &kax, &kay, &kaz, &kaw);  // alpha test; w: the material kind (uint bits)
+  vfloat kmx, kmy, kmz, kmw;
+  v_gather4(mf + 24, mat, MCL_MATERIAL_FLOATS, &kmx, &kmy, &kmz, &kmw);  // maps: z the normal map (+1)
   // bsdf_make's specProb, as the scalar body computes it: the packet takes the lanes where it is 0.
   vfloat ls = v_luminance(v3_make(ksx, ksy, ksz)), ld = v_luminance(v3_make(kdx, kdy, kdz));
   vfloat specProb = vsel(ls > 0.0f, ls / (ls + ld), v_f(0.0f));
   vmask packet = hit & ((v_as_uint(e2w) & MCL_ATTR_NORMALS) == 0u) & (v_as_uint(kdw) == MCL_NO_TEXTURE) &
-                 (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse);
+                 (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse) &
+                 (v_as_uint(kmz) == 0u);  // no normal map (Material::maps.z)
   vmask scalar = hit & v_not(packet);
   vfloat dx, dy, dz, dw;
   v_load4_stride((MCL_GLOBAL const float*)(a->rays + first) + 4, 8, &dx, &dy, &dz, &dw);

@@ -5,7 +5,7 @@
 // no glossy lobe, lit by emitter triangles: emission seen (MIS weighted after a BSDF bounce), the
 // next-event light samples (an emitter by power, a uniform point on it; one atomic per packet per
 // light sample), the cosine-lobe continuation with Russian roulette (one atomic per packet). Lanes
-// that hit anything else run the scalar body after the packet; so does every entry of a packet
+// that hit anything else (a normal map too) run the scalar body after the packet; so does every entry of a packet
 // when an environment or a light record (point, spot, directional) lights the scene, there are
 // no emitters or an emission is textured, and of a partial last packet.
 // Queue order: the packet's shadow queries and continuations fill their entries in lane order, so
@@ -50,10 +50,13 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
   v_gather4(mf + 4, mat, MCL_MATERIAL_FLOATS, &kex, &key, &kez, &kew);   // emission: Ke, two-sided
   v_gather4(mf + 8, mat, MCL_MATERIAL_FLOATS, &ksx, &ksy, &ksz, &ksw);   // specular: Ks, alpha
   v_gather4(mf + 12, mat, MCL_MATERIAL_FLOATS, &kax, &kay, &kaz, &kaw);  // alpha test; w: the material kind (uint bits)
+  vfloat kmx, kmy, kmz, kmw;
+  v_gather4(mf + 24, mat, MCL_MATERIAL_FLOATS, &kmx, &kmy, &kmz, &kmw);  // maps: z the normal map (+1)
   vfloat lks = v_luminance(v3_make(ksx, ksy, ksz)), lkd = v_luminance(v3_make(kdx, kdy, kdz));
   vfloat specProb = vsel(lks > 0.0f, lks / (lks + lkd), v_f(0.0f));  // bsdf_make's
   vmask flat = hit & ((v_as_uint(e2w) & MCL_ATTR_NORMALS) == 0u) & (v_as_uint(kdw) == MCL_NO_TEXTURE) &
-               (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse);
+               (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse) &
+               (v_as_uint(kmz) == 0u);  // no normal map (Material::maps.z)
   vmask scalar = hit & v_not(flat);
   vmask mine = v_not(scalar);  // the packet's lanes: misses and the common hits
 

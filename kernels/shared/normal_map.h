@@ -1,0 +1,71 @@
+// normal_map.h: the tangent-space normal map of a hit: reads the material's normal texture
+// (Material::maps.z, one more than its index, 0: none; texels hold the decoded tangent-space
+// vector ((2r - 1) s, (2g - 1) s, 2b - 1), s the map's scale, baked in by the host), the triangle's
+// UVs and edges, and writes the perturbed shading normal of a SurfaceFrame. Pure; compiled by the
+// kernels, the host backend and the host tests.
+#pragma once
+#include "shading.h"
+#include "surface_texture.h"
+
+// 1 when material m has a normal map.
+MCL_INLINE int has_normal_map(Material m) { return as_uint(m.maps.z) != 0u; }
+
+// The unit tangent-space normal t = (t.x, t.y, t.z) (t need not be unit) in world space for a
+// triangle with edges e1 = v1 - v0, e2 = v2 - v0 and UV deltas (du1, dv1), (du2, dv2) of v1, v2
+// from v0, about the unit normal N (the unoriented shading normal). MikkTSpace's rule on one
+// triangle: T = dP/du made orthogonal to N (Gram-Schmidt), the handedness sign = sign of
+// dot(cross(N, dP/du), dP/dv), B = sign x cross(N, T) (glTF's bitangent from a TANGENT with
+// w = sign), n = normalize(t.x T + t.y B + t.z N). v runs up the image (montecl's UVs; glTF's are
+// flipped on reading), so green is +v, glTF's and OpenGL's convention. The zero vector when the UVs
+// are degenerate or the result is no usable direction.
+MCL_INLINE float3 tangent_to_world(float3 N, float3 e1, float3 e2, float du1, float dv1, float du2, float dv2,
+                                   float3 t) {
+  float det = du1 * dv2 - du2 * dv1;
+  float sd = det < 0.0f ? -1.0f : 1.0f;
+  float3 T = (e1 * dv2 - e2 * dv1) * sd;  // along dP/du (|det| dP/du)
+  float3 B = (e2 * du1 - e1 * du2) * sd;  // along dP/dv
+  float hand = dot(cross(N, T), B) < 0.0f ? -1.0f : 1.0f;
+  float3 To = T - N * dot(N, T);
+  float tl2 = dot(To, To);
+  To = To * (1.0f / sqrt(fmax(tl2, 1e-30f)));
+  float3 Bo = cross(N, To) * hand;
+  float3 n = To * t.x + Bo * t.y + N * t.z;
+  float nl2 = dot(n, n);
+  n = n * (1.0f / sqrt(fmax(nl2, 1e-30f)));
+  int ok = det != 0.0f && fabs(det) < INFINITY && tl2 > 1e-30f && tl2 < INFINITY && nl2 > 1e-20f && nl2 < INFINITY;
+  return ok ? n : make_float3(0.0f, 0.0f, 0.0f);
+}
+
+// The frame fr with its shading normal replaced by the mapped normal n (tangent_to_world about the
+// unoriented normal N), put on ng's side by the sign that puts N there (so both faces of a
+// two-sided surface see the same relief). Unchanged (bit for bit) when t = (0, 0, z) (a flat map),
+// when n is the zero vector, or when n falls on or below the geometric surface (the unmapped
+// shading normal is kept: a mapped normal never points into the surface it shades).
+MCL_INLINE SurfaceFrame normal_mapped_frame(SurfaceFrame fr, float3 N, float3 n, float3 t) {
+  float3 no = dot(N, fr.ng) < 0.0f ? -n : n;
+  int use = (t.x != 0.0f || t.y != 0.0f) && dot(no, fr.ng) > 0.0f;
+  SurfaceFrame s = fr;
+  s.ns = use ? no : fr.ns;
+  s.smooth = use ? 1 : fr.smooth;
+  return s;
+}
+
+// The frame fr of hit h on triangle tri (attributes sh, unit geometric normal ng0, unoriented)
+// under material m's normal map; fr unchanged without a map or without UVs. The map is read at
+// the finest level kept, bilinear (deterministic, as the alpha test: the same normal for every
+// ray that reaches the point).
+MCL_INLINE SurfaceFrame apply_normal_map(SurfaceFrame fr, TextureTables tt, Material m, MCL_GLOBAL const Triangle* tri,
+                                         MCL_GLOBAL const TriangleShading* sh, float3 ng0, Hit h) {
+  if (!has_normal_map(m) || !(as_uint(tri->e2.w) & MCL_ATTR_UV)) return fr;
+  uint tex = as_uint(m.maps.z) - 1u;
+  float2 uv = surface_uv(tri, sh, h.u, h.v);
+  float3 t = xyz(texture_bilinear(tt, tt.textures[tex].firstLevel, uv.x, uv.y));
+  float3 N = ng0;
+  if (as_uint(tri->e2.w) & MCL_ATTR_NORMALS) {
+    float3 ni = interpolate_normal(xyz(sh->n0), xyz(sh->n1), xyz(sh->n2), h.u, h.v);
+    N = dot(ni, ni) > 0.0f ? ni : ng0;
+  }
+  float3 n = tangent_to_world(N, xyz(tri->e1), xyz(tri->e2), sh->n1.w - sh->n0.w, sh->tv.y - sh->tv.x,
+                              sh->n2.w - sh->n0.w, sh->tv.z - sh->tv.x, t);
+  return normal_mapped_frame(fr, N, n, t);
+}
