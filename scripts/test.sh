@@ -14,7 +14,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # Each step's wall time and the CPU time of its processes (bash's `times`: user + system of the
-# waited-for children), printed as a table at the end: on a shared machine wall time is noisy.
+# waited-for children), printed as each step ends and as a table on exit: on a shared machine wall
+# time is noisy, CPU time much less.
 steps=()
 mark_wall=$SECONDS
 mark_cpu=0
@@ -26,13 +27,14 @@ step_done() {
   times >"$times_file"  # not in a subshell: that one's children are not these
   cpu=$(cpu_so_far)
   steps+=("$(printf '%-22s %6d s wall %6d s cpu' "$1" $((SECONDS - mark_wall)) $((cpu - mark_cpu)))")
+  echo "test: ${steps[-1]}" >&2
   mark_wall=$SECONDS
   mark_cpu=$cpu
 }
 # A clean checkout has no compiler cache: batched (unity) compiles halve the build's CPU time.
 export MONTECL_UNITY_BUILD=${MONTECL_UNITY_BUILD:-ON}
 times_file=$(mktemp)
-trap 'rm -f "$times_file"; printf "test: %s\n" "${steps[@]}" >&2' EXIT
+trap 'rm -f "$times_file"; [ ${#steps[@]} = 0 ] || printf "test: %s\n" "steps so far:" "${steps[@]}" >&2' EXIT
 bash scripts/setup.sh
 if [ "${MONTECL_NO_INTEL_OPENCL:-0}" != 1 ]; then
   bash scripts/setup.sh --intel-opencl ||

@@ -80,7 +80,7 @@ RTCScene buildScene(RTCDevice device, const std::vector<SceneTriangle>& tris, Al
   return scene;
 }
 
-double elapsedMs(std::chrono::steady_clock::time_point t0) {
+double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
@@ -110,7 +110,7 @@ EmbreeTracer::EmbreeTracer(const std::vector<SceneTriangle>& tris, unsigned thre
     impl_->scene = buildScene(impl_->device, tris, filter, alphaTested);
     auto t0 = std::chrono::steady_clock::now();
     rtcCommitScene(impl_->scene);
-    buildMs_ = elapsedMs(t0);
+    buildMs_ = msSince(t0);
   }
   if (rtcGetDeviceError(impl_->device) != RTC_ERROR_NONE) throw RuntimeError("Embree: scene build failed");
 }
@@ -158,7 +158,7 @@ double EmbreeTracer::closest(const std::vector<Ray>& rays, std::vector<float>& t
       if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) t[i] = rh.ray.tfar;
     }
   }, kRayGrain);
-  return elapsedMs(t0);
+  return msSince(t0);
 }
 
 double EmbreeTracer::occluded(const std::vector<Ray>& rays, std::vector<std::uint8_t>& occ) const {
@@ -174,7 +174,7 @@ double EmbreeTracer::occluded(const std::vector<Ray>& rays, std::vector<std::uin
       occ[i] = ray.tfar == -INFINITY ? 1 : 0;
     }
   }, kRayGrain);
-  return elapsedMs(t0);
+  return msSince(t0);
 }
 
 #else  // no Embree
