@@ -3,13 +3,14 @@
 # each loader's harness over its seed corpus plus a fixed number of mutated inputs with a fixed
 # seed, so a harness that no longer links or a loader that crashes on a seed or a near mutant
 # fails the suite. The long runs are scripts/fuzz.sh (docs/fuzzing.md).
-# scripts/fuzz_smoke.sh [inputs per loader, default 2000]
+# scripts/fuzz_smoke.sh [inputs per loader, default 2000]; MONTECL_UNITY_BUILD=ON as in build.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh --fuzz
 runs=${1:-2000}
 start=$(date +%s)
-CC=clang-14 CXX=clang++-14 cmake -S . -B build-fuzz -DMONTECL_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+CC=clang-14 CXX=clang++-14 cmake -S . -B build-fuzz -DMONTECL_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+      -DMONTECL_UNITY_BUILD="${MONTECL_UNITY_BUILD:-OFF}" >/dev/null
 cmake --build build-fuzz -j"$(nproc)" --target fuzz >/dev/null
 built=$(date +%s)
 rm -rf build-fuzz/seeds build-fuzz/smoke

@@ -13,6 +13,28 @@
 # Open Image Denoise (setup.sh --oidn), so the --denoise tests run (MONTECL_NO_OIDN=1: not installed).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# Each step's wall time and the CPU time of its processes (bash's `times`: user + system of the
+# waited-for children), printed as each step ends and as a table on exit: on a shared machine wall
+# time is noisy, CPU time much less.
+steps=()
+mark_wall=$SECONDS
+mark_cpu=0
+cpu_so_far() {
+  awk 'NR == 2 { n = split($0, f, /[ ms]+/); s = 0; for (i = 1; i + 1 <= n; i += 2) s += f[i] * 60 + f[i + 1]; print int(s + 0.5) }' "$times_file"
+}
+step_done() {
+  local cpu
+  times >"$times_file"  # not in a subshell: that one's children are not these
+  cpu=$(cpu_so_far)
+  steps+=("$(printf '%-22s %6d s wall %6d s cpu' "$1" $((SECONDS - mark_wall)) $((cpu - mark_cpu)))")
+  echo "test: ${steps[-1]}" >&2
+  mark_wall=$SECONDS
+  mark_cpu=$cpu
+}
+# A clean checkout has no compiler cache: batched (unity) compiles halve the build's CPU time.
+export MONTECL_UNITY_BUILD=${MONTECL_UNITY_BUILD:-ON}
+times_file=$(mktemp)
+trap 'rm -f "$times_file"; [ ${#steps[@]} = 0 ] || printf "test: %s\n" "steps so far:" "${steps[@]}" >&2' EXIT
 bash scripts/setup.sh
 if [ "${MONTECL_NO_INTEL_OPENCL:-0}" != 1 ]; then
   bash scripts/setup.sh --intel-opencl ||
@@ -30,11 +52,18 @@ if [ "${MONTECL_NO_OIDN:-0}" != 1 ]; then
   bash scripts/setup.sh --oidn ||
     echo "test: Open Image Denoise could not be installed; the denoise tests will skip" >&2
 fi
+step_done setup
 bash scripts/build.sh
+step_done build
 ctest --test-dir build --output-on-failure -j"$(nproc)"
+step_done tests
 if [ "${MONTECL_SKIP_SANITIZE:-0}" != 1 ]; then
-  bash scripts/sanitize.sh
+  bash scripts/sanitize.sh build
+  step_done "asan build"
+  bash scripts/sanitize.sh test
+  step_done "asan tests"
 fi
 if [ "${MONTECL_SKIP_FUZZ:-0}" != 1 ]; then
   bash scripts/fuzz_smoke.sh
+  step_done "fuzz build + runs"
 fi

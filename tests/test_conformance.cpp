@@ -121,7 +121,7 @@ TEST_CASE("conformance: Intel's CPU OpenCL runtime (scripts/with_intel_opencl.sh
 
 // scripts/oclgrind_check.sh: --check-api --data-races --uninitialized, kernels built with
 // -cl-opt-disable (see the script); it fails on any Oclgrind report.
-TEST_CASE("conformance: Oclgrind reports no API error, data race or uninitialised value" * doctest::test_suite("cli slow")) {
+TEST_CASE("conformance: Oclgrind reports no API error, data race or uninitialised value" * doctest::test_suite("cli slow uninstrumented")) {
   MCL_SKIP_UNLESS(std::system("oclgrind --version > /dev/null 2>&1") == 0,
                   "oclgrind not installed (apt-get install oclgrind)");
   CliResult r = runProgram({"bash", std::string(MONTECL_SOURCE_DIR) + "/scripts/oclgrind_check.sh", MONTECL_EXE, "--json"});

@@ -243,7 +243,7 @@ TEST_CASE("sobol: the sub-sequence error estimate matches the spread over 40 see
 // seeds at the maximum count) is within the target over the pixels that are not exact with K = 8
 // sub-sequences; with the default K = 4 the estimate has 3 degrees of freedom per pixel, pixels
 // that underestimate stop early, and the real RMS error is up to 1.3 times the target (measured 1.21).
-TEST_CASE("adaptive sampling with sobol meets its target on 99% of pixels, and the real error too" * doctest::test_suite("opencl slow")) {
+TEST_CASE("adaptive sampling with sobol meets its target on 99% of pixels, and the real error too" * doctest::test_suite("opencl slow uninstrumented")) {
   for (const auto& [splits, allowed] : {std::pair<int, double>{4, 1.3}, std::pair<int, double>{8, 1.0}}) {
     Scene s = easyAndHardScene(24);
     s.render.sampler = montecl::Sampler::Sobol;

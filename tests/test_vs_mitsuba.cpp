@@ -56,7 +56,7 @@ bool monteclHasPath() {
   MCL_SKIP_UNLESS(exists(sharedScenes() + "/cornell-box/scene.json"), "no shared scenes at " << sharedScenes())
 
 TEST_CASE("vs_mitsuba: Cornell box, direct MIS, agrees with Mitsuba 3 per pixel" *
-          doctest::test_suite("cli shared-scenes slow")) {
+          doctest::test_suite("cli shared-scenes slow uninstrumented")) {
   MCL_SKIP_UNLESS_MITSUBA();
   CliResult r = runVsMitsuba({"--spp", "256", "--integrator", "direct", "--direct-sampling", "mis"});
   INFO(r.out << r.err);
@@ -65,7 +65,7 @@ TEST_CASE("vs_mitsuba: Cornell box, direct MIS, agrees with Mitsuba 3 per pixel"
 }
 
 TEST_CASE("vs_mitsuba: Cornell box, path at max depth 3 and unlimited, agrees with Mitsuba 3 per pixel" *
-          doctest::test_suite("cli shared-scenes slow")) {
+          doctest::test_suite("cli shared-scenes slow uninstrumented")) {
   MCL_SKIP_UNLESS_MITSUBA();
   MCL_SKIP_UNLESS(monteclHasPath(), "montecl has no --integrator path yet");
   for (const char* depth : {"3", "-1"}) {
@@ -78,7 +78,7 @@ TEST_CASE("vs_mitsuba: Cornell box, path at max depth 3 and unlimited, agrees wi
 }
 
 TEST_CASE("vs_mitsuba: FAIL (exit 1) when montecl's red wall has albedo 0.5 instead of 0.63" *
-          doctest::test_suite("cli shared-scenes slow")) {
+          doctest::test_suite("cli shared-scenes slow uninstrumented")) {
   MCL_SKIP_UNLESS_MITSUBA();
   montecl_test::TempDir dir;
   const std::string box = sharedScenes() + "/cornell-box/";
@@ -117,7 +117,7 @@ const std::vector<std::string> kKindsArgs = {"--spp", "512", "--integrator", "pa
 }  // namespace
 
 TEST_CASE("vs_mitsuba: Cornell box with glass, rough gold and mirror spheres, path depth 3, agrees per 8x8 block" *
-          doctest::test_suite("cli shared-scenes slow")) {
+          doctest::test_suite("cli shared-scenes slow uninstrumented")) {
   MCL_SKIP_UNLESS_MITSUBA();
   montecl_test::TempDir dir;
   CliResult r = runVsMitsuba(kKindsArgs, kindsScene(dir, "kinds", {}));
@@ -127,7 +127,7 @@ TEST_CASE("vs_mitsuba: Cornell box with glass, rough gold and mirror spheres, pa
 }
 
 TEST_CASE("vs_mitsuba: FAIL (exit 1) when montecl's glass has ior 1.3 and its gold is copper" *
-          doctest::test_suite("cli shared-scenes slow")) {
+          doctest::test_suite("cli shared-scenes slow uninstrumented")) {
   MCL_SKIP_UNLESS_MITSUBA();
   montecl_test::TempDir dir;
   const std::string right = kindsScene(dir, "kinds", {});
@@ -202,7 +202,7 @@ CliResult runLightsVsMitsuba(const std::string& scene, const std::vector<std::st
 
 TEST_CASE("vs_mitsuba: point, spot and directional lights over a floor and a box agree with Mitsuba 3 per pixel "
           "(path at max depth 3; direct mis for point and spot)" *
-          doctest::test_suite("cli slow")) {
+          doctest::test_suite("cli slow uninstrumented")) {
   MCL_SKIP_UNLESS(exists(mitsubaVenvPython()),
                   "no Mitsuba venv at " << mitsubaVenvPython() << " (run scripts/setup.sh --mitsuba)");
   struct Case {
@@ -220,7 +220,7 @@ TEST_CASE("vs_mitsuba: point, spot and directional lights over a floor and a box
   }
 }
 
-TEST_CASE("vs_mitsuba: FAIL (exit 1) when montecl's point light is 5% too bright" * doctest::test_suite("cli slow")) {
+TEST_CASE("vs_mitsuba: FAIL (exit 1) when montecl's point light is 5% too bright" * doctest::test_suite("cli slow uninstrumented")) {
   MCL_SKIP_UNLESS(exists(mitsubaVenvPython()),
                   "no Mitsuba venv at " << mitsubaVenvPython() << " (run scripts/setup.sh --mitsuba)");
   montecl_test::TempDir dir;

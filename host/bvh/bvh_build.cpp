@@ -53,7 +53,7 @@ using namespace bvhbuild;
 
 namespace {
 
-bool finite(const glm::vec3& v) {
+bool finiteVertex(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
@@ -116,7 +116,7 @@ Bvh buildBvhCapped(const std::vector<SceneTriangle>& tris, const BvhBuildOptions
           p.hi = glm::max(glm::max(t.v[0], t.v[1]), t.v[2]);
           p.id = static_cast<std::uint32_t>(i);
           p.pad = 0;
-          if (!(finite(t.v[0]) && finite(t.v[1]) && finite(t.v[2])) && bad[slot] == n)
+          if (!(finiteVertex(t.v[0]) && finiteVertex(t.v[1]) && finiteVertex(t.v[2])) && bad[slot] == n)
             bad[slot] = i;
           box.grow(p.lo, p.hi);
           cbox.grow(p.centroid());
