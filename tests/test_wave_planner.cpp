@@ -163,8 +163,9 @@ TEST_CASE("planned waves: progress after every wave of at most the cap, and the 
       REQUIRE(r.done.size() == r.stats.waves);  // one callback per wave
       REQUIRE(r.done.size() >= (total + 199) / 200);
       // The first wave: the planner's 13 items, whole blocks of the round's samples per pixel
-      // (kernels/stages/stage_common.h).
-      const std::uint64_t block = std::uint64_t(1) << sample_block_shift(resolveLanes(0, selectDevice("")), 0, s.render.spp);
+      // (kernels/stages/stage_common.h; blocks of one sample under a time limit).
+      const std::uint64_t block =
+          limit > 0.0 ? 1 : std::uint64_t(1) << sample_block_shift(resolveLanes(0, selectDevice("")), 0, s.render.spp);
       CHECK(r.done.front() == (block < 13 ? 13 - 13 % block : 13));
       std::uint64_t last = 0;
       for (std::uint64_t d : r.done) {

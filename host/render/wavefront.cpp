@@ -323,8 +323,11 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
     filmCurrent = false;
     if (!schedule.next(film, active, from, to, remaining)) break;
     const std::uint64_t sampleBase = m.options.firstSample + from;
-    // Blocks of up to W samples per pixel: a packet's items are then one pixel's samples.
-    const unsigned blockShift = sample_block_shift(run.lanes(), sampleBase, to - from);
+    // Blocks of up to W samples per pixel: a packet's items are then one pixel's samples. Not under
+    // a time limit: there every pixel gets a sample before any gets a second (even a short limit
+    // leaves no pixel empty, and counts differ by at most one).
+    const unsigned blockShift =
+        m.options.timeLimit > 0.0 ? 0u : sample_block_shift(run.lanes(), sampleBase, to - from);
     loop.setActive(active.size(), stats.samples + remaining, blockShift);
     run.setActivePixels(active, blockShift);
     going = loop.runSamples(sampleBase, to - from);
