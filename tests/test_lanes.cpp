@@ -7,7 +7,6 @@
 #include <doctest/doctest.h>
 
 #include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
@@ -74,13 +73,6 @@ TEST_CASE("packet stages: W per device, --lanes values, and the stage table's pa
   CHECK(resolveLanes(4, d) == 4);
 }
 
-namespace {
-std::string fileBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-}  // namespace
-
 TEST_CASE("packet stages: adaptive sampling (active lists out of order, wrapping packets) matches the host backend" *
           doctest::test_suite("cli")) {
   const std::string scene = sharedScenes() + "/cornell-box/scene.json";
@@ -106,7 +98,7 @@ TEST_CASE("packet stages: adaptive sampling (active lists out of order, wrapping
       cl.insert(cl.end(), {"--lanes", lanes, "-o", dir.file("cl.pfm")});
       CliResult r = runMontecl(cl);
       REQUIRE_MESSAGE(r.exitCode == 0, r.err);
-      CHECK(fileBytes(dir.file("cl.pfm")) == fileBytes(dir.file("host.pfm")));
+      CHECK(readAll(dir.file("cl.pfm")) == readAll(dir.file("host.pfm")));
     }
   }
 }

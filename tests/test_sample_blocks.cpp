@@ -8,7 +8,6 @@
 #include <doctest/doctest.h>
 
 #include <fstream>
-#include <iterator>
 #include <map>
 #include <string>
 #include <vector>
@@ -18,13 +17,6 @@
 #include "skip.h"
 
 using namespace montecl_test;
-
-namespace {
-std::string fileBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-}  // namespace
 
 TEST_CASE("sample blocks: the block shift divides the round, at most the lane width" * doctest::test_suite("cpu")) {
   CHECK(sample_block_shift(16, 0, 1024) == 4);
@@ -124,7 +116,7 @@ TEST_CASE("sample blocks: renders with blocks of 4, 8, 16 samples and cut waves 
       cl.insert(cl.end(), {"--lanes", lanes, "-o", dir.file("cl.pfm")});
       CliResult r = runMontecl(cl);
       REQUIRE_MESSAGE(r.exitCode == 0, r.err);
-      CHECK(fileBytes(dir.file("cl.pfm")) == fileBytes(dir.file("host.pfm")));
+      CHECK(readAll(dir.file("cl.pfm")) == readAll(dir.file("host.pfm")));
     }
   }
 }
