@@ -45,6 +45,17 @@ MCL_FUSED_WRAP(accumulate)
 MCL_FUSED_WRAP(shade_path)
 MCL_FUSED_WRAP(path_gather)
 
+// Runs `body` (naming `at`, the packet's first item) for each of the group's `packets` packets from
+// `first` below `count`. Stage by stage over the whole group, not packet by packet through every
+// stage: each stage's code and tables (the BVH for a traversal) stay hot in cache for the group,
+// whose own rays, hits and slots are few enough to stay there too.
+#define MCL_FUSED_PACKETS(packets, count, body)              \
+  for (uint p = 0; p < (packets); ++p) {                    \
+    const uint at = first + p * MCL_LANES;                  \
+    if (at >= (count)) break;                               \
+    body;                                                   \
+  }
+
 // The group's first item, or the wave's count when group g lies past its end.
 MCL_INLINE uint fused_group_first(MCL_CONSTANT const FrameParams* f, uint waveCount, uint g) {
   const ulong first = (ulong)g * ((ulong)MCL_LANES << f->sampleBlockShift);
@@ -77,13 +88,9 @@ MCL_INLINE void stage_wave_ao(const wave_ao_args* a, uint g) {
   shade_ao_args shade = MCL_FUSED_ARGS(shade_ao);
   shade.queue = queueBase;
   shade.queueCount = localCount;
-  for (uint p = 0; p < block; ++p) {
-    const uint at = first + p * MCL_LANES;
-    if (at >= a->waveCount) break;
-    fused_generate(&gen, at);
-    MCL_FUSED_RUN(intersect, isect, at);
-    fused_shade_ao(&shade, at);
-  }
+  MCL_FUSED_PACKETS(block, a->waveCount, fused_generate(&gen, at));
+  MCL_FUSED_PACKETS(block, a->waveCount, MCL_FUSED_RUN(intersect, isect, at));
+  MCL_FUSED_PACKETS(block, a->waveCount, fused_shade_ao(&shade, at));
   MCL_FUSED_SHADOW_AND_ACCUMULATE(a, g, queueBase, localCount);
 }
 
@@ -103,15 +110,11 @@ MCL_INLINE void stage_wave_direct(const wave_direct_args* a, uint g) {
   shade.queue = queueBase;
   shade.queueCount = localCount;
   shade_direct_hit_args hit = MCL_FUSED_ARGS(shade_direct_hit);
-  for (uint p = 0; p < block; ++p) {
-    const uint at = first + p * MCL_LANES;
-    if (at >= a->waveCount) break;
-    fused_generate(&gen, at);
-    MCL_FUSED_RUN(intersect, isect, at);
-    fused_shade_direct(&shade, at);
-    MCL_FUSED_RUN(intersect, bounceIsect, at);
-    fused_shade_direct_hit(&hit, at);
-  }
+  MCL_FUSED_PACKETS(block, a->waveCount, fused_generate(&gen, at));
+  MCL_FUSED_PACKETS(block, a->waveCount, MCL_FUSED_RUN(intersect, isect, at));
+  MCL_FUSED_PACKETS(block, a->waveCount, fused_shade_direct(&shade, at));
+  MCL_FUSED_PACKETS(block, a->waveCount, MCL_FUSED_RUN(intersect, bounceIsect, at));
+  MCL_FUSED_PACKETS(block, a->waveCount, fused_shade_direct_hit(&hit, at));
   MCL_FUSED_SHADOW_AND_ACCUMULATE(a, g, queueBase, localCount);
 }
 
@@ -136,22 +139,14 @@ MCL_INLINE void stage_wave_path(const wave_path_args* a, uint g) {
   shade.queue = queueBase;
   shade.queueCount = localCount;
   path_gather_args gather = MCL_FUSED_ARGS(path_gather);
-  for (uint p = 0; p < MCL_FUSED_PATH_PACKETS; ++p) {
-    const uint at = first + p * MCL_LANES;
-    if (at >= count) break;
-    if (a->pathBounce == 0u) fused_generate(&gen, at);
-    MCL_FUSED_RUN(intersect, isect, at);
-    fused_shade_path(&shade, at);
-  }
+  if (a->pathBounce == 0u) MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, fused_generate(&gen, at));
+  MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, MCL_FUSED_RUN(intersect, isect, at));
+  MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, fused_shade_path(&shade, at));
   intersect_shadow_args sh = {a->frame, a->nodes, a->tris, queueBase, (MCL_GLOBAL const uint*)localCount,
                               a->shadowContrib, a->nanRays, a->materials, a->shading, a->textures,
                               a->textureLevels, a->texels};
   const uint queries = *localCount;
   for (uint k = 0; k < queries; ++k) stage_intersect_shadow(&sh, k);
   if (queries > 0u) MCL_ATOMIC_ADD(a->queueCount, queries);
-  for (uint p = 0; p < MCL_FUSED_PATH_PACKETS; ++p) {
-    const uint at = first + p * MCL_LANES;
-    if (at >= count) break;
-    fused_path_gather(&gather, at);
-  }
+  MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, fused_path_gather(&gather, at));
 }
