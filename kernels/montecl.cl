@@ -28,6 +28,9 @@
 #define MCL_KERNEL_ATTR_accumulate_aov MCL_FLATTEN
 #define MCL_KERNEL_ATTR_shade_path MCL_FLATTEN
 #define MCL_KERNEL_ATTR_path_gather MCL_FLATTEN
+#define MCL_KERNEL_ATTR_wave_ao
+#define MCL_KERNEL_ATTR_wave_direct
+#define MCL_KERNEL_ATTR_wave_path
 
 // -DMCL_SCALAR_WORK_ITEMS (host/cl/device_tuning.cpp: Intel's CPU runtime) marks every kernel
 // vec_type_hint(float8): the kernels compute in float8 within a work item, so that compiler does

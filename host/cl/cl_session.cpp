@@ -47,9 +47,9 @@ std::size_t ClSession::localSize(const cl::Kernel& k) const {
   return std::max<std::size_t>(1, std::min(workGroupSize_, maxSize));
 }
 
-void ClSession::launch(cl::Kernel& k, std::uint64_t n, cl::Event* event) {
+void ClSession::launch(cl::Kernel& k, std::uint64_t n, cl::Event* event, std::size_t local) {
   if (n == 0) return;
-  std::size_t local = localSize(k);
+  local = local ? std::min(local, localSize(k)) : localSize(k);
   std::size_t global = ((n + local - 1) / local) * local;
   try {
     queue_.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(global), cl::NDRange(local), nullptr, event);

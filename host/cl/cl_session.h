@@ -31,7 +31,8 @@ class ClSession {
 
   // Launches k over n work items (global size rounded up to whole work-groups); event: receives
   // the launch's event (left empty when n is 0).
-  void launch(cl::Kernel& k, std::uint64_t n, cl::Event* event = nullptr);
+  // local: the work-group size (0: localSize(k), the tuned one).
+  void launch(cl::Kernel& k, std::uint64_t n, cl::Event* event = nullptr, std::size_t local = 0);
   // Launches k over n work items, waits, and returns its execution time in ms from the event's
   // profiling info (the session must have been created with profiling).
   double launchTimed(cl::Kernel& k, std::uint64_t n);

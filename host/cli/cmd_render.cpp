@@ -59,7 +59,7 @@ struct RenderArgs {
   float envScale = 1.0f, envRotate = 0.0f;
   std::size_t workGroupSize = 0;
   unsigned lanes = 0;  // packet stages' width W (0: the device's)
-  bool quiet = false, verbose = false, overwrite = false, profile = false;
+  bool quiet = false, verbose = false, overwrite = false, profile = false, noFuse = false;
   jobs::JobArgs job;  // MPI split, --checkpoint, --resume (job/job.h)
 };
 
@@ -227,6 +227,7 @@ int runRender(const RenderArgs& a) {
   options.aovs = !a.aovs.empty() || scene.render.denoise;  // the denoiser's albedo and normal guides
   options.workGroupSize = a.workGroupSize;
   options.lanes = a.lanes;
+  options.fuseWaves = !a.noFuse;
   options.bvhLayout = layout;
   options.verbose = a.verbose;
   options.profile = a.profile;
@@ -348,6 +349,9 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                   "Items per work item of the packet stages, in vector lanes: 1 | 4 | 8 | 16 (default: the "
                   "device's, `montecl devices`; the host backend runs 1); images are the same for every value")
       ->check(CLI::IsMember({1u, 4u, 8u, 16u}));
+  cmd->add_flag("--no-fuse", args->noFuse,
+                "Launch every stage of a wave as its own kernel (default: AO and direct waves run as one fused "
+                "kernel on devices with packet stages); images are the same either way");
   cmd->add_option("--split-budget", args->splitBudget,
                   "BVH spatial splits: at most this many extra triangle references per triangle (0: none)")
       ->check(finiteIn(0.0, 4.0));

@@ -138,9 +138,12 @@ class ClStageRunner final : public StageRunner {
     bindStageArgs(k, s, rays == RayInput::Camera ? bindings_ : bindings_.forRays(rays));
     // A packet stage's work item runs W consecutive items (kernels/shared/lanes.h).
     if (stageRunsPackets(s)) items = (items + program_.lanes() - 1) / program_.lanes();
-    if (!profile_) return cl_.launch(k, items);
+    // A fused stage's work item is a whole group of W C items (kernels/stages/wave_fused.h), so a
+    // wave has few of them: one per work-group, so that every compute unit gets a share.
+    const std::size_t local = stageIsFused(s) ? 1 : 0;
+    if (!profile_) return cl_.launch(k, items, nullptr, local);
     cl::Event event;
-    cl_.launch(k, items, &event);
+    cl_.launch(k, items, &event, local);
     if (event()) launched_.push_back({stageProfileName(s, rays), event});
   }
 

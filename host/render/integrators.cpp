@@ -12,7 +12,7 @@ namespace {
 static_assert(MCL_DIM_PATH_STRIDE == 1u + kMaxLightSamples, "rng.h's path stride must cover every light sample");
 
 // generate -> intersect -> shade_ao -> intersect_shadow (one query per item).
-void aoWave(StageRunner& run, std::uint32_t n, std::uint32_t slots, bool aovs, PathWaveCounts&) {
+void aoWave(StageRunner& run, std::uint32_t n, std::uint32_t slots, bool aovs, bool, PathWaveCounts&) {
   run.launch(Stage::intersect, n);
   run.launch(Stage::shade_ao, n);
   run.launch(Stage::intersect_shadow, std::uint64_t(n) * slots);
@@ -20,7 +20,7 @@ void aoWave(StageRunner& run, std::uint32_t n, std::uint32_t slots, bool aovs, P
 }
 
 // shade_direct queues the light samples and a BRDF ray, whose hit shade_direct_hit weighs.
-void directWave(StageRunner& run, std::uint32_t n, std::uint32_t slots, bool aovs, PathWaveCounts&) {
+void directWave(StageRunner& run, std::uint32_t n, std::uint32_t slots, bool aovs, bool, PathWaveCounts&) {
   run.launch(Stage::intersect, n);
   run.launch(Stage::shade_direct, n);
   run.launch(Stage::intersect, n, RayInput::Bounce);
@@ -30,8 +30,8 @@ void directWave(StageRunner& run, std::uint32_t n, std::uint32_t slots, bool aov
 }
 
 // The bounce loop (render/path_waves.cpp), on the live paths only.
-void pathWave(StageRunner& run, std::uint32_t n, std::uint32_t slots, bool aovs, PathWaveCounts& counts) {
-  runPathWave(run, n, slots, aovs, counts);
+void pathWave(StageRunner& run, std::uint32_t n, std::uint32_t slots, bool aovs, bool fused, PathWaveCounts& counts) {
+  runPathWave(run, n, slots, aovs, fused, counts);
 }
 
 std::uint32_t one(const RenderSettings&) { return 1; }
@@ -41,10 +41,10 @@ std::uint32_t directSlots(const RenderSettings& r) { return std::uint32_t(r.ligh
 std::uint32_t pathSlots(const RenderSettings& r) { return std::uint32_t(r.lightSamples); }
 std::uint32_t brdfRay(const RenderSettings& r) { return r.directSampling != DirectSampling::Light ? 1 : 0; }
 
-//                                     id                  bounce path   lit    slots        extra rays  schedule
-const IntegratorDesc kIntegrators[] = {{Integrator::Ao,     false, false, false, one,         none,       aoWave},
-                                       {Integrator::Direct, true,  false, true,  directSlots, brdfRay,    directWave},
-                                       {Integrator::Path,   false, true,  true,  pathSlots,   none,       pathWave}};
+//                                     id                  bounce path   lit    slots        extra rays  schedule    fused stage
+const IntegratorDesc kIntegrators[] = {{Integrator::Ao,     false, false, false, one,         none,       aoWave,     true,  Stage::wave_ao},
+                                       {Integrator::Direct, true,  false, true,  directSlots, brdfRay,    directWave, true,  Stage::wave_direct},
+                                       {Integrator::Path,   false, true,  true,  pathSlots,   none,       pathWave,   true,  Stage::wave_path}};
 
 }  // namespace
 

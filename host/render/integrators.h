@@ -27,7 +27,13 @@ struct IntegratorDesc {
   // (direct lighting's BRDF ray; path tracing counts its continuations in PathWaveCounts).
   std::uint32_t (*extraRays)(const RenderSettings&);
   // Launches one wave of n items after generate and before accumulate (AOVs recorded when aovs).
-  void (*launchWave)(StageRunner& run, std::uint32_t n, std::uint32_t slots, bool aovs, PathWaveCounts& counts);
+  // fused: path tracing's bounces each as one launch of its fused stage, which generates too.
+  void (*launchWave)(StageRunner& run, std::uint32_t n, std::uint32_t slots, bool aovs, bool fused,
+                     PathWaveCounts& counts);
+  // The fused stage (kernels/stages/wave_fused.h), when `fusable`: AO and direct run a whole wave,
+  // generate to accumulate, in one launch where it applies; path tracing one launch per bounce.
+  bool fusable;
+  Stage fused;
 };
 
 const IntegratorDesc& integratorDesc(Integrator integrator);

@@ -22,15 +22,21 @@ std::string survivorsSummary(const std::vector<std::uint64_t>& survivors) {
   return s;
 }
 
-void runPathWave(StageRunner& run, std::uint32_t n, std::uint32_t lightSamples, bool aovs, PathWaveCounts& counts) {
+void runPathWave(StageRunner& run, std::uint32_t n, std::uint32_t lightSamples, bool aovs, bool fused,
+                 PathWaveCounts& counts) {
   std::uint32_t live = n;
+  const std::uint64_t group = std::uint64_t(run.lanes()) * MCL_FUSED_PATH_PACKETS;
   for (std::uint32_t bounce = 0; live > 0; ++bounce) {
     run.startBounce(bounce);
-    run.launch(Stage::intersect, live);
-    if (bounce == 0 && aovs) run.launch(Stage::record_aov, n);  // camera rays and hits (identity ids)
-    run.launch(Stage::shade_path, live);
-    run.launch(Stage::intersect_shadow, std::uint64_t(live) * lightSamples);
-    run.launch(Stage::path_gather, live);
+    if (fused) {
+      run.launch(Stage::wave_path, (live + group - 1) / group);
+    } else {
+      run.launch(Stage::intersect, live);
+      if (bounce == 0 && aovs) run.launch(Stage::record_aov, n);  // camera rays and hits (identity ids)
+      run.launch(Stage::shade_path, live);
+      run.launch(Stage::intersect_shadow, std::uint64_t(live) * lightSamples);
+      run.launch(Stage::path_gather, live);
+    }
     run.endBounce();
     const BounceCounts c = run.readBounceCounts();
     if (counts.survivors.size() <= bounce) counts.survivors.resize(bounce + 1, 0);

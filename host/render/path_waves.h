@@ -21,6 +21,9 @@ struct PathWaveCounts {
 // "paths per bounce: 0: 16384, 1: 16384 (100%), 2: 12000 (73.2%), ..." (for -v).
 std::string survivorsSummary(const std::vector<std::uint64_t>& survivors);
 
-void runPathWave(StageRunner& run, std::uint32_t n, std::uint32_t lightSamples, bool aovs, PathWaveCounts& counts);
+// fused: each bounce is one launch of wave_path (kernels/stages/wave_fused.h), bounce 0 generating the
+// camera rays itself (the caller then launches no generate).
+void runPathWave(StageRunner& run, std::uint32_t n, std::uint32_t lightSamples, bool aovs, bool fused,
+                 PathWaveCounts& counts);
 
 }  // namespace montecl

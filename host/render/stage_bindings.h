@@ -39,6 +39,9 @@ inline bool stageRunsPackets(Stage s) {
   };
   return packets[int(s)];
 }
+// True for a fused stage (kernels/stages/wave_fused.h): a work item runs a group of W C items through
+// every stage of a wave.
+inline bool stageIsFused(Stage s) { return s == Stage::wave_ao || s == Stage::wave_direct || s == Stage::wave_path; }
 #define MCL_STAGE_COUNT_ONE(stage) +1
 constexpr int kStageCount = 0 MCL_STAGES(MCL_STAGE_COUNT_ONE);
 #undef MCL_STAGE_COUNT_ONE

@@ -21,7 +21,9 @@ enum class Need { Always, Bounce, Path, Aovs, Splits };
 // WAVE_BUFFER(name, element type, Per, Need): written and read by the stages only.
 // bounce / bounceHits: direct lighting's BRDF rays and their hits; throughput, nextRays, pathIds,
 // nextPathIds: path tracing's per-path state and the next bounce's compacted queue (swapped with
-// rays / pathIds between bounces); aov: first-hit albedo and normal+depth of each item.
+// rays / pathIds between bounces); aov: first-hit albedo and normal+depth of each item;
+// groupCounts: the fused stages' occlusion queries per group of items (kernels/stages/wave_fused.h;
+// a group is at least one item, so one entry per item is enough).
 #define MCL_WAVE_BUFFERS(B)             \
   B(rays, Ray, Item, Always)            \
   B(hits, Hit, Item, Always)            \
@@ -34,7 +36,8 @@ enum class Need { Always, Bounce, Path, Aovs, Splits };
   B(nextRays, Ray, Item, Path)          \
   B(pathIds, uint, Item, Path)          \
   B(nextPathIds, uint, Item, Path)      \
-  B(aov, float4, TwoPerItem, Aovs)
+  B(aov, float4, TwoPerItem, Aovs)      \
+  B(groupCounts, uint, Item, Always)
 
 // WAVE_COUNTER(name): one uint the stages count into (atomically) and the host resets and reads:
 // rayCount the current ray queue's size, nextCount the next bounce's, queueCount the occlusion

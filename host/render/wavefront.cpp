@@ -169,6 +169,9 @@ class WaveLoop {
         // time limit (each wave is sized from the time left when it starts), nor with afterWave (it
         // reads the film of the waves booked so far), nor when the host reads counts within a wave.
         ahead_(!integrator_.path && !(o.timeLimit > 0.0) && !part.afterWave),
+        // Fused waves (kernels/stages/wave_fused.h) on devices that run packets; the host backend
+        // and GPUs (W = 1) keep a launch per stage, where the shadow queue compacts across the wave.
+        fuse_(o.fuseWaves && integrator_.fusable && !o.aovs && run.lanes() > 1),
         start_(std::chrono::steady_clock::now()) {}
 
   bool planned() const { return planned_; }
@@ -204,12 +207,20 @@ class WaveLoop {
       const std::uint32_t n = std::uint32_t(size);
       queued_[waiting_++] = Queued{n, elapsed()};
       run_.beginWave(first + done, n);
-      run_.launch(Stage::generate, n);
       PathWaveCounts pathCounts;
-      integrator_.launchWave(run_, n, frame_.shadowSlots, o_.aovs, pathCounts);
-      const std::uint64_t touched = wave_touched_pixels(first + done, n, blockShift_, uint(activeCount_));
-      run_.launch(Stage::accumulate, touched);
-      if (o_.aovs) run_.launch(Stage::accumulate_aov, touched);
+      // One fused launch when the wave starts a block and holds at most one run per pixel: each
+      // work item then owns its pixels' whole runs (wave_fused.h); groups of W blocks.
+      const std::uint64_t block = std::uint64_t(1) << blockShift_, runs = (n + block - 1) / block;
+      if (fuse_ && !integrator_.path && (first + done) % block == 0 && runs <= activeCount_) {
+        const std::uint64_t group = std::uint64_t(run_.lanes()) << blockShift_;
+        run_.launch(integrator_.fused, (n + group - 1) / group);
+      } else {
+        if (!(fuse_ && integrator_.path)) run_.launch(Stage::generate, n);
+        integrator_.launchWave(run_, n, frame_.shadowSlots, o_.aovs, fuse_, pathCounts);
+        const std::uint64_t touched = wave_touched_pixels(first + done, n, blockShift_, uint(activeCount_));
+        run_.launch(Stage::accumulate, touched);
+        if (o_.aovs) run_.launch(Stage::accumulate_aov, touched);
+      }
       run_.submitWave();
       done += n;
       if (!ahead_ || waiting_ == 2) book(pathCounts);  // (ahead: never path, so no path counts)
@@ -263,7 +274,7 @@ class WaveLoop {
   const std::uint64_t wave_;
   RenderStats& stats_;
   const ProgressFn& progress_;
-  const bool planned_, ahead_;
+  const bool planned_, ahead_, fuse_;
   const std::chrono::steady_clock::time_point start_;
   double rate_ = 0.0;  // pixel samples per second of the last wave (0: none yet)
   double lastBooked_ = 0.0;

@@ -57,6 +57,9 @@ struct RenderOptions {
   double errorFloor = 0.01;
   bool profile = false;  // time every stage launch into RenderStats::profile (--profile)
   bool aovs = false;  // also accumulate first-hit albedo, normal and depth (Film::aovSum)
+  // Run a wave as one fused launch where the integrator has a fused stage and the device runs
+  // packets (kernels/stages/wave_fused.h); false: every stage its own launch (--no-fuse).
+  bool fuseWaves = true;
 };
 
 // What the renderer reads of a scene's triangles, built once: the per-triangle attributes in BVH

@@ -22,7 +22,10 @@
   STAGE(record_aov)                                                                                \
   STAGE(accumulate_aov)                                                                            \
   STAGE(shade_path)                                                                                \
-  STAGE(path_gather)
+  STAGE(path_gather)                                                                               \
+  STAGE(wave_ao)                                                                                   \
+  STAGE(wave_direct)                                                                               \
+  STAGE(wave_path)
 
 // Packet stages: MCL_PACKET_<stage> is 1 when the stage's OpenCL kernel runs MCL_LANES (W,
 // kernels/shared/lanes.h) consecutive items per work item through its packet body
@@ -40,6 +43,10 @@
 #define MCL_PACKET_accumulate_aov 0
 #define MCL_PACKET_shade_path 1
 #define MCL_PACKET_path_gather 0
+// The fused stages run a group of W C items per work item themselves (kernels/stages/wave_fused.h).
+#define MCL_PACKET_wave_ao 0
+#define MCL_PACKET_wave_direct 0
+#define MCL_PACKET_wave_path 0
 
 // The texture tables (kernels/shared/texture.h): what albedo lookups read.
 #define MCL_TEXTURE_ARGS(ARG)                                                                      \
@@ -134,6 +141,38 @@
 #define MCL_ARGS_path_gather(ARG)                                                                  \
   ARG(uint, pathBounce) ARG(MCL_GLOBAL const uint*, rayCount) ARG(MCL_GLOBAL const uint*, pathIds) \
   ARG(MCL_GLOBAL float4*, shadowContrib) ARG(MCL_GLOBAL float4*, radiance)
+
+// The fused stages (kernels/stages/wave_fused.h): every argument of the stages they run, once each
+// (const only where no stage writes it), and groupCounts, a count per group of items.
+#define MCL_ARGS_wave_ao(ARG)                                                                      \
+  ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
+  ARG(MCL_GLOBAL const BvhTraversalNode*, nodes) ARG(MCL_GLOBAL const Triangle*, tris)             \
+  ARG(MCL_GLOBAL Ray*, rays) ARG(MCL_GLOBAL const uint*, rayCount) ARG(MCL_GLOBAL Hit*, hits)      \
+  ARG(MCL_GLOBAL volatile uint*, nanRays) MCL_ALPHA_ARGS(ARG)                                      \
+  ARG(MCL_GLOBAL const float4*, normals) ARG(MCL_GLOBAL float4*, radiance)                         \
+  ARG(MCL_GLOBAL float4*, shadowContrib) ARG(MCL_GLOBAL ShadowWork*, queue)                        \
+  ARG(MCL_GLOBAL volatile uint*, queueCount) ARG(MCL_GLOBAL volatile uint*, groupCounts)           \
+  ARG(MCL_GLOBAL float4*, mean) ARG(MCL_GLOBAL float4*, meanLo) ARG(MCL_GLOBAL float4*, m2)          \
+  ARG(MCL_GLOBAL float4*, m2Lo) ARG(MCL_GLOBAL float4*, split)
+
+#define MCL_ARGS_wave_direct(ARG)                                                                  \
+  MCL_ARGS_wave_ao(ARG) ARG(MCL_GLOBAL const Emitter*, emitters) ARG(MCL_GLOBAL Ray*, bounce)      \
+  ARG(MCL_GLOBAL Hit*, bounceHits) ARG(MCL_GLOBAL const float4*, envMap)                           \
+  ARG(MCL_GLOBAL const float*, envCdf) ARG(MCL_GLOBAL const LightRecord*, lightRecords)
+
+#define MCL_ARGS_wave_path(ARG)                                                                    \
+  ARG(ulong, waveStart) ARG(uint, waveCount) ARG(uint, pathBounce) ARG(MCL_GLOBAL const uint*, active) \
+  ARG(MCL_GLOBAL const BvhTraversalNode*, nodes) ARG(MCL_GLOBAL const Triangle*, tris)             \
+  ARG(MCL_GLOBAL Ray*, rays) ARG(MCL_GLOBAL const uint*, rayCount) ARG(MCL_GLOBAL Hit*, hits)      \
+  ARG(MCL_GLOBAL volatile uint*, nanRays) MCL_ALPHA_ARGS(ARG)                                      \
+  ARG(MCL_GLOBAL const float4*, normals) ARG(MCL_GLOBAL const Emitter*, emitters)                  \
+  ARG(MCL_GLOBAL const uint*, pathIds) ARG(MCL_GLOBAL float4*, radiance)                           \
+  ARG(MCL_GLOBAL float4*, throughput) ARG(MCL_GLOBAL float4*, shadowContrib)                       \
+  ARG(MCL_GLOBAL ShadowWork*, queue) ARG(MCL_GLOBAL volatile uint*, queueCount)                    \
+  ARG(MCL_GLOBAL volatile uint*, groupCounts) ARG(MCL_GLOBAL Ray*, nextRays)                       \
+  ARG(MCL_GLOBAL uint*, nextPathIds) ARG(MCL_GLOBAL volatile uint*, nextCount)                     \
+  ARG(MCL_GLOBAL const float4*, envMap) ARG(MCL_GLOBAL const float*, envCdf)                       \
+  ARG(MCL_GLOBAL const LightRecord*, lightRecords)
 
 // <stage>_args: frame, then the table's arguments, as fields of the same names.
 #define MCL_ARG_FIELD(type, name) type name;

@@ -20,3 +20,5 @@
 #include "accumulate_lanes.h"
 #include "shade_path_lanes.h"
 #include "intersect_lanes.h"
+// The fused stages, which run the others.
+#include "wave_fused.h"

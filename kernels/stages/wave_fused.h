@@ -1,0 +1,152 @@
+// wave_fused.h: the fused wave stages wave_ao and wave_direct: one work item takes a group of a
+// wave's items through every stage of its integrator in launch order (generate, intersect, shade,
+// the BRDF ray's intersect and shade_direct_hit, intersect_shadow, accumulate), reading and writing
+// what those stages do, plus groupCounts[g], the group's count of occlusion queries in its own
+// part of the queue. Group g is W pixels' runs of C samples (W = MCL_LANES, C = 2^sampleBlockShift,
+// stage_common.h): items [g W C, (g + 1) W C), which are touched pixels [g W, (g + 1) W) when the
+// wave starts a block and holds at most one run per pixel (the host launches these stages only
+// then, render/wavefront.cpp). Every item's operations are its stages' own, in the same order, so
+// the film has the unfused launches' bits; what changes is that a group's rays, hits and slots
+// stay in the work item's cache and a wave is one launch instead of six or seven.
+#pragma once
+#include "stage_common.h"
+
+// A stage's argument struct filled from the fused stage's fields of the same names.
+#define MCL_FUSED_FIELD(type, name) , a->name
+#define MCL_FUSED_ARGS(stage) {a->frame MCL_ARGS_##stage(MCL_FUSED_FIELD)}
+
+// Runs a stage body over the W items of the packet at `first`: the packet body for a packet stage
+// in an OpenCL program built with lanes, else the scalar body per item (each bounds its items).
+#ifdef MCL_OPENCL
+#define MCL_FUSED_RUN_1(stage, args, first) stage_##stage##_lanes(&(args), (first))
+#else
+#define MCL_FUSED_RUN_1(stage, args, first) \
+  for (uint fk = 0; fk < MCL_LANES; ++fk) stage_##stage(&(args), (first) + fk)
+#endif
+#define MCL_FUSED_RUN_0(stage, args, first) \
+  for (uint fk = 0; fk < MCL_LANES; ++fk) stage_##stage(&(args), (first) + fk)
+#define MCL_FUSED_RUN(stage, args, first) MCL_LANES_CAT(MCL_FUSED_RUN_, MCL_PACKET_##stage)(stage, args, first)
+
+// The shading stages' bodies as out-of-line functions with their whole call tree inlined, as their
+// own kernels are built (montecl.cl MCL_FLATTEN: PoCL otherwise passes their structs through the
+// stack); the traversals keep the compiler's own inlining, as in their kernels.
+#if defined(MCL_OPENCL) && defined(__OPTIMIZE__)
+#define MCL_FUSED_FLAT __attribute__((flatten, noinline))
+#else
+#define MCL_FUSED_FLAT MCL_INLINE
+#endif
+#define MCL_FUSED_WRAP(stage)                                                               \
+  MCL_FUSED_FLAT void fused_##stage(const stage##_args* a, uint first) { MCL_FUSED_RUN(stage, (*a), first); }
+MCL_FUSED_WRAP(generate)
+MCL_FUSED_WRAP(shade_ao)
+MCL_FUSED_WRAP(shade_direct)
+MCL_FUSED_WRAP(shade_direct_hit)
+MCL_FUSED_WRAP(accumulate)
+MCL_FUSED_WRAP(shade_path)
+MCL_FUSED_WRAP(path_gather)
+
+// Runs `body` (naming `at`, the packet's first item) for each of the group's `packets` packets from
+// `first` below `count`. Stage by stage over the whole group, not packet by packet through every
+// stage: each stage's code and tables (the BVH for a traversal) stay hot in cache for the group,
+// whose own rays, hits and slots are few enough to stay there too.
+#define MCL_FUSED_PACKETS(packets, count, body)              \
+  for (uint p = 0; p < (packets); ++p) {                    \
+    const uint at = first + p * MCL_LANES;                  \
+    if (at >= (count)) break;                               \
+    body;                                                   \
+  }
+
+// The group's first item, or the wave's count when group g lies past its end.
+MCL_INLINE uint fused_group_first(MCL_CONSTANT const FrameParams* f, uint waveCount, uint g) {
+  const ulong first = (ulong)g * ((ulong)MCL_LANES << f->sampleBlockShift);
+  return first < waveCount ? (uint)first : waveCount;
+}
+
+// The end of every fused wave: the group's occlusion queries (its part of the queue), their count
+// added to the wave's, then its pixels' samples into the film.
+#define MCL_FUSED_SHADOW_AND_ACCUMULATE(a, g, queueBase, localCount)                                       \
+  do {                                                                                                      \
+    intersect_shadow_args sh = {a->frame, a->nodes, a->tris, queueBase, (MCL_GLOBAL const uint*)localCount, \
+                                a->shadowContrib, a->nanRays, a->materials, a->shading, a->textures,        \
+                                a->textureLevels, a->texels};                                               \
+    const uint queries = *localCount;                                                                       \
+    for (uint k = 0; k < queries; ++k) stage_intersect_shadow(&sh, k);                                      \
+    if (queries > 0u) MCL_ATOMIC_ADD(a->queueCount, queries);                                               \
+    accumulate_args acc = MCL_FUSED_ARGS(accumulate);                                                       \
+    fused_accumulate(&acc, (g) * MCL_LANES);                                                        \
+  } while (0)
+
+MCL_INLINE void stage_wave_ao(const wave_ao_args* a, uint g) {
+  MCL_CONSTANT const FrameParams* f = a->frame;
+  const uint first = fused_group_first(f, a->waveCount, g), block = 1u << f->sampleBlockShift;
+  if (first >= a->waveCount) return;
+  MCL_GLOBAL ShadowWork* queueBase = a->queue + (ulong)first * f->shadowSlots;
+  MCL_GLOBAL volatile uint* localCount = a->groupCounts + g;
+  *localCount = 0u;
+  generate_args gen = MCL_FUSED_ARGS(generate);
+  intersect_args isect = MCL_FUSED_ARGS(intersect);
+  shade_ao_args shade = MCL_FUSED_ARGS(shade_ao);
+  shade.queue = queueBase;
+  shade.queueCount = localCount;
+  MCL_FUSED_PACKETS(block, a->waveCount, fused_generate(&gen, at));
+  MCL_FUSED_PACKETS(block, a->waveCount, MCL_FUSED_RUN(intersect, isect, at));
+  MCL_FUSED_PACKETS(block, a->waveCount, fused_shade_ao(&shade, at));
+  MCL_FUSED_SHADOW_AND_ACCUMULATE(a, g, queueBase, localCount);
+}
+
+MCL_INLINE void stage_wave_direct(const wave_direct_args* a, uint g) {
+  MCL_CONSTANT const FrameParams* f = a->frame;
+  const uint first = fused_group_first(f, a->waveCount, g), block = 1u << f->sampleBlockShift;
+  if (first >= a->waveCount) return;
+  MCL_GLOBAL ShadowWork* queueBase = a->queue + (ulong)first * f->shadowSlots;
+  MCL_GLOBAL volatile uint* localCount = a->groupCounts + g;
+  *localCount = 0u;
+  generate_args gen = MCL_FUSED_ARGS(generate);
+  intersect_args isect = MCL_FUSED_ARGS(intersect);
+  intersect_args bounceIsect = isect;  // the BRDF rays (RayInput::Bounce)
+  bounceIsect.rays = a->bounce;
+  bounceIsect.hits = a->bounceHits;
+  shade_direct_args shade = MCL_FUSED_ARGS(shade_direct);
+  shade.queue = queueBase;
+  shade.queueCount = localCount;
+  shade_direct_hit_args hit = MCL_FUSED_ARGS(shade_direct_hit);
+  MCL_FUSED_PACKETS(block, a->waveCount, fused_generate(&gen, at));
+  MCL_FUSED_PACKETS(block, a->waveCount, MCL_FUSED_RUN(intersect, isect, at));
+  MCL_FUSED_PACKETS(block, a->waveCount, fused_shade_direct(&shade, at));
+  MCL_FUSED_PACKETS(block, a->waveCount, MCL_FUSED_RUN(intersect, bounceIsect, at));
+  MCL_FUSED_PACKETS(block, a->waveCount, fused_shade_direct_hit(&hit, at));
+  MCL_FUSED_SHADOW_AND_ACCUMULATE(a, g, queueBase, localCount);
+}
+
+// Path tracing fuses per bounce (the host sizes each bounce by the live paths it reads back, and
+// paths end at different bounces, so accumulate stays its own launch): group g is the bounce
+// queue's entries [g W P, (g + 1) W P), P = MCL_FUSED_PATH_PACKETS packets, through generate (at
+// bounce 0, where the queue is the wave's items), intersect, shade_path, the group's occlusion
+// queries and path_gather.
+#define MCL_FUSED_PATH_PACKETS 16u
+
+MCL_INLINE void stage_wave_path(const wave_path_args* a, uint g) {
+  MCL_CONSTANT const FrameParams* f = a->frame;
+  const uint count = *a->rayCount, group = MCL_LANES * MCL_FUSED_PATH_PACKETS;
+  if ((ulong)g * group >= count) return;
+  const uint first = g * group;
+  MCL_GLOBAL ShadowWork* queueBase = a->queue + (ulong)first * f->shadowSlots;
+  MCL_GLOBAL volatile uint* localCount = a->groupCounts + g;
+  *localCount = 0u;
+  generate_args gen = MCL_FUSED_ARGS(generate);
+  intersect_args isect = MCL_FUSED_ARGS(intersect);
+  shade_path_args shade = MCL_FUSED_ARGS(shade_path);
+  shade.queue = queueBase;
+  shade.queueCount = localCount;
+  path_gather_args gather = MCL_FUSED_ARGS(path_gather);
+  if (a->pathBounce == 0u) MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, fused_generate(&gen, at));
+  MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, MCL_FUSED_RUN(intersect, isect, at));
+  MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, fused_shade_path(&shade, at));
+  intersect_shadow_args sh = {a->frame, a->nodes, a->tris, queueBase, (MCL_GLOBAL const uint*)localCount,
+                              a->shadowContrib, a->nanRays, a->materials, a->shading, a->textures,
+                              a->textureLevels, a->texels};
+  const uint queries = *localCount;
+  for (uint k = 0; k < queries; ++k) stage_intersect_shadow(&sh, k);
+  if (queries > 0u) MCL_ATOMIC_ADD(a->queueCount, queries);
+  MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, fused_path_gather(&gather, at));
+}
