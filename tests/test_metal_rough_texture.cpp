@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
 #include <nlohmann/json.hpp>
 
 #include "bvh/bvh.h"
@@ -17,6 +18,7 @@
 #include "test_images.h"
 #include "test_scenes.h"
 #include "texture/scene_textures.h"
+#include "util/errors.h"
 
 using namespace montecl;
 using namespace montecl_test;
@@ -99,4 +101,72 @@ TEST_CASE("metallicRoughnessTexture: B scales metallic and G roughness in the re
     CHECK(std::fabs(z(texMetal, plainMetal, c)) < 4.0);
   }
   CHECK(std::fabs(z(texDielectric, texMetal, 0)) > 10.0);  // the texture matters
+}
+
+namespace {
+
+Film renderFile(const std::string& path) {
+  std::vector<std::string> warnings;
+  const Scene s = loadScene(path, warnings);
+  Bvh bvh = buildBvh(s.triangles);
+  WavefrontRenderer r(hostDeviceInfo(), {});
+  RenderStats stats;
+  return r.render(s, bvh, stats);
+}
+
+std::string sceneAround(const std::string& mesh, const nlohmann::json& material) {
+  nlohmann::json s = {{"camera", {{"position", {1.2, 3.5, -1}}, {"target", {1.2, 0, -1}}, {"up", {0, 0, -1}},
+                                  {"fov_y", 45}, {"width", 12}, {"height", 10}}},
+                      {"meshes", {{{"file", mesh}}}},
+                      {"environment", {{"radiance", {0.9, 0.8, 0.7}}}},
+                      {"render", {{"integrator", "direct"}, {"spp", 16}}}};
+  if (!material.is_null()) s["meshes"][0]["material"] = material;
+  return s.dump();
+}
+
+bool sameMeans(const Film& a, const Film& b) {
+  return !a.mean.empty() && a.mean.size() == b.mean.size() &&
+         std::memcmp(a.mean.data(), b.mean.data(), a.mean.size() * sizeof a.mean[0]) == 0;
+}
+
+}  // namespace
+
+// The scene file's "metallic_roughness_texture" is glTF's metallicRoughnessTexture: a mesh given
+// the texture and factors in the scene file renders bit-identically to the glTF that carries them.
+TEST_CASE("metallic_roughness_texture: the scene-file key equals the glTF texture, bit for bit" * doctest::test_suite("cpu")) {
+  TempDir dir;
+  // B (metallic) runs across the image, G (roughness) down it.
+  writeImage8(dir.file("mr.png"), 8, 8, 3, [](int x, int y, int c) { return c == 0 ? 0 : c == 1 ? 32 * y : 32 * x; });
+  nlohmann::json g = nlohmann::json::parse(gltfText(tentMesh(), 0.7f, ""));
+  g["materials"][0]["pbrMetallicRoughness"]["metallicFactor"] = 0.9;
+  g["materials"][0]["pbrMetallicRoughness"]["roughnessFactor"] = 0.8;
+  dir.write("plain.gltf", g.dump());
+  g["images"] = {{{"uri", "mr.png"}}};
+  g["textures"] = {{{"source", 0}}};
+  g["materials"][0]["pbrMetallicRoughness"]["metallicRoughnessTexture"] = {{"index", 0}};
+  dir.write("textured.gltf", g.dump());
+  dir.write("gltf.json", sceneAround("textured.gltf", nullptr));
+  dir.write("key.json", sceneAround("plain.gltf", {{"type", "metal_rough"}, {"metallic", 0.9}, {"roughness", 0.8},
+                                                   {"metallic_roughness_texture", "mr.png"}}));
+  dir.write("factors.json", sceneAround("plain.gltf", nullptr));
+  std::vector<std::string> warnings;
+  const Scene key = loadScene(dir.file("key.json"), warnings);
+  REQUIRE(key.materials.size() == 2);  // the file's and the override's copy
+  CHECK(key.materials[1].metallicRoughnessTexture == dir.file("mr.png"));
+  const Film viaGltf = renderFile(dir.file("gltf.json"));
+  CHECK(sameMeans(viaGltf, renderFile(dir.file("key.json"))));
+  CHECK_FALSE(sameMeans(viaGltf, renderFile(dir.file("factors.json"))));  // the texture matters
+  // Only metal_rough reads it; a missing file is refused too.
+  dir.write("conductor.json", sceneAround("plain.gltf", {{"type", "conductor"}, {"metallic_roughness_texture", "mr.png"}}));
+  dir.write("missing.json", sceneAround("plain.gltf", {{"type", "metal_rough"}, {"metallic_roughness_texture", "no.png"}}));
+  for (const char* bad : {"conductor.json", "missing.json"}) {
+    CAPTURE(bad);
+    std::string what;
+    try {
+      loadScene(dir.file(bad), warnings);
+    } catch (const InputError& e) {
+      what = e.what();
+    }
+    CHECK(what.find("meshes[0].material.metallic_roughness_texture") != std::string::npos);
+  }
 }

@@ -83,6 +83,44 @@ ConformanceCase texturedCase(const Scene& light, const std::string& name) {
   return c;
 }
 
+// The polygon-light scene with an emission texture on the light (black but for a bright cross,
+// so some of the light's triangles emit only in part) and/or a tangent-space normal map on the
+// floor (decoded vectors, as scene_textures.cpp stores them): the textured-emitter table and
+// pdfs, and the mapped shading frame.
+ConformanceCase lampAndBumpsCase(const Scene& light, const std::string& name, bool lamp, bool bumps) {
+  ConformanceCase c;
+  c.name = name;
+  c.scene = light;
+  c.scene.path = "<textured lamp and bumps scene>";
+  for (SceneTriangle& t : c.scene.triangles) {
+    if (!((bumps && t.material == 0) || (lamp && t.material == 1))) continue;
+    for (int k = 0; k < 3; ++k)
+      t.uv[k] = t.material == 0 ? glm::vec2(t.v[k].x, t.v[k].z) * 1.7f + glm::vec2(0.11f, 0.05f)
+                                : glm::vec2(t.v[k].x + t.v[k].z, t.v[k].y) * 1.1f + glm::vec2(0.2f, 0.3f);
+    t.attributes |= kHasUv;
+  }
+  RgbaImage cross, normals;
+  cross.width = cross.height = 8;
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x)
+      cross.texels.push_back(x == 3 || y == 5 ? glm::vec4(2.0f, 1.5f, 1.0f, 1.0f) : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  normals.width = normals.height = 4;
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) {
+      const glm::vec3 n = glm::normalize(glm::vec3(0.4f * float(x - 1.5f) / 1.5f, 0.3f * float((y * 3) % 4 - 1.5f) / 1.5f, 1.0f));
+      normals.texels.push_back(glm::vec4(n, 1.0f));
+    }
+  auto t = std::make_shared<SceneTextures>();
+  std::vector<std::string> warnings;
+  packTextures(*t, {cross, normals}, kDefaultTextureBudget, warnings);
+  t->files = {"<cross>", "<normals>"};
+  t->materials.assign(c.scene.materials.size(), MaterialTextures{});
+  if (lamp) t->materials[1].emission = 0;
+  if (bumps) t->materials[0].normal = 1;
+  c.textures = t;
+  return c;
+}
+
 Scene withAo(Scene s, AoSampling sampling) {
   s.render.integrator = Integrator::Ao;
   s.render.aoSampling = sampling;
@@ -119,23 +157,23 @@ std::string defaultCornellPath() {
 std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std::vector<std::string>& skipped) {
   std::vector<ConformanceCase> cases;
   const Scene wall = seededWallScene(o.size, o.spp);
-  cases.push_back({"wall/ao-uniform", withAo(wall, AoSampling::Uniform)});
-  cases.push_back({"wall/ao-cosine", withAo(wall, AoSampling::Cosine)});
+  cases.push_back({"wall/ao-uniform", withAo(wall, AoSampling::Uniform), nullptr, false});
+  cases.push_back({"wall/ao-cosine", withAo(wall, AoSampling::Cosine), nullptr, false});
   Scene shortAo = withAo(wall, AoSampling::Uniform);
   shortAo.render.aoDistance = 0.3f;
-  cases.push_back({"wall/ao-uniform-distance-0.3", shortAo});
+  cases.push_back({"wall/ao-uniform-distance-0.3", shortAo, nullptr, false});
   const Scene light = polygonLightScene(o.size, o.spp);
-  cases.push_back({"polygon-light/direct-light", withDirect(light, DirectSampling::Light, 1)});
-  cases.push_back({"polygon-light/direct-brdf", withDirect(light, DirectSampling::Brdf, 1)});
-  cases.push_back({"polygon-light/direct-mis", withDirect(light, DirectSampling::Mis, 2)});
-  cases.push_back({"polygon-light/ao-cosine", withAo(light, AoSampling::Cosine)});
+  cases.push_back({"polygon-light/direct-light", withDirect(light, DirectSampling::Light, 1), nullptr, false});
+  cases.push_back({"polygon-light/direct-brdf", withDirect(light, DirectSampling::Brdf, 1), nullptr, false});
+  cases.push_back({"polygon-light/direct-mis", withDirect(light, DirectSampling::Mis, 2), nullptr, false});
+  cases.push_back({"polygon-light/ao-cosine", withAo(light, AoSampling::Cosine), nullptr, false});
   // Shading normals: a coarse sphere with exact corner normals beside the occluder.
   Scene sphere = light;
   sphere.path = "<smooth sphere scene>";
   addUvSphere(sphere, {-0.4f, 0.22f, 0.45f}, 0.2f, 8, 16, true, 2);
   finishScene(sphere);
-  cases.push_back({"smooth-sphere/direct-mis", withDirect(sphere, DirectSampling::Mis, 2)});
-  cases.push_back({"smooth-sphere/ao-uniform", withAo(sphere, AoSampling::Uniform)});
+  cases.push_back({"smooth-sphere/direct-mis", withDirect(sphere, DirectSampling::Mis, 2), nullptr, false});
+  cases.push_back({"smooth-sphere/ao-uniform", withAo(sphere, AoSampling::Uniform), nullptr, false});
   // The same with every material glossy, path traced: the BSDF around the shading frame.
   Scene glossySphere = sphere;
   for (MaterialDesc& m : glossySphere.materials)
@@ -144,8 +182,8 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
       m.specular = glm::vec3(0.3f);
       m.specularExponent = 30.0f;
     }
-  cases.push_back({"smooth-sphere/glossy-path", withPath(glossySphere, 1)});
-  cases.push_back({"polygon-light/path", withPath(light, 2)});
+  cases.push_back({"smooth-sphere/glossy-path", withPath(glossySphere, 1), nullptr, false});
+  cases.push_back({"polygon-light/path", withPath(light, 2), nullptr, false});
   // Delta and glossy kinds: the smooth sphere as glass (both interfaces, shading normals), the
   // occluder a rough gold conductor (path) or a smooth mirror (direct), the floor glTF
   // metallic-roughness, under the area light and a constant environment.
@@ -170,8 +208,8 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
     delta.environment.enabled = true;
     delta.environment.radiance = {0.3f, 0.4f, 0.5f};
     finishScene(delta);
-    if (direct) cases.push_back({"glass-mirror/direct-mis", withDirect(delta, DirectSampling::Mis, 2)});
-    else cases.push_back({"glass-metal/path", withPath(delta, 1)});
+    if (direct) cases.push_back({"glass-mirror/direct-mis", withDirect(delta, DirectSampling::Mis, 2), nullptr, false});
+    else cases.push_back({"glass-metal/path", withPath(delta, 1), nullptr, false});
   }
   cases.push_back(texturedCase(withDirect(light, DirectSampling::Mis, 2), "textured-cutout/direct-mis"));
   cases.push_back(texturedCase(withAo(light, AoSampling::Cosine), "textured-cutout/ao-cosine"));
@@ -185,7 +223,7 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   Scene lens = withPath(light, 1, 3);
   lens.camera.apertureRadius = 0.05f;
   lens.camera.focusDistance = 1.5f;
-  cases.push_back({"polygon-light/path-depth-3-thin-lens", lens});
+  cases.push_back({"polygon-light/path-depth-3-thin-lens", lens, nullptr, false});
   // The same scene with glossy floor and occluder (GGX lobe) under a constant environment as well.
   Scene glossy = light;
   glossy.materials[0].specular = glm::vec3(0.3f, 0.25f, 0.2f);
@@ -194,15 +232,15 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   glossy.materials[2].specularExponent = 8.0f;
   glossy.environment.enabled = true;
   glossy.environment.radiance = {0.3f, 0.4f, 0.5f};
-  cases.push_back({"glossy-environment/direct-light", withDirect(glossy, DirectSampling::Light, 1)});
-  cases.push_back({"glossy-environment/direct-mis", withDirect(glossy, DirectSampling::Mis, 2)});
-  cases.push_back({"glossy-environment/path", withPath(glossy, 2)});
+  cases.push_back({"glossy-environment/direct-light", withDirect(glossy, DirectSampling::Light, 1), nullptr, false});
+  cases.push_back({"glossy-environment/direct-mis", withDirect(glossy, DirectSampling::Mis, 2), nullptr, false});
+  cases.push_back({"glossy-environment/path", withPath(glossy, 2), nullptr, false});
   // The Sobol sampler: its lane form and the host's give the same bits (light samples 2: a coupled
   // and an uncoupled set; the thin lens: its own set).
-  cases.push_back({"polygon-light/ao-uniform-sobol", withSobol(withAo(light, AoSampling::Uniform))});
-  cases.push_back({"polygon-light/direct-mis-sobol", withSobol(withDirect(light, DirectSampling::Mis, 2))});
-  cases.push_back({"glossy-environment/path-sobol", withSobol(withPath(glossy, 2))});
-  cases.push_back({"polygon-light/path-depth-3-thin-lens-sobol", withSobol(lens)});
+  cases.push_back({"polygon-light/ao-uniform-sobol", withSobol(withAo(light, AoSampling::Uniform)), nullptr, false});
+  cases.push_back({"polygon-light/direct-mis-sobol", withSobol(withDirect(light, DirectSampling::Mis, 2)), nullptr, false});
+  cases.push_back({"glossy-environment/path-sobol", withSobol(withPath(glossy, 2)), nullptr, false});
+  cases.push_back({"polygon-light/path-depth-3-thin-lens-sobol", withSobol(lens), nullptr, false});
   // The polygon light with a point, a spot and a directional light beside it (light selection
   // across kinds by power; delta lights by next-event estimation only).
   Scene punctual = light;
@@ -219,12 +257,47 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.2f));
   sun.color = {0.2f, 0.25f, 0.3f};
   punctual.lights = {point, spot, sun};
-  cases.push_back({"punctual-lights/direct-mis", withDirect(punctual, DirectSampling::Mis, 2)});
-  cases.push_back({"punctual-lights/path", withPath(punctual, 2)});
+  cases.push_back({"punctual-lights/direct-mis", withDirect(punctual, DirectSampling::Mis, 2), nullptr, false});
+  cases.push_back({"punctual-lights/path", withPath(punctual, 2), nullptr, false});
   Scene onlyPoint = light;
   onlyPoint.materials[1].emission = glm::vec3(0.0f);  // the quad no longer emits: the point light alone
   onlyPoint.lights = {point};
-  cases.push_back({"point-light/path", withPath(onlyPoint, 1)});
+  cases.push_back({"point-light/path", withPath(onlyPoint, 1), nullptr, false});
+  // The sun (a disk sampled by solid angle) beside the polygon light.
+  Scene sunLit = light;
+  LightDesc disk;
+  disk.kind = PunctualKind::Sun;
+  disk.direction = glm::normalize(glm::vec3(-0.4f, -1.0f, 0.3f));
+  disk.color = {0.6f, 0.5f, 0.4f};
+  disk.angleDegrees = 6.0f;
+  sunLit.lights = {disk};
+  cases.push_back({"sun/direct-mis", withDirect(sunLit, DirectSampling::Mis, 2), nullptr, false});
+  cases.push_back({"sun/path", withPath(sunLit, 1), nullptr, false});
+  // Rough glass (GGX transmission) on the smooth sphere, the occluder a partly transmissive
+  // metal_rough (glTF transmission: the per-hit choice between two kinds), under the environment.
+  Scene rough = light;
+  rough.path = "<rough glass scene>";
+  addUvSphere(rough, {-0.4f, 0.22f, 0.45f}, 0.2f, 8, 16, true, 3);
+  MaterialDesc roughGlass{"rough glass", glm::vec3(1.0f), glm::vec3(0.0f)};
+  roughGlass.kind = MCL_MATERIAL_dielectric;
+  roughGlass.ior = 1.5f;
+  roughGlass.kindAlpha = 0.3f;
+  rough.materials.push_back(roughGlass);
+  MaterialDesc& partly = rough.materials[2];
+  partly.kind = MCL_MATERIAL_metal_rough;
+  partly.metallic = 0.2f;
+  partly.roughness = 0.4f;
+  partly.transmission = 0.6f;
+  partly.transmissionSolid = true;
+  rough.environment.enabled = true;
+  rough.environment.radiance = {0.3f, 0.4f, 0.5f};
+  finishScene(rough);
+  cases.push_back({"rough-glass/direct-mis", withDirect(rough, DirectSampling::Mis, 2), nullptr, false});
+  cases.push_back({"rough-glass/path", withPath(rough, 1), nullptr, false});
+  cases.push_back(lampAndBumpsCase(withDirect(light, DirectSampling::Mis, 2), "emissive-texture/direct-mis", true, false));
+  cases.push_back(lampAndBumpsCase(withPath(light, 1), "emissive-texture/path", true, false));
+  cases.push_back(lampAndBumpsCase(withDirect(light, DirectSampling::Mis, 2), "normal-map/direct-mis", false, true));
+  cases.push_back(lampAndBumpsCase(withPath(light, 1), "normal-map/path", false, true));
 
   const std::string path = o.cornellPath.empty() ? defaultCornellPath() : o.cornellPath;
   if (!std::ifstream(path)) {
@@ -236,12 +309,12 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   cornell.camera.width = cornell.camera.height = o.cornellSize;
   cornell.render.spp = o.cornellSpp;
   cornell.render.seed = 9;
-  cases.push_back({"cornell-box/direct-light", withDirect(cornell, DirectSampling::Light, 1)});
-  cases.push_back({"cornell-box/direct-mis", withDirect(cornell, DirectSampling::Mis, 1)});
-  cases.push_back({"cornell-box/ao-cosine", withAo(cornell, AoSampling::Cosine)});
-  cases.push_back({"cornell-box/path", withPath(cornell, 1)});
-  cases.push_back({"cornell-box/direct-mis-sobol", withSobol(withDirect(cornell, DirectSampling::Mis, 1))});
-  cases.push_back({"cornell-box/path-sobol", withSobol(withPath(cornell, 1))});
+  cases.push_back({"cornell-box/direct-light", withDirect(cornell, DirectSampling::Light, 1), nullptr, false});
+  cases.push_back({"cornell-box/direct-mis", withDirect(cornell, DirectSampling::Mis, 1), nullptr, false});
+  cases.push_back({"cornell-box/ao-cosine", withAo(cornell, AoSampling::Cosine), nullptr, false});
+  cases.push_back({"cornell-box/path", withPath(cornell, 1), nullptr, false});
+  cases.push_back({"cornell-box/direct-mis-sobol", withSobol(withDirect(cornell, DirectSampling::Mis, 1)), nullptr, false});
+  cases.push_back({"cornell-box/path-sobol", withSobol(withPath(cornell, 1)), nullptr, false});
   return cases;
 }
 

@@ -22,7 +22,11 @@ Material deviceMaterial(const MaterialDesc& m) {
       break;
     case MCL_MATERIAL_dielectric: d.params0 = glm::vec4(m.ior, m.kindAlpha, 0.0f, 0.0f); break;
     case MCL_MATERIAL_thin_dielectric: d.params0 = glm::vec4(m.ior, 0.0f, 0.0f, 0.0f); break;
-    case MCL_MATERIAL_metal_rough: d.params0 = glm::vec4(m.metallic, m.roughness, 0.0f, 0.0f); break;
+    case MCL_MATERIAL_metal_rough:
+      d.params0 = glm::vec4(m.metallic, m.roughness, 0.0f, 0.0f);
+      // transmission_mix.h: x the factor, y the ior, z 1 for a solid dielectric (all 0 without)
+      if (m.transmission > 0.0f) d.params1 = glm::vec4(m.transmission, m.ior, m.transmissionSolid ? 1.0f : 0.0f, 0.0f);
+      break;
     default: break;
   }
   return d;

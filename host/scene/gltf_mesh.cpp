@@ -5,7 +5,8 @@
 // albedoTexture; alphaMode MASK (+ alphaCutoff) -> alphaTexture = the base colour texture, BLEND
 // treated as MASK with a warning; emissiveFactor x KHR_materials_emissive_strength -> emission
 // (two-sided when doubleSided), emissiveTexture -> emissionTexture; metallic/roughness factors (x
-// metallicRoughnessTexture) -> the metal_rough kind. The first perspective camera met in the hierarchy is returned.
+// metallicRoughnessTexture) -> the metal_rough kind; KHR_materials_transmission (+ _ior, _volume)
+// -> the dielectric kinds (gltf_transmission.h). The first perspective camera met in the hierarchy is returned.
 // Everything else the file uses is one warning per kind.
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -17,6 +18,7 @@
 #include "util/host_memory.h"
 #include "scene/gltf_lights.h"
 #include "scene/gltf_model.h"
+#include "scene/gltf_transmission.h"
 #include "scene/load_util.h"
 #include "scene/mesh_loaders.h"
 
@@ -82,6 +84,7 @@ std::uint32_t Loader::material(int index) {
   for (const auto& ext : g.extensions) {
     if (ext.first == "KHR_materials_emissive_strength" && ext.second.Has("emissiveStrength"))
       strength = ext.second.Get("emissiveStrength").GetNumberAsDouble();
+    else if (gltfTransmissionExtension(ext.first)) continue;  // applyGltfTransmission, below
     else unused.add("extension " + ext.first, where, "material extension '" + oneLine(ext.first, 60) + "' not used by montecl, ignored");
   }
   d.emission = factor3(g.emissiveFactor, strength);
@@ -153,6 +156,7 @@ std::uint32_t Loader::material(int index) {
     if (!std::isfinite(d.normalScale)) loadFail(file, where, "normalTexture scale must be finite");
     d.normalTexture = texturePath(g.normalTexture.index, g.normalTexture.texCoord, "normalTexture");
   }
+  applyGltfTransmission(file, where, g, d, unused);
   if (g.occlusionTexture.index >= 0) unused.add("occlusionTexture", where, "occlusionTexture not used by montecl, ignored");
   materialIndex[i] = static_cast<std::int64_t>(scene.materials.size());
   scene.materials.push_back(d);

@@ -11,6 +11,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "scene/gltf_transmission.h"
 #include "scene/load_util.h"
 
 namespace montecl {
@@ -253,7 +254,8 @@ tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>*
 }
 
 bool gltfExtensionSupported(const std::string& name) {
-  return name == "KHR_materials_emissive_strength" || name == "KHR_lights_punctual" || name == "KHR_mesh_quantization";
+  return name == "KHR_materials_emissive_strength" || name == "KHR_lights_punctual" || name == "KHR_mesh_quantization" ||
+         gltfTransmissionExtension(name);
 }
 
 std::vector<float> readFloatAccessor(const std::string& file, const tinygltf::Model& m, int index, int components,

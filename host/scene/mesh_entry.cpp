@@ -39,7 +39,8 @@ void parseMaterial(const JsonCtx& ctx, const json& j, const std::string& prefix,
   warnUnknownKeys(ctx, j, prefix,
                   {"type", "albedo", "albedo_texture", "alpha_texture", "alpha_cutoff", "emission",
                    "two_sided_emission", "specular", "specular_exponent", "eta", "k", "metal", "alpha",
-                   "roughness", "ior", "metallic", "emission_texture", "normal_texture", "normal_scale"});
+                   "roughness", "ior", "metallic", "emission_texture", "normal_texture", "normal_scale",
+                   "metallic_roughness_texture"});
   MaterialDesc& d = o.value;
   if (const json* v = optionalKey(j, "type")) {  // the material kind (kernels/shared/material_kinds.h)
     const std::string name = getString(ctx, *v, prefix + ".type", "a material type");
@@ -62,6 +63,10 @@ void parseMaterial(const JsonCtx& ctx, const json& j, const std::string& prefix,
     o.emissionTexture = true, d.emissionTexture = texturePath(ctx, *v, prefix + ".emission_texture");
   if (const json* v = optionalKey(j, "normal_texture"))
     o.normalTexture = true, d.normalTexture = texturePath(ctx, *v, prefix + ".normal_texture");
+  if (const json* v = optionalKey(j, "metallic_roughness_texture")) {  // glTF's: B metallic, G roughness, linear
+    o.metallicRoughnessTexture = true;
+    d.metallicRoughnessTexture = texturePath(ctx, *v, prefix + ".metallic_roughness_texture");
+  }
   if (const json* v = optionalKey(j, "normal_scale")) {
     o.normalScale = true;
     d.normalScale = getFloat(ctx, *v, prefix + ".normal_scale");
@@ -147,7 +152,7 @@ void transformTriangles(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, 
   scene.triangles.resize(out);
 }
 
-void overrideMaterials(Scene& scene, std::size_t firstTri, const MeshEntry& mesh) {
+void overrideMaterials(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, const MeshEntry& mesh) {
   const MaterialOverride& o = mesh.material;
   std::vector<std::int64_t> copyOf(scene.materials.size(), -1);
   for (std::size_t t = firstTri; t < scene.triangles.size(); ++t) {
@@ -155,7 +160,18 @@ void overrideMaterials(Scene& scene, std::size_t firstTri, const MeshEntry& mesh
     if (copyOf[m] < 0) {
       MaterialDesc d = scene.materials[m];
       d.name += " (" + mesh.prefix + " override)";
-      if (o.kind) d.kind = o.value.kind;
+      if (o.kind) {
+        // The file's metallic-roughness texture and transmission belong to its metal_rough kind.
+        if (d.kind != o.value.kind) d.metallicRoughnessTexture.clear(), d.transmission = 0.0f;
+        d.kind = o.value.kind;
+      }
+      if (o.metallicRoughnessTexture) {
+        if (d.kind != MCL_MATERIAL_metal_rough)
+          jsonFail(ctx, mesh.prefix + ".material.metallic_roughness_texture",
+                   "is read by the material type metal_rough only (this mesh's material is " +
+                       std::string(materialKindName(d.kind)) + ")");
+        d.metallicRoughnessTexture = o.value.metallicRoughnessTexture;
+      }
       if (o.albedo) d.albedo = o.value.albedo;
       if (o.albedoTexture) {
         d.albedoTexture = o.value.albedoTexture;
@@ -229,12 +245,13 @@ void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, std:
                     const MeshEntry& mesh) {
   if (mesh.hasTransform) transformTriangles(ctx, scene, firstTri, mesh);
   if (mesh.hasTransform) transformLights(ctx, scene, firstLight, mesh);
-  if (mesh.material.any()) overrideMaterials(scene, firstTri, mesh);
+  if (mesh.material.any()) overrideMaterials(ctx, scene, firstTri, mesh);
   // The override's textures are read by the render like any other: inputs the output must not replace.
   if (mesh.material.albedoTexture) scene.inputFiles.push_back(mesh.material.value.albedoTexture);
   if (mesh.material.alphaTexture) scene.inputFiles.push_back(mesh.material.value.alphaTexture);
   if (mesh.material.emissionTexture) scene.inputFiles.push_back(mesh.material.value.emissionTexture);
   if (mesh.material.normalTexture) scene.inputFiles.push_back(mesh.material.value.normalTexture);
+  if (mesh.material.metallicRoughnessTexture) scene.inputFiles.push_back(mesh.material.value.metallicRoughnessTexture);
 }
 
 void recomputeBounds(Scene& scene) {

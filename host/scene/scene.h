@@ -53,6 +53,10 @@ struct MaterialDesc {
   float kindAlpha = 0.0f;         // conductor, dielectric: GGX alpha (0: smooth)
   float metallic = 0.0f, roughness = 1.0f;  // metal_rough (glTF factors)
   std::string metallicRoughnessTexture;  // glTF metallicRoughnessTexture (linear; B x metallic, G x roughness)
+  // metal_rough: glTF KHR_materials_transmission's factor (0: none) through a dielectric of index
+  // `ior`, solid (KHR_materials_volume) or a thin sheet (kernels/shared/transmission_mix.h).
+  float transmission = 0.0f;
+  bool transmissionSolid = false;
 };
 
 // Per-corner attributes of a triangle (SceneTriangle::attributes says which are present).

@@ -84,6 +84,10 @@ std::string sceneDigest(const Scene& scene) {
         const std::uint64_t mr = fileContentHash(m.metallicRoughnessTexture, files);
         append(bytes, &mr, sizeof mr);
       }
+      if (m.transmission > 0.0f) {  // only when there is some, so other scenes keep their digests
+        bytes.add(m.transmissionSolid ? "transmission solid" : "transmission thin");
+        append(bytes, &m.transmission, sizeof m.transmission);
+      }
     }
   }
   if (scene.environment.enabled) {  // the map by its content

@@ -8,6 +8,7 @@
 #include "shading.h"
 #include "normal_map.h"
 #include "surface_texture.h"
+#include "transmission_mix.h"
 
 // What surface_at reads: the scene's triangles (BVH order), their unit geometric normals and
 // areas (normals[t]: xyz, w), attributes, materials and texture tables.
@@ -85,6 +86,7 @@ MCL_INLINE Surface surface_at(SurfaceScene sc, MCL_CONSTANT const FrameParams* f
   s.frame = apply_normal_map(s.frame, sc.tex, m, tri, &sc.shading[h.tri], xyz(sc.normals[h.tri]), h);
   float3 albedo = hit_albedo(sc.tex, f, m, tri, sc.normals[h.tri], &sc.shading[h.tri], h, dir);
   m = hit_metal_rough(sc.tex, f, m, tri, sc.normals[h.tri], &sc.shading[h.tri], h, dir);
+  m = hit_transmission(m, h, dir);
   s.bsdf = bsdf_from_material(m, albedo);
   return s;
 }

@@ -1,0 +1,48 @@
+// transmission_mix.h: a partly transmissive metal_rough material (glTF KHR_materials_transmission
+// with a factor t in (0, 1), or metallic > 0): reads the Material's params0 (x: metallic, y:
+// roughness, after the metallic-roughness texture) and params1 (x: t, y: ior, z: 1 for a solid
+// dielectric, 0 for a thin sheet; host/render/device_materials.cpp) and returns the Material of
+// one of two kinds, picked per hit. Pure; compiled by the kernels and the host tests.
+// glTF's BSDF is metallic x metal + (1 - metallic) x fresnel_mix(specular, mix(diffuse, btdf, t)).
+// With p = t (1 - metallic) it is exactly p x (the dielectric: Fresnel-weighted specular + btdf) +
+// (1 - p) x metal_rough(metallic / (1 - p)) (the same metal weight, the rest Lambert + specular),
+// so the hit becomes the (thin_)dielectric kind (ior, alpha = roughness^2; thin: smooth) with
+// probability p, else metal_rough with metallic / (1 - p): a stochastic choice of one kind,
+// unbiased, branch-free, and every stage keeps seeing one kind (delta or not) per hit. The number
+// deciding it is a hash of the hit itself (triangle, barycentrics, ray direction), so every stage
+// that rebuilds the surface of the same hit (shade_direct and shade_direct_hit, record_aov) makes
+// the same choice, and samples, which meet the surface at other points, choose independently.
+#pragma once
+#include "material_kinds.h"
+#include "rng.h"
+#include "types.h"
+
+// A uniform number in [0, 1) that is a function of the hit h of a ray along dir.
+MCL_INLINE float hit_uniform(Hit h, float3 dir) {
+  uint x = mcl_mix32(h.tri ^ 0x9e3779b9u);
+  x = mcl_mix32(x ^ as_uint(h.u));
+  x = mcl_mix32(x ^ as_uint(h.v));
+  x = mcl_mix32(x ^ as_uint(dir.x));
+  x = mcl_mix32(x ^ as_uint(dir.y));
+  x = mcl_mix32(x ^ as_uint(dir.z));
+  return u32_to_unit(x);
+}
+
+// m itself unless it is a metal_rough material with a transmission factor > 0 (so every other
+// material, and every metal_rough one without transmission, keeps its bits).
+MCL_INLINE Material hit_transmission(Material m, Hit h, float3 dir) {
+  uint kind = as_uint(m.alpha.w);
+  float t = m.params1.x;
+  int mixes = kind == (uint)MCL_MATERIAL_metal_rough && t > 0.0f;
+  float metallic = m.params0.x, roughness = m.params0.y;
+  float p = t * (1.0f - metallic);
+  int pick = mixes && hit_uniform(h, dir) < p;
+  int solid = m.params1.z > 0.0f;
+  uint glass = solid ? (uint)MCL_MATERIAL_dielectric : (uint)MCL_MATERIAL_thin_dielectric;
+  float rest = fmin(metallic / fmax(1.0f - p, 1e-30f), 1.0f);
+  Material r = m;
+  r.alpha.w = as_float(pick ? glass : kind);
+  r.params0.x = pick ? m.params1.y : (mixes ? rest : metallic);
+  r.params0.y = pick ? (solid ? roughness * roughness : 0.0f) : roughness;
+  return r;
+}
