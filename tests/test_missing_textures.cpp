@@ -113,7 +113,7 @@ TEST_CASE("missing textures: warn names all in one warning and renders the facto
     CHECK(error.exitCode == 2);
     CHECK(lines(error.err) == 1);
     CHECK(error.err.find(dir.file("quads.mtl") + " line 3 map_Kd 'gone1.png'") != std::string::npos);
-    CHECK(error.err.find(dir.file("quads.mtl") + " line 6 map_Kd 'maps/gone2.png'") != std::string::npos);
+    CHECK(error.err.find(dir.file("quads.mtl") + " line 5 map_Kd 'maps/gone2.png'") != std::string::npos);
     CHECK(error.err.find(dir.file("gone3.png")) != std::string::npos);
     CHECK(error.err.find(dir.file("nowhere/gone4.png")) != std::string::npos);
     CHECK(error.err.find("(4 textures missing)") != std::string::npos);
