@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <cstdlib>
 #include <filesystem>
@@ -161,8 +162,55 @@ std::vector<std::string> gltfSeeds() {
   rich.replace(rich.find(mesh), mesh.size(), R"({"mesh":0,"matrix":[-1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]})");
   const std::string roots = R"("scenes":[{"nodes":[0]}])";
   (void)roots;
+  // EXT_mesh_gpu_instancing: two instances (TRANSLATION, ROTATION, SCALE floats) in a second buffer.
+  std::string instanced = montecl_test::gltfText(tent, 0.5f, "");
+  {
+    const float values[] = {0, 0, 0, 1, 0, -1, 0, 0, 0, 1, 0.6f, 0, 0, 0.8f, 1, 1, 1, 2, 0.5f, 1};
+    std::string bytes(sizeof values, '\0');
+    std::memcpy(&bytes[0], values, sizeof values);
+    const std::string buffer = R"({"uri":"data:application/octet-stream;base64,)" + montecl_test::base64(bytes) +
+                               R"(","byteLength":80})";
+    const std::string buffers = R"("buffers":[)";
+    instanced.insert(instanced.find(buffers) + buffers.size(), buffer + ",");  // buffer 0 now: the instances
+    // The mesh's views move to buffer 1; the instance views and accessors come first.
+    for (std::size_t p = 0; (p = instanced.find(R"("buffer":0)", p)) != std::string::npos; p += 10) instanced[p + 9] = '1';
+    const std::string views = R"("bufferViews":[)";
+    instanced.insert(instanced.find(views) + views.size(),
+                     R"({"buffer":0,"byteOffset":0,"byteLength":24},{"buffer":0,"byteOffset":24,"byteLength":32},)"
+                     R"({"buffer":0,"byteOffset":56,"byteLength":24},)");
+    // Accessors 0-2 are the instances'; the mesh's accessors and views are renumbered by 3.
+    std::string out;
+    for (std::size_t p = 0; p < instanced.size();) {
+      const std::size_t a = instanced.find_first_of("\"", p);
+      if (a == std::string::npos) { out += instanced.substr(p); break; }
+      out += instanced.substr(p, a - p);
+      p = a;
+      static const char* keys[] = {"\"bufferView\":", "\"POSITION\":", "\"NORMAL\":", "\"TEXCOORD_0\":", "\"indices\":"};
+      bool done = false;
+      for (const char* k : keys)
+        if (instanced.compare(p, std::strlen(k), k) == 0) {
+          std::size_t e = p + std::strlen(k), d = e;
+          while (d < instanced.size() && std::isdigit(static_cast<unsigned char>(instanced[d]))) ++d;
+          out += std::string(k) + std::to_string(std::stoi(instanced.substr(e, d - e)) + 3);
+          p = d;
+          done = true;
+          break;
+        }
+      if (!done) out += instanced[p++];
+    }
+    instanced = out;
+    const std::string accessors = R"("accessors":[)";
+    instanced.insert(instanced.find(accessors) + accessors.size(),
+                     R"({"bufferView":0,"componentType":5126,"count":2,"type":"VEC3"},)"
+                     R"({"bufferView":1,"componentType":5126,"count":2,"type":"VEC4"},)"
+                     R"({"bufferView":2,"componentType":5126,"count":2,"type":"VEC3"},)");
+    const std::string node = R"({"mesh":0,"translation":[0,0,0]})";
+    instanced.replace(instanced.find(node), node.size(),
+                      R"({"mesh":0,"extensions":{"EXT_mesh_gpu_instancing":{"attributes":)"
+                      R"({"TRANSLATION":0,"ROTATION":1,"SCALE":2}}}})");
+  }
   std::vector<std::string> seeds = {montecl_test::gltfText(tent, 0.5f, ""), montecl_test::gltfText(tent, 0.25f, "tent.bin"),
-                                    montecl_test::glbBytes(tent, 0.5f), rich};
+                                    montecl_test::glbBytes(tent, 0.5f), rich, instanced};
   for (const std::string& s : filesSeeds({".gltf", ".glb"})) seeds.push_back(s);
   return seeds;
 }

@@ -151,7 +151,15 @@ int runRender(const RenderArgs& a) {
   if (a.textureBudgetMiB && !(*a.textureBudgetMiB * double(1 << 20) < 18446744073709551616.0))
     throwInputError("--texture-budget", "", "too large: at most 2^44 MiB (a 64-bit byte count)");
   std::vector<std::string> warnings;
-  Scene scene = loadScene(a.scene, warnings);
+  // --missing-textures decides while the loaders run (the other settings apply after loading).
+  std::optional<MissingTextures> missing;
+  if (const auto it = a.settings.find("missing_textures"); it != a.settings.end()) {
+    RenderSettings chosen;
+    for (const RenderSetting& s : renderSettings())
+      if (s.key == "missing_textures") setFromText(s, it->second, chosen);
+    missing = chosen.missingTextures;
+  }
+  Scene scene = loadScene(a.scene, warnings, missing);
   for (const std::string& w : warnings) std::cerr << "montecl: warning: " << w << "\n";
   applyOverrides(a, scene);
   std::string output = a.output;

@@ -6,16 +6,20 @@
 // treated as MASK with a warning; emissiveFactor x KHR_materials_emissive_strength -> emission
 // (two-sided when doubleSided), emissiveTexture -> emissionTexture; metallic/roughness factors (x
 // metallicRoughnessTexture) -> the metal_rough kind; KHR_materials_transmission (+ _ior, _volume)
-// -> the dielectric kinds (gltf_transmission.h). The first perspective camera met in the hierarchy is returned.
+// -> the dielectric kinds (gltf_transmission.h). EXT_mesh_gpu_instancing: one copy of the node's
+// mesh per instance (flattened). The first perspective camera met in the hierarchy is returned.
 // Everything else the file uses is one warning per kind.
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "util/host_memory.h"
+#include "scene/gltf_instancing.h"
 #include "scene/gltf_lights.h"
 #include "scene/gltf_model.h"
 #include "scene/gltf_transmission.h"
@@ -35,6 +39,7 @@ struct Loader {
   std::vector<std::int64_t> materialIndex;  // glTF material -> scene material (-1: not yet)
   bool hasCamera = false;
   Camera camera;
+  std::set<int> missingImages;  // images whose file cannot be opened
 
   std::uint32_t material(int index);
   void primitive(const tinygltf::Primitive& p, const glm::dmat4& world, const std::string& where);
@@ -108,8 +113,12 @@ std::uint32_t Loader::material(int index) {
         unused.add("case", itemWhere("images", std::size_t(t.source)),
                    "'" + path + "' not found as written; using '" + found + "' (the names differ in case)");
         path = found;
-      } else if (!problem.empty()) {
-        loadFail(file, itemWhere("images", std::size_t(t.source)), "cannot open '" + path + "': " + problem);
+      } else if (!problem.empty()) {  // recorded once per image; the material goes without it
+        if (missingImages.insert(t.source).second)
+          noteMissingTexture(scene.missingTextures, {file, itemWhere("images", std::size_t(t.source)),
+                                           "cannot open '" + path + "': " + problem,
+                                           itemWhere("images", std::size_t(t.source)) + " '" + path + "'"});
+        return std::string();
       }
       scene.inputFiles.push_back(path);
     }
@@ -297,6 +306,7 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
       if (!child[i]) roots.push_back(static_cast<int>(i));
   }
   const std::size_t before = scene.triangles.size(), droppedBefore = scene.degenerateDropped;
+  const std::size_t missingBefore = scene.missingTextures.size();
   std::uint64_t instanced = 0;  // triangles the meshes of the nodes so far declare
   std::vector<bool> visited(m.nodes.size(), false);
   std::vector<std::pair<int, glm::dmat4>> stack;
@@ -315,15 +325,27 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
     if (node.mesh >= 0) {
       if (static_cast<std::size_t>(node.mesh) >= m.meshes.size()) loadFail(path, itemWhere("nodes", i), "mesh index out of range");
       const tinygltf::Mesh& mesh = m.meshes[std::size_t(node.mesh)];
-      // Every node using a mesh adds a copy: a small file can instance gigabytes of triangles.
-      instanced += meshTriangles(m, mesh);
+      // EXT_mesh_gpu_instancing: copies of the mesh at world x instance matrix, in instance order.
+      const GltfInstances inst = gltfNodeInstances(path, m, node, itemWhere("nodes", i));
+      for (const std::string& a : inst.ignored)
+        l.unused.add("instance attribute " + a, itemWhere("nodes", i),
+                     "instance attribute " + oneLine(a, 40) + " not used by montecl, ignored");
+      // Every node using a mesh, and every instance of it, adds a copy: a small file can instance
+      // gigabytes of triangles (counted up to 2^40, past any machine, so the product cannot wrap).
+      const std::uint64_t cap = std::uint64_t(1) << 40, tris = std::min(meshTriangles(m, mesh), cap);
+      const std::uint64_t copies = std::min<std::uint64_t>(inst.count, cap);
+      instanced = std::min(instanced + (copies != 0 && tris > cap / copies ? cap : tris * copies), cap);
       const std::string tooMany = sceneMemoryRefusal(std::uint64_t(before) + instanced, sizeof(SceneTriangle));
       if (!tooMany.empty()) loadFail(path, itemWhere("nodes", i), "instancing its meshes " + tooMany);
-      for (std::size_t p = 0; p < mesh.primitives.size(); ++p)
-        l.primitive(mesh.primitives[p], world, itemWhere("meshes", std::size_t(node.mesh)) + ".primitives[" + std::to_string(p) + "]");
+      for (std::size_t k = 0; k < inst.count; ++k) {
+        const glm::dmat4 placed = inst.present ? world * inst.local(k) : world;
+        for (std::size_t p = 0; p < mesh.primitives.size(); ++p)
+          l.primitive(mesh.primitives[p], placed, itemWhere("meshes", std::size_t(node.mesh)) + ".primitives[" + std::to_string(p) + "]");
+      }
     }
     for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.emplace_back(*it, world);
   }
+  failOnMissingTextures(scene, missingBefore);
   l.unused.flush(warnings);
   if (scene.triangles.size() == before)
     loadFail(path, "", "no triangles (" + std::to_string(scene.degenerateDropped - droppedBefore) +

@@ -249,19 +249,32 @@ tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>*
     ok = loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), dir);
   }
   if (!ok || !err.empty()) failWith(path, firstLine(err), glb);
-  if (warnings && !warn.empty()) warnings->push_back(oneLine(path) + ": " + oneLine(firstLine(warn)));
+  // An image file tinygltf cannot find is the loader's to report (every missing texture in one
+  // listing, missing_textures): its "File not found" and "Failed to load external 'uri' for
+  // image" lines are dropped here.
+  std::string kept;
+  for (std::size_t p = 0; p < warn.size();) {
+    std::size_t eol = warn.find('\n', p);
+    if (eol == std::string::npos) eol = warn.size();
+    const std::string line = warn.substr(p, eol - p);
+    const bool image = line.compare(0, 17, "File not found : ") == 0 ||
+                       line.compare(0, 39, "Failed to load external 'uri' for image") == 0;
+    if (!line.empty() && !image) kept += line + "\n";
+    p = eol + 1;
+  }
+  if (warnings && !kept.empty()) warnings->push_back(oneLine(path) + ": " + oneLine(firstLine(kept)));
   return model;
 }
 
 bool gltfExtensionSupported(const std::string& name) {
   return name == "KHR_materials_emissive_strength" || name == "KHR_lights_punctual" || name == "KHR_mesh_quantization" ||
-         gltfTransmissionExtension(name);
+         gltfTransmissionExtension(name) || name == "EXT_mesh_gpu_instancing";
 }
 
 std::vector<float> readFloatAccessor(const std::string& file, const tinygltf::Model& m, int index, int components,
                                      const std::string& where, AccessorUse use) {
   const tinygltf::Accessor& a = accessorAt(file, m, index, where);
-  const int type = components == 2 ? TINYGLTF_TYPE_VEC2 : TINYGLTF_TYPE_VEC3;
+  const int type = components == 2 ? TINYGLTF_TYPE_VEC2 : components == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4;
   if (a.type != type) loadFail(file, where, "expected a VEC" + std::to_string(components) + " accessor");
   const int ct = a.componentType;
   const bool isFloat = ct == TINYGLTF_COMPONENT_TYPE_FLOAT;

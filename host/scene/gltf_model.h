@@ -32,7 +32,7 @@ bool gltfExtensionSupported(const std::string& name);
 enum class AccessorUse { Any, Position, Normal, TexCoord };
 
 // Accessor `index` as floats with `components` components per element (VEC2: 2, VEC3: 3), from
-// FLOAT data or the integer data `use` allows; where names the attribute for messages.
+// FLOAT data or the integer data `use` allows (VEC4: 4); where names the attribute for messages.
 std::vector<float> readFloatAccessor(const std::string& file, const tinygltf::Model& m, int index, int components,
                                      const std::string& where, AccessorUse use = AccessorUse::Any);
 

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 #include <vector>
 
 #include "util/errors.h"
@@ -30,6 +31,33 @@ std::string oneLine(const std::string& s, std::size_t maxLen) {
 
 void loadFail(const std::string& file, const std::string& where, const std::string& problem) {
   throwInputError(oneLine(file, 4096), oneLine(where, 200), oneLine(problem, 1000));
+}
+
+std::string missingTexturesText(const Scene& scene, std::size_t from) {
+  const std::vector<MissingTexture>& list = scene.missingTextures;
+  if (from >= list.size()) return "";
+  const MissingTexture& first = list[from];
+  std::string all = oneLine(first.file, 4096) + (first.where.empty() ? "" : ": " + first.where) + ": " + first.lead;
+  if (list.size() - from > 1) {
+    all += "; also missing:";
+    for (std::size_t i = from + 1; i < list.size(); ++i)
+      all += std::string(i > from + 1 ? ", " : " ") + (list[i].file == first.file ? "" : list[i].file + " ") + list[i].brief;
+    all += " (" + std::to_string(list.size() - from) + " textures missing)";
+  }
+  return all;
+}
+
+void noteMissingTexture(std::vector<MissingTexture>& list, MissingTexture m) {
+  for (const MissingTexture& x : list)
+    if (x.file == m.file && x.where == m.where && x.lead == m.lead) return;
+  list.push_back(std::move(m));
+}
+
+void failOnMissingTextures(const Scene& scene, std::size_t from) {
+  if (scene.deferMissingTextures || scene.render.missingTextures != MissingTextures::Error ||
+      from >= scene.missingTextures.size())
+    return;
+  throw InputError(oneLine(missingTexturesText(scene, from), 4096));
 }
 
 std::string lineWhere(std::size_t line) { return "line " + std::to_string(line); }

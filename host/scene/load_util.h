@@ -52,6 +52,20 @@ std::string lowerExtension(const std::string& path);
 // instead; grows the scene bounds. Returns whether it was appended.
 bool appendTriangle(Scene& scene, const SceneTriangle& t);
 
+// Missing textures [from, end) of scene as one listing: "<file>: <where>: <lead>; also missing:
+// <brief>, ... (N textures missing)" ("" when none).
+std::string missingTexturesText(const Scene& scene, std::size_t from);
+
+// Appends m to list unless the same texture reference (file, where) is there already (a mesh file
+// used by two entries is read twice).
+void noteMissingTexture(std::vector<MissingTexture>& list, MissingTexture m);
+
+// A loader's texture that cannot be opened: recorded in scene.missingTextures (its material then
+// goes without it). The loader calls failOnMissingTextures at the end of its file: with
+// render.missing_textures error (the default) that throws the listing of the file's ones as one
+// InputError, unless scene.deferMissingTextures (loadScene then reports the whole scene's).
+void failOnMissingTextures(const Scene& scene, std::size_t from);
+
 // Warnings collected by kind: the first occurrence of each kind is reported, with the number of
 // further ones, when flushed: "<file>: <where>: <text> (N more)".
 class KindWarnings {

@@ -9,6 +9,7 @@
 
 #include "scene/load_util.h"
 #include "scene/material_params.h"
+#include "util/host_memory.h"
 
 namespace montecl {
 namespace {
@@ -20,11 +21,16 @@ std::string resolvePath(const std::string& sceneFile, const std::string& file) {
   return (folder / file).lexically_normal().string();
 }
 
-// A texture named in the scene file: resolved against its folder, and it must exist.
-std::string texturePath(const JsonCtx& ctx, const json& v, const std::string& where) {
+// A texture named in the scene file: resolved against its folder, and it must exist, unless
+// missing records it ("" returned: the override is then not given).
+std::string texturePath(const JsonCtx& ctx, const json& v, const std::string& where, std::vector<MissingTexture>* missing) {
   const std::string path = resolvePath(ctx.file, getString(ctx, v, where, "a file name"));
   const std::string problem = fileProblem(path);
-  if (!problem.empty()) jsonFail(ctx, where, "cannot open '" + path + "': " + problem);
+  if (!problem.empty() && !missing) jsonFail(ctx, where, "cannot open '" + path + "': " + problem);
+  if (!problem.empty()) {
+    noteMissingTexture(*missing, {ctx.file, where, "cannot open '" + path + "': " + problem, where + " '" + path + "'"});
+    return "";
+  }
   return path;
 }
 
@@ -34,7 +40,12 @@ float getUnit(const JsonCtx& ctx, const json& v, const std::string& where) {
   return f;
 }
 
-void parseMaterial(const JsonCtx& ctx, const json& j, const std::string& prefix, MaterialOverride& o) {
+void parseMaterial(const JsonCtx& ctx, const json& j, const std::string& prefix, MaterialOverride& o,
+                   std::vector<MissingTexture>* missing) {
+  const auto texture = [&](const json& v, const std::string& where, bool& given, std::string& path) {
+    path = texturePath(ctx, v, where, missing);
+    given = !path.empty();
+  };
   requireObject(ctx, j, prefix);
   warnUnknownKeys(ctx, j, prefix,
                   {"type", "albedo", "albedo_texture", "alpha_texture", "alpha_cutoff", "emission",
@@ -51,22 +62,20 @@ void parseMaterial(const JsonCtx& ctx, const json& j, const std::string& prefix,
   o.kindParams = parseKindParams(ctx, j, prefix, d);
   if (const json* v = optionalKey(j, "albedo")) o.albedo = true, d.albedo = getColor(ctx, *v, prefix + ".albedo");
   if (const json* v = optionalKey(j, "albedo_texture"))
-    o.albedoTexture = true, d.albedoTexture = texturePath(ctx, *v, prefix + ".albedo_texture");
+    texture(*v, prefix + ".albedo_texture", o.albedoTexture, d.albedoTexture);
   if (const json* v = optionalKey(j, "alpha_texture"))
-    o.alphaTexture = true, d.alphaTexture = texturePath(ctx, *v, prefix + ".alpha_texture");
+    texture(*v, prefix + ".alpha_texture", o.alphaTexture, d.alphaTexture);
   if (const json* v = optionalKey(j, "alpha_cutoff"))
     o.alphaCutoff = true, d.alphaCutoff = getUnit(ctx, *v, prefix + ".alpha_cutoff");
   if (const json* v = optionalKey(j, "emission")) o.emission = true, d.emission = getColor(ctx, *v, prefix + ".emission");
   if (const json* v = optionalKey(j, "two_sided_emission"))
     o.twoSided = true, d.twoSidedEmission = getBool(ctx, *v, prefix + ".two_sided_emission");
   if (const json* v = optionalKey(j, "emission_texture"))
-    o.emissionTexture = true, d.emissionTexture = texturePath(ctx, *v, prefix + ".emission_texture");
+    texture(*v, prefix + ".emission_texture", o.emissionTexture, d.emissionTexture);
   if (const json* v = optionalKey(j, "normal_texture"))
-    o.normalTexture = true, d.normalTexture = texturePath(ctx, *v, prefix + ".normal_texture");
-  if (const json* v = optionalKey(j, "metallic_roughness_texture")) {  // glTF's: B metallic, G roughness, linear
-    o.metallicRoughnessTexture = true;
-    d.metallicRoughnessTexture = texturePath(ctx, *v, prefix + ".metallic_roughness_texture");
-  }
+    texture(*v, prefix + ".normal_texture", o.normalTexture, d.normalTexture);
+  if (const json* v = optionalKey(j, "metallic_roughness_texture"))  // glTF's: B metallic, G roughness, linear
+    texture(*v, prefix + ".metallic_roughness_texture", o.metallicRoughnessTexture, d.metallicRoughnessTexture);
   if (const json* v = optionalKey(j, "normal_scale")) {
     o.normalScale = true;
     d.normalScale = getFloat(ctx, *v, prefix + ".normal_scale");
@@ -125,8 +134,7 @@ glm::dmat4 parseTransform(const JsonCtx& ctx, const json& j, const std::string& 
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-void transformTriangles(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, const MeshEntry& mesh) {
-  const glm::dmat4& m = mesh.transform;
+void transformTriangles(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, const glm::dmat4& m, const std::string& key) {
   const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(m)));
   const bool mirror = glm::determinant(glm::dmat3(m)) < 0.0;
   std::size_t out = firstTri;
@@ -134,7 +142,7 @@ void transformTriangles(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, 
     SceneTriangle t = scene.triangles[i];
     for (int k = 0; k < 3; ++k) {
       t.v[k] = glm::vec3(m * glm::dvec4(glm::dvec3(t.v[k]), 1.0));
-      if (!finite(t.v[k])) jsonFail(ctx, mesh.prefix + ".transform", "moves vertices out of float range");
+      if (!finite(t.v[k])) jsonFail(ctx, key, "moves vertices out of float range");
       if (t.attributes & kHasNormals) t.n[k] = glm::vec3(glm::normalize(normalMatrix * glm::dvec3(t.n[k])));
     }
     if (mirror) {  // keep the winding's side: the face normal follows the mirrored surface
@@ -177,6 +185,7 @@ void overrideMaterials(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, c
         d.albedoTexture = o.value.albedoTexture;
         if (!o.albedo) d.albedo = glm::vec3(1.0f);  // the texture as it is
       }
+      if (o.alphaTexture || o.albedoTexture) d.cutoutHint.clear();  // the MTL's map_Kd is no longer alone
       if (o.alphaTexture) d.alphaTexture = o.value.alphaTexture;
       if (o.alphaCutoff) d.alphaCutoff = o.value.alphaCutoff;
       if (o.emission) d.emission = o.value.emission;
@@ -202,14 +211,14 @@ void overrideMaterials(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, c
 
 }  // namespace
 
-MeshEntry parseMeshEntry(const JsonCtx& ctx, const json& j, const std::string& prefix) {
+MeshEntry parseMeshEntry(const JsonCtx& ctx, const json& j, const std::string& prefix, std::vector<MissingTexture>* missing) {
   requireObject(ctx, j, prefix);
-  warnUnknownKeys(ctx, j, prefix, {"file", "emission", "two_sided_emission", "transform", "material"});
+  warnUnknownKeys(ctx, j, prefix, {"file", "emission", "two_sided_emission", "transform", "instances", "material"});
   MeshEntry m;
   m.prefix = prefix;
   m.where = prefix + ".file";
   m.path = resolvePath(ctx.file, getString(ctx, requireKey(ctx, j, prefix, "file"), m.where, "a file name"));
-  if (const json* v = optionalKey(j, "material")) parseMaterial(ctx, *v, prefix + ".material", m.material);
+  if (const json* v = optionalKey(j, "material")) parseMaterial(ctx, *v, prefix + ".material", m.material, missing);
   if (const json* e = optionalKey(j, "emission")) {
     if (m.material.emission) jsonFail(ctx, prefix + ".emission", "also given as " + prefix + ".material.emission: give one");
     m.material.emission = true;
@@ -225,27 +234,67 @@ MeshEntry parseMeshEntry(const JsonCtx& ctx, const json& j, const std::string& p
     m.hasTransform = true;
     m.transform = parseTransform(ctx, *t, prefix + ".transform");
   }
+  if (const json* list = optionalKey(j, "instances")) {
+    const std::string where = prefix + ".instances";
+    if (!list->is_array() || list->empty())
+      jsonFail(ctx, where, std::string("expected a non-empty list of transforms, got ") +
+                               (list->is_array() ? "an empty list" : std::string(list->type_name())));
+    m.instances.reserve(list->size());
+    for (std::size_t k = 0; k < list->size(); ++k)
+      m.instances.push_back(parseTransform(ctx, (*list)[k], where + "[" + std::to_string(k) + "]"));
+  }
   return m;
 }
 
+namespace {
+
 // The lights a glTF mesh brought, placed by the entry's transform as its triangles are (a spot's
 // axis and a directional light's direction turned by it).
-void transformLights(const JsonCtx& ctx, Scene& scene, std::size_t firstLight, const MeshEntry& mesh) {
+void transformLights(const JsonCtx& ctx, Scene& scene, std::size_t firstLight, const glm::dmat4& m, const std::string& key) {
   for (std::size_t i = firstLight; i < scene.lights.size(); ++i) {
     LightDesc& l = scene.lights[i];
-    l.position = glm::vec3(mesh.transform * glm::dvec4(glm::dvec3(l.position), 1.0));
-    const glm::dvec3 d = glm::dmat3(mesh.transform) * glm::dvec3(l.direction);
+    l.position = glm::vec3(m * glm::dvec4(glm::dvec3(l.position), 1.0));
+    const glm::dvec3 d = glm::dmat3(m) * glm::dvec3(l.direction);
     if (!finite(l.position) || !(glm::length(d) > 0.0))
-      jsonFail(ctx, mesh.prefix + ".transform", "moves a light of the mesh out of float range");
+      jsonFail(ctx, key, "moves a light of the mesh out of float range");
     l.direction = glm::vec3(glm::normalize(d));
   }
 }
 
+// The entry's instances: the loaded triangles and lights (materials overridden once, so the
+// copies share them) copied once per instance and placed; the memory check counts every copy
+// before one is made.
+void applyInstances(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, std::size_t firstLight,
+                    const MeshEntry& mesh) {
+  if (mesh.material.any()) overrideMaterials(ctx, scene, firstTri, mesh);
+  const std::uint64_t copies = mesh.instances.size(), tris = scene.triangles.size() - firstTri;
+  const std::string tooMany = sceneMemoryRefusal(std::uint64_t(firstTri) + copies * tris, sizeof(SceneTriangle));
+  if (!tooMany.empty()) jsonFail(ctx, mesh.prefix + ".instances", std::to_string(copies) + " copies of the mesh " + tooMany);
+  const std::vector<SceneTriangle> triangles(scene.triangles.begin() + std::ptrdiff_t(firstTri), scene.triangles.end());
+  const std::vector<LightDesc> lights(scene.lights.begin() + std::ptrdiff_t(firstLight), scene.lights.end());
+  scene.triangles.resize(firstTri);
+  scene.lights.resize(firstLight);
+  for (std::size_t k = 0; k < mesh.instances.size(); ++k) {
+    const std::size_t t0 = scene.triangles.size(), l0 = scene.lights.size();
+    scene.triangles.insert(scene.triangles.end(), triangles.begin(), triangles.end());
+    scene.lights.insert(scene.lights.end(), lights.begin(), lights.end());
+    const std::string key = mesh.prefix + ".instances[" + std::to_string(k) + "]";
+    transformTriangles(ctx, scene, t0, mesh.placement(k), key);
+    transformLights(ctx, scene, l0, mesh.placement(k), key);
+  }
+}
+
+}  // namespace
+
 void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, std::size_t firstLight,
                     const MeshEntry& mesh) {
-  if (mesh.hasTransform) transformTriangles(ctx, scene, firstTri, mesh);
-  if (mesh.hasTransform) transformLights(ctx, scene, firstLight, mesh);
-  if (mesh.material.any()) overrideMaterials(ctx, scene, firstTri, mesh);
+  if (!mesh.instances.empty()) {
+    applyInstances(ctx, scene, firstTri, firstLight, mesh);
+  } else {
+    if (mesh.hasTransform) transformTriangles(ctx, scene, firstTri, mesh.transform, mesh.prefix + ".transform");
+    if (mesh.hasTransform) transformLights(ctx, scene, firstLight, mesh.transform, mesh.prefix + ".transform");
+    if (mesh.material.any()) overrideMaterials(ctx, scene, firstTri, mesh);
+  }
   // The override's textures are read by the render like any other: inputs the output must not replace.
   if (mesh.material.albedoTexture) scene.inputFiles.push_back(mesh.material.value.albedoTexture);
   if (mesh.material.alphaTexture) scene.inputFiles.push_back(mesh.material.value.alphaTexture);

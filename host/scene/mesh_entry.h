@@ -1,5 +1,6 @@
 // mesh_entry.h: one entry of a scene file's "meshes" list: the file, its per-mesh transform
-// ("transform": scale, rotate, translate, or a row-major 4x4 "matrix") and material overrides
+// ("transform": scale, rotate, translate, or a row-major 4x4 "matrix"; "instances": a list of such
+// transforms, one copy of the mesh each) and material overrides
 // ("material": {"type": a material kind, ...}, plus the older "emission" / "two_sided_emission" at the entry's top level).
 // parseMeshEntry() validates every key (InputError naming the key path); applyMeshEntry()
 // transforms the mesh's triangles (normals by the inverse transpose; a mirroring transform swaps
@@ -10,6 +11,7 @@
 #include <glm/glm.hpp>
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "scene/json_fields.h"
 #include "scene/scene.h"
@@ -37,12 +39,25 @@ struct MeshEntry {
   MaterialOverride material;
   bool hasTransform = false;
   glm::dmat4 transform{1.0};  // column vectors (glm): p' = transform * p
+  // "instances": one copy of the mesh per transform, placed at instance x transform (flattened:
+  // every copy is triangles of its own). Empty: the one mesh at transform.
+  std::vector<glm::dmat4> instances;
+  // Where copy k is placed (k = 0 without instances).
+  glm::dmat4 placement(std::size_t k) const {
+    if (instances.empty()) return transform;
+    return hasTransform ? instances[k] * transform : instances[k];
+  }
 };
 
-MeshEntry parseMeshEntry(const JsonCtx& ctx, const nlohmann::json& j, const std::string& prefix);
+// missing: where textures that cannot be opened are recorded (the override then not given;
+// loadScene reports them); nullptr: such a texture is an InputError.
+MeshEntry parseMeshEntry(const JsonCtx& ctx, const nlohmann::json& j, const std::string& prefix,
+                         std::vector<MissingTexture>* missing = nullptr);
 
 // Applies the entry to triangles [firstTri, end) of scene (transform, then material overrides)
-// and places lights [firstLight, end) (a glTF's KHR_lights_punctual) by its transform.
+// and places lights [firstLight, end) (a glTF's KHR_lights_punctual) by its transform. With
+// instances, the triangles and lights become one copy per instance, in instance order, each
+// placed by placement(k); the copies are refused up front when they would not fit in memory.
 // Triangles that the transform makes degenerate are dropped and counted. Does not update the
 // bounds: call recomputeBounds() when all meshes are in.
 void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, std::size_t firstLight,

@@ -138,12 +138,11 @@ MaterialSource sourceOf(const std::string& objPath, const std::vector<MtlFile>& 
   return {objPath, nullptr, name};
 }
 
-// The textures of an OBJ's materials that could not be opened, gathered so that one message names
-// them all (a scene with ten misspelt names needs one run to fix, not ten), and the case-insensitive
-// matches used instead of what was written, each warned once.
+// Where the textures of an OBJ's materials that could not be opened go (scene.missingTextures, so
+// that one message names them all: a scene with ten misspelt names needs one run to fix, not ten),
+// and where the case-insensitive matches used instead of what was written are warned about.
 struct TextureLookup {
-  std::string firstFile, firstWhere, firstProblem;  // the first missing texture, as the error leads
-  std::vector<std::string> others;                  // the rest: "<mtl> line N map_Kd 'name'"
+  Scene* scene = nullptr;
   std::vector<std::string>* warnings = nullptr;
 };
 
@@ -167,28 +166,11 @@ std::string texturePath(const MaterialSource& src, const std::string& key, const
                                "' not found as written; using '" + found + "' (the names differ in case)");
     return found;
   }
-  if (look.firstFile.empty()) {
-    look.firstFile = src.file;
-    look.firstWhere = where;
-    look.firstProblem = "material '" + oneLine(src.name, 60) + "': " + key + " '" + oneLine(name, 200) + "': cannot open '" +
-                        path + "': " + problem;
-  } else {
-    look.others.push_back((src.file == look.firstFile ? "" : src.file + " ") + (where.empty() ? "" : where + " ") + key +
-                          " '" + oneLine(name, 200) + "'");
-  }
+  noteMissingTexture(look.scene->missingTextures,
+      {src.file, where,
+       "material '" + oneLine(src.name, 60) + "': " + key + " '" + oneLine(name, 200) + "': cannot open '" + path + "': " + problem,
+       (where.empty() ? "" : where + " ") + key + " '" + oneLine(name, 200) + "'"});
   return "";
-}
-
-// Fails with one line naming the first texture that could not be opened and every other one.
-void failOnMissingTextures(const TextureLookup& look) {
-  if (look.firstFile.empty()) return;
-  std::string all = look.firstProblem;
-  if (!look.others.empty()) {
-    all += "; also missing:";
-    for (std::size_t i = 0; i < look.others.size(); ++i) all += (i ? ", " : " ") + look.others[i];
-    all += " (" + std::to_string(look.others.size() + 1) + " textures missing)";
-  }
-  loadFail(look.firstFile, look.firstWhere, all);
 }
 
 // The material kind of an MTL material: illum 4, 6 or 7 (glass, refraction) with Ni -> dielectric
@@ -241,8 +223,8 @@ std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<t
   std::set<std::string> textures;
   GlossyScaling scaled;  // Kd + Ks > 1: one warning per OBJ
   std::string scaledAt;  // where the first scaled material is
-  TextureLookup look;
-  look.warnings = warnings;
+  TextureLookup look{&scene, warnings};
+  const std::size_t missingBefore = scene.missingTextures.size();
   for (std::size_t i = 0; i < mats.size(); ++i) {
     const tinyobj::material_t& m = mats[i];
     const MaterialSource src = sourceOf(objPath, files, i, m.name);
@@ -259,15 +241,22 @@ std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<t
     if (!std::isfinite(d.specularExponent) || d.specularExponent < 0.0f) src.fail("Ns", "Ns must be finite and >= 0");
     if (src.block && !src.has("Ns")) d.specularExponent = 0.0f;  // tinyobj's default is 1
     mtlKind(m, src, d);
+    // A texture that cannot be opened is "" (recorded in look): the material as if it had none.
     if (!m.diffuse_texname.empty() || src.has("map_Kd")) {
       d.albedoTexture = texturePath(src, "map_Kd", m.diffuse_texname, look);
-      if (src.block && !src.has("Kd")) d.albedo = glm::vec3(1.0f);  // the texture as it is (tinyobj: 0.6)
+      if (src.block && !src.has("Kd") && !d.albedoTexture.empty()) d.albedo = glm::vec3(1.0f);  // the texture as it is (tinyobj: 0.6)
     }
     if (!m.alpha_texname.empty() || src.has("map_d")) d.alphaTexture = texturePath(src, "map_d", m.alpha_texname, look);
+    if (!d.albedoTexture.empty() && !src.has("map_d") && m.alpha_texname.empty()) {
+      const std::string where = src.where("map_Kd");
+      d.cutoutHint = oneLine(src.file, 4096) + (where.empty() ? "" : ": " + where) + ": material '" + oneLine(m.name, 60) +
+                     "': map_Kd '" + oneLine(m.diffuse_texname, 200) + "'";
+    }
     // map_Ke multiplies Ke; without a Ke statement the texture is the emission as it is (Ke 1).
     if (!m.emissive_texname.empty() || src.has("map_Ke")) {
-      if (src.block && !src.has("Ke")) d.emission = glm::vec3(1.0f);
-      if (d.emission != glm::vec3(0.0f)) d.emissionTexture = texturePath(src, "map_Ke", m.emissive_texname, look);
+      const glm::vec3 ke = src.block && !src.has("Ke") ? glm::vec3(1.0f) : d.emission;
+      if (ke != glm::vec3(0.0f)) d.emissionTexture = texturePath(src, "map_Ke", m.emissive_texname, look);
+      if (!d.emissionTexture.empty()) d.emission = ke;
     }
     // norm: a tangent-space normal map (linear), -bm its scale (glTF's normalTexture scale).
     if (!m.normal_texname.empty() || src.has("norm")) {
@@ -286,7 +275,7 @@ std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<t
     scaled.note(oneLine(m.name, 60), factor);
     scene.materials.push_back(d);
   }
-  failOnMissingTextures(look);
+  failOnMissingTextures(scene, missingBefore);
   scaled.warn(scaledAt, warnings);
   return base;
 }

@@ -31,4 +31,9 @@ const ChoiceNames<DenoiseQuality>& denoiseQualityNames() {
   return names;
 }
 
+const ChoiceNames<MissingTextures>& missingTexturesNames() {
+  static const ChoiceNames<MissingTextures> names{{"error", MissingTextures::Error}, {"warn", MissingTextures::Warn}};
+  return names;
+}
+
 }  // namespace montecl

@@ -1,5 +1,5 @@
 // render_choices.h: the render settings that are choices (integrator, AO sampling, direct-lighting
-// strategy, sampler, denoiser quality) as enums, and their names, once: the scene file and the CLI parse them here, messages
+// strategy, sampler, denoiser quality, missing textures) as enums, and their names, once: the scene file and the CLI parse them here, messages
 // and tools print them from here. Reads and writes nothing.
 #pragma once
 #include <cstdint>
@@ -13,6 +13,7 @@ enum class AoSampling : std::uint32_t { Uniform, Cosine };
 enum class DirectSampling : std::uint32_t { Light, Brdf, Mis };
 enum class Sampler : std::uint32_t { Independent, Sobol };
 enum class DenoiseQuality : unsigned { Fast, Balanced, High };  // Open Image Denoise's quality modes
+enum class MissingTextures : unsigned { Error, Warn };  // a texture file that cannot be opened
 
 // Name -> value, in the spelling of the scene file and the CLI.
 template <class E>
@@ -22,6 +23,7 @@ const ChoiceNames<AoSampling>& aoSamplingNames();     // "uniform", "cosine"
 const ChoiceNames<DirectSampling>& directSamplingNames();  // "light", "brdf", "mis"
 const ChoiceNames<Sampler>& samplerNames();                // "independent", "sobol"
 const ChoiceNames<DenoiseQuality>& denoiseQualityNames();  // "fast", "balanced", "high"
+const ChoiceNames<MissingTextures>& missingTexturesNames();  // "error", "warn"
 
 // The name of a value ("?" for a value not in the map).
 template <class E>

@@ -146,6 +146,11 @@ std::vector<RenderSetting> makeTable() {
       choiceRow("denoise_quality", "--denoise-quality",
                 "Open Image Denoise quality mode with --denoise: fast, balanced or high (slowest, best)",
                 denoiseQualityNames(), &RenderSettings::denoiseQuality, kEveryIntegrator, false),
+      // Not in the provenance: where both succeed, error and warn render the same image.
+      choiceRow("missing_textures", "--missing-textures",
+                "Texture files that cannot be opened (in any case of their name): error lists them all and stops; "
+                "warn lists them all in one warning and renders each as its material's factor (the texture left out)",
+                missingTexturesNames(), &RenderSettings::missingTextures, kEveryIntegrator, false),
   };
 }
 

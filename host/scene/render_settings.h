@@ -38,6 +38,7 @@ struct RenderSettings {
   int sobolSplits = 4;  // sobol: independently scrambled sub-sequences per pixel, for the error estimate
   bool denoise = false;  // Open Image Denoise on the final image (image/oidn_denoiser.h)
   DenoiseQuality denoiseQuality = DenoiseQuality::High;  // OIDN's own default
+  MissingTextures missingTextures = MissingTextures::Error;  // what a texture file that cannot be opened does
 };
 
 // A setting's value: an integer, a number, a choice's name, a colour or a switch.

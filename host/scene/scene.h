@@ -4,6 +4,7 @@
 #include <glm/glm.hpp>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -57,6 +58,9 @@ struct MaterialDesc {
   // `ior`, solid (KHR_materials_volume) or a thin sheet (kernels/shared/transmission_mix.h).
   float transmission = 0.0f;
   bool transmissionSolid = false;
+  // An MTL map_Kd without map_d: where it is ("<mtl>: line N: material 'm': map_Kd 'name'"), so the
+  // texture loader can say how to cut it out when its alpha is not all 1 (it renders opaque). "": none.
+  std::string cutoutHint;
 };
 
 // Per-corner attributes of a triangle (SceneTriangle::attributes says which are present).
@@ -94,6 +98,13 @@ struct LightDesc {
   float angleDegrees = 0.53f;         // sun: angular diameter of its disk, in (0, 180)
 };
 
+// A texture file a loader could not open (in any case of its name): its material renders without
+// it (the factor alone) when render.missing_textures is warn. A listing starts
+// "<file>: <where>: <lead>" and names the later ones by "[<file> ]<brief>".
+struct MissingTexture {
+  std::string file, where, lead, brief;
+};
+
 struct Scene {
   std::string path;  // the file it was loaded from
   std::vector<std::string> inputFiles;  // every file read: scene file, meshes, MTLs, buffers, textures (as opened)
@@ -107,6 +118,10 @@ struct Scene {
   // name a material's texture path gives them ("<file>#images[i].<ext>"; never a real file): the
   // texture loader decodes them from memory and the scene digest hashes these bytes.
   std::map<std::string, std::vector<unsigned char>> embeddedImages;
+  std::vector<MissingTexture> missingTextures;  // textures left out, in the order met
+  // Set by loadScene: the loaders only record missing textures, and loadScene reports every one of
+  // the scene at the end (one error or one warning); else a loader fails on its file's ones (error).
+  bool deferMissingTextures = false;
   std::size_t degenerateDropped = 0;     // zero-area triangles removed while loading
   glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};
 };
@@ -114,8 +129,11 @@ struct Scene {
 // Loads a scene file (.json) or a bare mesh (.obj, .ply, .gltf, .glb: framed by defaultCamera()
 // unless a glTF brings a camera; scene-file meshes dispatch on the same extensions). Throws InputError
 // with one line "<file>: <key or line>: <problem>" for any bad input; unknown JSON keys are
-// appended to warnings ("<file>: <key>: unknown key, ignored").
-Scene loadScene(const std::string& path, std::vector<std::string>& warnings);
+// appended to warnings ("<file>: <key>: unknown key, ignored"). Texture files that cannot be opened
+// follow render.missing_textures (`missing`, the command line's, replaces the scene file's): error
+// throws one line listing all of them; warn leaves each out and warns once listing all.
+Scene loadScene(const std::string& path, std::vector<std::string>& warnings,
+                std::optional<MissingTextures> missing = std::nullopt);
 
 // What a bare mesh (a model file given without a scene file) renders with, the one rule for it:
 // integrator path, and, when the model has no light of its own (no emitting material, no glTF

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <limits>
+#include <optional>
 
 #include "scene/camera_basis.h"
 #include "scene/json_fields.h"
@@ -202,13 +203,14 @@ RenderSettings parseRender(const Ctx& ctx, const json& root) {
 
 // ---- meshes ---------------------------------------------------------------------------------
 
-std::vector<MeshEntry> parseMeshes(const Ctx& ctx, const json& root) {
+std::vector<MeshEntry> parseMeshes(const Ctx& ctx, const json& root, Scene& scene) {
   const json& list = requireKey(ctx, root, "", "meshes");
   if (!list.is_array()) fail(ctx, "meshes", std::string("expected a list of meshes, got ") + list.type_name());
   if (list.empty()) fail(ctx, "meshes", "empty list (at least one mesh is needed)");
   std::vector<MeshEntry> meshes;
   for (std::size_t i = 0; i < list.size(); ++i)
-    meshes.push_back(parseMeshEntry(ctx, list[i], "meshes[" + std::to_string(i) + "]"));
+    meshes.push_back(parseMeshEntry(ctx, list[i], "meshes[" + std::to_string(i) + "]",
+                                    &scene.missingTextures));
   for (const MeshEntry& m : meshes) {  // report bad paths before spending time on loading
     std::string problem = fileProblem(m.path);
     if (!problem.empty()) fail(ctx, m.where, "cannot open '" + m.path + "': " + problem);
@@ -227,7 +229,7 @@ bool loadMeshes(const Ctx& ctx, const std::vector<MeshEntry>& meshes, Scene& sce
     Camera cam;
     if (loadMeshFile(m.path, scene, &ctx.warnings, &cam) && !hasCamera) {
       hasCamera = true;
-      const glm::dmat4& t = m.transform;
+      const glm::dmat4 t = m.placement(0);  // with instances: where the first copy is
       camera->position = glm::vec3(t * glm::dvec4(glm::dvec3(cam.position), 1.0));
       camera->target = glm::vec3(t * glm::dvec4(glm::dvec3(cam.target), 1.0));
       camera->up = glm::vec3(glm::dmat3(t) * glm::dvec3(cam.up));
@@ -238,7 +240,7 @@ bool loadMeshes(const Ctx& ctx, const std::vector<MeshEntry>& meshes, Scene& sce
     const std::size_t loaded = scene.triangles.size() - firstTri;
     applyMeshEntry(ctx, scene, firstTri, firstLight, m);
     if (scene.triangles.size() == firstTri && emptiedBy.empty()) {
-      emptiedBy = m.prefix + ".transform";
+      emptiedBy = m.prefix + (m.instances.empty() ? ".transform" : ".instances");
       emptiedCount = loaded;
     }
   }
@@ -277,9 +279,21 @@ void checkEmissionPower(const Scene& scene) {
 }
 
 // A bare mesh file: its own camera (glTF) when it has a usable one, else defaultCamera().
-Scene loadBareMesh(const std::string& path, std::vector<std::string>& warnings) {
+// Every texture the scene cannot open, in one line: the error (missing_textures error), or the
+// warning (warn) for a scene that renders without them.
+void reportMissingTextures(const Scene& scene, std::vector<std::string>& warnings) {
+  if (scene.missingTextures.empty()) return;
+  if (scene.render.missingTextures == MissingTextures::Error)
+    throw InputError(oneLine(missingTexturesText(scene, 0), 4096));
+  warnings.push_back(missingTexturesText(scene, 0) +
+                     "; rendered without them (each material's factor alone: missing_textures warn)");
+}
+
+Scene loadBareMesh(const std::string& path, std::vector<std::string>& warnings, std::optional<MissingTextures> missing) {
   Scene scene;
   scene.path = path;
+  if (missing) scene.render.missingTextures = *missing;
+  scene.deferMissingTextures = true;
   Camera fileCamera;
   const bool hasCamera = loadMeshFile(path, scene, &warnings, &fileCamera);
   const CameraProblem fileProblem = hasCamera ? cameraBasisProblem(fileCamera) : CameraProblem{};
@@ -298,6 +312,7 @@ Scene loadBareMesh(const std::string& path, std::vector<std::string>& warnings) 
                         "; write a scene file with a camera for it");
   checkEmissionPower(scene);
   applyBareModelDefaults(scene);
+  reportMissingTextures(scene, warnings);
   return scene;
 }
 
@@ -314,8 +329,8 @@ void applyBareModelDefaults(Scene& scene) {
   scene.environment.radiance = glm::vec3(kDefaultSkyRadiance);
 }
 
-Scene loadScene(const std::string& path, std::vector<std::string>& warnings) {
-  if (meshFormatOf(path) != MeshFormat::Unknown) return loadBareMesh(path, warnings);
+Scene loadScene(const std::string& path, std::vector<std::string>& warnings, std::optional<MissingTextures> missing) {
+  if (meshFormatOf(path) != MeshFormat::Unknown) return loadBareMesh(path, warnings, missing);
   Ctx ctx{path, warnings};
   json root = parseJson(ctx, readSceneText(ctx));
   requireObject(ctx, root, "(top level)");
@@ -328,13 +343,15 @@ Scene loadScene(const std::string& path, std::vector<std::string>& warnings) {
   CameraKeys cameraKeys;
   if (hasCamera) cameraKeys = parseCamera(ctx, root);
   scene.render = parseRender(ctx, root);
+  if (missing) scene.render.missingTextures = *missing;
+  scene.deferMissingTextures = true;
   if (const json* env = optionalKey(root, "environment")) {
     scene.environment = parseEnvironmentKey(path, *env, warnings);
     if (!scene.environment.file.empty()) scene.inputFiles.push_back(scene.environment.file);
   }
   if (const json* lights = optionalKey(root, "lights")) scene.lights = parseLightsKey(ctx, *lights);
   Camera meshCamera;
-  const bool hasMeshCamera = loadMeshes(ctx, parseMeshes(ctx, root), scene, &meshCamera);
+  const bool hasMeshCamera = loadMeshes(ctx, parseMeshes(ctx, root, scene), scene, &meshCamera);
   if (hasCamera) scene.camera = completeCamera(ctx, scene, cameraKeys);
   if (!hasCamera) {
     if (!hasMeshCamera)
@@ -345,6 +362,7 @@ Scene loadScene(const std::string& path, std::vector<std::string>& warnings) {
     scene.camera = meshCamera;
   }
   checkEmissionPower(scene);
+  reportMissingTextures(scene, warnings);
   return scene;
 }
 

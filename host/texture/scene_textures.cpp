@@ -184,6 +184,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     // coincide), mip-mapped, and whether it has an alpha channel.
     std::vector<HalfChain> images;
     bool integer = false, hasAlpha = false;
+    bool alphaBelowOne = false;  // some texel's alpha is below 1 (read for colour textures)
     std::string error;
   };
   std::vector<File> files;
@@ -259,6 +260,10 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
         if (!bad.empty()) throwInputError(f.path, "", bad);
         f.integer = isIntegerImage(image);
         f.hasAlpha = image.planes.size() == 2 || image.planes.size() >= 4;
+        if (f.hasAlpha && f.asColour) {
+          const std::vector<float>& a = image.planes[image.planes.size() == 2 ? 1 : 3];
+          f.alphaBelowOne = std::any_of(a.begin(), a.end(), [](float v) { return v < 1.0f; });
+        }
         // Colour: sRGB-decoded when integer. Alpha: the alpha channel (shared with the colour
         // texture), else the first channel, never decoded.
         const bool colourDecode = f.integer;
@@ -309,6 +314,19 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
       out.materials[i].alphaChannel = f.hasAlpha ? 3u : 0u;
     }
   }
+  // An MTL map_Kd with alpha below 1 and no map_d renders opaque (MTL cuts out only with map_d):
+  // one warning, at the first such material, saying how to cut it out.
+  std::size_t uncut = 0;
+  std::string firstUncut;
+  for (const MaterialDesc& m : scene.materials)
+    if (colour && !m.cutoutHint.empty() && m.alphaTexture.empty() && !m.albedoTexture.empty() &&
+        files[fileIndex.at(m.albedoTexture)].alphaBelowOne && uncut++ == 0)
+      firstUncut = m.cutoutHint;
+  if (uncut > 0)
+    warnings.push_back(firstUncut + ": the texture's alpha is below 1 in places, but without map_d the material renders "
+                       "opaque; to cut it out, add 'map_d' naming the same file to the material (or give the mesh entry's "
+                       "\"material\": {\"alpha_texture\": ...})" +
+                       (uncut > 1 ? " (" + std::to_string(uncut - 1) + " more materials like it)" : std::string()));
   packChains(out, std::move(images), budgetBytes, warnings);
   return out;
 }

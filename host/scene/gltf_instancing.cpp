@@ -1,0 +1,70 @@
+// gltf_instancing.cpp: reads EXT_mesh_gpu_instancing of a glTF node (gltf_instancing.h).
+#include "scene/gltf_instancing.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "scene/gltf_model.h"
+#include "scene/load_util.h"
+
+namespace montecl {
+
+glm::dmat4 GltfInstances::local(std::size_t k) const {
+  if (!present) return glm::dmat4(1.0);
+  // Every part given (defaults where an attribute is absent), in the order a node's TRS is built,
+  // so an instance and a node with the same translation, rotation and scale get the same bits.
+  glm::dvec3 tv(0.0), sv(1.0);
+  glm::dquat q(1.0, 0.0, 0.0, 0.0);
+  if (!t.empty()) tv = glm::dvec3(t[3 * k], t[3 * k + 1], t[3 * k + 2]);
+  if (!r.empty()) q = glm::dquat(r[4 * k + 3], r[4 * k], r[4 * k + 1], r[4 * k + 2]);  // glTF: x y z w
+  if (!s.empty()) sv = glm::dvec3(s[3 * k], s[3 * k + 1], s[3 * k + 2]);
+  glm::dmat4 m = glm::translate(glm::dmat4(1.0), tv);
+  m = m * glm::mat4_cast(glm::normalize(q));
+  return glm::scale(m, sv);
+}
+
+GltfInstances gltfNodeInstances(const std::string& file, const tinygltf::Model& m, const tinygltf::Node& node,
+                                const std::string& where) {
+  GltfInstances out;
+  const auto ext = node.extensions.find("EXT_mesh_gpu_instancing");
+  if (ext == node.extensions.end()) return out;
+  out.present = true;
+  const std::string base = where + ".extensions.EXT_mesh_gpu_instancing";
+  if (!ext->second.IsObject() || !ext->second.Has("attributes") || !ext->second.Get("attributes").IsObject())
+    loadFail(file, base + ".attributes", "expected an object of accessor indices");
+  const tinygltf::Value& attrs = ext->second.Get("attributes");
+  bool first = true;
+  for (const std::string& name : attrs.Keys()) {
+    const std::string key = base + ".attributes." + oneLine(name, 40);
+    const bool known = name == "TRANSLATION" || name == "ROTATION" || name == "SCALE";
+    if (!known) {
+      out.ignored.push_back(name);
+      continue;
+    }
+    const tinygltf::Value& v = attrs.Get(name);
+    if (!v.IsInt() || v.GetNumberAsInt() < 0) loadFail(file, key, "expected an accessor index");
+    const int index = v.GetNumberAsInt();
+    if (static_cast<std::size_t>(index) >= m.accessors.size())
+      loadFail(file, key, "accessor index " + std::to_string(index) + " out of range");
+    const std::size_t count = m.accessors[std::size_t(index)].count;
+    if (!first && count != out.count)
+      loadFail(file, key, "has " + std::to_string(count) + " elements, another attribute " + std::to_string(out.count) +
+                              " (every attribute needs one element per instance)");
+    out.count = count;
+    first = false;
+    // ROTATION: unit quaternions, FLOAT or normalized signed byte / short (as NORMAL allows);
+    // TRANSLATION and SCALE: FLOAT, or the integer types KHR_mesh_quantization lists (as POSITION).
+    if (name == "ROTATION") {
+      out.r = readFloatAccessor(file, m, index, 4, key, AccessorUse::Normal);
+      for (std::size_t k = 0; k < count; ++k)
+        if (out.r[4 * k] == 0.0f && out.r[4 * k + 1] == 0.0f && out.r[4 * k + 2] == 0.0f && out.r[4 * k + 3] == 0.0f)
+          loadFail(file, key, "element " + std::to_string(k) + " is a zero quaternion");
+    } else {
+      (name == "TRANSLATION" ? out.t : out.s) = readFloatAccessor(file, m, index, 3, key, AccessorUse::Position);
+    }
+  }
+  if (first) loadFail(file, base + ".attributes", "none of TRANSLATION, ROTATION, SCALE given");
+  return out;
+}
+
+}  // namespace montecl

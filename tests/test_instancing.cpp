@@ -1,0 +1,278 @@
+// test_instancing.cpp: instanced meshes, flattened into copies: glTF EXT_mesh_gpu_instancing
+// (TRANSLATION / ROTATION / SCALE per instance, after the node's world matrix) gives exactly the
+// triangles and the image of one explicit child node per instance; a scene file's "instances" list
+// gives exactly those of one mesh entry per transform; bad instance accessors and lists are one
+// line naming the key (exit 2), and instance counts past the memory check are refused up front.
+#include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "cli_runner.h"
+#include "mesh_files.h"
+#include "scene/mesh_loaders.h"
+#include "scene/scene.h"
+
+using montecl::Scene;
+using montecl_test::CliResult;
+using montecl_test::runMontecl;
+using montecl_test::TempDir;
+using nlohmann::json;
+
+namespace {
+
+std::string floatBytes(const std::vector<float>& v) {
+  std::string b(v.size() * 4, '\0');
+  std::memcpy(&b[0], v.data(), b.size());
+  return b;
+}
+
+// Appends a buffer (data URI) with one view and one FLOAT accessor of `type` over `values`;
+// returns the accessor's index.
+int addAccessor(json& g, const std::vector<float>& values, const char* type, std::size_t count) {
+  const std::string bytes = floatBytes(values);
+  g["buffers"].push_back({{"uri", "data:application/octet-stream;base64," + montecl_test::base64(bytes)},
+                          {"byteLength", bytes.size()}});
+  g["bufferViews"].push_back({{"buffer", g["buffers"].size() - 1}, {"byteOffset", 0}, {"byteLength", bytes.size()}});
+  g["accessors"].push_back({{"bufferView", g["bufferViews"].size() - 1}, {"componentType", 5126}, {"count", count}, {"type", type}});
+  return int(g["accessors"].size() - 1);
+}
+
+struct Instances {
+  std::vector<float> t, r, s;
+};
+
+// n instances with translations, unit quaternions (normalised in float) and scales that differ per instance.
+Instances someInstances(int n) {
+  Instances in;
+  for (int i = 0; i < n; ++i) {
+    in.t.insert(in.t.end(), {0.7f * float(i), 0.3f * float(i % 3), -1.1f * float(i)});
+    float q[4] = {0.1f + 0.2f * float(i), -0.3f, 0.05f * float(i), 0.9f};
+    const float len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    for (float& c : q) c /= len;
+    in.r.insert(in.r.end(), q, q + 4);
+    in.s.insert(in.s.end(), {1.0f + 0.1f * float(i), 0.8f, i % 2 ? -1.0f : 1.0f});  // some mirror
+  }
+  return in;
+}
+
+json tent() { return json::parse(montecl_test::gltfText(montecl_test::tentMesh(), 0.5f, "")); }
+
+// The tent's node 0 with a parent transform and the instances through the extension.
+json instancedGltf(const Instances& in, std::size_t n) {
+  json g = tent();
+  g["nodes"][0] = {{"mesh", 0}, {"translation", {0.5, -0.25, 0.125}}, {"scale", {2, 2, 2}}};
+  json attrs = {{"TRANSLATION", addAccessor(g, in.t, "VEC3", n)},
+                {"ROTATION", addAccessor(g, in.r, "VEC4", n)},
+                {"SCALE", addAccessor(g, in.s, "VEC3", n)}};
+  g["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"] = attrs;
+  g["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
+  g["extensionsRequired"] = {"EXT_mesh_gpu_instancing"};
+  return g;
+}
+
+// The same as one child node per instance (the floats as doubles: exact).
+json explicitGltf(const Instances& in, std::size_t n) {
+  json g = tent();
+  g["nodes"][0] = {{"translation", {0.5, -0.25, 0.125}}, {"scale", {2, 2, 2}}, {"children", json::array()}};
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto d = [](float f) { return double(f); };
+    g["nodes"].push_back({{"mesh", 0},
+                          {"translation", {d(in.t[3 * k]), d(in.t[3 * k + 1]), d(in.t[3 * k + 2])}},
+                          {"rotation", {d(in.r[4 * k]), d(in.r[4 * k + 1]), d(in.r[4 * k + 2]), d(in.r[4 * k + 3])}},
+                          {"scale", {d(in.s[3 * k]), d(in.s[3 * k + 1]), d(in.s[3 * k + 2])}}});
+    g["nodes"][0]["children"].push_back(k + 1);
+  }
+  return g;
+}
+
+Scene loadGltf(const std::string& path) {
+  Scene s;
+  std::vector<std::string> w;
+  montecl::loadGltfInto(path, s, &w, nullptr);
+  return s;
+}
+
+void checkSameTriangles(const Scene& a, const Scene& b) {
+  REQUIRE(a.triangles.size() == b.triangles.size());
+  for (std::size_t i = 0; i < a.triangles.size(); ++i) {
+    const montecl::SceneTriangle &x = a.triangles[i], &y = b.triangles[i];
+    CAPTURE(i);
+    CHECK(x.attributes == y.attributes);
+    for (int k = 0; k < 3; ++k) {
+      CHECK(x.v[k] == y.v[k]);  // exact
+      CHECK(x.n[k] == y.n[k]);
+      CHECK(x.uv[k] == y.uv[k]);
+    }
+  }
+}
+
+CliResult render(const std::string& scene, const std::string& out, const std::vector<std::string>& env = {}) {
+  return runMontecl({"render", scene, "-o", out, "--width", "16", "--height", "12", "--spp", "2", "-q", "--device", "host",
+                     "--integrator", "path"},
+                    env);
+}
+
+bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
+
+}  // namespace
+
+TEST_CASE("instancing: EXT_mesh_gpu_instancing gives the triangles and image of one child node per instance" *
+          doctest::test_suite("cli")) {
+  TempDir dir;
+  const std::size_t n = 5;
+  const Instances in = someInstances(int(n));
+  dir.write("inst.gltf", instancedGltf(in, n).dump());
+  dir.write("nodes.gltf", explicitGltf(in, n).dump());
+  const Scene a = loadGltf(dir.file("inst.gltf")), b = loadGltf(dir.file("nodes.gltf"));
+  CHECK(a.triangles.size() == 4 * n);  // 4 triangles per tent
+  checkSameTriangles(a, b);
+  // Through the real command line, with the camera and sky of a bare model: the same bytes.
+  const CliResult ra = render(dir.file("inst.gltf"), dir.file("inst.pfm"));
+  const CliResult rb = render(dir.file("nodes.gltf"), dir.file("nodes.pfm"));
+  REQUIRE_MESSAGE(ra.exitCode == 0, ra.err);
+  REQUIRE_MESSAGE(rb.exitCode == 0, rb.err);
+  CHECK(ra.err.find("EXT_mesh_gpu_instancing") == std::string::npos);  // read, not warned about
+  CHECK(montecl_test::readAll(dir.file("inst.pfm")) == montecl_test::readAll(dir.file("nodes.pfm")));
+}
+
+TEST_CASE("instancing: bad EXT_mesh_gpu_instancing accessors are one line naming the attribute, exit 2" *
+          doctest::test_suite("cli")) {
+  TempDir dir;
+  const Instances in = someInstances(3);
+  const std::string key = ": nodes[0].extensions.EXT_mesh_gpu_instancing.attributes.";
+  struct Case {
+    std::string what, needle;
+    json g;
+  } cases[] = {{"wrong type", key + "ROTATION: expected a VEC4", instancedGltf(in, 3)},
+               {"count mismatch", key + "SCALE: has 2 elements", instancedGltf(in, 3)},
+               {"not finite", key + "TRANSLATION: element 1 is not finite", instancedGltf(in, 3)},
+               {"zero quaternion", key + "ROTATION: element 2 is a zero quaternion", instancedGltf(in, 3)},
+               {"index", key + "TRANSLATION: accessor index 99 out of range", instancedGltf(in, 3)}};
+  const auto attrs = [](json& g) -> json& { return g["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]; };
+  {
+    json& g = cases[0].g;
+    g["accessors"][int(attrs(g)["ROTATION"])]["type"] = "VEC3";
+  }
+  {
+    json& g = cases[1].g;
+    Instances two = in;
+    two.s.resize(6);
+    attrs(g)["SCALE"] = addAccessor(g, two.s, "VEC3", 2);
+  }
+  {
+    json& g = cases[2].g;
+    Instances nan = in;
+    nan.t[4] = std::numeric_limits<float>::quiet_NaN();
+    attrs(g)["TRANSLATION"] = addAccessor(g, nan.t, "VEC3", 3);
+  }
+  {
+    json& g = cases[3].g;
+    Instances zero = in;
+    for (int c = 0; c < 4; ++c) zero.r[8 + c] = 0.0f;
+    attrs(g)["ROTATION"] = addAccessor(g, zero.r, "VEC4", 3);
+  }
+  attrs(cases[4].g)["TRANSLATION"] = 99;
+  for (Case& c : cases) {
+    CAPTURE(c.what);
+    dir.write("bad.gltf", c.g.dump());
+    const CliResult r = render(dir.file("bad.gltf"), dir.file("out.pfm"));
+    INFO(r.err);
+    CHECK(r.exitCode == 2);
+    CHECK(oneLine(r.err));
+    CHECK(r.err.find(dir.file("bad.gltf") + c.needle) != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(dir.file("out.pfm")));
+  }
+}
+
+TEST_CASE("instancing: instance counts past the memory check are refused before the copies are made" *
+          doctest::test_suite("cli")) {
+  TempDir dir;
+  // 10 and 10000 instances of the 4-triangle tent on a machine declared to have 2 MB: 40000
+  // triangles need megabytes (the 16x12 image fits).
+  for (std::size_t n : {std::size_t(10), std::size_t(10000)}) {
+    CAPTURE(n);
+    const Instances in = someInstances(int(n));
+    dir.write("many.gltf", instancedGltf(in, n).dump());
+    const CliResult r = render(dir.file("many.gltf"), dir.file("out.pfm"), {"MONTECL_MEMORY_LIMIT=2000000"});
+    INFO(r.err);
+    if (n == 10) {
+      CHECK(r.exitCode == 0);
+      std::filesystem::remove(dir.file("out.pfm"));
+    } else {
+      CHECK(r.exitCode == 2);
+      CHECK(oneLine(r.err));
+      CHECK(r.err.find(dir.file("many.gltf") + ": nodes[0]: instancing its meshes gives 40000 triangles") != std::string::npos);
+      CHECK_FALSE(std::filesystem::exists(dir.file("out.pfm")));
+    }
+    // The scene file's instances: the same rule, naming the list.
+    json scene = {{"camera", "auto"}, {"meshes", {{{"file", "tent.obj"}, {"instances", json::array()}}}}};
+    for (std::size_t k = 0; k < n; ++k) scene["meshes"][0]["instances"].push_back({{"translate", {0, 0, -0.01 * double(k)}}});
+    dir.write("tent.obj", montecl_test::objText(montecl_test::tentMesh()));
+    dir.write("scene.json", scene.dump());
+    const CliResult s = render(dir.file("scene.json"), dir.file("out.pfm"), {"MONTECL_MEMORY_LIMIT=2000000"});
+    INFO(s.err);
+    if (n == 10) {
+      CHECK(s.exitCode == 0);
+      std::filesystem::remove(dir.file("out.pfm"));
+    } else {
+      CHECK(s.exitCode == 2);
+      CHECK(oneLine(s.err));
+      CHECK(s.err.find(dir.file("scene.json") + ": meshes[0].instances: 10000 copies of the mesh gives 40000 triangles") !=
+            std::string::npos);
+      CHECK_FALSE(std::filesystem::exists(dir.file("out.pfm")));
+    }
+  }
+}
+
+TEST_CASE("instancing: a scene file's instances equal one mesh entry per transform, bit for bit" * doctest::test_suite("cli")) {
+  TempDir dir;
+  dir.write("tent.obj", montecl_test::objText(montecl_test::tentMesh()));
+  const json transforms = json::array({json{{"translate", {0.5, 0, -1}}},
+                                       json{{"rotate", {0, 1, 0.5, 37}}, {"scale", {1.5, 0.5, -1}}, {"translate", {-1, 0.25, 0}}},
+                                       json{{"matrix", {0.5, 0.1, 0, 2, 0, 1, 0.2, 0, 0, 0, 1, -3, 0, 0, 0, 1}}}});
+  const json camera = {{"position", {1, 3, 6}}, {"target", {0, 0, -1}}, {"fov_y", 60}, {"width", 16}, {"height", 12}};
+  const json render = {{"integrator", "direct"}, {"spp", 2}};
+  json lights = json::array({json{{"type", "point"}, {"position", {0, 4, 2}}, {"intensity", {20, 20, 20}}}});
+  json inst = {{"camera", camera}, {"render", render}, {"lights", lights},
+               {"meshes", {{{"file", "tent.obj"}, {"material", {{"albedo", {0.6, 0.3, 0.2}}}}, {"instances", transforms}}}}};
+  json separate = {{"camera", camera}, {"render", render}, {"lights", lights}, {"meshes", json::array()}};
+  for (const json& t : transforms)
+    separate["meshes"].push_back({{"file", "tent.obj"}, {"material", {{"albedo", {0.6, 0.3, 0.2}}}}, {"transform", t}});
+  dir.write("inst.json", inst.dump());
+  dir.write("separate.json", separate.dump());
+  std::vector<std::string> w;
+  const Scene a = montecl::loadScene(dir.file("inst.json"), w), b = montecl::loadScene(dir.file("separate.json"), w);
+  CHECK(a.triangles.size() == 3 * 4);
+  checkSameTriangles(a, b);
+  CHECK(a.materials.size() < b.materials.size());  // the copies share the entry's material
+  const CliResult ra = runMontecl({"render", dir.file("inst.json"), "-o", dir.file("inst.pfm"), "-q", "--device", "host"});
+  const CliResult rb = runMontecl({"render", dir.file("separate.json"), "-o", dir.file("separate.pfm"), "-q", "--device", "host"});
+  REQUIRE_MESSAGE(ra.exitCode == 0, ra.err);
+  REQUIRE_MESSAGE(rb.exitCode == 0, rb.err);
+  CHECK(montecl_test::readAll(dir.file("inst.pfm")) == montecl_test::readAll(dir.file("separate.pfm")));
+  // With the entry's transform too, each copy is instance x transform.
+  inst["meshes"][0]["transform"] = {{"scale", 2}};
+  dir.write("inst2.json", inst.dump());
+  const Scene c = montecl::loadScene(dir.file("inst2.json"), w);
+  REQUIRE(c.triangles.size() == a.triangles.size());
+  CHECK(c.triangles[0].v[0] == a.triangles[0].v[0] + a.triangles[0].v[0] - glm::vec3(0.5f, 0.0f, -1.0f));
+  // Bad lists: one line naming the key.
+  for (const auto& bad : {std::make_pair(json::array(), std::string("meshes[0].instances: expected a non-empty list")),
+                          std::make_pair(json::array({json{{"translate", {0, 0, 0}}}, json{{"scale", 0}}}),
+                                         std::string("meshes[0].instances[1].scale: must not be 0"))}) {
+    json j = inst;
+    j["meshes"][0]["instances"] = bad.first;
+    dir.write("bad.json", j.dump());
+    const CliResult r = runMontecl({"render", dir.file("bad.json"), "-o", dir.file("bad.pfm"), "-q", "--device", "host"});
+    INFO(r.err);
+    CHECK(r.exitCode == 2);
+    CHECK(oneLine(r.err));
+    CHECK(r.err.find(dir.file("bad.json") + ": " + bad.second) != std::string::npos);
+  }
+}
