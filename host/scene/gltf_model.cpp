@@ -253,7 +253,8 @@ tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>*
 }
 
 bool gltfExtensionSupported(const std::string& name) {
-  return name == "KHR_materials_emissive_strength" || name == "KHR_lights_punctual" || name == "KHR_mesh_quantization";
+  return name == "KHR_materials_emissive_strength" || name == "KHR_lights_punctual" || name == "KHR_mesh_quantization" ||
+         name == "KHR_texture_transform" || name == "KHR_materials_unlit";
 }
 
 std::vector<float> readFloatAccessor(const std::string& file, const tinygltf::Model& m, int index, int components,

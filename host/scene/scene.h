@@ -24,6 +24,18 @@ struct Camera {
   float focusDistance = 0.0f;   // distance of the plane in focus ("focus_distance"); 0: |target - position|
 };
 
+// How one texture of a material is read (glTF KHR_texture_transform and the sampler's wrap
+// modes): the affine map from the surface's UVs to the texture's (both in montecl's convention,
+// v up; u' = row0 . (u, v, 1), v' = row1 . (u, v, 1)) and a wrap mode per axis (MCL_WRAP_*:
+// 0 repeat, 1 clamp to edge, 2 mirrored repeat). The default reads the texture as it always was.
+struct TextureSampling {
+  glm::vec3 row0{1.0f, 0.0f, 0.0f}, row1{0.0f, 1.0f, 0.0f};
+  std::uint32_t wrapS = 0, wrapT = 0;
+  bool identity() const {
+    return row0 == glm::vec3(1.0f, 0.0f, 0.0f) && row1 == glm::vec3(0.0f, 1.0f, 0.0f) && wrapS == 0 && wrapT == 0;
+  }
+};
+
 struct MaterialDesc {
   MaterialDesc() = default;
   MaterialDesc(std::string name_, glm::vec3 albedo_, glm::vec3 emission_ = glm::vec3(0.0f))
@@ -53,6 +65,8 @@ struct MaterialDesc {
   float kindAlpha = 0.0f;         // conductor, dielectric: GGX alpha (0: smooth)
   float metallic = 0.0f, roughness = 1.0f;  // metal_rough (glTF factors)
   std::string metallicRoughnessTexture;  // glTF metallicRoughnessTexture (linear; B x metallic, G x roughness)
+  // How each texture above is read (identity and repeat unless a glTF file says otherwise).
+  TextureSampling albedoSampling, alphaSampling, emissionSampling, metallicRoughnessSampling, normalSampling;
 };
 
 // Per-corner attributes of a triangle (SceneTriangle::attributes says which are present).

@@ -70,7 +70,7 @@ MCL_INLINE float3 material_emission(TextureTables tt, MCL_GLOBAL const Material*
   bool emits = ke.x > 0.0f || ke.y > 0.0f || ke.z > 0.0f;
   if (tex == MCL_NO_TEXTURE || !emits) return ke;  // no texture read where Ke is 0
   float2 uv = surface_uv(tri, sh, u, v);
-  return ke * xyz(texture_bilinear(tt, tt.textures[tex].firstLevel, uv.x, uv.y));
+  return ke * xyz(texture_fine(tt, tex, uv.x, uv.y));
 }
 
 // Luminance per unit area by which the emitter table weights triangle tri of material m: that of
