@@ -159,16 +159,18 @@ void overrideMaterials(Scene& scene, std::size_t firstTri, const MeshEntry& mesh
       if (o.albedo) d.albedo = o.value.albedo;
       if (o.albedoTexture) {
         d.albedoTexture = o.value.albedoTexture;
+        d.albedoSampling = TextureSampling{};  // a texture of the scene file's is read as it is
         if (!o.albedo) d.albedo = glm::vec3(1.0f);  // the texture as it is
       }
-      if (o.alphaTexture) d.alphaTexture = o.value.alphaTexture;
+      if (o.alphaTexture) d.alphaTexture = o.value.alphaTexture, d.alphaSampling = TextureSampling{};
       if (o.alphaCutoff) d.alphaCutoff = o.value.alphaCutoff;
       if (o.emission) d.emission = o.value.emission;
       if (o.emissionTexture) {
         d.emissionTexture = o.value.emissionTexture;
+        d.emissionSampling = TextureSampling{};
         if (!o.emission) d.emission = glm::vec3(1.0f);  // the texture as it is
       }
-      if (o.normalTexture) d.normalTexture = o.value.normalTexture;
+      if (o.normalTexture) d.normalTexture = o.value.normalTexture, d.normalSampling = TextureSampling{};
       if (o.normalScale) d.normalScale = o.value.normalScale;
       if (o.twoSided) d.twoSidedEmission = o.value.twoSidedEmission;
       if (o.specular) d.specular = o.value.specular;
