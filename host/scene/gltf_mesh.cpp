@@ -103,7 +103,9 @@ std::uint32_t Loader::material(int index) {
   // (sampling: transform, wrap modes). Every texture of a material reads one TEXCOORD set.
   const auto texturePath = [&](const auto& info, const char* key, TextureSampling& sampling) {
     const int tex = info.index;
-    if (static_cast<std::size_t>(tex) >= m.textures.size()) loadFail(file, where, std::string(key) + " index out of range");
+    const std::string name(key);
+    if (static_cast<std::size_t>(tex) >= m.textures.size())
+      loadFail(file, where, name.substr(name.rfind('.') + 1) + " index out of range");
     const std::string infoKey = where + "." + key;
     const GltfTextureRead read = readGltfTextureInfo(file, m, tex, info.texCoord, info.extensions, infoKey);
     sampling = read.sampling;
