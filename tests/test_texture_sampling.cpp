@@ -43,10 +43,14 @@ std::string bytesOf(const std::vector<T>& v) {
 // A glTF quad filling [-1, 1]^2 at z = 0 (facing +z) with TEXCOORD_0 = uv0 and, when given,
 // TEXCOORD_1 = uv1 (4 vertices: bottom-left, bottom-right, top-right, top-left; glTF's UVs, v
 // down); material is its one material, textures / samplers / images as given.
-json quadGltf(const std::vector<float>& uv0, const std::vector<float>& uv1, const json& material) {
+// colour: COLOR_0's bytes (4 elements of type colourType, components of colourComponent), or none.
+json quadGltf(const std::vector<float>& uv0, const std::vector<float>& uv1, const json& material,
+              const std::string& colour = "", int colourComponent = 5126, const char* colourType = "VEC3") {
   const std::vector<float> pos = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
   const std::vector<std::uint16_t> idx = {0, 1, 2, 0, 2, 3, 0, 0};  // padded to 4 bytes
   std::string buf = bytesOf(pos) + bytesOf(idx) + bytesOf(uv0) + bytesOf(uv1);
+  const std::size_t colourAt = buf.size();
+  buf += colour;
   json g;
   g["asset"] = {{"version", "2.0"}};
   g["buffers"] = {{{"byteLength", buf.size()}, {"uri", "data:application/octet-stream;base64," + base64(buf)}}};
@@ -62,6 +66,12 @@ json quadGltf(const std::vector<float>& uv0, const std::vector<float>& uv1, cons
     g["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 96}, {"byteLength", 32}});
     g["accessors"].push_back({{"bufferView", 3}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}});
     attributes["TEXCOORD_1"] = 3;
+  }
+  if (!colour.empty()) {
+    g["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", colourAt}, {"byteLength", colour.size()}});
+    g["accessors"].push_back({{"bufferView", g["bufferViews"].size() - 1}, {"componentType", colourComponent},
+                              {"count", 4}, {"type", colourType}, {"normalized", colourComponent != 5126}});
+    attributes["COLOR_0"] = g["accessors"].size() - 1;
   }
   g["meshes"] = {{{"primitives", {{{"attributes", attributes}, {"indices", 1}, {"material", 0}}}}}};
   g["nodes"] = {{{"mesh", 0}}};
@@ -321,5 +331,56 @@ TEST_CASE("texture transform, texCoord and wrap: bad values are one line naming 
     CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
     CHECK(!std::filesystem::exists(out));
     INFO(r.err);
+  }
+}
+
+TEST_CASE("COLOR_0: vertex colours multiply the base colour, interpolated over each triangle" * doctest::test_suite("opencl")) {
+  TempDir dir;
+  // Corners bottom-left, bottom-right, top-right, top-left.
+  const std::vector<glm::vec3> corner = {{1.0f, 0.2f, 0.0f}, {0.0f, 1.0f, 0.4f}, {0.6f, 0.0f, 1.0f}, {1.0f, 1.0f, 1.0f}};
+  const glm::vec3 factor(0.5f, 0.8f, 1.0f);
+  json m = {{"pbrMetallicRoughness", {{"baseColorFactor", {factor.x, factor.y, factor.z, 1.0}}}}};
+  std::vector<float> rgb;
+  std::vector<std::uint8_t> rgba8;
+  for (const glm::vec3& c : corner)
+    for (int k = 0; k < 4; ++k) {
+      if (k < 3) rgb.push_back(c[k]);
+      rgba8.push_back(std::uint8_t(std::lround((k < 3 ? c[k] : 0.5f) * 255.0f)));  // alpha not read
+    }
+  const int size = 64;
+  const auto expected = [&](int px, int py) {  // the triangles (0, 1, 2) and (0, 2, 3) at the pixel centre
+    const double x = -1.0 + 2.0 * (px + 0.5) / size, y = 1.0 - 2.0 * (py + 0.5) / size;
+    double u, v;
+    glm::dvec3 a = corner[0], b, c;
+    if (y <= x) u = (x + 1.0) / 2.0 - (y + 1.0) / 2.0, v = (y + 1.0) / 2.0, b = corner[1], c = corner[2];
+    else u = (x + 1.0) / 2.0, v = (y + 1.0) / 2.0 - (x + 1.0) / 2.0, b = corner[2], c = corner[3];
+    return glm::dvec3(factor) * (a * (1.0 - u - v) + b * u + c * v);
+  };
+  for (int variant = 0; variant < 2; ++variant) {
+    CAPTURE(variant);
+    const json g = variant == 0 ? quadGltf(uvRect(0, 1, 0, 1), {}, m, bytesOf(rgb), 5126, "VEC3")
+                                : quadGltf(uvRect(0, 1, 0, 1), {}, m, bytesOf(rgba8), 5121, "VEC4");
+    dir.write("c.gltf", g.dump());
+    const Film f = render(loadQuad(dir.file("c.gltf"), size, 4), true);
+    for (int py = 0; py < size; ++py)
+      for (int px = 0; px < size; ++px) {
+        const glm::dvec3 want = expected(px, py);
+        const glm::vec3 got = albedoAt(f, std::size_t(py) * size + px);
+        CAPTURE(px);
+        CAPTURE(py);
+        // Sample positions spread over the pixel: a colour changes by at most 1/32 a pixel here.
+        for (int k = 0; k < 3; ++k) REQUIRE(std::fabs(got[k] - want[k]) < 0.02 + (variant ? 0.004 : 0.0));
+      }
+  }
+  // One colour everywhere: the base colour times it (as a material of that colour).
+  std::vector<float> grey;
+  for (int i = 0; i < 4; ++i) grey.insert(grey.end(), {0.25f, 0.5f, 0.75f});
+  dir.write("g.gltf", quadGltf(uvRect(0, 1, 0, 1), {}, m, bytesOf(grey)).dump());
+  const Film f = render(loadQuad(dir.file("g.gltf"), 16, 2), true);
+  for (std::size_t p = 0; p < f.pixelCount(); ++p) {
+    const glm::vec3 got = albedoAt(f, p);
+    CHECK(got.x == doctest::Approx(0.125).epsilon(1e-5));
+    CHECK(got.y == doctest::Approx(0.4).epsilon(1e-5));
+    CHECK(got.z == doctest::Approx(0.75).epsilon(1e-5));
   }
 }

@@ -200,7 +200,7 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
   };
   // Texture coordinate sets other than the one the material's textures read change nothing.
   for (const auto& a : p.attributes)
-    if (a.first != "POSITION" && a.first != "NORMAL" && a.first.compare(0, 9, "TEXCOORD_") != 0)
+    if (a.first != "POSITION" && a.first != "NORMAL" && a.first != "COLOR_0" && a.first.compare(0, 9, "TEXCOORD_") != 0)
       unused.add("attribute " + a.first, where,
                  a.first == "TANGENT" ? "attribute TANGENT not used by montecl (normal maps use tangents made per triangle from TEXCOORD_0), ignored"
                                       : "attribute " + oneLine(a.first, 40) + " not used by montecl, ignored");
@@ -217,6 +217,14 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
   if (set > 0 && attr(uvName.c_str()) < 0)  // TEXCOORD_0 missing: no UVs, as always
     loadFail(file, uvSetKey[std::size_t(p.material)], "names " + uvName + ", which " + where + " does not have");
   if (attr(uvName.c_str()) >= 0) uv = readFloatAccessor(file, m, attr(uvName.c_str()), 2, where + "." + uvName, AccessorUse::TexCoord);
+  // COLOR_0 (VEC3 or VEC4: alpha not read) multiplies the base colour.
+  std::vector<float> col;
+  int colN = 3;
+  if (const int a = attr("COLOR_0"); a >= 0) {
+    colN = static_cast<std::size_t>(a) < m.accessors.size() && m.accessors[std::size_t(a)].type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+    col = readFloatAccessor(file, m, a, colN, where + ".COLOR_0");
+    if (col.size() / std::size_t(colN) != n) loadFail(file, where, "attributes have different counts");
+  }
   if ((!nor.empty() && nor.size() / 3 != n) || (!uv.empty() && uv.size() / 2 != n))
     loadFail(file, where, "attributes have different counts");
   std::vector<std::uint32_t> idx;
@@ -237,6 +245,7 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
   const bool mirror = glm::determinant(glm::dmat3(world)) < 0.0;
   for (std::size_t c = 0; c < corners; c += 3) {
     SceneTriangle t{};
+    glm::vec3 colour[3];
     bool normals = !nor.empty();
     for (int k = 0; k < 3; ++k) {
       const std::size_t j = cornerOf(c + std::size_t(k));
@@ -251,15 +260,21 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
         t.n[kk] = normals ? glm::vec3(nn / len) : glm::vec3(0.0f);
       }
       if (!uv.empty()) t.uv[kk] = glm::vec2(uv[2 * v], 1.0f - uv[2 * v + 1]);
+      if (!col.empty())
+        colour[kk] = glm::max(glm::vec3(col[colN * v], col[colN * v + 1], col[colN * v + 2]), glm::vec3(0.0f));
     }
     if (!normals)
       for (glm::vec3& x : t.n) x = glm::vec3(0.0f);
-    t.attributes = static_cast<std::uint8_t>((normals ? kHasNormals : 0) | (uv.empty() ? 0 : kHasUv));
+    t.attributes = static_cast<std::uint8_t>((normals ? kHasNormals : 0) | (uv.empty() ? 0 : kHasUv) |
+                                             (col.empty() ? 0 : kHasColor));
     t.material = mat;
     for (const glm::vec3& x : t.v)
       if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z))
         loadFail(file, where, "a node transform moves vertices out of float range");
-    appendTriangle(scene, t);
+    if (appendTriangle(scene, t) && !col.empty()) {  // colours by triangle index (white before)
+      scene.vertexColors.resize(3 * (scene.triangles.size() - 1), glm::vec3(1.0f));
+      scene.vertexColors.insert(scene.vertexColors.end(), colour, colour + 3);
+    }
   }
 }
 

@@ -260,7 +260,7 @@ bool gltfExtensionSupported(const std::string& name) {
 std::vector<float> readFloatAccessor(const std::string& file, const tinygltf::Model& m, int index, int components,
                                      const std::string& where, AccessorUse use) {
   const tinygltf::Accessor& a = accessorAt(file, m, index, where);
-  const int type = components == 2 ? TINYGLTF_TYPE_VEC2 : TINYGLTF_TYPE_VEC3;
+  const int type = components == 2 ? TINYGLTF_TYPE_VEC2 : components == 4 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3;
   if (a.type != type) loadFail(file, where, "expected a VEC" + std::to_string(components) + " accessor");
   const int ct = a.componentType;
   const bool isFloat = ct == TINYGLTF_COMPONENT_TYPE_FLOAT;

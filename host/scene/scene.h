@@ -72,6 +72,9 @@ struct MaterialDesc {
 // Per-corner attributes of a triangle (SceneTriangle::attributes says which are present).
 constexpr std::uint8_t kHasNormals = 1;  // n[] holds the file's vertex normals (unit length)
 constexpr std::uint8_t kHasUv = 2;       // uv[] holds texture coordinates
+// Scene::vertexColors[3 k ..] hold triangle k's corner colours (glTF COLOR_0, linear rgb) (8:
+// MCL_ATTR_COLOR, past the device's MCL_ATTR_ALPHA 4, which loaders never set).
+constexpr std::uint8_t kHasColor = 8;
 
 struct SceneTriangle {
   glm::vec3 v[3];
@@ -113,6 +116,9 @@ struct Scene {
   std::vector<LightDesc> lights;  // point, spot, directional (lit integrators only)
   std::vector<MaterialDesc> materials;
   std::vector<SceneTriangle> triangles;  // non-degenerate triangles only
+  // Corner colours of the triangles with kHasColor, 3 per triangle index (white or absent for the
+  // others: the vector may be shorter than 3 x triangles); empty when none has any.
+  std::vector<glm::vec3> vertexColors;
   // Images held inside an input file (a .glb's bufferViews, data URIs), encoded as stored, by the
   // name a material's texture path gives them ("<file>#images[i].<ext>"; never a real file): the
   // texture loader decodes them from memory and the scene digest hashes these bytes.

@@ -42,8 +42,11 @@ std::string sceneDigest(const Scene& scene) {
     h.add(encoded.data(), encoded.size());
     files[name] = h.value();
   }
-  for (const SceneTriangle& t : scene.triangles) {
+  for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
+    const SceneTriangle& t = scene.triangles[i];
     for (const glm::vec3& v : t.v) appendVec(bytes, v);
+    if ((t.attributes & kHasColor) && 3 * i + 2 < scene.vertexColors.size())
+      for (std::size_t k = 0; k < 3; ++k) appendVec(bytes, scene.vertexColors[3 * i + k]);
     append(bytes, &t.material, sizeof t.material);
     append(bytes, &t.attributes, sizeof t.attributes);
     if (t.attributes & kHasNormals)

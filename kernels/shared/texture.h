@@ -18,6 +18,7 @@ typedef struct {
   MCL_GLOBAL const TextureDesc* textures;
   MCL_GLOBAL const TextureLevel* levels;
   MCL_GLOBAL const ushort* texels;
+  MCL_GLOBAL const float4* colors;  // vertex colours (MCL_ATTR_COLOR; read by hit_albedo only; may be null elsewhere)
 } TextureTables;
 
 MCL_INLINE uint texture_wrap(int i, uint n) {

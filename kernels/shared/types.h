@@ -205,6 +205,10 @@ typedef struct MCL_ALIGN16 {
 // has an alpha texture, so a hit on it exists only where the alpha test passes
 // (surface_texture.h alpha_hit_exists). Opaque triangles never pay for the test.
 #define MCL_ATTR_ALPHA 4u
+// Attribute flag (SceneTriangle::attributes kHasColor): the triangle has vertex colours (glTF
+// COLOR_0), vertexColors[3 tri + k].xyz at corner k, multiplying the material's base colour
+// (surface_texture.h hit_albedo). A scene without them binds a 1-entry dummy buffer.
+#define MCL_ATTR_COLOR 8u
 
 #ifndef MCL_OPENCL
 #include <cstddef>
