@@ -130,6 +130,37 @@ TEST_CASE("texture: bilinear lookups with repeat wrap, v = 0 at the bottom, tril
   CHECK(texture_footprint(0.1f, 0.0f, 1.0f, 1.0f) == 0.0f);
 }
 
+TEST_CASE("texture: texel indices under each wrap mode, and the identity transform reads the same bits" * doctest::test_suite("cpu")) {
+  // A row of 4 texels: repeat (i mod 4), clamp (to 0 .. 3), mirrored repeat (0 1 2 3 3 2 1 0 ...).
+  const int is[] = {-5, -4, -2, -1, 0, 3, 4, 5, 7, 8, 11};
+  const uint repeat[] = {3, 0, 2, 3, 0, 3, 0, 1, 3, 0, 3};
+  const uint clamp[] = {0, 0, 0, 0, 0, 3, 3, 3, 3, 3, 3};
+  const uint mirror[] = {3, 3, 1, 0, 0, 3, 3, 2, 0, 0, 3};
+  for (std::size_t k = 0; k < sizeof is / sizeof is[0]; ++k) {
+    CAPTURE(is[k]);
+    CHECK(texture_wrap_mode(is[k], 4u, MCL_WRAP_REPEAT) == repeat[k]);
+    CHECK(texture_wrap_mode(is[k], 4u, MCL_WRAP_CLAMP) == clamp[k]);
+    CHECK(texture_wrap_mode(is[k], 4u, MCL_WRAP_MIRROR) == mirror[k]);
+  }
+  CHECK(texture_reduce(-0.25f, MCL_WRAP_REPEAT) == 0.75f);
+  CHECK(texture_reduce(-0.25f, MCL_WRAP_MIRROR) == 1.75f);
+  CHECK(texture_reduce(-0.25f, MCL_WRAP_CLAMP) == 0.0f);
+  CHECK(texture_reduce(1.5f, MCL_WRAP_CLAMP) == 1.0f);
+  // A texture as the loader packs it (identity rows, repeat) reads exactly what the repeat lookup does.
+  TextureDesc d{};
+  d.uvRow0 = float4(1.0f, 0.0f, 0.0f, 0.0f);
+  d.uvRow1 = float4(0.0f, 1.0f, 0.0f, 0.0f);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> uv(-3.0f, 3.0f);
+  for (int i = 0; i < 1000; ++i) {
+    const float u = uv(rng), v = uv(rng);
+    const float2 t = texture_uv(d, u, v);
+    REQUIRE(t.x == u);
+    REQUIRE(t.y == v);
+  }
+  CHECK(texture_uv_scale(d) == 1.0f);
+}
+
 TEST_CASE("texture: a tiny budget keeps coarser levels and says which textures" * doctest::test_suite("cpu")) {
   SceneTextures st;
   st.files = {"big.png", "small.png"};

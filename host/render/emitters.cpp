@@ -46,7 +46,10 @@ bool mayEmit(TextureTables tt, const Material& m, const Triangle& tri, const Tri
   const double xa = std::floor(std::min({px[0], px[1], px[2]}) - 1.0), xb = std::ceil(std::max({px[0], px[1], px[2]}));
   const double ya = std::floor(std::min({py[0], py[1], py[2]}) - 1.0), yb = std::ceil(std::max({py[0], py[1], py[2]}));
   // Too many texels to test one by one (a triangle spanning many repeats): every texel counts.
-  const bool all = (xb - xa + 1.0) * (yb - ya + 1.0) > 4.0 * double(l.width) * double(l.height);
+  // So does a texture read through its own transform or a wrap mode other than repeat (the
+  // triangle's image above is in the surface's UVs, not the texture's).
+  const bool plain = d.uvRow0 == float4(1.0f, 0.0f, 0.0f, 0.0f) && d.uvRow1 == float4(0.0f, 1.0f, 0.0f, 0.0f);
+  const bool all = !plain || (xb - xa + 1.0) * (yb - ya + 1.0) > 4.0 * double(l.width) * double(l.height);
   const float3 ke = xyz(m.emission);
   bool any = false;
   maxLum = 0.0f;
@@ -67,8 +70,10 @@ bool mayEmit(TextureTables tt, const Material& m, const Triangle& tri, const Tri
 // the grid's points gets a small positive weight (any positive weight keeps light sampling unbiased).
 float texturedEmitterLuminance(TextureTables tt, const Material& m, const Triangle& tri, const TriangleShading& sh) {
   if (!(as_uint(tri.e2.w) & MCL_ATTR_UV)) return emitter_luminance(tt, &m, &tri, &sh);  // one colour
-  const TextureLevel l = tt.levels[tt.textures[as_uint(m.maps.x)].firstLevel];
-  const double texels = double(uv_area(&tri, &sh)) * double(l.width) * double(l.height);
+  const TextureDesc d = tt.textures[as_uint(m.maps.x)];
+  const TextureLevel l = tt.levels[d.firstLevel];
+  const float scale = texture_uv_scale(d);
+  const double texels = double(uv_area(&tri, &sh)) * double(scale) * double(scale) * double(l.width) * double(l.height);
   const int n = int(std::clamp(std::ceil(std::sqrt(texels)), 1.0, 16.0));
   double sum = 0.0;
   for (int j = 0; j < n; ++j)

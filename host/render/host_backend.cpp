@@ -34,6 +34,8 @@ class HostStageRunner final : public StageRunner {
     shading_ = in.shading;
     if (shading_.empty()) shading_.resize(1);
     normals_ = buildTriangleNormals(in.bvh->triangles);
+    vertexColors_ = in.vertexColors;
+    if (vertexColors_.empty()) vertexColors_.resize(1);
     materials_ = in.materials;
     emitters_ = in.emitters;
     envMap_ = in.envMap;
@@ -168,6 +170,7 @@ class HostStageRunner final : public StageRunner {
     b.tris = tris_.data();
     b.shading = shading_.data();
     b.normals = normals_.data();
+    b.vertexColors = vertexColors_.data();
     b.materials = materials_.data();
     b.emitters = emitters_.data();
     // Read-only to every stage (const in the stage table); not copied: texels can be large.
@@ -197,6 +200,7 @@ class HostStageRunner final : public StageRunner {
   std::vector<Triangle> tris_;
   std::vector<TriangleShading> shading_;
   std::vector<float4> normals_;
+  std::vector<float4> vertexColors_;
   std::vector<Material> materials_;
   std::vector<Emitter> emitters_;
   // The scene's texture tables (the caller's, alive during the render) or 1-entry dummies.

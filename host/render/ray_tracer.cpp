@@ -26,6 +26,7 @@ RayTracer::RayTracer(StageProgram& program, const Bvh& bvh, const Scene* scene, 
   bindings_.textures = {cl_.upload(alpha ? textures->textures : std::vector<TextureDesc>(1))};
   bindings_.textureLevels = {cl_.upload(alpha ? textures->levels : std::vector<TextureLevel>(1))};
   bindings_.texels = {cl_.upload(alpha ? textures->texels : std::vector<std::uint16_t>(4))};
+  bindings_.vertexColors = {cl_.upload(std::vector<float4>(1))};  // no albedo is read here
   bindings_.nanRays = {cl_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE)};
 }
 

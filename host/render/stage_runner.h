@@ -25,6 +25,8 @@ struct StageInputs {
   std::vector<Emitter> emitters;
   // Per-triangle attributes in BVH order (render/triangle_shading.h); empty: a 1-entry dummy.
   std::vector<TriangleShading> shading;
+  // Vertex colours, 3 per triangle in BVH order (render/triangle_shading.h); empty: a 1-entry dummy.
+  std::vector<float4> vertexColors;
   // The scene's texture tables (FrameParams::textureCount entries); null or empty: no textures.
   const SceneTextures* textures = nullptr;
   // Triangles to upload instead of bvh->triangles (cut-outs flagged, alphaFlaggedTriangles); empty: those.

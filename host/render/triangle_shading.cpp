@@ -1,5 +1,5 @@
-// triangle_shading.cpp: fills TriangleShading in BVH order from SceneTriangle::n/uv/attributes, and the
-// per-triangle unit geometric normals and areas.
+// triangle_shading.cpp: fills TriangleShading in BVH order from SceneTriangle::n/uv/attributes, the
+// vertex colours (Scene::vertexColors) in BVH order, and the per-triangle unit geometric normals and areas.
 #include "render/triangle_shading.h"
 
 #include "kernels/shared/geometry.h"
@@ -33,6 +33,18 @@ std::vector<TriangleShading> buildTriangleShading(const std::vector<SceneTriangl
     }
     if (t.attributes & kHasUv) s.tv = glm::vec4(t.uv[0].y, t.uv[1].y, t.uv[2].y, 0.0f);
   }
+  return out;
+}
+
+std::vector<float4> buildVertexColors(const Scene& scene, const Bvh& bvh) {
+  const auto colour = [&](std::uint32_t k) {
+    return (scene.triangles[k].attributes & kHasColor) && 3u * std::size_t(k) + 2u < scene.vertexColors.size();
+  };
+  if (!std::any_of(bvh.order.begin(), bvh.order.end(), colour)) return {};
+  std::vector<float4> out(3 * bvh.order.size(), float4(1.0f, 1.0f, 1.0f, 0.0f));
+  for (std::size_t i = 0; i < bvh.order.size(); ++i)
+    if (colour(bvh.order[i]))
+      for (std::size_t k = 0; k < 3; ++k) out[3 * i + k] = float4(scene.vertexColors[3 * std::size_t(bvh.order[i]) + k], 0.0f);
   return out;
 }
 

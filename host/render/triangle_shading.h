@@ -16,6 +16,10 @@ namespace montecl {
 // 64 bytes, not 64 per triangle.
 std::vector<TriangleShading> buildTriangleShading(const std::vector<SceneTriangle>& tris, const Bvh& bvh);
 
+// The vertex colours of bvh.triangles[i] (input triangle bvh.order[i], kHasColor) at out[3 i + k]
+// (xyz; w 0), white for triangles without; empty when no triangle has any.
+std::vector<float4> buildVertexColors(const Scene& scene, const Bvh& bvh);
+
 // normals[i] = (triangle_unit_normal, triangle_area_of) of tris[i]'s edges: the shade stages' geometric
 // normal and emitter area, computed once with the kernels' own functions (kernels/shared/geometry.h;
 // this library is built without FMA contraction, like the kernels), so every device reads the bits

@@ -98,6 +98,8 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
                               environment.cdf.size() * sizeof(float)})
     checkFits(bytes, maxAlloc, "use a smaller image or scene");
   in.shading = std::move(triangles.shading);
+  in.vertexColors = std::move(triangles.vertexColors);
+  checkFits(in.vertexColors.size() * sizeof(float4), maxAlloc, "use a smaller scene");
   checkFits(in.shading.size() * sizeof(TriangleShading), maxAlloc, "use a smaller scene");
 
   // Textures: the caller's (loaded under its budget, warnings shown), else loaded here.
@@ -363,6 +365,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
 PreparedTriangles prepareTriangles(const Scene& scene, const Bvh& bvh) {
   PreparedTriangles t;
   t.shading = buildTriangleShading(scene.triangles, bvh);
+  t.vertexColors = buildVertexColors(scene, bvh);
   t.offsetScale = offsetScaleFor(scene.triangles);
   return t;
 }

@@ -68,6 +68,7 @@ struct RenderOptions {
 // memory then lacks their size); the BVH and the textures are read to the end.
 struct PreparedTriangles {
   std::vector<TriangleShading> shading;
+  std::vector<float4> vertexColors;  // buildVertexColors (empty: no triangle has any)
   float offsetScale = 1.0f;
 };
 PreparedTriangles prepareTriangles(const Scene& scene, const Bvh& bvh);

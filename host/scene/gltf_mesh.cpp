@@ -1,7 +1,9 @@
 // gltf_mesh.cpp: loadGltfInto(): a glTF 2.0 scene (gltf_model.h) into a Scene. Walks the default
 // scene's node hierarchy (TRS or matrix transforms); TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN
-// primitives (indexed or not) give triangles with POSITION, NORMAL (kHasNormals) and TEXCOORD_0 (kHasUv, v flipped to OBJ's
-// convention: v = 1 - v_gltf). Materials: baseColorFactor x baseColorTexture -> albedo and
+// primitives (indexed or not) give triangles with POSITION, NORMAL (kHasNormals) and the TEXCOORD_n set the
+// material's textures read (kHasUv, v flipped to OBJ's convention: v = 1 - v_gltf); each texture's
+// KHR_texture_transform and sampler wrap modes are its TextureSampling (gltf_texture_info.h);
+// KHR_materials_unlit makes the base colour the emission of a surface that reflects nothing. Materials: baseColorFactor x baseColorTexture -> albedo and
 // albedoTexture; alphaMode MASK (+ alphaCutoff) -> alphaTexture = the base colour texture, BLEND
 // treated as MASK with a warning; emissiveFactor x KHR_materials_emissive_strength -> emission
 // (two-sided when doubleSided), emissiveTexture -> emissionTexture; metallic/roughness factors (x
@@ -23,6 +25,7 @@
 #include "scene/gltf_lights.h"
 #include "scene/gltf_model.h"
 #include "scene/gltf_transmission.h"
+#include "scene/gltf_texture_info.h"
 #include "scene/load_util.h"
 #include "scene/mesh_loaders.h"
 
@@ -40,6 +43,9 @@ struct Loader {
   bool hasCamera = false;
   Camera camera;
   std::set<int> missingImages;  // images whose file cannot be opened
+  // glTF material -> the TEXCOORD_n set its textures read, and the key that named it.
+  std::vector<int> uvSet = std::vector<int>(m.materials.size(), 0);
+  std::vector<std::string> uvSetKey = std::vector<std::string>(m.materials.size());
 
   std::uint32_t material(int index);
   void primitive(const tinygltf::Primitive& p, const glm::dmat4& world, const std::string& where);
@@ -86,10 +92,12 @@ std::uint32_t Loader::material(int index) {
   const auto& pbr = g.pbrMetallicRoughness;
   d.albedo = factor3(pbr.baseColorFactor, 1.0);
   double strength = 1.0;
+  bool unlit = false;
   for (const auto& ext : g.extensions) {
     if (ext.first == "KHR_materials_emissive_strength" && ext.second.Has("emissiveStrength"))
       strength = ext.second.Get("emissiveStrength").GetNumberAsDouble();
     else if (gltfTransmissionExtension(ext.first)) continue;  // applyGltfTransmission, below
+    else if (ext.first == "KHR_materials_unlit") unlit = true;
     else unused.add("extension " + ext.first, where, "material extension '" + oneLine(ext.first, 60) + "' not used by montecl, ignored");
   }
   d.emission = factor3(g.emissiveFactor, strength);
@@ -98,11 +106,22 @@ std::uint32_t Loader::material(int index) {
     if (!std::isfinite(d.albedo[c]) || d.albedo[c] < 0) loadFail(file, where, "baseColorFactor must be finite and >= 0");
     if (!std::isfinite(d.emission[c]) || d.emission[c] < 0) loadFail(file, where, "emissiveFactor x emissiveStrength must be finite and >= 0");
   }
-  // A texture of this material (key names it in messages): the path of its image, checked now
-  // when it is a file of its own (then an input file); texCoord other than 0 and wrap modes other
-  // than REPEAT are warned about.
-  const auto texturePath = [&](int tex, int texCoord, const char* key) {
-    if (static_cast<std::size_t>(tex) >= m.textures.size()) loadFail(file, where, std::string(key) + " index out of range");
+  // A texture of this material (key names it in messages, info is its textureInfo): the path of
+  // its image, checked now when it is a file of its own (then an input file), and how it is read
+  // (sampling: transform, wrap modes). Every texture of a material reads one TEXCOORD set.
+  const auto texturePath = [&](const auto& info, const char* key, TextureSampling& sampling) {
+    const int tex = info.index;
+    const std::string name(key);
+    if (static_cast<std::size_t>(tex) >= m.textures.size())
+      loadFail(file, where, name.substr(name.rfind('.') + 1) + " index out of range");
+    const std::string infoKey = where + "." + key;
+    const GltfTextureRead read = readGltfTextureInfo(file, m, tex, info.texCoord, info.extensions, infoKey);
+    sampling = read.sampling;
+    if (read.texCoord != uvSet[i] && !uvSetKey[i].empty())
+      unused.add("uv sets", where, "textures read TEXCOORD_" + std::to_string(uvSet[i]) + " and TEXCOORD_" +
+                                       std::to_string(read.texCoord) + ": montecl reads one set per material (TEXCOORD_" +
+                                       std::to_string(uvSet[i]) + " used for all)");
+    else if (uvSetKey[i].empty()) uvSet[i] = read.texCoord, uvSetKey[i] = infoKey + ".texCoord";
     const tinygltf::Texture& t = m.textures[static_cast<std::size_t>(tex)];
     if (t.source < 0 || static_cast<std::size_t>(t.source) >= m.images.size())
       loadFail(file, itemWhere("textures", std::size_t(tex)), "source image missing or out of range");
@@ -122,27 +141,36 @@ std::uint32_t Loader::material(int index) {
       }
       scene.inputFiles.push_back(path);
     }
-    if (texCoord != 0) unused.add("texCoord", where, "texCoord other than 0 not used by montecl (TEXCOORD_0 used)");
-    if (t.sampler >= 0 && static_cast<std::size_t>(t.sampler) < m.samplers.size()) {
-      const tinygltf::Sampler& s = m.samplers[static_cast<std::size_t>(t.sampler)];
-      if (s.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT || s.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT)
-        unused.add("wrap", itemWhere("samplers", std::size_t(t.sampler)), "wrap modes other than REPEAT not used by montecl (it repeats)");
-    }
     return path;
   };
   if (pbr.baseColorTexture.index >= 0)
-    d.albedoTexture = texturePath(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, "baseColorTexture");
-  // emissiveFactor x emissiveTexture (x strength); with a black factor the texture emits nothing:
-  // not read at all.
-  if (g.emissiveTexture.index >= 0 && d.emission != glm::vec3(0.0f))
-    d.emissionTexture = texturePath(g.emissiveTexture.index, g.emissiveTexture.texCoord, "emissiveTexture");
+    d.albedoTexture = texturePath(pbr.baseColorTexture, "pbrMetallicRoughness.baseColorTexture", d.albedoSampling);
   if (g.alphaMode == "MASK" || g.alphaMode == "BLEND") {
     if (g.alphaMode == "BLEND") unused.add("BLEND", where, "alphaMode BLEND treated as MASK (cut-out at alphaCutoff)");
     d.alphaCutoff = static_cast<float>(g.alphaCutoff);
     if (!(d.alphaCutoff >= 0.0f && d.alphaCutoff <= 1.0f)) loadFail(file, where, "alphaCutoff must be in [0, 1]");
     d.alphaTexture = d.albedoTexture;
+    d.alphaSampling = d.albedoSampling;
     if (d.alphaTexture.empty()) unused.add("constant alpha", where, "alphaMode " + g.alphaMode + " without a usable base colour texture: no cut-out");
   }
+  // KHR_materials_unlit: the base colour is what the surface shows, lit or not: it becomes the
+  // emission (Le = baseColorFactor x baseColorTexture, both faces when doubleSided) and the surface
+  // reflects nothing (albedo 0, no other texture read).
+  if (unlit) {
+    d.emission = d.albedo;
+    d.emissionTexture = d.albedoTexture;
+    d.emissionSampling = d.albedoSampling;
+    d.albedo = glm::vec3(0.0f);
+    d.albedoTexture.clear();
+    d.albedoSampling = TextureSampling{};
+    materialIndex[i] = static_cast<std::int64_t>(scene.materials.size());
+    scene.materials.push_back(d);
+    return static_cast<std::uint32_t>(materialIndex[i]);
+  }
+  // emissiveFactor x emissiveTexture (x strength); with a black factor the texture emits nothing:
+  // not read at all.
+  if (g.emissiveTexture.index >= 0 && d.emission != glm::vec3(0.0f))
+    d.emissionTexture = texturePath(g.emissiveTexture, "emissiveTexture", d.emissionSampling);
   // metallic/roughness factors -> the metal_rough kind. Two factor pairs stay Lambertian, as every
   // glTF material rendered before the kind existed: (0, 1), which metal_rough nearly is (a rough
   // dielectric), and the defaults (1, 1), which montecl always drew as Lambert (glTF's rough metal
@@ -158,12 +186,12 @@ std::uint32_t Loader::material(int index) {
     d.roughness = roughness;
   }
   if (mrTexture)
-    d.metallicRoughnessTexture = texturePath(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
-                                             "metallicRoughnessTexture");
+    d.metallicRoughnessTexture = texturePath(pbr.metallicRoughnessTexture, "pbrMetallicRoughness.metallicRoughnessTexture",
+                                             d.metallicRoughnessSampling);
   if (g.normalTexture.index >= 0) {
     d.normalScale = static_cast<float>(g.normalTexture.scale);
     if (!std::isfinite(d.normalScale)) loadFail(file, where, "normalTexture scale must be finite");
-    d.normalTexture = texturePath(g.normalTexture.index, g.normalTexture.texCoord, "normalTexture");
+    d.normalTexture = texturePath(g.normalTexture, "normalTexture", d.normalSampling);
   }
   applyGltfTransmission(file, where, g, d, unused);
   if (g.occlusionTexture.index >= 0) unused.add("occlusionTexture", where, "occlusionTexture not used by montecl, ignored");
@@ -183,8 +211,9 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
     auto it = p.attributes.find(name);
     return it == p.attributes.end() ? -1 : it->second;
   };
+  // Texture coordinate sets other than the one the material's textures read change nothing.
   for (const auto& a : p.attributes)
-    if (a.first != "POSITION" && a.first != "NORMAL" && a.first != "TEXCOORD_0")
+    if (a.first != "POSITION" && a.first != "NORMAL" && a.first != "COLOR_0" && a.first.compare(0, 9, "TEXCOORD_") != 0)
       unused.add("attribute " + a.first, where,
                  a.first == "TANGENT" ? "attribute TANGENT not used by montecl (normal maps use tangents made per triangle from TEXCOORD_0), ignored"
                                       : "attribute " + oneLine(a.first, 40) + " not used by montecl, ignored");
@@ -194,7 +223,21 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
   const std::size_t n = pos.size() / 3;
   std::vector<float> nor, uv;
   if (attr("NORMAL") >= 0) nor = readFloatAccessor(file, m, attr("NORMAL"), 3, where + ".NORMAL", AccessorUse::Normal);
-  if (attr("TEXCOORD_0") >= 0) uv = readFloatAccessor(file, m, attr("TEXCOORD_0"), 2, where + ".TEXCOORD_0", AccessorUse::TexCoord);
+  const std::uint32_t mat = material(p.material);
+  const bool hasMaterial = p.material >= 0 && static_cast<std::size_t>(p.material) < m.materials.size();
+  const int set = hasMaterial ? uvSet[std::size_t(p.material)] : 0;
+  const std::string uvName = "TEXCOORD_" + std::to_string(set);
+  if (set > 0 && attr(uvName.c_str()) < 0)  // TEXCOORD_0 missing: no UVs, as always
+    loadFail(file, uvSetKey[std::size_t(p.material)], "names " + uvName + ", which " + where + " does not have");
+  if (attr(uvName.c_str()) >= 0) uv = readFloatAccessor(file, m, attr(uvName.c_str()), 2, where + "." + uvName, AccessorUse::TexCoord);
+  // COLOR_0 (VEC3 or VEC4: alpha not read) multiplies the base colour.
+  std::vector<float> col;
+  int colN = 3;
+  if (const int a = attr("COLOR_0"); a >= 0) {
+    colN = static_cast<std::size_t>(a) < m.accessors.size() && m.accessors[std::size_t(a)].type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+    col = readFloatAccessor(file, m, a, colN, where + ".COLOR_0");
+    if (col.size() / std::size_t(colN) != n) loadFail(file, where, "attributes have different counts");
+  }
   if ((!nor.empty() && nor.size() / 3 != n) || (!uv.empty() && uv.size() / 2 != n))
     loadFail(file, where, "attributes have different counts");
   std::vector<std::uint32_t> idx;
@@ -213,9 +256,9 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
   };
   const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(world)));
   const bool mirror = glm::determinant(glm::dmat3(world)) < 0.0;
-  const std::uint32_t mat = material(p.material);
   for (std::size_t c = 0; c < corners; c += 3) {
     SceneTriangle t{};
+    glm::vec3 colour[3];
     bool normals = !nor.empty();
     for (int k = 0; k < 3; ++k) {
       const std::size_t j = cornerOf(c + std::size_t(k));
@@ -230,15 +273,21 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
         t.n[kk] = normals ? glm::vec3(nn / len) : glm::vec3(0.0f);
       }
       if (!uv.empty()) t.uv[kk] = glm::vec2(uv[2 * v], 1.0f - uv[2 * v + 1]);
+      if (!col.empty())
+        colour[kk] = glm::max(glm::vec3(col[colN * v], col[colN * v + 1], col[colN * v + 2]), glm::vec3(0.0f));
     }
     if (!normals)
       for (glm::vec3& x : t.n) x = glm::vec3(0.0f);
-    t.attributes = static_cast<std::uint8_t>((normals ? kHasNormals : 0) | (uv.empty() ? 0 : kHasUv));
+    t.attributes = static_cast<std::uint8_t>((normals ? kHasNormals : 0) | (uv.empty() ? 0 : kHasUv) |
+                                             (col.empty() ? 0 : kHasColor));
     t.material = mat;
     for (const glm::vec3& x : t.v)
       if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z))
         loadFail(file, where, "a node transform moves vertices out of float range");
-    appendTriangle(scene, t);
+    if (appendTriangle(scene, t) && !col.empty()) {  // colours by triangle index (white before)
+      scene.vertexColors.resize(3 * (scene.triangles.size() - 1), glm::vec3(1.0f));
+      scene.vertexColors.insert(scene.vertexColors.end(), colour, colour + 3);
+    }
   }
 }
 
@@ -287,6 +336,7 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
   scene.inputFiles.push_back(path);
   scene.inputFiles.insert(scene.inputFiles.end(), opened.begin(), opened.end());
   Loader l{path, m, scene, KindWarnings(path), std::vector<std::int64_t>(m.materials.size(), -1), false, Camera{}};
+  checkGltfSamplers(path, m);
   for (const std::string& e : m.extensionsUsed)
     if (!gltfExtensionSupported(e))
       l.unused.add("extension " + e, "extensionsUsed", "extension '" + oneLine(e, 60) + "' not used by montecl, ignored");

@@ -268,13 +268,14 @@ tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>*
 
 bool gltfExtensionSupported(const std::string& name) {
   return name == "KHR_materials_emissive_strength" || name == "KHR_lights_punctual" || name == "KHR_mesh_quantization" ||
-         gltfTransmissionExtension(name) || name == "EXT_mesh_gpu_instancing";
+         gltfTransmissionExtension(name) || name == "EXT_mesh_gpu_instancing" ||
+         name == "KHR_texture_transform" || name == "KHR_materials_unlit";
 }
 
 std::vector<float> readFloatAccessor(const std::string& file, const tinygltf::Model& m, int index, int components,
                                      const std::string& where, AccessorUse use) {
   const tinygltf::Accessor& a = accessorAt(file, m, index, where);
-  const int type = components == 2 ? TINYGLTF_TYPE_VEC2 : components == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4;
+  const int type = components == 2 ? TINYGLTF_TYPE_VEC2 : components == 4 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3;
   if (a.type != type) loadFail(file, where, "expected a VEC" + std::to_string(components) + " accessor");
   const int ct = a.componentType;
   const bool isFloat = ct == TINYGLTF_COMPONENT_TYPE_FLOAT;

@@ -31,8 +31,8 @@ bool gltfExtensionSupported(const std::string& name);
 // signed byte / short). Normalized signed values are max(c / (2^(b-1) - 1), -1), as glTF defines.
 enum class AccessorUse { Any, Position, Normal, TexCoord };
 
-// Accessor `index` as floats with `components` components per element (VEC2: 2, VEC3: 3), from
-// FLOAT data or the integer data `use` allows (VEC4: 4); where names the attribute for messages.
+// Accessor `index` as floats with `components` components per element (VEC2: 2, VEC3: 3, VEC4: 4), from
+// FLOAT data or the integer data `use` allows; where names the attribute for messages.
 std::vector<float> readFloatAccessor(const std::string& file, const tinygltf::Model& m, int index, int components,
                                      const std::string& where, AccessorUse use = AccessorUse::Any);
 

@@ -140,6 +140,10 @@ void transformTriangles(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, 
   std::size_t out = firstTri;
   for (std::size_t i = firstTri; i < scene.triangles.size(); ++i) {
     SceneTriangle t = scene.triangles[i];
+    std::vector<glm::vec3>& colours = scene.vertexColors;  // follow their triangle (kHasColor)
+    const bool coloured = 3 * i + 2 < colours.size();
+    glm::vec3 c[3] = {glm::vec3(1.0f), glm::vec3(1.0f), glm::vec3(1.0f)};
+    if (coloured) c[0] = colours[3 * i], c[1] = colours[3 * i + 1], c[2] = colours[3 * i + 2];
     for (int k = 0; k < 3; ++k) {
       t.v[k] = glm::vec3(m * glm::dvec4(glm::dvec3(t.v[k]), 1.0));
       if (!finite(t.v[k])) jsonFail(ctx, key, "moves vertices out of float range");
@@ -149,15 +153,19 @@ void transformTriangles(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, 
       std::swap(t.v[1], t.v[2]);
       std::swap(t.n[1], t.n[2]);
       std::swap(t.uv[1], t.uv[2]);
+      std::swap(c[1], c[2]);
     }
     const glm::vec3 n = glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]);
     if (!finite(n) || n == glm::vec3(0.0f)) {
       ++scene.degenerateDropped;
       continue;
     }
+    if (coloured)
+      for (int k = 0; k < 3; ++k) colours[3 * out + std::size_t(k)] = c[k];
     scene.triangles[out++] = t;
   }
   scene.triangles.resize(out);
+  if (scene.vertexColors.size() > 3 * out) scene.vertexColors.resize(3 * out);
 }
 
 void overrideMaterials(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, const MeshEntry& mesh) {
@@ -183,17 +191,19 @@ void overrideMaterials(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, c
       if (o.albedo) d.albedo = o.value.albedo;
       if (o.albedoTexture) {
         d.albedoTexture = o.value.albedoTexture;
+        d.albedoSampling = TextureSampling{};  // a texture of the scene file's is read as it is
         if (!o.albedo) d.albedo = glm::vec3(1.0f);  // the texture as it is
       }
       if (o.alphaTexture || o.albedoTexture) d.cutoutHint.clear();  // the MTL's map_Kd is no longer alone
-      if (o.alphaTexture) d.alphaTexture = o.value.alphaTexture;
+      if (o.alphaTexture) d.alphaTexture = o.value.alphaTexture, d.alphaSampling = TextureSampling{};
       if (o.alphaCutoff) d.alphaCutoff = o.value.alphaCutoff;
       if (o.emission) d.emission = o.value.emission;
       if (o.emissionTexture) {
         d.emissionTexture = o.value.emissionTexture;
+        d.emissionSampling = TextureSampling{};
         if (!o.emission) d.emission = glm::vec3(1.0f);  // the texture as it is
       }
-      if (o.normalTexture) d.normalTexture = o.value.normalTexture;
+      if (o.normalTexture) d.normalTexture = o.value.normalTexture, d.normalSampling = TextureSampling{};
       if (o.normalScale) d.normalScale = o.value.normalScale;
       if (o.twoSided) d.twoSidedEmission = o.value.twoSidedEmission;
       if (o.specular) d.specular = o.value.specular;

@@ -25,6 +25,18 @@ struct Camera {
   float focusDistance = 0.0f;   // distance of the plane in focus ("focus_distance"); 0: |target - position|
 };
 
+// How one texture of a material is read (glTF KHR_texture_transform and the sampler's wrap
+// modes): the affine map from the surface's UVs to the texture's (both in montecl's convention,
+// v up; u' = row0 . (u, v, 1), v' = row1 . (u, v, 1)) and a wrap mode per axis (MCL_WRAP_*:
+// 0 repeat, 1 clamp to edge, 2 mirrored repeat). The default reads the texture as it always was.
+struct TextureSampling {
+  glm::vec3 row0{1.0f, 0.0f, 0.0f}, row1{0.0f, 1.0f, 0.0f};
+  std::uint32_t wrapS = 0, wrapT = 0;
+  bool identity() const {
+    return row0 == glm::vec3(1.0f, 0.0f, 0.0f) && row1 == glm::vec3(0.0f, 1.0f, 0.0f) && wrapS == 0 && wrapT == 0;
+  }
+};
+
 struct MaterialDesc {
   MaterialDesc() = default;
   MaterialDesc(std::string name_, glm::vec3 albedo_, glm::vec3 emission_ = glm::vec3(0.0f))
@@ -61,11 +73,16 @@ struct MaterialDesc {
   // An MTL map_Kd without map_d: where it is ("<mtl>: line N: material 'm': map_Kd 'name'"), so the
   // texture loader can say how to cut it out when its alpha is not all 1 (it renders opaque). "": none.
   std::string cutoutHint;
+  // How each texture above is read (identity and repeat unless a glTF file says otherwise).
+  TextureSampling albedoSampling, alphaSampling, emissionSampling, metallicRoughnessSampling, normalSampling;
 };
 
 // Per-corner attributes of a triangle (SceneTriangle::attributes says which are present).
 constexpr std::uint8_t kHasNormals = 1;  // n[] holds the file's vertex normals (unit length)
 constexpr std::uint8_t kHasUv = 2;       // uv[] holds texture coordinates
+// Scene::vertexColors[3 k ..] hold triangle k's corner colours (glTF COLOR_0, linear rgb) (8:
+// MCL_ATTR_COLOR, past the device's MCL_ATTR_ALPHA 4, which loaders never set).
+constexpr std::uint8_t kHasColor = 8;
 
 struct SceneTriangle {
   glm::vec3 v[3];
@@ -114,6 +131,9 @@ struct Scene {
   std::vector<LightDesc> lights;  // point, spot, directional (lit integrators only)
   std::vector<MaterialDesc> materials;
   std::vector<SceneTriangle> triangles;  // non-degenerate triangles only
+  // Corner colours of the triangles with kHasColor, 3 per triangle index (white or absent for the
+  // others: the vector may be shorter than 3 x triangles); empty when none has any.
+  std::vector<glm::vec3> vertexColors;
   // Images held inside an input file (a .glb's bufferViews, data URIs), encoded as stored, by the
   // name a material's texture path gives them ("<file>#images[i].<ext>"; never a real file): the
   // texture loader decodes them from memory and the scene digest hashes these bytes.

@@ -42,8 +42,11 @@ std::string sceneDigest(const Scene& scene) {
     h.add(encoded.data(), encoded.size());
     files[name] = h.value();
   }
-  for (const SceneTriangle& t : scene.triangles) {
+  for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
+    const SceneTriangle& t = scene.triangles[i];
     for (const glm::vec3& v : t.v) appendVec(bytes, v);
+    if ((t.attributes & kHasColor) && 3 * i + 2 < scene.vertexColors.size())
+      for (std::size_t k = 0; k < 3; ++k) appendVec(bytes, scene.vertexColors[3 * i + k]);
     append(bytes, &t.material, sizeof t.material);
     append(bytes, &t.attributes, sizeof t.attributes);
     if (t.attributes & kHasNormals)
@@ -72,6 +75,16 @@ std::string sceneDigest(const Scene& scene) {
       append(bytes, &n, sizeof n);
       append(bytes, &m.normalScale, sizeof m.normalScale);
     }
+    // How the textures are read, only where it is not as they always were (other digests stay).
+    for (const TextureSampling* t : {&m.albedoSampling, &m.alphaSampling, &m.emissionSampling,
+                                     &m.metallicRoughnessSampling, &m.normalSampling})
+      if (!t->identity()) {
+        bytes.add("sampling");
+        appendVec(bytes, t->row0);
+        appendVec(bytes, t->row1);
+        const std::uint32_t w[2] = {t->wrapS, t->wrapT};
+        append(bytes, w, sizeof w);
+      }
     // The kind only when it is not the first (diffuse): every scene from before kinds existed keeps
     // its digest, so its checkpoints still resume.
     if (m.kind != MCL_MATERIAL_diffuse) {  // and its parameters (diffuse reads none of them)

@@ -126,6 +126,8 @@ void packChains(SceneTextures& out, std::vector<HalfChain> chains, std::uint64_t
     d.levelCount = std::uint32_t(c.sizes.size() - std::size_t(drop[t]));
     d.dropped = std::uint32_t(drop[t]);
     d.lodBias = 0.5f * float(std::log2(double(c.width) * double(c.height)));
+    d.uvRow0 = float4(1.0f, 0.0f, 0.0f, glm::uintBitsToFloat(MCL_WRAP_REPEAT));  // read as it is
+    d.uvRow1 = float4(0.0f, 1.0f, 0.0f, glm::uintBitsToFloat(MCL_WRAP_REPEAT));
     out.textures.push_back(d);
     for (std::size_t k = std::size_t(drop[t]); k < c.sizes.size(); ++k) {
       if (texelCount + std::uint64_t(c.sizes[k].first) * c.sizes[k].second > 0xffffffffull)
@@ -154,6 +156,39 @@ void packChains(SceneTextures& out, std::vector<HalfChain> chains, std::uint64_t
       << " texture" << (droppedCount > 1 ? "s" : "") << " (" << dropped.str() << "), now " << (out.bytes() >> 20)
       << " MiB; raise --texture-budget for full resolution";
     warnings.push_back(w.str());
+  }
+}
+
+static_assert(MCL_WRAP_REPEAT == 0u && MCL_WRAP_CLAMP == 1u && MCL_WRAP_MIRROR == 2u, "TextureSampling wrap values");
+
+// Every texture use with its own transform or wrap modes gets a TextureDesc of its own over the
+// same levels (one per distinct image and sampling); uses without one keep the image's.
+void applySampling(SceneTextures& out, const Scene& scene, bool colour) {
+  std::map<std::pair<std::uint32_t, std::string>, std::uint32_t> views;
+  const auto view = [&](std::uint32_t& index, const TextureSampling& s) {
+    if (index == MCL_NO_TEXTURE || s.identity()) return;
+    std::string key(sizeof s, '\0');
+    std::memcpy(key.data(), &s, sizeof s);
+    auto [it, added] = views.emplace(std::make_pair(index, key), std::uint32_t(out.textures.size()));
+    if (added) {
+      TextureDesc d = out.textures[index];
+      d.uvRow0 = float4(s.row0, glm::uintBitsToFloat(s.wrapS));
+      d.uvRow1 = float4(s.row1, glm::uintBitsToFloat(s.wrapT));
+      out.textures.push_back(d);
+      out.files.push_back(index < out.files.size() ? out.files[index] : "");
+    }
+    index = it->second;
+  };
+  for (std::size_t i = 0; i < scene.materials.size() && i < out.materials.size(); ++i) {
+    const MaterialDesc& m = scene.materials[i];
+    MaterialTextures& t = out.materials[i];
+    if (colour) {
+      view(t.albedo, m.albedoSampling);
+      view(t.emission, m.emissionSampling);
+      view(t.metallicRoughness, m.metallicRoughnessSampling);
+      view(t.normal, m.normalSampling);
+    }
+    view(t.alpha, m.alphaSampling);
   }
 }
 
@@ -328,6 +363,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
                        "\"material\": {\"alpha_texture\": ...})" +
                        (uncut > 1 ? " (" + std::to_string(uncut - 1) + " more materials like it)" : std::string()));
   packChains(out, std::move(images), budgetBytes, warnings);
+  applySampling(out, scene, colour);
   return out;
 }
 

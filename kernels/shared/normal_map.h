@@ -59,13 +59,17 @@ MCL_INLINE SurfaceFrame apply_normal_map(SurfaceFrame fr, TextureTables tt, Mate
   if (!has_normal_map(m) || !(as_uint(tri->e2.w) & MCL_ATTR_UV)) return fr;
   uint tex = as_uint(m.maps.z) - 1u;
   float2 uv = surface_uv(tri, sh, h.u, h.v);
-  float3 t = xyz(texture_bilinear(tt, tt.textures[tex].firstLevel, uv.x, uv.y));
+  float3 t = xyz(texture_fine(tt, tex, uv.x, uv.y));
+  // The tangent frame follows the map's own UVs (its transform's linear part applied to the deltas).
+  TextureDesc d = tt.textures[tex];
+  float du1 = sh->n1.w - sh->n0.w, dv1 = sh->tv.y - sh->tv.x, du2 = sh->n2.w - sh->n0.w, dv2 = sh->tv.z - sh->tv.x;
   float3 N = ng0;
   if (as_uint(tri->e2.w) & MCL_ATTR_NORMALS) {
     float3 ni = interpolate_normal(xyz(sh->n0), xyz(sh->n1), xyz(sh->n2), h.u, h.v);
     N = dot(ni, ni) > 0.0f ? ni : ng0;
   }
-  float3 n = tangent_to_world(N, xyz(tri->e1), xyz(tri->e2), sh->n1.w - sh->n0.w, sh->tv.y - sh->tv.x,
-                              sh->n2.w - sh->n0.w, sh->tv.z - sh->tv.x, t);
+  float3 n = tangent_to_world(N, xyz(tri->e1), xyz(tri->e2), d.uvRow0.x * du1 + d.uvRow0.y * dv1,
+                              d.uvRow1.x * du1 + d.uvRow1.y * dv1, d.uvRow0.x * du2 + d.uvRow0.y * dv2,
+                              d.uvRow1.x * du2 + d.uvRow1.y * dv2, t);
   return normal_mapped_frame(fr, N, n, t);
 }

@@ -51,7 +51,7 @@
 // The texture tables (kernels/shared/texture.h): what albedo lookups read.
 #define MCL_TEXTURE_ARGS(ARG)                                                                      \
   ARG(MCL_GLOBAL const TextureDesc*, textures) ARG(MCL_GLOBAL const TextureLevel*, textureLevels)  \
-  ARG(MCL_GLOBAL const ushort*, texels)
+  ARG(MCL_GLOBAL const ushort*, texels) ARG(MCL_GLOBAL const float4*, vertexColors)
 // What the alpha test of cut-outs reads (surface_texture.h AlphaScene).
 #define MCL_ALPHA_ARGS(ARG)                                                                        \
   ARG(MCL_GLOBAL const Material*, materials) ARG(MCL_GLOBAL const TriangleShading*, shading)       \

@@ -35,7 +35,7 @@ MCL_INLINE SurfaceScene make_surface_scene(MCL_GLOBAL const Triangle* tris, MCL_
 // The SurfaceScene of a stage's arguments a (every shading stage's table row names these fields).
 #define MCL_STAGE_SURFACE_SCENE(a)                                                                 \
   make_surface_scene((a)->tris, (a)->normals, (a)->shading, (a)->materials,                       \
-                     make_texture_tables((a)->textures, (a)->textureLevels, (a)->texels))
+                     make_surface_tables((a)->textures, (a)->textureLevels, (a)->texels, (a)->vertexColors))
 
 // Unit normal n flipped to face the incoming direction.
 MCL_INLINE float3 orient_facing(float3 n, float3 incoming) { return dot(n, incoming) > 0.0f ? -n : n; }

@@ -41,6 +41,11 @@ MCL_INLINE float3 hit_albedo(TextureTables tt, MCL_CONSTANT const FrameParams* f
                              MCL_GLOBAL const Triangle* tri, float4 nA, MCL_GLOBAL const TriangleShading* sh,
                              Hit h, float3 dir) {
   float3 kd = xyz(m.albedo);
+  if (as_uint(tri->e2.w) & MCL_ATTR_COLOR) {  // times the vertex colour interpolated at the hit
+    MCL_GLOBAL const float4* c = tt.colors + 3u * h.tri;
+    float w = 1.0f - h.u - h.v;
+    kd = kd * (xyz(c[0]) * w + xyz(c[1]) * h.u + xyz(c[2]) * h.v);
+  }
   uint tex = as_uint(m.albedo.w);
   if (tex == MCL_NO_TEXTURE) return kd;
   return kd * xyz(hit_texture(tt, f, tex, tri, nA, sh, h, dir));
@@ -70,7 +75,7 @@ MCL_INLINE float3 material_emission(TextureTables tt, MCL_GLOBAL const Material*
   bool emits = ke.x > 0.0f || ke.y > 0.0f || ke.z > 0.0f;
   if (tex == MCL_NO_TEXTURE || !emits) return ke;  // no texture read where Ke is 0
   float2 uv = surface_uv(tri, sh, u, v);
-  return ke * xyz(texture_bilinear(tt, tt.textures[tex].firstLevel, uv.x, uv.y));
+  return ke * xyz(texture_fine(tt, tex, uv.x, uv.y));
 }
 
 // Luminance per unit area by which the emitter table weights triangle tri of material m: that of
@@ -92,6 +97,15 @@ MCL_INLINE TextureTables make_texture_tables(MCL_GLOBAL const TextureDesc* textu
   tt.textures = textures;
   tt.levels = levels;
   tt.texels = texels;
+  tt.colors = 0;
+  return tt;
+}
+
+// The texture tables with the vertex colours (what surface_at reads).
+MCL_INLINE TextureTables make_surface_tables(MCL_GLOBAL const TextureDesc* textures, MCL_GLOBAL const TextureLevel* levels,
+                                             MCL_GLOBAL const ushort* texels, MCL_GLOBAL const float4* colors) {
+  TextureTables tt = make_texture_tables(textures, levels, texels);
+  tt.colors = colors;
   return tt;
 }
 

@@ -180,11 +180,19 @@ typedef struct MCL_ALIGN16 {
 // TextureDesc t's kept levels are levels[firstLevel .. firstLevel + levelCount); level k of the
 // table is mip level dropped + k of the image as loaded (width x height at mip level 0): the
 // texture budget drops the finest levels first.
+// A texture is one use of an image: the same levels read through its own UV transform and wrap
+// modes (glTF KHR_texture_transform and sampler wrapS / wrapT) have a TextureDesc each; a texture
+// without them has the identity rows and repeats (bit for bit the lookup of an untransformed one).
+#define MCL_WRAP_REPEAT 0u
+#define MCL_WRAP_CLAMP 1u   // CLAMP_TO_EDGE: the edge texels continue outwards
+#define MCL_WRAP_MIRROR 2u  // MIRRORED_REPEAT: every other repeat is flipped
 typedef struct MCL_ALIGN16 {
   uint firstLevel;  // into the level table
   uint levelCount;  // levels kept (>= 1)
   uint dropped;     // finest levels dropped by the texture budget
   float lodBias;    // log2 of the loaded level-0 size's geometric mean: lod = log2(footprint) + this
+  float4 uvRow0;    // xyz: u' = x u + y v + z (montecl's UVs, v up); w: wrap mode of u' (as_float bits)
+  float4 uvRow1;    // xyz: v' = x u + y v + z; w: wrap mode of v' (as_float bits)
 } TextureDesc;
 
 typedef struct MCL_ALIGN16 {
@@ -197,6 +205,10 @@ typedef struct MCL_ALIGN16 {
 // has an alpha texture, so a hit on it exists only where the alpha test passes
 // (surface_texture.h alpha_hit_exists). Opaque triangles never pay for the test.
 #define MCL_ATTR_ALPHA 4u
+// Attribute flag (SceneTriangle::attributes kHasColor): the triangle has vertex colours (glTF
+// COLOR_0), vertexColors[3 tri + k].xyz at corner k, multiplying the material's base colour
+// (surface_texture.h hit_albedo). A scene without them binds a 1-entry dummy buffer.
+#define MCL_ATTR_COLOR 8u
 
 #ifndef MCL_OPENCL
 #include <cstddef>
@@ -217,7 +229,7 @@ static_assert(offsetof(FrameParams, shareEnvironment) == 176, "FrameParams layou
 static_assert(offsetof(FrameParams, sampler) == 240, "FrameParams layout");
 static_assert(sizeof(LightRecord) == 64, "LightRecord layout");
 static_assert(sizeof(Emitter) == 16, "Emitter layout");
-static_assert(sizeof(TextureDesc) == 16, "TextureDesc layout");
+static_assert(sizeof(TextureDesc) == 48 && offsetof(TextureDesc, uvRow0) == 16, "TextureDesc layout");
 static_assert(sizeof(TextureLevel) == 16, "TextureLevel layout");
 static_assert(offsetof(FrameParams, width) == 80, "FrameParams layout");
 #endif

@@ -55,7 +55,7 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
   // bsdf_make's specProb, as the scalar body computes it: the packet takes the lanes where it is 0.
   vfloat ls = v_luminance(v3_make(ksx, ksy, ksz)), ld = v_luminance(v3_make(kdx, kdy, kdz));
   vfloat specProb = vsel(ls > 0.0f, ls / (ls + ld), v_f(0.0f));
-  vmask packet = hit & ((v_as_uint(e2w) & MCL_ATTR_NORMALS) == 0u) & (v_as_uint(kdw) == MCL_NO_TEXTURE) &
+  vmask packet = hit & ((v_as_uint(e2w) & (MCL_ATTR_NORMALS | MCL_ATTR_COLOR)) == 0u) & (v_as_uint(kdw) == MCL_NO_TEXTURE) &
                  (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse) &
                  (v_as_uint(kmz) == 0u);  // no normal map (Material::maps.z)
   vmask scalar = hit & v_not(packet);
