@@ -39,6 +39,12 @@ struct Box {
   }
 };
 
+// A flattened node's box (the object and the spatial-split builds write nodes alike).
+inline void writeBox(BvhNode& n, const Box& b) {
+  n.minX = b.lo.x; n.minY = b.lo.y; n.minZ = b.lo.z;
+  n.maxX = b.hi.x; n.maxY = b.hi.y; n.maxZ = b.hi.z;
+}
+
 // Per-triangle build reference: bounds and the input index. Partitioned in place.
 struct PrimRef {
   glm::vec3 lo;

@@ -9,15 +9,6 @@
 
 namespace montecl {
 namespace bvhbuild {
-namespace {
-
-void writeBox(BvhNode& n, const Box& b) {
-  n.minX = b.lo.x; n.minY = b.lo.y; n.minZ = b.lo.z;
-  n.maxX = b.hi.x; n.maxY = b.hi.y; n.maxZ = b.hi.z;
-}
-
-}  // namespace
-
 int Builder::build(std::vector<BvhNode>& out, std::size_t idx, std::size_t begin, std::size_t end,
                  const Box& bounds, const Box& cbounds, int depth, int parallelLevels) const {
   writeBox(out[idx], bounds);

@@ -21,11 +21,6 @@ namespace {
 
 constexpr int kSpatialBins = 16;
 
-void writeBox(BvhNode& n, const Box& b) {
-  n.minX = b.lo.x; n.minY = b.lo.y; n.minZ = b.lo.z;
-  n.maxX = b.hi.x; n.maxY = b.hi.y; n.maxZ = b.hi.z;
-}
-
 void boundsOf(const std::vector<PrimRef>& refs, Box& box, Box& cbox) {
   for (const PrimRef& r : refs) {
     box.grow(r.lo, r.hi);
