@@ -14,6 +14,10 @@
 // A stage's argument struct filled from the fused stage's fields of the same names.
 #define MCL_FUSED_FIELD(type, name) , a->name
 #define MCL_FUSED_ARGS(stage) {a->frame MCL_ARGS_##stage(MCL_FUSED_FIELD)}
+// The same with each field cast to the stage's type: intersect_shadow reads the queue count that
+// the shade stages count into (volatile there, const here).
+#define MCL_FUSED_FIELD_CAST(type, name) , (type)(a->name)
+#define MCL_FUSED_ARGS_CAST(stage) {a->frame MCL_ARGS_##stage(MCL_FUSED_FIELD_CAST)}
 
 // Runs a stage body over the W items of the packet at `first`: the packet body for a packet stage
 // in an OpenCL program built with lanes, else the scalar body per item (each bounds its items).
@@ -66,9 +70,9 @@ MCL_INLINE uint fused_group_first(MCL_CONSTANT const FrameParams* f, uint waveCo
 // added to the wave's, then its pixels' samples into the film.
 #define MCL_FUSED_SHADOW_AND_ACCUMULATE(a, g, queueBase, localCount)                                       \
   do {                                                                                                      \
-    intersect_shadow_args sh = {a->frame, a->nodes, a->tris, queueBase, (MCL_GLOBAL const uint*)localCount, \
-                                a->shadowContrib, a->nanRays, a->materials, a->shading, a->textures,        \
-                                a->textureLevels, a->texels};                                               \
+    intersect_shadow_args sh = MCL_FUSED_ARGS_CAST(intersect_shadow);                                      \
+    sh.queue = queueBase;                                                                                   \
+    sh.queueCount = (MCL_GLOBAL const uint*)localCount;                                                     \
     const uint queries = *localCount;                                                                       \
     for (uint k = 0; k < queries; ++k) stage_intersect_shadow(&sh, k);                                      \
     if (queries > 0u) MCL_ATOMIC_ADD(a->queueCount, queries);                                               \
@@ -142,9 +146,9 @@ MCL_INLINE void stage_wave_path(const wave_path_args* a, uint g) {
   if (a->pathBounce == 0u) MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, fused_generate(&gen, at));
   MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, MCL_FUSED_RUN(intersect, isect, at));
   MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, fused_shade_path(&shade, at));
-  intersect_shadow_args sh = {a->frame, a->nodes, a->tris, queueBase, (MCL_GLOBAL const uint*)localCount,
-                              a->shadowContrib, a->nanRays, a->materials, a->shading, a->textures,
-                              a->textureLevels, a->texels};
+  intersect_shadow_args sh = MCL_FUSED_ARGS_CAST(intersect_shadow);
+  sh.queue = queueBase;
+  sh.queueCount = (MCL_GLOBAL const uint*)localCount;
   const uint queries = *localCount;
   for (uint k = 0; k < queries; ++k) stage_intersect_shadow(&sh, k);
   if (queries > 0u) MCL_ATOMIC_ADD(a->queueCount, queries);
