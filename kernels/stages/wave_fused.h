@@ -21,14 +21,13 @@
 
 // Runs a stage body over the W items of the packet at `first`: the packet body for a packet stage
 // in an OpenCL program built with lanes, else the scalar body per item (each bounds its items).
+#define MCL_FUSED_RUN_0(stage, args, first) \
+  for (uint fk = 0; fk < MCL_LANES; ++fk) stage_##stage(&(args), (first) + fk)
 #ifdef MCL_OPENCL
 #define MCL_FUSED_RUN_1(stage, args, first) stage_##stage##_lanes(&(args), (first))
 #else
-#define MCL_FUSED_RUN_1(stage, args, first) \
-  for (uint fk = 0; fk < MCL_LANES; ++fk) stage_##stage(&(args), (first) + fk)
+#define MCL_FUSED_RUN_1 MCL_FUSED_RUN_0
 #endif
-#define MCL_FUSED_RUN_0(stage, args, first) \
-  for (uint fk = 0; fk < MCL_LANES; ++fk) stage_##stage(&(args), (first) + fk)
 #define MCL_FUSED_RUN(stage, args, first) MCL_LANES_CAT(MCL_FUSED_RUN_, MCL_PACKET_##stage)(stage, args, first)
 
 // The shading stages' bodies as out-of-line functions with their whole call tree inlined, as their
@@ -66,60 +65,72 @@ MCL_INLINE uint fused_group_first(MCL_CONSTANT const FrameParams* f, uint waveCo
   return first < waveCount ? (uint)first : waveCount;
 }
 
-// The end of every fused wave: the group's occlusion queries (its part of the queue), their count
-// added to the wave's, then its pixels' samples into the film.
-#define MCL_FUSED_SHADOW_AND_ACCUMULATE(a, g, queueBase, localCount)                                       \
-  do {                                                                                                      \
-    intersect_shadow_args sh = MCL_FUSED_ARGS_CAST(intersect_shadow);                                      \
-    sh.queue = queueBase;                                                                                   \
-    sh.queueCount = (MCL_GLOBAL const uint*)localCount;                                                     \
-    const uint queries = *localCount;                                                                       \
-    for (uint k = 0; k < queries; ++k) stage_intersect_shadow(&sh, k);                                      \
-    if (queries > 0u) MCL_ATOMIC_ADD(a->queueCount, queries);                                               \
-    accumulate_args acc = MCL_FUSED_ARGS(accumulate);                                                       \
-    fused_accumulate(&acc, (g) * MCL_LANES);                                                        \
+// The group's part of the shadow queue, from item `first`'s slots on (room for its items' slots),
+// and its count there, groupCounts[g], cleared: declares queueBase and localCount.
+#define MCL_FUSED_GROUP_QUEUE(a, g, first)                                                   \
+  MCL_GLOBAL ShadowWork* queueBase = (a)->queue + (ulong)(first) * (a)->frame->shadowSlots; \
+  MCL_GLOBAL volatile uint* localCount = (a)->groupCounts + (g);                            \
+  *localCount = 0u
+
+// A shade stage's arguments `name`, pushing its occlusion queries onto the group's part of the queue.
+#define MCL_FUSED_SHADE_ARGS(stage, name)            \
+  stage##_args name = MCL_FUSED_ARGS(stage);         \
+  name.queue = queueBase;                            \
+  name.queueCount = localCount
+
+// The group's occlusion queries (intersect_shadow over its part of the queue), their count added
+// to the wave's.
+#define MCL_FUSED_SHADOWS(a)                                               \
+  do {                                                                     \
+    intersect_shadow_args sh = MCL_FUSED_ARGS_CAST(intersect_shadow);     \
+    sh.queue = queueBase;                                                  \
+    sh.queueCount = (MCL_GLOBAL const uint*)localCount;                    \
+    const uint queries = *localCount;                                      \
+    for (uint k = 0; k < queries; ++k) stage_intersect_shadow(&sh, k);     \
+    if (queries > 0u) MCL_ATOMIC_ADD((a)->queueCount, queries);            \
+  } while (0)
+
+// The end of a fused AO or direct wave: the group's occlusion queries, then its W pixels' samples
+// into the film.
+#define MCL_FUSED_SHADOW_AND_ACCUMULATE(a, g)                   \
+  do {                                                          \
+    MCL_FUSED_SHADOWS(a);                                       \
+    accumulate_args acc = MCL_FUSED_ARGS(accumulate);           \
+    fused_accumulate(&acc, (g) * MCL_LANES);                    \
   } while (0)
 
 MCL_INLINE void stage_wave_ao(const wave_ao_args* a, uint g) {
   MCL_CONSTANT const FrameParams* f = a->frame;
   const uint first = fused_group_first(f, a->waveCount, g), block = 1u << f->sampleBlockShift;
   if (first >= a->waveCount) return;
-  MCL_GLOBAL ShadowWork* queueBase = a->queue + (ulong)first * f->shadowSlots;
-  MCL_GLOBAL volatile uint* localCount = a->groupCounts + g;
-  *localCount = 0u;
+  MCL_FUSED_GROUP_QUEUE(a, g, first);
   generate_args gen = MCL_FUSED_ARGS(generate);
   intersect_args isect = MCL_FUSED_ARGS(intersect);
-  shade_ao_args shade = MCL_FUSED_ARGS(shade_ao);
-  shade.queue = queueBase;
-  shade.queueCount = localCount;
+  MCL_FUSED_SHADE_ARGS(shade_ao, shade);
   MCL_FUSED_PACKETS(block, a->waveCount, fused_generate(&gen, at));
   MCL_FUSED_PACKETS(block, a->waveCount, MCL_FUSED_RUN(intersect, isect, at));
   MCL_FUSED_PACKETS(block, a->waveCount, fused_shade_ao(&shade, at));
-  MCL_FUSED_SHADOW_AND_ACCUMULATE(a, g, queueBase, localCount);
+  MCL_FUSED_SHADOW_AND_ACCUMULATE(a, g);
 }
 
 MCL_INLINE void stage_wave_direct(const wave_direct_args* a, uint g) {
   MCL_CONSTANT const FrameParams* f = a->frame;
   const uint first = fused_group_first(f, a->waveCount, g), block = 1u << f->sampleBlockShift;
   if (first >= a->waveCount) return;
-  MCL_GLOBAL ShadowWork* queueBase = a->queue + (ulong)first * f->shadowSlots;
-  MCL_GLOBAL volatile uint* localCount = a->groupCounts + g;
-  *localCount = 0u;
+  MCL_FUSED_GROUP_QUEUE(a, g, first);
   generate_args gen = MCL_FUSED_ARGS(generate);
   intersect_args isect = MCL_FUSED_ARGS(intersect);
-  intersect_args bounceIsect = isect;  // the BRDF rays (RayInput::Bounce)
+  intersect_args bounceIsect = isect;  // the BRDF rays, as the unfused loop binds them (RayInput::Bounce)
   bounceIsect.rays = a->bounce;
   bounceIsect.hits = a->bounceHits;
-  shade_direct_args shade = MCL_FUSED_ARGS(shade_direct);
-  shade.queue = queueBase;
-  shade.queueCount = localCount;
+  MCL_FUSED_SHADE_ARGS(shade_direct, shade);
   shade_direct_hit_args hit = MCL_FUSED_ARGS(shade_direct_hit);
   MCL_FUSED_PACKETS(block, a->waveCount, fused_generate(&gen, at));
   MCL_FUSED_PACKETS(block, a->waveCount, MCL_FUSED_RUN(intersect, isect, at));
   MCL_FUSED_PACKETS(block, a->waveCount, fused_shade_direct(&shade, at));
   MCL_FUSED_PACKETS(block, a->waveCount, MCL_FUSED_RUN(intersect, bounceIsect, at));
   MCL_FUSED_PACKETS(block, a->waveCount, fused_shade_direct_hit(&hit, at));
-  MCL_FUSED_SHADOW_AND_ACCUMULATE(a, g, queueBase, localCount);
+  MCL_FUSED_SHADOW_AND_ACCUMULATE(a, g);
 }
 
 // Path tracing fuses per bounce (the host sizes each bounce by the live paths it reads back, and
@@ -130,27 +141,17 @@ MCL_INLINE void stage_wave_direct(const wave_direct_args* a, uint g) {
 #define MCL_FUSED_PATH_PACKETS 16u
 
 MCL_INLINE void stage_wave_path(const wave_path_args* a, uint g) {
-  MCL_CONSTANT const FrameParams* f = a->frame;
   const uint count = *a->rayCount, group = MCL_LANES * MCL_FUSED_PATH_PACKETS;
   if ((ulong)g * group >= count) return;
   const uint first = g * group;
-  MCL_GLOBAL ShadowWork* queueBase = a->queue + (ulong)first * f->shadowSlots;
-  MCL_GLOBAL volatile uint* localCount = a->groupCounts + g;
-  *localCount = 0u;
+  MCL_FUSED_GROUP_QUEUE(a, g, first);
   generate_args gen = MCL_FUSED_ARGS(generate);
   intersect_args isect = MCL_FUSED_ARGS(intersect);
-  shade_path_args shade = MCL_FUSED_ARGS(shade_path);
-  shade.queue = queueBase;
-  shade.queueCount = localCount;
+  MCL_FUSED_SHADE_ARGS(shade_path, shade);
   path_gather_args gather = MCL_FUSED_ARGS(path_gather);
   if (a->pathBounce == 0u) MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, fused_generate(&gen, at));
   MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, MCL_FUSED_RUN(intersect, isect, at));
   MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, fused_shade_path(&shade, at));
-  intersect_shadow_args sh = MCL_FUSED_ARGS_CAST(intersect_shadow);
-  sh.queue = queueBase;
-  sh.queueCount = (MCL_GLOBAL const uint*)localCount;
-  const uint queries = *localCount;
-  for (uint k = 0; k < queries; ++k) stage_intersect_shadow(&sh, k);
-  if (queries > 0u) MCL_ATOMIC_ADD(a->queueCount, queries);
+  MCL_FUSED_SHADOWS(a);
   MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, fused_path_gather(&gather, at));
 }
