@@ -13,7 +13,10 @@ Mitsuba's scene is built from ours as Python dicts: the pinhole camera from the 
 pixel only, as in montecl), an `independent` sampler, one PLY mesh per (mesh, material) with a
 two-sided Lambertian BSDF of albedo Kd (montecl's surfaces are two-sided) and, where Ke (or the
 mesh's "emission") is non-zero, a one-sided `area` emitter (front face = cross(v1-v0, v2-v0), as
-montecl's); the scene's "lights" as Mitsuba's `point`, `spot` and `directional` emitters. A mesh
+montecl's), textured by the MTL's `map_Ke` (x Ke, per-corner UVs, bilinear, repeat: keep the
+camera from minifying it, montecl mip-maps and Mitsuba does not); the scene's "lights" as Mitsuba's
+`point`, `spot` and `directional` emitters, and a `sun` as a black disk SUN_DISTANCE away whose
+area emitter has the sun's radiance and cone. A mesh
 entry's "material" of type dielectric / thin_dielectric / conductor becomes Mitsuba's dielectric or
 roughdielectric / thindielectric / conductor or roughconductor (the rough ones GGX, visible normals,
 for alpha > 0) with the same ior or RGB eta, k.
@@ -102,6 +105,8 @@ def read_mtl(path):
             elif cur is not None and t[0] in ("Kd", "Ke", "Ks") and len(t) >= 2:
                 v = [float(x) for x in t[1:4]]
                 cur[t[0]] = v if len(v) == 3 else [v[0]] * 3
+            elif cur is not None and t[0] == "map_Ke" and len(t) == 2:  # emission texture (no options)
+                cur["map_Ke"] = os.path.join(os.path.dirname(path), t[1])
             elif cur is not None and t[0].startswith("map_"):
                 cur.setdefault("maps", []).append(t[0])
     return mats
@@ -111,7 +116,7 @@ def read_obj(path):
     """Returns ({material name: list of (i0, i1, i2)}, positions, materials), triangulated as
     montecl's loader (tinyobjloader) does: quads along the shorter diagonal (a non-planar quad's two
     splits are different surfaces: the Cornell box's boxes have such quads), larger polygons as fans."""
-    pos, groups, mats, cur = [], {}, {}, None
+    pos, uvs, groups, mats, cur = [], [], {}, {}, None
     base = os.path.dirname(path)
     with open(path) as f:
         for n, line in enumerate(f, 1):
@@ -120,11 +125,18 @@ def read_obj(path):
                 continue
             if t[0] == "v":
                 pos.append([float(x) for x in t[1:4]])
+            elif t[0] == "vt":
+                uvs.append([float(x) for x in t[1:3]])
             elif t[0] == "f":
-                idx = []
+                idx, tex = [], []
                 for c in t[1:]:
-                    i = int(c.split("/")[0])
+                    parts = c.split("/")
+                    i = int(parts[0])
                     idx.append(i - 1 if i > 0 else len(pos) + i)
+                    j = int(parts[1]) if len(parts) > 1 and parts[1] else 0
+                    tex.append(j - 1 if j > 0 else len(uvs) + j if j < 0 else -1)
+                if len(idx) == 3 and min(tex) >= 0:  # textured triangles keep their corners' UVs
+                    groups.setdefault(("uv", cur), []).append([uvs[j] for j in tex])
                 tris = groups.setdefault(cur, [])
                 if len(idx) == 4:  # as tinyobjloader (montecl's OBJ loader): split along the shorter diagonal
                     import numpy as np
@@ -141,7 +153,9 @@ def read_obj(path):
             elif t[0] == "mtllib":
                 for name in t[1:]:
                     mats.update(read_mtl(os.path.join(base, name)))
-    return groups, pos, mats
+    uv = {k[1]: v for k, v in groups.items() if isinstance(k, tuple)}
+    groups = {k: v for k, v in groups.items() if not isinstance(k, tuple)}
+    return groups, pos, mats, uv
 
 
 def load_scene(path):
@@ -167,29 +181,33 @@ def load_scene(path):
         obj = os.path.join(os.path.dirname(path), mesh["file"])
         if not obj.lower().endswith(".obj"):
             raise BadInput(f"{path}: meshes[{mi_}].file: only OBJ meshes are supported by vs_mitsuba.py")
-        groups, pos, mats = read_obj(obj)
+        groups, pos, mats, uvs = read_obj(obj)
         P = np.asarray(pos, dtype=np.float32).reshape(-1, 3)
         for name, faces in groups.items():
             m = mats.get(name, {"Kd": [0.5] * 3, "Ke": [0.0] * 3, "Ks": [0.0] * 3})
             if any(m.get("Ks", [0.0])) or m.get("maps"):
-                print(f"vs_mitsuba: warning: {obj}: material {name}: Ks and map_* are ignored (Kd, Ke only)",
+                print(f"vs_mitsuba: warning: {obj}: material {name}: Ks and map_* are ignored (Kd, Ke, map_Ke only)",
                       file=sys.stderr)
             ke = mesh.get("emission", m["Ke"])
+            if "map_Ke" in m and ("emission" in mesh or len(uvs.get(name, [])) != len(faces)):
+                raise BadInput(f"{obj}: material {name}: map_Ke needs triangles with UVs and no mesh-entry emission")
             F = np.asarray(faces, dtype=np.int64)
             # Drop zero-area triangles as montecl does (they cannot be hit or sampled anyway).
             e1 = P[F[:, 1]] - P[F[:, 0]]
             e2 = P[F[:, 2]] - P[F[:, 0]]
             area = np.linalg.norm(np.cross(e1, e2), axis=1)
-            F = F[area > 0]
+            keep = area > 0
+            F = F[keep]
             if len(F):
                 shapes.append({"name": f"m{mi_}_{len(shapes)}", "P": P, "F": F, "Kd": m["Kd"], "Ke": ke,
-                               "bsdf": kind_bsdf})
+                               "bsdf": kind_bsdf, "map_Ke": m.get("map_Ke"),
+                               "UV": np.asarray(uvs[name], dtype=np.float32)[keep] if "map_Ke" in m else None})
     env = s.get("environment")
     if env is not None and ("radiance" not in env or len(env) != 1):
         raise BadInput(f"{path}: environment: only a constant {{\"radiance\": [r, g, b]}} is supported by vs_mitsuba.py")
     lights = s.get("lights", [])
     for li, light in enumerate(lights):
-        if light.get("type") not in ("point", "spot", "directional"):
+        if light.get("type") not in ("point", "spot", "directional", "sun"):
             raise BadInput(f"{path}: lights[{li}].type: not supported by vs_mitsuba.py")
     return {"camera": cam, "shapes": shapes, "render": s.get("render", {}), "environment": env, "lights": lights}
 
@@ -232,17 +250,26 @@ def mitsuba_kind_bsdf(path, index, mat):
     raise BadInput(f"{where}.type: {kind!r}: not supported by vs_mitsuba.py")
 
 
-def write_ply(path, P, F):
-    """Binary PLY with only the vertices F uses (compact), faces as uchar count + int indices."""
+def write_ply(path, P, F, UV=None):
+    """Binary PLY with only the vertices F uses (compact), faces as uchar count + int indices. With
+    UV (per corner, OBJ's v = 0 at the image's bottom row), three vertices per triangle carrying
+    (u, 1 - v): Mitsuba's PLY texture coordinates have v = 0 at the image's top row."""
     import numpy as np
-    used, inv = np.unique(F.ravel(), return_inverse=True)
-    V = P[used].astype("<f4")
+    if UV is None:
+        used, inv = np.unique(F.ravel(), return_inverse=True)
+        V = P[used].astype("<f4")
+        idx = inv.reshape(-1, 3)
+        props = "property float x\nproperty float y\nproperty float z\n"
+    else:
+        uv = UV.reshape(-1, 2).astype(np.float32)
+        V = np.concatenate([P[F.ravel()], uv[:, :1], 1.0 - uv[:, 1:]], axis=1).astype("<f4")
+        idx = np.arange(len(V)).reshape(-1, 3)
+        props = "property float x\nproperty float y\nproperty float z\nproperty float u\nproperty float v\n"
     faces = np.zeros(len(F), dtype=[("n", "u1"), ("i", "<i4", (3,))])
     faces["n"] = 3
-    faces["i"] = inv.reshape(-1, 3)
+    faces["i"] = idx
     with open(path, "wb") as f:
-        f.write((f"ply\nformat binary_little_endian 1.0\nelement vertex {len(V)}\n"
-                 "property float x\nproperty float y\nproperty float z\n"
+        f.write((f"ply\nformat binary_little_endian 1.0\nelement vertex {len(V)}\n{props}"
                  f"element face {len(F)}\nproperty list uchar int vertex_indices\nend_header\n").encode())
         f.write(V.tobytes())
         f.write(faces.tobytes())
@@ -258,6 +285,10 @@ def mitsuba_integrator(spec):
     return {"type": "direct", "emitter_samples": em, "bsdf_samples": bs}
 
 
+SUN_DISTANCE = 1e4  # the stand-in disk's distance in scene units (scenes here are a few units across): image
+# means agree with montecl's sun to 4e-4 at 1e4 - 1e5 (1e3: 0.99995, the finite distance; 1e6: 1.0006, float precision)
+
+
 def mitsuba_light(mi, light):
     """montecl's point, spot and directional lights as Mitsuba's emitters of the same names (the
     same radiometric units; spot: the same falloff, its axis the to_world +z)."""
@@ -266,6 +297,21 @@ def mitsuba_light(mi, light):
         return {"type": "point", "position": light["position"], "intensity": rgb(light["intensity"])}
     if light["type"] == "directional":
         return {"type": "directional", "direction": light["direction"], "irradiance": rgb(light["irradiance"])}
+    if light["type"] == "sun":
+        # Mitsuba has no sun disk of given irradiance: a black disk SUN_DISTANCE away whose one-sided
+        # area emitter of radiance E / (pi sin^2 a) subtends the half-angle a (the same cone and
+        # radiance as montecl's sun, to ~scene size / SUN_DISTANCE).
+        d = light["direction"]
+        n = math.sqrt(sum(x * x for x in d))
+        a = math.radians(light.get("angle", 0.53)) / 2
+        radius = SUN_DISTANCE * math.tan(a)
+        c = [-SUN_DISTANCE * x / n for x in d]
+        up = [0, 1, 0] if abs(d[1]) < 0.9 * n else [1, 0, 0]
+        to_world = mi.ScalarTransform4f().look_at(origin=c, target=[c[i] + d[i] for i in range(3)], up=up) \
+            @ mi.ScalarTransform4f().scale([radius, radius, 1])
+        L = [e / (math.pi * math.sin(a) ** 2) for e in light["irradiance"]]
+        return {"type": "disk", "to_world": to_world, "bsdf": {"type": "diffuse", "reflectance": rgb([0, 0, 0])},
+                "emitter": {"type": "area", "radiance": rgb(L)}}
     p, d = light["position"], light["direction"]
     up = [0, 1, 0] if abs(d[1]) < 0.9 * math.sqrt(sum(x * x for x in d)) else [1, 0, 0]
     cutoff = light.get("cutoff_angle", 20.0)
@@ -307,7 +353,13 @@ def worker(spec_path):
         s = {"type": "ply", "filename": sh["ply"], "face_normals": True,
              "bsdf": sh.get("bsdf") or {"type": "twosided", "bsdf": {"type": "diffuse",
                                                                     "reflectance": {"type": "rgb", "value": sh["Kd"]}}}}
-        if any(x > 0 for x in sh["Ke"]):
+        if sh.get("map_Ke"):  # Ke x the texture, decoded from sRGB by Mitsuba's own bitmap reader
+            tex = np.array(mi.Bitmap(sh["map_Ke"]).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32,
+                                                           srgb_gamma=False), dtype=np.float32)
+            tex = (tex * np.asarray(sh["Ke"], dtype=np.float32)).astype(np.float32)
+            s["emitter"] = {"type": "area", "radiance": {"type": "bitmap", "bitmap": mi.Bitmap(tex), "raw": True,
+                                                         "filter_type": "bilinear", "wrap_mode": "repeat"}}
+        elif any(x > 0 for x in sh["Ke"]):
             s["emitter"] = {"type": "area", "radiance": {"type": "rgb", "value": sh["Ke"]}}
         d[sh["name"]] = s
     for li, light in enumerate(spec.get("lights", [])):
@@ -491,8 +543,9 @@ def main(argv):
     shapes = []
     for sh in sc["shapes"]:
         ply = os.path.join(work, sh["name"] + ".ply")
-        write_ply(ply, sh["P"], sh["F"])
-        shapes.append({"name": sh["name"], "ply": ply, "Kd": sh["Kd"], "Ke": list(sh["Ke"]), "bsdf": sh["bsdf"]})
+        write_ply(ply, sh["P"], sh["F"], sh["UV"])
+        shapes.append({"name": sh["name"], "ply": ply, "Kd": sh["Kd"], "Ke": list(sh["Ke"]), "bsdf": sh["bsdf"],
+                       "map_Ke": sh["map_Ke"]})
     base = {"camera": cam, "shapes": shapes, "environment": sc["environment"], "lights": sc["lights"], "width": width, "height": height, "variant": variant,
             "integrator": integ, "direct_sampling": sampling, "light_samples": rnd.get("light_samples", 1),
             "max_depth": a.max_depth, "rr_depth": a.rr_depth}
