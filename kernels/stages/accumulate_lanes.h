@@ -87,9 +87,12 @@ MCL_INLINE void stage_accumulate_lanes(const accumulate_args* a, uint j0) {
   const uint block = 1u << shift;
   const int blocks = shift != 0u && (a->waveStart & (block - 1u)) == 0u &&
                      ((ulong)j0 + MCL_LANES) * block <= count && ((ulong)j0 + ac) * block >= count;
-  // The sobol sampler's sub-sequence accumulators (accumulate.h) are updated by the scalar body:
-  // per lane, the same bits.
-  if (v_packet_partial(j0, limit) || (f->sampler == MCL_SAMPLER_SOBOL && f->sobolSplits > 1u) ||
+  // The sobol sampler's K sub-sequence accumulators (accumulate.h): with blocks whose C samples
+  // per lane start at a multiple of C, and K dividing C, step t of every lane updates
+  // sub-sequence t % K, held in registers for the packet; otherwise the scalar body (per lane, the
+  // same bits).
+  const uint splits = f->sampler == MCL_SAMPLER_SOBOL ? f->sobolSplits : 1u;
+  if (v_packet_partial(j0, limit) || (splits > 1u && !(blocks && block % splits == 0u)) ||
       (shift != 0u && !blocks)) {
     for (uint k = 0; k < MCL_LANES; ++k) stage_accumulate(a, j0 + k);
     return;
@@ -124,10 +127,27 @@ MCL_INLINE void stage_accumulate_lanes(const accumulate_args* a, uint j0) {
   vffloat meanX = v_ff_make(mhx, mlx), meanY = v_ff_make(mhy, mly), meanZ = v_ff_make(mhz, mlz);
   vffloat m2X = v_ff_make(shx, slx), m2Y = v_ff_make(shy, sly), m2Z = v_ff_make(shz, slz), m2W = v_ff_make(shw, slw);
   const uint slots = f->shadowSlots;
+  // Sub-sequence k of lane l: split[pixel_l K + k] (K <= C <= W here).
+  vfloat subX[MCL_LANES], subY[MCL_LANES], subZ[MCL_LANES];
+  vuint subN[MCL_LANES];
+  MCL_GLOBAL float* split = (MCL_GLOBAL float*)a->split;
+  for (uint k = 0; splits > 1u && k < splits; ++k) {
+    vfloat w;
+    v_gather4(split + k * 4u, pixel, splits * 4u, &subX[k], &subY[k], &subZ[k], &w);
+    subN[k] = v_as_uint(w);
+  }
   for (uint step = 0; blocks && step < block; ++step) {
     vfloat vx, vy, vz;
     v_item_values(a, slots, j0 * block + step, block, &vx, &vy, &vz);
     vmask live = v_lane_index() == v_lane_index();
+    if (splits > 1u) {  // accumulate.h's sub-sequence update, sub += (value - sub) / c
+      const uint k = step % splits;
+      subN[k] = subN[k] + 1u;
+      vfloat cf = v_cvt_f_u(subN[k]);
+      subX[k] = subX[k] + (vx - subX[k]) / cf;
+      subY[k] = subY[k] + (vy - subY[k]) / cf;
+      subZ[k] = subZ[k] + (vz - subZ[k]) / cf;
+    }
     n += 1u;
     vfloat nf = v_cvt_f_ul(n);
     v_welford(live, vx, nf, &meanX, &m2X);
@@ -135,6 +155,8 @@ MCL_INLINE void stage_accumulate_lanes(const accumulate_args* a, uint j0) {
     v_welford(live, vz, nf, &meanZ, &m2Z);
     m2W = v_ff_add_float(m2W, v_f(0.0f) * (v_f(0.0f) - v_f(0.0f) - v_f(0.0f)));  // as below
   }
+  for (uint k = 0; splits > 1u && k < splits; ++k)
+    v_scatter4(split + k * 4u, pixel, splits * 4u, subX[k], subY[k], subZ[k], v_as_float(subN[k]));
   MCL_GLOBAL const float* rad = (MCL_GLOBAL const float*)a->radiance;
   MCL_GLOBAL const float* sc = (MCL_GLOBAL const float*)a->shadowContrib;
   for (uint i0 = j0; !blocks && i0 < count; i0 += ac) {
