@@ -139,8 +139,19 @@ MCL_INLINE vRngOut v_sobol_owen4_bits(vuint seed, vuint pixel, vuint sample, uin
 }
 
 MCL_INLINE vfloat4 v_sobol_uniform4(uint seed, uint splits, vuint pixel, vuint sample, uint group) {
-  vuint seeds = seed + (sample % splits) * 0x9e3779b9u;  // sobol_split_seed
-  sample = sample / splits;
+  // sobol_split_seed: sub-sequence s % K, point s / K; a mask and a shift when K is a power of
+  // two (the default 4), since a division per lane does not vectorise.
+  vuint sub;
+  if ((splits & (splits - 1u)) == 0u) {
+    uint shift = 0u;
+    while ((1u << shift) < splits) ++shift;
+    sub = sample & (splits - 1u);
+    sample = sample >> shift;
+  } else {
+    sub = sample % splits;
+    sample = sample / splits;
+  }
+  vuint seeds = seed + sub * 0x9e3779b9u;
   vRngOut p = v_sobol_owen4_bits(seeds, pixel, sample, group);
   if (sampler_coupled_to_camera(group)) {
     vRngOut c = v_sobol_owen4_bits(seeds, pixel, sample, MCL_DIM_CAMERA);
