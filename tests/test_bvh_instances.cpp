@@ -1,0 +1,212 @@
+// test_bvh_instances.cpp: the two-level BVH (host/bvh/bvh_instances.h, traversal
+// kernels/shared/traverse_instances.h run on the host): closest and any hit through randomly
+// placed instances (rotations, non-uniform and mirroring scales, coincident copies, an empty mesh)
+// equal brute force over the flattened world-space triangles, with the same triangle and
+// instance; one identity instance is bit for bit the one-level BVH; memory grows with the
+// instances, not with their triangles.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "bvh/bvh.h"
+#include "bvh/bvh_instances.h"
+#include "kernels/shared/geometry.h"
+#include "soups.h"
+
+using namespace montecl;
+using glm::vec3;
+
+namespace {
+
+struct WorldTri {
+  vec3 v0, e1, e2;
+  std::uint32_t instance, tri;  // input indices
+};
+
+struct BruteHit {
+  float t = INFINITY, u = 0.0f, v = 0.0f;
+  std::uint32_t instance = MCL_NO_INSTANCE, tri = MCL_NO_HIT;
+};
+
+// Every instance's triangles placed in world space, as a flattening loader would.
+std::vector<WorldTri> flatten(const std::vector<std::vector<SceneTriangle>>& meshes,
+                              const std::vector<BvhInstanceDesc>& inst) {
+  std::vector<WorldTri> out;
+  for (std::uint32_t k = 0; k < inst.size(); ++k)
+    for (std::uint32_t i = 0; i < meshes[inst[k].mesh].size(); ++i) {
+      const SceneTriangle& t = meshes[inst[k].mesh][i];
+      vec3 p[3];
+      for (int c = 0; c < 3; ++c) p[c] = vec3(inst[k].objectToWorld * glm::vec4(t.v[c], 1.0f));
+      out.push_back({p[0], p[1] - p[0], p[2] - p[0], k, i});
+    }
+  return out;
+}
+
+BruteHit bruteClosest(const std::vector<WorldTri>& tris, vec3 o, vec3 d, float tmax) {
+  BruteHit b;
+  b.t = tmax;
+  for (const WorldTri& w : tris) {
+    float u, v;
+    float t = ray_triangle(o, d, w.v0, w.e1, w.e2, b.t, &u, &v);
+    if (t < b.t) b = {t, u, v, w.instance, w.tri};
+  }
+  if (b.tri == MCL_NO_HIT) b.t = INFINITY;
+  return b;
+}
+
+// How far inside triangle w the ray passes (min of the barycentrics, unclamped; negative outside)
+// and at which t.
+float margin(const WorldTri& w, vec3 o, vec3 d, float* tOut) {
+  vec3 p = glm::cross(d, w.e2);
+  float inv = 1.0f / glm::dot(w.e1, p);
+  vec3 s = o - w.v0;
+  float u = glm::dot(s, p) * inv;
+  vec3 q = glm::cross(s, w.e1);
+  float v = glm::dot(d, q) * inv;
+  *tOut = glm::dot(w.e2, q) * inv;
+  return std::min(std::min(u, v), 1.0f - u - v);
+}
+
+const WorldTri& find(const std::vector<WorldTri>& tris, std::uint32_t instance, std::uint32_t tri) {
+  for (const WorldTri& w : tris)
+    if (w.instance == instance && w.tri == tri) return w;
+  FAIL("no such flattened triangle");
+  return tris[0];
+}
+
+glm::mat4 randomPlacement(std::mt19937& rng, bool mirror) {
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  vec3 axis = glm::normalize(vec3(u(rng), u(rng), u(rng)) - 0.5f + 1e-3f);
+  vec3 scale(0.3f + 1.7f * u(rng), 0.3f + 1.7f * u(rng), 0.3f + 1.7f * u(rng));
+  if (mirror) scale.y = -scale.y;
+  glm::mat4 m = glm::translate(glm::mat4(1.0f), (vec3(u(rng), u(rng), u(rng)) - 0.5f) * 50.0f);
+  m = glm::rotate(m, 6.2831853f * u(rng), axis);
+  return glm::scale(m, scale);
+}
+
+struct Fixture {
+  std::vector<std::vector<SceneTriangle>> meshes;
+  std::vector<BvhInstanceDesc> inst;
+};
+
+Fixture makeFixture() {
+  Fixture f;
+  f.meshes.push_back(montecl_test::seededSoup(300, 11, 3.0f, 1.0f, 0.2f));
+  f.meshes.push_back(montecl_test::seededSoup(120, 12, 6.0f, 2.0f, 0.5f));
+  f.meshes.push_back({});  // no triangles: its instances are left out
+  std::mt19937 rng(5);
+  for (int k = 0; k < 60; ++k) f.inst.push_back({std::uint32_t(k % 3), randomPlacement(rng, k % 7 == 3)});
+  const glm::mat4 same = randomPlacement(rng, false);
+  for (int k = 0; k < 5; ++k) f.inst.push_back({1, same});  // coincident copies
+  return f;
+}
+
+}  // namespace
+
+TEST_CASE("bvh instances: closest and any hit through the two levels equal brute force over the flattened triangles" * doctest::test_suite("cpu")) {
+  const Fixture f = makeFixture();
+  const TwoLevelBvh bvh = buildTwoLevelBvh(f.meshes, f.inst);
+  const std::vector<WorldTri> flat = flatten(f.meshes, f.inst);
+  REQUIRE(bvh.triangles.size() >= 420);  // unique geometry only
+  REQUIRE(bvh.instances.size() == 45);   // the 20 instances of the empty mesh left out
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  int hits = 0, grazing = 0, ties = 0, n = 3000;
+  for (int i = 0; i < n; ++i) {
+    const vec3 o = (vec3(u(rng), u(rng), u(rng)) - 0.5f) * 70.0f;
+    vec3 target = (vec3(u(rng), u(rng), u(rng)) - 0.5f) * 40.0f;
+    const vec3 d = glm::normalize(target - o) * (0.5f + u(rng));  // not unit: t is the world t
+    const float tmax = (i % 2) ? INFINITY : 80.0f * u(rng);
+    const BruteHit ref = bruteClosest(flat, o, d, tmax);
+    const TwoLevelHit got = intersectClosest(bvh, o, d, tmax);
+    const bool any = intersectAny(bvh, o, d, tmax);
+    CAPTURE(i);
+    const bool refHit = ref.tri != MCL_NO_HIT, gotHit = got.hit.tri != MCL_NO_HIT;
+    CHECK(gotHit == (got.instance != MCL_NO_INSTANCE));
+    if (refHit) ++hits;
+    if (refHit != gotHit || any != refHit) {
+      // Only a ray grazing an edge (or meeting the hit at tmax) may be judged differently by the
+      // world-space and the object-space test.
+      const WorldTri& w = refHit ? find(flat, ref.instance, ref.tri)
+                                 : find(flat, got.instance, bvh.triangleSource[got.hit.tri]);
+      float t;
+      const float m = margin(w, o, d, &t);
+      CHECK((std::fabs(m) < 1e-4f || std::fabs(t - tmax) < 1e-4f * tmax));
+      ++grazing;
+      continue;
+    }
+    if (!refHit) continue;
+    CHECK(std::fabs(got.hit.t - ref.t) <= 1e-4f * std::max(1.0f, ref.t));
+    const std::uint32_t gotTri = bvh.triangleSource[got.hit.tri];
+    const std::uint32_t gotMesh = f.inst[got.instance].mesh;
+    REQUIRE(got.instance < f.inst.size());
+    CHECK(got.hit.tri >= bvh.meshTriBase[gotMesh]);
+    if (got.instance != ref.instance || gotTri != ref.tri) {
+      // A (near) tie: the triangle reported must meet the ray at the closest distance too.
+      float t;
+      const float m = margin(find(flat, got.instance, gotTri), o, d, &t);
+      CHECK(m > -1e-4f);
+      CHECK(std::fabs(t - ref.t) <= 1e-4f * std::max(1.0f, ref.t));
+      ++ties;
+    } else {
+      CHECK(std::fabs(got.hit.u - ref.u) < 1e-3f);
+      CHECK(std::fabs(got.hit.v - ref.v) < 1e-3f);
+    }
+  }
+  MESSAGE(hits << " of " << n << " rays hit; " << grazing << " grazing, " << ties << " ties");
+  CHECK(hits > n / 4);
+  CHECK(grazing <= n / 100);
+}
+
+TEST_CASE("bvh instances: one identity instance is the one-level BVH bit for bit" * doctest::test_suite("cpu")) {
+  const std::vector<SceneTriangle> soup = montecl_test::seededSoup(500, 21, 4.0f, 1.0f, 0.1f);
+  const Bvh one = buildBvh(soup);
+  const TwoLevelBvh two = buildTwoLevelBvh({soup}, {BvhInstanceDesc{0, glm::mat4(1.0f)}});
+  REQUIRE(two.triangles.size() == one.triangles.size());
+  const std::vector<Ray> rays = montecl_test::seededRays(2000, 4, vec3(-7.0f), vec3(7.0f), 0.5f, 10.0f);
+  int hits = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const vec3 o(rays[i].origin), d(rays[i].dir);
+    const float tmax = rays[i].dir.w;
+    const Hit a = intersectClosest(one, o, d, tmax);
+    const TwoLevelHit b = intersectClosest(two, o, d, tmax);
+    CAPTURE(i);
+    CHECK(as_uint(a.t) == as_uint(b.hit.t));
+    CHECK(a.tri == b.hit.tri);
+    CHECK(as_uint(a.u) == as_uint(b.hit.u));
+    CHECK(as_uint(a.v) == as_uint(b.hit.v));
+    CHECK(b.instance == (a.tri == MCL_NO_HIT ? MCL_NO_INSTANCE : 0u));
+    CHECK(intersectAny(one, o, d, tmax) == intersectAny(two, o, d, tmax));
+    hits += a.tri != MCL_NO_HIT;
+  }
+  CHECK(hits > 100);
+}
+
+TEST_CASE("bvh instances: memory grows with the instances, not with their triangles" * doctest::test_suite("cpu")) {
+  const std::vector<SceneTriangle> mesh = montecl_test::seededSoup(20000, 31, 2.0f, 0.5f, 0.1f);
+  const TwoLevelBvh one = buildTwoLevelBvh({mesh}, {BvhInstanceDesc{0, glm::mat4(1.0f)}});
+  std::vector<BvhInstanceDesc> many;
+  std::mt19937 rng(3);
+  for (int k = 0; k < 10000; ++k) many.push_back({0, randomPlacement(rng, false)});
+  const TwoLevelBvh lots = buildTwoLevelBvh({mesh}, many);
+  CHECK(lots.triangles.size() == one.triangles.size());
+  const double perInstance = double(lots.bytes() - one.bytes()) / 9999.0;
+  MESSAGE("one mesh: " << one.bytes() << " bytes; 10000 instances: " << lots.bytes() << " bytes ("
+                       << perInstance << " per instance)");
+  CHECK(perInstance < 200.0);  // an Instance (112 bytes) and its share of the top level's nodes
+  CHECK(lots.bytes() < 2 * one.bytes());
+}
+
+TEST_CASE("bvh instances: bad instances are refused" * doctest::test_suite("cpu")) {
+  const std::vector<SceneTriangle> mesh = montecl_test::seededSoup(10, 1, 1.0f, 1.0f, 0.1f);
+  CHECK_THROWS_AS(buildTwoLevelBvh({mesh}, {BvhInstanceDesc{1, glm::mat4(1.0f)}}), std::invalid_argument);
+  CHECK_THROWS_AS(buildTwoLevelBvh({mesh}, {BvhInstanceDesc{0, glm::mat4(0.0f)}}), std::invalid_argument);
+  glm::mat4 nan(1.0f);
+  nan[3][0] = NAN;
+  CHECK_THROWS_AS(buildTwoLevelBvh({mesh}, {BvhInstanceDesc{0, nan}}), std::invalid_argument);
+}
