@@ -2,7 +2,7 @@
 // kernels/shared/traverse_instances.h run on the host): closest and any hit through randomly
 // placed instances (rotations, non-uniform and mirroring scales, coincident copies, an empty mesh)
 // equal brute force over the flattened world-space triangles, with the same triangle and
-// instance; one identity instance is bit for bit the one-level BVH; memory grows with the
+// instance, and the hit's surface frame brought to world space is the flattened triangle's; one identity instance is bit for bit the one-level BVH; memory grows with the
 // instances, not with their triangles.
 #include <doctest/doctest.h>
 
@@ -16,6 +16,8 @@
 #include "bvh/bvh.h"
 #include "bvh/bvh_instances.h"
 #include "kernels/shared/geometry.h"
+#include "kernels/shared/instance_space.h"
+#include "kernels/shared/surface.h"
 #include "soups.h"
 
 using namespace montecl;
@@ -209,4 +211,43 @@ TEST_CASE("bvh instances: bad instances are refused" * doctest::test_suite("cpu"
   glm::mat4 nan(1.0f);
   nan[3][0] = NAN;
   CHECK_THROWS_AS(buildTwoLevelBvh({mesh}, {BvhInstanceDesc{0, nan}}), std::invalid_argument);
+}
+
+TEST_CASE("bvh instances: a hit's object-space frame brought to world space is the flattened triangle's" * doctest::test_suite("cpu")) {
+  const Fixture f = makeFixture();
+  const TwoLevelBvh bvh = buildTwoLevelBvh(f.meshes, f.inst);
+  const std::vector<WorldTri> flat = flatten(f.meshes, f.inst);
+  std::vector<float4> normals;  // object space, per slot, as the renderer precomputes them
+  for (const Triangle& t : bvh.triangles) normals.push_back(float4(glm::normalize(glm::cross(vec3(t.e1), vec3(t.e2))), 0.0f));
+  const TriangleShading none{};
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  int checked = 0, mirrored = 0, back = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const vec3 o = (vec3(u(rng), u(rng), u(rng)) - 0.5f) * 70.0f;
+    const vec3 d = glm::normalize((vec3(u(rng), u(rng), u(rng)) - 0.5f) * 40.0f - o);
+    const TwoLevelHit got = intersectClosest(bvh, o, d, INFINITY);
+    if (got.hit.tri == MCL_NO_HIT) continue;
+    CAPTURE(i);
+    const Instance* in = nullptr;
+    for (const Instance& x : bvh.instances)
+      if (x.id == got.instance) in = &x;
+    REQUIRE(in != nullptr);
+    const vec3 dObj = affine_vector(in->worldToObject, d);
+    const SurfaceFrame s = instance_frame(in, surface_frame(bvh.triangles.data(), normals.data(), &none, got.hit, dObj));
+    const WorldTri& w = find(flat, got.instance, bvh.triangleSource[got.hit.tri]);
+    const float sign = glm::determinant(glm::mat3(f.inst[got.instance].objectToWorld)) < 0.0f ? -1.0f : 1.0f;
+    const vec3 face = glm::normalize(glm::cross(w.e1, w.e2)) * sign;  // the flattened copy's normal (winding kept)
+    const vec3 facing = glm::dot(face, d) > 0.0f ? -face : face;
+    CHECK(glm::length(s.p - (o + got.hit.t * d)) <= 1e-4f * (glm::length(o) + got.hit.t + 1.0f));
+    CHECK(glm::dot(s.ng, facing) > 1.0f - 1e-4f);
+    CHECK(std::fabs(glm::length(s.ng) - 1.0f) < 1e-5f);
+    CHECK(s.backface == (glm::dot(face, d) > 0.0f ? 1 : 0));
+    ++checked;
+    mirrored += sign < 0.0f;
+    back += s.backface;
+  }
+  MESSAGE(checked << " hits checked, " << mirrored << " on mirrored instances, " << back << " back faces");
+  CHECK(checked > 300);
+  CHECK(mirrored > 10);
 }
