@@ -7,6 +7,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <fstream>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -18,6 +19,7 @@
 #include "kernels/shared/geometry.h"
 #include "kernels/shared/instance_space.h"
 #include "kernels/shared/surface.h"
+#include "skip.h"
 #include "soups.h"
 
 using namespace montecl;
@@ -250,4 +252,51 @@ TEST_CASE("bvh instances: a hit's object-space frame brought to world space is t
   MESSAGE(checked << " hits checked, " << mirrored << " on mirrored instances, " << back << " back faces");
   CHECK(checked > 300);
   CHECK(mirrored > 10);
+}
+
+namespace {
+
+std::vector<SceneTriangle> bunnyTriangles(const std::string& path) {
+  std::vector<std::string> warnings;
+  return loadScene(path, warnings).triangles;
+}
+
+// What the device holds per unique triangle besides the BVH: TriangleShading and the normals entry.
+constexpr std::size_t kShadingBytes = sizeof(TriangleShading) + sizeof(float4);
+
+}  // namespace
+
+// The benchmark figure of docs/performance.md (peak RSS of each case run alone under
+// /usr/bin/time -v): one bunny, then 10,000 placed bunnies.
+TEST_CASE("bvh instances: one bunny, the baseline of the memory figure" * doctest::test_suite("cpu shared-scenes slow")) {
+  const std::string path = montecl_test::sharedScenes() + "/bunny/bunny.obj";
+  MCL_SKIP_UNLESS(std::ifstream(path), path << " not found (the shared scenes are not beside this checkout)");
+  const std::vector<SceneTriangle> bunny = bunnyTriangles(path);
+  const TwoLevelBvh one = buildTwoLevelBvh({bunny}, {BvhInstanceDesc{0, glm::mat4(1.0f)}});
+  MESSAGE("one bunny: " << bunny.size() << " triangles, " << one.bytes() + one.triangles.size() * kShadingBytes
+                        << " device bytes");
+  CHECK(one.triangles.size() >= bunny.size());
+}
+
+TEST_CASE("bvh instances: ten thousand bunnies hold under twice one bunny's bytes" * doctest::test_suite("cpu shared-scenes slow")) {
+  const std::string path = montecl_test::sharedScenes() + "/bunny/bunny.obj";
+  MCL_SKIP_UNLESS(std::ifstream(path), path << " not found (the shared scenes are not beside this checkout)");
+  const std::vector<SceneTriangle> bunny = bunnyTriangles(path);
+  const TwoLevelBvh one = buildTwoLevelBvh({bunny}, {BvhInstanceDesc{0, glm::mat4(1.0f)}});
+  std::vector<BvhInstanceDesc> grid;
+  for (int k = 0; k < 10000; ++k) {  // a 100 x 100 grid, each turned and scaled a little
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), vec3(0.3f * float(k % 100), 0.0f, 0.3f * float(k / 100)));
+    m = glm::rotate(m, 0.001f * float(k), vec3(0.0f, 1.0f, 0.0f));
+    grid.push_back({0, glm::scale(m, vec3(1.0f + 0.00005f * float(k)))});
+  }
+  const TwoLevelBvh many = buildTwoLevelBvh({bunny}, grid);
+  const std::size_t oneBytes = one.bytes() + one.triangles.size() * kShadingBytes;
+  const std::size_t manyBytes = many.bytes() + many.triangles.size() * kShadingBytes;
+  MESSAGE("10,000 bunnies: " << manyBytes << " device bytes (one: " << oneBytes << "; flattened copies: "
+                             << double(oneBytes) * 10000.0 / 1e9 << " GB)");
+  CHECK(many.triangles.size() == one.triangles.size());
+  CHECK(manyBytes < 2 * oneBytes);
+  // A ray down onto the grid's middle row meets a bunny.
+  const TwoLevelHit h = intersectClosest(many, vec3(15.0f, 10.0f, 15.0f), vec3(0.0f, -1.0f, 0.0f), INFINITY);
+  CHECK(h.instance != MCL_NO_INSTANCE);
 }
