@@ -2,13 +2,15 @@
 // kernels/shared/traverse_instances.h run on the host): closest and any hit through randomly
 // placed instances (rotations, non-uniform and mirroring scales, coincident copies, an empty mesh)
 // equal brute force over the flattened world-space triangles, with the same triangle and
-// instance, and the hit's surface frame brought to world space is the flattened triangle's; one identity instance is bit for bit the one-level BVH; memory grows with the
+// instance, and the hit's surface frame brought to world space is the flattened triangle's; the
+// scene view (a Bvh over the two levels) maps each slot to its scene triangle; one identity instance is bit for bit the one-level BVH; memory grows with the
 // instances, not with their triangles.
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <fstream>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -16,6 +18,7 @@
 
 #include "bvh/bvh.h"
 #include "bvh/bvh_instances.h"
+#include "render/triangle_shading.h"
 #include "kernels/shared/geometry.h"
 #include "kernels/shared/instance_space.h"
 #include "kernels/shared/surface.h"
@@ -299,4 +302,34 @@ TEST_CASE("bvh instances: ten thousand bunnies hold under twice one bunny's byte
   // A ray down onto the grid's middle row meets a bunny.
   const TwoLevelHit h = intersectClosest(many, vec3(15.0f, 10.0f, 15.0f), vec3(0.0f, -1.0f, 0.0f), INFINITY);
   CHECK(h.instance != MCL_NO_INSTANCE);
+}
+
+TEST_CASE("bvh instances: the scene view maps every slot to its scene triangle" * doctest::test_suite("cpu")) {
+  // One scene triangle list holding two meshes (object space) one after the other.
+  std::vector<SceneTriangle> scene = montecl_test::seededSoup(150, 51, 3.0f, 1.0f, 0.2f);
+  for (std::size_t i = 0; i < scene.size(); ++i) {
+    scene[i].attributes = kHasUv;
+    for (int k = 0; k < 3; ++k) scene[i].uv[k] = glm::vec2(float(i), float(k));
+  }
+  const std::vector<std::vector<SceneTriangle>> meshes = {{scene.begin(), scene.begin() + 100},
+                                                          {scene.begin() + 100, scene.end()}};
+  const TwoLevelBvh two = buildTwoLevelBvh(meshes, {{1, glm::scale(glm::mat4(1.0f), vec3(2.0f))}, {0, glm::mat4(1.0f)}});
+  const Bvh view = sceneView(two, {0, 100});
+  REQUIRE(view.order.size() == view.triangles.size());
+  std::vector<int> seen(scene.size(), 0);
+  for (std::size_t i = 0; i < view.triangles.size(); ++i) {
+    const SceneTriangle& t = scene[view.order[i]];
+    CAPTURE(i);
+    CHECK(vec3(view.triangles[i].v0) == t.v[0]);
+    CHECK(vec3(view.triangles[i].e1) == t.v[1] - t.v[0]);
+    seen[view.order[i]] += as_uint(view.triangles[i].e1.w) == i;
+  }
+  CHECK(std::count(seen.begin(), seen.end(), 1) == int(scene.size()));  // every triangle's canonical slot once
+  CHECK(view.inputCount == scene.size());
+  REQUIRE(view.wideNodes().size() == two.nodes.size());
+  CHECK(std::memcmp(view.wideNodes().data(), two.nodes.data(), two.nodes.size() * sizeof(WideNode)) == 0);
+  // The per-triangle arrays built over the view follow the slots.
+  const std::vector<TriangleShading> shading = buildTriangleShading(scene, view);
+  REQUIRE(shading.size() == view.triangles.size());
+  for (std::size_t i = 0; i < shading.size(); ++i) CHECK(shading[i].n0.w == float(view.order[i]));
 }

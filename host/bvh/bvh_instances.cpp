@@ -46,6 +46,7 @@ TwoLevelBvh buildTwoLevelBvh(const std::vector<std::vector<SceneTriangle>>& mesh
   int bottomDepth = 0;
   out.meshRoot.assign(meshes.size(), MCL_WIDE_EMPTY);
   out.meshTriBase.assign(meshes.size(), 0);
+  out.meshTriCount.assign(meshes.size(), 0);
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     if (meshes[m].empty()) continue;
     Bvh b = buildBvh(meshes[m], options);
@@ -53,6 +54,7 @@ TwoLevelBvh buildTwoLevelBvh(const std::vector<std::vector<SceneTriangle>>& mesh
       throw std::invalid_argument("buildTwoLevelBvh: more than 2^27 triangles in the bottom levels");
     const std::uint32_t triBase = static_cast<std::uint32_t>(triCount);
     out.meshTriBase[m] = triBase;
+    out.meshTriCount[m] = static_cast<std::uint32_t>(b.triangles.size());
     for (std::size_t i = 0; i < b.triangles.size(); ++i) {
       Triangle t = b.triangles[i];
       t.e1.w = as_float(as_uint(t.e1.w) + triBase);
@@ -142,6 +144,26 @@ TwoLevelBvh buildTwoLevelBvh(const std::vector<std::vector<SceneTriangle>>& mesh
   }
   for (Instance& in : out.instances) in.root = out.meshRoot[in.mesh];
   return out;
+}
+
+Bvh sceneView(const TwoLevelBvh& bvh, const std::vector<std::uint32_t>& meshFirstTri) {
+  if (meshFirstTri.size() != bvh.meshTriBase.size())
+    throw std::invalid_argument("sceneView: one first triangle per mesh expected");
+  Bvh v;
+  v.nodes = {emptyBinaryNode()};
+  v.triangles = bvh.triangles;
+  v.order.resize(bvh.triangles.size());
+  for (std::size_t m = 0; m < meshFirstTri.size(); ++m)
+    for (std::uint32_t i = 0; i < bvh.meshTriCount[m]; ++i) {
+      const std::uint32_t slot = bvh.meshTriBase[m] + i;
+      v.order[slot] = meshFirstTri[m] + bvh.triangleSource[slot];
+    }
+  std::size_t inputs = 0;
+  for (std::size_t i = 0; i < v.triangles.size(); ++i) inputs += as_uint(v.triangles[i].e1.w) == i;
+  v.inputCount = inputs;
+  v.depth = bvh.depth;
+  v.wideCache.preset(bvh.nodes);
+  return v;
 }
 
 TwoLevelHit intersectClosest(const TwoLevelBvh& bvh, const glm::vec3& org, const glm::vec3& dir, float tmax,

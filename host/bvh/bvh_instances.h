@@ -25,6 +25,7 @@ struct TwoLevelBvh {
   std::vector<Instance> instances;      // in the top level's leaf order (Instance::id: the input index)
   std::vector<std::uint32_t> meshRoot;     // per mesh: its bottom level's root in nodes
   std::vector<std::uint32_t> meshTriBase;  // per mesh: its first triangle in triangles
+  std::vector<std::uint32_t> meshTriCount; // per mesh: its triangles (slots) in triangles
   std::vector<std::uint32_t> triangleSource;  // triangles[i] came from triangle triangleSource[i] of its mesh
   int depth = 0;                        // top level's depth plus the deepest bottom level's
   std::size_t bytes() const;            // of nodes, triangles and instances (what the device holds)
@@ -36,6 +37,12 @@ struct TwoLevelBvh {
 // finite, or more than 2^27 triangles or instances.
 TwoLevelBvh buildTwoLevelBvh(const std::vector<std::vector<SceneTriangle>>& meshes,
                              const std::vector<BvhInstanceDesc>& instances, const BvhBuildOptions& options = {});
+
+// The two-level BVH as a Bvh for the code that indexes per-triangle arrays in BVH order (triangle
+// shading, vertex colours, alpha flags, emitters): triangles and wideNodes() are the two-level
+// ones, order[i] the scene triangle of slot i (meshFirstTri[mesh] + its index within the mesh).
+// nodes is one empty binary node: the binary layout has no two-level form (refuse it).
+Bvh sceneView(const TwoLevelBvh& bvh, const std::vector<std::uint32_t>& meshFirstTri);
 
 // Host reference traversal (the kernels' code): closest hit with the input index of the instance
 // hit (MCL_NO_INSTANCE on a miss; hit.tri a slot of triangles), and any hit.
