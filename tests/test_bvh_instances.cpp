@@ -3,8 +3,9 @@
 // placed instances (rotations, non-uniform and mirroring scales, coincident copies, an empty mesh)
 // equal brute force over the flattened world-space triangles, with the same triangle and
 // instance, and the hit's surface frame brought to world space is the flattened triangle's; the
-// scene view (a Bvh over the two levels) maps each slot to its scene triangle; one identity instance is bit for bit the one-level BVH; memory grows with the
-// instances, not with their triangles.
+// scene view (a Bvh over the two levels) maps each slot to its scene triangle; one identity
+// instance is bit for bit the one-level BVH; memory grows with the instances, not with their
+// triangles (10,000 bunnies in under twice one bunny's bytes).
 #include <doctest/doctest.h>
 
 #include <algorithm>
