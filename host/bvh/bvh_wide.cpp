@@ -108,6 +108,11 @@ const std::vector<WideNode>& WideCache::get(const std::vector<BvhNode>& nodes,
   return state_->wide;
 }
 
+void WideCache::preset(std::vector<WideNode> wide) {
+  state_ = std::make_unique<State>();
+  std::call_once(state_->once, [&] { state_->wide = std::move(wide); });
+}
+
 const std::vector<WideNode>& Bvh::wideNodes() const { return wideCache.get(nodes, triangles.size()); }
 
 }  // namespace montecl

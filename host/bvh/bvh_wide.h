@@ -36,6 +36,8 @@ class WideCache {
   WideCache& operator=(WideCache&&) noexcept = default;
 
   const std::vector<WideNode>& get(const std::vector<BvhNode>& nodes, std::size_t triangleCount) const;
+  // Holds wide as the collapse (for a tree that has no binary form, e.g. the two-level BVH's).
+  void preset(std::vector<WideNode> wide);
 
  private:
   struct State {

@@ -210,6 +210,20 @@ typedef struct MCL_ALIGN16 {
 // (surface_texture.h hit_albedo). A scene without them binds a 1-entry dummy buffer.
 #define MCL_ATTR_COLOR 8u
 
+// One placement of a bottom-level BVH in a two-level scene (kernels/shared/traverse_instances.h):
+// the rows of its 3x4 affine maps (p' = (row . (p, 1)) per coordinate), the wide node of its bottom
+// level's root and that level's first triangle (leaf references and canonical slots of the bottom
+// levels are already rebased into the shared node and triangle arrays).
+typedef struct MCL_ALIGN16 {
+  float4 worldToObject[3];
+  float4 objectToWorld[3];
+  uint root;     // wide node index of the bottom level's root
+  uint triBase;  // first triangle of the bottom level
+  uint mesh;     // which bottom level (unique mesh)
+  uint id;       // the instance's input index
+} Instance;
+#define MCL_NO_INSTANCE 0xffffffffu  // no instance was hit
+
 #ifndef MCL_OPENCL
 #include <cstddef>
 static_assert(sizeof(BvhNode) == 32, "BvhNode layout");
@@ -232,4 +246,5 @@ static_assert(sizeof(Emitter) == 16, "Emitter layout");
 static_assert(sizeof(TextureDesc) == 48 && offsetof(TextureDesc, uvRow0) == 16, "TextureDesc layout");
 static_assert(sizeof(TextureLevel) == 16, "TextureLevel layout");
 static_assert(offsetof(FrameParams, width) == 80, "FrameParams layout");
+static_assert(sizeof(Instance) == 112 && offsetof(Instance, root) == 96, "Instance layout");
 #endif
