@@ -252,6 +252,9 @@ TEST_CASE("emission texture: the scene file's emission_texture and MTL map_Ke" *
   for (const std::string& w : warnings) CHECK(w.find("map_Ke") == std::string::npos);
   CHECK(obj.materials[0].emissionTexture == dir.file("glow.png"));
   CHECK(obj.materials[0].emission == glm::vec3(1.0f));  // no Ke: the texture as it is
+  // A bare model whose only emission is textured keeps the default sky (untextured Ke, a light
+  // fixture, does not: test_scene's "bare OBJ with an emitter").
+  CHECK(obj.environment.enabled);
   dir.write("s.json", R"({"camera": {"position": [0, 0, 3], "target": [0, 0, 0], "fov_y": 40, "width": 8, "height": 8}, "meshes": [{"file": "q.obj", "material": {"emission": [2, 2, 2], "emission_texture": "glow.png"}}]})");
   const Scene json = loadScene(dir.file("s.json"), warnings);
   CHECK(json.materials.back().emissionTexture == dir.file("glow.png"));

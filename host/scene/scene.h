@@ -156,9 +156,10 @@ Scene loadScene(const std::string& path, std::vector<std::string>& warnings,
                 std::optional<MissingTextures> missing = std::nullopt);
 
 // What a bare mesh (a model file given without a scene file) renders with, the one rule for it:
-// integrator path, and, when the model has no light of its own (no emitting material, no glTF
-// punctual light), a constant white sky of radiance kDefaultSkyRadiance (a diffuse surface open
-// to all of it shows its albedo). The command line's --integrator and --env replace these.
+// integrator path, and, when the model has no light of its own (no untextured emitting material,
+// no glTF punctual light), a constant white sky of radiance kDefaultSkyRadiance (a diffuse surface
+// open to all of it shows its albedo). Textured emission (a helmet's lamps, a screen) is a detail
+// of the model, as in glTF viewers, which show such models under an environment: it keeps the sky. The command line's --integrator and --env replace these.
 constexpr float kDefaultSkyRadiance = 1.0f;
 void applyBareModelDefaults(Scene& scene);
 

@@ -321,8 +321,10 @@ Scene loadBareMesh(const std::string& path, std::vector<std::string>& warnings, 
 void applyBareModelDefaults(Scene& scene) {
   scene.render.integrator = Integrator::Path;
   bool lit = !scene.lights.empty();
-  for (const SceneTriangle& t : scene.triangles)
-    lit = lit || scene.materials[t.material].emission != glm::vec3(0.0f);
+  for (const SceneTriangle& t : scene.triangles) {
+    const MaterialDesc& m = scene.materials[t.material];
+    lit = lit || (m.emission != glm::vec3(0.0f) && m.emissionTexture.empty());
+  }
   if (lit) return;
   scene.environment = EnvironmentDesc{};
   scene.environment.enabled = true;
