@@ -190,9 +190,12 @@ int runRender(const RenderArgs& a) {
                          : defaultTextureBudget(device);
   std::vector<std::string> textureWarnings;
   const auto textureStart = std::chrono::steady_clock::now();
-  // Colour textures only where an image reads them: the lit integrators and the albedo AOV.
-  const bool colourTextures = integratorDesc(scene.render.integrator).lit || !a.aovs.empty();
-  const SceneTextures textures = loadSceneTextures(scene, textureBudget, textureWarnings, colourTextures);
+  // The film accumulates every AOV when it has any (a checkpoint keeps them all): the albedo AOV
+  // reads the reflectance textures, the normal AOV the normal maps, so a film with AOVs
+  // reads both; the denoiser's albedo and normal guides are these AOVs.
+  const bool filmAovs = !a.aovs.empty() || scene.render.denoise;
+  const SceneTextures textures = loadSceneTextures(
+      scene, textureBudget, textureWarnings, textureUsesOf(integratorDesc(scene.render.integrator), filmAovs));
   const double textureMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - textureStart).count();
   for (const std::string& w : textureWarnings) std::cerr << "montecl: warning: " << scene.path << ": " << w << "\n";
@@ -232,7 +235,7 @@ int runRender(const RenderArgs& a) {
   options.maxSpp = a.maxSpp;
   options.timeLimit = a.timeLimit;
   options.interrupt = &gInterrupted;
-  options.aovs = !a.aovs.empty() || scene.render.denoise;  // the denoiser's albedo and normal guides
+  options.aovs = filmAovs;
   options.workGroupSize = a.workGroupSize;
   options.lanes = a.lanes;
   options.fuseWaves = !a.noFuse;

@@ -54,6 +54,14 @@ const IntegratorDesc& integratorDesc(Integrator integrator) {
   throw std::logic_error("integratorDesc: an integrator without a row");
 }
 
+TextureUses textureUsesOf(const IntegratorDesc& integrator, bool aovs) {
+  TextureUses u;
+  u.reflectance = integrator.lit || aovs;
+  u.emission = integrator.lit;
+  u.normal = integrator.lit || aovs;
+  return u;
+}
+
 WaveShape waveShapeFor(const Scene& scene, std::uint64_t items, bool aovs) {
   const IntegratorDesc& d = integratorDesc(scene.render.integrator);
   WaveShape s;

@@ -12,6 +12,7 @@
 #include "render/stage_runner.h"
 #include "render/wave_buffers.h"
 #include "scene/scene.h"
+#include "texture/scene_textures.h"
 
 namespace montecl {
 
@@ -37,6 +38,11 @@ struct IntegratorDesc {
 };
 
 const IntegratorDesc& integratorDesc(Integrator integrator);
+
+// The textures a render of this integrator reads (the cut-outs' alpha ones always): the lit
+// integrators every kind; AO none of the others, unless the film records AOVs (aovs), whose albedo
+// reads the reflectance textures and whose normal reads the normal maps.
+TextureUses textureUsesOf(const IntegratorDesc& integrator, bool aovs);
 
 // What a wave of `items` items of this render needs (render/wave_buffers.h).
 WaveShape waveShapeFor(const Scene& scene, std::uint64_t items, bool aovs);

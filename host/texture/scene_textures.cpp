@@ -163,7 +163,7 @@ static_assert(MCL_WRAP_REPEAT == 0u && MCL_WRAP_CLAMP == 1u && MCL_WRAP_MIRROR =
 
 // Every texture use with its own transform or wrap modes gets a TextureDesc of its own over the
 // same levels (one per distinct image and sampling); uses without one keep the image's.
-void applySampling(SceneTextures& out, const Scene& scene, bool colour) {
+void applySampling(SceneTextures& out, const Scene& scene, const TextureUses& uses) {
   std::map<std::pair<std::uint32_t, std::string>, std::uint32_t> views;
   const auto view = [&](std::uint32_t& index, const TextureSampling& s) {
     if (index == MCL_NO_TEXTURE || s.identity()) return;
@@ -182,12 +182,10 @@ void applySampling(SceneTextures& out, const Scene& scene, bool colour) {
   for (std::size_t i = 0; i < scene.materials.size() && i < out.materials.size(); ++i) {
     const MaterialDesc& m = scene.materials[i];
     MaterialTextures& t = out.materials[i];
-    if (colour) {
-      view(t.albedo, m.albedoSampling);
-      view(t.emission, m.emissionSampling);
-      view(t.metallicRoughness, m.metallicRoughnessSampling);
-      view(t.normal, m.normalSampling);
-    }
+    if (uses.reflectance) view(t.albedo, m.albedoSampling);
+    if (uses.emission) view(t.emission, m.emissionSampling);
+    if (uses.reflectance) view(t.metallicRoughness, m.metallicRoughnessSampling);
+    if (uses.normal) view(t.normal, m.normalSampling);
     view(t.alpha, m.alphaSampling);
   }
 }
@@ -202,7 +200,7 @@ void packTextures(SceneTextures& out, std::vector<RgbaImage> images, std::uint64
 }
 
 SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, std::vector<std::string>& warnings,
-                                bool colour) {
+                                TextureUses uses) {
   SceneTextures out;
   out.materials.resize(scene.materials.size());
   // Every file once, in first-use order, with the first material and key naming it in errors.
@@ -262,12 +260,12 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     }
   };
   for (const MaterialDesc& m : scene.materials) {
-    if (colour && !m.albedoTexture.empty()) use(m, m.albedoTexture, "map_Kd", true);
+    if (uses.reflectance && !m.albedoTexture.empty()) use(m, m.albedoTexture, "map_Kd", true);
     if (!m.alphaTexture.empty()) use(m, m.alphaTexture, "map_d", false);
-    if (colour && !m.emissionTexture.empty()) use(m, m.emissionTexture, "map_Ke", true);
-    if (colour && !m.metallicRoughnessTexture.empty())
+    if (uses.emission && !m.emissionTexture.empty()) use(m, m.emissionTexture, "map_Ke", true);
+    if (uses.reflectance && !m.metallicRoughnessTexture.empty())
       useLinear(m, m.metallicRoughnessTexture, "metallicRoughnessTexture");
-    if (colour && !m.normalTexture.empty()) useNormal(m);
+    if (uses.normal && !m.normalTexture.empty()) useNormal(m);
   }
   // A file whose finest level alone is over the budget is refused from its header, before it is
   // decoded: the budget would drop that level anyway, and a 69-byte PNG can declare 16384 x 16384.
@@ -335,11 +333,11 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
   }
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
     const MaterialDesc& m = scene.materials[i];
-    if (colour && !m.albedoTexture.empty()) out.materials[i].albedo = first[fileIndex.at(m.albedoTexture)];
-    if (colour && !m.emissionTexture.empty()) out.materials[i].emission = first[fileIndex.at(m.emissionTexture)];
-    if (colour && !m.metallicRoughnessTexture.empty())
+    if (uses.reflectance && !m.albedoTexture.empty()) out.materials[i].albedo = first[fileIndex.at(m.albedoTexture)];
+    if (uses.emission && !m.emissionTexture.empty()) out.materials[i].emission = first[fileIndex.at(m.emissionTexture)];
+    if (uses.reflectance && !m.metallicRoughnessTexture.empty())
       out.materials[i].metallicRoughness = first[fileIndex.at(m.metallicRoughnessTexture + kLinear)];
-    if (colour && !m.normalTexture.empty()) out.materials[i].normal = first[fileIndex.at(normalKey(m))];
+    if (uses.normal && !m.normalTexture.empty()) out.materials[i].normal = first[fileIndex.at(normalKey(m))];
     if (!m.alphaTexture.empty()) {
       const std::size_t k = fileIndex.at(m.alphaTexture);
       const File& f = files[k];
@@ -354,7 +352,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
   std::size_t uncut = 0;
   std::string firstUncut;
   for (const MaterialDesc& m : scene.materials)
-    if (colour && !m.cutoutHint.empty() && m.alphaTexture.empty() && !m.albedoTexture.empty() &&
+    if (uses.reflectance && !m.cutoutHint.empty() && m.alphaTexture.empty() && !m.albedoTexture.empty() &&
         files[fileIndex.at(m.albedoTexture)].alphaBelowOne && uncut++ == 0)
       firstUncut = m.cutoutHint;
   if (uncut > 0)
@@ -363,7 +361,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
                        "\"material\": {\"alpha_texture\": ...})" +
                        (uncut > 1 ? " (" + std::to_string(uncut - 1) + " more materials like it)" : std::string()));
   packChains(out, std::move(images), budgetBytes, warnings);
-  applySampling(out, scene, colour);
+  applySampling(out, scene, uses);
   return out;
 }
 

@@ -40,14 +40,24 @@ struct SceneTextures {
 // True when a material of scene names a texture.
 bool sceneHasTextures(const Scene& scene);
 
+// Which textures an image reads, beside the cut-outs' alpha textures, which are always loaded (they
+// change what every ray sees, AO's included). A texture no image reads is never decoded: AO reads
+// none of these, the albedo AOV (and the denoiser's albedo guide) reads the reflectance, the normal
+// AOV (and guide) the normal maps, the lit integrators all of them (render/integrators.h
+// textureUsesOf).
+struct TextureUses {
+  bool reflectance = true;  // albedo and metallic-roughness textures (the BSDF's colour)
+  bool emission = true;
+  bool normal = true;
+};
+
 // Loads the textures of scene's materials. A file used both as colour and as an alpha texture
 // without an alpha channel is loaded twice (sRGB-decoded, and linear for alpha); otherwise once.
 // Over budget, the finest levels are dropped (one warning naming the textures). Throws InputError
 // "<texture file>: material '<name>' <map_Kd|map_d>: cannot read image: <reason>".
-// colour false: the albedo textures are left out (no image reads them: AO without an albedo AOV),
-// only the cut-outs' alpha textures are loaded.
+// Leaves out the textures uses says no image reads (their materials get no texture index).
 SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes,
-                                std::vector<std::string>& warnings, bool colour = true);
+                                std::vector<std::string>& warnings, TextureUses uses = {});
 
 // tris (BVH order) with MCL_ATTR_ALPHA set in e2.w on every triangle whose material has an alpha
 // texture (the traversals test only those); empty when no material has one.
