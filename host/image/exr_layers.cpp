@@ -13,7 +13,7 @@
 #include <set>
 
 #include "image/film.h"
-#include "image/oiio_loader.h"
+#include "image/image_read.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
@@ -167,7 +167,7 @@ void checkExrHeader(const std::string& path) {
 LayeredImage readLayeredImage(const std::string& path, const ImageSizeCheck& check) {
   if (!std::filesystem::exists(path)) throwInputError(path, "", "cannot read image: no such file");
   checkExrHeader(path);
-  return oiioRead(path, check);
+  return readImageFile(path, check);
 }
 
 std::string badPixelValue(const std::vector<const std::vector<float>*>& planes, int width, float maxValue) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "image/exr_layers.h"
+#include "image/image_limits.h"
 #include "image/oiio_plugin_abi.h"
 
 namespace {
@@ -104,18 +105,10 @@ int readImage(const char* path, OIIO::Filesystem::IOProxy* proxy, montecl::Layer
   if (proxy && !in->set_ioproxy(proxy)) return fail(err, errSize, "this image format cannot be read from memory");
   if (!in->open(path, opened, config)) return fail(err, errSize, in->geterror());
   const ImageSpec& spec = in->spec();
-  // Sizes are checked before allocating: montecl's renders are at most 16384 x 16384 pixels.
-  constexpr int kMaxSide = 16384, kMaxChannels = 1024;
   if (spec.deep) return fail(err, errSize, "deep images are not supported");
-  if (spec.width <= 0 || spec.height <= 0 || spec.width > kMaxSide || spec.height > kMaxSide)
-    return fail(err, errSize, "image is " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
-                                  " pixels (at most " + std::to_string(kMaxSide) + " per side)");
-  // Pixels are read as an array from (0, 0): a data window elsewhere would shift the image.
-  if (spec.x != 0 || spec.y != 0)
-    return fail(err, errSize, "data window starts at (" + std::to_string(spec.x) + ", " + std::to_string(spec.y) +
-                                  "), not at (0, 0): crop or re-save the image with its data window at the origin");
-  if (spec.nchannels <= 0 || spec.nchannels > kMaxChannels)
-    return fail(err, errSize, "image has " + std::to_string(spec.nchannels) + " channels");
+  if (const std::string why = montecl::imageSizeProblem(spec.width, spec.height, spec.nchannels, spec.x, spec.y);
+      !why.empty())
+    return fail(err, errSize, why);
   if (check && check(checkContext, spec.width, spec.height, spec.nchannels, err, errSize) != 0) return 1;
   image.width = spec.width;
   image.height = spec.height;

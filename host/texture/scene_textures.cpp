@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "image/exr_layers.h"
-#include "image/oiio_loader.h"
+#include "image/image_read.h"
 #include "texture/mip_chain.h"
 #include "texture/texture_budget.h"
 #include "util/errors.h"
@@ -284,7 +284,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
       try {
         const auto embedded = scene.embeddedImages.find(f.path);
         const LayeredImage image = embedded != scene.embeddedImages.end()
-                                       ? oiioReadMemory(f.path, embedded->second, fitsBudget)
+                                       ? readImageMemory(f.path, embedded->second, fitsBudget)
                                        : readLayeredImage(f.path, fitsBudget);
         // The environment map's rule, and texels are half floats: over 65504 would be infinite.
         std::vector<const std::vector<float>*> used;

@@ -1,0 +1,62 @@
+// image_read.cpp: picks the reader of an image by its name's extension (image_read.h).
+#include "image/image_read.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+
+#include "image/exr_layers.h"
+#include "image/jpeg_read.h"
+#include "image/png_read.h"
+#include "util/errors.h"
+
+namespace montecl {
+namespace {
+
+enum class Format { Png, Jpeg, Other };
+
+Format formatOf(const std::string& name) {
+  std::string ext = std::filesystem::path(name).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext == ".png") return Format::Png;
+  if (ext == ".jpg" || ext == ".jpeg" || ext == ".jpe" || ext == ".jfif") return Format::Jpeg;
+  return Format::Other;
+}
+
+// Decodes bytes with montecl's own reader of format; false (out untouched) when OpenImageIO must
+// (a CMYK JPEG). Throws InputError naming name.
+bool decodeOwn(Format format, const std::string& name, const unsigned char* data, std::size_t size,
+               LayeredImage& out, const ImageSizeCheck& check) {
+  bool unsupported = false;
+  const std::string why = format == Format::Png ? decodePng(data, size, out, check)
+                                                : decodeJpeg(data, size, out, check, unsupported);
+  if (!why.empty()) throwInputError(name, "", "cannot read image: " + why);
+  return !unsupported;
+}
+
+}  // namespace
+
+bool readsWithoutOiio(const std::string& name) { return formatOf(name) != Format::Other; }
+
+LayeredImage readImageFile(const std::string& path, const ImageSizeCheck& check) {
+  const Format format = formatOf(path);
+  if (format == Format::Other) return oiioRead(path, check);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throwInputError(path, "", "cannot read image: cannot open the file");
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throwInputError(path, "", "cannot read image: read error");
+  LayeredImage image;
+  if (decodeOwn(format, path, bytes.data(), bytes.size(), image, check)) return image;
+  return oiioRead(path, check);
+}
+
+LayeredImage readImageMemory(const std::string& name, const std::vector<unsigned char>& bytes,
+                             const ImageSizeCheck& check) {
+  const Format format = formatOf(name);
+  LayeredImage image;
+  if (format != Format::Other && decodeOwn(format, name, bytes.data(), bytes.size(), image, check)) return image;
+  return oiioReadMemory(name, bytes, check);
+}
+
+}  // namespace montecl

@@ -1,0 +1,27 @@
+// image_read.h: image input, one entry for every reader: PNG through libpng (image/png_read.h),
+// JPEG through libjpeg-turbo (image/jpeg_read.h), every other format (EXR, HDR, TGA, ...) through
+// the OpenImageIO module, which is loaded only when such a file is read (image/oiio_loader.h). The
+// file name's extension picks the reader, as OpenImageIO picks its own.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "image/oiio_loader.h"
+
+namespace montecl {
+
+struct LayeredImage;
+
+// Reads every channel of the image file path. Throws InputError "<path>: cannot read image:
+// <reason>" (one line; the reason check gave when it refused the declared size).
+LayeredImage readImageFile(const std::string& path, const ImageSizeCheck& check = {});
+
+// The same for an encoded image held in memory (inside a .glb, a data URI): name's extension picks
+// the reader, and errors call it name.
+LayeredImage readImageMemory(const std::string& name, const std::vector<unsigned char>& bytes,
+                             const ImageSizeCheck& check = {});
+
+// Whether montecl reads name (by its extension) without OpenImageIO: .png, .jpg, .jpeg, any case.
+bool readsWithoutOiio(const std::string& name);
+
+}  // namespace montecl
