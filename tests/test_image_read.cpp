@@ -242,3 +242,40 @@ TEST_CASE("image read: a PNG- and JPEG-textured render needs no OpenImageIO modu
   CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
   CHECK(!std::filesystem::exists(dir.file("bad.png")));
 }
+
+TEST_CASE("image read: 3000 mutated PNGs and JPEGs each decode or are one InputError, never a crash" *
+          doctest::test_suite("cpu")) {
+  TempDir dir;
+  writePngKind(dir.file("seed.png"), 24, 9, PNG_COLOR_TYPE_PALETTE, 4, [](int x, int y, int) { return x + y; }, true, true);
+  writePngKind(dir.file("seed16.png"), 9, 9, PNG_COLOR_TYPE_RGB_ALPHA, 16, [](int x, int y, int s) { return x * 5000 + y * 7 + s; });
+  writeJpegKind(dir.file("seed.jpg"), 24, 17, 3, 2, 2);
+  std::uint32_t state = 12345u;
+  const auto next = [&] { return state = state * 1664525u + 1013904223u; };
+  for (const char* seedName : {"seed.png", "seed16.png", "seed.jpg"}) {
+    const std::string seed = readAll(dir.file(seedName));
+    const std::string name = "mutant" + std::filesystem::path(seedName).extension().string();  // picks the reader
+    int decoded = 0, refused = 0;
+    for (int i = 0; i < 1000; ++i) {
+      std::string m = seed;
+      const int edits = 1 + int(next() % 4);
+      for (int e = 0; e < edits; ++e) {
+        const std::size_t at = next() % m.size();
+        switch (next() % 3) {
+          case 0: m[at] = char(next()); break;                      // one byte
+          case 1: m.resize(std::max<std::size_t>(at, 1)); break;    // truncated
+          default: m.insert(at, std::string(1 + next() % 8, char(next()))); break;  // bytes inserted
+        }
+      }
+      try {
+        readImageMemory(name, std::vector<unsigned char>(m.begin(), m.end()));
+        ++decoded;
+      } catch (const InputError& e) {
+        CHECK(std::string(e.what()).find('\n') == std::string::npos);
+        ++refused;
+      }
+    }
+    CAPTURE(seedName);
+    CHECK(decoded + refused == 1000);
+    CHECK(refused > 0);
+  }
+}

@@ -57,8 +57,8 @@ struct LayeredImage {
 // when writing fails.
 void writeLayeredExr(const std::string& path, const LayeredImage& image);
 
-// Reads every channel of an image (any format OpenImageIO reads; channel names as stored) as float
-// planes. Throws InputError "<path>: cannot read image: ..." (one line) when it cannot be read or
+// Reads every channel of an image (image/image_read.h: PNG and JPEG by montecl's readers, any other
+// format OpenImageIO reads; channel names as stored) as float planes. Throws InputError "<path>: cannot read image: ..." (one line) when it cannot be read or
 // check (image/oiio_loader.h) refuses the size it declares.
 LayeredImage readLayeredImage(const std::string& path, const ImageSizeCheck& check = {});
 

@@ -14,22 +14,22 @@
 namespace montecl {
 namespace {
 
-enum class Format { Png, Jpeg, Other };
+enum class ImageReader { Png, Jpeg, Other };
 
-Format formatOf(const std::string& name) {
+ImageReader readerOf(const std::string& name) {
   std::string ext = std::filesystem::path(name).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (ext == ".png") return Format::Png;
-  if (ext == ".jpg" || ext == ".jpeg" || ext == ".jpe" || ext == ".jfif") return Format::Jpeg;
-  return Format::Other;
+  if (ext == ".png") return ImageReader::Png;
+  if (ext == ".jpg" || ext == ".jpeg" || ext == ".jpe" || ext == ".jfif") return ImageReader::Jpeg;
+  return ImageReader::Other;
 }
 
 // Decodes bytes with montecl's own reader of format; false (out untouched) when OpenImageIO must
 // (a CMYK JPEG). Throws InputError naming name.
-bool decodeOwn(Format format, const std::string& name, const unsigned char* data, std::size_t size,
+bool decodeOwn(ImageReader format, const std::string& name, const unsigned char* data, std::size_t size,
                LayeredImage& out, const ImageSizeCheck& check) {
   bool unsupported = false;
-  const std::string why = format == Format::Png ? decodePng(data, size, out, check)
+  const std::string why = format == ImageReader::Png ? decodePng(data, size, out, check)
                                                 : decodeJpeg(data, size, out, check, unsupported);
   if (!why.empty()) throwInputError(name, "", "cannot read image: " + why);
   return !unsupported;
@@ -37,11 +37,11 @@ bool decodeOwn(Format format, const std::string& name, const unsigned char* data
 
 }  // namespace
 
-bool readsWithoutOiio(const std::string& name) { return formatOf(name) != Format::Other; }
+bool readsWithoutOiio(const std::string& name) { return readerOf(name) != ImageReader::Other; }
 
 LayeredImage readImageFile(const std::string& path, const ImageSizeCheck& check) {
-  const Format format = formatOf(path);
-  if (format == Format::Other) return oiioRead(path, check);
+  const ImageReader format = readerOf(path);
+  if (format == ImageReader::Other) return oiioRead(path, check);
   std::ifstream in(path, std::ios::binary);
   if (!in) throwInputError(path, "", "cannot read image: cannot open the file");
   std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -53,9 +53,9 @@ LayeredImage readImageFile(const std::string& path, const ImageSizeCheck& check)
 
 LayeredImage readImageMemory(const std::string& name, const std::vector<unsigned char>& bytes,
                              const ImageSizeCheck& check) {
-  const Format format = formatOf(name);
+  const ImageReader format = readerOf(name);
   LayeredImage image;
-  if (format != Format::Other && decodeOwn(format, name, bytes.data(), bytes.size(), image, check)) return image;
+  if (format != ImageReader::Other && decodeOwn(format, name, bytes.data(), bytes.size(), image, check)) return image;
   return oiioReadMemory(name, bytes, check);
 }
 

@@ -37,7 +37,7 @@ void pngQuiet(png_structp, png_const_charp) {}
 
 // The planes from interleaved 8- or 16-bit rows: code / max, as OpenImageIO's conversion gives it
 // (code times the float 1 / max).
-void toPlanes(const std::vector<unsigned char>& pixels, int bits, std::size_t count, std::size_t nch,
+void pngToPlanes(const std::vector<unsigned char>& pixels, int bits, std::size_t count, std::size_t nch,
               LayeredImage& out) {
   const float scale = bits == 16 ? 1.0f / 65535.0f : 1.0f / 255.0f;
   out.planes.assign(nch, std::vector<float>(count));
@@ -114,7 +114,7 @@ std::string decodePng(const unsigned char* data, std::size_t size, LayeredImage&
                  : nch == 2 ? std::vector<std::string>{"Y", "A"}
                  : nch == 3 ? std::vector<std::string>{"R", "G", "B"}
                             : std::vector<std::string>{"R", "G", "B", "A"};
-  toPlanes(pixels, bits, out.pixelCount(), std::size_t(nch), out);
+  pngToPlanes(pixels, bits, out.pixelCount(), std::size_t(nch), out);
   return "";
 }
 

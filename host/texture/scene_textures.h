@@ -1,5 +1,5 @@
-// scene_textures.h: every texture a scene's materials name, loaded once each through
-// OpenImageIO, sRGB-decoded (integer images), mip-mapped and packed into the device's texture
+// scene_textures.h: every texture a scene's materials name, loaded once each (image/image_read.h),
+// sRGB-decoded (integer images), mip-mapped and packed into the device's texture
 // tables (kernels/shared/types.h TextureDesc / TextureLevel, RGBA half texels) under a byte budget.
 // Reads Scene::materials' albedoTexture / alphaTexture / emissionTexture; writes SceneTextures.
 #pragma once
