@@ -2,7 +2,8 @@
 // textureUsesOf): AO gives the same image, bit for bit, whether its albedo, emission, normal and
 // metallic-roughness files are loaded (the albedo AOV asks for them), left unread or corrupt; the
 // cut-out's alpha texture is still read; the albedo and normal AOVs, the denoiser's guides and the
-// lit integrators still read theirs (a corrupt one is exit 2 naming it).
+// lit integrators still read theirs (a corrupt one is exit 2 naming it); under a tight texture
+// budget the textures AO loads keep the levels they would keep with every texture loaded.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -125,4 +126,35 @@ TEST_CASE("texture uses: --denoise under AO reads the albedo textures for its gu
   const CliResult r = runMontecl(renderArgs(dir, "out.exr", {"--denoise"}));
   CHECK(r.exitCode == 2);
   CHECK(r.err.find("albedo.png: material") != std::string::npos);
+}
+
+TEST_CASE("texture uses: under a tight --texture-budget AO keeps the levels it would have with every texture loaded" *
+          doctest::test_suite("cli")) {
+  // The budget drops finest levels over all the scene's textures: the alpha texture loses its
+  // finest level to the albedo texture's share, whether or not the albedo texture is decoded.
+  TempDir dir;
+  writeUsesScene(dir);
+  writeImage8(dir.file("albedo.png"), 8, 8, 3, [](int x, int y, int c) { return ((x + y) % 2) * 200 + c; });
+  writeImage8(dir.file("alpha.png"), 8, 8, 1, [](int x, int, int) { return x % 2 ? 255 : 0; });
+  dir.write("scene.json",
+            R"({"camera": {"position": [0.2, -0.6, 1.4], "target": [0, 0, 0.3], "up": [0, 0, 1], "fov_y": 50,
+                "width": 32, "height": 24},
+                "meshes": [{"file": "floor.obj"},
+                           {"file": "quad.obj", "material": {"albedo_texture": "albedo.png", "alpha_texture": "alpha.png"}}],
+                "render": {"integrator": "ao", "spp": 4, "seed": 3, "ao_distance": 1.0, "background": [0.2, 0.3, 0.4]}})");
+  const std::vector<std::string> tight = {"--texture-budget", "0.0007"};  // 734 bytes: both 8x8 textures lose level 0
+  std::vector<std::string> all = tight;
+  all.insert(all.end(), {"--aov", "albedo"});
+  const CliResult loaded = runMontecl(renderArgs(dir, "loaded.exr", all));
+  REQUIRE(loaded.exitCode == 0);
+  CHECK(loaded.err.find("alpha.png 8x8 -> 4x4") != std::string::npos);
+  const CliResult plain = runMontecl(renderArgs(dir, "plain.exr", tight));
+  REQUIRE(plain.exitCode == 0);
+  const CliResult full = runMontecl(renderArgs(dir, "full.exr", {}));
+  REQUIRE(full.exitCode == 0);
+  const LayeredImage a = readLayeredImage(dir.file("loaded.exr"));
+  const LayeredImage b = readLayeredImage(dir.file("plain.exr"));
+  const LayeredImage c = readLayeredImage(dir.file("full.exr"));
+  CHECK(samePlanes(a, b, kRenderPlanes));
+  CHECK(!samePlanes(b, c, kRenderPlanes));  // the dropped level shows: the budget did change the image
 }

@@ -81,7 +81,21 @@ struct HalfChain {
   int width = 0, height = 0;                    // of level 0
   std::vector<std::pair<int, int>> sizes;       // of each level
   std::vector<std::vector<std::uint16_t>> levels;
+  // A texture no image of this render reads (TextureUses), known by its size alone: it takes part
+  // in the budget's choice of levels, as it would if it were loaded, so that the textures that are
+  // loaded keep the same levels (the same image) whichever others are; it gets no TextureDesc.
+  bool sizeOnly = false;
 };
+
+// The chain a w x h image would have, without texels.
+HalfChain sizeOnlyChain(int w, int h) {
+  HalfChain c;
+  c.width = w;
+  c.height = h;
+  c.sizeOnly = true;
+  for (int k = 0; k < mipLevelCount(w, h); ++k) c.sizes.push_back({std::max(1, w >> k), std::max(1, h >> k)});
+  return c;
+}
 
 // The same levels as buildMipChain(image), each converted as soon as it exists (two float levels
 // live at a time).
@@ -121,6 +135,8 @@ void packChains(SceneTextures& out, std::vector<HalfChain> chains, std::uint64_t
   int droppedCount = 0;
   for (std::size_t t = 0; t < count; ++t) {
     const HalfChain& c = chains[t];
+    if (c.sizeOnly) continue;
+    const std::size_t index = out.textures.size();  // files[] names the loaded textures only
     TextureDesc d{};
     d.firstLevel = std::uint32_t(out.levels.size());
     d.levelCount = std::uint32_t(c.sizes.size() - std::size_t(drop[t]));
@@ -137,7 +153,7 @@ void packChains(SceneTextures& out, std::vector<HalfChain> chains, std::uint64_t
       texelCount += std::uint64_t(c.sizes[k].first) * c.sizes[k].second;
     }
     if (drop[t] > 0)
-      dropped << (droppedCount++ ? ", " : "") << (t < out.files.size() ? out.files[t] : "texture " + std::to_string(t))
+      dropped << (droppedCount++ ? ", " : "") << (index < out.files.size() ? out.files[index] : "texture " + std::to_string(index))
               << " " << c.width << "x" << c.height << " -> " << c.sizes[drop[t]].first << "x"
               << c.sizes[drop[t]].second;
   }
@@ -145,7 +161,7 @@ void packChains(SceneTextures& out, std::vector<HalfChain> chains, std::uint64_t
   out.texels.clear();
   out.texels.reserve(texelCount * 4);
   for (std::size_t t = 0; t < count; ++t) {
-    for (std::size_t k = std::size_t(drop[t]); k < chains[t].levels.size(); ++k)
+    for (std::size_t k = std::size_t(drop[t]); k < chains[t].levels.size() && !chains[t].sizeOnly; ++k)
       out.texels.insert(out.texels.end(), chains[t].levels[k].begin(), chains[t].levels[k].end());
     chains[t] = HalfChain{};
   }
@@ -218,12 +234,15 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     std::vector<HalfChain> images;
     bool integer = false, hasAlpha = false;
     bool alphaBelowOne = false;  // some texel's alpha is below 1 (read for colour textures)
+    // Whether an image of this render reads the file's colour (albedo, emission) or its data
+    // (metallic-roughness, normal map) texture: otherwise that texture is a size-only chain.
+    bool colourRead = false, dataRead = false;
     std::string error;
   };
   std::vector<File> files;
   std::map<std::string, std::size_t> fileIndex;
   const std::string kLinear = std::string(1, '\0') + "linear";
-  const auto useLinear = [&](const MaterialDesc& m, const std::string& path, const char* key) {
+  const auto useLinear = [&](const MaterialDesc& m, const std::string& path, const char* key, bool read) {
     auto [it, added] = fileIndex.emplace(path + kLinear, files.size());
     if (added) {
       files.emplace_back();
@@ -232,8 +251,9 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
       files.back().key = key;
       files.back().asLinear = true;
     }
+    files[it->second].dataRead |= read;
   };
-  const auto use = [&](const MaterialDesc& m, const std::string& path, const char* key, bool colour) {
+  const auto use = [&](const MaterialDesc& m, const std::string& path, const char* key, bool colour, bool read) {
     auto [it, added] = fileIndex.emplace(path, files.size());
     if (added) {
       files.emplace_back();
@@ -242,13 +262,14 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
       files.back().key = key;
     }
     (colour ? files[it->second].asColour : files[it->second].asAlpha) = true;
+    if (colour) files[it->second].colourRead |= read;
   };
   const auto normalKey = [](const MaterialDesc& m) {
     char scale[32];
     std::snprintf(scale, sizeof scale, "%a", double(m.normalScale));
     return m.normalTexture + std::string(1, '\0') + "normal " + scale;
   };
-  const auto useNormal = [&](const MaterialDesc& m) {
+  const auto useNormal = [&](const MaterialDesc& m, bool read) {
     auto [it, added] = fileIndex.emplace(normalKey(m), files.size());
     if (added) {
       files.emplace_back();
@@ -258,15 +279,21 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
       files.back().asNormal = true;
       files.back().normalScale = m.normalScale;
     }
+    files[it->second].dataRead |= read;
   };
+  // Every file in the order a render that reads every texture lists them, marked with what this
+  // render reads of it (the budget's choice of levels depends on that order).
   for (const MaterialDesc& m : scene.materials) {
-    if (uses.reflectance && !m.albedoTexture.empty()) use(m, m.albedoTexture, "map_Kd", true);
-    if (!m.alphaTexture.empty()) use(m, m.alphaTexture, "map_d", false);
-    if (uses.emission && !m.emissionTexture.empty()) use(m, m.emissionTexture, "map_Ke", true);
-    if (uses.reflectance && !m.metallicRoughnessTexture.empty())
-      useLinear(m, m.metallicRoughnessTexture, "metallicRoughnessTexture");
-    if (uses.normal && !m.normalTexture.empty()) useNormal(m);
+    if (!m.albedoTexture.empty()) use(m, m.albedoTexture, "map_Kd", true, uses.reflectance);
+    if (!m.alphaTexture.empty()) use(m, m.alphaTexture, "map_d", false, true);
+    if (!m.emissionTexture.empty()) use(m, m.emissionTexture, "map_Ke", true, uses.emission);
+    if (!m.metallicRoughnessTexture.empty())
+      useLinear(m, m.metallicRoughnessTexture, "metallicRoughnessTexture", uses.reflectance);
+    if (!m.normalTexture.empty()) useNormal(m, uses.normal);
   }
+  const auto decoded = [](const File& f) { return f.asAlpha || f.colourRead || f.dataRead; };
+  // Nothing to decode: no texture at all (the others' sizes would choose nothing).
+  if (std::none_of(files.begin(), files.end(), decoded)) files.clear();
   // A file whose finest level alone is over the budget is refused from its header, before it is
   // decoded: the budget would drop that level anyway, and a 69-byte PNG can declare 16384 x 16384.
   const ImageSizeCheck fitsBudget = [budgetBytes](int w, int h, int) -> std::string {
@@ -281,8 +308,24 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
   if (!files.empty()) parallelChunks(files.size(), 0, 1, [&](std::size_t, std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       File& f = files[i];
+      const auto embedded = scene.embeddedImages.find(f.path);
+      if (!decoded(f)) {  // only its size, from the header (no pixel is decoded)
+        int w = 0, h = 0;
+        const ImageSizeCheck size = [&](int fw, int fh, int) -> std::string {
+          w = fw, h = fh;
+          return "size only";
+        };
+        try {
+          if (embedded != scene.embeddedImages.end()) readImageMemory(f.path, embedded->second, size);
+          else readLayeredImage(f.path, size);
+        } catch (const InputError&) {
+          // A file that cannot be read would fail a render that reads it; here it only counts as
+          // its size, when the header gave one.
+        }
+        if (w > 0 && h > 0) f.images.push_back(sizeOnlyChain(w, h));
+        continue;
+      }
       try {
-        const auto embedded = scene.embeddedImages.find(f.path);
         const LayeredImage image = embedded != scene.embeddedImages.end()
                                        ? readImageMemory(f.path, embedded->second, fitsBudget)
                                        : readLayeredImage(f.path, fitsBudget);
@@ -301,7 +344,9 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
         // texture), else the first channel, never decoded.
         const bool colourDecode = f.integer;
         const bool alphaDecode = f.hasAlpha && f.integer;
-        if (f.asColour || (f.asAlpha && alphaDecode == colourDecode))
+        if (f.asColour && !f.colourRead && !(f.asAlpha && alphaDecode == colourDecode))
+          f.images.push_back(sizeOnlyChain(image.width, image.height));  // the colour texture, not read
+        else if (f.asColour || (f.asAlpha && alphaDecode == colourDecode))
           f.images.push_back(halfChain(rgbaFromImage(image, colourDecode)));
         if (f.asAlpha && alphaDecode != colourDecode) f.images.push_back(halfChain(rgbaFromImage(image, alphaDecode)));
         if (f.asLinear) f.images.push_back(halfChain(rgbaFromImage(image, false)));
@@ -320,14 +365,24 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
   }, 1);
   for (const File& f : files)
     if (!f.error.empty()) throwInputError(f.path, "material '" + f.material + "' " + f.key, f.error);
-  // Texture indices in file order.
+  // Texture indices in file order, counting the loaded textures only; sizeBefore[i][j]: how many
+  // of file i's textures before its j-th are size-only.
   std::vector<HalfChain> images;
   std::vector<std::uint32_t> first(files.size());
+  std::vector<std::vector<std::uint32_t>> sizeOnlyBefore(files.size());
+  std::uint32_t loaded = 0;
   for (std::size_t i = 0; i < files.size(); ++i) {
-    first[i] = std::uint32_t(images.size());
+    first[i] = loaded;
+    std::uint32_t skipped = 0;
     for (HalfChain& im : files[i].images) {
+      sizeOnlyBefore[i].push_back(skipped);
+      if (im.sizeOnly) {
+        ++skipped;
+      } else {
+        ++loaded;
+        out.files.push_back(files[i].path);
+      }
       images.push_back(std::move(im));
-      out.files.push_back(files[i].path);
     }
     files[i].images.clear();
   }
@@ -341,9 +396,10 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     if (!m.alphaTexture.empty()) {
       const std::size_t k = fileIndex.at(m.alphaTexture);
       const File& f = files[k];
-      // The second texture of a file is its linear alpha variant (see above).
-      const bool second = f.asColour && (f.hasAlpha && f.integer) != f.integer;
-      out.materials[i].alpha = first[k] + (second ? 1u : 0u);
+      // The second texture of a file is its linear alpha variant (see above); a colour texture
+      // before it that is not read is size-only.
+      const std::size_t j = f.asColour && (f.hasAlpha && f.integer) != f.integer ? 1u : 0u;
+      out.materials[i].alpha = first[k] + std::uint32_t(j) - (j < sizeOnlyBefore[k].size() ? sizeOnlyBefore[k][j] : 0u);
       out.materials[i].alphaChannel = f.hasAlpha ? 3u : 0u;
     }
   }
