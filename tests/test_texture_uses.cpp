@@ -158,3 +158,29 @@ TEST_CASE("texture uses: under a tight --texture-budget AO keeps the levels it w
   CHECK(samePlanes(a, b, kRenderPlanes));
   CHECK(!samePlanes(b, c, kRenderPlanes));  // the dropped level shows: the budget did change the image
 }
+
+TEST_CASE("texture uses: one file as colour and as cut-out (no alpha channel): AO's image with or without the colour" *
+          doctest::test_suite("cli")) {
+  // Such a file is two textures (sRGB colour, linear alpha from its first channel); AO decodes it
+  // for the alpha one only and must pick that one, with the budget's levels of both.
+  TempDir dir;
+  writeUsesScene(dir);
+  dir.write("quad.obj",
+            "mtllib quad.mtl\nv -0.6 -0.6 0.3\nv 0.6 -0.6 0.3\nv 0.6 0.6 0.3\nv -0.6 0.6 0.3\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+            "usemtl m\nf 1/1 2/2 3/3 4/4\n");
+  dir.write("quad.mtl", "newmtl m\nKd 1 1 1\nmap_Kd both.png\nmap_d both.png\n");
+  writeImage8(dir.file("both.png"), 8, 8, 3, [](int x, int y, int) { return x % 2 ? 255 : y * 30; });
+  dir.write("scene.json",
+            R"({"camera": {"position": [0.2, -0.6, 1.4], "target": [0, 0, 0.3], "up": [0, 0, 1], "fov_y": 50,
+                "width": 32, "height": 24},
+                "meshes": [{"file": "floor.obj"}, {"file": "quad.obj"}],
+                "render": {"integrator": "ao", "spp": 4, "seed": 3, "ao_distance": 1.0, "background": [0.2, 0.3, 0.4]}})");
+  for (const char* budget : {"1024", "0.0007"}) {
+    CAPTURE(budget);
+    const CliResult loaded = runMontecl(renderArgs(dir, "loaded.exr", {"--texture-budget", budget, "--aov", "albedo"}));
+    REQUIRE(loaded.exitCode == 0);
+    const CliResult plain = runMontecl(renderArgs(dir, "plain.exr", {"--texture-budget", budget}));
+    REQUIRE(plain.exitCode == 0);
+    CHECK(samePlanes(readLayeredImage(dir.file("loaded.exr")), readLayeredImage(dir.file("plain.exr")), kRenderPlanes));
+  }
+}
