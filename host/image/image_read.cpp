@@ -51,6 +51,37 @@ LayeredImage readImageFile(const std::string& path, const ImageSizeCheck& check)
   return oiioRead(path, check);
 }
 
+ImageSize readImageSize(const std::string& name, const std::vector<unsigned char>* bytes) {
+  ImageSize size;
+  const ImageSizeCheck capture = [&](int w, int h, int) -> std::string {
+    size = ImageSize{w, h};
+    return "only its size was asked for";
+  };
+  const auto attempt = [&](const auto& read) {
+    try {
+      read();
+    } catch (const InputError&) {  // the capture's refusal, or a file that cannot be read
+    }
+  };
+  if (bytes) {
+    attempt([&] { readImageMemory(name, *bytes, capture); });
+    return size;
+  }
+  const ImageReader format = readerOf(name);
+  if (format != ImageReader::Other) {
+    // The header is at the start: a prefix of the file is enough unless metadata comes first.
+    std::ifstream in(name, std::ios::binary);
+    std::vector<unsigned char> prefix(256u << 10);
+    in.read(reinterpret_cast<char*>(prefix.data()), std::streamsize(prefix.size()));
+    prefix.resize(std::size_t(in.gcount()));
+    LayeredImage unused;
+    attempt([&] { decodeOwn(format, name, prefix.data(), prefix.size(), unused, capture); });
+    if (size.width > 0) return size;
+  }
+  attempt([&] { readImageFile(name, capture); });
+  return size;
+}
+
 LayeredImage readImageMemory(const std::string& name, const std::vector<unsigned char>& bytes,
                              const ImageSizeCheck& check) {
   const ImageReader format = readerOf(name);

@@ -21,6 +21,14 @@ LayeredImage readImageFile(const std::string& path, const ImageSizeCheck& check 
 LayeredImage readImageMemory(const std::string& name, const std::vector<unsigned char>& bytes,
                              const ImageSizeCheck& check = {});
 
+// The width and height an image declares, from its header alone (no pixel is decoded; of a PNG or
+// JPEG file only the first 256 KiB are read when they hold the header). {0, 0} when it cannot be
+// read. bytes: the encoded image when it is held in memory (name then only names it), else null.
+struct ImageSize {
+  int width = 0, height = 0;
+};
+ImageSize readImageSize(const std::string& name, const std::vector<unsigned char>* bytes = nullptr);
+
 // Whether montecl reads name (by its extension) without OpenImageIO: .png, .jpg, .jpeg, any case.
 bool readsWithoutOiio(const std::string& name);
 

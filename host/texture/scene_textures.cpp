@@ -310,19 +310,10 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
       File& f = files[i];
       const auto embedded = scene.embeddedImages.find(f.path);
       if (!decoded(f)) {  // only its size, from the header (no pixel is decoded)
-        int w = 0, h = 0;
-        const ImageSizeCheck size = [&](int fw, int fh, int) -> std::string {
-          w = fw, h = fh;
-          return "size only";
-        };
-        try {
-          if (embedded != scene.embeddedImages.end()) readImageMemory(f.path, embedded->second, size);
-          else readLayeredImage(f.path, size);
-        } catch (const InputError&) {
-          // A file that cannot be read would fail a render that reads it; here it only counts as
-          // its size, when the header gave one.
-        }
-        if (w > 0 && h > 0) f.images.push_back(sizeOnlyChain(w, h));
+        // A file that cannot be read would fail a render that reads it; here it only counts as
+        // its size, when the header gives one.
+        const ImageSize size = readImageSize(f.path, embedded != scene.embeddedImages.end() ? &embedded->second : nullptr);
+        if (size.width > 0 && size.height > 0) f.images.push_back(sizeOnlyChain(size.width, size.height));
         continue;
       }
       try {
