@@ -10,6 +10,7 @@
 
 #include "image/exr_layers.h"
 #include "image/oiio_loader.h"
+#include "texture/bump_gradient.h"
 #include "texture/mip_chain.h"
 #include "texture/texture_budget.h"
 #include "util/errors.h"
@@ -17,10 +18,12 @@
 
 namespace montecl {
 
+bool usesBumpMap(const MaterialDesc& m) { return !m.bumpTexture.empty() && m.normalTexture.empty(); }
+
 bool sceneHasTextures(const Scene& scene) {
   for (const MaterialDesc& m : scene.materials)
     if (!m.albedoTexture.empty() || !m.alphaTexture.empty() || !m.emissionTexture.empty() ||
-        !m.metallicRoughnessTexture.empty() || !m.normalTexture.empty())
+        !m.metallicRoughnessTexture.empty() || !m.normalTexture.empty() || usesBumpMap(m))
       return true;
   return false;
 }
@@ -70,6 +73,7 @@ void setTextureIndices(std::vector<Material>& materials, const SceneTextures& te
     materials[i].maps.y = glm::uintBitsToFloat(t.metallicRoughness);
     // One more than the index, 0 none: a zeroed Material (hand-made in tests) has no normal map.
     materials[i].maps.z = glm::uintBitsToFloat(t.normal == MCL_NO_TEXTURE ? 0u : t.normal + 1u);
+    materials[i].maps.w = glm::uintBitsToFloat(t.bump == MCL_NO_TEXTURE ? 0u : t.bump + 1u);  // the same rule
   }
 }
 
@@ -187,6 +191,7 @@ void applySampling(SceneTextures& out, const Scene& scene, bool colour) {
       view(t.emission, m.emissionSampling);
       view(t.metallicRoughness, m.metallicRoughnessSampling);
       view(t.normal, m.normalSampling);
+      view(t.bump, m.bumpSampling);
     }
     view(t.alpha, m.alphaSampling);
   }
@@ -215,6 +220,11 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     // with the scale baked in (normal_map.h).
     bool asNormal = false;
     float normalScale = 1.0f;
+    // A bump map: a File of its own per (path, scale, wrap modes), texels the scaled height
+    // gradient (bump_gradient.h), whose differences follow the wrap modes.
+    bool asBump = false;
+    float bumpScale = 1.0f;
+    std::uint32_t wrapS = 0, wrapT = 0;
     // After reading: the file's textures (sRGB-decoded colour and/or linear alpha; one when they
     // coincide), mip-mapped, and whether it has an alpha channel.
     std::vector<HalfChain> images;
@@ -261,6 +271,25 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
       files.back().normalScale = m.normalScale;
     }
   };
+  const auto bumpKey = [](const MaterialDesc& m) {
+    char key[64];
+    std::snprintf(key, sizeof key, "bump %a %u %u", double(m.bumpScale), unsigned(m.bumpSampling.wrapS),
+                  unsigned(m.bumpSampling.wrapT));
+    return m.bumpTexture + std::string(1, '\0') + key;
+  };
+  const auto useBump = [&](const MaterialDesc& m) {
+    auto [it, added] = fileIndex.emplace(bumpKey(m), files.size());
+    if (added) {
+      files.emplace_back();
+      files.back().path = m.bumpTexture;
+      files.back().material = m.name;
+      files.back().key = "bump";
+      files.back().asBump = true;
+      files.back().bumpScale = m.bumpScale;
+      files.back().wrapS = m.bumpSampling.wrapS;
+      files.back().wrapT = m.bumpSampling.wrapT;
+    }
+  };
   for (const MaterialDesc& m : scene.materials) {
     if (colour && !m.albedoTexture.empty()) use(m, m.albedoTexture, "map_Kd", true);
     if (!m.alphaTexture.empty()) use(m, m.alphaTexture, "map_d", false);
@@ -268,6 +297,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     if (colour && !m.metallicRoughnessTexture.empty())
       useLinear(m, m.metallicRoughnessTexture, "metallicRoughnessTexture");
     if (colour && !m.normalTexture.empty()) useNormal(m);
+    if (colour && usesBumpMap(m)) useBump(m);
   }
   // A file whose finest level alone is over the budget is refused from its header, before it is
   // decoded: the budget would drop that level anyway, and a 69-byte PNG can declare 16384 x 16384.
@@ -313,6 +343,8 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
           for (glm::vec4& t : n.texels) t = glm::vec4((2.0f * t.x - 1.0f) * sc, (2.0f * t.y - 1.0f) * sc, 2.0f * t.z - 1.0f, 1.0f);
           f.images.push_back(halfChain(std::move(n)));
         }
+        if (f.asBump)  // heights are data: linear, never sRGB-decoded
+          f.images.push_back(halfChain(bumpGradient(rgbaFromImage(image, false), f.bumpScale, f.wrapS, f.wrapT)));
       } catch (const InputError& e) {
         std::string why = e.what();
         const std::string prefix = f.path + ": ";
@@ -340,6 +372,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     if (colour && !m.metallicRoughnessTexture.empty())
       out.materials[i].metallicRoughness = first[fileIndex.at(m.metallicRoughnessTexture + kLinear)];
     if (colour && !m.normalTexture.empty()) out.materials[i].normal = first[fileIndex.at(normalKey(m))];
+    if (colour && usesBumpMap(m)) out.materials[i].bump = first[fileIndex.at(bumpKey(m))];
     if (!m.alphaTexture.empty()) {
       const std::size_t k = fileIndex.at(m.alphaTexture);
       const File& f = files[k];
