@@ -264,7 +264,7 @@ TEST_CASE("bump map: a -bm that is not a finite number, or a missing bump file, 
       {"bump gone.png", "m.mtl: line 3: material 'a': bump 'gone.png': cannot open"},
   };
   for (const auto& c : cases) {
-    CAPTURE(c.statement);
+    CAPTURE(std::string(c.statement));
     dir.write("m.mtl", std::string("newmtl a\nKd 0.5 0.5 0.5\n") + c.statement + "\n");
     const CliResult r = runMontecl({"render", dir.file("m.obj"), "-o", dir.file("out.png"), "-q"});
     INFO(r.err);
