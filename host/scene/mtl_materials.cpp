@@ -294,8 +294,8 @@ std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<t
       d.normalScale = static_cast<float>(m.normal_texopt.bump_multiplier);
       checkMultiplier(src, "norm", d.normalScale);
     }
-    // bump: a height map (linear), -bm its scale: the displacement is -bm x height, in the UV
-    // tangent frame's units (bump_map.h). Beside a normal map it is not used (usesBumpMap).
+    // bump: a height map (linear), -bm its scale: the surface is displaced by -bm x height world
+    // units along the shading normal (bump_map.h). Beside a normal map it is not used (usesBumpMap).
     std::string bumpKey = "bump";
     for (const char* k : {"bump", "map_bump", "map_Bump"})
       if (src.has(k) && (!src.has(bumpKey) || src.block->line.at(k) < src.block->line.at(bumpKey))) bumpKey = k;
