@@ -163,7 +163,7 @@ TEST_CASE("MTL: one warning per kind of unused statement, naming the MTL and the
   TempDir dir;
   dir.write("q.obj", kQuadObj);
   dir.write("m.mtl",
-            "newmtl tex\nKa 0 0 0\nillum 2\nNi 1.5\nd 0.5\nmap_Bump n.png\nbump n.png\nmap_Ks s.png\n"
+            "newmtl tex\nKa 0 0 0\nillum 2\nNi 1.5\nd 0.5\ndisp n.png\nmap_Ns n.png\nmap_Ks s.png\n"
             "d 1\n"
             "newmtl other\nKa 1 1 1\nillum 1\nmap_Kd -s 2 2 1 t.png\n");
   dir.write("t.png", "x");
@@ -174,8 +174,8 @@ TEST_CASE("MTL: one warning per kind of unused statement, naming the MTL and the
   CHECK(countContaining(warnings, "m.mtl: line 3: 'illum' (illumination model) not used") == 1);
   CHECK(countContaining(warnings, "'Ni'") == 1);
   CHECK(countContaining(warnings, "m.mtl: line 5: 'd' (constant opacity) not used") == 1);
-  CHECK(countContaining(warnings, "'map_Bump' (bump map)") == 1);
-  CHECK(countContaining(warnings, "'bump' (bump map)") == 1);
+  CHECK(countContaining(warnings, "'disp' (displacement map)") == 1);
+  CHECK(countContaining(warnings, "'map_Ns' (exponent texture)") == 1);
   CHECK(countContaining(warnings, "'map_Ks' (specular texture)") == 1);
   CHECK(countContaining(warnings, "m.mtl: line 13: texture option '-s'") == 1);
   CHECK(warnings.size() == 8);  // d 1 says nothing montecl ignores

@@ -4,6 +4,7 @@
 #include "conformance/scenes.h"
 
 #include "scene/builtin_scenes.h"
+#include "texture/bump_gradient.h"
 #include "texture/mip_chain.h"
 
 #include <fstream>
@@ -85,15 +86,16 @@ ConformanceCase texturedCase(const Scene& light, const std::string& name) {
 
 // The polygon-light scene with an emission texture on the light (black but for a bright cross,
 // so some of the light's triangles emit only in part) and/or a tangent-space normal map on the
-// floor (decoded vectors, as scene_textures.cpp stores them): the textured-emitter table and
-// pdfs, and the mapped shading frame.
-ConformanceCase lampAndBumpsCase(const Scene& light, const std::string& name, bool lamp, bool bumps) {
+// floor (decoded vectors, as scene_textures.cpp stores them) or a height map (its gradient, as
+// bump_gradient.cpp makes it): the textured-emitter table and pdfs, and the mapped shading frame.
+ConformanceCase lampAndBumpsCase(const Scene& light, const std::string& name, bool lamp, bool bumps,
+                                 bool heights = false) {
   ConformanceCase c;
   c.name = name;
   c.scene = light;
   c.scene.path = "<textured lamp and bumps scene>";
   for (SceneTriangle& t : c.scene.triangles) {
-    if (!((bumps && t.material == 0) || (lamp && t.material == 1))) continue;
+    if (!(((bumps || heights) && t.material == 0) || (lamp && t.material == 1))) continue;
     for (int k = 0; k < 3; ++k)
       t.uv[k] = t.material == 0 ? glm::vec2(t.v[k].x, t.v[k].z) * 1.7f + glm::vec2(0.11f, 0.05f)
                                 : glm::vec2(t.v[k].x + t.v[k].z, t.v[k].y) * 1.1f + glm::vec2(0.2f, 0.3f);
@@ -112,11 +114,20 @@ ConformanceCase lampAndBumpsCase(const Scene& light, const std::string& name, bo
     }
   auto t = std::make_shared<SceneTextures>();
   std::vector<std::string> warnings;
-  packTextures(*t, {cross, normals}, kDefaultTextureBudget, warnings);
-  t->files = {"<cross>", "<normals>"};
+  RgbaImage height;  // bumps of a few texels each, on a slope
+  height.width = height.height = 8;
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) {
+      const float h = 0.05f * float(x) + ((x * 5 + y * 3) % 7 == 0 ? 0.3f : 0.0f);
+      height.texels.push_back(glm::vec4(h, h, h, 1.0f));
+    }
+  packTextures(*t, {cross, normals, bumpGradient(height, 0.2f, MCL_WRAP_REPEAT, MCL_WRAP_REPEAT)}, kDefaultTextureBudget,
+               warnings);
+  t->files = {"<cross>", "<normals>", "<heights>"};
   t->materials.assign(c.scene.materials.size(), MaterialTextures{});
   if (lamp) t->materials[1].emission = 0;
   if (bumps) t->materials[0].normal = 1;
+  if (heights) t->materials[0].bump = 2;
   c.textures = t;
   return c;
 }
@@ -298,6 +309,8 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   cases.push_back(lampAndBumpsCase(withPath(light, 1), "emissive-texture/path", true, false));
   cases.push_back(lampAndBumpsCase(withDirect(light, DirectSampling::Mis, 2), "normal-map/direct-mis", false, true));
   cases.push_back(lampAndBumpsCase(withPath(light, 1), "normal-map/path", false, true));
+  cases.push_back(lampAndBumpsCase(withDirect(light, DirectSampling::Mis, 2), "bump-map/direct-mis", false, false, true));
+  cases.push_back(lampAndBumpsCase(withPath(light, 1), "bump-map/path", false, false, true));
 
   const std::string path = o.cornellPath.empty() ? defaultCornellPath() : o.cornellPath;
   if (!std::ifstream(path)) {

@@ -19,10 +19,14 @@ namespace {
 
 bool isBlank(char c) { return c == ' ' || c == '\t'; }
 
+// The three spellings of the bump map statement (tinyobjloader reads each as bump_texname).
+bool isBumpKey(const std::string& key) { return key == "bump" || key == "map_bump" || key == "map_Bump"; }
+
 // What montecl reads from an MTL; every other statement is reported once per kind.
 bool isUsed(const std::string& key) {
   // Pm / Pr always pick a kind; illum and Ni only for glass (scanMtl, mtlKind).
-  static const std::set<std::string> used = {"newmtl", "Kd", "Ke", "Ks", "Ns", "map_Kd", "map_d", "map_Ke", "Pm", "Pr", "norm"};
+  static const std::set<std::string> used = {"newmtl", "Kd", "Ke", "Ks", "Ns", "map_Kd", "map_d", "map_Ke", "Pm", "Pr", "norm",
+                                           "bump", "map_bump", "map_Bump"};
   return used.count(key) > 0;
 }
 
@@ -30,8 +34,7 @@ std::string unusedText(const std::string& key) {
   static const std::map<std::string, std::string> what = {
       {"Ka", "ambient colour"},          {"illum", "illumination model"},  {"Ni", "index of refraction"},
       {"Tf", "transmission filter"},     {"map_Ka", "ambient texture"},    {"map_Ks", "specular texture"},
-      {"map_Ns", "exponent texture"},    {"bump", "bump map"},             {"map_bump", "bump map"},
-      {"map_Bump", "bump map"},          {"disp", "displacement map"},
+      {"map_Ns", "exponent texture"},    {"disp", "displacement map"},
       {"refl", "reflection map"},        {"Pr", "PBR roughness"},
       {"Pm", "PBR metallic"},            {"map_Pr", "roughness texture"},  {"map_Pm", "metallic texture"}};
   auto it = what.find(key);
@@ -95,6 +98,18 @@ void scanMtl(const std::string& text, MtlFile& f) {
         if (token.size() > 1 && token[0] == '-') {
           f.unused.add("texture options", where,
                        "texture option '" + token + "' not used by montecl (textures repeat, unscaled), ignored");
+          break;
+        }
+    } else if (isBumpKey(key) || key == "norm") {
+      // -bm is the height (normal) scale; the other options (offset, scale, channel) are not read.
+      std::string token;
+      while (rest >> token)
+        if (token == "-bm") {
+          rest >> token;
+          current.bm.emplace(key, token);
+        } else if (isBumpKey(key) && token.size() > 1 && token[0] == '-') {
+          f.unused.add("bump options", where,
+                       "bump map option '" + token + "' not used by montecl (only -bm, the height scale), ignored");
           break;
         }
     }
@@ -190,6 +205,20 @@ void mtlKind(const tinyobj::material_t& m, const MaterialSource& src, MaterialDe
   }
 }
 
+// The -bm of statement key (norm, bump) as written and as tinyobjloader read it (value): a number
+// that is finite, else InputError naming the line.
+void checkMultiplier(const MaterialSource& src, const std::string& key, float value) {
+  std::string text;
+  if (src.block && src.block->bm.count(key)) {
+    text = src.block->bm.at(key);
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !std::isfinite(v) || !std::isfinite(float(v))) value = NAN;
+  }
+  if (!std::isfinite(value))
+    src.fail(key, key + " -bm " + (text.empty() ? "" : "'" + oneLine(text, 40) + "' ") + "must be a finite number");
+}
+
 }  // namespace
 
 bool MtlReader::operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
@@ -224,6 +253,7 @@ std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<t
   GlossyScaling scaled;  // Kd + Ks > 1: one warning per OBJ
   std::string scaledAt;  // where the first scaled material is
   TextureLookup look{&scene, warnings};
+  std::map<std::string, KindWarnings> bothMaps;  // per MTL: materials with both norm and bump
   const std::size_t missingBefore = scene.missingTextures.size();
   for (std::size_t i = 0; i < mats.size(); ++i) {
     const tinyobj::material_t& m = mats[i];
@@ -262,9 +292,26 @@ std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<t
     if (!m.normal_texname.empty() || src.has("norm")) {
       d.normalTexture = texturePath(src, "norm", m.normal_texname, look);
       d.normalScale = static_cast<float>(m.normal_texopt.bump_multiplier);
-      if (!std::isfinite(d.normalScale)) src.fail("norm", "norm -bm must be a finite number");
+      checkMultiplier(src, "norm", d.normalScale);
     }
-    for (const std::string* t : {&d.albedoTexture, &d.alphaTexture, &d.emissionTexture, &d.normalTexture})
+    // bump: a height map (linear), -bm its scale: the surface is displaced by -bm x height world
+    // units along the shading normal (bump_map.h). Beside a normal map it is not used (usesBumpMap).
+    std::string bumpKey = "bump";
+    for (const char* k : {"bump", "map_bump", "map_Bump"})
+      if (src.has(k) && (!src.has(bumpKey) || src.block->line.at(k) < src.block->line.at(bumpKey))) bumpKey = k;
+    if (!m.bump_texname.empty() || src.has(bumpKey)) {
+      d.bumpScale = static_cast<float>(m.bump_texopt.bump_multiplier);
+      checkMultiplier(src, bumpKey, d.bumpScale);
+      d.bumpTexture = texturePath(src, bumpKey, m.bump_texname, look);
+      if (!d.normalTexture.empty() && !d.bumpTexture.empty()) {
+        auto it = bothMaps.try_emplace(src.file, src.file).first;
+        it->second.add("norm and bump", src.where(bumpKey),
+                       "material '" + oneLine(m.name, 60) + "': both norm and " + bumpKey +
+                           ": the normal map is used, the bump map ignored");
+      }
+    }
+    for (const std::string* t : {&d.albedoTexture, &d.alphaTexture, &d.emissionTexture, &d.normalTexture,
+                                 &d.bumpTexture})
       if (!t->empty() && textures.insert(*t).second) scene.inputFiles.push_back(*t);
     const std::string where = "material '" + oneLine(m.name, 60) + "'";
     const float factor = checkGlossyMaterial(oneLine(src.file, 4096), where, d);
@@ -276,6 +323,7 @@ std::uint32_t appendMtlMaterials(const std::string& objPath, const std::vector<t
     scene.materials.push_back(d);
   }
   failOnMissingTextures(scene, missingBefore);
+  for (const auto& b : bothMaps) b.second.flush(warnings);
   scaled.warn(scaledAt, warnings);
   return base;
 }

@@ -1,9 +1,9 @@
 // mtl_materials.h: the MTL side of the OBJ loader. MtlReader opens the `mtllib` files for
 // tinyobjloader (relative to the OBJ, regular files only) and scans each one's text for the line
 // of every statement; appendMtlMaterials() turns tinyobj's materials into MaterialDesc (Kd, Ke,
-// Ks, Ns, map_Kd, map_d with paths resolved beside the MTL), validates them (InputError
+// Ks, Ns, map_Kd, map_d, map_Ke, norm, bump with paths resolved beside the MTL), validates them (InputError
 // "<mtl>: line N: material 'm': <problem>") and warns once per kind of statement montecl does
-// not use (Ka, illum, Ni, bump, map_Ks, d/Tr as a constant, texture options, ...).
+// not use (Ka, illum, Ni, map_Ks, d/Tr as a constant, texture options, ...).
 #pragma once
 #include <tiny_obj_loader.h>
 
@@ -20,6 +20,9 @@ namespace montecl {
 // One `newmtl` block of an MTL's text: the first line of each statement in it.
 struct MtlBlock {
   std::map<std::string, std::size_t> line;  // statement keyword -> line number
+  // norm / bump keyword -> the text after its -bm (first line): tinyobjloader reads a word that is
+  // not a number as 1, so the loader checks the text itself.
+  std::map<std::string, std::string> bm;
 };
 
 struct MtlFile {

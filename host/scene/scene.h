@@ -57,6 +57,11 @@ struct MaterialDesc {
   // n = ((2r - 1) normalScale, (2g - 1) normalScale, 2b - 1) in the triangle's UV tangent frame.
   std::string normalTexture;
   float normalScale = 1.0f;
+  // Height-map bump mapping (MTL bump / map_Bump / map_bump; linear, the mean of R, G, B): the
+  // surface displaced by bumpScale (-bm) x height along the shading normal (bump_map.h). A material
+  // with a normal map ignores it (the MTL loader drops it with a warning).
+  std::string bumpTexture;
+  float bumpScale = 1.0f;
   glm::vec3 specular{0.0f};   // Ks (the GGX glossy lobe), 0: Lambertian only
   float specularExponent = 0.0f;  // Ns
   // The kinds' own parameters (scene keys, host/scene/material_params.cpp; docs/scene-format.md);
@@ -74,7 +79,8 @@ struct MaterialDesc {
   // texture loader can say how to cut it out when its alpha is not all 1 (it renders opaque). "": none.
   std::string cutoutHint;
   // How each texture above is read (identity and repeat unless a glTF file says otherwise).
-  TextureSampling albedoSampling, alphaSampling, emissionSampling, metallicRoughnessSampling, normalSampling;
+  TextureSampling albedoSampling, alphaSampling, emissionSampling, metallicRoughnessSampling, normalSampling,
+      bumpSampling;
 };
 
 // Per-corner attributes of a triangle (SceneTriangle::attributes says which are present).

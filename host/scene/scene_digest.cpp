@@ -75,9 +75,15 @@ std::string sceneDigest(const Scene& scene) {
       append(bytes, &n, sizeof n);
       append(bytes, &m.normalScale, sizeof m.normalScale);
     }
+    if (!m.bumpTexture.empty()) {  // only when there is one, as the emission texture's
+      bytes.add("bump_texture");
+      const std::uint64_t b = fileContentHash(m.bumpTexture, files);
+      append(bytes, &b, sizeof b);
+      append(bytes, &m.bumpScale, sizeof m.bumpScale);
+    }
     // How the textures are read, only where it is not as they always were (other digests stay).
     for (const TextureSampling* t : {&m.albedoSampling, &m.alphaSampling, &m.emissionSampling,
-                                     &m.metallicRoughnessSampling, &m.normalSampling})
+                                     &m.metallicRoughnessSampling, &m.normalSampling, &m.bumpSampling})
       if (!t->identity()) {
         bytes.add("sampling");
         appendVec(bytes, t->row0);

@@ -10,6 +10,7 @@
 
 #include "image/exr_layers.h"
 #include "image/image_read.h"
+#include "texture/bump_gradient.h"
 #include "texture/mip_chain.h"
 #include "texture/texture_budget.h"
 #include "util/errors.h"
@@ -17,10 +18,12 @@
 
 namespace montecl {
 
+bool usesBumpMap(const MaterialDesc& m) { return !m.bumpTexture.empty() && m.normalTexture.empty(); }
+
 bool sceneHasTextures(const Scene& scene) {
   for (const MaterialDesc& m : scene.materials)
     if (!m.albedoTexture.empty() || !m.alphaTexture.empty() || !m.emissionTexture.empty() ||
-        !m.metallicRoughnessTexture.empty() || !m.normalTexture.empty())
+        !m.metallicRoughnessTexture.empty() || !m.normalTexture.empty() || usesBumpMap(m))
       return true;
   return false;
 }
@@ -70,6 +73,7 @@ void setTextureIndices(std::vector<Material>& materials, const SceneTextures& te
     materials[i].maps.y = glm::uintBitsToFloat(t.metallicRoughness);
     // One more than the index, 0 none: a zeroed Material (hand-made in tests) has no normal map.
     materials[i].maps.z = glm::uintBitsToFloat(t.normal == MCL_NO_TEXTURE ? 0u : t.normal + 1u);
+    materials[i].maps.w = glm::uintBitsToFloat(t.bump == MCL_NO_TEXTURE ? 0u : t.bump + 1u);  // the same rule
   }
 }
 
@@ -202,6 +206,7 @@ void applySampling(SceneTextures& out, const Scene& scene, const TextureUses& us
     if (uses.emission) view(t.emission, m.emissionSampling);
     if (uses.reflectance) view(t.metallicRoughness, m.metallicRoughnessSampling);
     if (uses.normal) view(t.normal, m.normalSampling);
+    if (uses.normal) view(t.bump, m.bumpSampling);
     view(t.alpha, m.alphaSampling);
   }
 }
@@ -229,6 +234,11 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     // with the scale baked in (normal_map.h).
     bool asNormal = false;
     float normalScale = 1.0f;
+    // A bump map: a File of its own per (path, scale, wrap modes), texels the scaled height
+    // gradient (bump_gradient.h), whose differences follow the wrap modes.
+    bool asBump = false;
+    float bumpScale = 1.0f;
+    std::uint32_t wrapS = 0, wrapT = 0;
     // After reading: the file's textures (sRGB-decoded colour and/or linear alpha; one when they
     // coincide), mip-mapped, and whether it has an alpha channel.
     std::vector<HalfChain> images;
@@ -281,6 +291,26 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     }
     files[it->second].dataRead |= read;
   };
+  const auto bumpKey = [](const MaterialDesc& m) {
+    char key[64];
+    std::snprintf(key, sizeof key, "bump %a %u %u", double(m.bumpScale), unsigned(m.bumpSampling.wrapS),
+                  unsigned(m.bumpSampling.wrapT));
+    return m.bumpTexture + std::string(1, '\0') + key;
+  };
+  const auto useBump = [&](const MaterialDesc& m, bool read) {
+    auto [it, added] = fileIndex.emplace(bumpKey(m), files.size());
+    if (added) {
+      files.emplace_back();
+      files.back().path = m.bumpTexture;
+      files.back().material = m.name;
+      files.back().key = "bump";
+      files.back().asBump = true;
+      files.back().bumpScale = m.bumpScale;
+      files.back().wrapS = m.bumpSampling.wrapS;
+      files.back().wrapT = m.bumpSampling.wrapT;
+    }
+    files[it->second].dataRead |= read;
+  };
   // Every file in the order a render that reads every texture lists them, marked with what this
   // render reads of it (the budget's choice of levels depends on that order).
   for (const MaterialDesc& m : scene.materials) {
@@ -290,6 +320,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     if (!m.metallicRoughnessTexture.empty())
       useLinear(m, m.metallicRoughnessTexture, "metallicRoughnessTexture", uses.reflectance);
     if (!m.normalTexture.empty()) useNormal(m, uses.normal);
+    if (usesBumpMap(m)) useBump(m, uses.normal);
   }
   const auto decoded = [](const File& f) { return f.asAlpha || f.colourRead || f.dataRead; };
   // Nothing to decode: no texture at all (the others' sizes would choose nothing).
@@ -347,6 +378,8 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
           for (glm::vec4& t : n.texels) t = glm::vec4((2.0f * t.x - 1.0f) * sc, (2.0f * t.y - 1.0f) * sc, 2.0f * t.z - 1.0f, 1.0f);
           f.images.push_back(halfChain(std::move(n)));
         }
+        if (f.asBump)  // heights are data: linear, never sRGB-decoded
+          f.images.push_back(halfChain(bumpGradient(rgbaFromImage(image, false), f.bumpScale, f.wrapS, f.wrapT)));
       } catch (const InputError& e) {
         std::string why = e.what();
         const std::string prefix = f.path + ": ";
@@ -384,6 +417,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     if (uses.reflectance && !m.metallicRoughnessTexture.empty())
       out.materials[i].metallicRoughness = first[fileIndex.at(m.metallicRoughnessTexture + kLinear)];
     if (uses.normal && !m.normalTexture.empty()) out.materials[i].normal = first[fileIndex.at(normalKey(m))];
+    if (uses.normal && usesBumpMap(m)) out.materials[i].bump = first[fileIndex.at(bumpKey(m))];
     if (!m.alphaTexture.empty()) {
       const std::size_t k = fileIndex.at(m.alphaTexture);
       const File& f = files[k];

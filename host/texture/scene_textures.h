@@ -1,7 +1,8 @@
 // scene_textures.h: every texture a scene's materials name, loaded once each (image/image_read.h),
 // sRGB-decoded (integer images), mip-mapped and packed into the device's texture
 // tables (kernels/shared/types.h TextureDesc / TextureLevel, RGBA half texels) under a byte budget.
-// Reads Scene::materials' albedoTexture / alphaTexture / emissionTexture; writes SceneTextures.
+// Reads Scene::materials' textures (albedo, alpha, emission, metallic-roughness, normal, bump);
+// writes SceneTextures.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -25,6 +26,7 @@ struct MaterialTextures {
   std::uint32_t emission = MCL_NO_TEXTURE;  // emission texture (colour, like the albedo's)
   std::uint32_t metallicRoughness = MCL_NO_TEXTURE;  // read linear (no sRGB decode)
   std::uint32_t normal = MCL_NO_TEXTURE;  // decoded tangent-space vectors (normal_map.h)
+  std::uint32_t bump = MCL_NO_TEXTURE;    // scaled height gradients (bump_gradient.h, bump_map.h)
 };
 
 struct SceneTextures {
@@ -37,6 +39,10 @@ struct SceneTextures {
   bool anyAlpha() const;
 };
 
+// True when material m's bump map is used: it has one and no normal map (a normal map, the more
+// specific relief, wins).
+bool usesBumpMap(const MaterialDesc& m);
+
 // True when a material of scene names a texture.
 bool sceneHasTextures(const Scene& scene);
 
@@ -48,7 +54,7 @@ bool sceneHasTextures(const Scene& scene);
 struct TextureUses {
   bool reflectance = true;  // albedo and metallic-roughness textures (the BSDF's colour)
   bool emission = true;
-  bool normal = true;
+  bool normal = true;       // normal maps and bump maps (the shading normal)
 };
 
 // Loads the textures of scene's materials. A file used both as colour and as an alpha texture
@@ -64,7 +70,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes,
 std::vector<Triangle> alphaFlaggedTriangles(const std::vector<Triangle>& tris, const SceneTextures& textures);
 
 // Writes the texture indices and alpha channel of textures.materials[i] into device material i
-// (kernels/shared/types.h Material: albedo.w, alpha.x, alpha.z, maps.x, maps.y).
+// (kernels/shared/types.h Material: albedo.w, alpha.x, alpha.z, maps.x, maps.y, maps.z, maps.w).
 void setTextureIndices(std::vector<Material>& materials, const SceneTextures& textures);
 
 // Packs already decoded level-0 images (files names them in messages) the same way: what

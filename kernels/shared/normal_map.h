@@ -50,6 +50,18 @@ MCL_INLINE SurfaceFrame normal_mapped_frame(SurfaceFrame fr, float3 N, float3 n,
   return s;
 }
 
+// The normal that a relief map tilts at hit h on triangle tri (attributes sh, unit geometric
+// normal ng0, unoriented): the interpolated corner normals, else ng0.
+MCL_INLINE float3 unoriented_shading_normal(MCL_GLOBAL const Triangle* tri, MCL_GLOBAL const TriangleShading* sh,
+                                            float3 ng0, Hit h) {
+  float3 N = ng0;
+  if (as_uint(tri->e2.w) & MCL_ATTR_NORMALS) {
+    float3 ni = interpolate_normal(xyz(sh->n0), xyz(sh->n1), xyz(sh->n2), h.u, h.v);
+    N = dot(ni, ni) > 0.0f ? ni : ng0;
+  }
+  return N;
+}
+
 // The frame fr of hit h on triangle tri (attributes sh, unit geometric normal ng0, unoriented)
 // under material m's normal map; fr unchanged without a map or without UVs. The map is read at
 // the finest level kept, bilinear (deterministic, as the alpha test: the same normal for every
@@ -63,11 +75,7 @@ MCL_INLINE SurfaceFrame apply_normal_map(SurfaceFrame fr, TextureTables tt, Mate
   // The tangent frame follows the map's own UVs (its transform's linear part applied to the deltas).
   TextureDesc d = tt.textures[tex];
   float du1 = sh->n1.w - sh->n0.w, dv1 = sh->tv.y - sh->tv.x, du2 = sh->n2.w - sh->n0.w, dv2 = sh->tv.z - sh->tv.x;
-  float3 N = ng0;
-  if (as_uint(tri->e2.w) & MCL_ATTR_NORMALS) {
-    float3 ni = interpolate_normal(xyz(sh->n0), xyz(sh->n1), xyz(sh->n2), h.u, h.v);
-    N = dot(ni, ni) > 0.0f ? ni : ng0;
-  }
+  float3 N = unoriented_shading_normal(tri, sh, ng0, h);
   float3 n = tangent_to_world(N, xyz(tri->e1), xyz(tri->e2), d.uvRow0.x * du1 + d.uvRow0.y * dv1,
                               d.uvRow1.x * du1 + d.uvRow1.y * dv1, d.uvRow0.x * du2 + d.uvRow0.y * dv2,
                               d.uvRow1.x * du2 + d.uvRow1.y * dv2, t);

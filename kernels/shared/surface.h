@@ -6,6 +6,7 @@
 #include "bsdf.h"
 #include "lights.h"
 #include "shading.h"
+#include "bump_map.h"
 #include "normal_map.h"
 #include "surface_texture.h"
 #include "transmission_mix.h"
@@ -84,6 +85,7 @@ MCL_INLINE Surface surface_at(SurfaceScene sc, MCL_CONSTANT const FrameParams* f
   Surface s;
   s.frame = surface_frame(sc.tris, sc.normals, sc.shading, h, dir);
   s.frame = apply_normal_map(s.frame, sc.tex, m, tri, &sc.shading[h.tri], xyz(sc.normals[h.tri]), h);
+  s.frame = apply_bump_map(s.frame, sc.tex, m, tri, &sc.shading[h.tri], xyz(sc.normals[h.tri]), h);
   float3 albedo = hit_albedo(sc.tex, f, m, tri, sc.normals[h.tri], &sc.shading[h.tri], h, dir);
   m = hit_metal_rough(sc.tex, f, m, tri, sc.normals[h.tri], &sc.shading[h.tri], h, dir);
   m = hit_transmission(m, h, dir);

@@ -86,7 +86,8 @@ typedef struct MCL_ALIGN16 {
                     // colour, surface_texture.h material_emission); y: metallic-roughness texture
                     // index (B metallic, G roughness, times the factors; MCL_NO_TEXTURE: none); z: normal
                     // map index + 1 (as_float bits; 0: none, so a zeroed Material has none; decoded
-                    // tangent-space vectors, normal_map.h); w: 0
+                    // tangent-space vectors, normal_map.h); w: bump map index + 1 (as_float bits; 0:
+                    // none; the scaled height gradient per unit of UV, bump_map.h)
 } Material;
 // Floats per Material: the stride of the packet stages' gathers of material fields.
 #define MCL_MATERIAL_FLOATS 28

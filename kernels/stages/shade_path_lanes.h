@@ -51,12 +51,12 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
   v_gather4(mf + 8, mat, MCL_MATERIAL_FLOATS, &ksx, &ksy, &ksz, &ksw);   // specular: Ks, alpha
   v_gather4(mf + 12, mat, MCL_MATERIAL_FLOATS, &kax, &kay, &kaz, &kaw);  // alpha test; w: the material kind (uint bits)
   vfloat kmx, kmy, kmz, kmw;
-  v_gather4(mf + 24, mat, MCL_MATERIAL_FLOATS, &kmx, &kmy, &kmz, &kmw);  // maps: z the normal map (+1)
+  v_gather4(mf + 24, mat, MCL_MATERIAL_FLOATS, &kmx, &kmy, &kmz, &kmw);  // maps: z the normal map, w the bump map (+1)
   vfloat lks = v_luminance(v3_make(ksx, ksy, ksz)), lkd = v_luminance(v3_make(kdx, kdy, kdz));
   vfloat specProb = vsel(lks > 0.0f, lks / (lks + lkd), v_f(0.0f));  // bsdf_make's
   vmask flat = hit & ((v_as_uint(e2w) & (MCL_ATTR_NORMALS | MCL_ATTR_COLOR)) == 0u) & (v_as_uint(kdw) == MCL_NO_TEXTURE) &
                (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse) &
-               (v_as_uint(kmz) == 0u);  // no normal map (Material::maps.z)
+               (v_as_uint(kmz) == 0u) & (v_as_uint(kmw) == 0u);  // no normal or bump map (Material::maps.z, w)
   vmask scalar = hit & v_not(flat);
   vmask mine = v_not(scalar);  // the packet's lanes: misses and the common hits
 

@@ -1,0 +1,55 @@
+// bump_map.h: height-map bump mapping of a hit: reads the material's bump texture (Material::maps.w,
+// one more than its index, 0: none; texels hold the height gradient per unit of UV times the
+// material's scale, (s dh/du, s dh/dv), made by the host, host/texture/bump_gradient.cpp), the
+// triangle's UVs and edges, and writes the perturbed shading normal of a SurfaceFrame. Pure;
+// compiled by the kernels, the host backend and the host tests.
+#pragma once
+#include "normal_map.h"
+
+// 1 when material m has a bump map.
+MCL_INLINE int has_bump_map(Material m) { return as_uint(m.maps.w) != 0u; }
+
+// The bumped unit normal of a triangle with edges e1 = v1 - v0, e2 = v2 - v0 and UV deltas
+// (du1, dv1), (du2, dv2) of v1, v2 from v0, about the unit normal N (the unoriented shading
+// normal), for the displacement gradient (gu, gv) = (dd/du, dd/dv). pbrt's bump mapping: the
+// surface displaced by d along N has dP/du' = dP/du + gu N, dP/dv' = dP/dv + gv N, and
+// n = normalize(cross(dP/du', dP/dv')) on N's side. dP/du and dP/dv (solved from the edges and UV
+// deltas) are first made orthogonal to N, so a zero gradient gives N itself on smooth-shaded
+// meshes too; both are kept multiplied by the UV determinant (no division: the cross product's
+// direction is the same). The zero vector when the UVs are degenerate or the result is no usable
+// direction.
+MCL_INLINE float3 bump_normal(float3 N, float3 e1, float3 e2, float du1, float dv1, float du2, float dv2, float gu,
+                              float gv) {
+  float det = du1 * dv2 - du2 * dv1;
+  float3 T = e1 * dv2 - e2 * dv1;  // det dP/du
+  float3 B = e2 * du1 - e1 * du2;  // det dP/dv
+  T = T - N * dot(N, T);
+  B = B - N * dot(N, B);
+  float3 n = cross(T + N * (gu * det), B + N * (gv * det));
+  n = dot(n, N) < 0.0f ? -n : n;
+  float nl2 = dot(n, n);
+  n = n * (1.0f / sqrt(fmax(nl2, 1e-30f)));
+  int ok = det != 0.0f && fabs(det) < INFINITY && nl2 > 1e-30f && nl2 < INFINITY;
+  return ok ? n : make_float3(0.0f, 0.0f, 0.0f);
+}
+
+// The frame fr of hit h on triangle tri (attributes sh, unit geometric normal ng0, unoriented)
+// under material m's bump map; fr unchanged without a map or without UVs, and (bit for bit) where
+// the gradient is zero (a constant height). The normal map's rules follow (normal_mapped_frame:
+// the side of ng, and never below the geometric surface). The gradient is read at the finest level
+// kept, bilinear, as the normal map is (the same normal for every ray that reaches the point).
+MCL_INLINE SurfaceFrame apply_bump_map(SurfaceFrame fr, TextureTables tt, Material m, MCL_GLOBAL const Triangle* tri,
+                                       MCL_GLOBAL const TriangleShading* sh, float3 ng0, Hit h) {
+  if (!has_bump_map(m) || !(as_uint(tri->e2.w) & MCL_ATTR_UV)) return fr;
+  uint tex = as_uint(m.maps.w) - 1u;
+  float2 uv = surface_uv(tri, sh, h.u, h.v);
+  float4 g = texture_fine(tt, tex, uv.x, uv.y);
+  // The gradient is per unit of the map's own UVs (its transform's linear part applied to the deltas).
+  TextureDesc d = tt.textures[tex];
+  float du1 = sh->n1.w - sh->n0.w, dv1 = sh->tv.y - sh->tv.x, du2 = sh->n2.w - sh->n0.w, dv2 = sh->tv.z - sh->tv.x;
+  float3 N = unoriented_shading_normal(tri, sh, ng0, h);
+  float3 n = bump_normal(N, xyz(tri->e1), xyz(tri->e2), d.uvRow0.x * du1 + d.uvRow0.y * dv1,
+                         d.uvRow1.x * du1 + d.uvRow1.y * dv1, d.uvRow0.x * du2 + d.uvRow0.y * dv2,
+                         d.uvRow1.x * du2 + d.uvRow1.y * dv2, g.x, g.y);
+  return normal_mapped_frame(fr, N, n, make_float3(g.x, g.y, 1.0f));
+}
