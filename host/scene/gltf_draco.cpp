@@ -7,7 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <exception>
 
 #include "scene/gltf_model.h"
@@ -77,7 +79,31 @@ bool hideGltfDracoIndices(std::string& jsonText, std::vector<GltfHiddenIndices>&
     }
   }
   if (hidden.empty()) return false;
-  jsonText = j.dump();
+  try {
+    jsonText = j.dump();
+  } catch (const nlohmann::json::exception&) {  // a string it cannot write back: tinygltf reports the file
+    hidden.clear();
+    return false;
+  }
+  return true;
+}
+
+bool hideGltfDracoIndicesInGlb(std::string& bytes, std::vector<GltfHiddenIndices>& hidden) {
+  if (bytes.size() < 20) return false;
+  std::uint32_t total = 0, length = 0;  // the header's total length, the JSON chunk's
+  std::memcpy(&total, bytes.data() + 8, 4);
+  std::memcpy(&length, bytes.data() + 12, 4);
+  const std::uint64_t end = std::min<std::uint64_t>(total, bytes.size());
+  if (20ull + length > end) return false;  // tinygltf reports it
+  std::string json = bytes.substr(20, length);
+  if (!hideGltfDracoIndices(json, hidden)) return false;
+  while (json.size() % 4) json += ' ';  // chunks stay 4-byte aligned
+  const std::string rest = bytes.substr(20 + length, std::size_t(end) - 20 - length);
+  const auto u32 = [](std::size_t v) {
+    const std::uint32_t x = static_cast<std::uint32_t>(v);
+    return std::string(reinterpret_cast<const char*>(&x), 4);
+  };
+  bytes = bytes.substr(0, 8) + u32(20 + json.size() + rest.size()) + u32(json.size()) + bytes.substr(16, 4) + json + rest;
   return true;
 }
 

@@ -28,6 +28,8 @@ struct GltfHiddenIndices {
   int accessor;
 };
 bool hideGltfDracoIndices(std::string& jsonText, std::vector<GltfHiddenIndices>& hidden);
+// The same on a GLB's JSON chunk (the file rewritten with the new chunk, the BIN chunk as it was).
+bool hideGltfDracoIndicesInGlb(std::string& glbBytes, std::vector<GltfHiddenIndices>& hidden);
 void restoreGltfDracoIndices(tinygltf::Model& m, const std::vector<GltfHiddenIndices>& hidden);
 
 // Whether the primitive has the extension.

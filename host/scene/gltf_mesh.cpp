@@ -50,7 +50,7 @@ struct Loader {
   // glTF material -> the TEXCOORD_n set its textures read, and the key that named it.
   std::vector<int> uvSet = std::vector<int>(m.materials.size(), 0);
   std::vector<std::string> uvSetKey = std::vector<std::string>(m.materials.size());
-  std::map<const tinygltf::Primitive*, GltfDracoMesh> draco;  // decoded Draco primitives
+  std::map<const tinygltf::Primitive*, GltfDracoMesh> draco{};  // decoded Draco primitives
 
   std::uint32_t material(int index);
   void primitive(const tinygltf::Primitive& p, const glm::dmat4& world, const std::string& where);

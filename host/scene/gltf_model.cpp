@@ -233,22 +233,8 @@ tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>*
     checkGltfJson(path, bytes.data(), bytes.size());
   }
   std::vector<GltfHiddenIndices> hidden;  // Draco primitives' indices, kept from tinygltf (gltf_draco.h)
-  if (glb && bytes.size() >= 20) {
-    std::uint32_t length = 0, total = 0;
-    std::memcpy(&length, bytes.data() + 12, 4);
-    std::memcpy(&total, bytes.data() + 8, 4);
-    std::string json = bytes.substr(20, length);
-    if (20ull + length <= std::min<std::uint64_t>(total, bytes.size()) && hideGltfDracoIndices(json, hidden)) {
-      while (json.size() % 4) json += ' ';  // chunks stay 4-byte aligned
-      const std::string rest = bytes.substr(20 + length, std::min<std::size_t>(total, bytes.size()) - 20 - length);
-      const std::uint32_t newLength = static_cast<std::uint32_t>(json.size());
-      const std::uint32_t newTotal = static_cast<std::uint32_t>(20 + json.size() + rest.size());
-      bytes = bytes.substr(0, 8) + std::string(reinterpret_cast<const char*>(&newTotal), 4) +
-              std::string(reinterpret_cast<const char*>(&newLength), 4) + bytes.substr(16, 4) + json + rest;
-    }
-  } else if (!glb) {
-    hideGltfDracoIndices(bytes, hidden);
-  }
+  if (glb) hideGltfDracoIndicesInGlb(bytes, hidden);
+  else hideGltfDracoIndices(bytes, hidden);
   bool ok = false;
   if (glb) {
     try {
