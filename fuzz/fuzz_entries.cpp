@@ -209,8 +209,11 @@ std::vector<std::string> gltfSeeds() {
                       R"({"mesh":0,"extensions":{"EXT_mesh_gpu_instancing":{"attributes":)"
                       R"({"TRANSLATION":0,"ROTATION":1,"SCALE":2}}}})");
   }
+  // KHR_draco_mesh_compression: the tent through the Draco encoder, exact (sequential) and
+  // quantized (edgebreaker), so mutations reach the Draco decoder and the checks around it.
   std::vector<std::string> seeds = {montecl_test::gltfText(tent, 0.5f, ""), montecl_test::gltfText(tent, 0.25f, "tent.bin"),
-                                    montecl_test::glbBytes(tent, 0.5f), rich, instanced};
+                                    montecl_test::glbBytes(tent, 0.5f), rich, instanced,
+                                    montecl_test::gltfDracoText(tent, 0.5f, 0), montecl_test::gltfDracoText(tent, 0.5f, 11)};
   for (const std::string& s : filesSeeds({".gltf", ".glb"})) seeds.push_back(s);
   return seeds;
 }

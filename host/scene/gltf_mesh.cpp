@@ -9,18 +9,22 @@
 // (two-sided when doubleSided), emissiveTexture -> emissionTexture; metallic/roughness factors (x
 // metallicRoughnessTexture) -> the metal_rough kind; KHR_materials_transmission (+ _ior, _volume)
 // -> the dielectric kinds (gltf_transmission.h). EXT_mesh_gpu_instancing: one copy of the node's
-// mesh per instance (flattened). The first perspective camera met in the hierarchy is returned.
+// mesh per instance (flattened). KHR_draco_mesh_compression: a primitive's attributes and indices
+// come from its Draco buffer (gltf_draco.h), decoded once however many nodes use the mesh, and
+// are read as if they were accessors. The first perspective camera met in the hierarchy is returned.
 // Everything else the file uses is one warning per kind.
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "util/host_memory.h"
+#include "scene/gltf_draco.h"
 #include "scene/gltf_instancing.h"
 #include "scene/gltf_lights.h"
 #include "scene/gltf_model.h"
@@ -46,6 +50,7 @@ struct Loader {
   // glTF material -> the TEXCOORD_n set its textures read, and the key that named it.
   std::vector<int> uvSet = std::vector<int>(m.materials.size(), 0);
   std::vector<std::string> uvSetKey = std::vector<std::string>(m.materials.size());
+  std::map<const tinygltf::Primitive*, GltfDracoMesh> draco{};  // decoded Draco primitives
 
   std::uint32_t material(int index);
   void primitive(const tinygltf::Primitive& p, const glm::dmat4& world, const std::string& where);
@@ -219,30 +224,48 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
                                       : "attribute " + oneLine(a.first, 40) + " not used by montecl, ignored");
   if (!p.targets.empty()) unused.add("morph", where, "morph targets not used by montecl (the base mesh is rendered)");
   if (attr("POSITION") < 0) loadFail(file, where, "primitive without POSITION");
-  const std::vector<float> pos = readFloatAccessor(file, m, attr("POSITION"), 3, where + ".POSITION", AccessorUse::Position);
+  const GltfDracoMesh* dm = nullptr;  // the decoded Draco buffer, when the primitive has one
+  if (hasGltfDraco(p)) {
+    auto it = draco.find(&p);
+    if (it == draco.end()) it = draco.emplace(&p, decodeGltfDraco(file, m, p, where)).first;
+    dm = &it->second;
+  }
+  // An attribute's values: decoded from the Draco buffer when it holds it (the accessor, checked
+  // alike, gives only its type), else read from its accessor.
+  const auto values = [&](const std::string& name, int components, AccessorUse use) {
+    const std::string key = where + "." + name;
+    if (dm && dm->attributes.count(name)) {
+      checkFloatAccessor(file, m, attr(name.c_str()), components, key, use);
+      return dm->attributes.at(name);
+    }
+    return readFloatAccessor(file, m, attr(name.c_str()), components, key, use);
+  };
+  const std::vector<float> pos = values("POSITION", 3, AccessorUse::Position);
   const std::size_t n = pos.size() / 3;
   std::vector<float> nor, uv;
-  if (attr("NORMAL") >= 0) nor = readFloatAccessor(file, m, attr("NORMAL"), 3, where + ".NORMAL", AccessorUse::Normal);
+  if (attr("NORMAL") >= 0) nor = values("NORMAL", 3, AccessorUse::Normal);
   const std::uint32_t mat = material(p.material);
   const bool hasMaterial = p.material >= 0 && static_cast<std::size_t>(p.material) < m.materials.size();
   const int set = hasMaterial ? uvSet[std::size_t(p.material)] : 0;
   const std::string uvName = "TEXCOORD_" + std::to_string(set);
   if (set > 0 && attr(uvName.c_str()) < 0)  // TEXCOORD_0 missing: no UVs, as always
     loadFail(file, uvSetKey[std::size_t(p.material)], "names " + uvName + ", which " + where + " does not have");
-  if (attr(uvName.c_str()) >= 0) uv = readFloatAccessor(file, m, attr(uvName.c_str()), 2, where + "." + uvName, AccessorUse::TexCoord);
+  if (attr(uvName.c_str()) >= 0) uv = values(uvName, 2, AccessorUse::TexCoord);
   // COLOR_0 (VEC3 or VEC4: alpha not read) multiplies the base colour.
   std::vector<float> col;
   int colN = 3;
   if (const int a = attr("COLOR_0"); a >= 0) {
     colN = static_cast<std::size_t>(a) < m.accessors.size() && m.accessors[std::size_t(a)].type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
-    col = readFloatAccessor(file, m, a, colN, where + ".COLOR_0");
+    col = values("COLOR_0", colN, AccessorUse::Any);
     if (col.size() / std::size_t(colN) != n) loadFail(file, where, "attributes have different counts");
   }
   if ((!nor.empty() && nor.size() / 3 != n) || (!uv.empty() && uv.size() / 2 != n))
     loadFail(file, where, "attributes have different counts");
   std::vector<std::uint32_t> idx;
-  if (p.indices >= 0) idx = readIndexAccessor(file, m, p.indices, where + ".indices");
-  const std::size_t count = p.indices >= 0 ? idx.size() : n;  // the primitive's vertices, in order
+  const bool indexed = p.indices >= 0 || dm;  // a Draco mesh's faces index its points
+  if (dm) idx = dm->indices;
+  else if (p.indices >= 0) idx = readIndexAccessor(file, m, p.indices, where + ".indices");
+  const std::size_t count = indexed ? idx.size() : n;  // the primitive's vertices, in order
   if (mode == TINYGLTF_MODE_TRIANGLES && count % 3 != 0)
     loadFail(file, where, std::to_string(count) + " vertices do not make whole triangles");
   const std::size_t corners = mode == TINYGLTF_MODE_TRIANGLES ? count : 3 * (count >= 3 ? count - 2 : 0);
@@ -262,7 +285,7 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
     bool normals = !nor.empty();
     for (int k = 0; k < 3; ++k) {
       const std::size_t j = cornerOf(c + std::size_t(k));
-      const std::size_t v = p.indices >= 0 ? idx[j] : j;
+      const std::size_t v = indexed ? idx[j] : j;
       if (v >= n) loadFail(file, where + ".indices", "index " + std::to_string(v) + " out of range (" + std::to_string(n) + " vertices)");
       const int kk = mirror && k > 0 ? 3 - k : k;  // a mirroring transform swaps corners 1 and 2
       t.v[kk] = glm::vec3(world * glm::dvec4(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2], 1.0));

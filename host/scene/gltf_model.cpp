@@ -11,6 +11,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "scene/gltf_draco.h"
 #include "scene/gltf_transmission.h"
 #include "scene/load_util.h"
 
@@ -169,15 +170,13 @@ void checkGltfJson(const std::string& path, const char* text, std::size_t size) 
       loadFail(path, where + ".uri", "contains %00 (a NUL byte): not a file name");
   };
   // A required extension montecl does not read changes what the file means: refused, by name,
-  // before tinygltf reports what it trips over instead (a Draco mesh's accessors have no bufferView).
+  // before tinygltf reports what it trips over instead (e.g. meshopt's accessors hold no data).
   if (const auto req = j.find("extensionsRequired"); req != j.end() && req->is_array())
     for (std::size_t i = 0; i < req->size(); ++i) {
       const std::string name = (*req)[i].is_string() ? (*req)[i].get<std::string>() : (*req)[i].dump();
       if (gltfExtensionSupported(name)) continue;
-      const bool draco = name == "KHR_draco_mesh_compression";
       loadFail(path, "extensionsRequired[" + std::to_string(i) + "]",
-               "extension '" + oneLine(name, 60) + "' is required by the file and not supported by montecl" +
-                   (draco ? " (Draco-compressed meshes: decompress the file first, e.g. with glTF-Transform)" : ""));
+               "extension '" + oneLine(name, 60) + "' is required by the file and not supported by montecl");
     }
   each("images", noNul);
   each("buffers", noNul);
@@ -201,7 +200,7 @@ void checkGltfJson(const std::string& path, const char* text, std::size_t size) 
 
 tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>* warnings,
                               std::vector<std::string>* opened) {
-  const std::string bytes = readWholeFile(path);
+  std::string bytes = readWholeFile(path);
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({&fileExists, &expandNothing, &readFile, &writeNothing, opened});
   loader.SetImageLoader(&keepImageUndecoded, nullptr);
@@ -233,6 +232,9 @@ tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>*
     checkJsonDepth(path, bytes.data(), bytes.size());
     checkGltfJson(path, bytes.data(), bytes.size());
   }
+  std::vector<GltfHiddenIndices> hidden;  // Draco primitives' indices, kept from tinygltf (gltf_draco.h)
+  if (glb) hideGltfDracoIndicesInGlb(bytes, hidden);
+  else hideGltfDracoIndices(bytes, hidden);
   bool ok = false;
   if (glb) {
     try {
@@ -249,6 +251,7 @@ tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>*
     ok = loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), dir);
   }
   if (!ok || !err.empty()) failWith(path, firstLine(err), glb);
+  restoreGltfDracoIndices(model, hidden);
   // An image file tinygltf cannot find is the loader's to report (every missing texture in one
   // listing, missing_textures): its "File not found" and "Failed to load external 'uri' for
   // image" lines are dropped here.
@@ -269,11 +272,11 @@ tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>*
 bool gltfExtensionSupported(const std::string& name) {
   return name == "KHR_materials_emissive_strength" || name == "KHR_lights_punctual" || name == "KHR_mesh_quantization" ||
          gltfTransmissionExtension(name) || name == "EXT_mesh_gpu_instancing" ||
-         name == "KHR_texture_transform" || name == "KHR_materials_unlit";
+         name == "KHR_texture_transform" || name == "KHR_materials_unlit" || name == "KHR_draco_mesh_compression";
 }
 
-std::vector<float> readFloatAccessor(const std::string& file, const tinygltf::Model& m, int index, int components,
-                                     const std::string& where, AccessorUse use) {
+const tinygltf::Accessor& checkFloatAccessor(const std::string& file, const tinygltf::Model& m, int index, int components,
+                                             const std::string& where, AccessorUse use) {
   const tinygltf::Accessor& a = accessorAt(file, m, index, where);
   const int type = components == 2 ? TINYGLTF_TYPE_VEC2 : components == 4 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3;
   if (a.type != type) loadFail(file, where, "expected a VEC" + std::to_string(components) + " accessor");
@@ -291,6 +294,25 @@ std::vector<float> readFloatAccessor(const std::string& file, const tinygltf::Mo
     rule = "FLOAT or (KHR_mesh_quantization) normalized signed byte / short";
   }
   if (!allowed) loadFail(file, where, std::string("expected ") + rule + " components");
+  return a;
+}
+
+float gltfIntegerComponent(float v, int componentType, bool normalized) {
+  if (!normalized) return v;
+  switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return std::max(v / 127.0f, -1.0f);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return v / 255.0f;
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return std::max(v / 32767.0f, -1.0f);
+    default: return v / 65535.0f;
+  }
+}
+
+std::vector<float> readFloatAccessor(const std::string& file, const tinygltf::Model& m, int index, int components,
+                                     const std::string& where, AccessorUse use) {
+  const tinygltf::Accessor& a = checkFloatAccessor(file, m, index, components, where, use);
+  const int ct = a.componentType;
+  const bool isFloat = ct == TINYGLTF_COMPONENT_TYPE_FLOAT;
+  const bool isSigned = ct == TINYGLTF_COMPONENT_TYPE_BYTE || ct == TINYGLTF_COMPONENT_TYPE_SHORT;
   const std::size_t size = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(ct)));
   std::size_t stride = 0;
   const unsigned char* p = accessorBytes(file, m, a, size * components, stride, where);
@@ -302,13 +324,11 @@ std::vector<float> readFloatAccessor(const std::string& file, const tinygltf::Mo
       if (isFloat) {
         std::memcpy(&f, q, 4);
       } else if (size == 1) {
-        const float v = isSigned ? float(std::int8_t(*q)) : float(*q);
-        f = !a.normalized ? v : isSigned ? std::max(v / 127.0f, -1.0f) : v / 255.0f;
+        f = gltfIntegerComponent(isSigned ? float(std::int8_t(*q)) : float(*q), ct, a.normalized);
       } else {
         std::uint16_t u;
         std::memcpy(&u, q, 2);
-        const float v = isSigned ? float(std::int16_t(u)) : float(u);
-        f = !a.normalized ? v : isSigned ? std::max(v / 32767.0f, -1.0f) : v / 65535.0f;
+        f = gltfIntegerComponent(isSigned ? float(std::int16_t(u)) : float(u), ct, a.normalized);
       }
       if (!std::isfinite(f)) loadFail(file, where, "element " + std::to_string(i) + " is not finite");
       out[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)] = f;
@@ -340,6 +360,18 @@ std::vector<std::uint32_t> readIndexAccessor(const std::string& file, const tiny
   return out;
 }
 
+GltfViewBytes gltfBufferViewBytes(const std::string& file, const tinygltf::Model& m, int index, const std::string& where) {
+  if (index < 0 || static_cast<std::size_t>(index) >= m.bufferViews.size())
+    loadFail(file, where, "bufferView " + std::to_string(index) + " out of range");
+  const tinygltf::BufferView& v = m.bufferViews[static_cast<std::size_t>(index)];
+  if (v.buffer < 0 || static_cast<std::size_t>(v.buffer) >= m.buffers.size())
+    loadFail(file, where, "bufferView " + std::to_string(index) + " names no valid buffer");
+  const std::vector<unsigned char>& data = m.buffers[static_cast<std::size_t>(v.buffer)].data;
+  if (v.byteOffset > data.size() || v.byteLength > data.size() - v.byteOffset)
+    loadFail(file, where, "bufferView " + std::to_string(index) + " runs past the end of its buffer");
+  return {data.data() + v.byteOffset, v.byteLength};
+}
+
 std::string gltfImagePath(const std::string& file, const tinygltf::Model& m, int index, Scene& scene) {
   if (index < 0 || static_cast<std::size_t>(index) >= m.images.size()) return "";
   const tinygltf::Image& img = m.images[static_cast<std::size_t>(index)];
@@ -348,15 +380,8 @@ std::string gltfImagePath(const std::string& file, const tinygltf::Model& m, int
     return besideFile(file, percentDecode(img.uri));
   tinygltf::Image held = img;  // the bytes: a data URI's as decoded, or the bufferView's
   if (img.bufferView >= 0) {
-    if (static_cast<std::size_t>(img.bufferView) >= m.bufferViews.size())
-      loadFail(file, where, "bufferView " + std::to_string(img.bufferView) + " out of range");
-    const tinygltf::BufferView& v = m.bufferViews[static_cast<std::size_t>(img.bufferView)];
-    if (v.buffer < 0 || static_cast<std::size_t>(v.buffer) >= m.buffers.size())
-      loadFail(file, where, "bufferView " + std::to_string(img.bufferView) + " names no valid buffer");
-    const std::vector<unsigned char>& data = m.buffers[static_cast<std::size_t>(v.buffer)].data;
-    if (v.byteOffset > data.size() || v.byteLength > data.size() - v.byteOffset)
-      loadFail(file, where, "bufferView " + std::to_string(img.bufferView) + " runs past the end of its buffer");
-    held.image.assign(data.begin() + std::ptrdiff_t(v.byteOffset), data.begin() + std::ptrdiff_t(v.byteOffset + v.byteLength));
+    const GltfViewBytes bytes = gltfBufferViewBytes(file, m, img.bufferView, where);
+    held.image.assign(bytes.data, bytes.data + bytes.size);
   }
   if (held.image.empty()) loadFail(file, where, "embedded image holds no bytes");
   const std::string ext = embeddedImageExtension(held);

@@ -31,6 +31,16 @@ bool gltfExtensionSupported(const std::string& name);
 // signed byte / short). Normalized signed values are max(c / (2^(b-1) - 1), -1), as glTF defines.
 enum class AccessorUse { Any, Position, Normal, TexCoord };
 
+// Accessor `index`, checked to be in range, of type VEC<components> and of a component type `use`
+// allows; where names the attribute for messages. readFloatAccessor checks with it, and so do the
+// attributes a Draco buffer holds (their accessors have no data, only count, type and component type).
+const tinygltf::Accessor& checkFloatAccessor(const std::string& file, const tinygltf::Model& m, int index, int components,
+                                             const std::string& where, AccessorUse use);
+
+// An integer component v of an accessor of componentType (BYTE ... UNSIGNED_SHORT) as glTF reads it:
+// v itself, or normalized (signed: max(v / (2^(b-1) - 1), -1); unsigned: v / (2^b - 1)).
+float gltfIntegerComponent(float v, int componentType, bool normalized);
+
 // Accessor `index` as floats with `components` components per element (VEC2: 2, VEC3: 3, VEC4: 4), from
 // FLOAT data or the integer data `use` allows; where names the attribute for messages.
 std::vector<float> readFloatAccessor(const std::string& file, const tinygltf::Model& m, int index, int components,
@@ -39,6 +49,13 @@ std::vector<float> readFloatAccessor(const std::string& file, const tinygltf::Mo
 // Accessor `index` as vertex indices (SCALAR UNSIGNED_BYTE / SHORT / INT).
 std::vector<std::uint32_t> readIndexAccessor(const std::string& file, const tinygltf::Model& m, int index,
                                              const std::string& where);
+
+// The bytes of bufferView `index`, checked to lie inside its buffer; where names the referrer.
+struct GltfViewBytes {
+  const unsigned char* data;
+  std::size_t size;
+};
+GltfViewBytes gltfBufferViewBytes(const std::string& file, const tinygltf::Model& m, int index, const std::string& where);
 
 // The texture path of image `index`: its file when it has one (a URI that is not a data URI),
 // resolved beside the glTF and percent-decoded; for an embedded image (a bufferView, a data URI)
