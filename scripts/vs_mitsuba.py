@@ -26,7 +26,9 @@ montecl `--integrator path --max-depth D --rr-depth R` = Mitsuba `path` (max_dep
 the same depth convention.
 
 Agreement: montecl's EXR carries each pixel's mean, sample count and sample variance, so its
-standard error is sqrt(var/n). Mitsuba's pixels are the mean of --ref-seeds independent renders at
+standard error is sqrt(var/n); that holds for i.i.d. samples, so montecl runs `--sampler
+independent` (as Mitsuba does here) unless a --montecl-arg names a sampler. Mitsuba's pixels are
+the mean of --ref-seeds independent renders at
 --ref-factor x spp in all; their standard error comes from the spread of those renders. Per pixel
 and channel z = (montecl - Mitsuba) / sqrt(se_montecl^2 + se_mitsuba^2). PASS when |z| > 4 on at
 most 0.1% of pixel channels and |mean z| <= 0.1; pixel channels with zero variance in both must be
@@ -530,6 +532,11 @@ def main(argv):
         mcl += ["--direct-sampling", sampling]
     else:
         mcl += ["--max-depth", str(a.max_depth), "--rr-depth", str(a.rr_depth)]
+    # The z-scores take montecl's error from var/n, which holds for i.i.d. samples only (Sobol points
+    # are correlated: var/n misstates their error either way), and Mitsuba's sampler here is
+    # `independent`: montecl's too, unless a --montecl-arg names one.
+    if "--sampler" not in a.montecl_arg:
+        mcl += ["--sampler", "independent"]
     mcl += a.montecl_arg
     # The settings' rules are montecl's (its settings table): a one-pixel render checks them first.
     probe = list(mcl)

@@ -300,7 +300,7 @@ TEST_CASE("merging renders with different seeds has the error of the combined sa
   auto args = [&](const std::string& out, int spp, int seed) {
     return std::vector<std::string>{"render", demoScene(), "-o", out, "--width", "24", "--height", "16", "--spp",
                                     std::to_string(spp), "--seed", std::to_string(seed), "--ao-sampling",
-                                    "uniform", "-q"};
+                                    "uniform", "--sampler", "independent", "-q"};  // var/n: i.i.d. samples
   };
   REQUIRE(runMontecl(args(dir.file("s1.exr"), 8, 1)).exitCode == 0);
   REQUIRE(runMontecl(args(dir.file("s2.exr"), 8, 2)).exitCode == 0);

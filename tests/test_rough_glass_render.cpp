@@ -25,6 +25,7 @@ namespace {
 Film renderWith(Scene scene, Integrator integrator, const char* strategy, int maxDepth) {
   static const DeviceInfo device = selectDevice("");
   scene.render.integrator = integrator;
+  scene.render.sampler = Sampler::Independent;  // its z-tests take the error from var/n: i.i.d. samples
   if (strategy) scene.render.directSampling = directSamplingNames().at(strategy);
   scene.render.maxDepth = maxDepth;
   Bvh bvh = buildBvh(scene.triangles);

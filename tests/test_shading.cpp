@@ -290,6 +290,7 @@ TEST_CASE("smooth sphere in open space: cosine AO exactly 1 everywhere, variance
   }
   // Uniform hemisphere sampling estimates the same AO (1) with variance.
   s.render.aoSampling = AoSampling::Uniform;
+  s.render.sampler = Sampler::Independent;  // z from var/n: i.i.d. samples
   s.render.background = glm::vec3(0.0f);
   s.camera.fovY = 6.0f;  // every pixel on the sphere
   ImageEstimate e = imageEstimate(renderWith(s));
@@ -305,6 +306,7 @@ namespace {
 // field of view at the origin from the side.
 Scene tiltedFloorUnderLight(glm::vec3 ns, glm::vec3 c, glm::vec3 lightNormal, float size, int spp) {
   Scene s;
+  s.render.sampler = Sampler::Independent;  // its z-tests take the error from var/n: i.i.d. samples
   s.path = "<tilted floor>";
   s.materials = {MaterialDesc{"floor", glm::vec3(0.5f, 0.6f, 0.7f)},
                  MaterialDesc{"light", glm::vec3(0.0f), glm::vec3(2.0f, 3.0f, 4.0f)}};

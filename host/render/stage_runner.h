@@ -34,19 +34,21 @@ struct StageInputs {
   std::vector<float4> envMap{float4(0.0f)};  // environment texels and CDFs (never empty)
   std::vector<float> envCdf{0.0f};
   std::vector<LightRecord> lightRecords{LightRecord{}};  // render/light_table.h (never empty)
-  // The wave's size (items) and which buffers it needs (render/wave_buffers.h); its slots and
-  // pixels are taken from frame (setupShape).
+  // The wave's size (items) and which buffers it needs (render/wave_buffers.h); its slots,
+  // pixels and sub-sequence accumulators are taken from frame (setupShape).
   WaveShape shape;
   // The film state the render starts from (a resumed checkpoint); null: a cleared film.
   const Film* initialFilm = nullptr;
 };
 
-// The shape a backend allocates for: in.shape with at least one item, frame's slots and pixels.
+// The shape a backend allocates for: in.shape with at least one item, frame's slots, pixels and
+// sub-sequence accumulators (the stages index those by the frame's values, so they must agree).
 inline WaveShape setupShape(const StageInputs& in) {
   WaveShape s = in.shape;
   s.items = s.items ? s.items : 1;
   s.slots = in.frame.shadowSlots;
   s.pixels = std::uint64_t(in.frame.width) * in.frame.height;
+  s.splits = in.frame.sobolSplits > 1 ? in.frame.sobolSplits : 0;
   return s;
 }
 

@@ -34,7 +34,7 @@ struct RenderSettings {
   int lightSamples = 1;                // light samples per shading point (integrators "direct", "path")
   int maxDepth = -1;  // integrator "path", Mitsuba's convention: -1 unlimited, 1 emitters seen, 2 direct, ...
   int rrDepth = 5;    // integrator "path": Russian roulette from this path depth on (>= 1)
-  Sampler sampler = Sampler::Independent;  // where the uniform numbers come from (shared/sampler.h)
+  Sampler sampler = Sampler::Sobol;  // where the uniform numbers come from (shared/sampler.h)
   int sobolSplits = 4;  // sobol: independently scrambled sub-sequences per pixel, for the error estimate
   bool denoise = false;  // Open Image Denoise on the final image (image/oidn_denoiser.h)
   DenoiseQuality denoiseQuality = DenoiseQuality::High;  // OIDN's own default
