@@ -53,6 +53,7 @@ std::vector<glm::vec3> lightQuad() {
 // corners carry the normal n (smooth) when `normals`.
 Scene tiltedPlane(glm::vec3 n, const std::string& bump, float bm, int spp, Integrator integrator, bool normals = false) {
   Scene s;
+  s.render.sampler = Sampler::Independent;  // its z-tests take the error from var/n: i.i.d. samples
   s.path = "<bumped plane>";
   MaterialDesc m("floor", kRho, glm::vec3(0.0f));
   m.bumpTexture = bump;
@@ -202,7 +203,7 @@ TEST_CASE("bump map: a constant height map renders the unmapped image bit for bi
       }
       const Film a = render(bumped), b = render(plain);
       CHECK(a.mean == b.mean);
-      CHECK(imageEstimate(b, 1).mean > 0.0);
+      CHECK(imageMean(b, 1) > 0.0);
     }
   }
 }

@@ -46,7 +46,7 @@ struct Loader {
   std::vector<std::int64_t> materialIndex;  // glTF material -> scene material (-1: not yet)
   bool hasCamera = false;
   Camera camera;
-  std::set<int> missingImages;  // images whose file cannot be opened
+  std::set<int> missingImages{};  // images whose file cannot be opened
   // glTF material -> the TEXCOORD_n set its textures read, and the key that named it.
   std::vector<int> uvSet = std::vector<int>(m.materials.size(), 0);
   std::vector<std::string> uvSetKey = std::vector<std::string>(m.materials.size());
