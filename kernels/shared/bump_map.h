@@ -44,12 +44,8 @@ MCL_INLINE SurfaceFrame apply_bump_map(SurfaceFrame fr, TextureTables tt, Materi
   uint tex = as_uint(m.maps.w) - 1u;
   float2 uv = surface_uv(tri, sh, h.u, h.v);
   float4 g = texture_fine(tt, tex, uv.x, uv.y);
-  // The gradient is per unit of the map's own UVs (its transform's linear part applied to the deltas).
-  TextureDesc d = tt.textures[tex];
-  float du1 = sh->n1.w - sh->n0.w, dv1 = sh->tv.y - sh->tv.x, du2 = sh->n2.w - sh->n0.w, dv2 = sh->tv.z - sh->tv.x;
+  float4 q = map_uv_deltas(tt.textures[tex], sh);  // the gradient is per unit of the map's own UVs
   float3 N = unoriented_shading_normal(tri, sh, ng0, h);
-  float3 n = bump_normal(N, xyz(tri->e1), xyz(tri->e2), d.uvRow0.x * du1 + d.uvRow0.y * dv1,
-                         d.uvRow1.x * du1 + d.uvRow1.y * dv1, d.uvRow0.x * du2 + d.uvRow0.y * dv2,
-                         d.uvRow1.x * du2 + d.uvRow1.y * dv2, g.x, g.y);
+  float3 n = bump_normal(N, xyz(tri->e1), xyz(tri->e2), q.x, q.y, q.z, q.w, g.x, g.y);
   return normal_mapped_frame(fr, N, n, make_float3(g.x, g.y, 1.0f));
 }

@@ -62,6 +62,15 @@ MCL_INLINE float3 unoriented_shading_normal(MCL_GLOBAL const Triangle* tri, MCL_
   return N;
 }
 
+// The UV deltas (du1, dv1, du2, dv2) of corners 1 and 2 from corner 0 (attributes sh) in the
+// UVs of the map whose desc is d: a relief map's tangent frame follows the map's own UVs, so its
+// transform's linear part is applied to the deltas.
+MCL_INLINE float4 map_uv_deltas(TextureDesc d, MCL_GLOBAL const TriangleShading* sh) {
+  float du1 = sh->n1.w - sh->n0.w, dv1 = sh->tv.y - sh->tv.x, du2 = sh->n2.w - sh->n0.w, dv2 = sh->tv.z - sh->tv.x;
+  return make_float4(d.uvRow0.x * du1 + d.uvRow0.y * dv1, d.uvRow1.x * du1 + d.uvRow1.y * dv1,
+                     d.uvRow0.x * du2 + d.uvRow0.y * dv2, d.uvRow1.x * du2 + d.uvRow1.y * dv2);
+}
+
 // The frame fr of hit h on triangle tri (attributes sh, unit geometric normal ng0, unoriented)
 // under material m's normal map; fr unchanged without a map or without UVs. The map is read at
 // the finest level kept, bilinear (deterministic, as the alpha test: the same normal for every
@@ -72,12 +81,8 @@ MCL_INLINE SurfaceFrame apply_normal_map(SurfaceFrame fr, TextureTables tt, Mate
   uint tex = as_uint(m.maps.z) - 1u;
   float2 uv = surface_uv(tri, sh, h.u, h.v);
   float3 t = xyz(texture_fine(tt, tex, uv.x, uv.y));
-  // The tangent frame follows the map's own UVs (its transform's linear part applied to the deltas).
-  TextureDesc d = tt.textures[tex];
-  float du1 = sh->n1.w - sh->n0.w, dv1 = sh->tv.y - sh->tv.x, du2 = sh->n2.w - sh->n0.w, dv2 = sh->tv.z - sh->tv.x;
+  float4 q = map_uv_deltas(tt.textures[tex], sh);
   float3 N = unoriented_shading_normal(tri, sh, ng0, h);
-  float3 n = tangent_to_world(N, xyz(tri->e1), xyz(tri->e2), d.uvRow0.x * du1 + d.uvRow0.y * dv1,
-                              d.uvRow1.x * du1 + d.uvRow1.y * dv1, d.uvRow0.x * du2 + d.uvRow0.y * dv2,
-                              d.uvRow1.x * du2 + d.uvRow1.y * dv2, t);
+  float3 n = tangent_to_world(N, xyz(tri->e1), xyz(tri->e2), q.x, q.y, q.z, q.w, t);
   return normal_mapped_frame(fr, N, n, t);
 }
