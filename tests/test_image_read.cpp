@@ -181,6 +181,20 @@ TEST_CASE("image read: montecl's JPEG reader gives OpenImageIO's pixels (grey, R
   for (const std::string& f : dir.entries()) checkSameAsOiio(dir.file(f));
 }
 
+TEST_CASE("image read: the signature picks the reader: a PNG named .jpg and a JPEG named .png read as they are" *
+          doctest::test_suite("cpu")) {
+  TempDir dir;
+  writePngKind(dir.file("png.jpg"), 9, 5, PNG_COLOR_TYPE_RGB_ALPHA, 8, [](int x, int y, int s) { return x * 31 + y * 7 + s; });
+  writeJpegKind(dir.file("jpeg.png"), 9, 5, 3, 1, 1);
+  writePngKind(dir.file("png.tga"), 9, 5, PNG_COLOR_TYPE_GRAY, 8, [](int x, int y, int) { return x * 20 + y; });
+  for (const std::string& f : dir.entries()) checkSameAsOiio(dir.file(f));
+  // In memory (a .glb's image named by its mime type) the same.
+  const std::string bytes = readAll(dir.file("png.jpg"));
+  const LayeredImage mem = readImageMemory("image.jpg", std::vector<unsigned char>(bytes.begin(), bytes.end()));
+  CHECK(mem.width == 9);
+  CHECK(mem.planes == readImageFile(dir.file("png.jpg")).planes);
+}
+
 TEST_CASE("image read: a corrupt or truncated PNG or JPEG is one InputError naming the file" * doctest::test_suite("cpu")) {
   TempDir dir;
   writePngKind(dir.file("good.png"), 32, 32, PNG_COLOR_TYPE_RGB, 8, [](int x, int y, int s) { return x * y + s; });

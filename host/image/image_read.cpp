@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -24,6 +25,23 @@ ImageReader readerOf(const std::string& name) {
   return ImageReader::Other;
 }
 
+// The reader of an image whose encoding starts with head[0, n): its signature when it is a PNG or
+// a JPEG (exporters name files by habit: a PNG called .jpg is common, and OpenImageIO looks at the
+// content too), else name's extension (so a damaged .png still gets the PNG reader's message).
+ImageReader readerOf(const std::string& name, const unsigned char* head, std::size_t n) {
+  if (n >= 8 && std::memcmp(head, "\x89PNG\r\n\x1a\n", 8) == 0) return ImageReader::Png;
+  if (n >= 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF) return ImageReader::Jpeg;
+  return readerOf(name);
+}
+
+// readerOf the file path from its first bytes (its extension when it cannot be read).
+ImageReader readerOfFile(const std::string& path) {
+  unsigned char head[8] = {};
+  std::ifstream in(path, std::ios::binary);
+  in.read(reinterpret_cast<char*>(head), sizeof head);
+  return readerOf(path, head, std::size_t(in.gcount()));
+}
+
 // Decodes bytes with montecl's own reader of format; false (out untouched) when OpenImageIO must
 // (a CMYK JPEG). Throws InputError naming name.
 bool decodeOwn(ImageReader format, const std::string& name, const unsigned char* data, std::size_t size,
@@ -37,10 +55,10 @@ bool decodeOwn(ImageReader format, const std::string& name, const unsigned char*
 
 }  // namespace
 
-bool readsWithoutOiio(const std::string& name) { return readerOf(name) != ImageReader::Other; }
+bool readsWithoutOiio(const std::string& path) { return readerOfFile(path) != ImageReader::Other; }
 
 LayeredImage readImageFile(const std::string& path, const ImageSizeCheck& check) {
-  const ImageReader format = readerOf(path);
+  const ImageReader format = readerOfFile(path);
   if (format == ImageReader::Other) return oiioRead(path, check);
   std::ifstream in(path, std::ios::binary);
   if (!in) throwInputError(path, "", "cannot read image: cannot open the file");
@@ -67,7 +85,7 @@ ImageSize readImageSize(const std::string& name, const std::vector<unsigned char
     attempt([&] { readImageMemory(name, *bytes, capture); });
     return size;
   }
-  const ImageReader format = readerOf(name);
+  const ImageReader format = readerOfFile(name);
   if (format != ImageReader::Other) {
     // The header is at the start: a prefix of the file is enough unless metadata comes first.
     std::ifstream in(name, std::ios::binary);
@@ -84,7 +102,7 @@ ImageSize readImageSize(const std::string& name, const std::vector<unsigned char
 
 LayeredImage readImageMemory(const std::string& name, const std::vector<unsigned char>& bytes,
                              const ImageSizeCheck& check) {
-  const ImageReader format = readerOf(name);
+  const ImageReader format = readerOf(name, bytes.data(), bytes.size());
   LayeredImage image;
   if (format != ImageReader::Other && decodeOwn(format, name, bytes.data(), bytes.size(), image, check)) return image;
   return oiioReadMemory(name, bytes, check);

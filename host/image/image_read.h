@@ -1,7 +1,7 @@
 // image_read.h: image input, one entry for every reader: PNG through libpng (image/png_read.h),
 // JPEG through libjpeg-turbo (image/jpeg_read.h), every other format (EXR, HDR, TGA, ...) through
 // the OpenImageIO module, which is loaded only when such a file is read (image/oiio_loader.h). The
-// file name's extension picks the reader, as OpenImageIO picks its own.
+// image's signature picks the reader (a PNG named .jpg is still a PNG), else its name's extension.
 #pragma once
 #include <string>
 #include <vector>
@@ -16,8 +16,7 @@ struct LayeredImage;
 // <reason>" (one line; the reason check gave when it refused the declared size).
 LayeredImage readImageFile(const std::string& path, const ImageSizeCheck& check = {});
 
-// The same for an encoded image held in memory (inside a .glb, a data URI): name's extension picks
-// the reader, and errors call it name.
+// The same for an encoded image held in memory (inside a .glb, a data URI); errors call it name.
 LayeredImage readImageMemory(const std::string& name, const std::vector<unsigned char>& bytes,
                              const ImageSizeCheck& check = {});
 
@@ -29,7 +28,8 @@ struct ImageSize {
 };
 ImageSize readImageSize(const std::string& name, const std::vector<unsigned char>* bytes = nullptr);
 
-// Whether montecl reads name (by its extension) without OpenImageIO: .png, .jpg, .jpeg, any case.
-bool readsWithoutOiio(const std::string& name);
+// Whether montecl reads the image file path without OpenImageIO: a PNG or a JPEG (by its signature,
+// else its extension).
+bool readsWithoutOiio(const std::string& path);
 
 }  // namespace montecl
