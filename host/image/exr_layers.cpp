@@ -1,4 +1,4 @@
-// exr_layers.cpp: named-channel float EXR output (OpenEXR, exr_writer.cpp) and input (the OpenImageIO module), the film -> AOV planes
+// exr_layers.cpp: named-channel float EXR output (OpenEXR, exr_writer.cpp) and input (image_read.h), the film -> AOV planes
 // conversion, and the sample-count-weighted merge of renders (parallel variance formula).
 #include "image/exr_layers.h"
 #include "image/exr_writer.h"
@@ -115,58 +115,8 @@ void writeLayeredExr(const std::string& path, const LayeredImage& image) {
   writeAtomically(path, [&](const std::string& tmp) { writeExrFile(tmp, path, image); });
 }
 
-namespace {
-
-// Walks the attribute list of an OpenEXR file's header(s) (name\0 type\0 int32 size, value) and
-// refuses sizes beyond the end of the file before OpenEXR sees them: OpenEXR 3.1 allocates and
-// clears an attribute's declared size first (a flipped byte made it take 2 GB and 2-3 s per
-// file; found by fuzzing, docs/fuzzing.md). Files that are not EXR pass through unchecked.
-void checkExrHeader(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  unsigned char start[8] = {0};
-  if (!in.read(reinterpret_cast<char*>(start), 8) || start[0] != 0x76 || start[1] != 0x2f || start[2] != 0x31 ||
-      start[3] != 0x01)
-    return;
-  std::error_code ec;
-  const auto fileSize = static_cast<std::int64_t>(std::filesystem::file_size(path, ec));
-  if (ec) return;
-  const bool multipart = (start[5] & 0x10) != 0;  // version field bit 12
-  auto bad = [&](const std::string& why) { throwInputError(path, "", "cannot read image: corrupt EXR header: " + why); };
-  auto readString = [&](std::string& s) {
-    s.clear();
-    for (char c; in.get(c);) {
-      if (c == '\0') return true;
-      if (s.size() >= 255) bad("attribute name or type longer than 255 bytes");
-      s.push_back(c);
-    }
-    bad("truncated");
-    return false;
-  };
-  for (int header = 0;; ++header) {
-    std::string name, type;
-    int attributes = 0;
-    while (readString(name) && !name.empty()) {
-      readString(type);
-      unsigned char sz[4];
-      if (!in.read(reinterpret_cast<char*>(sz), 4)) bad("truncated");
-      const std::int32_t size = std::int32_t(std::uint32_t(sz[0]) | std::uint32_t(sz[1]) << 8 |
-                                             std::uint32_t(sz[2]) << 16 | std::uint32_t(sz[3]) << 24);
-      const std::int64_t pos = static_cast<std::int64_t>(in.tellg());
-      if (size < 0 || pos < 0 || size > fileSize - pos)
-        bad("attribute '" + name + "' claims " + std::to_string(size) + " bytes, past the end of the file");
-      in.seekg(size, std::ios::cur);
-      ++attributes;
-    }
-    if (!multipart || attributes == 0 || header > 1000) return;
-    if (in.peek() == 0) return;  // the empty header that ends a multi-part header list
-  }
-}
-
-}  // namespace
-
 LayeredImage readLayeredImage(const std::string& path, const ImageSizeCheck& check) {
   if (!std::filesystem::exists(path)) throwInputError(path, "", "cannot read image: no such file");
-  checkExrHeader(path);
   return readImageFile(path, check);
 }
 

@@ -1,6 +1,6 @@
 // exr_layers.h: multi-channel float EXR images with named channels (OpenEXR layer convention
 // "layer.channel"), written from named planes with OpenEXR (image/exr_writer.cpp) and read back
-// into them through the OpenImageIO module (image/oiio_loader.h); the AOV
+// into them with OpenEXR too (image/exr_read.h, in OpenImageIO's channel order); the AOV
 // layout of montecl's renders; and the per-pixel merge of several renders of one scene weighted
 // by their sample counts (exact parallel-variance combination).
 #pragma once
@@ -57,8 +57,8 @@ struct LayeredImage {
 // when writing fails.
 void writeLayeredExr(const std::string& path, const LayeredImage& image);
 
-// Reads every channel of an image (image/image_read.h: PNG and JPEG by montecl's readers, any other
-// format OpenImageIO reads; channel names as stored) as float planes. Throws InputError "<path>: cannot read image: ..." (one line) when it cannot be read or
+// Reads every channel of an image (image/image_read.h: PNG, JPEG, EXR and HDR by montecl's
+// readers, any other format OpenImageIO reads; channel names as stored) as float planes. Throws InputError "<path>: cannot read image: ..." (one line) when it cannot be read or
 // check (image/oiio_loader.h) refuses the size it declares.
 LayeredImage readLayeredImage(const std::string& path, const ImageSizeCheck& check = {});
 

@@ -1,5 +1,6 @@
 // image_read.h: image input, one entry for every reader: PNG through libpng (image/png_read.h),
-// JPEG through libjpeg-turbo (image/jpeg_read.h), every other format (EXR, HDR, TGA, ...) through
+// JPEG through libjpeg-turbo (image/jpeg_read.h), OpenEXR through OpenEXR (image/exr_read.h),
+// Radiance HDR through stb_image (image/hdr_read.h), every other format (TIFF, TGA, ...) through
 // the OpenImageIO module, which is loaded only when such a file is read (image/oiio_loader.h). The
 // image's signature picks the reader (a PNG named .jpg is still a PNG), else its name's extension.
 #pragma once
@@ -28,8 +29,8 @@ struct ImageSize {
 };
 ImageSize readImageSize(const std::string& name, const std::vector<unsigned char>* bytes = nullptr);
 
-// Whether montecl reads the image file path without OpenImageIO: a PNG or a JPEG (by its signature,
-// else its extension).
+// Whether montecl reads the image file path without OpenImageIO: a PNG, JPEG, EXR or HDR (by its
+// signature, else its extension; a CMYK JPEG and an EXR of unsigned integers still go through it).
 bool readsWithoutOiio(const std::string& path);
 
 }  // namespace montecl

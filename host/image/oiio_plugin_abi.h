@@ -1,6 +1,6 @@
 // oiio_plugin_abi.h: the C entry points of libmontecl_oiio.so, the module that holds every use of
 // OpenImageIO. montecl loads it with dlopen only when an image goes through OpenImageIO (image input
-// other than PNG and JPEG, image/image_read.h; montecl's EXR output uses OpenEXR directly, image/exr_writer.h: the write entry point
+// other than PNG, JPEG, EXR and HDR, image/image_read.h; montecl's EXR output uses OpenEXR directly, image/exr_writer.h: the write entry point
 // serves the tests' fixture images in other formats): Debian's OpenImageIO pulls in about 260 shared libraries (OpenCV,
 // FFmpeg, ...) whose relocation alone costs ~0.35 s, which a PNG render should not pay.
 // Both sides are built from this header by the same compiler in the same build, so the functions

@@ -1,5 +1,5 @@
-// environment_table.cpp: loads the environment map (image/exr_layers.h: any format OpenImageIO
-// reads) and builds its sampling tables (environment_table.h), in double, stored as float.
+// environment_table.cpp: loads the environment map (image/exr_layers.h: EXR, HDR or any format
+// OpenImageIO reads) and builds its sampling tables (environment_table.h), in double, stored as float.
 #include "render/environment_table.h"
 
 #include <algorithm>

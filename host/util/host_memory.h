@@ -15,7 +15,7 @@ std::uint64_t hostMemoryBytes();
 std::string gibText(std::uint64_t bytes);
 
 // Why an image file declaring width x height pixels of `channels` channels must not be decoded:
-// decoding holds 8 bytes per value (OpenImageIO's interleaved floats and montecl's planes), and
+// decoding holds 8 bytes per value (a reader's interleaved floats and montecl's planes), and
 // the caller keeps extraBytesPerPixel more; "" when that fits hostMemoryBytes(). For
 // readLayeredImage's size check (image/oiio_loader.h), so a tiny file cannot cost gigabytes.
 std::string decodeMemoryRefusal(int width, int height, int channels, std::uint64_t extraBytesPerPixel);
