@@ -217,7 +217,7 @@ TEST_CASE("exr read: a corrupt or truncated EXR is one InputError naming the fil
   dir.write("flipped.exr", flipped);
   dir.write("text.exr", "this is not an EXR");
   dir.write("empty.exr", "");
-  for (const char* name : {"truncated.exr", "header-only.exr", "flipped.exr", "text.exr", "empty.exr"}) {
+  for (const std::string name : {"truncated.exr", "header-only.exr", "flipped.exr", "text.exr", "empty.exr"}) {
     CAPTURE(name);
     const std::string why = readErrorOf(dir.file(name));
     CHECK(why.rfind(dir.file(name) + ": cannot read image: ", 0) == 0);
@@ -277,7 +277,7 @@ TEST_CASE("hdr read: montecl's Radiance reader gives OpenImageIO's floats, run-l
     return std::array<unsigned char, 4>{(unsigned char)x, (unsigned char)(255 - x), (unsigned char)((x * 7) % 256),
                                         (unsigned char)exps[y]};
   });
-  for (const char* f : {"rle.hdr", "flat.hdr"}) checkSameAsOiio(dir.file(f));
+  for (const std::string f : {"rle.hdr", "flat.hdr"}) checkSameAsOiio(dir.file(f));
   // The exact value: mantissa times 2^(exponent - 136), 0 for a zero exponent byte.
   const LayeredImage flat = readImageFile(dir.file("flat.hdr"));
   REQUIRE(flat.channels == std::vector<std::string>{"R", "G", "B"});
@@ -295,7 +295,7 @@ TEST_CASE("hdr read: montecl's Radiance reader gives OpenImageIO's floats, run-l
   dir.write("truncated-flat.hdr", flatBytes.substr(0, flatBytes.size() - 5));
   dir.write("no-size.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n");
   dir.write("text.hdr", "this is not a Radiance file");
-  for (const char* name : {"truncated-rle.hdr", "truncated-flat.hdr", "no-size.hdr", "text.hdr"}) {
+  for (const std::string name : {"truncated-rle.hdr", "truncated-flat.hdr", "no-size.hdr", "text.hdr"}) {
     CAPTURE(name);
     const std::string why = readErrorOf(dir.file(name));
     CHECK(why.rfind(dir.file(name) + ": cannot read image: ", 0) == 0);
@@ -321,7 +321,7 @@ TEST_CASE("exr/hdr read: EXR- and HDR-lit renders and merge need no OpenImageIO 
   writeLayeredExr(dir.file("sky.exr"), sky);
   dir.write("quad.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3\nf 1 3 4\n");
   const std::vector<std::string> noModule = {"MONTECL_IMAGE_PLUGIN=" + dir.file("no-such-module.so")};
-  for (const char* map : {"sky.exr", "sky.hdr"}) {
+  for (const std::string map : {"sky.exr", "sky.hdr"}) {
     CAPTURE(map);
     dir.write("scene.json", std::string(R"({"camera": {"position": [0, 0, 3], "target": [0, 0, 0], "fov_y": 45, "width": 8, "height": 6},
       "meshes": [{"file": "quad.obj"}], "environment": {"file": ")") + map +
@@ -338,7 +338,7 @@ TEST_CASE("exr/hdr read: EXR- and HDR-lit renders and merge need no OpenImageIO 
     CHECK(m.err.find("OpenImageIO") == std::string::npos);
     std::filesystem::remove(dir.file("m.exr"));
   }
-  for (const char* map : {"sky.exr", "sky.hdr"}) {
+  for (const std::string map : {"sky.exr", "sky.hdr"}) {
     CAPTURE(map);
     const std::string bytes = readAll(dir.file(map));
     dir.write(map, bytes.substr(0, bytes.size() / 2));
