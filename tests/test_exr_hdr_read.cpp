@@ -256,7 +256,7 @@ TEST_CASE("exr read: a corrupt or truncated EXR is one InputError naming the fil
   CHECK(refused > 0);
 }
 
-TEST_CASE("hdr read: montecl's Radiance reader gives OpenImageIO's floats, run-length encoded and flat" *
+TEST_CASE("hdr read: montecl's Radiance reader gives OpenImageIO's floats, run-length encoded and flat; mutants end" *
           doctest::test_suite("cpu")) {
   TempDir dir;
   // Run-length encoded, as OpenImageIO writes a row 8 to 32767 pixels wide.
@@ -305,6 +305,35 @@ TEST_CASE("hdr read: montecl's Radiance reader gives OpenImageIO's floats, run-l
   CHECK_THROWS_WITH_AS(readImageFile(dir.file("rle.hdr"), refuse), doctest::Contains("cannot read image: declares 37x9"),
                        InputError);
   CHECK(readImageSize(dir.file("flat.hdr")).width == 256);
+  // Mutants of both encodings from memory: each decodes or is one InputError, and each ends (a
+  // zero run-length count past the end would spin stb_image forever).
+  std::uint32_t state = 4242u;
+  const auto next = [&] { return state = state * 1664525u + 1013904223u; };
+  for (const std::string& seed : {rle, flatBytes}) {
+    int decoded = 0, refused = 0;
+    for (int i = 0; i < 500; ++i) {
+      std::string m = seed;
+      const int edits = 1 + int(next() % 4);
+      for (int e = 0; e < edits; ++e) {
+        const std::size_t at = next() % m.size();
+        switch (next() % 3) {
+          case 0: m[at] = char(next()); break;
+          case 1: m.resize(std::max<std::size_t>(at, 1)); break;
+          default: m.insert(at, std::string(1 + next() % 8, char(next()))); break;
+        }
+      }
+      try {
+        readImageMemory("mutant.hdr", std::vector<unsigned char>(m.begin(), m.end()));
+        ++decoded;
+      } catch (const InputError& e) {
+        CHECK(std::string(e.what()).rfind("mutant.hdr: cannot read image: ", 0) == 0);
+        CHECK(std::string(e.what()).find('\n') == std::string::npos);
+        ++refused;
+      }
+    }
+    CHECK(decoded + refused == 500);
+    CHECK(refused > 0);
+  }
 }
 
 TEST_CASE("exr/hdr read: EXR- and HDR-lit renders and merge need no OpenImageIO module; a corrupt map is exit 2" *
