@@ -114,7 +114,7 @@ bool exrChannelBefore(const ExrChannelKey& a, const ExrChannelKey& b) {
   return a.suffix < b.suffix;
 }
 
-std::string oneLine(std::string message) {
+std::string exrOneLine(std::string message) {
   for (char& c : message)
     if (c == '\n' || c == '\r') c = ' ';
   while (!message.empty() && message.back() == ' ') message.pop_back();
@@ -266,7 +266,7 @@ std::string decodeExr(const std::string& path, const unsigned char* data, std::s
     return decodeExrPart(file, out, check, unsupported);
   } catch (const std::exception& e) {  // OpenEXR reports a corrupt or truncated file by throwing
     out = LayeredImage{};
-    return oneLine(e.what());
+    return exrOneLine(e.what());
   }
 }
 
