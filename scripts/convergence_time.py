@@ -44,6 +44,14 @@ MONTECL_CURVES = [  # (label, extra montecl arguments)
 ]
 
 
+def cpu_model():
+    with open("/proc/cpuinfo") as f:
+        for line in f:
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    return platform.machine()
+
+
 def load_average():
     with open("/proc/loadavg") as f:
         return [float(x) for x in f.read().split()[:3]]
@@ -72,7 +80,7 @@ def measure(a):
               "--overwrite", "-q"]
     work = tempfile.mkdtemp(prefix="convergence_time_")
     res = {"scene": os.path.relpath(scene, ROOT), "size": size, "ref_spp": a.ref_spp, "curves": {},
-           "date": datetime.date.today().isoformat(), "machine": f"{os.cpu_count()} cores, {platform.processor() or platform.machine()}",
+           "date": datetime.date.today().isoformat(), "machine": f"{os.cpu_count()} cores, {cpu_model()}",
            "load_before": load_average()}
     ref_exr = os.path.join(work, "ref.exr")
     # Warm-up: a new build compiles its kernel program once (minutes on a loaded machine).
@@ -134,13 +142,15 @@ def measure(a):
 
 
 def at_time(pts, t):
-    """RMSE of a curve at wall time t: log-log interpolation between its points; beyond its ends,
-    the nearest point carried along 1/sqrt(time) (marked extrapolated)."""
+    """RMSE of a curve at wall time t: log-log interpolation between its points; past its slowest
+    point, that point carried along 1/sqrt(time) (marked extrapolated); None before its fastest
+    (no image that fast)."""
     pts = sorted(pts, key=lambda p: p["wall_s"])
     ts, es = [p["wall_s"] for p in pts], [p["rmse"] for p in pts]
-    if t <= ts[0] or t >= ts[-1]:
-        i = 0 if t <= ts[0] else -1
-        return es[i] * math.sqrt(ts[i] / t), True
+    if t < ts[0]:
+        return None, False
+    if t >= ts[-1]:
+        return es[-1] * math.sqrt(ts[-1] / t), True
     for i in range(len(ts) - 1):
         if ts[i] <= t <= ts[i + 1]:
             if ts[i + 1] == ts[i] or es[i] <= 0 or es[i + 1] <= 0:
@@ -158,6 +168,10 @@ def table(res):
              "", "| curve | RMSE at %.2f s | ratio to Mitsuba independent |" % t, "|---|---|---|"]
     for label, pts in res["curves"].items():
         e, extra = at_time(pts, t)
+        if e is None:
+            fastest = min(p["wall_s"] for p in pts)
+            lines.append(f"| {label} | none (its fastest image took {fastest:.2f} s) | - |")
+            continue
         lines.append(f"| {label} | {e:.4g}{' (extrapolated)' if extra else ''} | {e0 / e:.2f} |")
     return "\n".join(lines)
 
