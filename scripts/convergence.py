@@ -6,6 +6,12 @@ plots RMSE vs spp on log-log axes with a 1/sqrt(N) guide. Writes docs/images/con
 the slopes. Needs build/montecl and ../shared/scenes (skips with a message when absent).
 
 Usage: /usr/bin/python3 scripts/convergence.py [--size 48] [--max-spp 256] [--ref-spp 4096]
+
+--vs-time: RMSE against wall time instead, montecl (independent, sobol, sobol + --denoise) and
+Mitsuba 3 (its samplers) on the Cornell box, direct MIS, 128x128 (scripts/convergence_time.py):
+writes docs/images/convergence-time.png and prints RMSE at Mitsuba independent's 64-spp time.
+  /usr/bin/python3 scripts/convergence.py --vs-time [--size 128] [--ref-spp 4096] [--json FILE]
+      [--replot] [--mitsuba-samplers independent,multijitter,ldsampler]
 """
 import argparse
 import math
@@ -48,12 +54,26 @@ def slope(xs, ys):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--size", type=int, default=48)
+    ap.add_argument("--size", type=int, default=None, help="default 48 (--vs-time: 128)")
     ap.add_argument("--max-spp", type=int, default=256)
     ap.add_argument("--ref-spp", type=int, default=4096)
-    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "images", "convergence.png"))
+    ap.add_argument("--out", default=None, help="default docs/images/convergence.png (--vs-time: convergence-time.png)")
+    ap.add_argument("--vs-time", action="store_true", help="RMSE against wall time, montecl and Mitsuba 3")
+    ap.add_argument("--json", help="--vs-time: keep the measurements in this file")
+    ap.add_argument("--replot", action="store_true", help="--vs-time: plot --json's measurements again, no renders")
+    ap.add_argument("--mitsuba-samplers", default="independent,multijitter,ldsampler")
     args = ap.parse_args()
     scene = os.path.join(ROOT, "..", "shared", "scenes", "cornell-box", "scene.json")
+    if args.vs_time:
+        import convergence_time
+        args.out = args.out or os.path.join(ROOT, "docs", "images", "convergence-time.png")
+        args.scene, args.montecl = os.path.abspath(scene), os.path.join(ROOT, "build", "montecl")
+        args.size = args.size or 128
+        if args.replot and not args.json:
+            ap.error("--replot needs --json")
+        return convergence_time.main(args)
+    args.out = args.out or os.path.join(ROOT, "docs", "images", "convergence.png")
+    args.size = args.size or 48
     if not os.path.exists(scene):
         print("convergence: skipping: %s not found (../shared/scenes is not beside this checkout)" % scene)
         return 0

@@ -348,7 +348,10 @@ def worker(spec_path):
                                                    up=cam.get("up", [0, 1, 0])),
         "film": {"type": "hdrfilm", "width": spec["width"], "height": spec["height"],
                  "rfilter": {"type": "box"}, "pixel_format": "rgb", "component_format": "float32"},
-        "sampler": {"type": "independent", "sample_count": 1},
+        # independent unless the spec names another (scripts/convergence.py --vs-time compares them).
+        # Its sample count is the pass's (below): a stratified sampler lays its strata out for it.
+        "sampler": {"type": spec.get("sampler", "independent"),
+                    "sample_count": max(1, min(spec["spp"], MAX_LANES // max(1, spec["width"] * spec["height"])))},
     }
     d["sensor"].update(lens)
     for sh in spec["shapes"]:
@@ -371,6 +374,7 @@ def worker(spec_path):
     msc = mi.load_dict(d)
     pixels = spec["width"] * spec["height"]
     images = []
+    t_render = time.perf_counter()
     for seed in spec["seeds"]:  # one independent render per seed, each at spec["spp"]
         spp, done, acc = spec["spp"], 0, None
         per_pass = max(1, min(spp, MAX_LANES // max(1, pixels)))
@@ -384,7 +388,7 @@ def worker(spec_path):
         images.append(acc / spp)
     stack = np.stack(images)
     mean = stack.mean(axis=0)
-    out = {"variant": variant, "mean": mean}
+    out = {"variant": variant, "mean": mean, "render_s": time.perf_counter() - t_render}
     if len(images) > 1:
         out["se"] = stack.std(axis=0, ddof=1) / math.sqrt(len(images))
     if spec.get("exr"):
@@ -457,6 +461,21 @@ def agreement(m_mean, m_se, r_mean, r_se):
         "mean_ratio_se": float(math.sqrt((m_se ** 2).sum() + (r_se ** 2).sum()) / r_mean.sum())
         if r_mean.sum() > 0 else float("nan"),
     }
+
+
+def worker_base(sc, work, width, height, variant, integ, sampling, max_depth, rr_depth):
+    """The worker's spec but for spp, seeds and outputs. Mitsuba reads the meshes as PLY files
+    written here into work once (untimed), with its own C++ loader, as montecl parses the OBJ in its
+    own process."""
+    shapes = []
+    for sh in sc["shapes"]:
+        ply = os.path.join(work, sh["name"] + ".ply")
+        write_ply(ply, sh["P"], sh["F"], sh["UV"])
+        shapes.append({"name": sh["name"], "ply": ply, "Kd": sh["Kd"], "Ke": list(sh["Ke"]), "bsdf": sh["bsdf"],
+                       "map_Ke": sh["map_Ke"]})
+    return {"camera": sc["camera"], "shapes": shapes, "environment": sc["environment"], "lights": sc["lights"],
+            "width": width, "height": height, "variant": variant, "integrator": integ, "direct_sampling": sampling,
+            "light_samples": sc["render"].get("light_samples", 1), "max_depth": max_depth, "rr_depth": rr_depth}
 
 
 def parse_args(argv):
@@ -545,17 +564,7 @@ def main(argv):
     probe = subprocess.run(probe, capture_output=True, text=True)
     if probe.returncode == 2:
         raise BadInput(probe.stderr.strip().removeprefix("montecl: error: "))
-    # Mitsuba reads the meshes as PLY files written here once (untimed), with its own C++ loader, as
-    # montecl parses the OBJ in its own process.
-    shapes = []
-    for sh in sc["shapes"]:
-        ply = os.path.join(work, sh["name"] + ".ply")
-        write_ply(ply, sh["P"], sh["F"], sh["UV"])
-        shapes.append({"name": sh["name"], "ply": ply, "Kd": sh["Kd"], "Ke": list(sh["Ke"]), "bsdf": sh["bsdf"],
-                       "map_Ke": sh["map_Ke"]})
-    base = {"camera": cam, "shapes": shapes, "environment": sc["environment"], "lights": sc["lights"], "width": width, "height": height, "variant": variant,
-            "integrator": integ, "direct_sampling": sampling, "light_samples": rnd.get("light_samples", 1),
-            "max_depth": a.max_depth, "rr_depth": a.rr_depth}
+    base = worker_base(sc, work, width, height, variant, integ, sampling, a.max_depth, a.rr_depth)
 
     def mitsuba_cmd(name, spec):
         path = os.path.join(work, name + ".json")

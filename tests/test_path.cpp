@@ -354,7 +354,10 @@ TEST_CASE("cli: bad --max-depth, --rr-depth, aperture_radius, focus_distance, ma
   CHECK(fs::exists(dir.file("ok.png")));
 }
 
-TEST_CASE("path: first-hit AOVs are those of the camera rays, identical to the AO integrator's" * doctest::test_suite("opencl")) {
+// Albedo, depth and normal are the AO integrator's; the emission seen directly, which AO does not
+// count on a hit, is the direct integrator's (both add Le of the camera ray's hit unweighted).
+TEST_CASE("path: first-hit AOVs are those of the camera rays, identical to the AO and direct integrators'" *
+          doctest::test_suite("opencl")) {
   Scene s = cornellLike(10, 3);
   RenderOptions o;
   o.aovs = true;
@@ -362,8 +365,18 @@ TEST_CASE("path: first-hit AOVs are those of the camera rays, identical to the A
   Film path = render(withPath(s, -1, 1), o);
   s.render.integrator = Integrator::Ao;
   Film ao = render(s, o);
+  s.render.integrator = Integrator::Direct;
+  Film direct = render(s, o);
   REQUIRE(path.aovSum.size() == ao.aovSum.size());
-  CHECK(std::memcmp(path.aovSum.data(), ao.aovSum.data(), ao.aovSum.size() * sizeof(glm::vec4)) == 0);
+  REQUIRE(path.aovSum.size() == direct.aovSum.size());
+  bool emitterSeen = false;
+  for (std::size_t p = 0; p < path.count.size(); ++p) {
+    const std::size_t v = MCL_AOV_VECTORS * p;
+    CHECK(std::memcmp(&path.aovSum[v], &ao.aovSum[v], 2 * sizeof(glm::vec4)) == 0);
+    CHECK(std::memcmp(&path.aovSum[v + 2], &direct.aovSum[v + 2], sizeof(glm::vec4)) == 0);
+    emitterSeen = emitterSeen || path.aovSum[v + 2].x > 0.0f;
+  }
+  CHECK(emitterSeen);
 }
 
 TEST_CASE("cli: -v prints the live paths per bounce, falling from the camera rays to none" * doctest::test_suite("cli")) {

@@ -210,7 +210,7 @@ double meanNormalErrorDegrees(const Scene& s, const std::function<glm::dvec3(std
   return sum / count;
 }
 double meanNormalErrorDegrees(const Scene& s, const Film& f, int* pixelsUsed) {
-  return meanNormalErrorDegrees(s, [&](std::size_t p) { return glm::dvec3(glm::vec3(f.aovSum[2 * p + 1])); },
+  return meanNormalErrorDegrees(s, [&](std::size_t p) { return glm::dvec3(glm::vec3(f.aovSum[MCL_AOV_VECTORS * p + 1])); },
                                 pixelsUsed);
 }
 

@@ -81,14 +81,14 @@ TEST_CASE("textures: a textured quad's albedo AOV is the linear value of each te
       const std::size_t p = std::size_t(py) * 64 + px;
       for (int c = 0; c < 3; ++c) {
         const float want = srgbToLinear(float(texelValue(i, j, c)) / 255.0f);
-        const float got = f.aovSum[2 * p][c] / float(f.count[p]);
+        const float got = f.aovSum[MCL_AOV_VECTORS * p][c] / float(f.count[p]);
         REQUIRE(got == doctest::Approx(want).epsilon(1e-3));  // a half float: 2^-11 relative
         ++checked;
       }
     }
   CHECK(checked == 16 * 12 * 12 * 3);
   // sRGB 128 -> 0.2158 (texel (0, 0) red is 128).
-  CHECK(f.aovSum[2 * (62 * 64 + 8)].x / float(f.count[62 * 64 + 8]) == doctest::Approx(0.2158).epsilon(1e-3));
+  CHECK(f.aovSum[MCL_AOV_VECTORS * (62 * 64 + 8)].x / float(f.count[62 * 64 + 8]) == doctest::Approx(0.2158).epsilon(1e-3));
 }
 
 TEST_CASE("textures: a grazing checkerboard at 1 spp has a far field close to the checker mean" * doctest::test_suite("opencl")) {
@@ -115,7 +115,7 @@ TEST_CASE("textures: a grazing checkerboard at 1 spp has a far field close to th
   double farSum = 0.0, farSq = 0.0, nearSq = 0.0, nearSum = 0.0;
   int farN = 0, nearN = 0;
   for (std::size_t p = 0; p < f.pixelCount(); ++p) {
-    const float depth = f.aovSum[2 * p].w, albedo = f.aovSum[2 * p].x;
+    const float depth = f.aovSum[MCL_AOV_VECTORS * p].w, albedo = f.aovSum[MCL_AOV_VECTORS * p].x;
     if (depth > 15.0f && depth < 150.0f) {  // lod >= 4: levels of grey 0.5
       farSum += albedo;
       farSq += double(albedo) * albedo;
@@ -159,8 +159,8 @@ TEST_CASE("cut-outs: a fully transparent quad neither occludes (AO exactly 1) no
   for (std::size_t p = 0; p < f.pixelCount(); ++p) {
     REQUIRE(f.meanOf(p, 0) == 1.0);  // every AO ray escapes: exactly 1
     const float n = float(f.count[p]);
-    REQUIRE(f.aovSum[2 * p].x / n == 0.25f);        // the camera sees the floor's albedo
-    REQUIRE(f.aovSum[2 * p].w / n > 1.99f);         // at the floor's depth, not the quad's (1.5)
+    REQUIRE(f.aovSum[MCL_AOV_VECTORS * p].x / n == 0.25f);        // the camera sees the floor's albedo
+    REQUIRE(f.aovSum[MCL_AOV_VECTORS * p].w / n > 1.99f);         // at the floor's depth, not the quad's (1.5)
   }
 }
 
@@ -243,7 +243,7 @@ TEST_CASE("textures: a tiny budget drops fine levels with a warning and the rend
   o.aovs = true;
   const Film f = render(s, o, &small);
   for (std::size_t p = 0; p < f.pixelCount(); ++p) {
-    const float a = f.aovSum[2 * p].x / float(f.count[p]);
+    const float a = f.aovSum[MCL_AOV_VECTORS * p].x / float(f.count[p]);
     REQUIRE(std::isfinite(a));
     REQUIRE(a >= 0.0f);
     REQUIRE(a <= 1.0f);

@@ -114,7 +114,7 @@ Film render(const Scene& s, bool aovs) {
   return r.render(s, bvh, stats);
 }
 
-glm::vec3 albedoAt(const Film& f, std::size_t p) { return glm::vec3(f.aovSum[2 * p]) / float(f.count[p]); }
+glm::vec3 albedoAt(const Film& f, std::size_t p) { return glm::vec3(f.aovSum[MCL_AOV_VECTORS * p]) / float(f.count[p]); }
 
 // The surface's glTF UV at the centre of pixel (px, py) of a size x size image of a quad with UVs
 // uvRect(u0, u1, v0, v1).

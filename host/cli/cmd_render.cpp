@@ -382,9 +382,10 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
       ->check(positiveNumber());
   cmd->add_option("--aov", args->aovs,
                   "Extra EXR channels, comma-separated: albedo (albedo.R/G/B), normal (N.X/Y/Z), depth (Z), "
-                  "or all; averaged over each pixel's samples")
+                  "emission (emission.R/G/B: emitted radiance seen directly), or all; averaged over each "
+                  "pixel's samples")
       ->delimiter(',')
-      ->check(CLI::IsMember({"albedo", "normal", "depth", "all"}));
+      ->check(CLI::IsMember({"albedo", "normal", "depth", "emission", "all"}));
   cmd->add_option("--env", args->env,
                   "Environment light replacing the scene's: R,G,B (constant radiance) or a latitude-longitude "
                   "map file (.exr, .hdr, ...)");

@@ -90,7 +90,8 @@ std::size_t nonFinitePixels(const LayeredImage& img) {
 }
 
 // The EXR layers: R, G, B, samples, var.R/G/B, and the AOVs asked for, averaged over samples:
-// albedo.R/G/B, N.X/Y/Z (facing geometric normal), Z (distance along the camera ray).
+// albedo.R/G/B, N.X/Y/Z (facing geometric normal), Z (distance along the camera ray),
+// emission.R/G/B (radiance emitted by what the camera ray sees directly).
 LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs) {
   LayeredImage img = layersFromFilm(film);
   if (aovs.empty()) return img;
@@ -102,7 +103,7 @@ LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs
   auto plane = [&](int vec, int comp) {
     std::vector<float> out(pixels, 0.0f);
     for (std::size_t p = 0; p < pixels; ++p)
-      if (double(film.count[p]) > 0) out[p] = film.aovSum[2 * p + vec][comp] / double(film.count[p]);
+      if (double(film.count[p]) > 0) out[p] = film.aovSum[MCL_AOV_VECTORS * p + vec][comp] / double(film.count[p]);
     return out;
   };
   if (wants("albedo"))
@@ -110,6 +111,8 @@ LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs
   if (wants("normal"))
     for (int c = 0; c < 3; ++c) img.set(std::string("N.") + "XYZ"[c], plane(1, c));
   if (wants("depth")) img.set("Z", plane(0, 3));
+  if (wants("emission"))
+    for (int c = 0; c < 3; ++c) img.set(std::string("emission.") + "RGB"[c], plane(2, c));
   return img;
 }
 
@@ -127,25 +130,34 @@ int oidnQuality(DenoiseQuality q) {
 }  // namespace
 
 // The guides are the film's own AOV averages (as noisy as the color: no cleanAux), so the
-// denoiser sees the same samples the estimate does.
+// denoiser sees the same samples the estimate does. The emission seen directly (the emission AOV's
+// mean) is taken out of the color before the filter and added back after it: it carries no noise
+// from light transport (only the pixel footprint's), and a bright emitter's exact pixels came out
+// of the filter with errors of the order of its radiance at its corners and edges. The albedo guide
+// on an emitter stays its BSDF's albedo: what is left of its color is the light it reflects.
 std::vector<float> denoiseFilm(const Film& film, DenoiseQuality quality, bool quiet, double& seconds) {
   const std::size_t pixels = film.pixelCount();
-  std::vector<float> albedo(3 * pixels, 0.0f), normal(3 * pixels, 0.0f);
-  if (film.aovSum.size() == 2 * pixels)
+  std::vector<float> albedo(3 * pixels, 0.0f), normal(3 * pixels, 0.0f), emission(3 * pixels, 0.0f);
+  std::vector<float> rest = film.meanRgb();
+  if (film.aovSum.size() == MCL_AOV_VECTORS * pixels)
     for (std::size_t p = 0; p < pixels; ++p) {
       if (film.count[p] == 0) continue;
       const double n = double(film.count[p]);
       for (int c = 0; c < 3; ++c) {
-        albedo[3 * p + c] = float(film.aovSum[2 * p][c] / n);
-        normal[3 * p + c] = float(film.aovSum[2 * p + 1][c] / n);
+        albedo[3 * p + c] = float(film.aovSum[MCL_AOV_VECTORS * p][c] / n);
+        normal[3 * p + c] = float(film.aovSum[MCL_AOV_VECTORS * p + 1][c] / n);
+        emission[3 * p + c] = float(film.aovSum[MCL_AOV_VECTORS * p + 2][c] / n);
+        // The rest in double from the film's float-float mean; never below 0 (OIDN's HDR range).
+        rest[3 * p + c] = float(std::max(0.0, film.meanOf(p, c) - film.aovSum[MCL_AOV_VECTORS * p + 2][c] / n));
       }
     }
   if (!quiet)
     std::cerr << "denoising " << film.width << "x" << film.height << " (Open Image Denoise, RT filter, quality "
               << choiceName(denoiseQualityNames(), quality) << ")\n";
   const auto start = std::chrono::steady_clock::now();
-  std::vector<float> out = oidnDenoise(film.width, film.height, film.meanRgb(), albedo, normal, oidnQuality(quality));
+  std::vector<float> out = oidnDenoise(film.width, film.height, rest, albedo, normal, oidnQuality(quality));
   seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] += emission[i];
   return out;
 }
 

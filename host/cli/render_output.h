@@ -31,10 +31,11 @@ bool isExr(const std::string& path);
 // The number of pixels with a NaN or infinite value in any plane (values that overflowed a float).
 std::size_t nonFinitePixels(const LayeredImage& img);
 // The EXR layers: R, G, B, samples, var.R/G/B, and the AOVs asked for, averaged over samples:
-// albedo.R/G/B, N.X/Y/Z (facing geometric normal), Z (distance along the camera ray).
+// albedo.R/G/B, N.X/Y/Z (facing geometric normal), Z (distance along the camera ray),
+// emission.R/G/B (emission seen directly).
 LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs);
-// Open Image Denoise on the film's mean with its albedo and normal AOVs (zero guides when the film
-// has none); a progress line on stderr unless quiet. Returns interleaved RGB and the filter's
+// Open Image Denoise on the film's mean less its emission AOV (added back to the output), with its
+// albedo and normal AOVs as guides (zero guides and nothing taken out when the film has none); a progress line on stderr unless quiet. Returns interleaved RGB and the filter's
 // seconds. Throws RuntimeError if the library fails.
 std::vector<float> denoiseFilm(const Film& film, DenoiseQuality quality, bool quiet, double& seconds);
 // Adds planes <prefix>R, <prefix>G, <prefix>B from interleaved RGB ("" for the image itself).

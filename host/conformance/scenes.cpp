@@ -225,7 +225,8 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   cases.push_back(texturedCase(withDirect(light, DirectSampling::Mis, 2), "textured-cutout/direct-mis"));
   cases.push_back(texturedCase(withAo(light, AoSampling::Cosine), "textured-cutout/ao-cosine"));
   cases.push_back(texturedCase(withPath(light, 1), "textured-cutout/path"));
-  // First-hit AOVs (albedo through the texture, shading normal, depth), recorded by both kinds of wave.
+  // First-hit AOVs (albedo through the texture, shading normal, depth, emission seen directly: the
+  // background on the horizon's misses), recorded by both kinds of wave.
   for (ConformanceCase c : {texturedCase(withDirect(light, DirectSampling::Mis, 1), "textured-cutout/direct-mis-aov"),
                             texturedCase(withPath(light, 1), "textured-cutout/path-aov")}) {
     c.aovs = true;

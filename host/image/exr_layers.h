@@ -19,7 +19,8 @@ struct Film;
 //   samples        per-pixel sample count n
 //   var.R var.G var.B   unbiased sample variance of ONE sample, s^2 = sum (x - mean)^2 / (n - 1)
 //                       (0 where n < 2); the variance of the mean is var / n
-//   albedo.R/G/B, N.X/Y/Z, Z   optional AOVs (first-hit albedo, normal, depth): averaged by n
+//   albedo.R/G/B, N.X/Y/Z, Z, emission.R/G/B   optional AOVs (first-hit albedo, normal, depth,
+//                       emitted radiance seen directly): averaged by n
 // With the sobol sampler's K > 1 sub-sequences (render.sobol_splits) also:
 //   split<k>.R/G/B split<k>.n   sub-sequence k's mean and sample count (k = 0 .. K-1)
 //   err.R err.G err.B   the estimated squared standard error of the mean R G B, from the spread

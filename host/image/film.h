@@ -10,6 +10,8 @@
 #include <cstring>
 #include <vector>
 
+#include "kernels/shared/types.h"  // MCL_AOV_VECTORS
+
 namespace montecl {
 
 // The squared standard error of a mean over K independent sub-sequences with counts n_k and
@@ -37,7 +39,8 @@ struct Film {
   std::vector<glm::vec4> mean, meanLo;  // rgb: mean of the sample values = mean + meanLo; w: 0
   std::vector<glm::vec4> m2, m2Lo;      // rgb: sum over samples of (x - mean)^2 = m2 + m2Lo; w: 0
   std::vector<std::uint64_t> count;     // samples per pixel
-  // With AOVs: 2 per pixel, sums over samples of (albedo, depth) and (normal, 0); else empty.
+  // With AOVs: MCL_AOV_VECTORS (3) per pixel, sums over samples of (albedo, depth), (normal, 0) and
+  // (emission seen directly, 0) (kernels/stages/record_aov.h); else empty.
   std::vector<glm::vec4> aovSum;
   // With the sobol sampler's K > 1 sub-sequences: K per pixel, split[K p + k] = sub-sequence k's
   // mean (rgb) and its sample count (w, uint bits); else empty.

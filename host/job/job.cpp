@@ -21,7 +21,7 @@ double now() {
 }
 
 // Bytes of one pixel's exact state in a gather: mean, meanLo, m2, m2Lo, count (+ 2 AOV sums).
-std::size_t pixelBytes(bool aovs) { return 4 * 16 + 8 + (aovs ? 32 : 0); }
+std::size_t pixelBytes(bool aovs) { return 4 * 16 + 8 + (aovs ? 16 * MCL_AOV_VECTORS : 0); }
 
 std::vector<std::uint32_t> pixelsOfRank(int rank, int ranks, std::uint64_t pixels) {
   std::vector<std::uint32_t> out;
@@ -140,7 +140,7 @@ Film Job::gather(const Film& mine) const {
   for (std::uint32_t p : pixels_) {
     for (const auto* v : {&mine.mean, &mine.meanLo, &mine.m2, &mine.m2Lo}) std::memcpy(at, &(*v)[p], 16), at += 16;
     std::memcpy(at, &mine.count[p], 8), at += 8;
-    if (aovs_) std::memcpy(at, &mine.aovSum[2 * p], 32), at += 32;
+    if (aovs_) std::memcpy(at, &mine.aovSum[MCL_AOV_VECTORS * p], 16 * MCL_AOV_VECTORS), at += 16 * MCL_AOV_VECTORS;
     if (splits) std::memcpy(at, &mine.split[splits * p], 16 * splits), at += 16 * splits;
   }
   const std::uint64_t pixels = std::uint64_t(width_) * height_;
@@ -164,14 +164,14 @@ Film Job::gather(const Film& mine) const {
   full.mean.assign(pixels, glm::vec4(0.0f));
   full.meanLo = full.m2 = full.m2Lo = full.mean;
   full.count.assign(pixels, 0);
-  if (aovs_) full.aovSum.assign(2 * pixels, glm::vec4(0.0f));
+  if (aovs_) full.aovSum.assign(MCL_AOV_VECTORS * pixels, glm::vec4(0.0f));
   full.split.assign(splits * pixels, glm::vec4(0.0f));
   const char* from = recv.data();
   for (int r = 0; r < w.size; ++r) {
     for (std::uint32_t p : lists[std::size_t(r)]) {
       for (auto* v : {&full.mean, &full.meanLo, &full.m2, &full.m2Lo}) std::memcpy(&(*v)[p], from, 16), from += 16;
       std::memcpy(&full.count[p], from, 8), from += 8;
-      if (aovs_) std::memcpy(&full.aovSum[2 * p], from, 32), from += 32;
+      if (aovs_) std::memcpy(&full.aovSum[MCL_AOV_VECTORS * p], from, 16 * MCL_AOV_VECTORS), from += 16 * MCL_AOV_VECTORS;
       if (splits) std::memcpy(&full.split[splits * p], from, 16 * splits), from += 16 * splits;
     }
   }

@@ -40,7 +40,7 @@ std::string payloadOf(const Film& film, bool aovs) {
   const std::size_t n = film.pixelCount();
   for (const auto* v : {&film.mean, &film.meanLo, &film.m2, &film.m2Lo}) append(out, v->data(), n);
   append(out, film.count.data(), n);
-  if (aovs) append(out, film.aovSum.data(), 2 * n);
+  if (aovs) append(out, film.aovSum.data(), MCL_AOV_VECTORS * n);
   append(out, film.split.data(), film.split.size());
   return out;
 }
@@ -83,7 +83,7 @@ void writeCheckpoint(const std::string& path, const CheckpointInfo& info, const 
   h.key = info.key;
   h.width = std::uint32_t(film.width);
   h.height = std::uint32_t(film.height);
-  h.aovs = info.aovs;
+  h.aovs = info.aovs ? MCL_AOV_VECTORS : 0;
   h.seed = info.seed;
   h.spp = info.spp;
   h.firstSample = info.firstSample;
@@ -133,13 +133,17 @@ Film readCheckpoint(const std::string& path, const CheckpointInfo& expected, int
   if (h.spp != expected.spp) refuse("spp " + std::to_string(h.spp) + ", this render's is " + std::to_string(expected.spp));
   if (h.firstSample != expected.firstSample) refuse("first sample " + std::to_string(h.firstSample));
   if (bool(h.aovs) != expected.aovs) refuse(h.aovs ? "with AOVs" : "without AOVs");
+  // Before the emission AOV the field was 1 and the film held 2 AOV vectors per pixel.
+  if (h.aovs && h.aovs != MCL_AOV_VECTORS)
+    refuse(std::to_string(h.aovs == 1 ? 2 : h.aovs) + " AOV vectors per pixel, this montecl writes " +
+           std::to_string(MCL_AOV_VECTORS) + ": from an older montecl");
   if (h.key != expected.key) refuse("other scene or settings: key " + hex64(h.key) + ", this render's is " + hex64(expected.key));
   Film film;
   film.width = width;
   film.height = height;
   const std::size_t n = std::size_t(width) * height;
   if (h.splits > 64) throwInputError(path, "--resume", "damaged checkpoint (" + std::to_string(h.splits) + " sub-sequences)");
-  const std::size_t need = sizeof h + n * (4 * 16 + 8) + (h.aovs ? 2 * n * 16 : 0) + std::size_t(h.splits) * n * 16;
+  const std::size_t need = sizeof h + n * (4 * 16 + 8) + (h.aovs ? MCL_AOV_VECTORS * n * 16 : 0) + std::size_t(h.splits) * n * 16;
   if (std::uint64_t(st.st_size) != need) throwInputError(path, "--resume", "damaged checkpoint (wrong size)");
   std::string payload(need - sizeof h, '\0');
   if (!in.read(payload.data(), std::streamsize(payload.size())))
@@ -156,7 +160,7 @@ Film readCheckpoint(const std::string& path, const CheckpointInfo& expected, int
   take(film.m2, n);
   take(film.m2Lo, n);
   take(film.count, n);
-  if (h.aovs) take(film.aovSum, 2 * n);
+  if (h.aovs) take(film.aovSum, MCL_AOV_VECTORS * n);
   if (h.splits) take(film.split, std::size_t(h.splits) * n);
   return film;
 }

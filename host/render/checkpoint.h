@@ -2,10 +2,10 @@
 // Format (version 1, little-endian, docs/mpi.md): an 88-byte header, then the raw film arrays
 //   char magic[8] = "MCLCKPT1"; u32 version = 1; u32 headerBytes = 88;
 //   u64 key (renderKey: sceneDigest, settings, camera, everything else that changes a pixel);
-//   u32 width, height, aovs (0/1), seed, spp, firstSample, integrator, minSpp, maxSpp,
+//   u32 width, height, aovs (0, or MCL_AOV_VECTORS: 3; 1 was the older 2-vector film), seed, spp, firstSample, integrator, minSpp, maxSpp,
 //   splits (K: the sobol sampler's sub-sequences with film accumulators, 0 without; was a 0 pad);
 //   f64 targetError; u64 samplesDone (sum of counts); u64 payloadHash (FNV-1a of the payload);
-//   payload: mean[P], meanLo[P], m2[P], m2Lo[P] (float4 each), count[P] (u64), aovSum[2P] (with AOVs),
+//   payload: mean[P], meanLo[P], m2[P], m2Lo[P] (float4 each), count[P] (u64), aovSum[3P] (with AOVs),
 //   split[K P] (float4, Film::split, with K > 0).
 // It is written through util/atomic_file.h (temporary + rename), so a kill -9 at any moment leaves
 // the previous checkpoint or the new one; a torn or foreign file fails its size, magic or hash check.

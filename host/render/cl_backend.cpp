@@ -210,8 +210,8 @@ class ClStageRunner final : public StageRunner {
     }
     film.unpackCounts();
     if (aovs_) {
-      film.aovSum.resize(2 * pixels_);
-      cl_.queue().enqueueReadBuffer(bindings_.aovSum.buffer, CL_TRUE, 0, 2 * pixels_ * sizeof(cl_float4),
+      film.aovSum.resize(MCL_AOV_VECTORS * pixels_);
+      cl_.queue().enqueueReadBuffer(bindings_.aovSum.buffer, CL_TRUE, 0, MCL_AOV_VECTORS * pixels_ * sizeof(cl_float4),
                                     film.aovSum.data());
     }
     film.split.resize(splits_ * pixels_);
@@ -232,7 +232,7 @@ class ClStageRunner final : public StageRunner {
     releaseBuffersAndWaves();
     trimHeap();
     for (auto& [device, host] : parts) {
-      const std::uint64_t words = host == &film.aovSum ? (aovs_ ? 2 * pixels_ : 0)
+      const std::uint64_t words = host == &film.aovSum ? (aovs_ ? MCL_AOV_VECTORS * pixels_ : 0)
                                   : host == &film.split ? splits_ * pixels_
                                                         : pixels_;
       host->resize(words);

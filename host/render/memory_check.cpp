@@ -10,10 +10,10 @@ ImageMemory imageMemoryNeed(std::uint64_t pixels, bool aovs, std::uint64_t waveB
   // The film's buffers (render/wave_buffers.h) and the active pixel list; then the per-wave buffers.
   m.device = pixels * (filmBytesPerPixel(aovs, splits) + sizeof(std::uint32_t)) + waveBytes;
   // The film read back (its buffers and the 64-bit sample counts), and the output: up to 7 float
-  // planes (R, G, B, samples, var.R/G/B) + 7 AOV planes (+ 4 per sub-sequence and err.R/G/B),
+  // planes (R, G, B, samples, var.R/G/B) + 10 AOV planes (albedo, N, Z, emission; + 4 per sub-sequence and err.R/G/B),
   // plus the encoder's copy of them.
   const std::uint64_t splitPlanes = splits > 1 ? 4 * splits + 3 : 0;
-  m.host = pixels * (filmBytesPerPixel(aovs, splits) + sizeof(std::uint64_t) + 2 * 4 * (7 + (aovs ? 7 : 0) + splitPlanes));
+  m.host = pixels * (filmBytesPerPixel(aovs, splits) + sizeof(std::uint64_t) + 2 * 4 * (7 + (aovs ? 10 : 0) + splitPlanes));
   return m;
 }
 

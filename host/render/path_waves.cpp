@@ -32,8 +32,10 @@ void runPathWave(StageRunner& run, std::uint32_t n, std::uint32_t lightSamples, 
       run.launch(Stage::wave_path, (live + group - 1) / group);
     } else {
       run.launch(Stage::intersect, live);
-      if (bounce == 0 && aovs) run.launch(Stage::record_aov, n);  // camera rays and hits (identity ids)
       run.launch(Stage::shade_path, live);
+      // Camera rays and hits (identity ids), and radiance holding only the camera ray's own term:
+      // after shade_path, before path_gather adds the light samples (record_aov.h).
+      if (bounce == 0 && aovs) run.launch(Stage::record_aov, n);
       run.launch(Stage::intersect_shadow, std::uint64_t(live) * lightSamples);
       run.launch(Stage::path_gather, live);
     }

@@ -16,7 +16,7 @@ struct PathWaveCounts {
 };
 
 // Runs the bounces of a wave of n camera rays already generated: per bounce intersect ->
-// (record_aov at bounce 0 when aovs) -> shade_path -> intersect_shadow -> path_gather, on the live
+// shade_path -> (record_aov at bounce 0 when aovs) -> intersect_shadow -> path_gather, on the live
 // paths only, until none is left; adds to counts.
 // "paths per bounce: 0: 16384, 1: 16384 (100%), 2: 12000 (73.2%), ..." (for -v).
 std::string survivorsSummary(const std::vector<std::uint64_t>& survivors);

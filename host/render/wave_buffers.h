@@ -14,14 +14,14 @@ namespace montecl {
 
 // How many elements a buffer holds, for a wave of `items` items with `slots` occlusion queries
 // each, on an image of `pixels` pixels.
-enum class Per { Item, Slot, TwoPerItem, Pixel, TwoPerPixel, SplitsPerPixel, One };
+enum class Per { Item, Slot, AovsPerItem, Pixel, AovsPerPixel, SplitsPerPixel, One };  // Aovs: MCL_AOV_VECTORS
 // Which renders need it; the others get a 1-element dummy (OpenCL has no empty buffers).
 enum class Need { Always, Bounce, Path, Aovs, Splits };
 
 // WAVE_BUFFER(name, element type, Per, Need): written and read by the stages only.
 // bounce / bounceHits: direct lighting's BRDF rays and their hits; throughput, nextRays, pathIds,
 // nextPathIds: path tracing's per-path state and the next bounce's compacted queue (swapped with
-// rays / pathIds between bounces); aov: first-hit albedo and normal+depth of each item;
+// rays / pathIds between bounces); aov: first-hit albedo+depth, normal, emission of each item;
 // groupCounts: the fused stages' occlusion queries per group of items (kernels/stages/wave_fused.h;
 // a group is at least one item, so one entry per item is enough).
 #define MCL_WAVE_BUFFERS(B)             \
@@ -36,7 +36,7 @@ enum class Need { Always, Bounce, Path, Aovs, Splits };
   B(nextRays, Ray, Item, Path)          \
   B(pathIds, uint, Item, Path)          \
   B(nextPathIds, uint, Item, Path)      \
-  B(aov, float4, TwoPerItem, Aovs)      \
+  B(aov, float4, AovsPerItem, Aovs)     \
   B(groupCounts, uint, Item, Always)
 
 // WAVE_COUNTER(name): one uint the stages count into (atomically) and the host resets and reads:
@@ -54,7 +54,7 @@ enum class Need { Always, Bounce, Path, Aovs, Splits };
   F(meanLo, Pixel, Always)       \
   F(m2, Pixel, Always)           \
   F(m2Lo, Pixel, Always)         \
-  F(aovSum, TwoPerPixel, Aovs)   \
+  F(aovSum, AovsPerPixel, Aovs)  \
   F(split, SplitsPerPixel, Splits)
 
 // What a render needs of these lists: the wave's size and what its integrator and options ask for.
@@ -80,16 +80,16 @@ constexpr std::uint64_t bufferCount(Per per, Need need, const WaveShape& s) {
   switch (per) {
     case Per::Item: return s.items;
     case Per::Slot: return s.items * s.slots;
-    case Per::TwoPerItem: return 2 * s.items;
+    case Per::AovsPerItem: return MCL_AOV_VECTORS * s.items;
     case Per::Pixel: return s.pixels;
-    case Per::TwoPerPixel: return 2 * s.pixels;
+    case Per::AovsPerPixel: return MCL_AOV_VECTORS * s.pixels;
     case Per::SplitsPerPixel: return s.splits * s.pixels;
     case Per::One: return 1;
   }
   return 1;
 }
 
-constexpr bool perItem(Per per) { return per == Per::Item || per == Per::Slot || per == Per::TwoPerItem; }
+constexpr bool perItem(Per per) { return per == Per::Item || per == Per::Slot || per == Per::AovsPerItem; }
 
 // Bytes of the needed per-item buffers for one wave item (the wave's cost; dummies not counted).
 constexpr std::uint64_t waveBytesPerItem(WaveShape s) {

@@ -115,7 +115,7 @@
   ARG(uint, waveCount) ARG(MCL_GLOBAL const Triangle*, tris)                                       \
   ARG(MCL_GLOBAL const TriangleShading*, shading) ARG(MCL_GLOBAL const float4*, normals) \
   ARG(MCL_GLOBAL const Material*, materials) ARG(MCL_GLOBAL const Ray*, rays)                      \
-  ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL float4*, aov) \
+  ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL const float4*, radiance) ARG(MCL_GLOBAL float4*, aov) \
   MCL_TEXTURE_ARGS(ARG)
 
 #define MCL_ARGS_accumulate_aov(ARG)                                                               \

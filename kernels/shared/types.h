@@ -14,6 +14,9 @@
 // FrameParams::sampler (shared/sampler.h): where the stages' uniform numbers come from.
 #define MCL_SAMPLER_INDEPENDENT 0u  // pcg4d hash per (seed, pixel, sample, group): i.i.d.
 #define MCL_SAMPLER_SOBOL 1u        // Owen-scrambled Sobol, one 4D set per group (shared/sobol.h)
+// First-hit AOVs: float4s per wave item (record_aov.h) and per pixel sum (accumulate_aov.h, Film::aovSum):
+// [0] (albedo, depth), [1] (shading normal, 0), [2] (emission seen directly, 0).
+#define MCL_AOV_VECTORS 3
 
 // Flattened BVH node (32 bytes). Interior: triCount == 0 and leftFirst is the left child; the right
 // child is leftFirst + 1. Leaf: triCount > 0 triangles starting at leftFirst.
