@@ -40,6 +40,7 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
   f.envHeight = extras.envHeight;
   f.envRotateY = extras.envRotateY;
   f.textureCount = extras.textureCount;
+  f.packetAllRays = extras.packetAllRays ? 1u : 0u;
   const LightSelection& l = extras.lights;
   f.shareEnvironment = l.shareEnvironment;
   f.shareArea = l.shareArea;
@@ -70,6 +71,10 @@ float offsetScaleFor(const std::vector<SceneTriangle>& triangles) {
   int e = 0;
   const float m = std::frexp(maxAbs, &e);  // maxAbs = m * 2^e, m in [0.5, 1)
   return std::ldexp(1.0f, m == 0.5f ? e - 1 : e);
+}
+
+bool packetTraversalForAllRays(std::size_t wideNodes) {
+  return wideNodes <= 16;
 }
 
 }  // namespace montecl

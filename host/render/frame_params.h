@@ -28,8 +28,15 @@ struct FrameExtras {
   uint envWidth = 0, envHeight = 0;
   float envRotateY = 0.0f;
   uint textureCount = 0;
+  bool packetAllRays = false;  // packetTraversalForAllRays(the BVH's wide node count)
   LightSelection lights;
 };
+
+// FrameParams::packetAllRays: whether incoherent rays (bounces, any octants) take the packet
+// traversal too, as coherent ones do. In a BVH this small every ray enters most of its nodes, so a
+// packet's rays visit about what each would alone and the packet tests them W at a time; in a
+// large one they part ways near the root (measured: bench/journal/lanes.md, "Small trees").
+bool packetTraversalForAllRays(std::size_t wideNodes);
 
 FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings, const FrameExtras& extras);
 inline FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings, uint shadowSlots) {

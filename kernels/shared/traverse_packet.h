@@ -48,17 +48,110 @@ MCL_INLINE vmask v_from_bits(uint bits) { return ((v_u(bits) >> v_lane_index()) 
 MCL_INLINE vfloat v_max_nan1(vfloat a, vfloat b) { return vsel(a > b, a, b); }
 MCL_INLINE vfloat v_min_nan1(vfloat a, vfloat b) { return vsel(a < b, a, b); }
 
+// A popped entry entered by at most this many of the packet's rays is traversed ray by ray.
+#ifndef MCL_PACKET_SWITCH
+#define MCL_PACKET_SWITCH 8
+#endif
+
+// Triangle j at t (u, v) for one ray whose nearest hit so far is *t (slot *tri, canonical slot
+// *canon): the packet's leaf rule for one lane (a nearer t replaces the hit and clears the redo
+// flag; an equal t of another triangle sets it).
+MCL_INLINE void lane_hit_update(MCL_GLOBAL const Triangle* tris, uint j, float tj, float uj, float vj, float* t,
+                                uint* tri, uint* canon, float* u, float* v, uint* redo) {
+  if (tj < *t) {
+    *t = tj;
+    *tri = j;
+    *canon = as_uint(tris[j].e1.w);
+    *u = uj;
+    *v = vj;
+    *redo = 0u;
+  } else if (tj == *t && *tri != MCL_NO_HIT) {
+    if (as_uint(tris[j].e1.w) != *canon || uj != *u || vj != *v) *redo = 1u;
+  }
+}
+
+// One ray's closest hit below node start (wide_closest_hit's box and triangle arithmetic, its
+// stack order), going on from the hit so far and updating it by lane_hit_update.
+MCL_INLINE void wide_subtree_closest(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris, float3 org,
+                                     float3 dir, uint start, float* t, uint* tri, uint* canon, float* u, float* v,
+                                     uint* redo) {
+  RayBoxCtx ctx = make_ray_box_ctx(org, dir);
+  uint stack[MCL_WIDE_STACK_SIZE];
+  float stackT[MCL_WIDE_STACK_SIZE];
+  uint sp = 0;
+  uint ref = start;
+  for (;;) {
+    if (ref == MCL_WIDE_EMPTY) {
+    } else if (ref & MCL_WIDE_LEAF) {
+      uint first = wide_leaf_first(ref), last = first + wide_leaf_count(ref) - 1u;
+      for (uint b = first; b <= last; b += 4u) {
+        float4 tu, tv;
+        // tmax INFINITY: a triangle at exactly the hit's t must be seen (a tie to redo).
+        float4 tt = ray_triangle4(tris, b, last, org, dir, INFINITY, &tu, &tv);
+        uint i1 = b + 1u < last ? b + 1u : last, i2 = b + 2u < last ? b + 2u : last;
+        uint i3 = b + 3u < last ? b + 3u : last;
+        lane_hit_update(tris, b, tt.x, tu.x, tv.x, t, tri, canon, u, v, redo);
+        lane_hit_update(tris, i1, tt.y, tu.y, tv.y, t, tri, canon, u, v, redo);
+        lane_hit_update(tris, i2, tt.z, tu.z, tv.z, t, tri, canon, u, v, redo);
+        lane_hit_update(tris, i3, tt.w, tu.w, tv.w, t, tri, canon, u, v, redo);
+      }
+    } else {
+      uint next = wide_visit(&nodes[ref], &ctx, *t, stack, stackT, &sp);
+      if (next != MCL_WIDE_EMPTY) {
+        ref = next;
+        continue;
+      }
+    }
+    if (!pop_entered(stack, stackT, &sp, *t, &ref)) return;
+  }
+}
+
+// The lanes set in bits traverse node ref's subtree one by one, their hit state in the packet's
+// vectors updated lane by lane.
+MCL_INLINE void packet_lanes_subtree(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris, vfloat3 o,
+                                     vfloat3 d, uint ref, uint bits, vfloat* ht, vuint* htri, vuint* hcanon,
+                                     vfloat* hu, vfloat* hv, vmask* redo) {
+  float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN;
+  float dx[MCL_LANES] MCL_LANE_ALIGN, dy[MCL_LANES] MCL_LANE_ALIGN, dz[MCL_LANES] MCL_LANE_ALIGN;
+  float st[MCL_LANES] MCL_LANE_ALIGN, su[MCL_LANES] MCL_LANE_ALIGN, sv[MCL_LANES] MCL_LANE_ALIGN;
+  uint stri[MCL_LANES] MCL_LANE_ALIGN, scanon[MCL_LANES] MCL_LANE_ALIGN, sredo[MCL_LANES] MCL_LANE_ALIGN;
+  v_store_lanes(o.x, ox);
+  v_store_lanes(o.y, oy);
+  v_store_lanes(o.z, oz);
+  v_store_lanes(d.x, dx);
+  v_store_lanes(d.y, dy);
+  v_store_lanes(d.z, dz);
+  v_store_lanes(*ht, st);
+  v_store_lanes(*hu, su);
+  v_store_lanes(*hv, sv);
+  v_store_lanes(*htri, stri);
+  v_store_lanes(*hcanon, scanon);
+  v_store_lanes(v_mask01(*redo), sredo);
+  while (bits != 0u) {
+    uint k = mcl_ctz(bits);
+    bits &= bits - 1u;
+    wide_subtree_closest(nodes, tris, make_float3(ox[k], oy[k], oz[k]), make_float3(dx[k], dy[k], dz[k]), ref,
+                         &st[k], &stri[k], &scanon[k], &su[k], &sv[k], &sredo[k]);
+  }
+  *ht = v_loadf_lanes(st);
+  *hu = v_loadf_lanes(su);
+  *hv = v_loadf_lanes(sv);
+  *htri = v_loadu_lanes(stri);
+  *hcanon = v_loadu_lanes(scanon);
+  *redo = v_loadu_lanes(sredo) != 0u;
+}
+
 // The rays (origin o, inverse direction inv from safe_inverse, per lane) of the lanes set in act,
 // all in the octant whose near rows are nearX, nearY, nearZ (WideNode::bounds rows, as in
 // make_ray_box_ctx). *ht holds each ray's tmax on entry; on return t, slot (BVH order, not yet
 // canonical: see the caller), u, v of the nearest hit of each active lane (tri MCL_NO_HIT and t
 // unchanged on a miss). Returns the lanes to redo with the scalar traversal.
 MCL_INLINE vmask packet_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
-                                    vfloat3 o, vfloat3 d, vfloat3 inv, vmask act, uint nearX, uint nearY,
-                                    uint nearZ, vfloat* ht, vuint* htri, vuint* hcanon, vfloat* hu, vfloat* hv) {
-  const uint farX = 1u - nearX, farY = 5u - nearY, farZ = 9u - nearZ;
+                                    vfloat3 o, vfloat3 d, vfloat3 inv, vmask act, vmask nx, vmask ny,
+                                    vmask nz, vfloat* ht, vuint* htri, vuint* hcanon, vfloat* hu, vfloat* hv) {
   uint stackRef[MCL_WIDE_STACK_SIZE], stackBits[MCL_WIDE_STACK_SIZE];
   float stackKey[MCL_WIDE_STACK_SIZE];
+  vfloat stackDist[MCL_WIDE_STACK_SIZE];  // each ray's entry distance (culls it on pop once a hit is nearer)
   uint sp = 0;
   vmask redo = v_not(act) & v_not(act);  // none
   uint ref = 0u;
@@ -101,12 +194,15 @@ MCL_INLINE vmask packet_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL
       for (uint c = 0; c < MCL_WIDE_WIDTH; ++c) {
         uint child = n->child[c];
         if (child == MCL_WIDE_EMPTY) continue;
-        vfloat tnx = (n->bounds[nearX][c] - o.x) * inv.x;
-        vfloat tfx = (n->bounds[farX][c] - o.x) * inv.x;
-        vfloat tny = (n->bounds[nearY][c] - o.y) * inv.y;
-        vfloat tfy = (n->bounds[farY][c] - o.y) * inv.y;
-        vfloat tnz = (n->bounds[nearZ][c] - o.z) * inv.z;
-        vfloat tfz = (n->bounds[farZ][c] - o.z) * inv.z;
+        vfloat bx0 = v_f(n->bounds[0][c]), bx1 = v_f(n->bounds[1][c]);
+        vfloat by0 = v_f(n->bounds[2][c]), by1 = v_f(n->bounds[3][c]);
+        vfloat bz0 = v_f(n->bounds[4][c]), bz1 = v_f(n->bounds[5][c]);
+        vfloat tnx = (vsel(nx, bx1, bx0) - o.x) * inv.x;
+        vfloat tfx = (vsel(nx, bx0, bx1) - o.x) * inv.x;
+        vfloat tny = (vsel(ny, by1, by0) - o.y) * inv.y;
+        vfloat tfy = (vsel(ny, by0, by1) - o.y) * inv.y;
+        vfloat tnz = (vsel(nz, bz1, bz0) - o.z) * inv.z;
+        vfloat tfz = (vsel(nz, bz0, bz1) - o.z) * inv.z;
         vfloat tmin = v_max_nan1(tnx, v_max_nan1(tny, v_max_nan1(tnz, v_f(0.0f))));
         vfloat tmx = v_min_nan1(tfx, v_min_nan1(tfy, v_min_nan1(tfz, *ht)));
         vmask in = m & (tmin <= tmx);
@@ -114,34 +210,43 @@ MCL_INLINE vmask packet_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL
         stackRef[top] = child;
         stackBits[top] = v_bits(in);
         stackKey[top] = v_hmin(vsel(in, tmin, v_f(INFINITY)));
+        stackDist[top] = tmin;
         ++top;
       }
       // Farthest key deepest (insertion sort of the run; stable, the lower child nearer the top).
       for (uint p = base + 1u; p < top; ++p) {
         float dk = stackKey[p];
         uint rk = stackRef[p], bk = stackBits[p];
+        vfloat ek = stackDist[p];
         uint b = p;
         for (; b > base && stackKey[b - 1u] <= dk; --b) {
           stackKey[b] = stackKey[b - 1u];
           stackRef[b] = stackRef[b - 1u];
           stackBits[b] = stackBits[b - 1u];
+          stackDist[b] = stackDist[b - 1u];
         }
         stackKey[b] = dk;
         stackRef[b] = rk;
         stackBits[b] = bk;
+        stackDist[b] = ek;
       }
       sp = top;
     }
-    // Pop the next entry that some of its rays still enter at or before their nearest hit.
+    // Pop the next entry that some of its rays still enter at or before their nearest hit; one
+    // that few rays enter is traversed ray by ray (the packet's box tests would test mostly
+    // inactive lanes: incoherent bounce rays part ways a few levels down).
     int found = 0;
     while (sp > 0u) {
       --sp;
-      m = v_from_bits(stackBits[sp]) & (stackKey[sp] <= *ht);
-      if (v_any(m)) {
+      m = v_from_bits(stackBits[sp]) & (stackDist[sp] <= *ht);
+      uint bits = v_bits(m);
+      if (bits == 0u) continue;
+      if (popcount(bits) > MCL_PACKET_SWITCH) {
         ref = stackRef[sp];
         found = 1;
         break;
       }
+      packet_lanes_subtree(nodes, tris, o, d, stackRef[sp], bits, ht, htri, hcanon, hu, hv, &redo);
     }
     if (!found) return redo;
   }

@@ -147,7 +147,7 @@ typedef struct MCL_ALIGN16 {
   float shareEnvironment, shareArea, sharePoint, shareSpot;
   float shareDirectional, shareSun;
   uint lightCount;  // entries of the light-record table (point, spot, directional, sun; kind by kind)
-  uint lightPad;
+  uint packetAllRays;  // 1: incoherent rays take the packet traversal too (a small BVH: host frame_params.h)
   uint pointFirst, pointCount, spotFirst, spotCount;  // each kind's range of light records
   uint directionalFirst, directionalCount, sunFirst, sunCount;
   uint sampler;              // MCL_SAMPLER_INDEPENDENT | MCL_SAMPLER_SOBOL

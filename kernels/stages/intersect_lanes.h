@@ -31,18 +31,15 @@ MCL_INLINE void stage_intersect_lanes(const intersect_args* a, uint first) {
                         vsel(dy != 0.0f, 1.0f / dy, copysign(v_f(INFINITY), dy)),
                         vsel(dz != 0.0f, 1.0f / dz, copysign(v_f(INFINITY), dz)));
   vmask nx = inv.x < 0.0f, ny = inv.y < 0.0f, nz = inv.z < 0.0f;
-  int octant = v_all(finite) && (v_all(nx) || v_all(v_not(nx))) && (v_all(ny) || v_all(v_not(ny))) &&
-               (v_all(nz) || v_all(v_not(nz)));
-  if (!octant) {
+  int octant = (v_all(nx) || v_all(v_not(nx))) && (v_all(ny) || v_all(v_not(ny))) && (v_all(nz) || v_all(v_not(nz)));
+  if (!v_all(finite) || !(octant || a->frame->packetAllRays)) {
     for (uint k = 0; k < MCL_LANES; ++k) stage_intersect(a, first + k);
     return;
   }
-  uint nearX = v_first_lane(nx) ? 1u : 0u, nearY = v_first_lane(ny) ? 3u : 2u,
-       nearZ = v_first_lane(nz) ? 5u : 4u;
   vfloat ht = tmax, hu = v_f(0.0f), hv = v_f(0.0f);
   vuint htri = v_u(MCL_NO_HIT), hcanon = v_u(MCL_NO_HIT);
   vmask redo = packet_closest_hit(a->nodes, a->tris, v3_make(ox, oy, oz), v3_make(dx, dy, dz), inv, finite,
-                                  nearX, nearY, nearZ, &ht, &htri, &hcanon, &hu, &hv);
+                                  nx, ny, nz, &ht, &htri, &hcanon, &hu, &hv);
   vmask miss = htri == MCL_NO_HIT;
   ht = vsel(miss, v_f(INFINITY), ht);
   v_store4((MCL_GLOBAL float*)(a->hits + first), ht, v_as_float(hcanon), hu, hv);
