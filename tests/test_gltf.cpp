@@ -238,6 +238,8 @@ TEST_CASE("glTF: malformed files are one InputError line naming the file and whe
       {"a.gltf", edit([](json& g) { g["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {-1, 0, 0, 1}; }), "materials[0]: baseColorFactor must be finite and >= 0"},
       {"a.gltf", edit([](json& g) { g["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 3}}; }), "materials[0]: baseColorTexture index out of range"},
       {"a.gltf", edit([](json& g) { g["scenes"][0]["nodes"] = json::array(); }), "no triangles"},
+      // Only points (mode 0): the message says why nothing is left (the skip warning is not shown).
+      {"a.gltf", edit([](json& g) { g["meshes"][0]["primitives"][0]["mode"] = 0; }), "no triangles (1 point or line primitives skipped, 0 degenerate"},
   };
   for (const Case& c : cases) {
     dir.write(c.name, c.text);

@@ -13,6 +13,7 @@
 #include "cl/devices.h"
 #include "cli_runner.h"
 #include "film_stats.h"
+#include "kernels/shared/transmission_mix.h"
 #include "mesh_files.h"
 #include "render/wavefront.h"
 #include "util/errors.h"
@@ -49,11 +50,12 @@ std::string sceneText(const std::string& gltf, const nlohmann::json& material, i
   return s.dump();
 }
 
-Film renderFile(const std::string& path, std::uint32_t seed = 0) {
+// Independent samples unless told otherwise: the z-tests take their error from var/n.
+Film renderFile(const std::string& path, std::uint32_t seed = 0, Sampler sampler = Sampler::Independent) {
   std::vector<std::string> warnings;
   Scene s = loadScene(path, warnings);
   s.render.seed = seed;
-  s.render.sampler = Sampler::Independent;  // its z-tests take the error from var/n: i.i.d. samples
+  s.render.sampler = sampler;
   Bvh bvh = buildBvh(s.triangles);
   WavefrontRenderer r(hostDeviceInfo(), {});
   RenderStats stats;
@@ -102,6 +104,32 @@ TEST_CASE("glTF transmission 1: the thin_dielectric and dielectric kinds, bit fo
   CHECK_FALSE(sameFilm(thin, renderFile(dir.file("plain.json"))));
 }
 
+// The loader draws the default factors (1, 1) as Lambert (no metal); transmission on such a material
+// reads the same way: metallic 0, so a tiny factor stays close to the Lambertian material instead of
+// turning it into a rough metal, and factor 1 is the thin sheet. Explicit metal keeps its weight.
+TEST_CASE("glTF transmission on the default factors reads them as the loader does: no metal" * doctest::test_suite("cpu")) {
+  TempDir dir;
+  auto transmissive = [](float t) { return nlohmann::json{{"KHR_materials_transmission", {{"transmissionFactor", t}}}}; };
+  dir.write("tiny.gltf", tentGltf(1.0f, 1.0f, transmissive(1e-6f)));
+  dir.write("half.gltf", tentGltf(1.0f, 1.0f, transmissive(0.5f)));
+  dir.write("full.gltf", tentGltf(1.0f, 1.0f, transmissive(1.0f)));
+  dir.write("metal.gltf", tentGltf(0.999f, 1.0f, transmissive(0.5f)));
+  std::vector<std::string> warnings;
+  for (const char* name : {"tiny", "half"}) {
+    dir.write(std::string(name) + ".json", sceneText(std::string(name) + ".gltf", nullptr, 8));
+    const Scene s = loadScene(dir.file(std::string(name) + ".json"), warnings);
+    CAPTURE(name);
+    CHECK(s.materials[0].kind == MCL_MATERIAL_metal_rough);
+    CHECK(s.materials[0].metallic == 0.0f);
+  }
+  dir.write("full.json", sceneText("full.gltf", nullptr, 8));
+  CHECK(loadScene(dir.file("full.json"), warnings).materials[0].kind == MCL_MATERIAL_thin_dielectric);
+  dir.write("metal.json", sceneText("metal.gltf", nullptr, 8));
+  const Scene metal = loadScene(dir.file("metal.json"), warnings);
+  CHECK(metal.materials[0].kind == MCL_MATERIAL_metal_rough);
+  CHECK(metal.materials[0].metallic == 0.999f);
+}
+
 TEST_CASE("glTF transmission 0: the plain metal_rough, bit for bit" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("plain.gltf", tentGltf(0.3f, 0.4f, nullptr));
@@ -136,6 +164,89 @@ TEST_CASE("glTF transmission between 0 and 1: the mixture of the two kinds" * do
     // The test can tell: glass picked with probability t (metallic ignored) is measurably wrong.
     const double wrongExpect = t * g.mean + (1.0 - t) * r.mean;
     CHECK(std::fabs(m.mean - wrongExpect) / se > 4.0);
+  }
+}
+
+// The pick's number: under sobol a pixel's own set per bounce, whatever the hit (so shade_direct,
+// shade_direct_hit and record_aov rebuild the same kind), its N samples choosing the glass within the
+// sub-sequence count K of p N (each of the K scrambled sub-sequences has one point in each of its
+// N/K intervals); under independent the hash of the hit, as before the sampler existed.
+TEST_CASE("glTF transmission: under sobol a pixel's picks of the glass are stratified; independent hashes the hit" * doctest::test_suite("cpu")) {
+  Material m{};
+  m.alpha.w = as_float((uint)MCL_MATERIAL_metal_rough);
+  const float t = 0.5f, metallic = 0.4f, p = t * (1.0f - metallic);
+  m.params0 = make_float4(metallic, 0.3f, 0.0f, 0.0f);
+  m.params1 = make_float4(t, 1.5f, 1.0f, 0.0f);
+  FrameParams f{};
+  f.seed = 7u;
+  const uint n = 64, k = 4;
+  f.sobolSplits = k;
+  uint64_t rng = 12345u;
+  auto next = [&rng] {  // a different hit and direction for every call
+    rng = rng * 6364136223846793005ull + 1442695040888963407ull;
+    return float((rng >> 40) & 0xffffffu) / 16777216.0f;
+  };
+  auto glass = [](const Material& r) { return as_uint(r.alpha.w) == (uint)MCL_MATERIAL_dielectric; };
+  const int lo = int(k * std::floor(p * n / k)), hi = int(k * std::ceil(p * n / k));
+  int strayPixels = 0;
+  for (uint bounce : {0u, 3u})
+    for (uint pixel = 0; pixel < 64; ++pixel) {
+      int picks = 0;
+      for (uint s = 0; s < n; ++s) {
+        Hit h{next(), pixel, next(), next()};
+        const float3 dir = make_float3(next() - 0.5f, next() - 0.5f, 1.0f);
+        f.sampler = MCL_SAMPLER_SOBOL;
+        const Material r = hit_transmission(&f, m, sample_ref(pixel, s, bounce), h, dir);
+        picks += glass(r);
+        // Another hit of the same sample and bounce: the same kind.
+        Hit other{next(), pixel + 1u, next(), next()};
+        REQUIRE(glass(hit_transmission(&f, m, sample_ref(pixel, s, bounce), other, dir)) == glass(r));
+        f.sampler = MCL_SAMPLER_INDEPENDENT;
+        REQUIRE(glass(hit_transmission(&f, m, sample_ref(pixel, s, bounce), h, dir)) == (hit_uniform(h, dir) < p));
+      }
+      strayPixels += picks < lo || picks > hi;
+    }
+  CAPTURE(lo);
+  CAPTURE(hi);
+  // Binomial picks (the hash of the hit, under either sampler before) land outside [lo, hi] for
+  // about half the pixels.
+  CHECK(strayPixels == 0);
+}
+
+// Unbiased under sobol too: the mixture's image mean, averaged over 16 seeds, is the mixture of the
+// two kinds' (rendered with independent samples), within 4 standard errors of the seeds' spread.
+TEST_CASE("glTF transmission between 0 and 1 under sobol: the mixture over 16 seeds" * doctest::test_suite("cpu")) {
+  TempDir dir;
+  const float t = 0.5f, metallic = 0.4f, p = t * (1.0f - metallic);
+  dir.write("plain.gltf", tentGltf(0.0f, 0.3f, nullptr, 0.5f));
+  dir.write("mix.gltf", tentGltf(metallic, 0.3f, {{"KHR_materials_transmission", {{"transmissionFactor", t}}},
+                                                   {"KHR_materials_volume", {{"thicknessFactor", 1.0}}}}, 0.5f));
+  dir.write("mix.json", sceneText("mix.gltf", nullptr, 16));
+  dir.write("glass.json", sceneText("plain.gltf", {{"type", "dielectric"}, {"ior", 1.5}, {"roughness", 0.3}}, 256));
+  dir.write("rest.json", sceneText("plain.gltf", {{"type", "metal_rough"}, {"metallic", metallic / (1.0f - p)}, {"roughness", 0.3}}, 256));
+  const Film glass = renderFile(dir.file("glass.json"), 2), rest = renderFile(dir.file("rest.json"), 3);
+  const int seeds = 16;
+  double sum[3] = {0, 0, 0}, sumSq[3] = {0, 0, 0};
+  for (int seed = 0; seed < seeds; ++seed) {
+    const Film mix = renderFile(dir.file("mix.json"), std::uint32_t(100 + seed), Sampler::Sobol);
+    for (int c = 0; c < 3; ++c) {
+      const double v = imageMean(mix, c);
+      sum[c] += v;
+      sumSq[c] += v * v;
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    CAPTURE(c);
+    const double mean = sum[c] / seeds, var = (sumSq[c] - seeds * mean * mean) / (seeds - 1);
+    const ImageEstimate g = imageEstimate(glass, c), r = imageEstimate(rest, c);
+    const double expect = p * g.mean + (1.0 - p) * r.mean;
+    const double se = std::sqrt(var / seeds + p * p * g.standardError * g.standardError +
+                                (1 - p) * (1 - p) * r.standardError * r.standardError);
+    CAPTURE(mean);
+    CAPTURE(expect);
+    CHECK(std::fabs(mean - expect) / se < 4.0);
+    const double wrongExpect = t * g.mean + (1.0 - t) * r.mean;  // glass picked with probability t
+    CHECK(std::fabs(mean - wrongExpect) / se > 4.0);
   }
 }
 

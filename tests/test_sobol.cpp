@@ -183,7 +183,7 @@ TEST_CASE("sobol: pixels, seeds and sets get different scrambles; sets are uncor
   // Pearson r between the same dimension of two sets over many pixels' first 16 samples: the sets
   // are decorrelated by their seeds (a shared seed would give r = 1).
   const uint sets[] = {MCL_DIM_CAMERA, MCL_DIM_AO, MCL_DIM_LIGHT, MCL_DIM_LENS, MCL_DIM_PATH, MCL_DIM_PATH + 1u,
-                       MCL_DIM_PATH + MCL_DIM_PATH_STRIDE};
+                       MCL_DIM_PATH + MCL_DIM_PATH_STRIDE, MCL_DIM_MIX, MCL_DIM_MIX + 1u};
   const int n = 2048 * 16;
   for (uint a : sets)
     for (uint b : sets) {

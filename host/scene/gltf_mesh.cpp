@@ -46,6 +46,7 @@ struct Loader {
   std::vector<std::int64_t> materialIndex;  // glTF material -> scene material (-1: not yet)
   bool hasCamera = false;
   Camera camera;
+  std::size_t skippedPrimitives = 0;  // points and lines: named when nothing else is left
   std::set<int> missingImages{};  // images whose file cannot be opened
   // glTF material -> the TEXCOORD_n set its textures read, and the key that named it.
   std::vector<int> uvSet = std::vector<int>(m.materials.size(), 0);
@@ -210,6 +211,7 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
   if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
     unused.add("mode " + std::to_string(p.mode), where,
                "primitive mode " + std::to_string(p.mode) + " (points or lines, not triangles) skipped");
+    ++skippedPrimitives;
     return;
   }
   auto attr = [&](const char* name) {
@@ -358,7 +360,7 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
   const Model m = readGltfModel(path, warnings, &opened);
   scene.inputFiles.push_back(path);
   scene.inputFiles.insert(scene.inputFiles.end(), opened.begin(), opened.end());
-  Loader l{path, m, scene, KindWarnings(path), std::vector<std::int64_t>(m.materials.size(), -1), false, Camera{}};
+  Loader l{path, m, scene, KindWarnings(path), std::vector<std::int64_t>(m.materials.size(), -1), false, Camera{}, 0};
   checkGltfSamplers(path, m);
   for (const std::string& e : m.extensionsUsed)
     if (!gltfExtensionSupported(e))
@@ -421,8 +423,9 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
   failOnMissingTextures(scene, missingBefore);
   l.unused.flush(warnings);
   if (scene.triangles.size() == before)
-    loadFail(path, "", "no triangles (" + std::to_string(scene.degenerateDropped - droppedBefore) +
-                           " degenerate triangles dropped)");
+    loadFail(path, "", "no triangles (" +
+                           (l.skippedPrimitives ? std::to_string(l.skippedPrimitives) + " point or line primitives skipped, " : "") +
+                           std::to_string(scene.degenerateDropped - droppedBefore) + " degenerate triangles dropped)");
   if (camera && l.hasCamera) *camera = l.camera;
   return l.hasCamera;
 }

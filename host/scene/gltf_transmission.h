@@ -15,7 +15,8 @@ namespace montecl {
 bool gltfTransmissionExtension(const std::string& name);
 
 // Applies g's transmission extensions to d, whose factors, base colour and textures the loader has
-// already read. A transmission factor of 0 (or none) leaves d as it is. Factor 1 on a dielectric
+// already read (a d the loader left diffuse, as it reads the (1, 1) default factors, counts as
+// metallic 0). A transmission factor of 0 (or none) leaves d as it is. Factor 1 on a dielectric
 // (metallic 0, no metallicRoughnessTexture) makes d the kind dielectric (with KHR_materials_volume
 // and thicknessFactor > 0; alpha = roughness^2) or thin_dielectric (without); any other factor
 // keeps metal_rough and records the factor for the per-hit choice of kernels/shared/

@@ -15,6 +15,9 @@
 // direction (x, y), Russian roulette (z) and the BSDF lobe (w); j = 1 + k light sample k (as
 // MCL_DIM_LIGHT + k).
 #define MCL_DIM_PATH 0x80000000u
+// The choice between a partly transmissive material's two kinds at bounce b (0: the camera hit;
+// shared/transmission_mix.h) owns group MCL_DIM_MIX + b (x), under the Sobol sampler only.
+#define MCL_DIM_MIX 0x40000000u
 #define MCL_DIM_PATH_STRIDE 1025u  // 1 + the most light samples (kMaxLightSamples)
 
 typedef struct {

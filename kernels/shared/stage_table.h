@@ -91,7 +91,8 @@
   MCL_TEXTURE_ARGS(ARG)
 
 #define MCL_ARGS_shade_direct_hit(ARG)                                                             \
-  ARG(uint, waveCount) ARG(MCL_GLOBAL const Triangle*, tris)                                       \
+  ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
+  ARG(MCL_GLOBAL const Triangle*, tris)                                                            \
   ARG(MCL_GLOBAL const TriangleShading*, shading) ARG(MCL_GLOBAL const float4*, normals) \
   ARG(MCL_GLOBAL const Material*, materials) ARG(MCL_GLOBAL const Ray*, rays)                      \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL const Ray*, bounce)                              \
@@ -112,7 +113,8 @@
   ARG(MCL_GLOBAL float4*, m2Lo) ARG(MCL_GLOBAL float4*, split)
 
 #define MCL_ARGS_record_aov(ARG)                                                                   \
-  ARG(uint, waveCount) ARG(MCL_GLOBAL const Triangle*, tris)                                       \
+  ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
+  ARG(MCL_GLOBAL const Triangle*, tris)                                                            \
   ARG(MCL_GLOBAL const TriangleShading*, shading) ARG(MCL_GLOBAL const float4*, normals) \
   ARG(MCL_GLOBAL const Material*, materials) ARG(MCL_GLOBAL const Ray*, rays)                      \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL const float4*, radiance) ARG(MCL_GLOBAL float4*, aov) \

@@ -77,9 +77,10 @@ typedef struct {
 } Surface;
 
 // The surface at hit h (h.tri != MCL_NO_HIT) of a ray moving along unit direction dir, whose
-// length to the hit is h.t (the albedo texture's footprint is the camera's ray cone there).
+// length to the hit is h.t (the albedo texture's footprint is the camera's ray cone there), for
+// sample r (which kind a partly transmissive material is at this hit, transmission_mix.h).
 // Every shade stage and record_aov read their surface through this one function.
-MCL_INLINE Surface surface_at(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, Hit h, float3 dir) {
+MCL_INLINE Surface surface_at(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, Hit h, float3 dir, SampleRef r) {
   MCL_GLOBAL const Triangle* tri = &sc.tris[h.tri];
   Material m = sc.materials[triangle_material(tri)];
   Surface s;
@@ -88,7 +89,7 @@ MCL_INLINE Surface surface_at(SurfaceScene sc, MCL_CONSTANT const FrameParams* f
   s.frame = apply_bump_map(s.frame, sc.tex, m, tri, &sc.shading[h.tri], xyz(sc.normals[h.tri]), h);
   float3 albedo = hit_albedo(sc.tex, f, m, tri, sc.normals[h.tri], &sc.shading[h.tri], h, dir);
   m = hit_metal_rough(sc.tex, f, m, tri, sc.normals[h.tri], &sc.shading[h.tri], h, dir);
-  m = hit_transmission(m, h, dir);
+  m = hit_transmission(f, m, r, h, dir);
   s.bsdf = bsdf_from_material(m, albedo);
   return s;
 }

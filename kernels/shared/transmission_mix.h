@@ -2,19 +2,24 @@
 // with a factor t in (0, 1), or metallic > 0): reads the Material's params0 (x: metallic, y:
 // roughness, after the metallic-roughness texture) and params1 (x: t, y: ior, z: 1 for a solid
 // dielectric, 0 for a thin sheet; host/render/device_materials.cpp) and returns the Material of
-// one of two kinds, picked per hit. Pure; compiled by the kernels and the host tests.
+// one of two kinds, picked per hit (by a number from the frame's sampler). Pure; compiled by the
+// kernels and the host tests.
 // glTF's BSDF is metallic x metal + (1 - metallic) x fresnel_mix(specular, mix(diffuse, btdf, t)).
 // With p = t (1 - metallic) it is exactly p x (the dielectric: Fresnel-weighted specular + btdf) +
 // (1 - p) x metal_rough(metallic / (1 - p)) (the same metal weight, the rest Lambert + specular),
 // so the hit becomes the (thin_)dielectric kind (ior, alpha = roughness^2; thin: smooth) with
 // probability p, else metal_rough with metallic / (1 - p): a stochastic choice of one kind,
 // unbiased, branch-free, and every stage keeps seeing one kind (delta or not) per hit. The number
-// deciding it is a hash of the hit itself (triangle, barycentrics, ray direction), so every stage
-// that rebuilds the surface of the same hit (shade_direct and shade_direct_hit, record_aov) makes
-// the same choice, and samples, which meet the surface at other points, choose independently.
+// deciding it is a pure function of the sample and the bounce (SampleRef), so every stage that
+// rebuilds the surface of the same hit (shade_direct and shade_direct_hit, record_aov) makes the
+// same choice: under the Sobol sampler a dimension of the sample's own (group MCL_DIM_MIX + bounce),
+// so a pixel's N samples pick the glass close to p N times (within the sub-sequence count K: each
+// scrambled sub-sequence puts one point in each of its 2^m intervals), not binomially; under the
+// independent sampler a hash of the hit itself (triangle, barycentrics, ray direction), i.i.d.
 #pragma once
 #include "material_kinds.h"
 #include "rng.h"
+#include "sampler.h"
 #include "types.h"
 
 // A uniform number in [0, 1) that is a function of the hit h of a ray along dir.
@@ -28,21 +33,41 @@ MCL_INLINE float hit_uniform(Hit h, float3 dir) {
   return u32_to_unit(x);
 }
 
+// Which sample a surface is built for: its pixel, its sample index and the bounce (0: the camera
+// ray's hit).
+typedef struct {
+  uint pixel, sample, bounce;
+} SampleRef;
+
+MCL_INLINE SampleRef sample_ref(uint pixel, uint sample, uint bounce) {
+  SampleRef r;
+  r.pixel = pixel;
+  r.sample = sample;
+  r.bounce = bounce;
+  return r;
+}
+
+// The uniform number that picks the kind for sample r's hit h of a ray along dir (above).
+MCL_INLINE float transmission_uniform(MCL_CONSTANT const FrameParams* f, SampleRef r, Hit h, float3 dir) {
+  if (f->sampler == MCL_SAMPLER_SOBOL) return sample_uniform4(f, r.pixel, r.sample, MCL_DIM_MIX + r.bounce).x;
+  return hit_uniform(h, dir);
+}
+
 // m itself unless it is a metal_rough material with a transmission factor > 0 (so every other
-// material, and every metal_rough one without transmission, keeps its bits).
-MCL_INLINE Material hit_transmission(Material m, Hit h, float3 dir) {
+// material, and every metal_rough one without transmission, keeps its bits and draws no number).
+MCL_INLINE Material hit_transmission(MCL_CONSTANT const FrameParams* f, Material m, SampleRef r, Hit h, float3 dir) {
   uint kind = as_uint(m.alpha.w);
   float t = m.params1.x;
   int mixes = kind == (uint)MCL_MATERIAL_metal_rough && t > 0.0f;
   float metallic = m.params0.x, roughness = m.params0.y;
   float p = t * (1.0f - metallic);
-  int pick = mixes && hit_uniform(h, dir) < p;
+  int pick = mixes && transmission_uniform(f, r, h, dir) < p;
   int solid = m.params1.z > 0.0f;
   uint glass = solid ? (uint)MCL_MATERIAL_dielectric : (uint)MCL_MATERIAL_thin_dielectric;
   float rest = fmin(metallic / fmax(1.0f - p, 1e-30f), 1.0f);
-  Material r = m;
-  r.alpha.w = as_float(pick ? glass : kind);
-  r.params0.x = pick ? m.params1.y : (mixes ? rest : metallic);
-  r.params0.y = pick ? (solid ? roughness * roughness : 0.0f) : roughness;
-  return r;
+  Material out = m;
+  out.alpha.w = as_float(pick ? glass : kind);
+  out.params0.x = pick ? m.params1.y : (mixes ? rest : metallic);
+  out.params0.y = pick ? (solid ? roughness * roughness : 0.0f) : roughness;
+  return out;
 }

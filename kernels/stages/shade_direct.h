@@ -28,12 +28,12 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   }
   float3 le = light_eval(f, lights, light_hit(h, dir));  // Le of the hit triangle seen directly
   float3 wo = -dir;
-  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, dir);
+  uint pixel = item_pixel(f, a->active, a->waveStart, i), sample = item_sample(f, a->waveStart, i);
+  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, dir, sample_ref(pixel, sample, 0u));
   SurfaceFrame sf = surf.frame;
   Bsdf bsdf = surf.bsdf;
   a->radiance[i] = with_w(le, 0.0f);
   float3 origin = offset_ray_origin(sf.p, sf.ng, f->offsetScale);
-  uint pixel = item_pixel(f, a->active, a->waveStart, i), sample = item_sample(f, a->waveStart, i);
   float nLight = (float)f->lightSamples;
   // Light sampling at a purely delta surface (a mirror, smooth glass) finds nothing (f = 0 for
   // every light direction): skipped, the BSDF ray (shade_direct_hit) carries it all.

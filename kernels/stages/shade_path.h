@@ -62,12 +62,12 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
   a->radiance[id] = with_w(L, 0.0f);
   if (!(f->maxDepth < 0 || (int)bounce + 1 < f->maxDepth)) return;
 
-  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, dir);
+  uint pixel = item_pixel(f, a->active, a->waveStart, id), sample = item_sample(f, a->waveStart, id);
+  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, dir, sample_ref(pixel, sample, bounce));
   SurfaceFrame sf = surf.frame;
   Bsdf bsdf = surf.bsdf;
   float3 wo = dir * -1.0f;
   float3 origin = offset_ray_origin(sf.p, sf.ng, f->offsetScale);
-  uint pixel = item_pixel(f, a->active, a->waveStart, id), sample = item_sample(f, a->waveStart, id);
   // No next-event estimation at a purely delta surface (every light direction has f = 0); the
   // emitter its BSDF sample finds counts fully (throughput.w = 0 below: no MIS).
   bool nee = (f->emitterCount > 0 || env_present(f) || f->lightCount > 0) && !bsdf_is_delta(bsdf);
