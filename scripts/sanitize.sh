@@ -15,7 +15,7 @@ case "${1:-}" in build | test) mode=$1; shift ;; esac
 start=$(date +%s)
 if [ "$mode" != test ]; then
   cmake -S . -B build-asan -DMONTECL_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-        "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g" -DMONTECL_UNITY_BUILD="${MONTECL_UNITY_BUILD:-OFF}" >/dev/null
+        "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" -DMONTECL_UNITY_BUILD="${MONTECL_UNITY_BUILD:-OFF}" >/dev/null
   cmake --build build-asan -j"$(nproc)" --target montecl montecl_tests
 fi
 built=$(date +%s)
