@@ -1,8 +1,9 @@
-// test_instancing.cpp: instanced meshes, flattened into copies: glTF EXT_mesh_gpu_instancing
-// (TRANSLATION / ROTATION / SCALE per instance, after the node's world matrix) gives exactly the
-// triangles and the image of one explicit child node per instance; a scene file's "instances" list
-// gives exactly those of one mesh entry per transform; bad instance accessors and lists are one
-// line naming the key (exit 2), and instance counts past the memory check are refused up front.
+// test_instancing.cpp: instanced meshes: glTF EXT_mesh_gpu_instancing (TRANSLATION / ROTATION /
+// SCALE per instance, after the node's world matrix) gives exactly the triangles and the image of
+// one explicit child node per instance; a scene file's "instances" list, flattened, gives exactly
+// the triangles of one mesh entry per transform; bad instance accessors and lists are one line
+// naming the key (exit 2), and copies past the memory check are refused up front (emitting
+// instances stay copies; others are one mesh, test_instances_render.cpp).
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
@@ -17,6 +18,7 @@
 #include "mesh_files.h"
 #include "scene/mesh_loaders.h"
 #include "scene/scene.h"
+#include "scene/scene_instances.h"
 
 using montecl::Scene;
 using montecl_test::CliResult;
@@ -130,8 +132,16 @@ TEST_CASE("instancing: EXT_mesh_gpu_instancing gives the triangles and image of 
   dir.write("inst.gltf", instancedGltf(in, n).dump());
   dir.write("nodes.gltf", explicitGltf(in, n).dump());
   const Scene a = loadGltf(dir.file("inst.gltf")), b = loadGltf(dir.file("nodes.gltf"));
-  CHECK(a.triangles.size() == 4 * n);  // 4 triangles per tent
+  CHECK(a.triangles.size() == 4);  // the tent once, placed n times (Scene::instances)
   checkSameTriangles(a, b);
+  REQUIRE(a.instances.size() == n);
+  REQUIRE(b.instances.size() == n);
+  for (std::size_t k = 0; k < n; ++k) CHECK(a.instances[k].objectToWorld == b.instances[k].objectToWorld);  // exact
+  Scene flatA = a, flatB = b;
+  montecl::flattenInstances(flatA);
+  montecl::flattenInstances(flatB);
+  CHECK(flatA.triangles.size() == 4 * n);  // 4 triangles per tent
+  checkSameTriangles(flatA, flatB);
   // Through the real command line, with the camera and sky of a bare model: the same bytes.
   const CliResult ra = render(dir.file("inst.gltf"), dir.file("inst.pfm"));
   const CliResult rb = render(dir.file("nodes.gltf"), dir.file("nodes.pfm"));
@@ -198,7 +208,9 @@ TEST_CASE("instancing: instance counts past the memory check are refused before 
   for (std::size_t n : {std::size_t(10), std::size_t(10000)}) {
     CAPTURE(n);
     const Instances in = someInstances(int(n));
-    dir.write("many.gltf", instancedGltf(in, n).dump());
+    json emitting = instancedGltf(in, n);  // emitting instances are copies (the emitter table is world space)
+    emitting["materials"][0]["emissiveFactor"] = {1, 1, 1};
+    dir.write("many.gltf", emitting.dump());
     const CliResult r = render(dir.file("many.gltf"), dir.file("out.pfm"), {"MONTECL_MEMORY_LIMIT=2000000"});
     INFO(r.err);
     if (n == 10) {
@@ -209,9 +221,14 @@ TEST_CASE("instancing: instance counts past the memory check are refused before 
       CHECK(oneLine(r.err));
       CHECK(r.err.find(dir.file("many.gltf") + ": nodes[0]: instancing its meshes gives 40000 triangles") != std::string::npos);
       CHECK_FALSE(std::filesystem::exists(dir.file("out.pfm")));
+      // Not emitting: one mesh placed 10000 times, which fits.
+      dir.write("many.gltf", instancedGltf(in, n).dump());
+      const CliResult kept = render(dir.file("many.gltf"), dir.file("out.pfm"), {"MONTECL_MEMORY_LIMIT=2000000"});
+      CHECK_MESSAGE(kept.exitCode == 0, kept.err);
+      std::filesystem::remove(dir.file("out.pfm"));
     }
-    // The scene file's instances: the same rule, naming the list.
-    json scene = {{"camera", "auto"}, {"meshes", {{{"file", "tent.obj"}, {"instances", json::array()}}}}};
+    // The scene file's instances of an emitting mesh are copies: the same rule, naming the list.
+    json scene = {{"camera", "auto"}, {"meshes", {{{"file", "tent.obj"}, {"emission", {1, 1, 1}}, {"instances", json::array()}}}}};
     for (std::size_t k = 0; k < n; ++k) scene["meshes"][0]["instances"].push_back({{"translate", {0, 0, -0.01 * double(k)}}});
     dir.write("tent.obj", montecl_test::objText(montecl_test::tentMesh()));
     dir.write("scene.json", scene.dump());
@@ -226,11 +243,17 @@ TEST_CASE("instancing: instance counts past the memory check are refused before 
       CHECK(s.err.find(dir.file("scene.json") + ": meshes[0].instances: 10000 copies of the mesh gives 40000 triangles") !=
             std::string::npos);
       CHECK_FALSE(std::filesystem::exists(dir.file("out.pfm")));
+      // Without emission the instances are one mesh placed 10000 times: it fits.
+      scene["meshes"][0].erase("emission");
+      dir.write("scene.json", scene.dump());
+      const CliResult kept = render(dir.file("scene.json"), dir.file("out.pfm"), {"MONTECL_MEMORY_LIMIT=2000000"});
+      CHECK_MESSAGE(kept.exitCode == 0, kept.err);
     }
   }
 }
 
-TEST_CASE("instancing: a scene file's instances equal one mesh entry per transform, bit for bit" * doctest::test_suite("cli")) {
+TEST_CASE("instancing: a scene file's instances, flattened, equal one mesh entry per transform, bit for bit" *
+          doctest::test_suite("cli")) {
   TempDir dir;
   dir.write("tent.obj", montecl_test::objText(montecl_test::tentMesh()));
   const json transforms = json::array({json{{"translate", {0.5, 0, -1}}},
@@ -247,7 +270,11 @@ TEST_CASE("instancing: a scene file's instances equal one mesh entry per transfo
   dir.write("inst.json", inst.dump());
   dir.write("separate.json", separate.dump());
   std::vector<std::string> w;
-  const Scene a = montecl::loadScene(dir.file("inst.json"), w), b = montecl::loadScene(dir.file("separate.json"), w);
+  const Scene kept = montecl::loadScene(dir.file("inst.json"), w), b = montecl::loadScene(dir.file("separate.json"), w);
+  CHECK(kept.triangles.size() == 4);  // one mesh, placed three times
+  CHECK(kept.instances.size() == 3);
+  Scene a = kept;
+  montecl::flattenInstances(a);
   CHECK(a.triangles.size() == 3 * 4);
   checkSameTriangles(a, b);
   CHECK(a.materials.size() < b.materials.size());  // the copies share the entry's material
@@ -255,11 +282,11 @@ TEST_CASE("instancing: a scene file's instances equal one mesh entry per transfo
   const CliResult rb = runMontecl({"render", dir.file("separate.json"), "-o", dir.file("separate.pfm"), "-q", "--device", "host"});
   REQUIRE_MESSAGE(ra.exitCode == 0, ra.err);
   REQUIRE_MESSAGE(rb.exitCode == 0, rb.err);
-  CHECK(montecl_test::readAll(dir.file("inst.pfm")) == montecl_test::readAll(dir.file("separate.pfm")));
   // With the entry's transform too, each copy is instance x transform.
   inst["meshes"][0]["transform"] = {{"scale", 2}};
   dir.write("inst2.json", inst.dump());
-  const Scene c = montecl::loadScene(dir.file("inst2.json"), w);
+  Scene c = montecl::loadScene(dir.file("inst2.json"), w);
+  montecl::flattenInstances(c);
   REQUIRE(c.triangles.size() == a.triangles.size());
   CHECK(c.triangles[0].v[0] == a.triangles[0].v[0] + a.triangles[0].v[0] - glm::vec3(0.5f, 0.0f, -1.0f));
   // Bad lists: one line naming the key.

@@ -35,6 +35,7 @@
 #include "bench/ray_sets.h"
 #include "bvh/bvh_visit_counts.h"
 #include "bvh/bvh.h"
+#include "scene/scene_instances.h"
 #include "bvh/sah_reference.h"
 #include "render/ray_tracer.h"
 #include "render/stage_program.h"
@@ -157,6 +158,7 @@ json runBench(const BenchOptions& o, bool verbose) {
   say("building the BVH over " + std::to_string(scene.triangles.size()) + " triangles");
   BvhBuildOptions buildOptions;
   buildOptions.splitBudget = o.splitBudget;
+  flattenInstances(scene);  // the tracers compared here traverse one level: placed copies
   Bvh bvh = buildBvh(scene.triangles, buildOptions);
   // Cut-outs: every tracer below applies the same alpha test (bench_alpha.h).
   std::vector<std::string> textureWarnings;

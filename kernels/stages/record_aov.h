@@ -19,7 +19,8 @@ MCL_INLINE void stage_record_aov(const record_aov_args* a, uint i) {
     a->aov[MCL_AOV_VECTORS * i + 1] = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
     return;
   }
-  Surface s = surface_at(MCL_STAGE_SURFACE_SCENE(a), a->frame, h, xyz(a->rays[i].dir));
+  Surface s = surface_at(MCL_STAGE_SURFACE_SCENE(a), a->frame, h, hit_instance(a->frame, a->hitInstances, i),
+                         xyz(a->rays[i].dir));
   a->aov[MCL_AOV_VECTORS * i] = with_w(bsdf_albedo(s.bsdf), h.t);
   a->aov[MCL_AOV_VECTORS * i + 1] = with_w(s.frame.ns, 0.0f);
 }

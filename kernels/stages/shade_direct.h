@@ -28,7 +28,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   }
   float3 le = light_eval(f, lights, light_hit(h, dir));  // Le of the hit triangle seen directly
   float3 wo = -dir;
-  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, dir);
+  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, hit_instance(f, a->hitInstances, i), dir);
   SurfaceFrame sf = surf.frame;
   Bsdf bsdf = surf.bsdf;
   a->radiance[i] = with_w(le, 0.0f);

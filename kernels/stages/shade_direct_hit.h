@@ -22,7 +22,7 @@ MCL_INLINE void stage_shade_direct_hit(const shade_direct_hit_args* a, uint i) {
   Hit h = a->hits[i];
   float3 dir = xyz(a->rays[i].dir);
   float3 wo = -dir;
-  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, dir);
+  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, hit_instance(f, a->hitInstances, i), dir);
   float pdfBsdf = bsdf_pdf(surf.bsdf, surf.frame, wo, wi);
   // A delta surface's BSDF ray is its only strategy (shade_direct skips light sampling there):
   // weight 1, no MIS.

@@ -62,7 +62,7 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
   a->radiance[id] = with_w(L, 0.0f);
   if (!(f->maxDepth < 0 || (int)bounce + 1 < f->maxDepth)) return;
 
-  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, dir);
+  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, hit_instance(f, a->hitInstances, k), dir);
   SurfaceFrame sf = surf.frame;
   Bsdf bsdf = surf.bsdf;
   float3 wo = dir * -1.0f;
