@@ -7,6 +7,9 @@
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -151,6 +154,50 @@ TEST_CASE("instancing: EXT_mesh_gpu_instancing gives the triangles and image of 
   CHECK(montecl_test::readAll(dir.file("inst.pfm")) == montecl_test::readAll(dir.file("nodes.pfm")));
 }
 
+TEST_CASE("instancing: a glTF's shared mesh under a scene-file entry: the transform composes, emission or instances copy" *
+          doctest::test_suite("cpu")) {
+  TempDir dir;
+  const std::size_t n = 4;
+  const Instances in = someInstances(int(n));
+  dir.write("nodes.gltf", explicitGltf(in, n).dump());
+  const json transform = {{"rotate", {1, 0.5, 0, 30}}, {"scale", {1.5, 0.5, -1}}, {"translate", {-1, 0.25, 0}}};
+  const json camera = {{"position", {1, 3, 6}}, {"target", {0, 0, -1}}, {"width", 16}, {"height", 12}};
+  const auto load = [&](const json& entry) {
+    dir.write("scene.json", json{{"camera", camera}, {"meshes", {entry}}}.dump());
+    std::vector<std::string> w;
+    return montecl::loadScene(dir.file("scene.json"), w);
+  };
+  // Composed: the flattened placements equal the file's copies transformed vertex by vertex (in
+  // double: translate x rotate x scale; the scale mirrors, so corners 1 and 2 swap).
+  Scene bare = loadGltf(dir.file("nodes.gltf"));
+  montecl::flattenInstances(bare);
+  const Scene plain = load({{"file", "nodes.gltf"}, {"transform", transform}, {"material", {{"albedo", {0.2, 0.4, 0.6}}}}});
+  CHECK(plain.triangles.size() == 4);
+  REQUIRE(plain.instances.size() == n);
+  CHECK(plain.materials[plain.triangles[0].material].albedo == glm::vec3(0.2f, 0.4f, 0.6f));
+  Scene flat = plain;
+  montecl::flattenInstances(flat);
+  REQUIRE(flat.triangles.size() == bare.triangles.size());
+  glm::dmat4 t = glm::translate(glm::dmat4(1.0), glm::dvec3(-1, 0.25, 0));
+  t = glm::rotate(t, glm::radians(30.0), glm::normalize(glm::dvec3(1, 0.5, 0)));
+  t = glm::scale(t, glm::dvec3(1.5, 0.5, -1));
+  for (std::size_t i = 0; i < flat.triangles.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 a = flat.triangles[i].v[k];
+      const glm::vec3 b(t * glm::dvec4(glm::dvec3(bare.triangles[i].v[k == 0 ? 0 : 3 - k]), 1.0));
+      CHECK(glm::length(a - b) <= 1e-5f * (1.0f + glm::length(b)));
+    }
+  // An override that makes them emit: copies (the emitter table is world space).
+  const Scene copied = load({{"file", "nodes.gltf"}, {"transform", transform}, {"emission", {1, 1, 1}}});
+  CHECK(copied.instances.empty());
+  CHECK(copied.triangles.size() == bare.triangles.size());
+  // The entry's own instances: copies of the file's placements, then the entry's mesh placed.
+  const Scene twice = load({{"file", "nodes.gltf"}, {"instances", {{{"translate", {0, 0, 0}}}, {{"translate", {3, 0, 0}}}}}});
+  CHECK(twice.meshRanges.size() == 1);
+  CHECK(twice.triangles.size() == 4 * n);
+  CHECK(twice.instances.size() == 2);
+}
+
 TEST_CASE("instancing: bad EXT_mesh_gpu_instancing accessors are one line naming the attribute, exit 2" *
           doctest::test_suite("cli")) {
   TempDir dir;
@@ -221,11 +268,18 @@ TEST_CASE("instancing: instance counts past the memory check are refused before 
       CHECK(oneLine(r.err));
       CHECK(r.err.find(dir.file("many.gltf") + ": nodes[0]: instancing its meshes gives 40000 triangles") != std::string::npos);
       CHECK_FALSE(std::filesystem::exists(dir.file("out.pfm")));
-      // Not emitting: one mesh placed 10000 times, which fits.
+      // Not emitting: one mesh placed 10000 times, about 4.8 MB of placements: refused at 2 MB,
+      // naming the instances; it fits in 8 MB (the 40000 copied triangles would not).
       dir.write("many.gltf", instancedGltf(in, n).dump());
-      const CliResult kept = render(dir.file("many.gltf"), dir.file("out.pfm"), {"MONTECL_MEMORY_LIMIT=2000000"});
+      const CliResult small = render(dir.file("many.gltf"), dir.file("out.pfm"), {"MONTECL_MEMORY_LIMIT=2000000"});
+      CHECK(small.exitCode == 2);
+      CHECK(oneLine(small.err));
+      CHECK(small.err.find(dir.file("many.gltf") + ": nodes[0]: instancing its meshes gives 10000 instances") != std::string::npos);
+      const CliResult kept = render(dir.file("many.gltf"), dir.file("out.pfm"), {"MONTECL_MEMORY_LIMIT=8000000"});
       CHECK_MESSAGE(kept.exitCode == 0, kept.err);
       std::filesystem::remove(dir.file("out.pfm"));
+      dir.write("many.gltf", emitting.dump());
+      CHECK(render(dir.file("many.gltf"), dir.file("out.pfm"), {"MONTECL_MEMORY_LIMIT=8000000"}).exitCode == 2);
     }
     // The scene file's instances of an emitting mesh are copies: the same rule, naming the list.
     json scene = {{"camera", "auto"}, {"meshes", {{{"file", "tent.obj"}, {"emission", {1, 1, 1}}, {"instances", json::array()}}}}};
@@ -243,10 +297,16 @@ TEST_CASE("instancing: instance counts past the memory check are refused before 
       CHECK(s.err.find(dir.file("scene.json") + ": meshes[0].instances: 10000 copies of the mesh gives 40000 triangles") !=
             std::string::npos);
       CHECK_FALSE(std::filesystem::exists(dir.file("out.pfm")));
-      // Without emission the instances are one mesh placed 10000 times: it fits.
+      // Without emission the instances are one mesh placed 10000 times: refused at 2 MB naming
+      // the instances, rendered in 8 MB.
       scene["meshes"][0].erase("emission");
       dir.write("scene.json", scene.dump());
-      const CliResult kept = render(dir.file("scene.json"), dir.file("out.pfm"), {"MONTECL_MEMORY_LIMIT=2000000"});
+      const CliResult small = render(dir.file("scene.json"), dir.file("out.pfm"), {"MONTECL_MEMORY_LIMIT=2000000"});
+      CHECK(small.exitCode == 2);
+      CHECK(oneLine(small.err));
+      CHECK(small.err.find(dir.file("scene.json") + ": meshes[0].instances: placing the mesh gives 10000 instances") !=
+            std::string::npos);
+      const CliResult kept = render(dir.file("scene.json"), dir.file("out.pfm"), {"MONTECL_MEMORY_LIMIT=8000000"});
       CHECK_MESSAGE(kept.exitCode == 0, kept.err);
     }
   }

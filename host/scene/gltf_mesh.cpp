@@ -356,6 +356,7 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
   };
   std::vector<Placed> placements;
   std::vector<std::uint64_t> uses(m.meshes.size(), 0);
+  std::uint64_t placedCount = 0;
   std::vector<bool> visited(m.nodes.size(), false);
   std::vector<std::pair<int, glm::dmat4>> stack;
   for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, glm::dmat4(1.0));
@@ -381,6 +382,10 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
       for (std::size_t k = 0; k < inst.count && k < (std::size_t(1) << 40); ++k)
         p.at.push_back(inst.present ? world * inst.local(k) : world);
       uses[p.mesh] += p.at.size();
+      placedCount += p.at.size();  // the matrices held until pass 2: refused before they pile up
+      if (placedCount * sizeof(glm::dmat4) > hostMemoryBytes())
+        loadFail(path, itemWhere("nodes", i), "instancing its meshes gives " + std::to_string(placedCount) +
+                                                  " placements: more than this machine's memory holds");
       placements.push_back(std::move(p));
     }
     for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.emplace_back(*it, world);
@@ -407,6 +412,8 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
       for (std::size_t q = 0; q < mesh.primitives.size(); ++q)
         l.primitive(mesh.primitives[q], glm::dmat4(1.0), meshWhere + ".primitives[" + std::to_string(q) + "]");
       if (scene.triangles.size() > first && !trianglesEmit(scene, first)) {
+        const std::string many = instanceMemoryRefusal(std::uint64_t(scene.instances.size()) + uses[p.mesh]);
+        if (!many.empty()) loadFail(path, itemWhere("nodes", p.node), "instancing its meshes " + many);
         rangeOf[p.mesh] = std::int64_t(scene.meshRanges.size());
         scene.meshRanges.push_back({std::uint32_t(first), std::uint32_t(scene.triangles.size() - first)});
         ranges = true;

@@ -3,6 +3,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <utility>
@@ -302,6 +303,8 @@ bool keepsInstances(const Scene& scene, std::size_t firstTri, std::size_t firstL
 
 // The entry's triangles stay as loaded (object space) as one mesh range, placed once per instance.
 void recordInstances(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, const MeshEntry& mesh) {
+  const std::string tooMany = instanceMemoryRefusal(std::uint64_t(scene.instances.size()) + mesh.instances.size());
+  if (!tooMany.empty()) jsonFail(ctx, mesh.prefix + ".instances", "placing the mesh " + tooMany);
   const std::uint32_t range = static_cast<std::uint32_t>(scene.meshRanges.size());
   scene.meshRanges.push_back({static_cast<std::uint32_t>(firstTri), static_cast<std::uint32_t>(scene.triangles.size() - firstTri)});
   glm::dvec3 lo(INFINITY), hi(-INFINITY);
@@ -323,15 +326,39 @@ void recordInstances(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, con
 
 }  // namespace
 
+// The entry's override textures, as inputs of the render (the output must not replace them).
+void addInputFiles(Scene& scene, const MeshEntry& mesh);
+
 void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, std::size_t firstLight,
                     const MeshEntry& mesh) {
-  // Meshes the file itself instanced (a glTF's shared meshes) stay instances only under an entry
-  // that leaves them as they are; a transform, instances or a material override (which may make
-  // them emit) apply to their placed copies, as before instancing.
-  if (mesh.hasTransform || !mesh.instances.empty() || mesh.material.any()) {
-    std::size_t firstRange = scene.meshRanges.size();
-    while (firstRange > 0 && scene.meshRanges[firstRange - 1].firstTri >= firstTri) --firstRange;
-    flattenInstances(scene, firstRange);
+  // Meshes the file itself instanced (a glTF's shared meshes): under the entry's own instances they
+  // become placed copies (as before instancing); under a transform or material override they stay
+  // instances, the transform composed after their placements, unless the override makes them emit.
+  std::size_t firstRange = scene.meshRanges.size();
+  while (firstRange > 0 && scene.meshRanges[firstRange - 1].firstTri >= firstTri) --firstRange;
+  if (firstRange < scene.meshRanges.size() && !mesh.instances.empty()) flattenInstances(scene, firstRange);
+  if (firstRange < scene.meshRanges.size()) {
+    DetachedRanges ranges = detachRanges(scene, firstRange);
+    if (mesh.hasTransform) transformTriangles(ctx, scene, firstTri, mesh.transform, mesh.prefix + ".transform");
+    if (mesh.hasTransform) transformLights(ctx, scene, firstLight, mesh.transform, mesh.prefix + ".transform");
+    if (mesh.material.any()) overrideMaterials(ctx, scene, firstTri, mesh);
+    const std::size_t rangeTri = scene.triangles.size();
+    attachRanges(scene, firstRange, std::move(ranges));
+    if (mesh.material.any()) overrideMaterials(ctx, scene, rangeTri, mesh);
+    if (mesh.hasTransform) {
+      std::vector<SceneInstance> placed;
+      for (const SceneInstance& in : scene.instances)
+        if (in.range >= firstRange) placed.push_back(in);
+      scene.instances.erase(std::remove_if(scene.instances.begin(), scene.instances.end(),
+                                           [&](const SceneInstance& in) { return in.range >= firstRange; }),
+                            scene.instances.end());
+      for (const SceneInstance& in : placed)
+        if (!addPlacements(scene, in.range, {mesh.transform * in.objectToWorld}))
+          jsonFail(ctx, mesh.prefix + ".transform", "moves vertices out of float range");
+    }
+    if (trianglesEmit(scene, rangeTri)) flattenInstances(scene, firstRange);
+    addInputFiles(scene, mesh);
+    return;
   }
   if (!mesh.instances.empty()) {
     if (mesh.material.any()) overrideMaterials(ctx, scene, firstTri, mesh);
@@ -344,7 +371,10 @@ void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, std:
     if (mesh.hasTransform) transformLights(ctx, scene, firstLight, mesh.transform, mesh.prefix + ".transform");
     if (mesh.material.any()) overrideMaterials(ctx, scene, firstTri, mesh);
   }
-  // The override's textures are read by the render like any other: inputs the output must not replace.
+  addInputFiles(scene, mesh);
+}
+
+void addInputFiles(Scene& scene, const MeshEntry& mesh) {
   if (mesh.material.albedoTexture) scene.inputFiles.push_back(mesh.material.value.albedoTexture);
   if (mesh.material.alphaTexture) scene.inputFiles.push_back(mesh.material.value.alphaTexture);
   if (mesh.material.emissionTexture) scene.inputFiles.push_back(mesh.material.value.emissionTexture);

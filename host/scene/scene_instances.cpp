@@ -4,6 +4,9 @@
 #include <cmath>
 #include <utility>
 
+#include "kernels/shared/types.h"
+#include "util/host_memory.h"
+
 namespace montecl {
 
 std::vector<std::uint8_t> instancedTriangles(const Scene& scene) {
@@ -71,6 +74,14 @@ std::vector<glm::vec3> instanceBoxCorners(const Scene& scene) {
   return corners;
 }
 
+std::string instanceMemoryRefusal(std::uint64_t instances) {
+  const std::uint64_t each = sizeof(SceneInstance) + sizeof(Instance) + sizeof(SceneTriangle) + 125;
+  const std::uint64_t need = instances * each, has = hostMemoryBytes();
+  if (need <= has) return "";
+  return "gives " + std::to_string(instances) + " instances: needs about " + gibText(need) +
+         " of memory (placements and their BVH), this machine has " + gibText(has);
+}
+
 std::uint64_t placedTriangleCount(const Scene& scene) {
   std::uint64_t n = scene.triangles.size();
   for (const MeshRange& r : scene.meshRanges) n -= r.count;
@@ -95,6 +106,46 @@ bool placeTriangle(SceneTriangle& t, glm::vec3* colours, const glm::dmat4& m) {
   }
   const glm::vec3 n = glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]);
   return finite(n) && n != glm::vec3(0.0f);
+}
+
+DetachedRanges detachRanges(Scene& scene, std::size_t firstRange) {
+  DetachedRanges d;
+  std::vector<std::uint8_t> moving(scene.triangles.size(), 0);
+  for (std::size_t r = firstRange; r < scene.meshRanges.size(); ++r)
+    for (std::uint32_t i = 0; i < scene.meshRanges[r].count; ++i) moving[scene.meshRanges[r].firstTri + i] = 1;
+  const bool coloured = !scene.vertexColors.empty();
+  std::vector<glm::vec3>& c = scene.vertexColors;
+  if (coloured) c.resize(3 * scene.triangles.size(), glm::vec3(1.0f));
+  for (std::size_t r = firstRange; r < scene.meshRanges.size(); ++r) {  // in range order
+    MeshRange& range = scene.meshRanges[r];
+    const std::uint32_t first = static_cast<std::uint32_t>(d.triangles.size());
+    for (std::uint32_t i = 0; i < range.count; ++i) {
+      d.triangles.push_back(scene.triangles[range.firstTri + i]);
+      if (coloured) d.colours.insert(d.colours.end(), c.begin() + 3 * (range.firstTri + i), c.begin() + 3 * (range.firstTri + i) + 3);
+    }
+    range.firstTri = first;
+  }
+  std::size_t out = 0;
+  for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
+    if (moving[i]) continue;
+    if (coloured)
+      for (int k = 0; k < 3; ++k) c[3 * out + std::size_t(k)] = c[3 * i + std::size_t(k)];
+    scene.triangles[out++] = scene.triangles[i];
+  }
+  scene.triangles.resize(out);
+  if (coloured) c.resize(3 * out);
+  return d;
+}
+
+void attachRanges(Scene& scene, std::size_t firstRange, DetachedRanges d) {
+  const std::uint32_t base = static_cast<std::uint32_t>(scene.triangles.size());
+  for (std::size_t r = firstRange; r < scene.meshRanges.size(); ++r) scene.meshRanges[r].firstTri += base;
+  if (!d.colours.empty() || !scene.vertexColors.empty()) {
+    scene.vertexColors.resize(3 * std::size_t(base), glm::vec3(1.0f));
+    if (d.colours.empty()) d.colours.assign(3 * d.triangles.size(), glm::vec3(1.0f));
+    scene.vertexColors.insert(scene.vertexColors.end(), d.colours.begin(), d.colours.end());
+  }
+  scene.triangles.insert(scene.triangles.end(), d.triangles.begin(), d.triangles.end());
 }
 
 void flattenInstances(Scene& scene, std::size_t firstRange) {

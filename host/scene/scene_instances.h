@@ -2,6 +2,7 @@
 // triangles are in world space, the instances' placed boxes, and flattening into placed copies.
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "scene/scene.h"
@@ -26,6 +27,22 @@ std::vector<glm::vec3> rangeBoxCorners(const Scene& scene, const MeshRange& rang
 // flatten every copy) is left out and its triangles counted in degenerateDropped. False (nothing
 // more appended) when one moves the range's box out of float range.
 bool addPlacements(Scene& scene, std::uint32_t range, const std::vector<glm::dmat4>& at);
+
+// The triangles of mesh ranges [firstRange, end), moved out of a scene with their corner colours
+// (detachRanges; the other triangles keep their order, the ranges' firstTri then index
+// `triangles` here), and appended back after the scene's triangles (attachRanges), so that
+// whatever applies to a file's world-space triangles can run over one contiguous run of them.
+struct DetachedRanges {
+  std::vector<SceneTriangle> triangles;
+  std::vector<glm::vec3> colours;  // 3 per triangle when the scene has vertex colours
+};
+DetachedRanges detachRanges(Scene& scene, std::size_t firstRange);
+void attachRanges(Scene& scene, std::size_t firstRange, DetachedRanges detached);
+
+// Why a scene must not hold `instances` placements: each costs its SceneInstance, its device
+// Instance and, in the top level's build, about what a triangle costs (buildBvh over the boxes);
+// "" when that fits hostMemoryBytes(). Otherwise "gives N instances: needs about X GiB ...".
+std::string instanceMemoryRefusal(std::uint64_t instances);
 
 // Triangles a flattened scene would hold: the world ones plus every instance's copy.
 std::uint64_t placedTriangleCount(const Scene& scene);
