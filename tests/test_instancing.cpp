@@ -1,10 +1,14 @@
-// test_instancing.cpp: instanced meshes, flattened into copies: glTF EXT_mesh_gpu_instancing
-// (TRANSLATION / ROTATION / SCALE per instance, after the node's world matrix) gives exactly the
-// triangles and the image of one explicit child node per instance; a scene file's "instances" list
-// gives exactly those of one mesh entry per transform; bad instance accessors and lists are one
-// line naming the key (exit 2), and instance counts past the memory check are refused up front.
+// test_instancing.cpp: instanced meshes: glTF EXT_mesh_gpu_instancing (TRANSLATION / ROTATION /
+// SCALE per instance, after the node's world matrix) gives exactly the triangles and the image of
+// one explicit child node per instance; a scene file's "instances" list, flattened, gives exactly
+// the triangles of one mesh entry per transform; bad instance accessors and lists are one line
+// naming the key (exit 2), and copies past the memory check are refused up front (emitting
+// instances stay copies; others are one mesh, test_instances_render.cpp).
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
 #include <cstring>
@@ -17,6 +21,7 @@
 #include "mesh_files.h"
 #include "scene/mesh_loaders.h"
 #include "scene/scene.h"
+#include "scene/scene_instances.h"
 
 using montecl::Scene;
 using montecl_test::CliResult;
@@ -130,8 +135,16 @@ TEST_CASE("instancing: EXT_mesh_gpu_instancing gives the triangles and image of 
   dir.write("inst.gltf", instancedGltf(in, n).dump());
   dir.write("nodes.gltf", explicitGltf(in, n).dump());
   const Scene a = loadGltf(dir.file("inst.gltf")), b = loadGltf(dir.file("nodes.gltf"));
-  CHECK(a.triangles.size() == 4 * n);  // 4 triangles per tent
+  CHECK(a.triangles.size() == 4);  // the tent once, placed n times (Scene::instances)
   checkSameTriangles(a, b);
+  REQUIRE(a.instances.size() == n);
+  REQUIRE(b.instances.size() == n);
+  for (std::size_t k = 0; k < n; ++k) CHECK(a.instances[k].objectToWorld == b.instances[k].objectToWorld);  // exact
+  Scene flatA = a, flatB = b;
+  montecl::flattenInstances(flatA);
+  montecl::flattenInstances(flatB);
+  CHECK(flatA.triangles.size() == 4 * n);  // 4 triangles per tent
+  checkSameTriangles(flatA, flatB);
   // Through the real command line, with the camera and sky of a bare model: the same bytes.
   const CliResult ra = render(dir.file("inst.gltf"), dir.file("inst.pfm"));
   const CliResult rb = render(dir.file("nodes.gltf"), dir.file("nodes.pfm"));
@@ -139,6 +152,50 @@ TEST_CASE("instancing: EXT_mesh_gpu_instancing gives the triangles and image of 
   REQUIRE_MESSAGE(rb.exitCode == 0, rb.err);
   CHECK(ra.err.find("EXT_mesh_gpu_instancing") == std::string::npos);  // read, not warned about
   CHECK(montecl_test::readAll(dir.file("inst.pfm")) == montecl_test::readAll(dir.file("nodes.pfm")));
+}
+
+TEST_CASE("instancing: a glTF's shared mesh under a scene-file entry: the transform composes, emission or instances copy" *
+          doctest::test_suite("cpu")) {
+  TempDir dir;
+  const std::size_t n = 4;
+  const Instances in = someInstances(int(n));
+  dir.write("nodes.gltf", explicitGltf(in, n).dump());
+  const json transform = {{"rotate", {1, 0.5, 0, 30}}, {"scale", {1.5, 0.5, -1}}, {"translate", {-1, 0.25, 0}}};
+  const json camera = {{"position", {1, 3, 6}}, {"target", {0, 0, -1}}, {"width", 16}, {"height", 12}};
+  const auto load = [&](const json& entry) {
+    dir.write("scene.json", json{{"camera", camera}, {"meshes", {entry}}}.dump());
+    std::vector<std::string> w;
+    return montecl::loadScene(dir.file("scene.json"), w);
+  };
+  // Composed: the flattened placements equal the file's copies transformed vertex by vertex (in
+  // double: translate x rotate x scale; the scale mirrors, so corners 1 and 2 swap).
+  Scene bare = loadGltf(dir.file("nodes.gltf"));
+  montecl::flattenInstances(bare);
+  const Scene plain = load({{"file", "nodes.gltf"}, {"transform", transform}, {"material", {{"albedo", {0.2, 0.4, 0.6}}}}});
+  CHECK(plain.triangles.size() == 4);
+  REQUIRE(plain.instances.size() == n);
+  CHECK(plain.materials[plain.triangles[0].material].albedo == glm::vec3(0.2f, 0.4f, 0.6f));
+  Scene flat = plain;
+  montecl::flattenInstances(flat);
+  REQUIRE(flat.triangles.size() == bare.triangles.size());
+  glm::dmat4 t = glm::translate(glm::dmat4(1.0), glm::dvec3(-1, 0.25, 0));
+  t = glm::rotate(t, glm::radians(30.0), glm::normalize(glm::dvec3(1, 0.5, 0)));
+  t = glm::scale(t, glm::dvec3(1.5, 0.5, -1));
+  for (std::size_t i = 0; i < flat.triangles.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 a = flat.triangles[i].v[k];
+      const glm::vec3 b(t * glm::dvec4(glm::dvec3(bare.triangles[i].v[k == 0 ? 0 : 3 - k]), 1.0));
+      CHECK(glm::length(a - b) <= 1e-5f * (1.0f + glm::length(b)));
+    }
+  // An override that makes them emit: copies (the emitter table is world space).
+  const Scene copied = load({{"file", "nodes.gltf"}, {"transform", transform}, {"emission", {1, 1, 1}}});
+  CHECK(copied.instances.empty());
+  CHECK(copied.triangles.size() == bare.triangles.size());
+  // The entry's own instances: copies of the file's placements, then the entry's mesh placed.
+  const Scene twice = load({{"file", "nodes.gltf"}, {"instances", {{{"translate", {0, 0, 0}}}, {{"translate", {3, 0, 0}}}}}});
+  CHECK(twice.meshRanges.size() == 1);
+  CHECK(twice.triangles.size() == 4 * n);
+  CHECK(twice.instances.size() == 2);
 }
 
 TEST_CASE("instancing: bad EXT_mesh_gpu_instancing accessors are one line naming the attribute, exit 2" *
@@ -198,7 +255,9 @@ TEST_CASE("instancing: instance counts past the memory check are refused before 
   for (std::size_t n : {std::size_t(10), std::size_t(10000)}) {
     CAPTURE(n);
     const Instances in = someInstances(int(n));
-    dir.write("many.gltf", instancedGltf(in, n).dump());
+    json emitting = instancedGltf(in, n);  // emitting instances are copies (the emitter table is world space)
+    emitting["materials"][0]["emissiveFactor"] = {1, 1, 1};
+    dir.write("many.gltf", emitting.dump());
     const CliResult r = render(dir.file("many.gltf"), dir.file("out.pfm"), {"MONTECL_MEMORY_LIMIT=2000000"});
     INFO(r.err);
     if (n == 10) {
@@ -209,9 +268,21 @@ TEST_CASE("instancing: instance counts past the memory check are refused before 
       CHECK(oneLine(r.err));
       CHECK(r.err.find(dir.file("many.gltf") + ": nodes[0]: instancing its meshes gives 40000 triangles") != std::string::npos);
       CHECK_FALSE(std::filesystem::exists(dir.file("out.pfm")));
+      // Not emitting: one mesh placed 10000 times, about 4.8 MB of placements: refused at 2 MB,
+      // naming the instances; it fits in 8 MB (the 40000 copied triangles would not).
+      dir.write("many.gltf", instancedGltf(in, n).dump());
+      const CliResult small = render(dir.file("many.gltf"), dir.file("out.pfm"), {"MONTECL_MEMORY_LIMIT=2000000"});
+      CHECK(small.exitCode == 2);
+      CHECK(oneLine(small.err));
+      CHECK(small.err.find(dir.file("many.gltf") + ": nodes[0]: instancing its meshes gives 10000 instances") != std::string::npos);
+      const CliResult kept = render(dir.file("many.gltf"), dir.file("out.pfm"), {"MONTECL_MEMORY_LIMIT=8000000"});
+      CHECK_MESSAGE(kept.exitCode == 0, kept.err);
+      std::filesystem::remove(dir.file("out.pfm"));
+      dir.write("many.gltf", emitting.dump());
+      CHECK(render(dir.file("many.gltf"), dir.file("out.pfm"), {"MONTECL_MEMORY_LIMIT=8000000"}).exitCode == 2);
     }
-    // The scene file's instances: the same rule, naming the list.
-    json scene = {{"camera", "auto"}, {"meshes", {{{"file", "tent.obj"}, {"instances", json::array()}}}}};
+    // The scene file's instances of an emitting mesh are copies: the same rule, naming the list.
+    json scene = {{"camera", "auto"}, {"meshes", {{{"file", "tent.obj"}, {"emission", {1, 1, 1}}, {"instances", json::array()}}}}};
     for (std::size_t k = 0; k < n; ++k) scene["meshes"][0]["instances"].push_back({{"translate", {0, 0, -0.01 * double(k)}}});
     dir.write("tent.obj", montecl_test::objText(montecl_test::tentMesh()));
     dir.write("scene.json", scene.dump());
@@ -226,11 +297,23 @@ TEST_CASE("instancing: instance counts past the memory check are refused before 
       CHECK(s.err.find(dir.file("scene.json") + ": meshes[0].instances: 10000 copies of the mesh gives 40000 triangles") !=
             std::string::npos);
       CHECK_FALSE(std::filesystem::exists(dir.file("out.pfm")));
+      // Without emission the instances are one mesh placed 10000 times: refused at 2 MB naming
+      // the instances, rendered in 8 MB.
+      scene["meshes"][0].erase("emission");
+      dir.write("scene.json", scene.dump());
+      const CliResult small = render(dir.file("scene.json"), dir.file("out.pfm"), {"MONTECL_MEMORY_LIMIT=2000000"});
+      CHECK(small.exitCode == 2);
+      CHECK(oneLine(small.err));
+      CHECK(small.err.find(dir.file("scene.json") + ": meshes[0].instances: placing the mesh gives 10000 instances") !=
+            std::string::npos);
+      const CliResult kept = render(dir.file("scene.json"), dir.file("out.pfm"), {"MONTECL_MEMORY_LIMIT=8000000"});
+      CHECK_MESSAGE(kept.exitCode == 0, kept.err);
     }
   }
 }
 
-TEST_CASE("instancing: a scene file's instances equal one mesh entry per transform, bit for bit" * doctest::test_suite("cli")) {
+TEST_CASE("instancing: a scene file's instances, flattened, equal one mesh entry per transform, bit for bit" *
+          doctest::test_suite("cli")) {
   TempDir dir;
   dir.write("tent.obj", montecl_test::objText(montecl_test::tentMesh()));
   const json transforms = json::array({json{{"translate", {0.5, 0, -1}}},
@@ -247,7 +330,11 @@ TEST_CASE("instancing: a scene file's instances equal one mesh entry per transfo
   dir.write("inst.json", inst.dump());
   dir.write("separate.json", separate.dump());
   std::vector<std::string> w;
-  const Scene a = montecl::loadScene(dir.file("inst.json"), w), b = montecl::loadScene(dir.file("separate.json"), w);
+  const Scene kept = montecl::loadScene(dir.file("inst.json"), w), b = montecl::loadScene(dir.file("separate.json"), w);
+  CHECK(kept.triangles.size() == 4);  // one mesh, placed three times
+  CHECK(kept.instances.size() == 3);
+  Scene a = kept;
+  montecl::flattenInstances(a);
   CHECK(a.triangles.size() == 3 * 4);
   checkSameTriangles(a, b);
   CHECK(a.materials.size() < b.materials.size());  // the copies share the entry's material
@@ -255,11 +342,11 @@ TEST_CASE("instancing: a scene file's instances equal one mesh entry per transfo
   const CliResult rb = runMontecl({"render", dir.file("separate.json"), "-o", dir.file("separate.pfm"), "-q", "--device", "host"});
   REQUIRE_MESSAGE(ra.exitCode == 0, ra.err);
   REQUIRE_MESSAGE(rb.exitCode == 0, rb.err);
-  CHECK(montecl_test::readAll(dir.file("inst.pfm")) == montecl_test::readAll(dir.file("separate.pfm")));
   // With the entry's transform too, each copy is instance x transform.
   inst["meshes"][0]["transform"] = {{"scale", 2}};
   dir.write("inst2.json", inst.dump());
-  const Scene c = montecl::loadScene(dir.file("inst2.json"), w);
+  Scene c = montecl::loadScene(dir.file("inst2.json"), w);
+  montecl::flattenInstances(c);
   REQUIRE(c.triangles.size() == a.triangles.size());
   CHECK(c.triangles[0].v[0] == a.triangles[0].v[0] + a.triangles[0].v[0] - glm::vec3(0.5f, 0.0f, -1.0f));
   // Bad lists: one line naming the key.

@@ -35,6 +35,8 @@
 #include "bench/ray_sets.h"
 #include "bvh/bvh_visit_counts.h"
 #include "bvh/bvh.h"
+#include "scene/scene_instances.h"
+#include "util/host_memory.h"
 #include "bvh/sah_reference.h"
 #include "render/ray_tracer.h"
 #include "render/stage_program.h"
@@ -154,6 +156,13 @@ json runBench(const BenchOptions& o, bool verbose) {
   r["repeat"] = o.repeat;
   r["rel_tolerance"] = o.relTolerance;
 
+  // The tracers compared here (and Embree's) traverse one level: instances as placed copies,
+  // refused like the loaders' copies when they would not fit in memory.
+  if (!scene.instances.empty()) {
+    const std::string tooMany = sceneMemoryRefusal(placedTriangleCount(scene), sizeof(SceneTriangle));
+    if (!tooMany.empty()) throwInputError(scene.path, "instances", "bench traces flattened copies: the scene " + tooMany);
+    flattenInstances(scene);
+  }
   say("building the BVH over " + std::to_string(scene.triangles.size()) + " triangles");
   BvhBuildOptions buildOptions;
   buildOptions.splitBudget = o.splitBudget;

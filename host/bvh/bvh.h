@@ -38,6 +38,10 @@ struct Bvh {
   int depth = 0;                      // longest root-to-leaf path (always < MCL_BVH_STACK_SIZE)
   double sahCost = 0.0;               // SAH cost of the tree (traversalCost/intersectCost weighted)
   double buildMs = 0.0;               // of the binary tree (the wide collapse is not built here)
+  // Non-empty: a two-level BVH (bvh_instances.h buildSceneBvh): wideNodes() holds the top level
+  // and the bottom levels, triangles are in their meshes' object spaces, these the placements
+  // (leaf order); nodes is one empty binary node (the binary layout has no two-level form).
+  std::vector<Instance> instances;
 
   // The same tree collapsed 8-wide (collapseWide, element 0 the root): what the wide layout
   // traverses. Collapsed on the first call (thread-safe) and kept; never empty. Do not change

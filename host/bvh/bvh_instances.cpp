@@ -9,6 +9,7 @@
 #include <string>
 
 #include "kernels/shared/traverse_instances.h"
+#include "scene/scene_instances.h"
 
 namespace montecl {
 
@@ -163,6 +164,37 @@ Bvh sceneView(const TwoLevelBvh& bvh, const std::vector<std::uint32_t>& meshFirs
   v.inputCount = inputs;
   v.depth = bvh.depth;
   v.wideCache.preset(bvh.nodes);
+  return v;
+}
+
+Bvh buildSceneBvh(const Scene& scene, const BvhBuildOptions& options) {
+  if (scene.instances.empty() && scene.meshRanges.empty()) return buildBvh(scene.triangles, options);
+  const std::vector<std::uint8_t> instanced = instancedTriangles(scene);
+  std::vector<std::vector<SceneTriangle>> meshes(1 + scene.meshRanges.size());
+  std::vector<std::uint32_t> worldIndex;  // mesh 0's triangle k is scene triangle worldIndex[k]
+  for (std::size_t i = 0; i < scene.triangles.size(); ++i)
+    if (!instanced[i]) {
+      meshes[0].push_back(scene.triangles[i]);
+      worldIndex.push_back(static_cast<std::uint32_t>(i));
+    }
+  std::vector<std::uint32_t> meshFirstTri(meshes.size(), 0);
+  for (std::size_t r = 0; r < scene.meshRanges.size(); ++r) {
+    const MeshRange& range = scene.meshRanges[r];
+    meshes[1 + r].assign(scene.triangles.begin() + range.firstTri, scene.triangles.begin() + range.firstTri + range.count);
+    meshFirstTri[1 + r] = range.firstTri;
+  }
+  std::vector<BvhInstanceDesc> placed;
+  placed.reserve(1 + scene.instances.size());
+  if (!meshes[0].empty()) placed.push_back(BvhInstanceDesc{0, glm::mat4(1.0f)});
+  for (const SceneInstance& in : scene.instances) placed.push_back(BvhInstanceDesc{1 + in.range, glm::mat4(in.objectToWorld)});
+  const TwoLevelBvh two = buildTwoLevelBvh(meshes, placed, options);
+  std::vector<std::vector<SceneTriangle>>().swap(meshes);
+  Bvh v = sceneView(two, meshFirstTri);
+  for (std::uint32_t i = 0; i < two.meshTriCount[0]; ++i) {  // mesh 0 is not one run of the scene's triangles
+    const std::uint32_t slot = two.meshTriBase[0] + i;
+    v.order[slot] = worldIndex[two.triangleSource[slot]];
+  }
+  v.instances = two.instances;
   return v;
 }
 

@@ -44,6 +44,13 @@ TwoLevelBvh buildTwoLevelBvh(const std::vector<std::vector<SceneTriangle>>& mesh
 // nodes is one empty binary node: the binary layout has no two-level form (refuse it).
 Bvh sceneView(const TwoLevelBvh& bvh, const std::vector<std::uint32_t>& meshFirstTri);
 
+// The BVH a render of scene traverses: buildBvh(scene.triangles) for a scene without instances
+// (the same tree as ever); else the two-level BVH as sceneView gives it, with Bvh::instances set:
+// mesh 0 the world-space triangles (outside every mesh range) placed once by the identity, meshes
+// 1.. the scene's mesh ranges placed by Scene::instances. order[] maps slots to scene triangles.
+// Throws std::invalid_argument as buildTwoLevelBvh.
+Bvh buildSceneBvh(const Scene& scene, const BvhBuildOptions& options = {});
+
 // Host reference traversal (the kernels' code): closest hit with the input index of the instance
 // hit (MCL_NO_INSTANCE on a miss; hit.tri a slot of triangles), and any hit.
 struct TwoLevelHit {

@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "bvh/bvh.h"
+#include "bvh/bvh_instances.h"
 #include "cl/device_tuning.h"
 #include "cl/devices.h"
 #include "cli/commands.h"
@@ -181,7 +182,12 @@ int runRender(const RenderArgs& a) {
                                               (a.targetError > 0.0 ? " (--max-spp)" : " (spp)") +
                                               " samples run past sample index 4294967295");
   DeviceInfo device = selectDevice(jobs::deviceSpec(a.device));
-  BvhLayout layout = resolveStageLayout(parseBvhLayout(a.bvhLayout), device);
+  // Instances render through the two-level BVH, which only the wide layout traverses.
+  const BvhLayout askedLayout = parseBvhLayout(a.bvhLayout);
+  const bool instanced = !scene.instances.empty();
+  if (instanced && askedLayout == BvhLayout::Binary)
+    throwInputError(scene.path, "--bvh-layout", "binary cannot render the scene's instances (no two-level form); use wide or auto");
+  BvhLayout layout = instanced ? BvhLayout::Wide : resolveStageLayout(askedLayout, device);
 
   // Textures: every file once, under the budget (automatic: 1 GiB, at most the device's largest
   // allocation); a bad file is an input error before anything renders.
@@ -201,7 +207,7 @@ int runRender(const RenderArgs& a) {
   for (const std::string& w : textureWarnings) std::cerr << "montecl: warning: " << scene.path << ": " << w << "\n";
   BvhBuildOptions buildOptions;
   buildOptions.splitBudget = a.splitBudget;
-  Bvh bvh = buildBvh(scene.triangles, buildOptions);
+  Bvh bvh = buildSceneBvh(scene, buildOptions);
   const bool lit = integratorDesc(scene.render.integrator).lit &&
                    !scene.environment.enabled && scene.lights.empty();  // these light the scene by themselves
   if (lit && !hasEmitter(scene))
@@ -214,7 +220,11 @@ int runRender(const RenderArgs& a) {
               << "winding or set \"two_sided_emission\": true on the mesh\n";
   if (a.verbose) {
     std::cerr << "montecl: " << scene.triangles.size() << " triangles (" << scene.degenerateDropped
-              << " degenerate dropped), " << scene.materials.size() << " materials\n"
+              << " degenerate dropped), " << scene.materials.size() << " materials"
+              << (instanced ? ", " + std::to_string(scene.instances.size()) + " instances of " +
+                                  std::to_string(scene.meshRanges.size()) + " meshes (two-level BVH)"
+                            : std::string())
+              << "\n"
               << "montecl: BVH built in " << bvh.buildMs << " ms: " << bvh.nodes.size() << " nodes, depth "
               << bvh.depth << ", SAH cost " << bvh.sahCost << ", " << bvh.triangles.size()
               << " triangle references\n"

@@ -12,11 +12,13 @@
 #include <sstream>
 
 #include "bvh/bvh.h"
+#include "bvh/bvh_instances.h"
 #include "cl/cl_errors.h"
 #include "cl/cl_session.h"
 #include "cl/devices.h"
 #include "cl/kernel_source.h"
 #include "cl/program_cache.h"
+#include "render/stage_program.h"
 #include "render/wavefront.h"
 
 namespace montecl {
@@ -96,7 +98,7 @@ ConformanceReport runConformance(const ConformanceOptions& options) {
   ConformanceReport report;
   const std::vector<ConformanceCase> cases = conformanceSet(options.set, report.skipped);
   std::vector<Bvh> bvhs;
-  for (const ConformanceCase& c : cases) bvhs.push_back(buildBvh(c.scene.triangles));
+  for (const ConformanceCase& c : cases) bvhs.push_back(buildSceneBvh(c.scene));
 
   // Reference images from the host backend.
   std::vector<Rendered> reference(cases.size());
@@ -131,6 +133,8 @@ ConformanceReport runConformance(const ConformanceOptions& options) {
     r.name = device.name;
     r.platform = device.platformName;
     std::unique_ptr<WavefrontRenderer> renderer, aovRenderer;  // (the AOV cases' renderer records AOVs)
+    // Instanced cases where the layout under test is binary: the wide layout, as `render` picks.
+    std::unique_ptr<WavefrontRenderer> wideRenderer, wideAovRenderer;
     try {
       RenderOptions ro;
       // --bvh-layout is for the OpenCL devices under test; the host backend, the reference, runs
@@ -140,6 +144,13 @@ ConformanceReport runConformance(const ConformanceOptions& options) {
       renderer = std::make_unique<WavefrontRenderer>(device, ro);
       ro.aovs = true;
       aovRenderer = std::make_unique<WavefrontRenderer>(device, ro);
+      const bool instanced = std::any_of(bvhs.begin(), bvhs.end(), [](const Bvh& b) { return !b.instances.empty(); });
+      if (instanced && !device.isHost && resolveStageLayout(ro.bvhLayout, device) == BvhLayout::Binary) {
+        ro.bvhLayout = BvhLayout::Wide;
+        wideAovRenderer = std::make_unique<WavefrontRenderer>(device, ro);
+        ro.aovs = false;
+        wideRenderer = std::make_unique<WavefrontRenderer>(device, ro);
+      }
       r.buildMs = renderer->programBuildMs();
       r.fromCache = renderer->programFromCache();
       if (!device.isHost) buildIntegrateProgram(device, r);
@@ -176,7 +187,9 @@ ConformanceReport runConformance(const ConformanceOptions& options) {
           Rendered out;
           RenderPart part;
           part.textures = cases[i].textures.get();
-          out.film = (cases[i].aovs ? aovRenderer : renderer)->render(cases[i].scene, bvhs[i], out.stats, {}, part);
+          const bool wide = wideRenderer && !bvhs[i].instances.empty();
+          WavefrontRenderer& run = *(cases[i].aovs ? (wide ? wideAovRenderer : aovRenderer) : (wide ? wideRenderer : renderer));
+          out.film = run.render(cases[i].scene, bvhs[i], out.stats, {}, part);
           c.rendered = true;
           c.seconds = out.stats.seconds;
           c.mrays = mrays(out.stats);

@@ -4,10 +4,13 @@
 #include "conformance/scenes.h"
 
 #include "scene/builtin_scenes.h"
+#include "scene/mesh_entry.h"
 #include "texture/bump_gradient.h"
 #include "texture/mip_chain.h"
 
 #include <fstream>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 namespace montecl {
 namespace {
@@ -130,6 +133,29 @@ ConformanceCase lampAndBumpsCase(const Scene& light, const std::string& name, bo
   if (heights) t->materials[0].bump = 2;
   c.textures = t;
   return c;
+}
+
+// The polygon-light scene with a smooth glossy sphere (object space, radius 1) placed 6 times as
+// instances (turned, scaled non-uniformly, one mirrored): the two-level BVH through every device's
+// kernels as the host backend runs it.
+Scene instancedSpheresScene(const Scene& light) {
+  Scene s = light;
+  s.path = "<instanced spheres scene>";
+  MaterialDesc glossy{"glossy", glm::vec3(0.6f, 0.5f, 0.3f), glm::vec3(0.0f)};
+  glossy.specular = glm::vec3(0.3f);
+  glossy.specularExponent = 30.0f;
+  s.materials.push_back(glossy);
+  const std::uint32_t first = std::uint32_t(s.triangles.size());
+  addUvSphere(s, {0.0f, 0.0f, 0.0f}, 1.0f, 6, 10, true, std::uint32_t(s.materials.size() - 1));
+  s.meshRanges.push_back({first, std::uint32_t(s.triangles.size()) - first});
+  for (int k = 0; k < 6; ++k) {
+    glm::dmat4 m = glm::translate(glm::dmat4(1.0), glm::dvec3(-0.6 + 0.25 * k, 0.2 + 0.03 * k, -0.45 + 0.17 * k));
+    m = glm::rotate(m, 0.4 + 0.9 * k, glm::normalize(glm::dvec3(0.3, 1.0, 0.1 * k)));
+    m = glm::scale(m, glm::dvec3(k == 3 ? -0.22 : 0.22, 0.14 + 0.02 * k, 0.2));
+    s.instances.push_back({0, m});
+  }
+  recomputeBounds(s);
+  return s;
 }
 
 Scene withAo(Scene s, AoSampling sampling) {
@@ -312,6 +338,10 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   cases.push_back(lampAndBumpsCase(withPath(light, 1), "normal-map/path", false, true));
   cases.push_back(lampAndBumpsCase(withDirect(light, DirectSampling::Mis, 2), "bump-map/direct-mis", false, false, true));
   cases.push_back(lampAndBumpsCase(withPath(light, 1), "bump-map/path", false, false, true));
+  const Scene spheres = instancedSpheresScene(light);
+  cases.push_back({"instanced-spheres/ao-cosine", withAo(spheres, AoSampling::Cosine), nullptr, false});
+  cases.push_back({"instanced-spheres/direct-mis", withDirect(spheres, DirectSampling::Mis, 2), nullptr, false});
+  cases.push_back({"instanced-spheres/path", withPath(spheres, 1), nullptr, false});
 
   const std::string path = o.cornellPath.empty() ? defaultCornellPath() : o.cornellPath;
   if (!std::ifstream(path)) {

@@ -60,6 +60,7 @@ class ClStageRunner final : public StageRunner {
     b.envMap = {cl_.upload(in.envMap)};
     b.envCdf = {cl_.upload(in.envCdf)};
     b.lightRecords = {cl_.upload(in.lightRecords.empty() ? std::vector<LightRecord>(1) : in.lightRecords)};
+    b.instances = {cl_.upload(in.bvh->instances.empty() ? std::vector<Instance>(1) : in.bvh->instances)};
     std::vector<cl_uint> all(pixels_);
     for (std::uint64_t p = 0; p < pixels_; ++p) all[p] = cl_uint(p);
     b.active = {cl_.upload(all, CL_MEM_READ_WRITE)};

@@ -1,6 +1,8 @@
 // frame_params.cpp: camera basis (pinhole or thin lens) and render settings packed for the kernels.
 #include "render/frame_params.h"
 
+#include "scene/scene_instances.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -41,6 +43,7 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
   f.envRotateY = extras.envRotateY;
   f.textureCount = extras.textureCount;
   f.packetAllRays = extras.packetAllRays ? 1u : 0u;
+  f.instanceCount = extras.instanceCount;
   const LightSelection& l = extras.lights;
   f.shareEnvironment = l.shareEnvironment;
   f.shareArea = l.shareArea;
@@ -62,16 +65,37 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
   return f;
 }
 
+namespace {
+float offsetScaleOfMaxAbs(float maxAbs);
+}
+
 float offsetScaleFor(const std::vector<SceneTriangle>& triangles) {
   float maxAbs = 0.0f;
   for (const SceneTriangle& t : triangles)
     for (const glm::vec3& v : t.v)
       maxAbs = std::max({maxAbs, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  return offsetScaleOfMaxAbs(maxAbs);
+}
+
+float offsetScaleForScene(const Scene& scene) {
+  if (scene.instances.empty() && scene.meshRanges.empty()) return offsetScaleFor(scene.triangles);
+  const std::vector<std::uint8_t> instanced = instancedTriangles(scene);
+  float maxAbs = 0.0f;
+  for (std::size_t i = 0; i < scene.triangles.size(); ++i)
+    if (!instanced[i])
+      for (const glm::vec3& v : scene.triangles[i].v) maxAbs = std::max({maxAbs, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  for (const glm::vec3& v : instanceBoxCorners(scene)) maxAbs = std::max({maxAbs, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  return offsetScaleOfMaxAbs(maxAbs);
+}
+
+namespace {
+float offsetScaleOfMaxAbs(float maxAbs) {
   if (!(maxAbs > 0.0f) || maxAbs >= 1.0f) return 1.0f;
   int e = 0;
   const float m = std::frexp(maxAbs, &e);  // maxAbs = m * 2^e, m in [0.5, 1)
   return std::ldexp(1.0f, m == 0.5f ? e - 1 : e);
 }
+}  // namespace
 
 bool packetTraversalForAllRays(std::size_t wideNodes) {
   return wideNodes <= 16;

@@ -29,6 +29,7 @@ struct FrameExtras {
   float envRotateY = 0.0f;
   uint textureCount = 0;
   bool packetAllRays = false;  // packetTraversalForAllRays(the BVH's wide node count)
+  uint instanceCount = 0;      // Bvh::instances (a two-level BVH), 0: one level
   LightSelection lights;
 };
 
@@ -51,5 +52,8 @@ inline FrameParams makeFrameParams(const Camera& camera, const RenderSettings& s
 // absolute coordinate, at most 1 (scenes of unit size or larger keep the unit offsets; a scene
 // scaled down by 2^-k gets offsets scaled by exactly 2^-k).
 float offsetScaleFor(const std::vector<SceneTriangle>& triangles);
+// The same for a scene's world-space geometry: its triangles, or with instances the world ones
+// and the placed boxes of the instances (their object-space triangles say nothing of the world).
+float offsetScaleForScene(const Scene& scene);
 
 }  // namespace montecl

@@ -41,6 +41,8 @@ class HostStageRunner final : public StageRunner {
     envMap_ = in.envMap;
     envCdf_ = in.envCdf;
     lightRecords_ = in.lightRecords;
+    instances_ = in.bvh->instances;
+    if (instances_.empty()) instances_.resize(1);
     if (lightRecords_.empty()) lightRecords_.resize(1);
     if (materials_.empty()) materials_.resize(1);
     if (emitters_.empty()) emitters_.resize(1);
@@ -180,6 +182,7 @@ class HostStageRunner final : public StageRunner {
     b.envMap = envMap_.data();
     b.envCdf = envCdf_.data();
     b.lightRecords = lightRecords_.data();
+    b.instances = instances_.data();
     b.active = active_.data();
 #define MCL_HOST_BIND(name, ...) b.name = name##_.data();
 #define MCL_HOST_BIND_COUNTER(name) b.name = &name##_;
@@ -197,6 +200,7 @@ class HostStageRunner final : public StageRunner {
   std::uint64_t splits_ = 0;  // sobol sub-sequences with film accumulators (Film::split)
   std::vector<uint> active_;
   std::vector<WideNode> nodes_;
+  std::vector<Instance> instances_;
   std::vector<Triangle> tris_;
   std::vector<TriangleShading> shading_;
   std::vector<float4> normals_;

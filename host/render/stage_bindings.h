@@ -46,8 +46,8 @@ inline bool stageIsFused(Stage s) { return s == Stage::wave_ao || s == Stage::wa
 constexpr int kStageCount = 0 MCL_STAGES(MCL_STAGE_COUNT_ONE);
 #undef MCL_STAGE_COUNT_ONE
 
-// Which rays a stage reads: Bounce binds its `rays` and `hits` to `bounce` and `bounceHits`
-// (intersect of direct lighting's BRDF rays).
+// Which rays a stage reads: Bounce binds its `rays`, `hits` and `hitInstances` to `bounce`,
+// `bounceHits` and `bounceHitInstances` (intersect of direct lighting's BRDF rays).
 enum class RayInput { Camera, Bounce };
 
 template <template <class> class Array>
@@ -68,6 +68,7 @@ struct StageBindings {
   Array<float4> envMap;  // environment texels (kernels/shared/environment.h)
   Array<float> envCdf;   // its marginal and conditional CDFs
   Array<LightRecord> lightRecords;  // point, spot, directional lights (render/light_table.h; 1-entry dummy when none)
+  Array<Instance> instances;  // the two-level BVH's placements (Bvh::instances; 1-entry dummy without)
   Array<uint> active;  // the active-pixel list
   // Per wave item, the counters and the film (render/wave_buffers.h, where each is described).
 #define MCL_BINDING_BUFFER(name, T, per, need) Array<T> name;
@@ -89,6 +90,7 @@ struct StageBindings {
     if (set == RayInput::Bounce) {
       b.rays = bounce;
       b.hits = bounceHits;
+      b.hitInstances = bounceHitInstances;
     }
     return b;
   }

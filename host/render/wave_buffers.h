@@ -16,14 +16,16 @@ namespace montecl {
 // each, on an image of `pixels` pixels.
 enum class Per { Item, Slot, AovsPerItem, Pixel, AovsPerPixel, SplitsPerPixel, One };  // Aovs: MCL_AOV_VECTORS
 // Which renders need it; the others get a 1-element dummy (OpenCL has no empty buffers).
-enum class Need { Always, Bounce, Path, Aovs, Splits };
+enum class Need { Always, Bounce, Path, Aovs, Splits, Instances, BounceInstances };
 
 // WAVE_BUFFER(name, element type, Per, Need): written and read by the stages only.
 // bounce / bounceHits: direct lighting's BRDF rays and their hits; throughput, nextRays, pathIds,
 // nextPathIds: path tracing's per-path state and the next bounce's compacted queue (swapped with
 // rays / pathIds between bounces); aov: first-hit albedo+depth, normal, emission of each item;
 // groupCounts: the fused stages' occlusion queries per group of items (kernels/stages/wave_fused.h;
-// a group is at least one item, so one entry per item is enough).
+// a group is at least one item, so one entry per item is enough); hitInstances / bounceHitInstances:
+// the instance of each hit in hits / bounceHits (an index into the scene's Instance array, or
+// MCL_NO_INSTANCE for world-space triangles), with a two-level BVH only.
 #define MCL_WAVE_BUFFERS(B)             \
   B(rays, Ray, Item, Always)            \
   B(hits, Hit, Item, Always)            \
@@ -37,7 +39,9 @@ enum class Need { Always, Bounce, Path, Aovs, Splits };
   B(pathIds, uint, Item, Path)          \
   B(nextPathIds, uint, Item, Path)      \
   B(aov, float4, AovsPerItem, Aovs)     \
-  B(groupCounts, uint, Item, Always)
+  B(groupCounts, uint, Item, Always)    \
+  B(hitInstances, uint, Item, Instances) \
+  B(bounceHitInstances, uint, Item, BounceInstances)
 
 // WAVE_COUNTER(name): one uint the stages count into (atomically) and the host resets and reads:
 // rayCount the current ray queue's size, nextCount the next bounce's, queueCount the occlusion
@@ -66,12 +70,14 @@ struct WaveShape {
   bool path = false;         // the integrator keeps path state (path tracing)
   bool aovs = false;         // first-hit AOVs are recorded
   std::uint64_t splits = 0;  // sobol sub-sequences with their own film accumulators (0: none)
+  bool instances = false;    // the scene has a two-level BVH (hits carry their instance)
 };
 
 constexpr bool needed(Need need, const WaveShape& s) {
   return need == Need::Always || (need == Need::Bounce && s.bounce) || (need == Need::Path && s.path) ||
          (need == Need::Aovs && s.aovs) ||
-         (need == Need::Splits && s.splits > 0);
+         (need == Need::Splits && s.splits > 0) || (need == Need::Instances && s.instances) ||
+         (need == Need::BounceInstances && s.instances && s.bounce);
 }
 
 // Elements of a buffer with this rule: its count when needed, else 1 (the dummy).

@@ -83,7 +83,11 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
   if (!cameraProblem.empty()) throwInputError(scene.path, cameraProblem.key, cameraProblem.problem);
   const std::uint64_t pixels = std::uint64_t(scene.camera.width) * std::uint64_t(scene.camera.height);
   const std::uint64_t maxAlloc = run.maxAllocBytes();
+  // The binary layout has no two-level traversal: the caller picks wide for instanced scenes.
+  if (!bvh.instances.empty() && run.bvhLayout() == BvhLayout::Binary)
+    throwInputError(scene.path, "--bvh-layout", "binary has no two-level form for the scene's instances; use wide");
   WaveShape shape = waveShapeFor(scene, 1, o.aovs);
+  shape.instances = !bvh.instances.empty();
   shape.items = waveCap(o, device, maxAlloc, shape, pixels * std::uint64_t(scene.render.spp));
   checkImageMemory(device, scene.path, scene.camera.width, scene.camera.height, o.aovs,
                    shape.items * waveBytesPerItem(shape), shape.splits);
@@ -139,6 +143,7 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
   }
   extras.envRotateY = environment.rotateY;
   extras.textureCount = textures ? std::uint32_t(textures->textures.size()) : 0u;
+  extras.instanceCount = std::uint32_t(bvh.instances.size());
   // Direct lighting's BRDF rays: a packet's are one pixel's samples, leaving from about one point.
   extras.packetAllRays = integrator.bounce && run.bvhLayout() == BvhLayout::Wide &&
                          packetTraversalForAllRays(bvh.wideNodes().size());
@@ -176,7 +181,8 @@ class WaveLoop {
         ahead_(!integrator_.path && !(o.timeLimit > 0.0) && !part.afterWave),
         // Fused waves (kernels/stages/wave_fused.h) on devices that run packets; the host backend
         // and GPUs (W = 1) keep a launch per stage, where the shadow queue compacts across the wave.
-        fuse_(o.fuseWaves && integrator_.fusable && !o.aovs && run.lanes() > 1),
+        // Not with instances: the fused stages' packet bodies have no two-level traversal.
+        fuse_(o.fuseWaves && integrator_.fusable && !o.aovs && run.lanes() > 1 && in.frame.instanceCount == 0),
         start_(std::chrono::steady_clock::now()) {}
 
   bool planned() const { return planned_; }
@@ -369,7 +375,7 @@ PreparedTriangles prepareTriangles(const Scene& scene, const Bvh& bvh) {
   PreparedTriangles t;
   t.shading = buildTriangleShading(scene.triangles, bvh);
   t.vertexColors = buildVertexColors(scene, bvh);
-  t.offsetScale = offsetScaleFor(scene.triangles);
+  t.offsetScale = offsetScaleForScene(scene);
   return t;
 }
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "scene/scene_instances.h"
 
 namespace montecl {
 namespace {
@@ -17,7 +18,16 @@ bool emittersFaceAnything(const Scene& scene) {
   std::vector<const SceneTriangle*> lights;
   std::vector<glm::vec3> points;  // vertices of the non-emitting triangles
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-  for (const SceneTriangle& t : scene.triangles) {
+  // Instanced triangles are in object space (and never emit): their placed boxes' corners stand for them.
+  const std::vector<std::uint8_t> instanced = instancedTriangles(scene);
+  for (const glm::vec3& v : instanceBoxCorners(scene)) {
+    points.push_back(v);
+    lo = glm::min(lo, v);
+    hi = glm::max(hi, v);
+  }
+  for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
+    const SceneTriangle& t = scene.triangles[i];
+    if (instanced[i]) continue;
     if (emits(scene.materials[t.material])) {
       lights.push_back(&t);
       continue;

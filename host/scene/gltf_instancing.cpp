@@ -23,6 +23,42 @@ glm::dmat4 GltfInstances::local(std::size_t k) const {
   return glm::scale(m, sv);
 }
 
+glm::dmat4 gltfLocalTransform(const std::string& file, const tinygltf::Node& n, const std::string& where) {
+  if (n.matrix.size() == 16) {
+    glm::dmat4 t;
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) t[c][r] = n.matrix[std::size_t(4 * c + r)];  // column-major, as glm
+    // glTF node matrices are affine; a projective one would put vertices through a division.
+    if (t[0][3] != 0.0 || t[1][3] != 0.0 || t[2][3] != 0.0 || t[3][3] != 1.0)
+      loadFail(file, where + ".matrix", "last row must be 0 0 0 1 (an affine transform; this one is projective)");
+    return t;
+  }
+  if (!n.matrix.empty()) loadFail(file, where + ".matrix", "expected 16 numbers");
+  glm::dmat4 t(1.0);
+  if (n.translation.size() == 3) t = glm::translate(t, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
+  if (n.rotation.size() == 4) {
+    glm::dquat q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);  // glTF: x y z w
+    if (glm::length(q) == 0.0) loadFail(file, where + ".rotation", "zero quaternion");
+    t = t * glm::mat4_cast(glm::normalize(q));
+  }
+  if (n.scale.size() == 3) t = glm::scale(t, glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
+  return t;
+}
+
+// The triangles a mesh declares (index or POSITION counts / 3), before any is read.
+std::uint64_t gltfMeshTriangles(const tinygltf::Model& m, const tinygltf::Mesh& mesh) {
+  std::uint64_t n = 0;
+  for (const tinygltf::Primitive& p : mesh.primitives) {
+    auto it = p.attributes.find("POSITION");
+    const int a = p.indices >= 0 ? p.indices : it == p.attributes.end() ? -1 : it->second;
+    if (a < 0 || static_cast<std::size_t>(a) >= m.accessors.size()) continue;
+    const std::uint64_t count = m.accessors[std::size_t(a)].count;
+    if (p.mode == TINYGLTF_MODE_TRIANGLES || p.mode == -1) n += count / 3;
+    else if ((p.mode == TINYGLTF_MODE_TRIANGLE_STRIP || p.mode == TINYGLTF_MODE_TRIANGLE_FAN) && count >= 3) n += count - 2;
+  }
+  return n;
+}
+
 GltfInstances gltfNodeInstances(const std::string& file, const tinygltf::Model& m, const tinygltf::Node& node,
                                 const std::string& where) {
   GltfInstances out;

@@ -31,7 +31,9 @@
 #include "scene/gltf_transmission.h"
 #include "scene/gltf_texture_info.h"
 #include "scene/load_util.h"
+#include "scene/mesh_entry.h"
 #include "scene/mesh_loaders.h"
+#include "scene/scene_instances.h"
 
 namespace montecl {
 namespace {
@@ -59,28 +61,6 @@ struct Loader {
 };
 
 std::string itemWhere(const char* kind, std::size_t i) { return std::string(kind) + "[" + std::to_string(i) + "]"; }
-
-glm::dmat4 localTransform(const std::string& file, const tinygltf::Node& n, const std::string& where) {
-  if (n.matrix.size() == 16) {
-    glm::dmat4 t;
-    for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 4; ++r) t[c][r] = n.matrix[std::size_t(4 * c + r)];  // column-major, as glm
-    // glTF node matrices are affine; a projective one would put vertices through a division.
-    if (t[0][3] != 0.0 || t[1][3] != 0.0 || t[2][3] != 0.0 || t[3][3] != 1.0)
-      loadFail(file, where + ".matrix", "last row must be 0 0 0 1 (an affine transform; this one is projective)");
-    return t;
-  }
-  if (!n.matrix.empty()) loadFail(file, where + ".matrix", "expected 16 numbers");
-  glm::dmat4 t(1.0);
-  if (n.translation.size() == 3) t = glm::translate(t, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
-  if (n.rotation.size() == 4) {
-    glm::dquat q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);  // glTF: x y z w
-    if (glm::length(q) == 0.0) loadFail(file, where + ".rotation", "zero quaternion");
-    t = t * glm::mat4_cast(glm::normalize(q));
-  }
-  if (n.scale.size() == 3) t = glm::scale(t, glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
-  return t;
-}
 
 glm::vec3 factor3(const std::vector<double>& f, double scale) {
   return f.size() >= 3 ? glm::vec3(float(f[0] * scale), float(f[1] * scale), float(f[2] * scale)) : glm::vec3(0.0f);
@@ -209,10 +189,9 @@ std::uint32_t Loader::material(int index) {
 void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, const std::string& where) {
   const int mode = p.mode == -1 ? TINYGLTF_MODE_TRIANGLES : p.mode;
   if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-    unused.add("mode " + std::to_string(p.mode), where,
-               "primitive mode " + std::to_string(p.mode) + " (points or lines, not triangles) skipped");
-    ++skippedPrimitives;
-    return;
+    const std::string n = std::to_string(p.mode);
+    unused.add("mode " + n, where, "primitive mode " + n + " (points or lines, not triangles) skipped");
+    return void(++skippedPrimitives);
   }
   auto attr = [&](const char* name) {
     auto it = p.attributes.find(name);
@@ -339,20 +318,6 @@ void Loader::takeCamera(int index, const glm::dmat4& world) {
   camera = cam;
 }
 
-// The triangles a mesh declares (index or POSITION counts / 3), before any is read.
-std::uint64_t meshTriangles(const Model& m, const tinygltf::Mesh& mesh) {
-  std::uint64_t n = 0;
-  for (const tinygltf::Primitive& p : mesh.primitives) {
-    auto it = p.attributes.find("POSITION");
-    const int a = p.indices >= 0 ? p.indices : it == p.attributes.end() ? -1 : it->second;
-    if (a < 0 || static_cast<std::size_t>(a) >= m.accessors.size()) continue;
-    const std::uint64_t count = m.accessors[std::size_t(a)].count;
-    if (p.mode == TINYGLTF_MODE_TRIANGLES || p.mode == -1) n += count / 3;
-    else if ((p.mode == TINYGLTF_MODE_TRIANGLE_STRIP || p.mode == TINYGLTF_MODE_TRIANGLE_FAN) && count >= 3) n += count - 2;
-  }
-  return n;
-}
-
 }  // namespace
 
 bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string>* warnings, Camera* camera) {
@@ -383,6 +348,16 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
   const std::size_t before = scene.triangles.size(), droppedBefore = scene.degenerateDropped;
   const std::size_t missingBefore = scene.missingTextures.size();
   std::uint64_t instanced = 0;  // triangles the meshes of the nodes so far declare
+  // Pass 1: every node's placements of its mesh (EXT_mesh_gpu_instancing: world x instance
+  // matrix, in instance order), in traversal order; cameras and lights as met.
+  struct Placed {
+    std::size_t node;
+    std::size_t mesh;
+    std::vector<glm::dmat4> at;
+  };
+  std::vector<Placed> placements;
+  std::vector<std::uint64_t> uses(m.meshes.size(), 0);
+  std::uint64_t placedCount = 0;
   std::vector<bool> visited(m.nodes.size(), false);
   std::vector<std::pair<int, glm::dmat4>> stack;
   for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, glm::dmat4(1.0));
@@ -394,37 +369,79 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
     if (visited[i]) loadFail(path, itemWhere("nodes", i), "node reached twice (a cycle, or a node with two parents)");
     visited[i] = true;
     const tinygltf::Node& node = m.nodes[i];
-    const glm::dmat4 world = parent * localTransform(path, node, itemWhere("nodes", i));
+    const glm::dmat4 world = parent * gltfLocalTransform(path, node, itemWhere("nodes", i));
     if (node.camera >= 0) l.takeCamera(node.camera, world);
     if (const int light = gltfNodeLight(node); light != -1) addGltfLight(path, m, light, world, scene, l.unused);
     if (node.mesh >= 0) {
       if (static_cast<std::size_t>(node.mesh) >= m.meshes.size()) loadFail(path, itemWhere("nodes", i), "mesh index out of range");
-      const tinygltf::Mesh& mesh = m.meshes[std::size_t(node.mesh)];
-      // EXT_mesh_gpu_instancing: copies of the mesh at world x instance matrix, in instance order.
       const GltfInstances inst = gltfNodeInstances(path, m, node, itemWhere("nodes", i));
       for (const std::string& a : inst.ignored)
         l.unused.add("instance attribute " + a, itemWhere("nodes", i),
                      "instance attribute " + oneLine(a, 40) + " not used by montecl, ignored");
-      // Every node using a mesh, and every instance of it, adds a copy: a small file can instance
-      // gigabytes of triangles (counted up to 2^40, past any machine, so the product cannot wrap).
-      const std::uint64_t cap = std::uint64_t(1) << 40, tris = std::min(meshTriangles(m, mesh), cap);
-      const std::uint64_t copies = std::min<std::uint64_t>(inst.count, cap);
-      instanced = std::min(instanced + (copies != 0 && tris > cap / copies ? cap : tris * copies), cap);
-      const std::string tooMany = sceneMemoryRefusal(std::uint64_t(before) + instanced, sizeof(SceneTriangle));
-      if (!tooMany.empty()) loadFail(path, itemWhere("nodes", i), "instancing its meshes " + tooMany);
-      for (std::size_t k = 0; k < inst.count; ++k) {
-        const glm::dmat4 placed = inst.present ? world * inst.local(k) : world;
-        for (std::size_t p = 0; p < mesh.primitives.size(); ++p)
-          l.primitive(mesh.primitives[p], placed, itemWhere("meshes", std::size_t(node.mesh)) + ".primitives[" + std::to_string(p) + "]");
-      }
+      Placed p{i, std::size_t(node.mesh), {}};
+      // (at most 2^40 placements are counted: the memory check below refuses far fewer)
+      for (std::size_t k = 0; k < inst.count && k < (std::size_t(1) << 40); ++k)
+        p.at.push_back(inst.present ? world * inst.local(k) : world);
+      uses[p.mesh] += p.at.size();
+      placedCount += p.at.size();  // the matrices held until pass 2: refused before they pile up
+      if (placedCount * sizeof(glm::dmat4) > hostMemoryBytes())
+        loadFail(path, itemWhere("nodes", i), "instancing its meshes gives " + std::to_string(placedCount) +
+                                                  " placements: more than this machine's memory holds");
+      placements.push_back(std::move(p));
     }
     for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.emplace_back(*it, world);
   }
+  // Pass 2: a mesh placed more than once is read once, in its own space, as a mesh range placed
+  // by each placement (Scene::instances, a two-level BVH: memory grows with the unique meshes),
+  // unless it emits (the emitter table is world space): then, as a mesh placed once, a copy per
+  // placement. Every copy counts against the memory check (up to 2^40, so the sum cannot wrap).
+  std::vector<std::int64_t> rangeOf(m.meshes.size(), -1);  // scene mesh range; -1 not read, -2 copies
+  const std::uint64_t cap = std::uint64_t(1) << 40;
+  const auto refuseBeyond = [&](std::uint64_t more, std::size_t node) {
+    instanced = std::min(instanced + more, cap);
+    const std::string tooMany = sceneMemoryRefusal(std::uint64_t(before) + instanced, sizeof(SceneTriangle));
+    if (!tooMany.empty()) loadFail(path, itemWhere("nodes", node), "instancing its meshes " + tooMany);
+  };
+  bool ranges = false;
+  for (const Placed& p : placements) {
+    const tinygltf::Mesh& mesh = m.meshes[p.mesh];
+    const std::string meshWhere = itemWhere("meshes", p.mesh);
+    const std::uint64_t tris = std::min(gltfMeshTriangles(m, mesh), cap);
+    if (uses[p.mesh] > 1 && rangeOf[p.mesh] == -1) {
+      refuseBeyond(tris, p.node);
+      const std::size_t first = scene.triangles.size(), dropped = scene.degenerateDropped;
+      for (std::size_t q = 0; q < mesh.primitives.size(); ++q)
+        l.primitive(mesh.primitives[q], glm::dmat4(1.0), meshWhere + ".primitives[" + std::to_string(q) + "]");
+      if (scene.triangles.size() > first && !trianglesEmit(scene, first)) {
+        const std::string many = instanceMemoryRefusal(std::uint64_t(scene.instances.size()) + uses[p.mesh]);
+        if (!many.empty()) loadFail(path, itemWhere("nodes", p.node), "instancing its meshes " + many);
+        rangeOf[p.mesh] = std::int64_t(scene.meshRanges.size());
+        scene.meshRanges.push_back({std::uint32_t(first), std::uint32_t(scene.triangles.size() - first)});
+        ranges = true;
+      } else {  // copies after all: undo the unplaced read
+        rangeOf[p.mesh] = -2;
+        scene.triangles.resize(first);
+        if (scene.vertexColors.size() > 3 * first) scene.vertexColors.resize(3 * first);
+        scene.degenerateDropped = dropped;
+        instanced -= std::min(instanced, tris);
+      }
+    }
+    if (rangeOf[p.mesh] >= 0) {
+      const std::uint32_t r = std::uint32_t(rangeOf[p.mesh]);
+      if (!addPlacements(scene, r, p.at)) loadFail(path, meshWhere, "a node transform moves vertices out of float range");
+      continue;
+    }
+    const std::uint64_t copies = std::min<std::uint64_t>(p.at.size(), cap);
+    refuseBeyond(copies != 0 && tris > cap / copies ? cap : tris * copies, p.node);
+    for (const glm::dmat4& at : p.at)
+      for (std::size_t q = 0; q < mesh.primitives.size(); ++q)
+        l.primitive(mesh.primitives[q], at, meshWhere + ".primitives[" + std::to_string(q) + "]");
+  }
+  if (ranges) recomputeBounds(scene);  // appendTriangle grew them by object-space triangles too
   failOnMissingTextures(scene, missingBefore);
   l.unused.flush(warnings);
   if (scene.triangles.size() == before)
-    loadFail(path, "", "no triangles (" +
-                           (l.skippedPrimitives ? std::to_string(l.skippedPrimitives) + " point or line primitives skipped, " : "") +
+    loadFail(path, "", "no triangles (" + (l.skippedPrimitives ? std::to_string(l.skippedPrimitives) + " point or line primitives skipped, " : "") +
                            std::to_string(scene.degenerateDropped - droppedBefore) + " degenerate triangles dropped)");
   if (camera && l.hasCamera) *camera = l.camera;
   return l.hasCamera;

@@ -3,12 +3,14 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <utility>
 
 #include "scene/load_util.h"
 #include "scene/material_params.h"
+#include "scene/scene_instances.h"
 #include "util/host_memory.h"
 
 namespace montecl {
@@ -276,7 +278,6 @@ void transformLights(const JsonCtx& ctx, Scene& scene, std::size_t firstLight, c
 // before one is made.
 void applyInstances(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, std::size_t firstLight,
                     const MeshEntry& mesh) {
-  if (mesh.material.any()) overrideMaterials(ctx, scene, firstTri, mesh);
   const std::uint64_t copies = mesh.instances.size(), tris = scene.triangles.size() - firstTri;
   const std::string tooMany = sceneMemoryRefusal(std::uint64_t(firstTri) + copies * tris, sizeof(SceneTriangle));
   if (!tooMany.empty()) jsonFail(ctx, mesh.prefix + ".instances", std::to_string(copies) + " copies of the mesh " + tooMany);
@@ -294,18 +295,86 @@ void applyInstances(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, std:
   }
 }
 
+// Whether the entry's instances can stay one mesh placed several times: it brought no lights and
+// no emitting material (the emitter table and the lights are world space, so those stay copies).
+bool keepsInstances(const Scene& scene, std::size_t firstTri, std::size_t firstLight) {
+  return scene.lights.size() == firstLight && scene.triangles.size() > firstTri && !trianglesEmit(scene, firstTri);
+}
+
+// The entry's triangles stay as loaded (object space) as one mesh range, placed once per instance.
+void recordInstances(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, const MeshEntry& mesh) {
+  const std::string tooMany = instanceMemoryRefusal(std::uint64_t(scene.instances.size()) + mesh.instances.size());
+  if (!tooMany.empty()) jsonFail(ctx, mesh.prefix + ".instances", "placing the mesh " + tooMany);
+  const std::uint32_t range = static_cast<std::uint32_t>(scene.meshRanges.size());
+  scene.meshRanges.push_back({static_cast<std::uint32_t>(firstTri), static_cast<std::uint32_t>(scene.triangles.size() - firstTri)});
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  for (std::size_t t = firstTri; t < scene.triangles.size(); ++t)
+    for (const glm::vec3& v : scene.triangles[t].v) {
+      lo = glm::min(lo, glm::dvec3(v));
+      hi = glm::max(hi, glm::dvec3(v));
+    }
+  for (std::size_t k = 0; k < mesh.instances.size(); ++k) {
+    const glm::dmat4 m = mesh.placement(k);
+    for (int c = 0; c < 8; ++c) {
+      const glm::dvec3 p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+      if (!finite(glm::vec3(m * glm::dvec4(p, 1.0))))
+        jsonFail(ctx, mesh.prefix + ".instances[" + std::to_string(k) + "]", "moves vertices out of float range");
+    }
+    scene.instances.push_back({range, m});
+  }
+}
+
 }  // namespace
+
+// The entry's override textures, as inputs of the render (the output must not replace them).
+void addInputFiles(Scene& scene, const MeshEntry& mesh);
 
 void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, std::size_t firstLight,
                     const MeshEntry& mesh) {
+  // Meshes the file itself instanced (a glTF's shared meshes): under the entry's own instances they
+  // become placed copies (as before instancing); under a transform or material override they stay
+  // instances, the transform composed after their placements, unless the override makes them emit.
+  std::size_t firstRange = scene.meshRanges.size();
+  while (firstRange > 0 && scene.meshRanges[firstRange - 1].firstTri >= firstTri) --firstRange;
+  if (firstRange < scene.meshRanges.size() && !mesh.instances.empty()) flattenInstances(scene, firstRange);
+  if (firstRange < scene.meshRanges.size()) {
+    DetachedRanges ranges = detachRanges(scene, firstRange);
+    if (mesh.hasTransform) transformTriangles(ctx, scene, firstTri, mesh.transform, mesh.prefix + ".transform");
+    if (mesh.hasTransform) transformLights(ctx, scene, firstLight, mesh.transform, mesh.prefix + ".transform");
+    if (mesh.material.any()) overrideMaterials(ctx, scene, firstTri, mesh);
+    const std::size_t rangeTri = scene.triangles.size();
+    attachRanges(scene, firstRange, std::move(ranges));
+    if (mesh.material.any()) overrideMaterials(ctx, scene, rangeTri, mesh);
+    if (mesh.hasTransform) {
+      std::vector<SceneInstance> placed;
+      for (const SceneInstance& in : scene.instances)
+        if (in.range >= firstRange) placed.push_back(in);
+      scene.instances.erase(std::remove_if(scene.instances.begin(), scene.instances.end(),
+                                           [&](const SceneInstance& in) { return in.range >= firstRange; }),
+                            scene.instances.end());
+      for (const SceneInstance& in : placed)
+        if (!addPlacements(scene, in.range, {mesh.transform * in.objectToWorld}))
+          jsonFail(ctx, mesh.prefix + ".transform", "moves vertices out of float range");
+    }
+    if (trianglesEmit(scene, rangeTri)) flattenInstances(scene, firstRange);
+    addInputFiles(scene, mesh);
+    return;
+  }
   if (!mesh.instances.empty()) {
-    applyInstances(ctx, scene, firstTri, firstLight, mesh);
+    if (mesh.material.any()) overrideMaterials(ctx, scene, firstTri, mesh);
+    if (keepsInstances(scene, firstTri, firstLight))
+      recordInstances(ctx, scene, firstTri, mesh);
+    else
+      applyInstances(ctx, scene, firstTri, firstLight, mesh);
   } else {
     if (mesh.hasTransform) transformTriangles(ctx, scene, firstTri, mesh.transform, mesh.prefix + ".transform");
     if (mesh.hasTransform) transformLights(ctx, scene, firstLight, mesh.transform, mesh.prefix + ".transform");
     if (mesh.material.any()) overrideMaterials(ctx, scene, firstTri, mesh);
   }
-  // The override's textures are read by the render like any other: inputs the output must not replace.
+  addInputFiles(scene, mesh);
+}
+
+void addInputFiles(Scene& scene, const MeshEntry& mesh) {
   if (mesh.material.albedoTexture) scene.inputFiles.push_back(mesh.material.value.albedoTexture);
   if (mesh.material.alphaTexture) scene.inputFiles.push_back(mesh.material.value.alphaTexture);
   if (mesh.material.emissionTexture) scene.inputFiles.push_back(mesh.material.value.emissionTexture);
@@ -316,6 +385,16 @@ void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, std:
 void recomputeBounds(Scene& scene) {
   scene.boundsMin = scene.boundsMax = glm::vec3(0.0f);
   if (scene.triangles.empty()) return;
+  if (!scene.instances.empty() || !scene.meshRanges.empty()) {  // world triangles and placed boxes
+    const std::vector<std::uint8_t> instanced = instancedTriangles(scene);
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (std::size_t i = 0; i < scene.triangles.size(); ++i)
+      if (!instanced[i])
+        for (const glm::vec3& v : scene.triangles[i].v) lo = glm::min(lo, v), hi = glm::max(hi, v);
+    for (const glm::vec3& c : instanceBoxCorners(scene)) lo = glm::min(lo, c), hi = glm::max(hi, c);
+    if (lo.x <= hi.x) scene.boundsMin = lo, scene.boundsMax = hi;
+    return;
+  }
   scene.boundsMin = scene.boundsMax = scene.triangles[0].v[0];
   for (const SceneTriangle& t : scene.triangles)
     for (const glm::vec3& v : t.v) {

@@ -56,8 +56,10 @@ MeshEntry parseMeshEntry(const JsonCtx& ctx, const nlohmann::json& j, const std:
 
 // Applies the entry to triangles [firstTri, end) of scene (transform, then material overrides)
 // and places lights [firstLight, end) (a glTF's KHR_lights_punctual) by its transform. With
-// instances, the triangles and lights become one copy per instance, in instance order, each
-// placed by placement(k); the copies are refused up front when they would not fit in memory.
+// instances, a mesh without lights or emitting materials stays one mesh range in object space,
+// placed by placement(k) once per instance (Scene::instances: a two-level BVH renders it); else
+// the triangles and lights become one copy per instance, in instance order, each placed by
+// placement(k), the copies refused up front when they would not fit in memory.
 // Triangles that the transform makes degenerate are dropped and counted. Does not update the
 // bounds: call recomputeBounds() when all meshes are in.
 void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, std::size_t firstLight,

@@ -90,6 +90,16 @@ constexpr std::uint8_t kHasUv = 2;       // uv[] holds texture coordinates
 // MCL_ATTR_COLOR, past the device's MCL_ATTR_ALPHA 4, which loaders never set).
 constexpr std::uint8_t kHasColor = 8;
 
+// A run of Scene::triangles in object space, and one placement of such a run (column vectors:
+// p_world = objectToWorld * p_object; invertible, finite, affine).
+struct MeshRange {
+  std::uint32_t firstTri = 0, count = 0;
+};
+struct SceneInstance {
+  std::uint32_t range = 0;
+  glm::dmat4 objectToWorld{1.0};
+};
+
 struct SceneTriangle {
   glm::vec3 v[3];
   std::uint32_t material;  // index into Scene::materials
@@ -149,7 +159,12 @@ struct Scene {
   // the scene at the end (one error or one warning); else a loader fails on its file's ones (error).
   bool deferMissingTextures = false;
   std::size_t degenerateDropped = 0;     // zero-area triangles removed while loading
-  glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};
+  glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world bounds (instances by their placed boxes)
+  // Instanced geometry, kept unflattened (scene_instances.h): meshRanges[r] is a run of
+  // `triangles` in the mesh's own (object) space, placed once per entry of `instances` naming it;
+  // every triangle outside the ranges is in world space. Both empty: every triangle is world space.
+  std::vector<MeshRange> meshRanges;
+  std::vector<SceneInstance> instances;
 };
 
 // Loads a scene file (.json) or a bare mesh (.obj, .ply, .gltf, .glb: framed by defaultCamera()

@@ -54,6 +54,15 @@ std::string sceneDigest(const Scene& scene) {
     if (t.attributes & kHasUv)
       for (const glm::vec2& uv : t.uv) append(bytes, &uv, sizeof uv);
   }
+  if (!scene.meshRanges.empty() || !scene.instances.empty()) {  // only then: other scenes' digests stay
+    bytes.add("instances");
+    for (const MeshRange& r : scene.meshRanges) append(bytes, &r, sizeof r);
+    for (const SceneInstance& in : scene.instances) {
+      append(bytes, &in.range, sizeof in.range);
+      for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) append(bytes, &in.objectToWorld[c][r], sizeof(double));
+    }
+  }
   bytes.add("materials");
   for (const MaterialDesc& m : scene.materials) {
     appendVec(bytes, m.albedo);

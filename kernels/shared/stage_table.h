@@ -57,6 +57,12 @@
   ARG(MCL_GLOBAL const Material*, materials) ARG(MCL_GLOBAL const TriangleShading*, shading)       \
   MCL_TEXTURE_ARGS(ARG)
 
+// A two-level BVH's placements (Instance; a 1-entry dummy without instances) and, for the stages
+// that shade hits, the instance of each hit (intersect writes it; read only when
+// frame->instanceCount > 0, stage_common.h hit_instance).
+#define MCL_INSTANCE_ARGS(ARG) ARG(MCL_GLOBAL const Instance*, instances)
+#define MCL_HIT_INSTANCE_ARGS(ARG) MCL_INSTANCE_ARGS(ARG) ARG(MCL_GLOBAL const uint*, hitInstances)
+
 // ARG(type, name): the names are StageBindings' members (host/render/stage_bindings.h).
 // normals: per BVH-ordered triangle, xyz its unit geometric normal and w its area, computed once
 // on the host (host/render/triangle_shading.h buildTriangleNormals) with the kernels' own functions.
@@ -68,7 +74,7 @@
   ARG(MCL_GLOBAL const BvhTraversalNode*, nodes) ARG(MCL_GLOBAL const Triangle*, tris)             \
   ARG(MCL_GLOBAL const Ray*, rays) ARG(MCL_GLOBAL const uint*, rayCount) ARG(MCL_GLOBAL Hit*, hits) \
   ARG(MCL_GLOBAL volatile uint*, nanRays) \
-  MCL_ALPHA_ARGS(ARG)
+  MCL_ALPHA_ARGS(ARG) MCL_INSTANCE_ARGS(ARG) ARG(MCL_GLOBAL uint*, hitInstances)
 
 #define MCL_ARGS_shade_ao(ARG)                                                                     \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
@@ -76,7 +82,7 @@
   ARG(MCL_GLOBAL const Ray*, rays)                                                                 \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL float4*, radiance)                               \
   ARG(MCL_GLOBAL float4*, shadowContrib) ARG(MCL_GLOBAL ShadowWork*, queue)                        \
-  ARG(MCL_GLOBAL volatile uint*, queueCount)
+  ARG(MCL_GLOBAL volatile uint*, queueCount) MCL_HIT_INSTANCE_ARGS(ARG)
 
 #define MCL_ARGS_shade_direct(ARG)                                                                 \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
@@ -88,7 +94,7 @@
   ARG(MCL_GLOBAL volatile uint*, queueCount) ARG(MCL_GLOBAL Ray*, bounce)                        \
   ARG(MCL_GLOBAL const float4*, envMap) ARG(MCL_GLOBAL const float*, envCdf) \
   ARG(MCL_GLOBAL const LightRecord*, lightRecords) \
-  MCL_TEXTURE_ARGS(ARG)
+  MCL_TEXTURE_ARGS(ARG) MCL_HIT_INSTANCE_ARGS(ARG)
 
 #define MCL_ARGS_shade_direct_hit(ARG)                                                             \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
@@ -98,13 +104,13 @@
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL const Ray*, bounce)                              \
   ARG(MCL_GLOBAL const Hit*, bounceHits) ARG(MCL_GLOBAL float4*, shadowContrib)                   \
   ARG(MCL_GLOBAL const float4*, envMap) \
-  MCL_TEXTURE_ARGS(ARG)
+  MCL_TEXTURE_ARGS(ARG) MCL_HIT_INSTANCE_ARGS(ARG)
 
 #define MCL_ARGS_intersect_shadow(ARG)                                                             \
   ARG(MCL_GLOBAL const BvhTraversalNode*, nodes) ARG(MCL_GLOBAL const Triangle*, tris)             \
   ARG(MCL_GLOBAL const ShadowWork*, queue) ARG(MCL_GLOBAL const uint*, queueCount)                 \
   ARG(MCL_GLOBAL float4*, shadowContrib) ARG(MCL_GLOBAL volatile uint*, nanRays) \
-  MCL_ALPHA_ARGS(ARG)
+  MCL_ALPHA_ARGS(ARG) MCL_INSTANCE_ARGS(ARG)
 
 #define MCL_ARGS_accumulate(ARG)                                                                   \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
@@ -118,7 +124,7 @@
   ARG(MCL_GLOBAL const TriangleShading*, shading) ARG(MCL_GLOBAL const float4*, normals) \
   ARG(MCL_GLOBAL const Material*, materials) ARG(MCL_GLOBAL const Ray*, rays)                      \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL const float4*, radiance) ARG(MCL_GLOBAL float4*, aov) \
-  MCL_TEXTURE_ARGS(ARG)
+  MCL_TEXTURE_ARGS(ARG) MCL_HIT_INSTANCE_ARGS(ARG)
 
 #define MCL_ARGS_accumulate_aov(ARG)                                                               \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
@@ -138,7 +144,7 @@
   ARG(MCL_GLOBAL Ray*, nextRays) ARG(MCL_GLOBAL uint*, nextPathIds)                                \
   ARG(MCL_GLOBAL volatile uint*, nextCount) ARG(MCL_GLOBAL const float4*, envMap)                   \
   ARG(MCL_GLOBAL const float*, envCdf) ARG(MCL_GLOBAL const LightRecord*, lightRecords) \
-  MCL_TEXTURE_ARGS(ARG)
+  MCL_TEXTURE_ARGS(ARG) MCL_HIT_INSTANCE_ARGS(ARG)
 
 #define MCL_ARGS_path_gather(ARG)                                                                  \
   ARG(uint, pathBounce) ARG(MCL_GLOBAL const uint*, rayCount) ARG(MCL_GLOBAL const uint*, pathIds) \
@@ -155,12 +161,14 @@
   ARG(MCL_GLOBAL float4*, shadowContrib) ARG(MCL_GLOBAL ShadowWork*, queue)                        \
   ARG(MCL_GLOBAL volatile uint*, queueCount) ARG(MCL_GLOBAL volatile uint*, groupCounts)           \
   ARG(MCL_GLOBAL float4*, mean) ARG(MCL_GLOBAL float4*, meanLo) ARG(MCL_GLOBAL float4*, m2)          \
-  ARG(MCL_GLOBAL float4*, m2Lo) ARG(MCL_GLOBAL float4*, split)
+  ARG(MCL_GLOBAL float4*, m2Lo) ARG(MCL_GLOBAL float4*, split)                                     \
+  MCL_INSTANCE_ARGS(ARG) ARG(MCL_GLOBAL uint*, hitInstances)
 
 #define MCL_ARGS_wave_direct(ARG)                                                                  \
   MCL_ARGS_wave_ao(ARG) ARG(MCL_GLOBAL const Emitter*, emitters) ARG(MCL_GLOBAL Ray*, bounce)      \
   ARG(MCL_GLOBAL Hit*, bounceHits) ARG(MCL_GLOBAL const float4*, envMap)                           \
-  ARG(MCL_GLOBAL const float*, envCdf) ARG(MCL_GLOBAL const LightRecord*, lightRecords)
+  ARG(MCL_GLOBAL const float*, envCdf) ARG(MCL_GLOBAL const LightRecord*, lightRecords)            \
+  ARG(MCL_GLOBAL uint*, bounceHitInstances)
 
 #define MCL_ARGS_wave_path(ARG)                                                                    \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(uint, pathBounce) ARG(MCL_GLOBAL const uint*, active) \
@@ -174,7 +182,7 @@
   ARG(MCL_GLOBAL volatile uint*, groupCounts) ARG(MCL_GLOBAL Ray*, nextRays)                       \
   ARG(MCL_GLOBAL uint*, nextPathIds) ARG(MCL_GLOBAL volatile uint*, nextCount)                     \
   ARG(MCL_GLOBAL const float4*, envMap) ARG(MCL_GLOBAL const float*, envCdf)                       \
-  ARG(MCL_GLOBAL const LightRecord*, lightRecords)
+  ARG(MCL_GLOBAL const LightRecord*, lightRecords) MCL_INSTANCE_ARGS(ARG) ARG(MCL_GLOBAL uint*, hitInstances)
 
 // <stage>_args: frame, then the table's arguments, as fields of the same names.
 #define MCL_ARG_FIELD(type, name) type name;

@@ -7,36 +7,43 @@
 #include "lights.h"
 #include "shading.h"
 #include "bump_map.h"
+#include "instance_space.h"
 #include "normal_map.h"
 #include "surface_texture.h"
 #include "transmission_mix.h"
 
 // What surface_at reads: the scene's triangles (BVH order), their unit geometric normals and
-// areas (normals[t]: xyz, w), attributes, materials and texture tables.
+// areas (normals[t]: xyz, w), attributes, materials and texture tables; with a two-level BVH the
+// triangles, normals and corner normals of instanced meshes are in their object space, and
+// instances holds the placements (Instance).
 typedef struct {
   MCL_GLOBAL const Triangle* tris;
   MCL_GLOBAL const float4* normals;
   MCL_GLOBAL const TriangleShading* shading;
   MCL_GLOBAL const Material* materials;
   TextureTables tex;
+  MCL_GLOBAL const Instance* instances;
 } SurfaceScene;
 
 MCL_INLINE SurfaceScene make_surface_scene(MCL_GLOBAL const Triangle* tris, MCL_GLOBAL const float4* normals,
                                            MCL_GLOBAL const TriangleShading* shading,
-                                           MCL_GLOBAL const Material* materials, TextureTables tt) {
+                                           MCL_GLOBAL const Material* materials, TextureTables tt,
+                                           MCL_GLOBAL const Instance* instances) {
   SurfaceScene s;
   s.tris = tris;
   s.normals = normals;
   s.shading = shading;
   s.materials = materials;
   s.tex = tt;
+  s.instances = instances;
   return s;
 }
 
 // The SurfaceScene of a stage's arguments a (every shading stage's table row names these fields).
 #define MCL_STAGE_SURFACE_SCENE(a)                                                                 \
   make_surface_scene((a)->tris, (a)->normals, (a)->shading, (a)->materials,                       \
-                     make_surface_tables((a)->textures, (a)->textureLevels, (a)->texels, (a)->vertexColors))
+                     make_surface_tables((a)->textures, (a)->textureLevels, (a)->texels, (a)->vertexColors), \
+                     (a)->instances)
 
 // Unit normal n flipped to face the incoming direction.
 MCL_INLINE float3 orient_facing(float3 n, float3 incoming) { return dot(n, incoming) > 0.0f ? -n : n; }
@@ -71,6 +78,17 @@ MCL_INLINE SurfaceFrame surface_frame(MCL_GLOBAL const Triangle* tris, MCL_GLOBA
   return s;
 }
 
+// surface_frame for a hit in instance inst (MCL_NO_INSTANCE: a world-space triangle, today's
+// frame): computed in the instance's object space with the object-space direction, then placed
+// (instance_space.h; the facing and back-face flag agree in both spaces).
+MCL_INLINE SurfaceFrame surface_frame_in(MCL_GLOBAL const Triangle* tris, MCL_GLOBAL const float4* normals,
+                                         MCL_GLOBAL const TriangleShading* shading,
+                                         MCL_GLOBAL const Instance* instances, Hit h, uint inst, float3 incoming) {
+  if (inst == MCL_NO_INSTANCE) return surface_frame(tris, normals, shading, h, incoming);
+  MCL_GLOBAL const Instance* in = &instances[inst];
+  return instance_frame(in, surface_frame(tris, normals, shading, h, affine_vector(in->worldToObject, incoming)));
+}
+
 typedef struct {
   SurfaceFrame frame;
   Bsdf bsdf;
@@ -80,7 +98,8 @@ typedef struct {
 // length to the hit is h.t (the albedo texture's footprint is the camera's ray cone there), for
 // sample r (which kind a partly transmissive material is at this hit, transmission_mix.h).
 // Every shade stage and record_aov read their surface through this one function.
-MCL_INLINE Surface surface_at(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, Hit h, float3 dir, SampleRef r) {
+MCL_INLINE Surface surface_at_object(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, Hit h, float3 dir,
+                                     SampleRef r) {
   MCL_GLOBAL const Triangle* tri = &sc.tris[h.tri];
   Material m = sc.materials[triangle_material(tri)];
   Surface s;
@@ -91,5 +110,19 @@ MCL_INLINE Surface surface_at(SurfaceScene sc, MCL_CONSTANT const FrameParams* f
   m = hit_metal_rough(sc.tex, f, m, tri, sc.normals[h.tri], &sc.shading[h.tri], h, dir);
   m = hit_transmission(f, m, r, h, dir);
   s.bsdf = bsdf_from_material(m, albedo);
+  return s;
+}
+
+// The surface at hit h in instance inst (MCL_NO_INSTANCE: a world-space triangle, surface_at_object
+// as it always was), for sample r. In an instance everything is computed in its object space, with the unit
+// object-space direction, then the frame is placed (instance_space.h); the albedo texture's
+// footprint then uses the object-space area, so a scaled instance may pick another mip level
+// than a flattened copy would.
+MCL_INLINE Surface surface_at(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, Hit h, uint inst, float3 dir,
+                              SampleRef r) {
+  if (inst == MCL_NO_INSTANCE) return surface_at_object(sc, f, h, dir, r);
+  MCL_GLOBAL const Instance* in = &sc.instances[inst];
+  Surface s = surface_at_object(sc, f, h, normalize(affine_vector(in->worldToObject, dir)), r);
+  s.frame = instance_frame(in, s.frame);
   return s;
 }

@@ -155,6 +155,8 @@ typedef struct MCL_ALIGN16 {
   uint sobolSplits;          // sobol: independently scrambled sub-sequences, sample s in s % this (>= 1)
   uint sampleBlockShift;     // wave item order: runs of 2^this consecutive items are one pixel's samples
                              // (kernels/stages/stage_common.h; set per round of samples)
+  uint instanceCount;        // placements of the two-level BVH (traverse_instances.h); 0: one level
+  uint framePad0, framePad1, framePad2;
 } FrameParams;
 
 // One emitting triangle. It is picked with probability area * luminance(Le) / emitterPower;
@@ -242,7 +244,7 @@ static_assert(offsetof(Material, params0) == 64, "Material layout");
 static_assert(sizeof(Ray) == 32, "Ray layout");
 static_assert(sizeof(Hit) == 16, "Hit layout");
 static_assert(sizeof(ShadowWork) == 48, "ShadowWork layout");
-static_assert(sizeof(FrameParams) == 256, "FrameParams layout");
+static_assert(sizeof(FrameParams) == 272 && offsetof(FrameParams, instanceCount) == 256, "FrameParams layout");
 static_assert(offsetof(FrameParams, shareEnvironment) == 176, "FrameParams layout");
 static_assert(offsetof(FrameParams, sampler) == 240, "FrameParams layout");
 static_assert(sizeof(LightRecord) == 64, "LightRecord layout");

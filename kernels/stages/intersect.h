@@ -2,6 +2,8 @@
 // Launched for camera rays and, bound to the bounce buffers, for direct lighting's BRDF rays.
 // Hits on cut-outs whose alpha is below their cutoff do not exist (surface_texture.h); scenes
 // without textures skip the test. A ray with a NaN or infinite origin or direction is a miss and counted in *nanRays.
+// With instances (frame->instanceCount > 0) the two-level BVH is traversed and each hit's instance
+// written to hitInstances.
 #pragma once
 #include "stage_common.h"
 
@@ -11,6 +13,14 @@ MCL_INLINE void stage_intersect(const intersect_args* a, uint i) {
   if (!ray_is_finite(xyz(r.origin), xyz(r.dir))) MCL_ATOMIC_INC(a->nanRays);
   AlphaScene as = make_alpha_scene(a->materials, a->shading,
                                    make_texture_tables(a->textures, a->textureLevels, a->texels));
-  a->hits[i] = bvh_closest_hit(a->nodes, a->tris, a->frame->textureCount > 0 ? &as : 0, xyz(r.origin),
-                               xyz(r.dir), r.dir.w);
+  const AlphaScene* alpha = a->frame->textureCount > 0 ? &as : 0;
+  if (a->frame->instanceCount > 0u) {  // the two-level BVH: the hit and its instance
+    InstanceHit ih = bvh_instances_closest_hit(a->nodes, a->tris, a->instances, alpha, xyz(r.origin), xyz(r.dir), r.dir.w);
+    a->hits[i] = ih.hit;
+    // World-space triangles (mesh 0, placed by the identity) shade as without instances.
+    a->hitInstances[i] =
+        ih.instance != MCL_NO_INSTANCE && a->instances[ih.instance].mesh != 0u ? ih.instance : MCL_NO_INSTANCE;
+    return;
+  }
+  a->hits[i] = bvh_closest_hit(a->nodes, a->tris, alpha, xyz(r.origin), xyz(r.dir), r.dir.w);
 }

@@ -16,7 +16,8 @@ MCL_INLINE void stage_intersect_lanes(const intersect_args* a, uint first) {
 #else
   uint count = *a->rayCount;
   if (first >= count) return;
-  if (v_packet_partial(first, count) || a->frame->textureCount > 0) {
+  // Instances: the two-level traversal has no packet form, so the scalar body per ray.
+  if (v_packet_partial(first, count) || a->frame->textureCount > 0 || a->frame->instanceCount > 0u) {
     for (uint k = 0; k < MCL_LANES && first + k < count; ++k) stage_intersect(a, first + k);
     return;
   }

@@ -15,7 +15,10 @@ MCL_INLINE void stage_intersect_shadow(const intersect_shadow_args* a, uint k) {
   }
   AlphaScene as = make_alpha_scene(a->materials, a->shading,
                                    make_texture_tables(a->textures, a->textureLevels, a->texels));
-  if (!bvh_any_hit(a->nodes, a->tris, a->frame->textureCount > 0 ? &as : 0, xyz(w.ray.origin), xyz(w.ray.dir),
-                   w.ray.dir.w))
-    a->shadowContrib[w.slot] = make_float4(w.r, w.g, w.b, 0.0f);
+  const AlphaScene* alpha = a->frame->textureCount > 0 ? &as : 0;
+  const int blocked = a->frame->instanceCount > 0u  // the two-level BVH
+                          ? bvh_instances_any_hit(a->nodes, a->tris, a->instances, alpha, xyz(w.ray.origin),
+                                                  xyz(w.ray.dir), w.ray.dir.w)
+                          : bvh_any_hit(a->nodes, a->tris, alpha, xyz(w.ray.origin), xyz(w.ray.dir), w.ray.dir.w);
+  if (!blocked) a->shadowContrib[w.slot] = make_float4(w.r, w.g, w.b, 0.0f);
 }

@@ -22,7 +22,8 @@ MCL_INLINE void stage_record_aov(const record_aov_args* a, uint i) {
   // The camera hit's surface as the shade stage built it (the same kind of a partly transmissive
   // material): wave item i is path i at bounce 0.
   SampleRef r = sample_ref(item_pixel(a->frame, a->active, a->waveStart, i), item_sample(a->frame, a->waveStart, i), 0u);
-  Surface s = surface_at(MCL_STAGE_SURFACE_SCENE(a), a->frame, h, xyz(a->rays[i].dir), r);
+  Surface s = surface_at(MCL_STAGE_SURFACE_SCENE(a), a->frame, h, hit_instance(a->frame, a->hitInstances, i),
+                         xyz(a->rays[i].dir), r);
   a->aov[MCL_AOV_VECTORS * i] = with_w(bsdf_albedo(s.bsdf), h.t);
   a->aov[MCL_AOV_VECTORS * i + 1] = with_w(s.frame.ns, 0.0f);
 }

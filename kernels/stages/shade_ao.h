@@ -13,7 +13,8 @@ MCL_INLINE void stage_shade_ao(const shade_ao_args* a, uint i) {
   if (!shade_begin(f, h, i, a->radiance, a->shadowContrib)) return;
   a->radiance[i] = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
   float3 dir = xyz(a->rays[i].dir);
-  SurfaceFrame sf = surface_frame(a->tris, a->normals, a->shading, h, dir);
+  SurfaceFrame sf = surface_frame_in(a->tris, a->normals, a->shading, a->instances, h,
+                                    hit_instance(f, a->hitInstances, i), dir);
   float4 u = sample_uniform4(f, item_pixel(f, a->active, a->waveStart, i),
                           item_sample(f, a->waveStart, i), MCL_DIM_AO);
   float3 dirLocal;

@@ -7,7 +7,8 @@
 
 MCL_INLINE void stage_shade_ao_lanes(const shade_ao_args* a, uint first) {
   if (first >= a->waveCount) return;
-  if (v_packet_partial(first, a->waveCount)) {
+  // Instanced hits are shaded in their object space: the scalar body per lane.
+  if (v_packet_partial(first, a->waveCount) || a->frame->instanceCount > 0u) {
     for (uint k = 0; k < MCL_LANES && first + k < a->waveCount; ++k) stage_shade_ao(a, first + k);
     return;
   }

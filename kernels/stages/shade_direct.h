@@ -29,7 +29,8 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
   float3 le = light_eval(f, lights, light_hit(h, dir));  // Le of the hit triangle seen directly
   float3 wo = -dir;
   uint pixel = item_pixel(f, a->active, a->waveStart, i), sample = item_sample(f, a->waveStart, i);
-  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, dir, sample_ref(pixel, sample, 0u));
+  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, hit_instance(f, a->hitInstances, i), dir,
+                            sample_ref(pixel, sample, 0u));
   SurfaceFrame sf = surf.frame;
   Bsdf bsdf = surf.bsdf;
   a->radiance[i] = with_w(le, 0.0f);

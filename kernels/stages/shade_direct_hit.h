@@ -23,7 +23,7 @@ MCL_INLINE void stage_shade_direct_hit(const shade_direct_hit_args* a, uint i) {
   float3 dir = xyz(a->rays[i].dir);
   float3 wo = -dir;
   SampleRef r = sample_ref(item_pixel(f, a->active, a->waveStart, i), item_sample(f, a->waveStart, i), 0u);
-  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, dir, r);  // shade_direct's surface
+  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, hit_instance(f, a->hitInstances, i), dir, r);  // shade_direct's surface
   float pdfBsdf = bsdf_pdf(surf.bsdf, surf.frame, wo, wi);
   // A delta surface's BSDF ray is its only strategy (shade_direct skips light sampling there):
   // weight 1, no MIS.

@@ -14,7 +14,8 @@
 MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first) {
   if (first >= a->waveCount) return;
   MCL_CONSTANT const FrameParams* f = a->frame;
-  if (v_packet_partial(first, a->waveCount) || env_present(f) || f->lightCount > 0u || f->emissionTextured) {
+  if (v_packet_partial(first, a->waveCount) || env_present(f) || f->lightCount > 0u || f->emissionTextured ||
+      f->instanceCount > 0u) {  // (instanced hits are shaded in their object space by the scalar body)
     for (uint k = 0; k < MCL_LANES && first + k < a->waveCount; ++k) stage_shade_direct(a, first + k);
     return;
   }

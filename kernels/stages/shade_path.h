@@ -63,7 +63,8 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
   if (!(f->maxDepth < 0 || (int)bounce + 1 < f->maxDepth)) return;
 
   uint pixel = item_pixel(f, a->active, a->waveStart, id), sample = item_sample(f, a->waveStart, id);
-  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, dir, sample_ref(pixel, sample, bounce));
+  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, hit_instance(f, a->hitInstances, k), dir,
+                            sample_ref(pixel, sample, bounce));
   SurfaceFrame sf = surf.frame;
   Bsdf bsdf = surf.bsdf;
   float3 wo = dir * -1.0f;

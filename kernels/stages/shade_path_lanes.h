@@ -26,7 +26,7 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
   const uint bounce = a->pathBounce;
   const uint slots = f->shadowSlots;
   if (v_packet_partial(first, count) || env_present(f) || f->emitterCount == 0u || f->lightCount > 0u ||
-      f->emissionTextured) {
+      f->emissionTextured || f->instanceCount > 0u) {  // (instanced hits: the scalar body, object space)
     for (uint k = 0; k < MCL_LANES && first + k < count; ++k) stage_shade_path(a, first + k);
     return;
   }

@@ -19,6 +19,12 @@
 #include "../shared/surface.h"
 #include "../shared/surface_texture.h"
 
+// The instance of hit i of a hit buffer (its hitInstances buffer), MCL_NO_INSTANCE for a world-space
+// triangle; without a two-level BVH the buffer is a 1-entry dummy and never read.
+MCL_INLINE uint hit_instance(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const uint* hitInstances, uint i) {
+  return f->instanceCount > 0u ? hitInstances[i] : MCL_NO_INSTANCE;
+}
+
 // The pixel and the sample index of wave item i.
 MCL_INLINE uint item_pixel(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const uint* active,
                            ulong waveStart, uint i) {

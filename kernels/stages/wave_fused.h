@@ -123,6 +123,7 @@ MCL_INLINE void stage_wave_direct(const wave_direct_args* a, uint g) {
   intersect_args bounceIsect = isect;  // the BRDF rays, as the unfused loop binds them (RayInput::Bounce)
   bounceIsect.rays = a->bounce;
   bounceIsect.hits = a->bounceHits;
+  bounceIsect.hitInstances = a->bounceHitInstances;
   MCL_FUSED_SHADE_ARGS(shade_direct, shade);
   shade_direct_hit_args hit = MCL_FUSED_ARGS(shade_direct_hit);
   MCL_FUSED_PACKETS(block, a->waveCount, fused_generate(&gen, at));

@@ -1,0 +1,194 @@
+// scene_instances.cpp: the instanced geometry of a scene: masks, placed boxes, flattening.
+#include "scene/scene_instances.h"
+
+#include <cmath>
+#include <utility>
+
+#include "kernels/shared/types.h"
+#include "util/host_memory.h"
+
+namespace montecl {
+
+std::vector<std::uint8_t> instancedTriangles(const Scene& scene) {
+  std::vector<std::uint8_t> in(scene.triangles.size(), 0);
+  for (const MeshRange& r : scene.meshRanges)
+    for (std::uint32_t i = 0; i < r.count; ++i) in[r.firstTri + i] = 1;
+  return in;
+}
+
+bool trianglesEmit(const Scene& scene, std::size_t first) {
+  std::vector<std::uint8_t> seen(scene.materials.size(), 0);
+  for (std::size_t t = first; t < scene.triangles.size(); ++t) {
+    const std::uint32_t m = scene.triangles[t].material;
+    if (seen[m]) continue;
+    seen[m] = 1;
+    const MaterialDesc& d = scene.materials[m];
+    if (d.emission.x > 0.0f || d.emission.y > 0.0f || d.emission.z > 0.0f || !d.emissionTexture.empty()) return true;
+  }
+  return false;
+}
+
+std::vector<glm::vec3> rangeBoxCorners(const Scene& scene, const MeshRange& range) {
+  glm::vec3 lo(INFINITY), hi(-INFINITY);
+  for (std::uint32_t i = 0; i < range.count; ++i)
+    for (const glm::vec3& v : scene.triangles[range.firstTri + i].v) lo = glm::min(lo, v), hi = glm::max(hi, v);
+  std::vector<glm::vec3> corners;
+  for (int c = 0; c < 8; ++c) corners.push_back({(c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z});
+  return corners;
+}
+
+bool addPlacements(Scene& scene, std::uint32_t range, const std::vector<glm::dmat4>& at) {
+  const std::vector<glm::vec3> box = rangeBoxCorners(scene, scene.meshRanges[range]);
+  for (const glm::dmat4& m : at) {
+    if (!(glm::determinant(glm::dmat3(m)) != 0.0)) {
+      scene.degenerateDropped += scene.meshRanges[range].count;
+      continue;
+    }
+    for (const glm::vec3& c : box) {
+      const glm::vec3 w(m * glm::dvec4(glm::dvec3(c), 1.0));
+      if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z)) return false;
+    }
+    scene.instances.push_back({range, m});
+  }
+  return true;
+}
+
+std::vector<glm::vec3> instanceBoxCorners(const Scene& scene) {
+  std::vector<glm::vec3> lo(scene.meshRanges.size(), glm::vec3(INFINITY)), hi(scene.meshRanges.size(), glm::vec3(-INFINITY));
+  for (std::size_t r = 0; r < scene.meshRanges.size(); ++r)
+    for (std::uint32_t i = 0; i < scene.meshRanges[r].count; ++i)
+      for (const glm::vec3& v : scene.triangles[scene.meshRanges[r].firstTri + i].v) {
+        lo[r] = glm::min(lo[r], v);
+        hi[r] = glm::max(hi[r], v);
+      }
+  std::vector<glm::vec3> corners;
+  corners.reserve(8 * scene.instances.size());
+  for (const SceneInstance& in : scene.instances) {
+    if (scene.meshRanges[in.range].count == 0) continue;
+    for (int c = 0; c < 8; ++c) {
+      const glm::dvec3 p((c & 1) ? hi[in.range].x : lo[in.range].x, (c & 2) ? hi[in.range].y : lo[in.range].y,
+                         (c & 4) ? hi[in.range].z : lo[in.range].z);
+      corners.push_back(glm::vec3(in.objectToWorld * glm::dvec4(p, 1.0)));
+    }
+  }
+  return corners;
+}
+
+std::string instanceMemoryRefusal(std::uint64_t instances) {
+  const std::uint64_t each = sizeof(SceneInstance) + sizeof(Instance) + sizeof(SceneTriangle) + 125;
+  const std::uint64_t need = instances * each, has = hostMemoryBytes();
+  if (need <= has) return "";
+  return "gives " + std::to_string(instances) + " instances: needs about " + gibText(need) +
+         " of memory (placements and their BVH), this machine has " + gibText(has);
+}
+
+std::uint64_t placedTriangleCount(const Scene& scene) {
+  std::uint64_t n = scene.triangles.size();
+  for (const MeshRange& r : scene.meshRanges) n -= r.count;
+  for (const SceneInstance& in : scene.instances) n += scene.meshRanges[in.range].count;
+  return n;
+}
+
+bool placeTriangle(SceneTriangle& t, glm::vec3* colours, const glm::dmat4& m) {
+  const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(m)));
+  const bool mirror = glm::determinant(glm::dmat3(m)) < 0.0;
+  const auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+  for (int k = 0; k < 3; ++k) {
+    t.v[k] = glm::vec3(m * glm::dvec4(glm::dvec3(t.v[k]), 1.0));
+    if (!finite(t.v[k])) return false;
+    if (t.attributes & kHasNormals) t.n[k] = glm::vec3(glm::normalize(normalMatrix * glm::dvec3(t.n[k])));
+  }
+  if (mirror) {  // keep the winding's side: the face normal follows the mirrored surface
+    std::swap(t.v[1], t.v[2]);
+    std::swap(t.n[1], t.n[2]);
+    std::swap(t.uv[1], t.uv[2]);
+    if (colours) std::swap(colours[1], colours[2]);
+  }
+  const glm::vec3 n = glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]);
+  return finite(n) && n != glm::vec3(0.0f);
+}
+
+DetachedRanges detachRanges(Scene& scene, std::size_t firstRange) {
+  DetachedRanges d;
+  std::vector<std::uint8_t> moving(scene.triangles.size(), 0);
+  for (std::size_t r = firstRange; r < scene.meshRanges.size(); ++r)
+    for (std::uint32_t i = 0; i < scene.meshRanges[r].count; ++i) moving[scene.meshRanges[r].firstTri + i] = 1;
+  const bool coloured = !scene.vertexColors.empty();
+  std::vector<glm::vec3>& c = scene.vertexColors;
+  if (coloured) c.resize(3 * scene.triangles.size(), glm::vec3(1.0f));
+  for (std::size_t r = firstRange; r < scene.meshRanges.size(); ++r) {  // in range order
+    MeshRange& range = scene.meshRanges[r];
+    const std::uint32_t first = static_cast<std::uint32_t>(d.triangles.size());
+    for (std::uint32_t i = 0; i < range.count; ++i) {
+      d.triangles.push_back(scene.triangles[range.firstTri + i]);
+      if (coloured) d.colours.insert(d.colours.end(), c.begin() + 3 * (range.firstTri + i), c.begin() + 3 * (range.firstTri + i) + 3);
+    }
+    range.firstTri = first;
+  }
+  std::size_t out = 0;
+  for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
+    if (moving[i]) continue;
+    if (coloured)
+      for (int k = 0; k < 3; ++k) c[3 * out + std::size_t(k)] = c[3 * i + std::size_t(k)];
+    scene.triangles[out++] = scene.triangles[i];
+  }
+  scene.triangles.resize(out);
+  if (coloured) c.resize(3 * out);
+  return d;
+}
+
+void attachRanges(Scene& scene, std::size_t firstRange, DetachedRanges d) {
+  const std::uint32_t base = static_cast<std::uint32_t>(scene.triangles.size());
+  for (std::size_t r = firstRange; r < scene.meshRanges.size(); ++r) scene.meshRanges[r].firstTri += base;
+  if (!d.colours.empty() || !scene.vertexColors.empty()) {
+    scene.vertexColors.resize(3 * std::size_t(base), glm::vec3(1.0f));
+    if (d.colours.empty()) d.colours.assign(3 * d.triangles.size(), glm::vec3(1.0f));
+    scene.vertexColors.insert(scene.vertexColors.end(), d.colours.begin(), d.colours.end());
+  }
+  scene.triangles.insert(scene.triangles.end(), d.triangles.begin(), d.triangles.end());
+}
+
+void flattenInstances(Scene& scene, std::size_t firstRange) {
+  if (firstRange >= scene.meshRanges.size()) return;
+  std::vector<std::uint8_t> flattened(scene.triangles.size(), 0);  // in a range being flattened
+  for (std::size_t r = firstRange; r < scene.meshRanges.size(); ++r)
+    for (std::uint32_t i = 0; i < scene.meshRanges[r].count; ++i) flattened[scene.meshRanges[r].firstTri + i] = 1;
+  const bool coloured = !scene.vertexColors.empty();
+  const auto colourOf = [&](std::size_t i, int k) {
+    return 3 * i + 2 < scene.vertexColors.size() ? scene.vertexColors[3 * i + std::size_t(k)] : glm::vec3(1.0f);
+  };
+  std::vector<SceneTriangle> out;
+  std::vector<glm::vec3> colours;
+  const auto add = [&](const SceneTriangle& t, const glm::vec3* c) {
+    out.push_back(t);
+    if (coloured) colours.insert(colours.end(), c, c + 3);
+  };
+  for (std::size_t i = 0; i < scene.triangles.size(); ++i)
+    if (!flattened[i]) {
+      const glm::vec3 c[3] = {colourOf(i, 0), colourOf(i, 1), colourOf(i, 2)};
+      add(scene.triangles[i], c);
+    }
+  std::vector<SceneInstance> kept;
+  for (const SceneInstance& in : scene.instances) {
+    if (in.range < firstRange) {
+      kept.push_back(in);
+      continue;
+    }
+    const MeshRange& r = scene.meshRanges[in.range];
+    for (std::uint32_t k = 0; k < r.count; ++k) {
+      const std::size_t i = r.firstTri + k;
+      SceneTriangle t = scene.triangles[i];
+      glm::vec3 c[3] = {colourOf(i, 0), colourOf(i, 1), colourOf(i, 2)};
+      if (placeTriangle(t, c, in.objectToWorld))
+        add(t, c);
+      else
+        ++scene.degenerateDropped;
+    }
+  }
+  scene.triangles = std::move(out);
+  scene.vertexColors = std::move(colours);
+  scene.meshRanges.resize(firstRange);  // the ranges before firstRange lie before every flattened one
+  scene.instances = std::move(kept);
+}
+
+}  // namespace montecl

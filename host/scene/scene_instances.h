@@ -1,0 +1,60 @@
+// scene_instances.h: a scene's instanced geometry (Scene::meshRanges, Scene::instances): which
+// triangles are in world space, the instances' placed boxes, and flattening into placed copies.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace montecl {
+
+// 1 for each triangle inside a mesh range (object space), 0 for a world-space one.
+std::vector<std::uint8_t> instancedTriangles(const Scene& scene);
+
+// The 8 world-space corners of every instance's box (its range's object-space bounds, placed), in
+// instance order: what bounds, framing and ray offsets take for the placed copies.
+std::vector<glm::vec3> instanceBoxCorners(const Scene& scene);
+
+// Whether a triangle from `first` on has an emitting material (Ke > 0 or an emission texture):
+// such meshes stay placed copies, since the emitter table is built in world space.
+bool trianglesEmit(const Scene& scene, std::size_t first);
+
+// The 8 corners of the object-space bounding box of a mesh range's triangles.
+std::vector<glm::vec3> rangeBoxCorners(const Scene& scene, const MeshRange& range);
+
+// Appends an instance of mesh range `range` at each matrix of `at`: a singular one (it would
+// flatten every copy) is left out and its triangles counted in degenerateDropped. False (nothing
+// more appended) when one moves the range's box out of float range.
+bool addPlacements(Scene& scene, std::uint32_t range, const std::vector<glm::dmat4>& at);
+
+// The triangles of mesh ranges [firstRange, end), moved out of a scene with their corner colours
+// (detachRanges; the other triangles keep their order, the ranges' firstTri then index
+// `triangles` here), and appended back after the scene's triangles (attachRanges), so that
+// whatever applies to a file's world-space triangles can run over one contiguous run of them.
+struct DetachedRanges {
+  std::vector<SceneTriangle> triangles;
+  std::vector<glm::vec3> colours;  // 3 per triangle when the scene has vertex colours
+};
+DetachedRanges detachRanges(Scene& scene, std::size_t firstRange);
+void attachRanges(Scene& scene, std::size_t firstRange, DetachedRanges detached);
+
+// Why a scene must not hold `instances` placements: each costs its SceneInstance, its device
+// Instance and, in the top level's build, about what a triangle costs (buildBvh over the boxes);
+// "" when that fits hostMemoryBytes(). Otherwise "gives N instances: needs about X GiB ...".
+std::string instanceMemoryRefusal(std::uint64_t instances);
+
+// Triangles a flattened scene would hold: the world ones plus every instance's copy.
+std::uint64_t placedTriangleCount(const Scene& scene);
+
+// Places t by m as the loaders place a mesh entry's triangles (in double, normals by the inverse
+// transpose, a mirroring map swaps the winding, and with it the corners' colours c when given).
+// False when the placed triangle is degenerate or leaves float range.
+bool placeTriangle(SceneTriangle& t, glm::vec3* colours, const glm::dmat4& m);
+
+// Replaces the ranges from firstRange on by one placed copy per instance of them, appended after
+// the other triangles in instance order (degenerate copies dropped): with firstRange 0, the scene
+// the loaders gave before instancing. The ranges before firstRange must lie before the others.
+void flattenInstances(Scene& scene, std::size_t firstRange = 0);
+
+}  // namespace montecl
