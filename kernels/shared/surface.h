@@ -95,9 +95,9 @@ typedef struct {
 } Surface;
 
 // The surface at hit h (h.tri != MCL_NO_HIT) of a ray moving along unit direction dir, whose
-// length to the hit is h.t (the albedo texture's footprint is the camera's ray cone there), for
+// length to the hit is h.t (the albedo texture's footprint is the camera's ray cone there), with
+// the triangle and dir in one space (world, or an instance's object space: surface_at below), for
 // sample r (which kind a partly transmissive material is at this hit, transmission_mix.h).
-// Every shade stage and record_aov read their surface through this one function.
 MCL_INLINE Surface surface_at_object(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, Hit h, float3 dir,
                                      SampleRef r) {
   MCL_GLOBAL const Triangle* tri = &sc.tris[h.tri];
@@ -114,10 +114,11 @@ MCL_INLINE Surface surface_at_object(SurfaceScene sc, MCL_CONSTANT const FramePa
 }
 
 // The surface at hit h in instance inst (MCL_NO_INSTANCE: a world-space triangle, surface_at_object
-// as it always was), for sample r. In an instance everything is computed in its object space, with the unit
-// object-space direction, then the frame is placed (instance_space.h); the albedo texture's
+// as it always was), for sample r. In an instance everything is computed in its object space, with
+// the unit object-space direction, then the frame is placed (instance_space.h); the albedo texture's
 // footprint then uses the object-space area, so a scaled instance may pick another mip level
-// than a flattened copy would.
+// than a flattened copy would. Every shade stage and record_aov read their surface through this
+// one function.
 MCL_INLINE Surface surface_at(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, Hit h, uint inst, float3 dir,
                               SampleRef r) {
   if (inst == MCL_NO_INSTANCE) return surface_at_object(sc, f, h, dir, r);
