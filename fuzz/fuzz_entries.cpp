@@ -209,10 +209,18 @@ std::vector<std::string> gltfSeeds() {
                       R"({"mesh":0,"extensions":{"EXT_mesh_gpu_instancing":{"attributes":)"
                       R"({"TRANSLATION":0,"ROTATION":1,"SCALE":2}}}})");
   }
+  // One mesh placed by three nodes (one mirrored): loaded once, rendered as three instances.
+  std::string shared = montecl_test::gltfText(tent, 0.5f, "");
+  {
+    const std::string node = R"({"mesh":0,"translation":[0,0,0]})", roots = R"("scenes":[{"nodes":[0]}])";
+    shared.replace(shared.find(node), node.size(),
+                   R"({"mesh":0,"translation":[0,0,0]},{"mesh":0,"translation":[2,0,0]},{"mesh":0,"scale":[1,-1,1]})");
+    shared.replace(shared.find(roots), roots.size(), R"("scenes":[{"nodes":[0,1,2]}])");
+  }
   // KHR_draco_mesh_compression: the tent through the Draco encoder, exact (sequential) and
   // quantized (edgebreaker), so mutations reach the Draco decoder and the checks around it.
   std::vector<std::string> seeds = {montecl_test::gltfText(tent, 0.5f, ""), montecl_test::gltfText(tent, 0.25f, "tent.bin"),
-                                    montecl_test::glbBytes(tent, 0.5f), rich, instanced,
+                                    montecl_test::glbBytes(tent, 0.5f), rich, instanced, shared,
                                     montecl_test::gltfDracoText(tent, 0.5f, 0), montecl_test::gltfDracoText(tent, 0.5f, 11)};
   for (const std::string& s : filesSeeds({".gltf", ".glb"})) seeds.push_back(s);
   return seeds;
