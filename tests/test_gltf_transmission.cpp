@@ -78,6 +78,21 @@ std::string loadError(const std::string& path) {
   return "";
 }
 
+// The partly transmissive case: factor kMixT on a grey tent of metallic kMixMetallic, so
+// p = t (1 - metallic) = 0.3. Writes mix.json (mixSpp samples) and the two kinds it splits into,
+// glass.json and rest.json (256 samples), into dir.
+const float kMixT = 0.5f, kMixMetallic = 0.4f;
+void writeMixtureScenes(TempDir& dir, int mixSpp) {
+  const float p = kMixT * (1.0f - kMixMetallic);
+  // A grey base colour: the metal_rough part reflects about half, the glass passes nearly all.
+  dir.write("plain.gltf", tentGltf(0.0f, 0.3f, nullptr, 0.5f));
+  dir.write("mix.gltf", tentGltf(kMixMetallic, 0.3f, {{"KHR_materials_transmission", {{"transmissionFactor", kMixT}}},
+                                                       {"KHR_materials_volume", {{"thicknessFactor", 1.0}}}}, 0.5f));
+  dir.write("mix.json", sceneText("mix.gltf", nullptr, mixSpp));
+  dir.write("glass.json", sceneText("plain.gltf", {{"type", "dielectric"}, {"ior", 1.5}, {"roughness", 0.3}}, 256));
+  dir.write("rest.json", sceneText("plain.gltf", {{"type", "metal_rough"}, {"metallic", kMixMetallic / (1.0f - p)}, {"roughness", 0.3}}, 256));
+}
+
 }  // namespace
 
 TEST_CASE("glTF transmission 1: the thin_dielectric and dielectric kinds, bit for bit" * doctest::test_suite("cpu")) {
@@ -144,14 +159,8 @@ TEST_CASE("glTF transmission 0: the plain metal_rough, bit for bit" * doctest::t
 // p = t (1 - metallic): the image means agree with the same mixture of the two renders.
 TEST_CASE("glTF transmission between 0 and 1: the mixture of the two kinds" * doctest::test_suite("cpu")) {
   TempDir dir;
-  const float t = 0.5f, metallic = 0.4f, p = t * (1.0f - metallic);
-  // A grey base colour: the metal_rough part reflects about half, the glass passes nearly all.
-  dir.write("plain.gltf", tentGltf(0.0f, 0.3f, nullptr, 0.5f));
-  dir.write("mix.gltf", tentGltf(metallic, 0.3f, {{"KHR_materials_transmission", {{"transmissionFactor", t}}},
-                                                   {"KHR_materials_volume", {{"thicknessFactor", 1.0}}}}, 0.5f));
-  dir.write("mix.json", sceneText("mix.gltf", nullptr, 256));
-  dir.write("glass.json", sceneText("plain.gltf", {{"type", "dielectric"}, {"ior", 1.5}, {"roughness", 0.3}}, 256));
-  dir.write("rest.json", sceneText("plain.gltf", {{"type", "metal_rough"}, {"metallic", metallic / (1.0f - p)}, {"roughness", 0.3}}, 256));
+  const float t = kMixT, metallic = kMixMetallic, p = t * (1.0f - metallic);
+  writeMixtureScenes(dir, 256);
   const Film mix = renderFile(dir.file("mix.json"), 1), glass = renderFile(dir.file("glass.json"), 2);
   const Film rest = renderFile(dir.file("rest.json"), 3);
   for (int c = 0; c < 3; ++c) {
@@ -217,13 +226,8 @@ TEST_CASE("glTF transmission: under sobol a pixel's picks of the glass are strat
 // two kinds' (rendered with independent samples), within 4 standard errors of the seeds' spread.
 TEST_CASE("glTF transmission between 0 and 1 under sobol: the mixture over 16 seeds" * doctest::test_suite("cpu")) {
   TempDir dir;
-  const float t = 0.5f, metallic = 0.4f, p = t * (1.0f - metallic);
-  dir.write("plain.gltf", tentGltf(0.0f, 0.3f, nullptr, 0.5f));
-  dir.write("mix.gltf", tentGltf(metallic, 0.3f, {{"KHR_materials_transmission", {{"transmissionFactor", t}}},
-                                                   {"KHR_materials_volume", {{"thicknessFactor", 1.0}}}}, 0.5f));
-  dir.write("mix.json", sceneText("mix.gltf", nullptr, 16));
-  dir.write("glass.json", sceneText("plain.gltf", {{"type", "dielectric"}, {"ior", 1.5}, {"roughness", 0.3}}, 256));
-  dir.write("rest.json", sceneText("plain.gltf", {{"type", "metal_rough"}, {"metallic", metallic / (1.0f - p)}, {"roughness", 0.3}}, 256));
+  const float t = kMixT, metallic = kMixMetallic, p = t * (1.0f - metallic);
+  writeMixtureScenes(dir, 16);
   const Film glass = renderFile(dir.file("glass.json"), 2), rest = renderFile(dir.file("rest.json"), 3);
   const int seeds = 16;
   double sum[3] = {0, 0, 0}, sumSq[3] = {0, 0, 0};

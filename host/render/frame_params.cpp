@@ -66,29 +66,9 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
 }
 
 namespace {
-float offsetScaleOfMaxAbs(float maxAbs);
-}
+// maxAbs grown to v's largest |coordinate|.
+void growMaxAbs(float& maxAbs, const glm::vec3& v) { maxAbs = std::max({maxAbs, std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 
-float offsetScaleFor(const std::vector<SceneTriangle>& triangles) {
-  float maxAbs = 0.0f;
-  for (const SceneTriangle& t : triangles)
-    for (const glm::vec3& v : t.v)
-      maxAbs = std::max({maxAbs, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-  return offsetScaleOfMaxAbs(maxAbs);
-}
-
-float offsetScaleForScene(const Scene& scene) {
-  if (scene.instances.empty() && scene.meshRanges.empty()) return offsetScaleFor(scene.triangles);
-  const std::vector<std::uint8_t> instanced = instancedTriangles(scene);
-  float maxAbs = 0.0f;
-  for (std::size_t i = 0; i < scene.triangles.size(); ++i)
-    if (!instanced[i])
-      for (const glm::vec3& v : scene.triangles[i].v) maxAbs = std::max({maxAbs, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-  for (const glm::vec3& v : instanceBoxCorners(scene)) maxAbs = std::max({maxAbs, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-  return offsetScaleOfMaxAbs(maxAbs);
-}
-
-namespace {
 float offsetScaleOfMaxAbs(float maxAbs) {
   if (!(maxAbs > 0.0f) || maxAbs >= 1.0f) return 1.0f;
   int e = 0;
@@ -96,6 +76,26 @@ float offsetScaleOfMaxAbs(float maxAbs) {
   return std::ldexp(1.0f, m == 0.5f ? e - 1 : e);
 }
 }  // namespace
+
+float offsetScaleFor(const std::vector<SceneTriangle>& triangles) {
+  float maxAbs = 0.0f;
+  for (const SceneTriangle& t : triangles)
+    for (const glm::vec3& v : t.v) growMaxAbs(maxAbs, v);
+  return offsetScaleOfMaxAbs(maxAbs);
+}
+
+// With instances: the world-space triangles and the instances' placed boxes (object-space
+// triangles say nothing about where they end up).
+float offsetScaleForScene(const Scene& scene) {
+  if (scene.instances.empty() && scene.meshRanges.empty()) return offsetScaleFor(scene.triangles);
+  const std::vector<std::uint8_t> instanced = instancedTriangles(scene);
+  float maxAbs = 0.0f;
+  for (std::size_t i = 0; i < scene.triangles.size(); ++i)
+    if (!instanced[i])
+      for (const glm::vec3& v : scene.triangles[i].v) growMaxAbs(maxAbs, v);
+  for (const glm::vec3& v : instanceBoxCorners(scene)) growMaxAbs(maxAbs, v);
+  return offsetScaleOfMaxAbs(maxAbs);
+}
 
 bool packetTraversalForAllRays(std::size_t wideNodes) {
   return wideNodes <= 16;

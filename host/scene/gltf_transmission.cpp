@@ -63,11 +63,10 @@ void applyGltfTransmission(const std::string& file, const std::string& where, co
   // glTF: thicknessFactor 0 (the default) is a thin-walled material, > 0 the boundary of a volume.
   const bool solid = thickness > 0.0;
   const auto& pbr = g.pbrMetallicRoughness;
-  // The metal weight as the loader read the factors: a material it left Lambertian (the (0, 1)
-  // pair and the (1, 1) defaults, gltf_mesh.cpp) has none, so a transmission factor near 0 renders
-  // close to the same material without the extension, not as a rough metal.
-  const float metallic = d.kind == MCL_MATERIAL_diffuse ? 0.0f : float(pbr.metallicFactor);
-  const float roughness = float(pbr.roughnessFactor);
+  // The factors as the loader read them into d: a material it left Lambertian (the (0, 1) pair and
+  // the (1, 1) defaults, gltf_mesh.cpp) keeps MaterialDesc's metallic 0, so a transmission factor
+  // near 0 renders close to the same material without the extension, not as a rough metal.
+  const float metallic = d.metallic, roughness = float(pbr.roughnessFactor);
   if (!solid && roughness > 0.0f)
     unused.add("thin roughness", where, "the roughness of a thin-walled transmission not used (montecl's thin sheet is smooth)");
   d.ior = float(ior);

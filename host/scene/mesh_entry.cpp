@@ -137,28 +137,17 @@ glm::dmat4 parseTransform(const JsonCtx& ctx, const json& j, const std::string& 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 void transformTriangles(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, const glm::dmat4& m, const std::string& key) {
-  const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(m)));
-  const bool mirror = glm::determinant(glm::dmat3(m)) < 0.0;
+  const Placement placement(m);
+  std::vector<glm::vec3>& colours = scene.vertexColors;  // follow their triangle (kHasColor)
   std::size_t out = firstTri;
   for (std::size_t i = firstTri; i < scene.triangles.size(); ++i) {
     SceneTriangle t = scene.triangles[i];
-    std::vector<glm::vec3>& colours = scene.vertexColors;  // follow their triangle (kHasColor)
     const bool coloured = 3 * i + 2 < colours.size();
     glm::vec3 c[3] = {glm::vec3(1.0f), glm::vec3(1.0f), glm::vec3(1.0f)};
     if (coloured) c[0] = colours[3 * i], c[1] = colours[3 * i + 1], c[2] = colours[3 * i + 2];
-    for (int k = 0; k < 3; ++k) {
-      t.v[k] = glm::vec3(m * glm::dvec4(glm::dvec3(t.v[k]), 1.0));
-      if (!finite(t.v[k])) jsonFail(ctx, key, "moves vertices out of float range");
-      if (t.attributes & kHasNormals) t.n[k] = glm::vec3(glm::normalize(normalMatrix * glm::dvec3(t.n[k])));
-    }
-    if (mirror) {  // keep the winding's side: the face normal follows the mirrored surface
-      std::swap(t.v[1], t.v[2]);
-      std::swap(t.n[1], t.n[2]);
-      std::swap(t.uv[1], t.uv[2]);
-      std::swap(c[1], c[2]);
-    }
-    const glm::vec3 n = glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]);
-    if (!finite(n) || n == glm::vec3(0.0f)) {
+    const Placed placed = placeTriangle(t, c, placement);
+    if (placed == Placed::OutOfRange) jsonFail(ctx, key, "moves vertices out of float range");
+    if (placed == Placed::Degenerate) {
       ++scene.degenerateDropped;
       continue;
     }

@@ -89,23 +89,24 @@ std::uint64_t placedTriangleCount(const Scene& scene) {
   return n;
 }
 
-bool placeTriangle(SceneTriangle& t, glm::vec3* colours, const glm::dmat4& m) {
-  const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(m)));
-  const bool mirror = glm::determinant(glm::dmat3(m)) < 0.0;
+Placement::Placement(const glm::dmat4& matrix)
+    : m(matrix), normalMatrix(glm::transpose(glm::inverse(glm::dmat3(matrix)))), mirror(glm::determinant(glm::dmat3(matrix)) < 0.0) {}
+
+Placed placeTriangle(SceneTriangle& t, glm::vec3* colours, const Placement& p) {
   const auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
   for (int k = 0; k < 3; ++k) {
-    t.v[k] = glm::vec3(m * glm::dvec4(glm::dvec3(t.v[k]), 1.0));
-    if (!finite(t.v[k])) return false;
-    if (t.attributes & kHasNormals) t.n[k] = glm::vec3(glm::normalize(normalMatrix * glm::dvec3(t.n[k])));
+    t.v[k] = glm::vec3(p.m * glm::dvec4(glm::dvec3(t.v[k]), 1.0));
+    if (!finite(t.v[k])) return Placed::OutOfRange;
+    if (t.attributes & kHasNormals) t.n[k] = glm::vec3(glm::normalize(p.normalMatrix * glm::dvec3(t.n[k])));
   }
-  if (mirror) {  // keep the winding's side: the face normal follows the mirrored surface
+  if (p.mirror) {  // keep the winding's side: the face normal follows the mirrored surface
     std::swap(t.v[1], t.v[2]);
     std::swap(t.n[1], t.n[2]);
     std::swap(t.uv[1], t.uv[2]);
     if (colours) std::swap(colours[1], colours[2]);
   }
   const glm::vec3 n = glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]);
-  return finite(n) && n != glm::vec3(0.0f);
+  return finite(n) && n != glm::vec3(0.0f) ? Placed::Ok : Placed::Degenerate;
 }
 
 DetachedRanges detachRanges(Scene& scene, std::size_t firstRange) {
@@ -175,11 +176,12 @@ void flattenInstances(Scene& scene, std::size_t firstRange) {
       continue;
     }
     const MeshRange& r = scene.meshRanges[in.range];
+    const Placement placement(in.objectToWorld);
     for (std::uint32_t k = 0; k < r.count; ++k) {
       const std::size_t i = r.firstTri + k;
       SceneTriangle t = scene.triangles[i];
       glm::vec3 c[3] = {colourOf(i, 0), colourOf(i, 1), colourOf(i, 2)};
-      if (placeTriangle(t, c, in.objectToWorld))
+      if (placeTriangle(t, c, placement) == Placed::Ok)
         add(t, c);
       else
         ++scene.degenerateDropped;

@@ -47,10 +47,19 @@ std::string instanceMemoryRefusal(std::uint64_t instances);
 // Triangles a flattened scene would hold: the world ones plus every instance's copy.
 std::uint64_t placedTriangleCount(const Scene& scene);
 
-// Places t by m as the loaders place a mesh entry's triangles (in double, normals by the inverse
-// transpose, a mirroring map swaps the winding, and with it the corners' colours c when given).
-// False when the placed triangle is degenerate or leaves float range.
-bool placeTriangle(SceneTriangle& t, glm::vec3* colours, const glm::dmat4& m);
+// A transform as triangles are placed by it: the matrix, its normals' matrix (the inverse
+// transpose) and whether it mirrors, computed once for all the triangles it places.
+struct Placement {
+  explicit Placement(const glm::dmat4& m);
+  glm::dmat4 m;
+  glm::dmat3 normalMatrix;
+  bool mirror;
+};
+enum class Placed { Ok, OutOfRange, Degenerate };
+
+// Places t by p, as every loader places a mesh's triangles (in double, normals by the inverse
+// transpose, a mirroring map swaps the winding, and with it the corners' colours when given).
+Placed placeTriangle(SceneTriangle& t, glm::vec3* colours, const Placement& p);
 
 // Replaces the ranges from firstRange on by one placed copy per instance of them, appended after
 // the other triangles in instance order (degenerate copies dropped): with firstRange 0, the scene
