@@ -58,7 +58,7 @@ TEST_CASE("packet stages: W per device, --lanes values, and the stage table's pa
   CHECK(stageRunsPackets(Stage::shade_ao));
   CHECK(stageRunsPackets(Stage::accumulate));
   CHECK(stageRunsPackets(Stage::intersect));
-  CHECK_FALSE(stageRunsPackets(Stage::intersect_shadow));
+  CHECK(stageRunsPackets(Stage::intersect_shadow));
   CHECK(stageBuildOptions(BvhLayout::Wide, 1) == "");
   CHECK(stageBuildOptions(BvhLayout::Wide, 16) == "-DMCL_LANES=16");
   CHECK(stageBuildOptions(BvhLayout::Binary, 8) == "-DMCL_BVH_BINARY=1 -DMCL_LANES=8");

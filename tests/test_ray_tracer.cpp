@@ -1,6 +1,7 @@
 // test_ray_tracer.cpp: host/render/ray_tracer: the intersect and intersect_shadow kernels on the
 // default OpenCL device against brute force over every triangle, on random soups and on a real
-// mesh, and the binary-layout kernels against the wide-layout kernels and the host traversal.
+// mesh (also in packets of rays from about one point, and with every packet through the packet
+// traversals), and the binary-layout kernels against the wide-layout kernels and the host traversal.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -27,12 +28,28 @@ std::vector<Ray> randomRays(int n, uint seed, glm::vec3 lo, glm::vec3 hi) {
   return seededRays(n, seed, lo, hi, 0.5f, 4.0f);
 }
 
+// Runs of 16 rays (the widest packet) leaving from about one point in about one direction, as one
+// pixel's camera rays or its samples' shadow rays towards a light: most runs share an octant.
+std::vector<Ray> packetRays(int n, uint seed, glm::vec3 lo, glm::vec3 hi) {
+  std::vector<Ray> rays = randomRays(n, seed, lo, hi);
+  for (int i = 0; i < n; ++i) {
+    const Ray& lead = rays[std::size_t(i - i % 16)];
+    if (i % 16 == 0) continue;
+    glm::vec3 o = glm::vec3(lead.origin) + 0.01f * glm::vec3(rays[i].origin);
+    glm::vec3 d = glm::normalize(glm::vec3(lead.dir) + 0.1f * glm::vec3(rays[i].dir));
+    rays[i].origin = glm::vec4(o, 0.0f);
+    rays[i].dir = glm::vec4(d, rays[i].dir.w);
+  }
+  return rays;
+}
+
 void checkAgainstBruteForce(const std::vector<SceneTriangle>& tris, const std::vector<Ray>& rays,
-                            double minHitFraction = 0.02) {
+                            double minHitFraction = 0.02, bool packetAllRays = false) {
   static const DeviceInfo device = selectDevice("");
   static StageProgram program(device);
   Bvh bvh = buildBvh(tris);
   RayTracer tracer(program, bvh);
+  tracer.setPacketAllRays(packetAllRays);
   std::vector<Hit> hits = tracer.closest(rays);
   std::vector<int> occ = tracer.occluded(rays);
   int hitCount = 0, mismatches = 0;
@@ -58,6 +75,16 @@ TEST_CASE("OpenCL closest-hit and any-hit equal brute force on random soups" * d
   checkAgainstBruteForce(randomSoup(1, 1), randomRays(20000, 2, glm::vec3(-6), glm::vec3(6)), 1e-4);
   checkAgainstBruteForce(randomSoup(300, 3), randomRays(50000, 4, glm::vec3(-6), glm::vec3(6)));
   checkAgainstBruteForce(randomSoup(3000, 5), randomRays(50000, 6, glm::vec3(-6), glm::vec3(6)));
+}
+
+TEST_CASE("OpenCL packet traversals (closest and any hit) equal brute force on random soups" *
+          doctest::test_suite("opencl")) {
+  // Packets of rays from about one point (one octant: the packet traversals' coherent case) ...
+  checkAgainstBruteForce(randomSoup(300, 3), packetRays(50000, 8, glm::vec3(-6), glm::vec3(6)));
+  checkAgainstBruteForce(randomSoup(3000, 5), packetRays(50000, 9, glm::vec3(-6), glm::vec3(6)));
+  // ... and rays in every direction with every packet through them, as renders of small trees run.
+  checkAgainstBruteForce(randomSoup(300, 10), randomRays(50000, 11, glm::vec3(-6), glm::vec3(6)), 0.02, true);
+  checkAgainstBruteForce(randomSoup(3000, 5), randomRays(50000, 6, glm::vec3(-6), glm::vec3(6)), 0.02, true);
 }
 
 TEST_CASE("OpenCL closest-hit and any-hit equal brute force on the Stanford bunny" * doctest::test_suite("opencl shared-scenes")) {

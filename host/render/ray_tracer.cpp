@@ -15,9 +15,8 @@ RayTracer::RayTracer(StageProgram& program, const Bvh& bvh, const Scene* scene, 
       intersect_(cl_.kernel(stageName(Stage::intersect))),
       intersectShadow_(cl_.kernel(stageName(Stage::intersect_shadow))) {
   const bool alpha = scene && textures && textures->anyAlpha();
-  FrameParams frame{};
-  frame.textureCount = alpha ? std::uint32_t(textures->textures.size()) : 0u;
-  bindings_.frame = {cl_.upload(std::vector<FrameParams>{frame})};
+  frame_.textureCount = alpha ? std::uint32_t(textures->textures.size()) : 0u;
+  bindings_.frame = {cl_.upload(std::vector<FrameParams>{frame_})};
   bindings_.nodes = {program.uploadNodes(bvh)};
   bindings_.tris = {cl_.upload(alpha ? alphaFlaggedTriangles(bvh.triangles, *textures) : bvh.triangles)};
   // What the alpha test reads (1-entry dummies without cut-outs).
@@ -28,6 +27,11 @@ RayTracer::RayTracer(StageProgram& program, const Bvh& bvh, const Scene* scene, 
   bindings_.texels = {cl_.upload(alpha ? textures->texels : std::vector<std::uint16_t>(4))};
   bindings_.vertexColors = {cl_.upload(std::vector<float4>(1))};  // no albedo is read here
   bindings_.nanRays = {cl_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE)};
+}
+
+void RayTracer::setPacketAllRays(bool on) {
+  frame_.packetAllRays = on ? 1u : 0u;
+  bindings_.frame = {cl_.upload(std::vector<FrameParams>{frame_})};
 }
 
 void RayTracer::run(Stage stage, std::size_t n, int runs, std::vector<double>* kernelMs) {

@@ -25,12 +25,16 @@ class RayTracer {
   // Rays with a NaN/inf origin or direction met so far (every run counts; they are misses, and a
   // non-finite occlusion query is reported occluded: its light is dropped).
   std::uint32_t nanRays();
+  // Whether rays in any octants take the packet traversals (FrameParams::packetAllRays, as renders
+  // of small trees set it); off by default, where only packets of rays in one octant do.
+  void setPacketAllRays(bool on);
 
  private:
   void run(Stage stage, std::size_t n, int runs, std::vector<double>* kernelMs);
 
   ClSession& cl_;
   unsigned lanes_;  // the program's W: a packet stage's work item traces W consecutive rays
+  FrameParams frame_{};
   ClBindings bindings_;  // frame (unused by the traversal stages), nodes and tris; the rest per call
   cl::Kernel intersect_, intersectShadow_;
 };

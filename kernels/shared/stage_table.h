@@ -37,7 +37,7 @@
 #define MCL_PACKET_shade_ao 1
 #define MCL_PACKET_shade_direct 1
 #define MCL_PACKET_shade_direct_hit 0
-#define MCL_PACKET_intersect_shadow 0
+#define MCL_PACKET_intersect_shadow 1
 #define MCL_PACKET_accumulate 1
 #define MCL_PACKET_record_aov 0
 #define MCL_PACKET_accumulate_aov 0

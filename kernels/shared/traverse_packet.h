@@ -10,8 +10,8 @@
 // intersects (the same box and triangle arithmetic per ray), and the scalar code keeps the first
 // triangle found at that t, which depends on its visit order. A lane whose nearest t is also the t
 // of a second triangle (another canonical slot or other barycentrics) is returned in the redo mask
-// for the caller to run through wide_closest_hit. The packet's rays share one octant (the near and
-// far bound rows of each axis), which the caller checks.
+// for the caller to run through wide_closest_hit. Each lane picks its own near and far box rows,
+// so the rays need not share an octant (the callers decide when a packet pays: packet_ray_setup).
 #pragma once
 #include "lanes.h"
 #include "traverse_wide.h"
@@ -48,10 +48,79 @@ MCL_INLINE vmask v_from_bits(uint bits) { return ((v_u(bits) >> v_lane_index()) 
 MCL_INLINE vfloat v_max_nan1(vfloat a, vfloat b) { return vsel(a > b, a, b); }
 MCL_INLINE vfloat v_min_nan1(vfloat a, vfloat b) { return vsel(a < b, a, b); }
 
-// A popped entry entered by at most this many of the packet's rays is traversed ray by ray.
+// A packet's per-ray set-up (lane-wise ray_is_finite and safe_inverse): the inverse direction,
+// the finite lanes, and the lanes whose direction is negative on each axis (their near box rows).
+// Returns 1 when all rays share one octant.
+MCL_INLINE int packet_ray_setup(vfloat3 o, vfloat3 d, vfloat3* inv, vmask* finite, vmask* nx, vmask* ny,
+                                vmask* nz) {
+  vfloat z = (o.x - o.x) + (o.y - o.y) + (o.z - o.z) + (d.x - d.x) + (d.y - d.y) + (d.z - d.z);
+  *finite = z == 0.0f;
+  *inv = v3_make(vsel(d.x != 0.0f, 1.0f / d.x, copysign(v_f(INFINITY), d.x)),
+                 vsel(d.y != 0.0f, 1.0f / d.y, copysign(v_f(INFINITY), d.y)),
+                 vsel(d.z != 0.0f, 1.0f / d.z, copysign(v_f(INFINITY), d.z)));
+  *nx = inv->x < 0.0f;
+  *ny = inv->y < 0.0f;
+  *nz = inv->z < 0.0f;
+  return (v_all(*nx) || v_all(v_not(*nx))) && (v_all(*ny) || v_all(v_not(*ny))) &&
+         (v_all(*nz) || v_all(v_not(*nz)));
+}
+
+// Triangle j against every lane's ray (ray_triangle4's operations in the same order, per lane):
+// returns t, with u, v and the lanes whose test fails whatever t is (a degenerate determinant or
+// barycentrics outside the triangle) through the pointers.
+MCL_INLINE vfloat v_ray_triangle(MCL_GLOBAL const Triangle* tris, uint j, vfloat3 o, vfloat3 d, vfloat* uo,
+                                 vfloat* vo, vmask* bad) {
+  float4 tv0 = tris[j].v0, te1 = tris[j].e1, te2 = tris[j].e2;
+  vfloat px = d.y * te2.z - te2.y * d.z;  // cross(dir, e2)
+  vfloat py = d.z * te2.x - te2.z * d.x;
+  vfloat pz = d.x * te2.y - te2.x * d.y;
+  vfloat det = te1.x * px + te1.y * py + te1.z * pz;
+  vfloat idet = 1.0f / det;
+  vfloat sx = o.x - tv0.x, sy = o.y - tv0.y, sz = o.z - tv0.z;
+  vfloat u = (sx * px + sy * py + sz * pz) * idet;
+  vfloat qx = sy * te1.z - te1.y * sz;  // cross(s, e1)
+  vfloat qy = sz * te1.x - te1.z * sx;
+  vfloat qz = sx * te1.y - te1.x * sy;
+  vfloat v = (d.x * qx + d.y * qy + d.z * qz) * idet;
+  *bad = (fabs(det) < 1e-30f) | (u < 0.0f) | (u > 1.0f) | (v < 0.0f) | ((u + v) > 1.0f);
+  *uo = u;
+  *vo = v;
+  return (te2.x * qx + te2.y * qy + te2.z * qz) * idet;
+}
+
+// Lanes entering child c of node n (the slab test of wide_entry, per lane, each lane with its
+// own near and far rows: nx, ny, nz set where the direction is negative) among those in m, at or
+// before *tmax; their entry distances through tmin.
+MCL_INLINE vmask v_child_entry(MCL_GLOBAL const WideNode* n, uint c, vfloat3 o, vfloat3 inv, vmask nx, vmask ny,
+                               vmask nz, vmask m, vfloat tmax, vfloat* tminOut) {
+  vfloat bx0 = v_f(n->bounds[0][c]), bx1 = v_f(n->bounds[1][c]);
+  vfloat by0 = v_f(n->bounds[2][c]), by1 = v_f(n->bounds[3][c]);
+  vfloat bz0 = v_f(n->bounds[4][c]), bz1 = v_f(n->bounds[5][c]);
+  vfloat tnx = (vsel(nx, bx1, bx0) - o.x) * inv.x;
+  vfloat tfx = (vsel(nx, bx0, bx1) - o.x) * inv.x;
+  vfloat tny = (vsel(ny, by1, by0) - o.y) * inv.y;
+  vfloat tfy = (vsel(ny, by0, by1) - o.y) * inv.y;
+  vfloat tnz = (vsel(nz, bz1, bz0) - o.z) * inv.z;
+  vfloat tfz = (vsel(nz, bz0, bz1) - o.z) * inv.z;
+  vfloat tmin = v_max_nan1(tnx, v_max_nan1(tny, v_max_nan1(tnz, v_f(0.0f))));
+  vfloat tmx = v_min_nan1(tfx, v_min_nan1(tfy, v_min_nan1(tfz, tmax)));
+  *tminOut = tmin;
+  return m & (tmin <= tmx);
+}
+
+// A popped entry entered by at most this many of the packet's rays is traversed ray by ray: in a
+// large tree (MCL_PACKET_SWITCH), and in a small one (FrameParams::packetAllRays), where a packet's
+// rays enter most nodes anyway and the single-ray traversals' set-up costs more than the lanes
+// the packet's tests waste (MCL_PACKET_SWITCH_SMALL; bench/journal/lanes.md, "Packet switch").
 #ifndef MCL_PACKET_SWITCH
 #define MCL_PACKET_SWITCH 8
 #endif
+#ifndef MCL_PACKET_SWITCH_SMALL
+#define MCL_PACKET_SWITCH_SMALL 2
+#endif
+MCL_INLINE uint packet_switch(MCL_CONSTANT const FrameParams* f) {
+  return f->packetAllRays ? MCL_PACKET_SWITCH_SMALL : MCL_PACKET_SWITCH;
+}
 
 // Triangle j at t (u, v) for one ray whose nearest hit so far is *t (slot *tri, canonical slot
 // *canon): the packet's leaf rule for one lane (a nearer t replaces the hit and clears the redo
@@ -142,13 +211,14 @@ MCL_INLINE void packet_lanes_subtree(MCL_GLOBAL const WideNode* nodes, MCL_GLOBA
 }
 
 // The rays (origin o, inverse direction inv from safe_inverse, per lane) of the lanes set in act,
-// all in the octant whose near rows are nearX, nearY, nearZ (WideNode::bounds rows, as in
-// make_ray_box_ctx). *ht holds each ray's tmax on entry; on return t, slot (BVH order, not yet
+// nx, ny, nz set where a lane's direction is negative (its near rows, as in make_ray_box_ctx). *ht holds each ray's tmax on entry; on return t, slot (BVH order, not yet
 // canonical: see the caller), u, v of the nearest hit of each active lane (tri MCL_NO_HIT and t
-// unchanged on a miss). Returns the lanes to redo with the scalar traversal.
+// unchanged on a miss). An entry at most switchAt rays enter goes on ray by ray (packet_switch).
+// Returns the lanes to redo with the scalar traversal.
 MCL_INLINE vmask packet_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
                                     vfloat3 o, vfloat3 d, vfloat3 inv, vmask act, vmask nx, vmask ny,
-                                    vmask nz, vfloat* ht, vuint* htri, vuint* hcanon, vfloat* hu, vfloat* hv) {
+                                    vmask nz, uint switchAt, vfloat* ht, vuint* htri, vuint* hcanon, vfloat* hu,
+                                    vfloat* hv) {
   uint stackRef[MCL_WIDE_STACK_SIZE], stackBits[MCL_WIDE_STACK_SIZE];
   float stackKey[MCL_WIDE_STACK_SIZE];
   vfloat stackDist[MCL_WIDE_STACK_SIZE];  // each ray's entry distance (culls it on pop once a hit is nearer)
@@ -161,25 +231,14 @@ MCL_INLINE vmask packet_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL
     } else if (ref & MCL_WIDE_LEAF) {
       uint firstTri = wide_leaf_first(ref), last = firstTri + wide_leaf_count(ref) - 1u;
       for (uint j = firstTri; j <= last; ++j) {
-        float4 tv0 = tris[j].v0, te1 = tris[j].e1, te2 = tris[j].e2;
-        vfloat px = d.y * te2.z - te2.y * d.z;  // cross(dir, e2)
-        vfloat py = d.z * te2.x - te2.z * d.x;
-        vfloat pz = d.x * te2.y - te2.x * d.y;
-        vfloat det = te1.x * px + te1.y * py + te1.z * pz;
-        vfloat idet = 1.0f / det;
-        vfloat sx = o.x - tv0.x, sy = o.y - tv0.y, sz = o.z - tv0.z;
-        vfloat u = (sx * px + sy * py + sz * pz) * idet;
-        vfloat qx = sy * te1.z - te1.y * sz;  // cross(s, e1)
-        vfloat qy = sz * te1.x - te1.z * sx;
-        vfloat qz = sx * te1.y - te1.x * sy;
-        vfloat v = (d.x * qx + d.y * qy + d.z * qz) * idet;
-        vfloat t = (te2.x * qx + te2.y * qy + te2.z * qz) * idet;
-        vmask bad = (fabs(det) < 1e-30f) | (u < 0.0f) | (u > 1.0f) | (v < 0.0f) | ((u + v) > 1.0f);
+        vfloat u, v;
+        vmask bad;
+        vfloat t = v_ray_triangle(tris, j, o, d, &u, &v, &bad);
         vmask hitc = m & v_not(bad) & (t > 0.0f);
         vmask nearer = hitc & (t < *ht);
         vmask tie = hitc & (t == *ht) & (*htri != MCL_NO_HIT);
         if (!v_any(nearer | tie)) continue;
-        uint canon = as_uint(te1.w);
+        uint canon = as_uint(tris[j].e1.w);
         tie = tie & ((*hcanon != canon) | (u != *hu) | (v != *hv));
         redo = (redo & v_not(nearer)) | tie;
         *ht = vsel(nearer, t, *ht);
@@ -194,18 +253,8 @@ MCL_INLINE vmask packet_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL
       for (uint c = 0; c < MCL_WIDE_WIDTH; ++c) {
         uint child = n->child[c];
         if (child == MCL_WIDE_EMPTY) continue;
-        vfloat bx0 = v_f(n->bounds[0][c]), bx1 = v_f(n->bounds[1][c]);
-        vfloat by0 = v_f(n->bounds[2][c]), by1 = v_f(n->bounds[3][c]);
-        vfloat bz0 = v_f(n->bounds[4][c]), bz1 = v_f(n->bounds[5][c]);
-        vfloat tnx = (vsel(nx, bx1, bx0) - o.x) * inv.x;
-        vfloat tfx = (vsel(nx, bx0, bx1) - o.x) * inv.x;
-        vfloat tny = (vsel(ny, by1, by0) - o.y) * inv.y;
-        vfloat tfy = (vsel(ny, by0, by1) - o.y) * inv.y;
-        vfloat tnz = (vsel(nz, bz1, bz0) - o.z) * inv.z;
-        vfloat tfz = (vsel(nz, bz0, bz1) - o.z) * inv.z;
-        vfloat tmin = v_max_nan1(tnx, v_max_nan1(tny, v_max_nan1(tnz, v_f(0.0f))));
-        vfloat tmx = v_min_nan1(tfx, v_min_nan1(tfy, v_min_nan1(tfz, *ht)));
-        vmask in = m & (tmin <= tmx);
+        vfloat tmin;
+        vmask in = v_child_entry(n, c, o, inv, nx, ny, nz, m, *ht, &tmin);
         if (!v_any(in)) continue;
         stackRef[top] = child;
         stackBits[top] = v_bits(in);
@@ -241,7 +290,7 @@ MCL_INLINE vmask packet_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL
       m = v_from_bits(stackBits[sp]) & (stackDist[sp] <= *ht);
       uint bits = v_bits(m);
       if (bits == 0u) continue;
-      if (popcount(bits) > MCL_PACKET_SWITCH) {
+      if (popcount(bits) > switchAt) {
         ref = stackRef[sp];
         found = 1;
         break;

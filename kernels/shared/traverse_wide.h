@@ -284,15 +284,16 @@ MCL_INLINE Hit wide_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL con
   }
 }
 
-// 1 if any triangle intersects org + t*dir for t in (0, tmax) (and passes the alpha test when
-// alpha is not null), else 0. Stops at the first hit.
-MCL_INLINE int wide_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
-                            const AlphaScene* alpha, float3 org, float3 dir, float tmax) {
+// 1 if any triangle below node `start` intersects org + t*dir for t in (0, tmax) (and passes
+// the alpha test when alpha is not null), else 0. Stops at the first hit. The packet any-hit
+// (traverse_packet_any.h) hands its stragglers' subtrees to this one ray at a time.
+MCL_INLINE int wide_any_hit_from(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
+                                 const AlphaScene* alpha, float3 org, float3 dir, float tmax, uint start) {
   RayBoxCtx ctx = make_ray_box_ctx(org, dir);
   uint stack[MCL_WIDE_STACK_SIZE];
   float stackT[MCL_WIDE_STACK_SIZE];  // distances, for ordering the children of one node
   uint sp = 0;
-  uint ref = ray_is_finite(org, dir) ? 0u : MCL_WIDE_EMPTY;
+  uint ref = start;
   for (;;) {
     if (ref == MCL_WIDE_EMPTY) {
       // An empty slot, or a non-finite ray: nothing to test (as in wide_closest_hit).
@@ -314,4 +315,10 @@ MCL_INLINE int wide_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const T
     if (sp == 0) return 0;
     ref = stack[--sp];
   }
+}
+
+// The same from the root; a non-finite ray (ray_is_finite) is never blocked.
+MCL_INLINE int wide_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
+                            const AlphaScene* alpha, float3 org, float3 dir, float tmax) {
+  return wide_any_hit_from(nodes, tris, alpha, org, dir, tmax, ray_is_finite(org, dir) ? 0u : MCL_WIDE_EMPTY);
 }

@@ -24,15 +24,9 @@ MCL_INLINE void stage_intersect_lanes(const intersect_args* a, uint first) {
   vfloat ox, oy, oz, ow, dx, dy, dz, tmax;
   v_load4_stride((MCL_GLOBAL const float*)(a->rays + first), 8, &ox, &oy, &oz, &ow);
   v_load4_stride((MCL_GLOBAL const float*)(a->rays + first) + 4, 8, &dx, &dy, &dz, &tmax);
-  // ray_is_finite, lane-wise
-  vfloat z = (ox - ox) + (oy - oy) + (oz - oz) + (dx - dx) + (dy - dy) + (dz - dz);
-  vmask finite = z == 0.0f;
-  // safe_inverse, lane-wise
-  vfloat3 inv = v3_make(vsel(dx != 0.0f, 1.0f / dx, copysign(v_f(INFINITY), dx)),
-                        vsel(dy != 0.0f, 1.0f / dy, copysign(v_f(INFINITY), dy)),
-                        vsel(dz != 0.0f, 1.0f / dz, copysign(v_f(INFINITY), dz)));
-  vmask nx = inv.x < 0.0f, ny = inv.y < 0.0f, nz = inv.z < 0.0f;
-  int octant = (v_all(nx) || v_all(v_not(nx))) && (v_all(ny) || v_all(v_not(ny))) && (v_all(nz) || v_all(v_not(nz)));
+  vfloat3 inv;
+  vmask finite, nx, ny, nz;
+  int octant = packet_ray_setup(v3_make(ox, oy, oz), v3_make(dx, dy, dz), &inv, &finite, &nx, &ny, &nz);
   if (!v_all(finite) || !(octant || a->frame->packetAllRays)) {
     for (uint k = 0; k < MCL_LANES; ++k) stage_intersect(a, first + k);
     return;
@@ -40,7 +34,7 @@ MCL_INLINE void stage_intersect_lanes(const intersect_args* a, uint first) {
   vfloat ht = tmax, hu = v_f(0.0f), hv = v_f(0.0f);
   vuint htri = v_u(MCL_NO_HIT), hcanon = v_u(MCL_NO_HIT);
   vmask redo = packet_closest_hit(a->nodes, a->tris, v3_make(ox, oy, oz), v3_make(dx, dy, dz), inv, finite,
-                                  nx, ny, nz, &ht, &htri, &hcanon, &hu, &hv);
+                                  nx, ny, nz, packet_switch(a->frame), &ht, &htri, &hcanon, &hu, &hv);
   vmask miss = htri == MCL_NO_HIT;
   ht = vsel(miss, v_f(INFINITY), ht);
   v_store4((MCL_GLOBAL float*)(a->hits + first), ht, v_as_float(hcanon), hu, hv);

@@ -20,5 +20,6 @@
 #include "accumulate_lanes.h"
 #include "shade_path_lanes.h"
 #include "intersect_lanes.h"
+#include "intersect_shadow_lanes.h"
 // The fused stages, which run the others.
 #include "wave_fused.h"

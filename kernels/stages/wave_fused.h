@@ -86,7 +86,8 @@ MCL_INLINE uint fused_group_first(MCL_CONSTANT const FrameParams* f, uint waveCo
     sh.queue = queueBase;                                                  \
     sh.queueCount = (MCL_GLOBAL const uint*)localCount;                    \
     const uint queries = *localCount;                                      \
-    for (uint k = 0; k < queries; ++k) stage_intersect_shadow(&sh, k);     \
+    for (uint k = 0; k < queries; k += MCL_LANES)                          \
+      MCL_FUSED_RUN(intersect_shadow, sh, k);                              \
     if (queries > 0u) MCL_ATOMIC_ADD((a)->queueCount, queries);            \
   } while (0)
 
