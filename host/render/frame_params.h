@@ -33,12 +33,11 @@ struct FrameExtras {
   LightSelection lights;
 };
 
-// FrameParams::packetAllRays: whether rays in any octants (direct lighting's BRDF rays, one
-// pixel's samples from about one point) take the packet traversal too, as coherent ones do. In a
-// BVH this small every ray enters most of its nodes, so a packet's rays visit about what each
-// would alone and the packet tests them W at a time; in a large one they part ways near the root,
-// and path tracing's later bounces leave from scattered points (measured: bench/journal/lanes.md,
-// "Small trees").
+// FrameParams::packetAllRays: whether rays in any octants (direct lighting's BRDF rays, path
+// tracing's bounces, AO and shadow queries) take the packet traversals too, as coherent ones do.
+// In a BVH this small every ray enters most of its nodes, so a packet's rays visit about what each
+// would alone and the packet tests them W at a time; in a large one they part ways near the root
+// (measured: bench/journal/lanes.md, "Small trees" and "Packet occlusion queries").
 bool packetTraversalForAllRays(std::size_t wideNodes);
 
 FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings, const FrameExtras& extras);

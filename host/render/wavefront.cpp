@@ -144,9 +144,8 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
   extras.envRotateY = environment.rotateY;
   extras.textureCount = textures ? std::uint32_t(textures->textures.size()) : 0u;
   extras.instanceCount = std::uint32_t(bvh.instances.size());
-  // Direct lighting's BRDF rays: a packet's are one pixel's samples, leaving from about one point.
-  extras.packetAllRays = integrator.bounce && run.bvhLayout() == BvhLayout::Wide &&
-                         packetTraversalForAllRays(bvh.wideNodes().size());
+  // Incoherent rays in packets too (BRDF and path rays, AO and shadow queries) in a small tree.
+  extras.packetAllRays = run.bvhLayout() == BvhLayout::Wide && packetTraversalForAllRays(bvh.wideNodes().size());
   LightTable lights = buildLightTable(scene, emitters.totalPower, environment, integrator.lit);
   extras.lights = lights.selection;
   const FrameParams frame = makeFrameParams(scene.camera, scene.render, extras);
