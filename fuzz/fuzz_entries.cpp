@@ -217,10 +217,24 @@ std::vector<std::string> gltfSeeds() {
                    R"({"mesh":0,"translation":[0,0,0]},{"mesh":0,"translation":[2,0,0]},{"mesh":0,"scale":[1,-1,1]})");
     shared.replace(shared.find(roots), roots.size(), R"("scenes":[{"nodes":[0,1,2]}])");
   }
+  // TANGENT (VEC4 floats in a second buffer; w alternating) on that mesh: read, placed, mirrored.
+  std::string tangents = shared;
+  {
+    std::string bytes;
+    for (int v = 0; v < 6; ++v) {
+      const float t[4] = {1, 0, 0, v % 2 ? -1.0f : 1.0f};
+      bytes.append(reinterpret_cast<const char*>(t), sizeof t);
+    }
+    tangents.insert(tangents.find(R"(],"bufferViews")"), R"(,{"uri":"data:application/octet-stream;base64,)" +
+                                                             montecl_test::base64(bytes) + R"(","byteLength":96})");
+    tangents.insert(tangents.find(R"(],"accessors")"), R"(,{"buffer":1,"byteOffset":0,"byteLength":96})");
+    tangents.insert(tangents.size() - 2, R"(,{"bufferView":4,"componentType":5126,"count":6,"type":"VEC4"})");
+    tangents.replace(tangents.find(R"("POSITION":0)"), 12, R"("POSITION":0,"TANGENT":4)");
+  }
   // KHR_draco_mesh_compression: the tent through the Draco encoder, exact (sequential) and
   // quantized (edgebreaker), so mutations reach the Draco decoder and the checks around it.
   std::vector<std::string> seeds = {montecl_test::gltfText(tent, 0.5f, ""), montecl_test::gltfText(tent, 0.25f, "tent.bin"),
-                                    montecl_test::glbBytes(tent, 0.5f), rich, instanced, shared,
+                                    montecl_test::glbBytes(tent, 0.5f), rich, instanced, shared, tangents,
                                     montecl_test::gltfDracoText(tent, 0.5f, 0), montecl_test::gltfDracoText(tent, 0.5f, 11)};
   for (const std::string& s : filesSeeds({".gltf", ".glb"})) seeds.push_back(s);
   return seeds;

@@ -230,6 +230,8 @@ TEST_CASE("glTF: malformed files are one InputError line naming the file and whe
       {"a.gltf", edit([](json& g) { g["accessors"][0]["type"] = "VEC2"; }), "meshes[0].primitives[0].POSITION: expected a VEC3 accessor"},
       {"a.gltf", edit([](json& g) { g["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 40; }), "meshes[0].primitives[0].POSITION: accessor index 40 out of range"},
       {"a.gltf", edit([](json& g) { g["meshes"][0]["primitives"][0]["attributes"].erase("POSITION"); }), "meshes[0].primitives[0]: primitive without POSITION"},
+      {"a.gltf", edit([](json& g) { g["meshes"][0]["primitives"][0]["attributes"]["TANGENT"] = 1; }), "meshes[0].primitives[0].TANGENT: expected a VEC4 accessor"},
+      {"a.gltf", edit([](json& g) { g["meshes"][0]["primitives"][0]["attributes"]["TANGENT"] = 40; }), "meshes[0].primitives[0].TANGENT: accessor index 40 out of range"},
       {"a.gltf", edit([](json& g) { g["accessors"][3]["count"] = 4; }), "meshes[0].primitives[0]: 4 vertices do not make whole triangles"},
       {"a.gltf", edit([](json& g) { g["accessors"][3]["componentType"] = 5126; }), "meshes[0].primitives[0].indices: indices must be UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT"},
       {"a.gltf", edit([](json& g) { g["bufferViews"][0]["byteLength"] = 100000; }), "meshes[0].primitives[0].POSITION: bufferView 0 runs past the end of its buffer"},

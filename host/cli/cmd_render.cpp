@@ -262,6 +262,7 @@ int runRender(const RenderArgs& a) {
   PreparedTriangles triangles = prepareTriangles(scene, bvh);
   part.triangles = &triangles;
   std::vector<SceneTriangle>().swap(scene.triangles);
+  std::vector<glm::vec4>().swap(scene.vertexTangents);  // in the table too (prepareTriangles)
   trimHeap();
   WavefrontRenderer renderer(device, options);
   if (a.verbose)

@@ -8,6 +8,7 @@
 #include "texture/bump_gradient.h"
 #include "texture/mip_chain.h"
 
+#include <cmath>
 #include <fstream>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -132,6 +133,25 @@ ConformanceCase lampAndBumpsCase(const Scene& light, const std::string& name, bo
   if (bumps) t->materials[0].normal = 1;
   if (heights) t->materials[0].bump = 2;
   c.textures = t;
+  return c;
+}
+
+// The normal-mapped case c with the floor's frame from corner tangents (glTF TANGENT) instead of
+// its UVs: directions that turn with position (so the interpolation matters) and a handedness that
+// differs between triangles (one corner of some disagreeing: the majority rule).
+ConformanceCase withFileTangents(ConformanceCase c, const std::string& name) {
+  c.name = name;
+  Scene& s = c.scene;
+  s.vertexTangents.assign(3 * s.triangles.size(), glm::vec4(0.0f));
+  for (std::size_t i = 0; i < s.triangles.size(); ++i) {
+    SceneTriangle& t = s.triangles[i];
+    if (t.material != 0) continue;
+    t.attributes |= kHasTangents;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const float a = 0.7f * t.v[k].x + 1.3f * t.v[k].z, w = (i + (i % 3 == 0 ? k / 2 : 0)) % 2 ? -1.0f : 1.0f;
+      s.vertexTangents[3 * i + k] = glm::vec4(std::cos(a), 0.0f, std::sin(a), w);
+    }
+  }
   return c;
 }
 
@@ -336,6 +356,7 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   cases.push_back(lampAndBumpsCase(withPath(light, 1), "emissive-texture/path", true, false));
   cases.push_back(lampAndBumpsCase(withDirect(light, DirectSampling::Mis, 2), "normal-map/direct-mis", false, true));
   cases.push_back(lampAndBumpsCase(withPath(light, 1), "normal-map/path", false, true));
+  cases.push_back(withFileTangents(lampAndBumpsCase(withPath(light, 1), "", false, true), "normal-map/path-tangents"));
   cases.push_back(lampAndBumpsCase(withDirect(light, DirectSampling::Mis, 2), "bump-map/direct-mis", false, false, true));
   cases.push_back(lampAndBumpsCase(withPath(light, 1), "bump-map/path", false, false, true));
   const Scene spheres = instancedSpheresScene(light);

@@ -51,6 +51,7 @@ class ClStageRunner final : public StageRunner {
     b.shading = {in.shading.empty() ? cl_.upload(std::vector<TriangleShading>(1)) : readOnly(in.shading)};
     b.normals = {cl_.upload(buildTriangleNormals(in.bvh->triangles))};
     b.vertexColors = {cl_.upload(in.vertexColors.empty() ? std::vector<float4>(1) : in.vertexColors)};
+    b.tangents = {cl_.upload(in.tangents.empty() ? std::vector<float4>(1) : in.tangents)};
     b.materials = {cl_.upload(in.materials)};
     b.emitters = {cl_.upload(in.emitters)};
     const bool tex = in.textures && !in.textures->textures.empty();

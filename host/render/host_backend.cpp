@@ -36,6 +36,8 @@ class HostStageRunner final : public StageRunner {
     normals_ = buildTriangleNormals(in.bvh->triangles);
     vertexColors_ = in.vertexColors;
     if (vertexColors_.empty()) vertexColors_.resize(1);
+    tangents_ = in.tangents;
+    if (tangents_.empty()) tangents_.resize(1);
     materials_ = in.materials;
     emitters_ = in.emitters;
     envMap_ = in.envMap;
@@ -173,6 +175,7 @@ class HostStageRunner final : public StageRunner {
     b.shading = shading_.data();
     b.normals = normals_.data();
     b.vertexColors = vertexColors_.data();
+    b.tangents = tangents_.data();
     b.materials = materials_.data();
     b.emitters = emitters_.data();
     // Read-only to every stage (const in the stage table); not copied: texels can be large.
@@ -205,6 +208,7 @@ class HostStageRunner final : public StageRunner {
   std::vector<TriangleShading> shading_;
   std::vector<float4> normals_;
   std::vector<float4> vertexColors_;
+  std::vector<float4> tangents_;
   std::vector<Material> materials_;
   std::vector<Emitter> emitters_;
   // The scene's texture tables (the caller's, alive during the render) or 1-entry dummies.

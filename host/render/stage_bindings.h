@@ -65,6 +65,7 @@ struct StageBindings {
   Array<TextureLevel> textureLevels;
   Array<ushort> texels;
   Array<float4> vertexColors;  // 3 per triangle, BVH order (1-entry dummy when none has COLOR_0)
+  Array<float4> tangents;      // 3 per triangle, BVH order (1-entry dummy when none has TANGENT)
   Array<float4> envMap;  // environment texels (kernels/shared/environment.h)
   Array<float> envCdf;   // its marginal and conditional CDFs
   Array<LightRecord> lightRecords;  // point, spot, directional lights (render/light_table.h; 1-entry dummy when none)

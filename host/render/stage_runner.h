@@ -27,6 +27,8 @@ struct StageInputs {
   std::vector<TriangleShading> shading;
   // Vertex colours, 3 per triangle in BVH order (render/triangle_shading.h); empty: a 1-entry dummy.
   std::vector<float4> vertexColors;
+  // Corner tangents, 3 per triangle in BVH order (render/triangle_shading.h); empty: a 1-entry dummy.
+  std::vector<float4> tangents;
   // The scene's texture tables (FrameParams::textureCount entries); null or empty: no textures.
   const SceneTextures* textures = nullptr;
   // Triangles to upload instead of bvh->triangles (cut-outs flagged, alphaFlaggedTriangles); empty: those.

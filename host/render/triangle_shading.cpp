@@ -1,5 +1,6 @@
 // triangle_shading.cpp: fills TriangleShading in BVH order from SceneTriangle::n/uv/attributes, the
-// vertex colours (Scene::vertexColors) in BVH order, and the per-triangle unit geometric normals and areas.
+// vertex colours and corner tangents (Scene::vertexColors, vertexTangents) in BVH order, and the
+// per-triangle unit geometric normals and areas.
 #include "render/triangle_shading.h"
 
 #include "kernels/shared/geometry.h"
@@ -13,6 +14,22 @@ namespace {
 glm::vec3 unitOrZero(const glm::vec3& n) {
   const float len = glm::length(n);
   return len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0.0f);
+}
+
+// out[3 i + k] = device(side[3 bvh.order[i] + k]) for the triangles with `flag` whose corners side
+// holds, fill for the others; empty when no triangle has them (the renderer binds a dummy).
+template <class T, class Device>
+std::vector<float4> cornersInBvhOrder(const Scene& scene, const Bvh& bvh, std::uint8_t flag, const std::vector<T>& side,
+                                      float4 fill, Device device) {
+  const auto has = [&](std::uint32_t k) {
+    return (scene.triangles[k].attributes & flag) && 3u * std::size_t(k) + 2u < side.size();
+  };
+  if (!std::any_of(bvh.order.begin(), bvh.order.end(), has)) return {};
+  std::vector<float4> out(3 * bvh.order.size(), fill);
+  for (std::size_t i = 0; i < bvh.order.size(); ++i)
+    if (has(bvh.order[i]))
+      for (std::size_t k = 0; k < 3; ++k) out[3 * i + k] = device(side[3 * std::size_t(bvh.order[i]) + k]);
+  return out;
 }
 
 }  // namespace
@@ -37,15 +54,13 @@ std::vector<TriangleShading> buildTriangleShading(const std::vector<SceneTriangl
 }
 
 std::vector<float4> buildVertexColors(const Scene& scene, const Bvh& bvh) {
-  const auto colour = [&](std::uint32_t k) {
-    return (scene.triangles[k].attributes & kHasColor) && 3u * std::size_t(k) + 2u < scene.vertexColors.size();
-  };
-  if (!std::any_of(bvh.order.begin(), bvh.order.end(), colour)) return {};
-  std::vector<float4> out(3 * bvh.order.size(), float4(1.0f, 1.0f, 1.0f, 0.0f));
-  for (std::size_t i = 0; i < bvh.order.size(); ++i)
-    if (colour(bvh.order[i]))
-      for (std::size_t k = 0; k < 3; ++k) out[3 * i + k] = float4(scene.vertexColors[3 * std::size_t(bvh.order[i]) + k], 0.0f);
-  return out;
+  return cornersInBvhOrder(scene, bvh, kHasColor, scene.vertexColors, float4(1.0f, 1.0f, 1.0f, 0.0f),
+                           [](const glm::vec3& c) { return float4(c, 0.0f); });
+}
+
+std::vector<float4> buildVertexTangents(const Scene& scene, const Bvh& bvh) {
+  return cornersInBvhOrder(scene, bvh, kHasTangents, scene.vertexTangents, float4(0.0f),
+                           [](const glm::vec4& t) { return float4(t); });
 }
 
 std::vector<float4> buildTriangleNormals(const std::vector<Triangle>& tris) {

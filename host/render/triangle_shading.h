@@ -20,6 +20,10 @@ std::vector<TriangleShading> buildTriangleShading(const std::vector<SceneTriangl
 // (xyz; w 0), white for triangles without; empty when no triangle has any.
 std::vector<float4> buildVertexColors(const Scene& scene, const Bvh& bvh);
 
+// The corner tangents of bvh.triangles[i] (input triangle bvh.order[i], kHasTangents) at out[3 i + k]
+// (xyz unit, w the handedness +1 or -1), zero for triangles without; empty when no triangle has any.
+std::vector<float4> buildVertexTangents(const Scene& scene, const Bvh& bvh);
+
 // normals[i] = (triangle_unit_normal, triangle_area_of) of tris[i]'s edges: the shade stages' geometric
 // normal and emitter area, computed once with the kernels' own functions (kernels/shared/geometry.h;
 // this library is built without FMA contraction, like the kernels), so every device reads the bits

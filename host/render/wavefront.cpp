@@ -104,6 +104,8 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
   in.shading = std::move(triangles.shading);
   in.vertexColors = std::move(triangles.vertexColors);
   checkFits(in.vertexColors.size() * sizeof(float4), maxAlloc, "use a smaller scene");
+  in.tangents = std::move(triangles.tangents);
+  checkFits(in.tangents.size() * sizeof(float4), maxAlloc, "use a smaller scene");
   checkFits(in.shading.size() * sizeof(TriangleShading), maxAlloc, "use a smaller scene");
 
   // Textures: the caller's (loaded under its budget, warnings shown), else loaded here.
@@ -374,6 +376,7 @@ PreparedTriangles prepareTriangles(const Scene& scene, const Bvh& bvh) {
   PreparedTriangles t;
   t.shading = buildTriangleShading(scene.triangles, bvh);
   t.vertexColors = buildVertexColors(scene, bvh);
+  t.tangents = buildVertexTangents(scene, bvh);
   t.offsetScale = offsetScaleForScene(scene);
   return t;
 }

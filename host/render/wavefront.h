@@ -69,6 +69,7 @@ struct RenderOptions {
 struct PreparedTriangles {
   std::vector<TriangleShading> shading;
   std::vector<float4> vertexColors;  // buildVertexColors (empty: no triangle has any)
+  std::vector<float4> tangents;      // buildVertexTangents (empty: no triangle has any)
   float offsetScale = 1.0f;
 };
 PreparedTriangles prepareTriangles(const Scene& scene, const Bvh& bvh);

@@ -1,4 +1,5 @@
-// gltf_instancing.cpp: reads EXT_mesh_gpu_instancing of a glTF node (gltf_instancing.h).
+// gltf_instancing.cpp: reads EXT_mesh_gpu_instancing of a glTF node and the hierarchy's roots
+// (gltf_instancing.h).
 #include "scene/gltf_instancing.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -101,6 +102,21 @@ GltfInstances gltfNodeInstances(const std::string& file, const tinygltf::Model& 
   }
   if (first) loadFail(file, base + ".attributes", "none of TRANSLATION, ROTATION, SCALE given");
   return out;
+}
+
+std::vector<int> gltfRootNodes(const tinygltf::Model& m) {
+  if (!m.scenes.empty()) {
+    const std::size_t s = m.defaultScene >= 0 && static_cast<std::size_t>(m.defaultScene) < m.scenes.size() ? std::size_t(m.defaultScene) : 0;
+    return m.scenes[s].nodes;
+  }
+  std::vector<bool> child(m.nodes.size(), false);
+  for (const tinygltf::Node& n : m.nodes)
+    for (int c : n.children)
+      if (c >= 0 && static_cast<std::size_t>(c) < m.nodes.size()) child[std::size_t(c)] = true;
+  std::vector<int> roots;
+  for (std::size_t i = 0; i < m.nodes.size(); ++i)
+    if (!child[i]) roots.push_back(static_cast<int>(i));
+  return roots;
 }
 
 }  // namespace montecl

@@ -1,7 +1,7 @@
 // gltf_instancing.h: how a glTF node places its mesh: its local matrix and its
 // EXT_mesh_gpu_instancing (TRANSLATION / ROTATION / SCALE accessors, one element per instance) as
 // one local matrix per instance, which the loader puts before the node's world matrix as the
-// extension says; and a mesh's declared triangle count (for the memory check). Reads the model only; bad accessors are
+// extension says; the hierarchy's root nodes; and a mesh's declared triangle count (for the memory check). Reads the model only; bad accessors are
 // InputError naming the attribute's key.
 #pragma once
 #include <tiny_gltf.h>
@@ -29,6 +29,10 @@ GltfInstances gltfNodeInstances(const std::string& file, const tinygltf::Model& 
 // A node's local matrix (its matrix, or translation x rotation x scale); a projective matrix, a
 // matrix of other than 16 numbers or a zero quaternion is InputError naming where + the key.
 glm::dmat4 gltfLocalTransform(const std::string& file, const tinygltf::Node& n, const std::string& where);
+
+// The hierarchy's roots: the default scene's nodes (scene 0 when none is named; every parentless
+// node when the file has no scene).
+std::vector<int> gltfRootNodes(const tinygltf::Model& m);
 
 // The triangles a mesh declares (index or POSITION counts / 3), before any is read.
 std::uint64_t gltfMeshTriangles(const tinygltf::Model& m, const tinygltf::Mesh& mesh);

@@ -1,6 +1,7 @@
 // gltf_mesh.cpp: loadGltfInto(): a glTF 2.0 scene (gltf_model.h) into a Scene. Walks the default
 // scene's node hierarchy (TRS or matrix transforms); TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN
-// primitives (indexed or not) give triangles with POSITION, NORMAL (kHasNormals) and the TEXCOORD_n set the
+// primitives (indexed or not) give triangles with POSITION, NORMAL (kHasNormals), TANGENT (kHasTangents,
+// Scene::vertexTangents, placed by Placement::tangent) and the TEXCOORD_n set the
 // material's textures read (kHasUv, v flipped to OBJ's convention: v = 1 - v_gltf); each texture's
 // KHR_texture_transform and sampler wrap modes are its TextureSampling (gltf_texture_info.h);
 // KHR_materials_unlit makes the base colour the emission of a surface that reflects nothing. Materials: baseColorFactor x baseColorTexture -> albedo and
@@ -199,10 +200,9 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
   };
   // Texture coordinate sets other than the one the material's textures read change nothing.
   for (const auto& a : p.attributes)
-    if (a.first != "POSITION" && a.first != "NORMAL" && a.first != "COLOR_0" && a.first.compare(0, 9, "TEXCOORD_") != 0)
-      unused.add("attribute " + a.first, where,
-                 a.first == "TANGENT" ? "attribute TANGENT not used by montecl (normal maps use tangents made per triangle from TEXCOORD_0), ignored"
-                                      : "attribute " + oneLine(a.first, 40) + " not used by montecl, ignored");
+    if (a.first != "POSITION" && a.first != "NORMAL" && a.first != "COLOR_0" && a.first != "TANGENT" &&
+        a.first.compare(0, 9, "TEXCOORD_") != 0)
+      unused.add("attribute " + a.first, where, "attribute " + oneLine(a.first, 40) + " not used by montecl, ignored");
   if (!p.targets.empty()) unused.add("morph", where, "morph targets not used by montecl (the base mesh is rendered)");
   if (attr("POSITION") < 0) loadFail(file, where, "primitive without POSITION");
   const GltfDracoMesh* dm = nullptr;  // the decoded Draco buffer, when the primitive has one
@@ -242,6 +242,12 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
   }
   if ((!nor.empty() && nor.size() / 3 != n) || (!uv.empty() && uv.size() / 2 != n))
     loadFail(file, where, "attributes have different counts");
+  // TANGENT (VEC4: xyz the tangent, w the handedness; FLOAT or, quantized, as NORMAL) gives normal
+  // maps the file's tangent frame (normal_map.h); without it the frame comes from the UVs.
+  std::vector<float> tan;
+  if (attr("TANGENT") >= 0) tan = values("TANGENT", 4, AccessorUse::Normal);
+  if (!tan.empty() && tan.size() / 4 != n)
+    loadFail(file, where + ".TANGENT", std::to_string(tan.size() / 4) + " elements, POSITION has " + std::to_string(n));
   std::vector<std::uint32_t> idx;
   const bool indexed = p.indices >= 0 || dm;  // a Draco mesh's faces index its points
   if (dm) idx = dm->indices;
@@ -258,20 +264,24 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
     if (mode == TINYGLTF_MODE_TRIANGLE_FAN) return k == 2 ? std::size_t(0) : i + k + 1;
     return c;
   };
-  const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(world)));
-  const bool mirror = glm::determinant(glm::dmat3(world)) < 0.0;
+  const Placement placement(world);  // its normal matrix, mirror flag and tangent rule
   for (std::size_t c = 0; c < corners; c += 3) {
     SceneTriangle t{};
     glm::vec3 colour[3];
-    bool normals = !nor.empty();
+    glm::vec4 tangent[3];
+    bool normals = !nor.empty(), tangents = !tan.empty();
     for (int k = 0; k < 3; ++k) {
       const std::size_t j = cornerOf(c + std::size_t(k));
       const std::size_t v = indexed ? idx[j] : j;
       if (v >= n) loadFail(file, where + ".indices", "index " + std::to_string(v) + " out of range (" + std::to_string(n) + " vertices)");
-      const int kk = mirror && k > 0 ? 3 - k : k;  // a mirroring transform swaps corners 1 and 2
+      const int kk = placement.mirror && k > 0 ? 3 - k : k;  // a mirroring transform swaps corners 1 and 2
       t.v[kk] = glm::vec3(world * glm::dvec4(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2], 1.0));
+      if (!tan.empty()) {  // w: the handedness's sign, +1 or -1 exactly
+        tangent[kk] = placement.tangent(glm::vec4(tan[4 * v], tan[4 * v + 1], tan[4 * v + 2], tan[4 * v + 3] < 0.0f ? -1.0f : 1.0f));
+        tangents = tangents && glm::vec3(tangent[kk]) != glm::vec3(0.0f);  // else the UVs' frame
+      }
       if (!nor.empty()) {
-        const glm::dvec3 nn = normalMatrix * glm::dvec3(nor[3 * v], nor[3 * v + 1], nor[3 * v + 2]);
+        const glm::dvec3 nn = placement.normalMatrix * glm::dvec3(nor[3 * v], nor[3 * v + 1], nor[3 * v + 2]);
         const double len = glm::length(nn);
         normals = normals && len > 0.0 && std::isfinite(len);
         t.n[kk] = normals ? glm::vec3(nn / len) : glm::vec3(0.0f);
@@ -283,15 +293,13 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
     if (!normals)
       for (glm::vec3& x : t.n) x = glm::vec3(0.0f);
     t.attributes = static_cast<std::uint8_t>((normals ? kHasNormals : 0) | (uv.empty() ? 0 : kHasUv) |
-                                             (col.empty() ? 0 : kHasColor));
+                                             (col.empty() ? 0 : kHasColor) | (tangents ? kHasTangents : 0));
     t.material = mat;
     for (const glm::vec3& x : t.v)
       if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z))
         loadFail(file, where, "a node transform moves vertices out of float range");
-    if (appendTriangle(scene, t) && !col.empty()) {  // colours by triangle index (white before)
-      scene.vertexColors.resize(3 * (scene.triangles.size() - 1), glm::vec3(1.0f));
-      scene.vertexColors.insert(scene.vertexColors.end(), colour, colour + 3);
-    }
+    if (appendTriangle(scene, t))  // colours and tangents by triangle index
+      appendCorners(scene, scene.triangles.size() - 1, col.empty() ? nullptr : colour, tangents ? tangent : nullptr);
   }
 }
 
@@ -332,19 +340,7 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
       l.unused.add("extension " + e, "extensionsUsed", "extension '" + oneLine(e, 60) + "' not used by montecl, ignored");
   if (!m.animations.empty()) l.unused.add("animations", "animations", "animations not used by montecl (the rest pose is rendered)");
   if (!m.skins.empty()) l.unused.add("skins", "skins", "skins not used by montecl (the rest pose is rendered)");
-  // Roots: the default scene's nodes (scene 0 when none is named; every parentless node when the file has no scene).
-  std::vector<int> roots;
-  if (!m.scenes.empty()) {
-    const std::size_t s = m.defaultScene >= 0 && static_cast<std::size_t>(m.defaultScene) < m.scenes.size() ? std::size_t(m.defaultScene) : 0;
-    roots = m.scenes[s].nodes;
-  } else {
-    std::vector<bool> child(m.nodes.size(), false);
-    for (const tinygltf::Node& n : m.nodes)
-      for (int c : n.children)
-        if (c >= 0 && static_cast<std::size_t>(c) < m.nodes.size()) child[std::size_t(c)] = true;
-    for (std::size_t i = 0; i < m.nodes.size(); ++i)
-      if (!child[i]) roots.push_back(static_cast<int>(i));
-  }
+  const std::vector<int> roots = gltfRootNodes(m);
   const std::size_t before = scene.triangles.size(), droppedBefore = scene.degenerateDropped;
   const std::size_t missingBefore = scene.missingTextures.size();
   std::uint64_t instanced = 0;  // triangles the meshes of the nodes so far declare
@@ -421,7 +417,7 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
       } else {  // copies after all: undo the unplaced read
         rangeOf[p.mesh] = -2;
         scene.triangles.resize(first);
-        if (scene.vertexColors.size() > 3 * first) scene.vertexColors.resize(3 * first);
+        truncateCorners(scene, first);
         scene.degenerateDropped = dropped;
         instanced -= std::min(instanced, tris);
       }

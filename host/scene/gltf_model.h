@@ -27,8 +27,8 @@ bool gltfExtensionSupported(const std::string& name);
 
 // Which component types an attribute accepts: Any is core glTF's float-or-normalized-unsigned
 // rule; Position, Normal and TexCoord add the integer types KHR_mesh_quantization lists for them
-// (POSITION and TEXCOORD: signed or unsigned byte / short, normalized or not; NORMAL: normalized
-// signed byte / short). Normalized signed values are max(c / (2^(b-1) - 1), -1), as glTF defines.
+// (POSITION and TEXCOORD: signed or unsigned byte / short, normalized or not; NORMAL, and TANGENT
+// and the instancing ROTATION, which read Normal: normalized signed byte / short). Normalized signed values are max(c / (2^(b-1) - 1), -1), as glTF defines.
 enum class AccessorUse { Any, Position, Normal, TexCoord };
 
 // Accessor `index`, checked to be in range, of type VEC<components> and of a component type `use`

@@ -138,25 +138,21 @@ bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y
 
 void transformTriangles(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, const glm::dmat4& m, const std::string& key) {
   const Placement placement(m);
-  std::vector<glm::vec3>& colours = scene.vertexColors;  // follow their triangle (kHasColor)
   std::size_t out = firstTri;
   for (std::size_t i = firstTri; i < scene.triangles.size(); ++i) {
     SceneTriangle t = scene.triangles[i];
-    const bool coloured = 3 * i + 2 < colours.size();
-    glm::vec3 c[3] = {glm::vec3(1.0f), glm::vec3(1.0f), glm::vec3(1.0f)};
-    if (coloured) c[0] = colours[3 * i], c[1] = colours[3 * i + 1], c[2] = colours[3 * i + 2];
+    TriangleCorners c = cornersOf(scene, i);  // colours and tangents follow their triangle
     const Placed placed = placeTriangle(t, c, placement);
     if (placed == Placed::OutOfRange) jsonFail(ctx, key, "moves vertices out of float range");
     if (placed == Placed::Degenerate) {
       ++scene.degenerateDropped;
       continue;
     }
-    if (coloured)
-      for (int k = 0; k < 3; ++k) colours[3 * out + std::size_t(k)] = c[k];
+    putCorners(scene, out, c);
     scene.triangles[out++] = t;
   }
   scene.triangles.resize(out);
-  if (scene.vertexColors.size() > 3 * out) scene.vertexColors.resize(3 * out);
+  truncateCorners(scene, out);
 }
 
 void overrideMaterials(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, const MeshEntry& mesh) {

@@ -89,6 +89,9 @@ constexpr std::uint8_t kHasUv = 2;       // uv[] holds texture coordinates
 // Scene::vertexColors[3 k ..] hold triangle k's corner colours (glTF COLOR_0, linear rgb) (8:
 // MCL_ATTR_COLOR, past the device's MCL_ATTR_ALPHA 4, which loaders never set).
 constexpr std::uint8_t kHasColor = 8;
+// Scene::vertexTangents[3 k ..] hold triangle k's corner tangents (glTF TANGENT: xyz unit, w the
+// handedness +1 or -1, placed as the triangle is) (16: MCL_ATTR_TANGENTS).
+constexpr std::uint8_t kHasTangents = 16;
 
 // A run of Scene::triangles in object space, and one placement of such a run (column vectors:
 // p_world = objectToWorld * p_object; invertible, finite, affine).
@@ -150,6 +153,9 @@ struct Scene {
   // Corner colours of the triangles with kHasColor, 3 per triangle index (white or absent for the
   // others: the vector may be shorter than 3 x triangles); empty when none has any.
   std::vector<glm::vec3> vertexColors;
+  // Corner tangents of the triangles with kHasTangents, 3 per triangle index (zero or absent for
+  // the others, as vertexColors); empty when none has any, so other scenes pay nothing for them.
+  std::vector<glm::vec4> vertexTangents;
   // Images held inside an input file (a .glb's bufferViews, data URIs), encoded as stored, by the
   // name a material's texture path gives them ("<file>#images[i].<ext>"; never a real file): the
   // texture loader decodes them from memory and the scene digest hashes these bytes.

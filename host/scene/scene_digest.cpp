@@ -47,6 +47,8 @@ std::string sceneDigest(const Scene& scene) {
     for (const glm::vec3& v : t.v) appendVec(bytes, v);
     if ((t.attributes & kHasColor) && 3 * i + 2 < scene.vertexColors.size())
       for (std::size_t k = 0; k < 3; ++k) appendVec(bytes, scene.vertexColors[3 * i + k]);
+    if ((t.attributes & kHasTangents) && 3 * i + 2 < scene.vertexTangents.size())  // only then: other digests stay
+      append(bytes, &scene.vertexTangents[3 * i], 3 * sizeof(glm::vec4));
     append(bytes, &t.material, sizeof t.material);
     append(bytes, &t.attributes, sizeof t.attributes);
     if (t.attributes & kHasNormals)

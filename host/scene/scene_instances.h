@@ -29,13 +29,29 @@ std::vector<glm::vec3> rangeBoxCorners(const Scene& scene, const MeshRange& rang
 bool addPlacements(Scene& scene, std::uint32_t range, const std::vector<glm::dmat4>& at);
 
 // The triangles of mesh ranges [firstRange, end), moved out of a scene with their corner colours
-// (detachRanges; the other triangles keep their order, the ranges' firstTri then index
+// and tangents (detachRanges; the other triangles keep their order, the ranges' firstTri then index
 // `triangles` here), and appended back after the scene's triangles (attachRanges), so that
 // whatever applies to a file's world-space triangles can run over one contiguous run of them.
 struct DetachedRanges {
   std::vector<SceneTriangle> triangles;
-  std::vector<glm::vec3> colours;  // 3 per triangle when the scene has vertex colours
+  std::vector<glm::vec3> colours;   // 3 per triangle when the scene has vertex colours
+  std::vector<glm::vec4> tangents;  // 3 per triangle when the scene has corner tangents
 };
+
+// A triangle's per-corner data kept beside it (Scene::vertexColors, vertexTangents), carried with
+// it wherever it is placed, moved or dropped: white and zero where the scene holds none.
+struct TriangleCorners {
+  glm::vec3 colour[3]{glm::vec3(1.0f), glm::vec3(1.0f), glm::vec3(1.0f)};
+  glm::vec4 tangent[3]{};
+};
+TriangleCorners cornersOf(const Scene& scene, std::size_t i);
+// Writes triangle i's corners into each of the scene's arrays that reaches that far.
+void putCorners(Scene& scene, std::size_t i, const TriangleCorners& c);
+// Gives the triangle just appended as scene.triangles[i] its corner colours and tangents, each
+// only when given (null: it has none; the array is padded up to it when a later one has some).
+void appendCorners(Scene& scene, std::size_t i, const glm::vec3* colour, const glm::vec4* tangent);
+// Drops the corner data of the triangles from `count` on (the triangles were cut there).
+void truncateCorners(Scene& scene, std::size_t count);
 DetachedRanges detachRanges(Scene& scene, std::size_t firstRange);
 void attachRanges(Scene& scene, std::size_t firstRange, DetachedRanges detached);
 
@@ -51,6 +67,11 @@ std::uint64_t placedTriangleCount(const Scene& scene);
 // transpose) and whether it mirrors, computed once for all the triangles it places.
 struct Placement {
   explicit Placement(const glm::dmat4& m);
+  // A corner tangent t (xyz unit, w the handedness) placed: xyz by the matrix's linear part (a
+  // tangent is a direction along the surface, not a normal), unit again (zero when it cannot be);
+  // w negated by a mirroring map, which turns cross(N, T) the other way relative to the placed
+  // bitangent.
+  glm::vec4 tangent(const glm::vec4& t) const;
   glm::dmat4 m;
   glm::dmat3 normalMatrix;
   bool mirror;
@@ -58,8 +79,9 @@ struct Placement {
 enum class Placed { Ok, OutOfRange, Degenerate };
 
 // Places t by p, as every loader places a mesh's triangles (in double, normals by the inverse
-// transpose, a mirroring map swaps the winding, and with it the corners' colours when given).
-Placed placeTriangle(SceneTriangle& t, glm::vec3* colours, const Placement& p);
+// transpose, tangents by Placement::tangent, a mirroring map swaps the winding, and with it the
+// corners' colours and tangents).
+Placed placeTriangle(SceneTriangle& t, TriangleCorners& corners, const Placement& p);
 
 // Replaces the ranges from firstRange on by one placed copy per instance of them, appended after
 // the other triangles in instance order (degenerate copies dropped): with firstRange 0, the scene

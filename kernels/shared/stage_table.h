@@ -52,6 +52,10 @@
 #define MCL_TEXTURE_ARGS(ARG)                                                                      \
   ARG(MCL_GLOBAL const TextureDesc*, textures) ARG(MCL_GLOBAL const TextureLevel*, textureLevels)  \
   ARG(MCL_GLOBAL const ushort*, texels) ARG(MCL_GLOBAL const float4*, vertexColors)
+// What the stages that shade read beside: the corner tangents of glTF TANGENT (3 float4 per
+// triangle, BVH order; a 1-entry dummy when no triangle has them), for normal maps only, so the
+// traversal stages do not bind them.
+#define MCL_SHADE_TEXTURE_ARGS(ARG) MCL_TEXTURE_ARGS(ARG) ARG(MCL_GLOBAL const float4*, tangents)
 // What the alpha test of cut-outs reads (surface_texture.h AlphaScene).
 #define MCL_ALPHA_ARGS(ARG)                                                                        \
   ARG(MCL_GLOBAL const Material*, materials) ARG(MCL_GLOBAL const TriangleShading*, shading)       \
@@ -94,7 +98,7 @@
   ARG(MCL_GLOBAL volatile uint*, queueCount) ARG(MCL_GLOBAL Ray*, bounce)                        \
   ARG(MCL_GLOBAL const float4*, envMap) ARG(MCL_GLOBAL const float*, envCdf) \
   ARG(MCL_GLOBAL const LightRecord*, lightRecords) \
-  MCL_TEXTURE_ARGS(ARG) MCL_HIT_INSTANCE_ARGS(ARG)
+  MCL_SHADE_TEXTURE_ARGS(ARG) MCL_HIT_INSTANCE_ARGS(ARG)
 
 #define MCL_ARGS_shade_direct_hit(ARG)                                                             \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
@@ -104,7 +108,7 @@
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL const Ray*, bounce)                              \
   ARG(MCL_GLOBAL const Hit*, bounceHits) ARG(MCL_GLOBAL float4*, shadowContrib)                   \
   ARG(MCL_GLOBAL const float4*, envMap) \
-  MCL_TEXTURE_ARGS(ARG) MCL_HIT_INSTANCE_ARGS(ARG)
+  MCL_SHADE_TEXTURE_ARGS(ARG) MCL_HIT_INSTANCE_ARGS(ARG)
 
 #define MCL_ARGS_intersect_shadow(ARG)                                                             \
   ARG(MCL_GLOBAL const BvhTraversalNode*, nodes) ARG(MCL_GLOBAL const Triangle*, tris)             \
@@ -124,7 +128,7 @@
   ARG(MCL_GLOBAL const TriangleShading*, shading) ARG(MCL_GLOBAL const float4*, normals) \
   ARG(MCL_GLOBAL const Material*, materials) ARG(MCL_GLOBAL const Ray*, rays)                      \
   ARG(MCL_GLOBAL const Hit*, hits) ARG(MCL_GLOBAL const float4*, radiance) ARG(MCL_GLOBAL float4*, aov) \
-  MCL_TEXTURE_ARGS(ARG) MCL_HIT_INSTANCE_ARGS(ARG)
+  MCL_SHADE_TEXTURE_ARGS(ARG) MCL_HIT_INSTANCE_ARGS(ARG)
 
 #define MCL_ARGS_accumulate_aov(ARG)                                                               \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
@@ -144,7 +148,7 @@
   ARG(MCL_GLOBAL Ray*, nextRays) ARG(MCL_GLOBAL uint*, nextPathIds)                                \
   ARG(MCL_GLOBAL volatile uint*, nextCount) ARG(MCL_GLOBAL const float4*, envMap)                   \
   ARG(MCL_GLOBAL const float*, envCdf) ARG(MCL_GLOBAL const LightRecord*, lightRecords) \
-  MCL_TEXTURE_ARGS(ARG) MCL_HIT_INSTANCE_ARGS(ARG)
+  MCL_SHADE_TEXTURE_ARGS(ARG) MCL_HIT_INSTANCE_ARGS(ARG)
 
 #define MCL_ARGS_path_gather(ARG)                                                                  \
   ARG(uint, pathBounce) ARG(MCL_GLOBAL const uint*, rayCount) ARG(MCL_GLOBAL const uint*, pathIds) \
@@ -168,7 +172,7 @@
   MCL_ARGS_wave_ao(ARG) ARG(MCL_GLOBAL const Emitter*, emitters) ARG(MCL_GLOBAL Ray*, bounce)      \
   ARG(MCL_GLOBAL Hit*, bounceHits) ARG(MCL_GLOBAL const float4*, envMap)                           \
   ARG(MCL_GLOBAL const float*, envCdf) ARG(MCL_GLOBAL const LightRecord*, lightRecords)            \
-  ARG(MCL_GLOBAL uint*, bounceHitInstances)
+  ARG(MCL_GLOBAL uint*, bounceHitInstances) ARG(MCL_GLOBAL const float4*, tangents)
 
 #define MCL_ARGS_wave_path(ARG)                                                                    \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(uint, pathBounce) ARG(MCL_GLOBAL const uint*, active) \
@@ -182,7 +186,8 @@
   ARG(MCL_GLOBAL volatile uint*, groupCounts) ARG(MCL_GLOBAL Ray*, nextRays)                       \
   ARG(MCL_GLOBAL uint*, nextPathIds) ARG(MCL_GLOBAL volatile uint*, nextCount)                     \
   ARG(MCL_GLOBAL const float4*, envMap) ARG(MCL_GLOBAL const float*, envCdf)                       \
-  ARG(MCL_GLOBAL const LightRecord*, lightRecords) MCL_INSTANCE_ARGS(ARG) ARG(MCL_GLOBAL uint*, hitInstances)
+  ARG(MCL_GLOBAL const LightRecord*, lightRecords) MCL_INSTANCE_ARGS(ARG) ARG(MCL_GLOBAL uint*, hitInstances) \
+  ARG(MCL_GLOBAL const float4*, tangents)
 
 // <stage>_args: frame, then the table's arguments, as fields of the same names.
 #define MCL_ARG_FIELD(type, name) type name;

@@ -42,7 +42,8 @@ MCL_INLINE SurfaceScene make_surface_scene(MCL_GLOBAL const Triangle* tris, MCL_
 // The SurfaceScene of a stage's arguments a (every shading stage's table row names these fields).
 #define MCL_STAGE_SURFACE_SCENE(a)                                                                 \
   make_surface_scene((a)->tris, (a)->normals, (a)->shading, (a)->materials,                       \
-                     make_surface_tables((a)->textures, (a)->textureLevels, (a)->texels, (a)->vertexColors), \
+                     make_surface_tables((a)->textures, (a)->textureLevels, (a)->texels, (a)->vertexColors,     \
+                                         (a)->tangents),                                                   \
                      (a)->instances)
 
 // Unit normal n flipped to face the incoming direction.

@@ -98,14 +98,17 @@ MCL_INLINE TextureTables make_texture_tables(MCL_GLOBAL const TextureDesc* textu
   tt.levels = levels;
   tt.texels = texels;
   tt.colors = 0;
+  tt.tangents = 0;
   return tt;
 }
 
-// The texture tables with the vertex colours (what surface_at reads).
+// The texture tables with the vertex colours and corner tangents (what surface_at reads).
 MCL_INLINE TextureTables make_surface_tables(MCL_GLOBAL const TextureDesc* textures, MCL_GLOBAL const TextureLevel* levels,
-                                             MCL_GLOBAL const ushort* texels, MCL_GLOBAL const float4* colors) {
+                                             MCL_GLOBAL const ushort* texels, MCL_GLOBAL const float4* colors,
+                                             MCL_GLOBAL const float4* tangents) {
   TextureTables tt = make_texture_tables(textures, levels, texels);
   tt.colors = colors;
+  tt.tangents = tangents;
   return tt;
 }
 

@@ -19,6 +19,7 @@ typedef struct {
   MCL_GLOBAL const TextureLevel* levels;
   MCL_GLOBAL const ushort* texels;
   MCL_GLOBAL const float4* colors;  // vertex colours (MCL_ATTR_COLOR; read by hit_albedo only; may be null elsewhere)
+  MCL_GLOBAL const float4* tangents;  // corner tangents (MCL_ATTR_TANGENTS; read by apply_normal_map only; may be null elsewhere)
 } TextureTables;
 
 MCL_INLINE uint texture_wrap(int i, uint n) {

@@ -215,6 +215,12 @@ typedef struct MCL_ALIGN16 {
 // COLOR_0), vertexColors[3 tri + k].xyz at corner k, multiplying the material's base colour
 // (surface_texture.h hit_albedo). A scene without them binds a 1-entry dummy buffer.
 #define MCL_ATTR_COLOR 8u
+// Attribute flag (SceneTriangle::attributes kHasTangents): the triangle has the file's tangents
+// (glTF TANGENT), tangents[3 tri + k] at corner k: xyz the unit tangent, w its handedness (+1 or
+// -1), in the triangle's own space (world, or its instance's object space); normal maps build
+// their frame from them (normal_map.h) instead of from the triangle's UVs. A scene without them
+// binds a 1-entry dummy buffer.
+#define MCL_ATTR_TANGENTS 16u
 
 // One placement of a bottom-level BVH in a two-level scene (kernels/shared/traverse_instances.h):
 // the rows of its 3x4 affine maps (p' = (row . (p, 1)) per coordinate), the wide node of its bottom
