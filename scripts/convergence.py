@@ -54,7 +54,10 @@ def slope(xs, ys):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--size", type=int, default=None, help="default 48 (--vs-time: 128)")
+    ap.add_argument("--size", type=int, default=None, help="default 48 (--vs-time: 128); the width with --height")
+    ap.add_argument("--height", type=int, default=None, help="--vs-time: the image height (default: --size)")
+    ap.add_argument("--scene", default=None,
+                    help="--vs-time: a shared scene's name or a scene file (default: the Cornell box)")
     ap.add_argument("--max-spp", type=int, default=256)
     ap.add_argument("--ref-spp", type=int, default=4096)
     ap.add_argument("--out", default=None, help="default docs/images/convergence.png (--vs-time: convergence-time.png)")
@@ -64,11 +67,15 @@ def main():
     ap.add_argument("--mitsuba-samplers", default="independent,multijitter,ldsampler")
     args = ap.parse_args()
     scene = os.path.join(ROOT, "..", "shared", "scenes", "cornell-box", "scene.json")
+    if args.vs_time and args.scene:
+        named = os.path.join(ROOT, "..", "shared", "scenes", args.scene, "scene.json")
+        scene = named if os.path.exists(named) else args.scene
     if args.vs_time:
         import convergence_time
         args.out = args.out or os.path.join(ROOT, "docs", "images", "convergence-time.png")
         args.scene, args.montecl = os.path.abspath(scene), os.path.join(ROOT, "build", "montecl")
         args.size = args.size or 128
+        args.height = args.height or args.size
         if args.replot and not args.json:
             ap.error("--replot needs --json")
         return convergence_time.main(args)

@@ -1,9 +1,10 @@
 """convergence_time.py: error against wall time (`scripts/convergence.py --vs-time`). Reads the
-Cornell box (../shared/scenes), runs build/montecl and Mitsuba 3 (through scripts/vs_mitsuba.py's
-scene translation and worker, imported), writes docs/images/convergence-time.png and prints a
-table; --json keeps the measurements.
+Cornell box or another scene (--scene: a ../shared/scenes name or a file; --size W --height H),
+runs build/montecl and Mitsuba 3 (through scripts/vs_mitsuba.py's scene translation and worker,
+imported), writes docs/images/convergence-time.png (--out) and prints a table; --json keeps the
+measurements.
 
-Curves, each at spp 1, 4, 16, 64, 256 (montecl also 1024): montecl `--sampler independent`,
+Curves, each at spp 1, 4, 16, ... up to --max-spp (default 256; montecl one power of 4 further): montecl `--sampler independent`,
 montecl `--sampler sobol` (the default, 4 sub-sequences), montecl sobol + `--denoise` (when Open
 Image Denoise is installed), and Mitsuba 3 with each of --mitsuba-samplers (default independent,
 multijitter, ldsampler: Mitsuba 3.9 has independent, stratified, multijitter, orthogonal and
@@ -75,11 +76,13 @@ def measure(a):
     mi.set_variant("scalar_rgb")  # the driver only reads images
     scene = a.scene
     sc = vm.load_scene(scene)
-    size, levels = a.size, [1, 4, 16, 64, 256]
-    common = ["--width", str(size), "--height", str(size), "--integrator", "direct", "--direct-sampling", "mis",
+    size, height = a.size, a.height
+    # Mitsuba's spp up to --max-spp, montecl's one step further (it needs more samples for its time).
+    levels = [n for n in [1, 4, 16, 64, 256, 1024] if n <= a.max_spp]
+    common = ["--width", str(size), "--height", str(height), "--integrator", "direct", "--direct-sampling", "mis",
               "--overwrite", "-q"]
     work = tempfile.mkdtemp(prefix="convergence_time_")
-    res = {"scene": os.path.relpath(scene, ROOT), "size": size, "ref_spp": a.ref_spp, "curves": {},
+    res = {"scene": os.path.relpath(scene, ROOT), "size": size, "height": height, "ref_spp": a.ref_spp, "curves": {},
            "date": datetime.date.today().isoformat(), "machine": f"{os.cpu_count()} cores, {cpu_model()}",
            "load_before": load_average()}
     ref_exr = os.path.join(work, "ref.exr")
@@ -107,7 +110,7 @@ def measure(a):
         cmd = lambda spp: [a.montecl, "render", scene, "-o", out, "--spp", str(spp), "--seed", "7"] + common + extra
         vm.run_timed(cmd(1))  # warm-up: the kernel program cache, OIDN's libraries
         pts = []
-        for spp in levels + [1024]:
+        for spp in levels + [levels[-1] * 4]:
             wall, cpu, _ = vm.run_timed(cmd(spp))
             img, _ = read_exr_rgb(out, "denoised." if denoise else "")
             pts.append({"spp": spp, "wall_s": wall, "cpu_s": cpu, "rmse": error(img)})
@@ -115,7 +118,7 @@ def measure(a):
         res["curves"][label] = pts
 
     variant = "llvm_ad_rgb" if os.path.exists(vm.LLVM19) or "DRJIT_LIBLLVM_PATH" in os.environ else "scalar_rgb"
-    base = vm.worker_base(sc, work, size, size, variant, "direct", "mis", -1, 5)
+    base = vm.worker_base(sc, work, size, height, variant, "direct", "mis", -1, 5)
     env = vm.mitsuba_env()
     for sampler in a.mitsuba_samplers.split(","):
         label = f"Mitsuba {sampler}"
@@ -186,8 +189,10 @@ def plot(res, out):
         ax.loglog([p["wall_s"] for p in pts], [p["rmse"] for p in pts], style, label=label)
     ax.set_xlabel("wall time of the whole process, s (one run per point: indicative)")
     ax.set_ylabel("RMSE against a %d-spp montecl sobol reference" % res["ref_spp"])
-    ax.set_title("Cornell box, direct MIS, %dx%d; %s, load %.1f-%.1f" %
-                 (res["size"], res["size"], res["date"], res["load_before"][0], res["load_after"][0]), fontsize=9)
+    name = os.path.basename(os.path.dirname(res["scene"]))
+    ax.set_title("%s, direct MIS, %dx%d; %s, load %.1f-%.1f" %
+                 (name, res["size"], res.get("height", res["size"]), res["date"], res["load_before"][0],
+                  res["load_after"][0]), fontsize=9)
     ax.legend(fontsize=8)
     ax.grid(True, which="both", alpha=0.3)
     os.makedirs(os.path.dirname(out), exist_ok=True)
@@ -209,7 +214,8 @@ def main(a):
     data = a.json or os.path.join(tempfile.mkdtemp(prefix="convergence_time_"), "data.json")
     if not a.replot:
         cmd = [py, os.path.abspath(__file__), "--measure", data, "--scene", a.scene, "--size", str(a.size),
-               "--ref-spp", str(a.ref_spp), "--montecl", a.montecl, "--mitsuba-samplers", a.mitsuba_samplers]
+               "--height", str(a.height), "--max-spp", str(a.max_spp), "--ref-spp", str(a.ref_spp),
+               "--montecl", a.montecl, "--mitsuba-samplers", a.mitsuba_samplers]
         subprocess.run(cmd, env=vm.mitsuba_env(), check=True)
     with open(data) as f:
         res = json.load(f)
@@ -225,6 +231,8 @@ if __name__ == "__main__":  # the measuring half, in Mitsuba's venv
     p.add_argument("--measure", required=True)
     p.add_argument("--scene", required=True)
     p.add_argument("--size", type=int, required=True)
+    p.add_argument("--height", type=int, required=True)
+    p.add_argument("--max-spp", type=int, required=True)
     p.add_argument("--ref-spp", type=int, required=True)
     p.add_argument("--montecl", required=True)
     p.add_argument("--mitsuba-samplers", required=True)
