@@ -134,6 +134,9 @@ typedef uint mcl_vuint_u __attribute__((ext_vector_type(MCL_LANES), aligned(4)))
 #define v_loadf_lanes(arr) (*(vfloat*)(arr))
 #define v_loadu_lanes(arr) (*(vuint*)(arr))
 #endif
+// A vfloat3's rows into three such arrays.
+#define v3_store_lanes(v, ax, ay, az) \
+  (v_store_lanes((v).x, ax), v_store_lanes((v).y, ay), v_store_lanes((v).z, az))
 
 // Three lanes of floats: a float3 per lane, structure of arrays.
 typedef struct {

@@ -184,12 +184,8 @@ MCL_INLINE void packet_lanes_subtree(MCL_GLOBAL const WideNode* nodes, MCL_GLOBA
   float dx[MCL_LANES] MCL_LANE_ALIGN, dy[MCL_LANES] MCL_LANE_ALIGN, dz[MCL_LANES] MCL_LANE_ALIGN;
   float st[MCL_LANES] MCL_LANE_ALIGN, su[MCL_LANES] MCL_LANE_ALIGN, sv[MCL_LANES] MCL_LANE_ALIGN;
   uint stri[MCL_LANES] MCL_LANE_ALIGN, scanon[MCL_LANES] MCL_LANE_ALIGN, sredo[MCL_LANES] MCL_LANE_ALIGN;
-  v_store_lanes(o.x, ox);
-  v_store_lanes(o.y, oy);
-  v_store_lanes(o.z, oz);
-  v_store_lanes(d.x, dx);
-  v_store_lanes(d.y, dy);
-  v_store_lanes(d.z, dz);
+  v3_store_lanes(o, ox, oy, oz);
+  v3_store_lanes(d, dx, dy, dz);
   v_store_lanes(*ht, st);
   v_store_lanes(*hu, su);
   v_store_lanes(*hv, sv);

@@ -69,12 +69,8 @@ MCL_INLINE vmask packet_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL con
       float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN;
       float dx[MCL_LANES] MCL_LANE_ALIGN, dy[MCL_LANES] MCL_LANE_ALIGN, dz[MCL_LANES] MCL_LANE_ALIGN;
       float tm[MCL_LANES] MCL_LANE_ALIGN;
-      v_store_lanes(o.x, ox);
-      v_store_lanes(o.y, oy);
-      v_store_lanes(o.z, oz);
-      v_store_lanes(d.x, dx);
-      v_store_lanes(d.y, dy);
-      v_store_lanes(d.z, dz);
+      v3_store_lanes(o, ox, oy, oz);
+      v3_store_lanes(d, dx, dy, dz);
       v_store_lanes(tmax, tm);
       while (lanes != 0u) {
         uint k = mcl_ctz(lanes);

@@ -104,9 +104,7 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
   L = v3_select(hit, L, Lmiss);
   {
     float lx[MCL_LANES] MCL_LANE_ALIGN, ly[MCL_LANES] MCL_LANE_ALIGN, lz[MCL_LANES] MCL_LANE_ALIGN;
-    v_store_lanes(L.x, lx);
-    v_store_lanes(L.y, ly);
-    v_store_lanes(L.z, lz);
+    v3_store_lanes(L, lx, ly, lz);
     for (uint j = 0; j < MCL_LANES; ++j)
       if (own[j]) a->radiance[ids[j]] = make_float4(lx[j], ly[j], lz[j], 0.0f);
   }
@@ -173,15 +171,9 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
       float bx[MCL_LANES] MCL_LANE_ALIGN, by[MCL_LANES] MCL_LANE_ALIGN, bz[MCL_LANES] MCL_LANE_ALIGN;
       float pp[MCL_LANES] MCL_LANE_ALIGN;
       v_store_lanes(v_mask01(live), set);
-      v_store_lanes(origin.x, ox);
-      v_store_lanes(origin.y, oy);
-      v_store_lanes(origin.z, oz);
-      v_store_lanes(wi.x, wx);
-      v_store_lanes(wi.y, wy);
-      v_store_lanes(wi.z, wz);
-      v_store_lanes(next.x, bx);
-      v_store_lanes(next.y, by);
-      v_store_lanes(next.z, bz);
+      v3_store_lanes(origin, ox, oy, oz);
+      v3_store_lanes(wi, wx, wy, wz);
+      v3_store_lanes(next, bx, by, bz);
       v_store_lanes(pdf, pp);
       uint at = MCL_ATOMIC_ADD(a->nextCount, v_count(live));
       for (uint j = 0; j < MCL_LANES; ++j) {

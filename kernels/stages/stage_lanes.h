@@ -257,15 +257,9 @@ MCL_INLINE void v_push_shadow_queries(MCL_GLOBAL ShadowWork* queue, MCL_GLOBAL v
   v_store_lanes(v_mask01(m), set);
   v_store_lanes(slot, sl);
   v_store_lanes(tmax, tm);
-  v_store_lanes(origin.x, ox);
-  v_store_lanes(origin.y, oy);
-  v_store_lanes(origin.z, oz);
-  v_store_lanes(dir.x, dx);
-  v_store_lanes(dir.y, dy);
-  v_store_lanes(dir.z, dz);
-  v_store_lanes(c.x, cr);
-  v_store_lanes(c.y, cg);
-  v_store_lanes(c.z, cb);
+  v3_store_lanes(origin, ox, oy, oz);
+  v3_store_lanes(dir, dx, dy, dz);
+  v3_store_lanes(c, cr, cg, cb);
   for (uint k = 0; k < MCL_LANES; ++k) {
     if (!set[k]) continue;
     MCL_GLOBAL float* q = (MCL_GLOBAL float*)(queue + at);
