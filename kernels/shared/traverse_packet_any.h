@@ -25,6 +25,13 @@ MCL_INLINE vmask packet_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL con
   vmask blocked = v_not(act) & act;  // none
   uint ref = 0u;
   vmask m = act;
+  // The rays lane by lane, for the entries few of them enter (stored once per packet).
+  float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN;
+  float dx[MCL_LANES] MCL_LANE_ALIGN, dy[MCL_LANES] MCL_LANE_ALIGN, dz[MCL_LANES] MCL_LANE_ALIGN;
+  float tm[MCL_LANES] MCL_LANE_ALIGN;
+  v3_store_lanes(o, ox, oy, oz);
+  v3_store_lanes(d, dx, dy, dz);
+  v_store_lanes(tmax, tm);
   for (;;) {
     if (ref == MCL_WIDE_EMPTY) {
     } else if (ref & MCL_WIDE_LEAF) {
@@ -52,7 +59,7 @@ MCL_INLINE vmask packet_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL con
       }
     }
     // Pop the next entry some unblocked ray still enters; few such rays go on one by one.
-    const uint open = v_bits(v_not(blocked) & act);
+    uint open = v_bits(v_not(blocked) & act);
     int found = 0;
     while (sp > 0u && open != 0u) {
       --sp;
@@ -64,28 +71,16 @@ MCL_INLINE vmask packet_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL con
         found = 1;
         break;
       }
-      uint lanes = bits;
-      uint hitBits = 0u;
-      float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN;
-      float dx[MCL_LANES] MCL_LANE_ALIGN, dy[MCL_LANES] MCL_LANE_ALIGN, dz[MCL_LANES] MCL_LANE_ALIGN;
-      float tm[MCL_LANES] MCL_LANE_ALIGN;
-      v3_store_lanes(o, ox, oy, oz);
-      v3_store_lanes(d, dx, dy, dz);
-      v_store_lanes(tmax, tm);
-      while (lanes != 0u) {
-        uint k = mcl_ctz(lanes);
-        lanes &= lanes - 1u;
+      while (bits != 0u) {
+        uint k = mcl_ctz(bits);
+        bits &= bits - 1u;
         if (wide_any_hit_from(nodes, tris, 0, make_float3(ox[k], oy[k], oz[k]), make_float3(dx[k], dy[k], dz[k]),
                               tm[k], stackRef[sp]))
-          hitBits |= 1u << k;
+          open &= ~(1u << k);
       }
-      blocked = blocked | v_from_bits(hitBits);
-      break;  // open has changed: recompute it
     }
-    if (!found) {
-      if (sp == 0u || v_all(blocked | v_not(act))) return blocked;
-      ref = MCL_WIDE_EMPTY;  // nothing to visit now: go on popping
-    }
+    blocked = act & v_not(v_from_bits(open));  // with the rays blocked one by one
+    if (!found) return blocked;
   }
 }
 #endif

@@ -16,8 +16,7 @@ MCL_INLINE void stage_intersect_lanes(const intersect_args* a, uint first) {
 #else
   uint count = *a->rayCount;
   if (first >= count) return;
-  // Instances: the two-level traversal has no packet form, so the scalar body per ray.
-  if (v_packet_partial(first, count) || a->frame->textureCount > 0 || a->frame->instanceCount > 0u) {
+  if (packet_traversal_unfit(a->frame, first, count)) {
     for (uint k = 0; k < MCL_LANES && first + k < count; ++k) stage_intersect(a, first + k);
     return;
   }

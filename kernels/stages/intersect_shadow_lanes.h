@@ -15,7 +15,7 @@ MCL_INLINE void stage_intersect_shadow_lanes(const intersect_shadow_args* a, uin
 #else
   uint count = *a->queueCount;
   if (first >= count) return;
-  if (v_packet_partial(first, count) || a->frame->textureCount > 0 || a->frame->instanceCount > 0u) {
+  if (packet_traversal_unfit(a->frame, first, count)) {
     for (uint k = 0; k < MCL_LANES && first + k < count; ++k) stage_intersect_shadow(a, first + k);
     return;
   }
