@@ -33,7 +33,7 @@ void countRay(const WideNode* nodes, const Triangle* tris, const AlphaScene* alp
       }
     } else {
       nodeCount += 1.0;
-      uint next = wide_visit(&nodes[ref], &ctx, anyHit ? tmax : hitT, stack, stackT, &sp);
+      uint next = wide_visit(nodes, tris, ref, &ctx, anyHit ? tmax : hitT, stack, stackT, &sp);
       if (next != MCL_WIDE_EMPTY) {
         ref = next;
         continue;

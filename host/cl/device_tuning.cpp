@@ -50,6 +50,11 @@ DeviceTuning deviceTuning(const DeviceInfo& d) {
       t.lanesWhy = "CPU: float8 packets";
     }
   }
+  if (d.isCpu && !d.isHost && !isOclgrind(d)) {
+    // Prefetch hints in the wide traversal (kernels/shared/traverse_wide.h): a large scene's tree
+    // misses the caches, and the loads of the children a ray will pop later overlap its work.
+    t.buildOptions += t.buildOptions.empty() ? "-DMCL_PREFETCH_HINTS=1" : " -DMCL_PREFETCH_HINTS=1";
+  }
   return t;
 }
 

@@ -224,6 +224,17 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   cases.push_back({"polygon-light/direct-brdf", withDirect(light, DirectSampling::Brdf, 1), nullptr, false});
   cases.push_back({"polygon-light/direct-mis", withDirect(light, DirectSampling::Mis, 2), nullptr, false});
   cases.push_back({"polygon-light/ao-cosine", withAo(light, AoSampling::Cosine), nullptr, false});
+  // A row of 12 small lamps facing down beside the square (26 emitting triangles): the emitter
+  // pick goes through its guide table (kernels/shared/lights.h), in the packet stages and per item.
+  Scene lamps = light;
+  lamps.path = "<lamp row scene>";
+  for (int i = 0; i < 12; ++i) {
+    const float x = -0.6f + 0.1f * float(i), z = -0.5f + 0.02f * float(i);
+    addQuad(lamps, {x, 1.2f, z}, {x + 0.05f, 1.2f, z}, {x + 0.05f, 1.2f, z + 0.05f}, {x, 1.2f, z + 0.05f}, 1);
+  }
+  finishScene(lamps);
+  cases.push_back({"lamp-row/direct-mis", withDirect(lamps, DirectSampling::Mis, 2), nullptr, false});
+  cases.push_back({"lamp-row/path", withPath(lamps, 1), nullptr, false});
   // Shading normals: a coarse sphere with exact corner normals beside the occluder.
   Scene sphere = light;
   sphere.path = "<smooth sphere scene>";

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "kernels/shared/lights.h"
+#include "render/emitter_guide.h"
 #include "kernels/shared/surface_texture.h"
 
 namespace montecl {
@@ -140,6 +141,7 @@ EmitterTable buildEmitterTable(const Bvh& bvh, const std::vector<MaterialDesc>& 
     table.emitters[k].cdf = float(running / total);
   }
   if (!table.emitters.empty()) table.emitters.back().cdf = 1.0f;
+  fillEmitterGuide(table.emitters);
   table.totalPower = float(total);
   return table;
 }

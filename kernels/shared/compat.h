@@ -21,6 +21,11 @@
 #define MCL_ATOMIC_INC(p) atomic_inc(p)
 #define MCL_STATIC_ASSERT(cond, msg)
 #define MCL_ALIGN16
+// A hint to fetch the cache line at p (no effect on results): set where the device build defines
+// MCL_PREFETCH_HINTS (host/cl/device_tuning.cpp: CPUs), else nothing.
+#ifdef MCL_PREFETCH_HINTS
+#define MCL_PREFETCH(p) __builtin_prefetch(p)
+#endif
 // dot, cross, length and normalize of float3, written out with the same float operations, in
 // the same order, as GLM's on the host. OpenCL lets the built-ins use any precision or order
 // (Oclgrind, for one, differs from PoCL in the last bit), and a last-bit difference in a cosine

@@ -12,9 +12,30 @@ MCL_INLINE float triangle_area(MCL_GLOBAL const Triangle* t) {
   return triangle_area_of(xyz(t->e1), xyz(t->e2));
 }
 
-// Index of the first emitter whose cdf exceeds u (binary search); count > 0.
+// The guide table's bucket of u: floor(u * count), clamped to [0, count - 1] (a NaN: 0; its pick,
+// count - 1 as the whole-table search finds it, lies outside that bucket's range, so pick_emitter
+// searches the whole table for a NaN).
+MCL_INLINE uint emitter_guide_bucket(uint count, float u) {
+  float x = u * (float)count;
+  uint b = x >= 1.0f ? (uint)fmin(x, (float)(count - 1u)) : 0u;
+  return b;
+}
+
+// Tables at least this long are searched through their guide table (shorter ones whole: a few
+// steps cost less than reading the guide).
+#define MCL_EMITTER_GUIDE_MIN 16u
+
+// Index of the first emitter whose cdf exceeds u (count - 1 if none); count > 0. A binary search
+// inside the range the guide table gives u's bucket: the pick of a bucket's smallest u up to the
+// next bucket's (Emitter::guide; the same answer as a search of the whole table, as the pick
+// grows with u), so a scene with many emitters takes one or two steps instead of log2(count).
 MCL_INLINE uint pick_emitter(MCL_GLOBAL const Emitter* emitters, uint count, float u) {
-  uint lo = 0, hi = count - 1;
+  uint lo = 0u, hi = count - 1u;
+  if (count >= MCL_EMITTER_GUIDE_MIN && !isnan(u)) {
+    uint b = emitter_guide_bucket(count, u);
+    lo = emitters[b].guide;
+    hi = b + 1u < count ? emitters[b + 1u].guide : count - 1u;
+  }
   while (lo < hi) {
     uint mid = (lo + hi) / 2;
     if (emitters[mid].cdf > u) hi = mid;

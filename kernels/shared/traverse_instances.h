@@ -96,7 +96,7 @@ MCL_INLINE InstanceHit instances_closest_hit(MCL_GLOBAL const WideNode* nodes, M
         }
       }
     } else {
-      uint next = wide_visit(&nodes[ref], &ctx, r.hit.t, stack, stackT, &sp);
+      uint next = wide_visit(nodes, tris, ref, &ctx, r.hit.t, stack, stackT, &sp);
       if (next != MCL_WIDE_EMPTY) {
         ref = next;
         continue;
@@ -159,7 +159,7 @@ MCL_INLINE int instances_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL co
         if (t.x < tmax || t.y < tmax || t.z < tmax || t.w < tmax) return 1;
       }
     } else {
-      uint next = wide_visit(&nodes[ref], &ctx, tmax, stack, stackT, &sp);
+      uint next = wide_visit(nodes, tris, ref, &ctx, tmax, stack, stackT, &sp);
       if (next != MCL_WIDE_EMPTY) {
         ref = next;
         continue;

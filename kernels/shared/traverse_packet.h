@@ -165,7 +165,7 @@ MCL_INLINE void wide_subtree_closest(MCL_GLOBAL const WideNode* nodes, MCL_GLOBA
         lane_hit_update(tris, i3, tt.w, tu.w, tv.w, t, tri, canon, u, v, redo);
       }
     } else {
-      uint next = wide_visit(&nodes[ref], &ctx, *t, stack, stackT, &sp);
+      uint next = wide_visit(nodes, tris, ref, &ctx, *t, stack, stackT, &sp);
       if (next != MCL_WIDE_EMPTY) {
         ref = next;
         continue;

@@ -132,14 +132,39 @@ inline uint wide_entry(const WideNode* n, const RayBoxCtx* c, float tmax, float*
 inline uint mcl_ctz(uint x) { return static_cast<uint>(__builtin_ctz(x)); }
 #endif
 
-// Visits interior node n: returns the entered child to visit next (the nearest; the lower child on
-// a tie) and pushes the other entered ones with their distances, farthest deepest; returns
+MCL_INLINE uint wide_leaf_first(uint ref) { return (ref & ~MCL_WIDE_LEAF) >> 4; }
+MCL_INLINE uint wide_leaf_count(uint ref) { return (ref & 15u) + 1u; }
+
+// Asks for the memory of the entered children (bits) of n: an inner child's node, a leaf's first
+// triangles. A large scene's tree misses the caches (Sponza: 20 MiB); the nearest child is read at
+// once, but the others wait on the stack, and their loads now overlap the work until they pop.
+MCL_ALWAYS_INLINE void wide_prefetch_children(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
+                                              MCL_GLOBAL const WideNode* n, uint bits) {
+#ifdef MCL_PREFETCH_HINTS
+  for (; bits != 0u; bits &= bits - 1u) {
+    uint r = n->child[mcl_ctz(bits)];
+    MCL_GLOBAL const char* p = (r & MCL_WIDE_LEAF) ? (MCL_GLOBAL const char*)(tris + wide_leaf_first(r))
+                                                    : (MCL_GLOBAL const char*)(nodes + r);
+    MCL_PREFETCH(p);
+    MCL_PREFETCH(p + 64);
+    MCL_PREFETCH(p + 128);
+    MCL_PREFETCH(p + 192);
+  }
+#else
+  (void)nodes, (void)tris, (void)n, (void)bits;
+#endif
+}
+
+// Visits interior node ref: returns the entered child to visit next (the nearest; the lower child
+// on a tie) and pushes the other entered ones with their distances, farthest deepest; returns
 // MCL_WIDE_EMPTY when the ray enters no child.
-MCL_ALWAYS_INLINE uint wide_visit(MCL_GLOBAL const WideNode* n, const RayBoxCtx* c, float tmax,
-                                  uint* stack, float* stackT, uint* sp) {
+MCL_ALWAYS_INLINE uint wide_visit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris, uint ref,
+                                  const RayBoxCtx* c, float tmax, uint* stack, float* stackT, uint* sp) {
+  MCL_GLOBAL const WideNode* n = &nodes[ref];
   float dist[MCL_WIDE_WIDTH];
   uint bits = wide_entry(n, c, tmax, dist);
   if (bits == 0u) return MCL_WIDE_EMPTY;
+  wide_prefetch_children(nodes, tris, n, bits);
   uint i = mcl_ctz(bits);
   bits &= bits - 1u;
   if (bits == 0u) return n->child[i];
@@ -226,62 +251,157 @@ MCL_INLINE float4 alpha_filter4(const AlphaScene* alpha, MCL_GLOBAL const Triang
   return t;
 }
 
-MCL_INLINE uint wide_leaf_first(uint ref) { return (ref & ~MCL_WIDE_LEAF) >> 4; }
-MCL_INLINE uint wide_leaf_count(uint ref) { return (ref & 15u) + 1u; }
+// One ray's closest-hit traversal (wide_closest_hit) as a state that advances one node or leaf
+// per wide_closest_step, so that two rays' traversals can interleave (wide_closest_hit2).
+typedef struct {
+  RayBoxCtx ctx;
+  float3 org, dir;
+  Hit hit;
+  uint ref, sp;
+  uint stack[MCL_WIDE_STACK_SIZE];
+  float stackT[MCL_WIDE_STACK_SIZE];  // entry distance of each stacked child
+} WideClosest;
+
+MCL_ALWAYS_INLINE void wide_closest_begin(WideClosest* s, float3 org, float3 dir, float tmax) {
+  s->hit.t = tmax;
+  s->hit.tri = MCL_NO_HIT;
+  s->hit.u = 0.0f;
+  s->hit.v = 0.0f;
+  s->org = org;
+  s->dir = dir;
+  s->ctx = make_ray_box_ctx(org, dir);
+  s->sp = 0;
+  // The root is wide node 0; a non-finite ray (ray_is_finite) starts at an empty slot: a miss.
+  s->ref = ray_is_finite(org, dir) ? 0u : MCL_WIDE_EMPTY;
+}
+
+// Takes s->ref (a leaf's triangles, or a node's entered children) and moves s->ref to the next
+// entry to take; returns 0 when none is left.
+MCL_ALWAYS_INLINE int wide_closest_step(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
+                                        const AlphaScene* alpha, WideClosest* s) {
+  uint ref = s->ref;
+  if (ref == MCL_WIDE_EMPTY) {
+    // An empty slot (leaf bit set) is no leaf: whatever the ray, traversal never reads
+    // triangles through it (no finite ray enters its empty box; a non-finite ray starts here).
+  } else if (ref & MCL_WIDE_LEAF) {
+    uint first = wide_leaf_first(ref), last = first + wide_leaf_count(ref) - 1u;
+    for (uint b = first; b <= last; b += 4u) {
+      float4 u, v;
+      float4 t = ray_triangle4(tris, b, last, s->org, s->dir, s->hit.t, &u, &v);
+      if (alpha) t = alpha_filter4(alpha, tris, b, last, t, u, v, s->hit.t);
+      // The nearest lane, the lowest on a tie (as the triangles one by one would find it).
+      float bt = t.x, bu = u.x, bv = v.x;
+      uint bi = b;
+      if (t.y < bt) { bt = t.y; bu = u.y; bv = v.y; bi = b + 1u; }
+      if (t.z < bt) { bt = t.z; bu = u.z; bv = v.z; bi = b + 2u; }
+      if (t.w < bt) { bt = t.w; bu = u.w; bv = v.w; bi = b + 3u; }
+      if (bt < s->hit.t) {
+        s->hit.t = bt;
+        s->hit.tri = bi;
+        s->hit.u = bu;
+        s->hit.v = bv;
+      }
+    }
+  } else {
+    uint next = wide_visit(nodes, tris, ref, &s->ctx, s->hit.t, s->stack, s->stackT, &s->sp);
+    if (next != MCL_WIDE_EMPTY) {
+      s->ref = next;
+      return 1;
+    }
+  }
+  return pop_entered(s->stack, s->stackT, &s->sp, s->hit.t, &s->ref);
+}
+
+MCL_INLINE Hit wide_closest_end(MCL_GLOBAL const Triangle* tris, const WideClosest* s) {
+  Hit hit = s->hit;
+  if (hit.tri == MCL_NO_HIT)
+    hit.t = INFINITY;
+  else
+    hit.tri = as_uint(tris[hit.tri].e1.w);  // the canonical slot, whichever copy was hit
+  return hit;
+}
 
 // Closest hit along org + t*dir for t in (0, tmax); alpha (may be null) removes the hits that
 // fail their material's alpha test (surface_texture.h).
 MCL_INLINE Hit wide_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
                                 const AlphaScene* alpha, float3 org, float3 dir, float tmax) {
-  Hit hit;
-  hit.t = tmax;
-  hit.tri = MCL_NO_HIT;
-  hit.u = 0.0f;
-  hit.v = 0.0f;
-  RayBoxCtx ctx = make_ray_box_ctx(org, dir);
+  WideClosest s;
+  wide_closest_begin(&s, org, dir, tmax);
+  while (wide_closest_step(nodes, tris, alpha, &s)) {
+  }
+  return wide_closest_end(tris, &s);
+}
+
+// Two rays' closest hits (each wide_closest_hit's), their traversals interleaved a step at a
+// time: a large tree's nodes miss the caches, and one ray's loads wait while the other's run.
+MCL_INLINE void wide_closest_hit2(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
+                                  const AlphaScene* alpha, float3 org0, float3 dir0, float tmax0, float3 org1,
+                                  float3 dir1, float tmax1, Hit* hit0, Hit* hit1) {
+  WideClosest s0, s1;
+  wide_closest_begin(&s0, org0, dir0, tmax0);
+  wide_closest_begin(&s1, org1, dir1, tmax1);
+  int live0 = 1, live1 = 1;
+  while (live0 & live1) {
+    live0 = wide_closest_step(nodes, tris, alpha, &s0);
+    live1 = wide_closest_step(nodes, tris, alpha, &s1);
+  }
+  while (live0) live0 = wide_closest_step(nodes, tris, alpha, &s0);
+  while (live1) live1 = wide_closest_step(nodes, tris, alpha, &s1);
+  *hit0 = wide_closest_end(tris, &s0);
+  *hit1 = wide_closest_end(tris, &s1);
+}
+
+// One ray's any-hit traversal (wide_any_hit_from) as a state that advances one node or leaf per
+// wide_any_step, so that two rays' traversals can interleave (wide_any_hit2).
+typedef struct {
+  RayBoxCtx ctx;
+  float3 org, dir;
+  float tmax;
+  uint ref, sp;
+  int blocked;
   uint stack[MCL_WIDE_STACK_SIZE];
-  float stackT[MCL_WIDE_STACK_SIZE];  // entry distance of each stacked child
-  uint sp = 0;
-  // The root is wide node 0; a non-finite ray (ray_is_finite) starts at an empty slot: a miss.
-  uint ref = ray_is_finite(org, dir) ? 0u : MCL_WIDE_EMPTY;
-  for (;;) {
-    if (ref == MCL_WIDE_EMPTY) {
-      // An empty slot (leaf bit set) is no leaf: whatever the ray, traversal never reads
-      // triangles through it (no finite ray enters its empty box; a non-finite ray starts here).
-    } else if (ref & MCL_WIDE_LEAF) {
-      uint first = wide_leaf_first(ref), last = first + wide_leaf_count(ref) - 1u;
-      for (uint b = first; b <= last; b += 4u) {
-        float4 u, v;
-        float4 t = ray_triangle4(tris, b, last, org, dir, hit.t, &u, &v);
-        if (alpha) t = alpha_filter4(alpha, tris, b, last, t, u, v, hit.t);
-        // The nearest lane, the lowest on a tie (as the triangles one by one would find it).
-        float bt = t.x, bu = u.x, bv = v.x;
-        uint bi = b;
-        if (t.y < bt) { bt = t.y; bu = u.y; bv = v.y; bi = b + 1u; }
-        if (t.z < bt) { bt = t.z; bu = u.z; bv = v.z; bi = b + 2u; }
-        if (t.w < bt) { bt = t.w; bu = u.w; bv = v.w; bi = b + 3u; }
-        if (bt < hit.t) {
-          hit.t = bt;
-          hit.tri = bi;
-          hit.u = bu;
-          hit.v = bv;
-        }
-      }
-    } else {
-      uint next = wide_visit(&nodes[ref], &ctx, hit.t, stack, stackT, &sp);
-      if (next != MCL_WIDE_EMPTY) {
-        ref = next;
-        continue;
+  float stackT[MCL_WIDE_STACK_SIZE];  // distances, for ordering the children of one node
+} WideAny;
+
+MCL_ALWAYS_INLINE void wide_any_begin(WideAny* s, float3 org, float3 dir, float tmax, uint start) {
+  s->org = org;
+  s->dir = dir;
+  s->tmax = tmax;
+  s->ctx = make_ray_box_ctx(org, dir);
+  s->sp = 0;
+  s->ref = start;
+  s->blocked = 0;
+}
+
+// Takes s->ref and moves s->ref to the next entry; returns 0 at the first hit (s->blocked set)
+// or when no entry is left.
+MCL_ALWAYS_INLINE int wide_any_step(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
+                                    const AlphaScene* alpha, WideAny* s) {
+  uint ref = s->ref;
+  if (ref == MCL_WIDE_EMPTY) {
+    // An empty slot, or a non-finite ray: nothing to test (as in wide_closest_step).
+  } else if (ref & MCL_WIDE_LEAF) {
+    uint first = wide_leaf_first(ref), last = first + wide_leaf_count(ref) - 1u;
+    float tmax = s->tmax;
+    for (uint b = first; b <= last; b += 4u) {
+      float4 u, v;
+      float4 t = ray_triangle4(tris, b, last, s->org, s->dir, tmax, &u, &v);
+      if (alpha) t = alpha_filter4(alpha, tris, b, last, t, u, v, tmax);
+      if (t.x < tmax || t.y < tmax || t.z < tmax || t.w < tmax) {
+        s->blocked = 1;
+        return 0;
       }
     }
-    if (!pop_entered(stack, stackT, &sp, hit.t, &ref)) {
-      if (hit.tri == MCL_NO_HIT)
-        hit.t = INFINITY;
-      else
-        hit.tri = as_uint(tris[hit.tri].e1.w);  // the canonical slot, whichever copy was hit
-      return hit;
+  } else {
+    uint next = wide_visit(nodes, tris, ref, &s->ctx, s->tmax, s->stack, s->stackT, &s->sp);
+    if (next != MCL_WIDE_EMPTY) {
+      s->ref = next;
+      return 1;
     }
   }
+  if (s->sp == 0u) return 0;
+  s->ref = s->stack[--s->sp];
+  return 1;
 }
 
 // 1 if any triangle below node `start` intersects org + t*dir for t in (0, tmax) (and passes
@@ -289,36 +409,33 @@ MCL_INLINE Hit wide_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL con
 // (traverse_packet_any.h) hands its stragglers' subtrees to this one ray at a time.
 MCL_INLINE int wide_any_hit_from(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
                                  const AlphaScene* alpha, float3 org, float3 dir, float tmax, uint start) {
-  RayBoxCtx ctx = make_ray_box_ctx(org, dir);
-  uint stack[MCL_WIDE_STACK_SIZE];
-  float stackT[MCL_WIDE_STACK_SIZE];  // distances, for ordering the children of one node
-  uint sp = 0;
-  uint ref = start;
-  for (;;) {
-    if (ref == MCL_WIDE_EMPTY) {
-      // An empty slot, or a non-finite ray: nothing to test (as in wide_closest_hit).
-    } else if (ref & MCL_WIDE_LEAF) {
-      uint first = wide_leaf_first(ref), last = first + wide_leaf_count(ref) - 1u;
-      for (uint b = first; b <= last; b += 4u) {
-        float4 u, v;
-        float4 t = ray_triangle4(tris, b, last, org, dir, tmax, &u, &v);
-        if (alpha) t = alpha_filter4(alpha, tris, b, last, t, u, v, tmax);
-        if (t.x < tmax || t.y < tmax || t.z < tmax || t.w < tmax) return 1;
-      }
-    } else {
-      uint next = wide_visit(&nodes[ref], &ctx, tmax, stack, stackT, &sp);
-      if (next != MCL_WIDE_EMPTY) {
-        ref = next;
-        continue;
-      }
-    }
-    if (sp == 0) return 0;
-    ref = stack[--sp];
+  WideAny s;
+  wide_any_begin(&s, org, dir, tmax, start);
+  while (wide_any_step(nodes, tris, alpha, &s)) {
   }
+  return s.blocked;
 }
 
 // The same from the root; a non-finite ray (ray_is_finite) is never blocked.
 MCL_INLINE int wide_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
                             const AlphaScene* alpha, float3 org, float3 dir, float tmax) {
   return wide_any_hit_from(nodes, tris, alpha, org, dir, tmax, ray_is_finite(org, dir) ? 0u : MCL_WIDE_EMPTY);
+}
+
+// Two rays' wide_any_hit, their traversals interleaved a step at a time (as wide_closest_hit2).
+MCL_INLINE void wide_any_hit2(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
+                              const AlphaScene* alpha, float3 org0, float3 dir0, float tmax0, float3 org1,
+                              float3 dir1, float tmax1, int* blocked0, int* blocked1) {
+  WideAny s0, s1;
+  wide_any_begin(&s0, org0, dir0, tmax0, ray_is_finite(org0, dir0) ? 0u : MCL_WIDE_EMPTY);
+  wide_any_begin(&s1, org1, dir1, tmax1, ray_is_finite(org1, dir1) ? 0u : MCL_WIDE_EMPTY);
+  int live0 = 1, live1 = 1;
+  while (live0 & live1) {
+    live0 = wide_any_step(nodes, tris, alpha, &s0);
+    live1 = wide_any_step(nodes, tris, alpha, &s1);
+  }
+  while (live0) live0 = wide_any_step(nodes, tris, alpha, &s0);
+  while (live1) live1 = wide_any_step(nodes, tris, alpha, &s1);
+  *blocked0 = s0.blocked;
+  *blocked1 = s1.blocked;
 }

@@ -160,12 +160,14 @@ typedef struct MCL_ALIGN16 {
 } FrameParams;
 
 // One emitting triangle. It is picked with probability area * luminance(Le) / emitterPower;
-// cdf is the running sum of those probabilities up to and including this entry.
+// cdf is the running sum of those probabilities up to and including this entry. guide is entry k's
+// row of the pick's guide table (lights.h emitter_guide_bucket; host/render/emitter_guide.cpp):
+// the emitter picked by the smallest u of bucket k, so a pick searches only [guide[k], guide[k + 1]].
 typedef struct MCL_ALIGN16 {
   uint tri;  // index into the BVH-ordered triangles: the canonical slot (Triangle::e1.w)
   float cdf;
   float area;
-  float pad;
+  uint guide;
 } Emitter;
 
 // One light of the scene file's "lights" list that is not a triangle (kinds point, spot, directional,

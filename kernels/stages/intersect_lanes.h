@@ -9,6 +9,31 @@
 #include "stage_lanes.h"
 #include "../shared/traverse_packet.h"
 
+#if MCL_LANES > 1 && !defined(MCL_BVH_BINARY)
+// Items first .. first + n - 1 (all below *rayCount) through the single-ray traversal, two rays at
+// a time interleaved (wide_closest_hit2) where no instances are placed; the same hits as
+// stage_intersect per item.
+MCL_INLINE void intersect_each(const intersect_args* a, uint first, uint n) {
+  uint k = 0;
+  if (a->frame->instanceCount == 0u) {
+    AlphaScene as = make_alpha_scene(a->materials, a->shading,
+                                     make_texture_tables(a->textures, a->textureLevels, a->texels));
+    const AlphaScene* alpha = a->frame->textureCount > 0 ? &as : 0;
+    for (; k + 1u < n; k += 2u) {
+      Ray r0 = a->rays[first + k], r1 = a->rays[first + k + 1u];
+      if (!ray_is_finite(xyz(r0.origin), xyz(r0.dir))) MCL_ATOMIC_INC(a->nanRays);
+      if (!ray_is_finite(xyz(r1.origin), xyz(r1.dir))) MCL_ATOMIC_INC(a->nanRays);
+      Hit h0, h1;
+      wide_closest_hit2(a->nodes, a->tris, alpha, xyz(r0.origin), xyz(r0.dir), r0.dir.w, xyz(r1.origin),
+                        xyz(r1.dir), r1.dir.w, &h0, &h1);
+      a->hits[first + k] = h0;
+      a->hits[first + k + 1u] = h1;
+    }
+  }
+  for (; k < n; ++k) stage_intersect(a, first + k);
+}
+#endif
+
 MCL_INLINE void stage_intersect_lanes(const intersect_args* a, uint first) {
 #if MCL_LANES == 1 || defined(MCL_BVH_BINARY) || defined(MCL_INTERSECT_SCALAR)
   // MCL_INTERSECT_SCALAR: every item through the scalar traversal (for measurements).
@@ -17,7 +42,7 @@ MCL_INLINE void stage_intersect_lanes(const intersect_args* a, uint first) {
   uint count = *a->rayCount;
   if (first >= count) return;
   if (packet_traversal_unfit(a->frame, first, count)) {
-    for (uint k = 0; k < MCL_LANES && first + k < count; ++k) stage_intersect(a, first + k);
+    intersect_each(a, first, min(count - first, (uint)MCL_LANES));
     return;
   }
   vfloat ox, oy, oz, ow, dx, dy, dz, tmax;
@@ -27,7 +52,7 @@ MCL_INLINE void stage_intersect_lanes(const intersect_args* a, uint first) {
   vmask finite, nx, ny, nz;
   int octant = packet_ray_setup(v3_make(ox, oy, oz), v3_make(dx, dy, dz), &inv, &finite, &nx, &ny, &nz);
   if (!v_all(finite) || !(octant || a->frame->packetAllRays)) {
-    for (uint k = 0; k < MCL_LANES; ++k) stage_intersect(a, first + k);
+    intersect_each(a, first, MCL_LANES);
     return;
   }
   vfloat ht = tmax, hu = v_f(0.0f), hv = v_f(0.0f);

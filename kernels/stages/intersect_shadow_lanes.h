@@ -9,6 +9,34 @@
 #include "stage_lanes.h"
 #include "../shared/traverse_packet_any.h"
 
+#if MCL_LANES > 1 && !defined(MCL_BVH_BINARY)
+// Queries first .. first + n - 1 (all below *queueCount) through the single-ray any-hit, two at a
+// time interleaved (wide_any_hit2) where no instances are placed; the same contributions as
+// stage_intersect_shadow per query.
+MCL_INLINE void intersect_shadow_each(const intersect_shadow_args* a, uint first, uint n) {
+  uint k = 0;
+  if (a->frame->instanceCount == 0u) {
+    AlphaScene as = make_alpha_scene(a->materials, a->shading,
+                                     make_texture_tables(a->textures, a->textureLevels, a->texels));
+    const AlphaScene* alpha = a->frame->textureCount > 0 ? &as : 0;
+    for (; k + 1u < n; k += 2u) {
+      ShadowWork w0 = a->queue[first + k], w1 = a->queue[first + k + 1u];
+      int finite0 = ray_is_finite(xyz(w0.ray.origin), xyz(w0.ray.dir));
+      int finite1 = ray_is_finite(xyz(w1.ray.origin), xyz(w1.ray.dir));
+      if (!finite0) MCL_ATOMIC_INC(a->nanRays);
+      if (!finite1) MCL_ATOMIC_INC(a->nanRays);
+      int blocked0, blocked1;
+      wide_any_hit2(a->nodes, a->tris, alpha, xyz(w0.ray.origin), xyz(w0.ray.dir), w0.ray.dir.w,
+                    xyz(w1.ray.origin), xyz(w1.ray.dir), w1.ray.dir.w, &blocked0, &blocked1);
+      // A non-finite query is blocked (stage_intersect_shadow), though no traversal finds a hit.
+      if (finite0 && !blocked0) a->shadowContrib[w0.slot] = make_float4(w0.r, w0.g, w0.b, 0.0f);
+      if (finite1 && !blocked1) a->shadowContrib[w1.slot] = make_float4(w1.r, w1.g, w1.b, 0.0f);
+    }
+  }
+  for (; k < n; ++k) stage_intersect_shadow(a, first + k);
+}
+#endif
+
 MCL_INLINE void stage_intersect_shadow_lanes(const intersect_shadow_args* a, uint first) {
 #if MCL_LANES == 1 || defined(MCL_BVH_BINARY)
   for (uint k = 0; k < MCL_LANES; ++k) stage_intersect_shadow(a, first + k);
@@ -16,7 +44,7 @@ MCL_INLINE void stage_intersect_shadow_lanes(const intersect_shadow_args* a, uin
   uint count = *a->queueCount;
   if (first >= count) return;
   if (packet_traversal_unfit(a->frame, first, count)) {
-    for (uint k = 0; k < MCL_LANES && first + k < count; ++k) stage_intersect_shadow(a, first + k);
+    intersect_shadow_each(a, first, min(count - first, (uint)MCL_LANES));
     return;
   }
   // ShadowWork: the ray's origin and direction (w: tmax), then r, g, b, slot; 12 floats each.
@@ -27,7 +55,7 @@ MCL_INLINE void stage_intersect_shadow_lanes(const intersect_shadow_args* a, uin
   vmask finite, nx, ny, nz;
   int octant = packet_ray_setup(o, d, &inv, &finite, &nx, &ny, &nz);
   if (!v_all(finite) || !(octant || a->frame->packetAllRays)) {
-    for (uint k = 0; k < MCL_LANES; ++k) stage_intersect_shadow(a, first + k);
+    intersect_shadow_each(a, first, MCL_LANES);
     return;
   }
   vmask blocked = packet_any_hit(a->nodes, a->tris, o, d, inv, finite, nx, ny, nz, tmax, packet_switch(a->frame));

@@ -7,11 +7,19 @@
 // luminance (lights.h) per lane.
 MCL_INLINE vfloat v_luminance(vfloat3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
-// pick_emitter per lane: the first emitter whose cdf exceeds u (binary search, lanes masked as
-// they finish); count > 0.
+// pick_emitter per lane: the first emitter whose cdf exceeds u (binary search inside the guide
+// table's range for u's bucket, lanes masked as they finish); count > 0.
 MCL_INLINE vuint v_pick_emitter(MCL_GLOBAL const Emitter* emitters, uint count, vfloat u) {
+  MCL_GLOBAL const float* cdf = (MCL_GLOBAL const float*)emitters + 1;    // Emitter::cdf
+  MCL_GLOBAL const float* guide = (MCL_GLOBAL const float*)emitters + 3;  // Emitter::guide (uint bits)
   vuint lo = v_u(0u), hi = v_u(count - 1u);
-  MCL_GLOBAL const float* cdf = (MCL_GLOBAL const float*)emitters + 1;  // Emitter::cdf
+  if (count >= MCL_EMITTER_GUIDE_MIN) {
+    vfloat x = u * (float)count;  // emitter_guide_bucket
+    vuint b = vsel(x >= 1.0f, v_cvt_u_f(fmin(x, (float)(count - 1u))), v_u(0u));
+    vmask inner = b + 1u < count, nan = isnan(u);
+    lo = vsel(nan, lo, v_as_uint(v_gather_float(guide, b, 4)));
+    hi = vsel(nan | v_not(inner), hi, v_as_uint(v_gather_float(guide, vsel(inner, b + 1u, b), 4)));
+  }
   for (;;) {
     vmask active = lo < hi;
     if (!v_any(active)) break;
