@@ -86,10 +86,10 @@ void checkProfile(const CliResult& r, const std::vector<std::string>& stages, lo
 TEST_CASE("render --profile on OpenCL: every direct stage with AOVs, once per wave, shares sum to 100%" *
           doctest::test_suite("cli")) {
   TempDir dir;
-  // 24x16 pixels x 8 spp = 3072 samples in waves of 1024: 3 waves.
+  // 24x16 pixels x 8 spp = 3072 samples in waves of 1024: 3 waves (stage by stage: --no-fuse).
   CliResult r = runMontecl({"render", montecl_test::demoScene(), "--width", "24", "--height", "16", "--spp", "8",
                             "--integrator", "direct", "--aov", "all", "--wave-size", "1024", "--profile", "-q",
-                            "-o", dir.file("p.exr")});
+                            "--no-fuse", "-o", dir.file("p.exr")});
   checkProfile(r, {"generate", "intersect", "shade_direct", "intersect (bounce rays)", "shade_direct_hit",
                    "intersect_shadow", "accumulate", "record_aov", "accumulate_aov"},
                3);

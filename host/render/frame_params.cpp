@@ -44,6 +44,7 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
   f.textureCount = extras.textureCount;
   f.packetAllRays = extras.packetAllRays ? 1u : 0u;
   f.instanceCount = extras.instanceCount;
+  f.recordAovs = extras.recordAovs ? 1u : 0u;
   const LightSelection& l = extras.lights;
   f.shareEnvironment = l.shareEnvironment;
   f.shareArea = l.shareArea;

@@ -30,6 +30,7 @@ struct FrameExtras {
   uint textureCount = 0;
   bool packetAllRays = false;  // packetTraversalForAllRays(the BVH's wide node count)
   uint instanceCount = 0;      // Bvh::instances (a two-level BVH), 0: one level
+  bool recordAovs = false;     // first-hit AOVs are recorded (FrameParams::recordAovs)
   LightSelection lights;
 };
 

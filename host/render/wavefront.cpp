@@ -146,6 +146,7 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
   extras.envRotateY = environment.rotateY;
   extras.textureCount = textures ? std::uint32_t(textures->textures.size()) : 0u;
   extras.instanceCount = std::uint32_t(bvh.instances.size());
+  extras.recordAovs = o.aovs;
   // Incoherent rays in packets too (BRDF and path rays, AO and shadow queries) in a small tree.
   extras.packetAllRays = run.bvhLayout() == BvhLayout::Wide && packetTraversalForAllRays(bvh.wideNodes().size());
   LightTable lights = buildLightTable(scene, emitters.totalPower, environment, integrator.lit);
@@ -183,7 +184,7 @@ class WaveLoop {
         // Fused waves (kernels/stages/wave_fused.h) on devices that run packets; the host backend
         // and GPUs (W = 1) keep a launch per stage, where the shadow queue compacts across the wave.
         // Not with instances: the fused stages' packet bodies have no two-level traversal.
-        fuse_(o.fuseWaves && integrator_.fusable && !o.aovs && run.lanes() > 1 && in.frame.instanceCount == 0),
+        fuse_(o.fuseWaves && integrator_.fusable && run.lanes() > 1 && in.frame.instanceCount == 0),
         start_(std::chrono::steady_clock::now()) {}
 
   bool planned() const { return planned_; }
@@ -225,7 +226,8 @@ class WaveLoop {
       const std::uint64_t block = std::uint64_t(1) << blockShift_, runs = (n + block - 1) / block;
       if (fuse_ && !integrator_.path && (first + done) % block == 0 && runs <= activeCount_) {
         const std::uint64_t group = std::uint64_t(run_.lanes()) << blockShift_;
-        run_.launch(integrator_.fused, (n + group - 1) / group);
+        run_.launch(integrator_.fused, (n + group - 1) / group);  // with record_aov (FrameParams::recordAovs)
+        if (o_.aovs) run_.launch(Stage::accumulate_aov, wave_touched_pixels(first + done, n, blockShift_, uint(activeCount_)));
       } else {
         if (!(fuse_ && integrator_.path)) run_.launch(Stage::generate, n);
         integrator_.launchWave(run_, n, frame_.shadowSlots, o_.aovs, fuse_, pathCounts);

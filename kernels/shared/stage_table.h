@@ -166,13 +166,14 @@
   ARG(MCL_GLOBAL volatile uint*, queueCount) ARG(MCL_GLOBAL volatile uint*, groupCounts)           \
   ARG(MCL_GLOBAL float4*, mean) ARG(MCL_GLOBAL float4*, meanLo) ARG(MCL_GLOBAL float4*, m2)          \
   ARG(MCL_GLOBAL float4*, m2Lo) ARG(MCL_GLOBAL float4*, split)                                     \
-  MCL_INSTANCE_ARGS(ARG) ARG(MCL_GLOBAL uint*, hitInstances)
+  MCL_INSTANCE_ARGS(ARG) ARG(MCL_GLOBAL uint*, hitInstances)                                       \
+  ARG(MCL_GLOBAL const float4*, tangents) ARG(MCL_GLOBAL float4*, aov)
 
 #define MCL_ARGS_wave_direct(ARG)                                                                  \
   MCL_ARGS_wave_ao(ARG) ARG(MCL_GLOBAL const Emitter*, emitters) ARG(MCL_GLOBAL Ray*, bounce)      \
   ARG(MCL_GLOBAL Hit*, bounceHits) ARG(MCL_GLOBAL const float4*, envMap)                           \
   ARG(MCL_GLOBAL const float*, envCdf) ARG(MCL_GLOBAL const LightRecord*, lightRecords)            \
-  ARG(MCL_GLOBAL uint*, bounceHitInstances) ARG(MCL_GLOBAL const float4*, tangents)
+  ARG(MCL_GLOBAL uint*, bounceHitInstances)
 
 #define MCL_ARGS_wave_path(ARG)                                                                    \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(uint, pathBounce) ARG(MCL_GLOBAL const uint*, active) \
@@ -187,7 +188,7 @@
   ARG(MCL_GLOBAL uint*, nextPathIds) ARG(MCL_GLOBAL volatile uint*, nextCount)                     \
   ARG(MCL_GLOBAL const float4*, envMap) ARG(MCL_GLOBAL const float*, envCdf)                       \
   ARG(MCL_GLOBAL const LightRecord*, lightRecords) MCL_INSTANCE_ARGS(ARG) ARG(MCL_GLOBAL uint*, hitInstances) \
-  ARG(MCL_GLOBAL const float4*, tangents)
+  ARG(MCL_GLOBAL const float4*, tangents) ARG(MCL_GLOBAL float4*, aov)
 
 // <stage>_args: frame, then the table's arguments, as fields of the same names.
 #define MCL_ARG_FIELD(type, name) type name;

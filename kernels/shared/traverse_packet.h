@@ -245,19 +245,21 @@ MCL_INLINE vmask packet_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL
       }
     } else {
       MCL_GLOBAL const WideNode* n = &nodes[ref];
-      uint base = sp, top = sp;
+      uint base = sp, top = sp, entered = 0u;
       for (uint c = 0; c < MCL_WIDE_WIDTH; ++c) {
         uint child = n->child[c];
         if (child == MCL_WIDE_EMPTY) continue;
         vfloat tmin;
         vmask in = v_child_entry(n, c, o, inv, nx, ny, nz, m, *ht, &tmin);
         if (!v_any(in)) continue;
+        entered |= 1u << c;
         stackRef[top] = child;
         stackBits[top] = v_bits(in);
         stackKey[top] = v_hmin(vsel(in, tmin, v_f(INFINITY)));
         stackDist[top] = tmin;
         ++top;
       }
+      wide_prefetch_children(nodes, tris, n, entered);
       // Farthest key deepest (insertion sort of the run; stable, the lower child nearer the top).
       for (uint p = base + 1u; p < top; ++p) {
         float dk = stackKey[p];

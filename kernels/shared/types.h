@@ -156,7 +156,8 @@ typedef struct MCL_ALIGN16 {
   uint sampleBlockShift;     // wave item order: runs of 2^this consecutive items are one pixel's samples
                              // (kernels/stages/stage_common.h; set per round of samples)
   uint instanceCount;        // placements of the two-level BVH (traverse_instances.h); 0: one level
-  uint framePad0, framePad1, framePad2;
+  uint recordAovs;           // 1: the fused wave stages record each item's first-hit AOVs (record_aov.h)
+  uint framePad1, framePad2;
 } FrameParams;
 
 // One emitting triangle. It is picked with probability area * luminance(Le) / emitterPower;

@@ -1,8 +1,8 @@
 // wave_fused.h: the fused wave stages wave_ao and wave_direct: one work item takes a group of a
 // wave's items through every stage of its integrator in launch order (generate, intersect, shade,
-// the BRDF ray's intersect and shade_direct_hit, intersect_shadow, accumulate), reading and writing
-// what those stages do, plus groupCounts[g], the group's count of occlusion queries in its own
-// part of the queue. Group g is W pixels' runs of C samples (W = MCL_LANES, C = 2^sampleBlockShift,
+// the BRDF ray's intersect and shade_direct_hit, record_aov when AOVs are on, intersect_shadow,
+// accumulate), reading and writing what those stages do, plus groupCounts[g], the group's count
+// of occlusion queries in its own part of the queue. Group g is W pixels' runs of C samples (W = MCL_LANES, C = 2^sampleBlockShift,
 // stage_common.h): items [g W C, (g + 1) W C), which are touched pixels [g W, (g + 1) W) when the
 // wave starts a block and holds at most one run per pixel (the host launches these stages only
 // then, render/wavefront.cpp). Every item's operations are its stages' own, in the same order, so
@@ -47,6 +47,7 @@ MCL_FUSED_WRAP(shade_direct_hit)
 MCL_FUSED_WRAP(accumulate)
 MCL_FUSED_WRAP(shade_path)
 MCL_FUSED_WRAP(path_gather)
+MCL_FUSED_WRAP(record_aov)
 
 // Runs `body` (naming `at`, the packet's first item) for each of the group's `packets` packets from
 // `first` below `count`. Stage by stage over the whole group, not packet by packet through every
@@ -91,6 +92,17 @@ MCL_INLINE uint fused_group_first(MCL_CONSTANT const FrameParams* f, uint waveCo
     if (queries > 0u) MCL_ATOMIC_ADD((a)->queueCount, queries);            \
   } while (0)
 
+// When the frame records AOVs: the group's items' first-hit AOVs (record_aov.h), after the shade
+// stages and before the occlusion queries, where the unfused launches record them too (radiance
+// then holds the camera ray's own term only).
+#define MCL_FUSED_RECORD_AOV(a, packets, count)                         \
+  do {                                                                  \
+    if ((a)->frame->recordAovs) {                                       \
+      record_aov_args rec = MCL_FUSED_ARGS(record_aov);                 \
+      MCL_FUSED_PACKETS(packets, count, fused_record_aov(&rec, at));    \
+    }                                                                   \
+  } while (0)
+
 // The end of a fused AO or direct wave: the group's occlusion queries, then its W pixels' samples
 // into the film.
 #define MCL_FUSED_SHADOW_AND_ACCUMULATE(a, g)                   \
@@ -111,6 +123,7 @@ MCL_INLINE void stage_wave_ao(const wave_ao_args* a, uint g) {
   MCL_FUSED_PACKETS(block, a->waveCount, fused_generate(&gen, at));
   MCL_FUSED_PACKETS(block, a->waveCount, MCL_FUSED_RUN(intersect, isect, at));
   MCL_FUSED_PACKETS(block, a->waveCount, fused_shade_ao(&shade, at));
+  MCL_FUSED_RECORD_AOV(a, block, a->waveCount);
   MCL_FUSED_SHADOW_AND_ACCUMULATE(a, g);
 }
 
@@ -132,6 +145,7 @@ MCL_INLINE void stage_wave_direct(const wave_direct_args* a, uint g) {
   MCL_FUSED_PACKETS(block, a->waveCount, fused_shade_direct(&shade, at));
   MCL_FUSED_PACKETS(block, a->waveCount, MCL_FUSED_RUN(intersect, bounceIsect, at));
   MCL_FUSED_PACKETS(block, a->waveCount, fused_shade_direct_hit(&hit, at));
+  MCL_FUSED_RECORD_AOV(a, block, a->waveCount);
   MCL_FUSED_SHADOW_AND_ACCUMULATE(a, g);
 }
 
@@ -154,6 +168,7 @@ MCL_INLINE void stage_wave_path(const wave_path_args* a, uint g) {
   if (a->pathBounce == 0u) MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, fused_generate(&gen, at));
   MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, MCL_FUSED_RUN(intersect, isect, at));
   MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, fused_shade_path(&shade, at));
+  if (a->pathBounce == 0u) MCL_FUSED_RECORD_AOV(a, MCL_FUSED_PATH_PACKETS, count);
   MCL_FUSED_SHADOWS(a);
   MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, fused_path_gather(&gather, at));
 }
