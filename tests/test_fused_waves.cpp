@@ -106,8 +106,8 @@ TEST_CASE("fused waves: --profile shows one fused launch per wave or bounce, and
   CHECK(stages({"--integrator", "ao", "--lanes", "16"}) == V{"wave_ao"});
   CHECK(stages({"--integrator", "direct", "--lanes", "16"}) == V{"wave_direct"});
   CHECK(stages({"--integrator", "path", "--lanes", "16"}) == V{"wave_path", "accumulate"});
-  // AOVs are recorded inside the fused stage and summed per pixel by their own launch.
-  CHECK(stages({"--integrator", "direct", "--lanes", "16", "--aov", "albedo"}) == V{"wave_direct", "accumulate_aov"});
+  // AOVs are recorded and summed inside the fused stage (path: summed with accumulate, per wave).
+  CHECK(stages({"--integrator", "direct", "--lanes", "16", "--aov", "albedo"}) == V{"wave_direct"});
   CHECK(stages({"--integrator", "path", "--lanes", "16", "--aov", "albedo"}) ==
         V{"wave_path", "accumulate", "accumulate_aov"});
   // --no-fuse and one lane (GPUs' width) launch the stages one by one.

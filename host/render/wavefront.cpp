@@ -226,8 +226,7 @@ class WaveLoop {
       const std::uint64_t block = std::uint64_t(1) << blockShift_, runs = (n + block - 1) / block;
       if (fuse_ && !integrator_.path && (first + done) % block == 0 && runs <= activeCount_) {
         const std::uint64_t group = std::uint64_t(run_.lanes()) << blockShift_;
-        run_.launch(integrator_.fused, (n + group - 1) / group);  // with record_aov (FrameParams::recordAovs)
-        if (o_.aovs) run_.launch(Stage::accumulate_aov, wave_touched_pixels(first + done, n, blockShift_, uint(activeCount_)));
+        run_.launch(integrator_.fused, (n + group - 1) / group);  // AOVs too (FrameParams::recordAovs)
       } else {
         if (!(fuse_ && integrator_.path)) run_.launch(Stage::generate, n);
         integrator_.launchWave(run_, n, frame_.shadowSlots, o_.aovs, fuse_, pathCounts);

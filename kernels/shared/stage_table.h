@@ -167,7 +167,7 @@
   ARG(MCL_GLOBAL float4*, mean) ARG(MCL_GLOBAL float4*, meanLo) ARG(MCL_GLOBAL float4*, m2)          \
   ARG(MCL_GLOBAL float4*, m2Lo) ARG(MCL_GLOBAL float4*, split)                                     \
   MCL_INSTANCE_ARGS(ARG) ARG(MCL_GLOBAL uint*, hitInstances)                                       \
-  ARG(MCL_GLOBAL const float4*, tangents) ARG(MCL_GLOBAL float4*, aov)
+  ARG(MCL_GLOBAL const float4*, tangents) ARG(MCL_GLOBAL float4*, aov) ARG(MCL_GLOBAL float4*, aovSum)
 
 #define MCL_ARGS_wave_direct(ARG)                                                                  \
   MCL_ARGS_wave_ao(ARG) ARG(MCL_GLOBAL const Emitter*, emitters) ARG(MCL_GLOBAL Ray*, bounce)      \

@@ -1,7 +1,7 @@
 // wave_fused.h: the fused wave stages wave_ao and wave_direct: one work item takes a group of a
 // wave's items through every stage of its integrator in launch order (generate, intersect, shade,
 // the BRDF ray's intersect and shade_direct_hit, record_aov when AOVs are on, intersect_shadow,
-// accumulate), reading and writing what those stages do, plus groupCounts[g], the group's count
+// accumulate and accumulate_aov), reading and writing what those stages do, plus groupCounts[g], the group's count
 // of occlusion queries in its own part of the queue. Group g is W pixels' runs of C samples (W = MCL_LANES, C = 2^sampleBlockShift,
 // stage_common.h): items [g W C, (g + 1) W C), which are touched pixels [g W, (g + 1) W) when the
 // wave starts a block and holds at most one run per pixel (the host launches these stages only
@@ -104,12 +104,16 @@ MCL_INLINE uint fused_group_first(MCL_CONSTANT const FrameParams* f, uint waveCo
   } while (0)
 
 // The end of a fused AO or direct wave: the group's occlusion queries, then its W pixels' samples
-// into the film.
+// into the film (and their AOVs into the AOV sums when the frame records them).
 #define MCL_FUSED_SHADOW_AND_ACCUMULATE(a, g)                   \
   do {                                                          \
     MCL_FUSED_SHADOWS(a);                                       \
     accumulate_args acc = MCL_FUSED_ARGS(accumulate);           \
     fused_accumulate(&acc, (g) * MCL_LANES);                    \
+    if ((a)->frame->recordAovs) {                               \
+      accumulate_aov_args accAov = MCL_FUSED_ARGS(accumulate_aov); \
+      MCL_FUSED_RUN(accumulate_aov, accAov, (g) * MCL_LANES);   \
+    }                                                           \
   } while (0)
 
 MCL_INLINE void stage_wave_ao(const wave_ao_args* a, uint g) {
