@@ -226,6 +226,8 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   cases.push_back({"polygon-light/ao-cosine", withAo(light, AoSampling::Cosine), nullptr, false});
   // A row of 12 small lamps facing down beside the square (26 emitting triangles): the emitter
   // pick goes through its guide table (kernels/shared/lights.h), in the packet stages and per item.
+  // The camera sees the lamps' backs: the direct case records the AOVs too (the normal AOV faces
+  // the camera on untextured back faces, record_aov_lanes.h).
   Scene lamps = light;
   lamps.path = "<lamp row scene>";
   for (int i = 0; i < 12; ++i) {
@@ -233,7 +235,7 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
     addQuad(lamps, {x, 1.2f, z}, {x + 0.05f, 1.2f, z}, {x + 0.05f, 1.2f, z + 0.05f}, {x, 1.2f, z + 0.05f}, 1);
   }
   finishScene(lamps);
-  cases.push_back({"lamp-row/direct-mis", withDirect(lamps, DirectSampling::Mis, 2), nullptr, false});
+  cases.push_back({"lamp-row/direct-mis-aov", withDirect(lamps, DirectSampling::Mis, 2), nullptr, true});
   cases.push_back({"lamp-row/path", withPath(lamps, 1), nullptr, false});
   // Shading normals: a coarse sphere with exact corner normals beside the occluder.
   Scene sphere = light;

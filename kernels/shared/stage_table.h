@@ -39,7 +39,7 @@
 #define MCL_PACKET_shade_direct_hit 0
 #define MCL_PACKET_intersect_shadow 1
 #define MCL_PACKET_accumulate 1
-#define MCL_PACKET_record_aov 0
+#define MCL_PACKET_record_aov 1
 #define MCL_PACKET_accumulate_aov 0
 #define MCL_PACKET_shade_path 1
 #define MCL_PACKET_path_gather 0

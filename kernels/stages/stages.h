@@ -21,5 +21,6 @@
 #include "shade_path_lanes.h"
 #include "intersect_lanes.h"
 #include "intersect_shadow_lanes.h"
+#include "record_aov_lanes.h"
 // The fused stages, which run the others.
 #include "wave_fused.h"
