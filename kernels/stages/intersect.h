@@ -11,9 +11,8 @@ MCL_INLINE void stage_intersect(const intersect_args* a, uint i) {
   if (i >= *a->rayCount) return;
   Ray r = a->rays[i];
   if (!ray_is_finite(xyz(r.origin), xyz(r.dir))) MCL_ATOMIC_INC(a->nanRays);
-  AlphaScene as = make_alpha_scene(a->materials, a->shading,
-                                   make_texture_tables(a->textures, a->textureLevels, a->texels));
-  const AlphaScene* alpha = a->frame->textureCount > 0 ? &as : 0;
+  AlphaScene as;
+  const AlphaScene* alpha = MCL_STAGE_ALPHA(a, as);
   if (a->frame->instanceCount > 0u) {  // the two-level BVH: the hit and its instance
     InstanceHit ih = bvh_instances_closest_hit(a->nodes, a->tris, a->instances, alpha, xyz(r.origin), xyz(r.dir), r.dir.w);
     a->hits[i] = ih.hit;

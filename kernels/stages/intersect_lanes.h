@@ -16,9 +16,8 @@
 MCL_INLINE void intersect_each(const intersect_args* a, uint first, uint n) {
   uint k = 0;
   if (a->frame->instanceCount == 0u) {
-    AlphaScene as = make_alpha_scene(a->materials, a->shading,
-                                     make_texture_tables(a->textures, a->textureLevels, a->texels));
-    const AlphaScene* alpha = a->frame->textureCount > 0 ? &as : 0;
+    AlphaScene as;
+    const AlphaScene* alpha = MCL_STAGE_ALPHA(a, as);
     for (; k + 1u < n; k += 2u) {
       Ray r0 = a->rays[first + k], r1 = a->rays[first + k + 1u];
       if (!ray_is_finite(xyz(r0.origin), xyz(r0.dir))) MCL_ATOMIC_INC(a->nanRays);

@@ -13,9 +13,8 @@ MCL_INLINE void stage_intersect_shadow(const intersect_shadow_args* a, uint k) {
     MCL_ATOMIC_INC(a->nanRays);
     return;
   }
-  AlphaScene as = make_alpha_scene(a->materials, a->shading,
-                                   make_texture_tables(a->textures, a->textureLevels, a->texels));
-  const AlphaScene* alpha = a->frame->textureCount > 0 ? &as : 0;
+  AlphaScene as;
+  const AlphaScene* alpha = MCL_STAGE_ALPHA(a, as);
   const int blocked = a->frame->instanceCount > 0u  // the two-level BVH
                           ? bvh_instances_any_hit(a->nodes, a->tris, a->instances, alpha, xyz(w.ray.origin),
                                                   xyz(w.ray.dir), w.ray.dir.w)

@@ -16,9 +16,8 @@
 MCL_INLINE void intersect_shadow_each(const intersect_shadow_args* a, uint first, uint n) {
   uint k = 0;
   if (a->frame->instanceCount == 0u) {
-    AlphaScene as = make_alpha_scene(a->materials, a->shading,
-                                     make_texture_tables(a->textures, a->textureLevels, a->texels));
-    const AlphaScene* alpha = a->frame->textureCount > 0 ? &as : 0;
+    AlphaScene as;
+    const AlphaScene* alpha = MCL_STAGE_ALPHA(a, as);
     for (; k + 1u < n; k += 2u) {
       ShadowWork w0 = a->queue[first + k], w1 = a->queue[first + k + 1u];
       int finite0 = ray_is_finite(xyz(w0.ray.origin), xyz(w0.ray.dir));

@@ -19,6 +19,13 @@
 #include "../shared/surface.h"
 #include "../shared/surface_texture.h"
 
+// The cut-out test of a traversal stage (its arguments hold MCL_ALPHA_ARGS), built in `as`: &as, or
+// null when the frame has no textures (no triangle can be cut out).
+#define MCL_STAGE_ALPHA(a, as)                                                                          \
+  ((as) = make_alpha_scene((a)->materials, (a)->shading,                                                \
+                           make_texture_tables((a)->textures, (a)->textureLevels, (a)->texels)),        \
+   (a)->frame->textureCount > 0 ? &(as) : (const AlphaScene*)0)
+
 // The instance of hit i of a hit buffer (its hitInstances buffer), MCL_NO_INSTANCE for a world-space
 // triangle; without a two-level BVH the buffer is a 1-entry dummy and never read.
 MCL_INLINE uint hit_instance(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const uint* hitInstances, uint i) {
