@@ -11,7 +11,9 @@
 // are ordered by one compare (the farther pushed), more are pushed and insertion-sorted so the
 // nearest is on top. Closest hit keeps each pushed entry's distance and skips it on pop once a hit
 // is nearer; any-hit returns at the first hit. Leaf triangles are tested four at a time. Child refs
-// live in uint fields, never in float lanes.
+// live in uint fields, never in float lanes. A large tree misses the caches: a visit asks for the
+// entered children's memory (prefetch hints on CPUs), and each traversal is a state stepped a node
+// or leaf at a time, so two rays can take turns (wide_closest_hit2, wide_any_hit2).
 #pragma once
 #include "geometry.h"
 #include "surface_texture.h"
