@@ -9,22 +9,6 @@
 
 namespace montecl {
 
-namespace {
-
-// The first emitter whose cdf exceeds u (count - 1 if none) over the whole table: the search the
-// guide must agree with.
-std::uint32_t searchWhole(const std::vector<Emitter>& e, float u) {
-  std::uint32_t lo = 0, hi = static_cast<std::uint32_t>(e.size()) - 1u;
-  while (lo < hi) {
-    std::uint32_t mid = (lo + hi) / 2u;
-    if (e[mid].cdf > u) hi = mid;
-    else lo = mid + 1u;
-  }
-  return lo;
-}
-
-}  // namespace
-
 void fillEmitterGuide(std::vector<Emitter>& emitters) {
   const std::uint32_t count = static_cast<std::uint32_t>(emitters.size());
   if (count == 0) return;
@@ -36,7 +20,7 @@ void fillEmitterGuide(std::vector<Emitter>& emitters) {
     const float down = -std::numeric_limits<float>::infinity(), up = std::numeric_limits<float>::infinity();
     while (emitter_guide_bucket(count, u) < b) u = std::nextafter(u, up);
     while (emitter_guide_bucket(count, std::nextafter(u, down)) >= b) u = std::nextafter(u, down);
-    emitters[b].guide = searchWhole(emitters, u);
+    emitters[b].guide = pick_emitter_between(emitters.data(), 0u, count - 1u, u);  // the whole table
   }
 }
 

@@ -25,6 +25,16 @@ MCL_INLINE uint emitter_guide_bucket(uint count, float u) {
 // steps cost less than reading the guide).
 #define MCL_EMITTER_GUIDE_MIN 16u
 
+// The first emitter in [lo, hi] whose cdf exceeds u (hi if none): the binary search itself.
+MCL_INLINE uint pick_emitter_between(MCL_GLOBAL const Emitter* emitters, uint lo, uint hi, float u) {
+  while (lo < hi) {
+    uint mid = (lo + hi) / 2;
+    if (emitters[mid].cdf > u) hi = mid;
+    else lo = mid + 1;
+  }
+  return lo;
+}
+
 // Index of the first emitter whose cdf exceeds u (count - 1 if none); count > 0. A binary search
 // inside the range the guide table gives u's bucket: the pick of a bucket's smallest u up to the
 // next bucket's (Emitter::guide; the same answer as a search of the whole table, as the pick
@@ -36,12 +46,7 @@ MCL_INLINE uint pick_emitter(MCL_GLOBAL const Emitter* emitters, uint count, flo
     lo = emitters[b].guide;
     hi = b + 1u < count ? emitters[b + 1u].guide : count - 1u;
   }
-  while (lo < hi) {
-    uint mid = (lo + hi) / 2;
-    if (emitters[mid].cdf > u) hi = mid;
-    else lo = mid + 1;
-  }
-  return lo;
+  return pick_emitter_between(emitters, lo, hi, u);
 }
 
 // Probability of picking a triangle of this area and emission (same formula as the host table).
