@@ -58,8 +58,21 @@ typedef MCL_LANES_CAT(uint, MCL_LANES) vuint;
 typedef MCL_LANES_CAT(int, MCL_LANES) vint;
 typedef MCL_LANES_CAT(int, MCL_LANES) vmask;
 typedef MCL_LANES_CAT(ulong, MCL_LANES) vulong;
+// Any/all lanes set. clang's reductions (a mask register test, e.g. one kortestw on AVX-512) where
+// the compiler has them: PoCL 3.1's any()/all() are calls into its library that test lane by lane
+// with branches (bench/journal/lanes.md, "Mask tests"). Same result: both test each lane's sign bit.
+#if defined(__has_builtin)
+#if __has_builtin(__builtin_reduce_or) && __has_builtin(__builtin_reduce_and)
+#define MCL_HAS_REDUCE 1
+#endif
+#endif
+#ifdef MCL_HAS_REDUCE
+#define v_any(m) (__builtin_reduce_or(m) < 0)
+#define v_all(m) (__builtin_reduce_and(m) < 0)
+#else
 #define v_any(m) any(m)
 #define v_all(m) all(m)
+#endif
 #define vsel(m, t, f) select((f), (t), (m))
 #define v_f(x) ((vfloat)(x))
 #define v_u(x) ((vuint)(x))

@@ -32,6 +32,9 @@ MCL_INLINE float v_hmin(vfloat x) {
 // Bit k set where lane k of m is set, and back.
 MCL_INLINE uint v_bits(vmask m) {
   vuint b = v_mask01(m) << v_lane_index();
+#ifdef MCL_HAS_REDUCE
+  return __builtin_reduce_or(b);
+#else
 #if MCL_LANES == 16
   uint8 b8 = b.lo | b.hi;
   uint4 b4 = b8.lo | b8.hi;
@@ -42,6 +45,7 @@ MCL_INLINE uint v_bits(vmask m) {
 #endif
   uint2 b2 = b4.lo | b4.hi;
   return b2.x | b2.y;
+#endif
 }
 MCL_INLINE vmask v_from_bits(uint bits) { return ((v_u(bits) >> v_lane_index()) & 1u) != 0u; }
 // Lane-wise mcl_max_nan1 / mcl_min_nan1 (a NaN in the first operand yields the second).
