@@ -62,7 +62,8 @@ typedef MCL_LANES_CAT(ulong, MCL_LANES) vulong;
 // the compiler has them: PoCL 3.1's any()/all() are calls into its library that test lane by lane
 // with branches (bench/journal/lanes.md, "Mask tests"). Same result: both test each lane's sign bit.
 #if defined(__has_builtin)
-#if __has_builtin(__builtin_reduce_or) && __has_builtin(__builtin_reduce_and)
+#if __has_builtin(__builtin_reduce_or) && __has_builtin(__builtin_reduce_and) && \
+    __has_builtin(__builtin_reduce_min) && __has_builtin(__builtin_reduce_add)
 #define MCL_HAS_REDUCE 1
 #endif
 #endif
@@ -224,6 +225,69 @@ MCL_INLINE float16 mcl_interleave4(float4 x, float4 y, float4 z, float4 w) {
   return (float16)(x.s0, y.s0, z.s0, w.s0, x.s1, y.s1, z.s1, w.s1, x.s2, y.s2, z.s2, w.s2, x.s3, y.s3, z.s3,
                    w.s3);
 }
+// Lanes 4c .. 4c + 3 of the records at p + o[4c .. 4c + 3] (float offsets, 16-byte aligned): four
+// float4 loads into one float16 for MCL_T4_*; the reverse for stores. Whole-register moves and
+// shuffles: writing lanes one float at a time into a private array and reading it back as a vector
+// costs a store per float and a stalled reload.
+#define MCL_LD4X4(p, o0, o1, o2, o3) \
+  ((float16)(mcl_ld4((p) + (o0)), mcl_ld4((p) + (o1)), mcl_ld4((p) + (o2)), mcl_ld4((p) + (o3))))
+#define MCL_ST4X4(v, p, o0, o1, o2, o3)                                                       \
+  (mcl_st4((v).lo.lo, (p) + (o0)), mcl_st4((v).lo.hi, (p) + (o1)), mcl_st4((v).hi.lo, (p) + (o2)), \
+   mcl_st4((v).hi.hi, (p) + (o3)))
+// The records at p + o[k] (float offsets, one per lane) transposed into four lane vectors, and back.
+MCL_INLINE void v_load4_at(MCL_GLOBAL const float* p, const ulong* o, vfloat* x, vfloat* y, vfloat* z,
+                           vfloat* w) {
+#if MCL_LANES == 4
+  float16 a = MCL_LD4X4(p, o[0], o[1], o[2], o[3]);
+  *x = MCL_T4_X(a);
+  *y = MCL_T4_Y(a);
+  *z = MCL_T4_Z(a);
+  *w = MCL_T4_W(a);
+#elif MCL_LANES == 8
+  float16 a = MCL_LD4X4(p, o[0], o[1], o[2], o[3]), b = MCL_LD4X4(p, o[4], o[5], o[6], o[7]);
+  *x = (float8)(MCL_T4_X(a), MCL_T4_X(b));
+  *y = (float8)(MCL_T4_Y(a), MCL_T4_Y(b));
+  *z = (float8)(MCL_T4_Z(a), MCL_T4_Z(b));
+  *w = (float8)(MCL_T4_W(a), MCL_T4_W(b));
+#else
+  float16 a = MCL_LD4X4(p, o[0], o[1], o[2], o[3]), b = MCL_LD4X4(p, o[4], o[5], o[6], o[7]);
+  float16 c = MCL_LD4X4(p, o[8], o[9], o[10], o[11]), d = MCL_LD4X4(p, o[12], o[13], o[14], o[15]);
+  *x = (float16)(MCL_T4_X(a), MCL_T4_X(b), MCL_T4_X(c), MCL_T4_X(d));
+  *y = (float16)(MCL_T4_Y(a), MCL_T4_Y(b), MCL_T4_Y(c), MCL_T4_Y(d));
+  *z = (float16)(MCL_T4_Z(a), MCL_T4_Z(b), MCL_T4_Z(c), MCL_T4_Z(d));
+  *w = (float16)(MCL_T4_W(a), MCL_T4_W(b), MCL_T4_W(c), MCL_T4_W(d));
+#endif
+}
+MCL_INLINE void v_store4_at(MCL_GLOBAL float* p, const ulong* o, vfloat x, vfloat y, vfloat z, vfloat w) {
+#if MCL_LANES == 4
+  float16 a = mcl_interleave4(x, y, z, w);
+  MCL_ST4X4(a, p, o[0], o[1], o[2], o[3]);
+#elif MCL_LANES == 8
+  float16 a = mcl_interleave4(x.lo, y.lo, z.lo, w.lo), b = mcl_interleave4(x.hi, y.hi, z.hi, w.hi);
+  MCL_ST4X4(a, p, o[0], o[1], o[2], o[3]);
+  MCL_ST4X4(b, p, o[4], o[5], o[6], o[7]);
+#else
+  float16 a = mcl_interleave4(x.lo.lo, y.lo.lo, z.lo.lo, w.lo.lo);
+  float16 b = mcl_interleave4(x.lo.hi, y.lo.hi, z.lo.hi, w.lo.hi);
+  float16 c = mcl_interleave4(x.hi.lo, y.hi.lo, z.hi.lo, w.hi.lo);
+  float16 d = mcl_interleave4(x.hi.hi, y.hi.hi, z.hi.hi, w.hi.hi);
+  MCL_ST4X4(a, p, o[0], o[1], o[2], o[3]);
+  MCL_ST4X4(b, p, o[4], o[5], o[6], o[7]);
+  MCL_ST4X4(c, p, o[8], o[9], o[10], o[11]);
+  MCL_ST4X4(d, p, o[12], o[13], o[14], o[15]);
+#endif
+}
+// Float offsets k * stride, and idx[k] * stride.
+#define MCL_STRIDE_OFFSETS(o, stride) \
+  ulong o[MCL_LANES];                 \
+  for (uint k_ = 0; k_ < MCL_LANES; ++k_) o[k_] = (ulong)k_ * (stride)
+#define MCL_INDEX_OFFSETS(o, idx, stride)                                      \
+  ulong o[MCL_LANES];                                                          \
+  {                                                                            \
+    uint ai_[MCL_LANES] MCL_LANE_ALIGN;                                        \
+    v_store_lanes((idx), ai_);                                                 \
+    for (uint k_ = 0; k_ < MCL_LANES; ++k_) o[k_] = (ulong)ai_[k_] * (stride); \
+  }
 #if MCL_LANES == 4
 MCL_INLINE void v_load4(MCL_GLOBAL const float* p, vfloat* x, vfloat* y, vfloat* z, vfloat* w) {
   float16 a = mcl_ld16(p, 0);
@@ -263,26 +327,12 @@ MCL_INLINE void v_store4(MCL_GLOBAL float* p, vfloat x, vfloat y, vfloat z, vflo
 }
 #endif
 MCL_INLINE void v_load4_stride(MCL_GLOBAL const float* p, uint stride, vfloat* x, vfloat* y, vfloat* z, vfloat* w) {
-  float ax[MCL_LANES] MCL_LANE_ALIGN, ay[MCL_LANES] MCL_LANE_ALIGN, az[MCL_LANES] MCL_LANE_ALIGN, aw[MCL_LANES] MCL_LANE_ALIGN;
-  for (uint k = 0; k < MCL_LANES; ++k) {
-    float4 r = mcl_ld4(p + k * stride);
-    ax[k] = r.x;
-    ay[k] = r.y;
-    az[k] = r.z;
-    aw[k] = r.w;
-  }
-  *x = v_loadf_lanes(ax);
-  *y = v_loadf_lanes(ay);
-  *z = v_loadf_lanes(az);
-  *w = v_loadf_lanes(aw);
+  MCL_STRIDE_OFFSETS(o, stride);
+  v_load4_at(p, o, x, y, z, w);
 }
 MCL_INLINE void v_store4_stride(MCL_GLOBAL float* p, uint stride, vfloat x, vfloat y, vfloat z, vfloat w) {
-  float ax[MCL_LANES] MCL_LANE_ALIGN, ay[MCL_LANES] MCL_LANE_ALIGN, az[MCL_LANES] MCL_LANE_ALIGN, aw[MCL_LANES] MCL_LANE_ALIGN;
-  v_store_lanes(x, ax);
-  v_store_lanes(y, ay);
-  v_store_lanes(z, az);
-  v_store_lanes(w, aw);
-  for (uint k = 0; k < MCL_LANES; ++k) mcl_st4(((float4)(ax[k], ay[k], az[k], aw[k])), p + k * stride);
+  MCL_STRIDE_OFFSETS(o, stride);
+  v_store4_at(p, o, x, y, z, w);
 }
 MCL_INLINE void v_gather4(MCL_GLOBAL const float* p, vuint idx, uint stride, vfloat* x, vfloat* y, vfloat* z,
                           vfloat* w) {
@@ -295,23 +345,14 @@ MCL_INLINE void v_gather4(MCL_GLOBAL const float* p, vuint idx, uint stride, vfl
     *w = (vfloat)(r.w);
     return;
   }
-  uint ai[MCL_LANES] MCL_LANE_ALIGN;
-  float ax[MCL_LANES] MCL_LANE_ALIGN, ay[MCL_LANES] MCL_LANE_ALIGN, az[MCL_LANES] MCL_LANE_ALIGN, aw[MCL_LANES] MCL_LANE_ALIGN;
-  v_store_lanes(idx, ai);
-  for (uint k = 0; k < MCL_LANES; ++k) {
-    float4 r = mcl_ld4(p + (ulong)ai[k] * stride);
-    ax[k] = r.x;
-    ay[k] = r.y;
-    az[k] = r.z;
-    aw[k] = r.w;
-  }
-  *x = v_loadf_lanes(ax);
-  *y = v_loadf_lanes(ay);
-  *z = v_loadf_lanes(az);
-  *w = v_loadf_lanes(aw);
+  MCL_INDEX_OFFSETS(o, idx, stride);
+  v_load4_at(p, o, x, y, z, w);
 }
 // The smallest lane value.
 MCL_INLINE uint v_min_lane(vuint v) {
+#ifdef MCL_HAS_REDUCE
+  return __builtin_reduce_min(v);
+#else
 #if MCL_LANES == 16
   uint4 b = min(min(v.lo.lo, v.lo.hi), min(v.hi.lo, v.hi.hi));
 #elif MCL_LANES == 8
@@ -321,12 +362,13 @@ MCL_INLINE uint v_min_lane(vuint v) {
 #endif
   uint2 c = min(b.lo, b.hi);
   return min(c.x, c.y);
+#endif
 }
 // v_gather4 for indices with few distinct values (emitters: a light has few triangles): one load
 // per distinct index, selected into the lanes that have it.
 MCL_INLINE void v_gather4_few(MCL_GLOBAL const float* p, vuint idx, uint stride, vfloat* x, vfloat* y, vfloat* z,
                               vfloat* w) {
-  vmask todo = idx == idx;  // every lane
+  vmask todo = (vmask)(-1);  // every lane
   vfloat rx = v_f(0.0f), ry = v_f(0.0f), rz = v_f(0.0f), rw = v_f(0.0f);
   for (;;) {
     const uint i0 = v_min_lane(vsel(todo, idx, v_u(0xffffffffu)));
@@ -345,14 +387,8 @@ MCL_INLINE void v_gather4_few(MCL_GLOBAL const float* p, vuint idx, uint stride,
   *w = rw;
 }
 MCL_INLINE void v_scatter4(MCL_GLOBAL float* p, vuint idx, uint stride, vfloat x, vfloat y, vfloat z, vfloat w) {
-  uint ai[MCL_LANES] MCL_LANE_ALIGN;
-  float ax[MCL_LANES] MCL_LANE_ALIGN, ay[MCL_LANES] MCL_LANE_ALIGN, az[MCL_LANES] MCL_LANE_ALIGN, aw[MCL_LANES] MCL_LANE_ALIGN;
-  v_store_lanes(idx, ai);
-  v_store_lanes(x, ax);
-  v_store_lanes(y, ay);
-  v_store_lanes(z, az);
-  v_store_lanes(w, aw);
-  for (uint k = 0; k < MCL_LANES; ++k) mcl_st4(((float4)(ax[k], ay[k], az[k], aw[k])), p + (ulong)ai[k] * stride);
+  MCL_INDEX_OFFSETS(o, idx, stride);
+  v_store4_at(p, o, x, y, z, w);
 }
 #endif
 
@@ -409,6 +445,8 @@ MCL_INLINE vfloat v_gather_float(MCL_GLOBAL const float* p, vuint idx, uint stri
 MCL_INLINE uint v_count(vmask m) {
 #if MCL_LANES == 1
   return m != 0 ? 1u : 0u;
+#elif defined(MCL_HAS_REDUCE)
+  return __builtin_reduce_add(v_mask01(m));
 #else
   uint b[MCL_LANES] MCL_LANE_ALIGN;
   v_store_lanes(v_mask01(m), b);
