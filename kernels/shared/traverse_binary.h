@@ -44,11 +44,12 @@ MCL_INLINE Hit binary_closest_hit(MCL_GLOBAL const BvhNode* nodes, MCL_GLOBAL co
     if (n->triCount > 0) {
       for (uint i = n->leftFirst, end = n->leftFirst + n->triCount; i < end; ++i) {
         float u = 0.0f, v = 0.0f;
-        float t = ray_triangle(org, dir, xyz(tris[i].v0), xyz(tris[i].e1), xyz(tris[i].e2), hit.t,
-                               &u, &v);
-        if (t < hit.t && alpha_hit_exists(alpha, tris, i, u, v)) {
+        float t = ray_triangle(org, dir, xyz(tris[i].v0), xyz(tris[i].e1), xyz(tris[i].e2),
+                               leaf_tmax(hit.t, hit.tri), &u, &v);
+        uint canon = as_uint(tris[i].e1.w);
+        if (hit_before(t, canon, hit.t, hit.tri) && alpha_hit_exists(alpha, tris, i, u, v)) {
           hit.t = t;
-          hit.tri = i;
+          hit.tri = canon;  // the canonical slot, whichever copy was hit
           hit.u = u;
           hit.v = v;
         }
@@ -68,10 +69,7 @@ MCL_INLINE Hit binary_closest_hit(MCL_GLOBAL const BvhNode* nodes, MCL_GLOBAL co
       }
     }
     if (!pop_entered(stack, stackT, &sp, hit.t, &ref)) {
-      if (hit.tri == MCL_NO_HIT)
-        hit.t = INFINITY;
-      else
-        hit.tri = as_uint(tris[hit.tri].e1.w);  // the canonical slot, whichever copy was hit
+      if (hit.tri == MCL_NO_HIT) hit.t = INFINITY;
       return hit;
     }
   }

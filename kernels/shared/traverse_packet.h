@@ -6,12 +6,11 @@
 // cull on pop), and leaf triangles are tested one by one for all rays of the popped entry
 // (ray_triangle4's operations per lane). Pure; W > 1 only (OpenCL).
 //
-// Same hit as wide_closest_hit per ray: both return the nearest t over the triangles a ray
-// intersects (the same box and triangle arithmetic per ray), and the scalar code keeps the first
-// triangle found at that t, which depends on its visit order. A lane whose nearest t is also the t
-// of a second triangle (another canonical slot or other barycentrics) is returned in the redo mask
-// for the caller to run through wide_closest_hit. Each lane picks its own near and far box rows,
-// so the rays need not share an octant (the callers decide when a packet pays: packet_ray_setup).
+// Same hit as wide_closest_hit per ray: both keep the first hit in hit_before's order (nearest t,
+// then the lowest canonical slot) over the triangles a ray intersects, with the same box and
+// triangle arithmetic per ray, so the order in which the packet meets them does not matter. Each
+// lane picks its own near and far box rows, so the rays need not share an octant (the callers
+// decide when a packet pays: packet_ray_setup).
 #pragma once
 #include "lanes.h"
 #include "traverse_wide.h"
@@ -127,28 +126,23 @@ MCL_INLINE uint packet_switch(MCL_CONSTANT const FrameParams* f) {
   return f->packetAllRays ? MCL_PACKET_SWITCH_SMALL : MCL_PACKET_SWITCH;
 }
 
-// Triangle j at t (u, v) for one ray whose nearest hit so far is *t (slot *tri, canonical slot
-// *canon): the packet's leaf rule for one lane (a nearer t replaces the hit and clears the redo
-// flag; an equal t of another triangle sets it).
+// Triangle j at t (u, v) for one ray whose hit so far is *t (canonical slot *canon): the packet's
+// leaf rule for one lane (hit_before).
 MCL_INLINE void lane_hit_update(MCL_GLOBAL const Triangle* tris, uint j, float tj, float uj, float vj, float* t,
-                                uint* tri, uint* canon, float* u, float* v, uint* redo) {
-  if (tj < *t) {
+                                uint* canon, float* u, float* v) {
+  uint c = as_uint(tris[j].e1.w);
+  if (hit_before(tj, c, *t, *canon)) {
     *t = tj;
-    *tri = j;
-    *canon = as_uint(tris[j].e1.w);
+    *canon = c;
     *u = uj;
     *v = vj;
-    *redo = 0u;
-  } else if (tj == *t && *tri != MCL_NO_HIT) {
-    if (as_uint(tris[j].e1.w) != *canon || uj != *u || vj != *v) *redo = 1u;
   }
 }
 
 // One ray's closest hit below node start (wide_closest_hit's box and triangle arithmetic, its
 // stack order), going on from the hit so far and updating it by lane_hit_update.
 MCL_INLINE void wide_subtree_closest(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris, float3 org,
-                                     float3 dir, uint start, float* t, uint* tri, uint* canon, float* u, float* v,
-                                     uint* redo) {
+                                     float3 dir, uint start, float* t, uint* canon, float* u, float* v) {
   RayBoxCtx ctx = make_ray_box_ctx(org, dir);
   uint stack[MCL_WIDE_STACK_SIZE];
   float stackT[MCL_WIDE_STACK_SIZE];
@@ -160,14 +154,13 @@ MCL_INLINE void wide_subtree_closest(MCL_GLOBAL const WideNode* nodes, MCL_GLOBA
       uint first = wide_leaf_first(ref), last = first + wide_leaf_count(ref) - 1u;
       for (uint b = first; b <= last; b += 4u) {
         float4 tu, tv;
-        // tmax INFINITY: a triangle at exactly the hit's t must be seen (a tie to redo).
-        float4 tt = ray_triangle4(tris, b, last, org, dir, INFINITY, &tu, &tv);
+        float4 tt = ray_triangle4(tris, b, last, org, dir, leaf_tmax(*t, *canon), &tu, &tv);
         uint i1 = b + 1u < last ? b + 1u : last, i2 = b + 2u < last ? b + 2u : last;
         uint i3 = b + 3u < last ? b + 3u : last;
-        lane_hit_update(tris, b, tt.x, tu.x, tv.x, t, tri, canon, u, v, redo);
-        lane_hit_update(tris, i1, tt.y, tu.y, tv.y, t, tri, canon, u, v, redo);
-        lane_hit_update(tris, i2, tt.z, tu.z, tv.z, t, tri, canon, u, v, redo);
-        lane_hit_update(tris, i3, tt.w, tu.w, tv.w, t, tri, canon, u, v, redo);
+        lane_hit_update(tris, b, tt.x, tu.x, tv.x, t, canon, u, v);
+        lane_hit_update(tris, i1, tt.y, tu.y, tv.y, t, canon, u, v);
+        lane_hit_update(tris, i2, tt.z, tu.z, tv.z, t, canon, u, v);
+        lane_hit_update(tris, i3, tt.w, tu.w, tv.w, t, canon, u, v);
       }
     } else {
       uint next = wide_visit(nodes, tris, ref, &ctx, *t, stack, stackT, &sp);
@@ -183,48 +176,42 @@ MCL_INLINE void wide_subtree_closest(MCL_GLOBAL const WideNode* nodes, MCL_GLOBA
 // The lanes set in bits traverse node ref's subtree one by one, their hit state in the packet's
 // vectors updated lane by lane.
 MCL_INLINE void packet_lanes_subtree(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris, vfloat3 o,
-                                     vfloat3 d, uint ref, uint bits, vfloat* ht, vuint* htri, vuint* hcanon,
-                                     vfloat* hu, vfloat* hv, vmask* redo) {
+                                     vfloat3 d, uint ref, uint bits, vfloat* ht, vuint* hcanon, vfloat* hu,
+                                     vfloat* hv) {
   float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN;
   float dx[MCL_LANES] MCL_LANE_ALIGN, dy[MCL_LANES] MCL_LANE_ALIGN, dz[MCL_LANES] MCL_LANE_ALIGN;
   float st[MCL_LANES] MCL_LANE_ALIGN, su[MCL_LANES] MCL_LANE_ALIGN, sv[MCL_LANES] MCL_LANE_ALIGN;
-  uint stri[MCL_LANES] MCL_LANE_ALIGN, scanon[MCL_LANES] MCL_LANE_ALIGN, sredo[MCL_LANES] MCL_LANE_ALIGN;
+  uint scanon[MCL_LANES] MCL_LANE_ALIGN;
   v3_store_lanes(o, ox, oy, oz);
   v3_store_lanes(d, dx, dy, dz);
   v_store_lanes(*ht, st);
   v_store_lanes(*hu, su);
   v_store_lanes(*hv, sv);
-  v_store_lanes(*htri, stri);
   v_store_lanes(*hcanon, scanon);
-  v_store_lanes(v_mask01(*redo), sredo);
   while (bits != 0u) {
     uint k = mcl_ctz(bits);
     bits &= bits - 1u;
     wide_subtree_closest(nodes, tris, make_float3(ox[k], oy[k], oz[k]), make_float3(dx[k], dy[k], dz[k]), ref,
-                         &st[k], &stri[k], &scanon[k], &su[k], &sv[k], &sredo[k]);
+                         &st[k], &scanon[k], &su[k], &sv[k]);
   }
   *ht = v_loadf_lanes(st);
   *hu = v_loadf_lanes(su);
   *hv = v_loadf_lanes(sv);
-  *htri = v_loadu_lanes(stri);
   *hcanon = v_loadu_lanes(scanon);
-  *redo = v_loadu_lanes(sredo) != 0u;
 }
 
 // The rays (origin o, inverse direction inv from safe_inverse, per lane) of the lanes set in act,
-// nx, ny, nz set where a lane's direction is negative (its near rows, as in make_ray_box_ctx). *ht holds each ray's tmax on entry; on return t, slot (BVH order, not yet
-// canonical: see the caller), u, v of the nearest hit of each active lane (tri MCL_NO_HIT and t
-// unchanged on a miss). An entry at most switchAt rays enter goes on ray by ray (packet_switch).
-// Returns the lanes to redo with the scalar traversal.
-MCL_INLINE vmask packet_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
-                                    vfloat3 o, vfloat3 d, vfloat3 inv, vmask act, vmask nx, vmask ny,
-                                    vmask nz, uint switchAt, vfloat* ht, vuint* htri, vuint* hcanon, vfloat* hu,
-                                    vfloat* hv) {
+// nx, ny, nz set where a lane's direction is negative (its near rows, as in make_ray_box_ctx).
+// *ht holds each ray's tmax on entry; on return t, canonical slot, u, v of each active lane's hit
+// (hcanon MCL_NO_HIT and t unchanged on a miss). An entry at most switchAt rays enter goes on ray
+// by ray (packet_switch).
+MCL_INLINE void packet_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
+                                   vfloat3 o, vfloat3 d, vfloat3 inv, vmask act, vmask nx, vmask ny,
+                                   vmask nz, uint switchAt, vfloat* ht, vuint* hcanon, vfloat* hu, vfloat* hv) {
   uint stackRef[MCL_WIDE_STACK_SIZE], stackBits[MCL_WIDE_STACK_SIZE];
   float stackKey[MCL_WIDE_STACK_SIZE];
   vfloat stackDist[MCL_WIDE_STACK_SIZE];  // each ray's entry distance (culls it on pop once a hit is nearer)
   uint sp = 0;
-  vmask redo = v_not(act) & v_not(act);  // none
   uint ref = 0u;
   vmask m = act;
   for (;;) {
@@ -235,18 +222,17 @@ MCL_INLINE vmask packet_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL
         vfloat u, v;
         vmask bad;
         vfloat t = v_ray_triangle(tris, j, o, d, &u, &v, &bad);
+        // hit_before per lane: nearer, or at the same t (a hit so far) a lower canonical slot.
         vmask hitc = m & v_not(bad) & (t > 0.0f);
         vmask nearer = hitc & (t < *ht);
-        vmask tie = hitc & (t == *ht) & (*htri != MCL_NO_HIT);
+        vmask tie = hitc & (t == *ht) & (*hcanon != MCL_NO_HIT);
         if (!v_any(nearer | tie)) continue;
         uint canon = as_uint(tris[j].e1.w);
-        tie = tie & ((*hcanon != canon) | (u != *hu) | (v != *hv));
-        redo = (redo & v_not(nearer)) | tie;
-        *ht = vsel(nearer, t, *ht);
-        *htri = vsel(nearer, v_u(j), *htri);
-        *hcanon = vsel(nearer, v_u(canon), *hcanon);
-        *hu = vsel(nearer, u, *hu);
-        *hv = vsel(nearer, v, *hv);
+        vmask take = nearer | (tie & (v_u(canon) < *hcanon));
+        *ht = vsel(take, t, *ht);
+        *hcanon = vsel(take, v_u(canon), *hcanon);
+        *hu = vsel(take, u, *hu);
+        *hv = vsel(take, v, *hv);
       }
     } else {
       MCL_GLOBAL const WideNode* n = &nodes[ref];
@@ -298,9 +284,9 @@ MCL_INLINE vmask packet_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL
         found = 1;
         break;
       }
-      packet_lanes_subtree(nodes, tris, o, d, stackRef[sp], bits, ht, htri, hcanon, hu, hv, &redo);
+      packet_lanes_subtree(nodes, tris, o, d, stackRef[sp], bits, ht, hcanon, hu, hv);
     }
-    if (!found) return redo;
+    if (!found) return;
   }
 }
 #endif

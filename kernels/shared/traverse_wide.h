@@ -289,19 +289,33 @@ MCL_ALWAYS_INLINE int wide_closest_step(MCL_GLOBAL const WideNode* nodes, MCL_GL
     uint first = wide_leaf_first(ref), last = first + wide_leaf_count(ref) - 1u;
     for (uint b = first; b <= last; b += 4u) {
       float4 u, v;
-      float4 t = ray_triangle4(tris, b, last, s->org, s->dir, s->hit.t, &u, &v);
-      if (alpha) t = alpha_filter4(alpha, tris, b, last, t, u, v, s->hit.t);
-      // The nearest lane, the lowest on a tie (as the triangles one by one would find it).
+      const float tmax = leaf_tmax(s->hit.t, s->hit.tri);
+      float4 t = ray_triangle4(tris, b, last, s->org, s->dir, tmax, &u, &v);
+      if (alpha) t = alpha_filter4(alpha, tris, b, last, t, u, v, tmax);
+      // The nearest lane (the lowest on an equal t); then, only when it is a hit at or before the
+      // hit so far (rare), hit_before's rule among the lanes at exactly that t (a repeated last
+      // triangle ties with itself) and against the hit so far.
+      uint i1 = b + 1u < last ? b + 1u : last, i2 = b + 2u < last ? b + 2u : last;
+      uint i3 = b + 3u < last ? b + 3u : last;
       float bt = t.x, bu = u.x, bv = v.x;
       uint bi = b;
-      if (t.y < bt) { bt = t.y; bu = u.y; bv = v.y; bi = b + 1u; }
-      if (t.z < bt) { bt = t.z; bu = u.z; bv = v.z; bi = b + 2u; }
-      if (t.w < bt) { bt = t.w; bu = u.w; bv = v.w; bi = b + 3u; }
-      if (bt < s->hit.t) {
-        s->hit.t = bt;
-        s->hit.tri = bi;
-        s->hit.u = bu;
-        s->hit.v = bv;
+      if (t.y < bt) { bt = t.y; bu = u.y; bv = v.y; bi = i1; }
+      if (t.z < bt) { bt = t.z; bu = u.z; bv = v.z; bi = i2; }
+      if (t.w < bt) { bt = t.w; bu = u.w; bv = v.w; bi = i3; }
+      if (bt <= s->hit.t && bt != INFINITY) {
+        uint bc = as_uint(tris[bi].e1.w), c;
+        c = as_uint(tris[i1].e1.w);
+        if (t.y == bt && c < bc) { bu = u.y; bv = v.y; bc = c; }
+        c = as_uint(tris[i2].e1.w);
+        if (t.z == bt && c < bc) { bu = u.z; bv = v.z; bc = c; }
+        c = as_uint(tris[i3].e1.w);
+        if (t.w == bt && c < bc) { bu = u.w; bv = v.w; bc = c; }
+        if (hit_before(bt, bc, s->hit.t, s->hit.tri)) {
+          s->hit.t = bt;
+          s->hit.tri = bc;
+          s->hit.u = bu;
+          s->hit.v = bv;
+        }
       }
     }
   } else {
@@ -315,11 +329,9 @@ MCL_ALWAYS_INLINE int wide_closest_step(MCL_GLOBAL const WideNode* nodes, MCL_GL
 }
 
 MCL_INLINE Hit wide_closest_end(MCL_GLOBAL const Triangle* tris, const WideClosest* s) {
-  Hit hit = s->hit;
-  if (hit.tri == MCL_NO_HIT)
-    hit.t = INFINITY;
-  else
-    hit.tri = as_uint(tris[hit.tri].e1.w);  // the canonical slot, whichever copy was hit
+  (void)tris;
+  Hit hit = s->hit;  // tri: already the canonical slot
+  if (hit.tri == MCL_NO_HIT) hit.t = INFINITY;
   return hit;
 }
 

@@ -2,8 +2,8 @@
 // consecutive rays, one per lane, through one packet traversal (shared/traverse_packet.h) when
 // they are coherent enough to share it: all finite and in one octant (camera rays; the incoherent
 // bounce rays of direct lighting mostly fail this and take the scalar traversal per ray). Scenes
-// with textures (alpha-tested cut-outs), a partial last packet, the binary BVH layout and the lanes
-// where the packet order could pick another triangle at an exactly equal t run the scalar body.
+// with textures (alpha-tested cut-outs), a partial last packet and the binary BVH layout run the
+// scalar body.
 #pragma once
 #include "intersect.h"
 #include "stage_lanes.h"
@@ -55,17 +55,10 @@ MCL_INLINE void stage_intersect_lanes(const intersect_args* a, uint first) {
     return;
   }
   vfloat ht = tmax, hu = v_f(0.0f), hv = v_f(0.0f);
-  vuint htri = v_u(MCL_NO_HIT), hcanon = v_u(MCL_NO_HIT);
-  vmask redo = packet_closest_hit(a->nodes, a->tris, v3_make(ox, oy, oz), v3_make(dx, dy, dz), inv, finite,
-                                  nx, ny, nz, packet_switch(a->frame), &ht, &htri, &hcanon, &hu, &hv);
-  vmask miss = htri == MCL_NO_HIT;
-  ht = vsel(miss, v_f(INFINITY), ht);
+  vuint hcanon = v_u(MCL_NO_HIT);
+  packet_closest_hit(a->nodes, a->tris, v3_make(ox, oy, oz), v3_make(dx, dy, dz), inv, finite, nx, ny, nz,
+                     packet_switch(a->frame), &ht, &hcanon, &hu, &hv);
+  ht = vsel(hcanon == MCL_NO_HIT, v_f(INFINITY), ht);
   v_store4((MCL_GLOBAL float*)(a->hits + first), ht, v_as_float(hcanon), hu, hv);
-  if (v_any(redo)) {
-    uint rd[MCL_LANES] MCL_LANE_ALIGN;
-    v_store_lanes(v_mask01(redo), rd);
-    for (uint k = 0; k < MCL_LANES; ++k)
-      if (rd[k]) stage_intersect(a, first + k);
-  }
 #endif
 }
