@@ -1,9 +1,11 @@
 // test_ray_tracer.cpp: host/render/ray_tracer: the intersect and intersect_shadow kernels on the
 // default OpenCL device against brute force over every triangle, on random soups and on a real
 // mesh (also in packets of rays from about one point, and with every packet through the packet
-// traversals), and the binary-layout kernels against the wide-layout kernels and the host traversal.
+// traversals), the binary-layout kernels against the wide-layout kernels and the host traversal,
+// and the hit every traversal keeps among triangles at exactly the same t.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <vector>
@@ -85,6 +87,57 @@ TEST_CASE("OpenCL packet traversals (closest and any hit) equal brute force on r
   // ... and rays in every direction with every packet through them, as renders of small trees run.
   checkAgainstBruteForce(randomSoup(300, 10), randomRays(50000, 11, glm::vec3(-6), glm::vec3(6)), 0.02, true);
   checkAgainstBruteForce(randomSoup(3000, 5), randomRays(50000, 6, glm::vec3(-6), glm::vec3(6)), 0.02, true);
+}
+
+// Every triangle three times over (exact copies, scattered through the input): a ray that hits
+// meets three triangles at exactly the same t, and every closest-hit traversal (single rays and
+// packets, both layouts, on the device and on the host) keeps the copy with the lowest canonical
+// slot, whatever order it visits them in.
+TEST_CASE("closest hit at an equal t: every traversal keeps the lowest canonical slot" * doctest::test_suite("opencl")) {
+  const std::size_t n = 300;
+  std::vector<SceneTriangle> base = randomSoup(int(n), 31), tris;
+  std::vector<std::size_t> baseOf;
+  for (std::size_t copy = 0; copy < 3; ++copy)
+    for (std::size_t i = 0; i < n; ++i) {
+      baseOf.push_back((i * 7 + copy * 101) % n);  // 7 is prime to 300: each copy a permutation
+      tris.push_back(base[baseOf.back()]);
+    }
+  Bvh bvh = buildBvh(tris);
+  // The lowest canonical slot among each base triangle's copies (a canonical slot: the first leaf
+  // slot of an input triangle).
+  std::vector<std::uint32_t> firstSlot(tris.size(), MCL_NO_HIT), lowest(n, MCL_NO_HIT);
+  for (std::size_t s = bvh.order.size(); s-- > 0;) firstSlot[bvh.order[s]] = std::uint32_t(s);
+  for (std::size_t j = 0; j < tris.size(); ++j) lowest[baseOf[j]] = std::min(lowest[baseOf[j]], firstSlot[j]);
+
+  const DeviceInfo device = selectDevice("");
+  StageProgram wideSession(device, BvhLayout::Wide), binarySession(device, BvhLayout::Binary);
+  RayTracer wide(wideSession, bvh), binary(binarySession, bvh);
+  BruteForce brute(tris);
+  for (int pass = 0; pass < 2; ++pass) {
+    // Runs of rays from about one point (packets in one octant), then rays in every direction with
+    // every packet through the packet traversal.
+    std::vector<Ray> rays = pass == 0 ? packetRays(20000, 32, glm::vec3(-6), glm::vec3(6))
+                                      : randomRays(20000, 33, glm::vec3(-6), glm::vec3(6));
+    wide.setPacketAllRays(pass == 1);
+    std::vector<Hit> hw = wide.closest(rays), hb = binary.closest(rays);
+    int hits = 0, bad = 0;
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+      const glm::vec3 o = xyz(rays[i].origin), d = xyz(rays[i].dir);
+      RefHit ref = brute.closest(o, d, rays[i].dir.w);
+      std::uint32_t expected = ref.tri == MCL_NO_HIT ? MCL_NO_HIT : lowest[baseOf[ref.tri]];
+      hits += ref.tri != MCL_NO_HIT;
+      Hit hostWide = intersectClosest(bvh, o, d, rays[i].dir.w, BvhLayout::Wide);
+      Hit hostBinary = intersectClosest(bvh, o, d, rays[i].dir.w, BvhLayout::Binary);
+      bool ok = hw[i].tri == expected && hb[i].tri == expected && hostWide.tri == expected &&
+                hostBinary.tri == expected;
+      if (!ok && bad++ < 5)
+        MESSAGE("pass " << pass << " ray " << i << ": expected slot " << expected << ", wide kernel " << hw[i].tri
+                        << ", binary kernel " << hb[i].tri << ", host wide " << hostWide.tri << ", host binary "
+                        << hostBinary.tri);
+    }
+    CHECK(bad == 0);
+    CHECK(hits > 300);  // the rays do meet the copies
+  }
 }
 
 TEST_CASE("OpenCL closest-hit and any-hit equal brute force on the Stanford bunny" * doctest::test_suite("opencl shared-scenes")) {
