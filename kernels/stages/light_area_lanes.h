@@ -41,6 +41,15 @@ typedef struct {
   vmask ok;
 } VEmitterSample;
 
+// Rows of the picked emitters per lane: from a small table (the lanes pick a few emitters) one
+// load per distinct index; from a large one (Sponza: 960 emitting triangles) the lanes mostly pick
+// different emitters, and one load per lane costs less than a pass per distinct index.
+MCL_INLINE void v_gather4_emitters(uint count, MCL_GLOBAL const float* p, vuint idx, uint stride, vfloat* x,
+                                   vfloat* y, vfloat* z, vfloat* w) {
+  if (count < MCL_EMITTER_GUIDE_MIN) v_gather4_few(p, idx, stride, x, y, z, w);
+  else v_gather4(p, idx, stride, x, y, z, w);
+}
+
 // pick: the emitter-selection number (u.x, rescaled by the caller when other kinds share it);
 // u2, u3: the point on the triangle (sample_triangle).
 MCL_INLINE VEmitterSample v_sample_emitter(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const Emitter* emitters,
@@ -51,13 +60,14 @@ MCL_INLINE VEmitterSample v_sample_emitter(MCL_CONSTANT const FrameParams* f, MC
   MCL_GLOBAL const float* mf = (MCL_GLOBAL const float*)materials;
   vuint em = v_pick_emitter(emitters, f->emitterCount, pick);
   vfloat emTri, emCdf, emArea, emPad;
-  v_gather4_few((MCL_GLOBAL const float*)emitters, em, 4, &emTri, &emCdf, &emArea, &emPad);
+  const uint n = f->emitterCount;
+  v_gather4_emitters(n, (MCL_GLOBAL const float*)emitters, em, 4, &emTri, &emCdf, &emArea, &emPad);
   vuint lt = v_as_uint(emTri);
   vfloat l0x, l0y, l0z, l0w, l1x, l1y, l1z, l1w, l2x, l2y, l2z, l2w, lnx, lny, lnz, lnw;
-  v_gather4_few(tf, lt, 12, &l0x, &l0y, &l0z, &l0w);
-  v_gather4_few(tf + 4, lt, 12, &l1x, &l1y, &l1z, &l1w);
-  v_gather4_few(tf + 8, lt, 12, &l2x, &l2y, &l2z, &l2w);
-  v_gather4_few((MCL_GLOBAL const float*)normals, lt, 4, &lnx, &lny, &lnz, &lnw);
+  v_gather4_emitters(n, tf, lt, 12, &l0x, &l0y, &l0z, &l0w);
+  v_gather4_emitters(n, tf + 4, lt, 12, &l1x, &l1y, &l1z, &l1w);
+  v_gather4_emitters(n, tf + 8, lt, 12, &l2x, &l2y, &l2z, &l2w);
+  v_gather4_emitters(n, (MCL_GLOBAL const float*)normals, lt, 4, &lnx, &lny, &lnz, &lnw);
   vfloat lex, ley, lez, lew;
   v_gather4_few(mf + 4, v_as_uint(l0w), MCL_MATERIAL_FLOATS, &lex, &ley, &lez, &lew);
   VEmitterSample s;
