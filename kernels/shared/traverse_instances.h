@@ -47,6 +47,8 @@ MCL_INLINE int pop_entered_above(const uint* stack, const float* stackT, uint* s
 
 // Closest hit along org + t*dir for t in (0, tmax) over every instance; hit.tri is the canonical
 // slot of the triangle in the shared array (its bottom level's), instance the Instance entered.
+// The leaves are wide_leaf_closest's, so the hit is the first in hit_before's order; two
+// placements of one triangle met at exactly the same t keep the one entered first.
 MCL_INLINE InstanceHit instances_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
                                              MCL_GLOBAL const Instance* inst, const AlphaScene* alpha,
                                              float3 org, float3 dir, float tmax) {
@@ -77,24 +79,7 @@ MCL_INLINE InstanceHit instances_closest_hit(MCL_GLOBAL const WideNode* nodes, M
       ref = inst[cur].root;
       continue;
     } else if (ref & MCL_WIDE_LEAF) {
-      uint first = wide_leaf_first(ref), last = first + wide_leaf_count(ref) - 1u;
-      for (uint b = first; b <= last; b += 4u) {
-        float4 u, v;
-        float4 t = ray_triangle4(tris, b, last, o, d, r.hit.t, &u, &v);
-        if (alpha) t = alpha_filter4(alpha, tris, b, last, t, u, v, r.hit.t);
-        float bt = t.x, bu = u.x, bv = v.x;
-        uint bi = b;
-        if (t.y < bt) { bt = t.y; bu = u.y; bv = v.y; bi = b + 1u; }
-        if (t.z < bt) { bt = t.z; bu = u.z; bv = v.z; bi = b + 2u; }
-        if (t.w < bt) { bt = t.w; bu = u.w; bv = v.w; bi = b + 3u; }
-        if (bt < r.hit.t) {
-          r.hit.t = bt;
-          r.hit.tri = bi;
-          r.hit.u = bu;
-          r.hit.v = bv;
-          r.instance = cur;
-        }
-      }
+      if (wide_leaf_closest(tris, alpha, ref, o, d, &r.hit)) r.instance = cur;
     } else {
       uint next = wide_visit(nodes, tris, ref, &ctx, r.hit.t, stack, stackT, &sp);
       if (next != MCL_WIDE_EMPTY) {
@@ -118,10 +103,7 @@ MCL_INLINE InstanceHit instances_closest_hit(MCL_GLOBAL const WideNode* nodes, M
       ctx = make_ray_box_ctx(org, dir);
     }
     if (!pop_entered(stack, stackT, &sp, r.hit.t, &ref)) {
-      if (r.hit.tri == MCL_NO_HIT)
-        r.hit.t = INFINITY;
-      else
-        r.hit.tri = as_uint(tris[r.hit.tri].e1.w);  // the canonical slot, whichever copy was hit
+      if (r.hit.tri == MCL_NO_HIT) r.hit.t = INFINITY;  // tri: already the canonical slot
       return r;
     }
   }

@@ -126,55 +126,8 @@ MCL_INLINE uint packet_switch(MCL_CONSTANT const FrameParams* f) {
   return f->packetAllRays ? MCL_PACKET_SWITCH_SMALL : MCL_PACKET_SWITCH;
 }
 
-// Triangle j at t (u, v) for one ray whose hit so far is *t (canonical slot *canon): the packet's
-// leaf rule for one lane (hit_before).
-MCL_INLINE void lane_hit_update(MCL_GLOBAL const Triangle* tris, uint j, float tj, float uj, float vj, float* t,
-                                uint* canon, float* u, float* v) {
-  uint c = as_uint(tris[j].e1.w);
-  if (hit_before(tj, c, *t, *canon)) {
-    *t = tj;
-    *canon = c;
-    *u = uj;
-    *v = vj;
-  }
-}
-
-// One ray's closest hit below node start (wide_closest_hit's box and triangle arithmetic, its
-// stack order), going on from the hit so far and updating it by lane_hit_update.
-MCL_INLINE void wide_subtree_closest(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris, float3 org,
-                                     float3 dir, uint start, float* t, uint* canon, float* u, float* v) {
-  RayBoxCtx ctx = make_ray_box_ctx(org, dir);
-  uint stack[MCL_WIDE_STACK_SIZE];
-  float stackT[MCL_WIDE_STACK_SIZE];
-  uint sp = 0;
-  uint ref = start;
-  for (;;) {
-    if (ref == MCL_WIDE_EMPTY) {
-    } else if (ref & MCL_WIDE_LEAF) {
-      uint first = wide_leaf_first(ref), last = first + wide_leaf_count(ref) - 1u;
-      for (uint b = first; b <= last; b += 4u) {
-        float4 tu, tv;
-        float4 tt = ray_triangle4(tris, b, last, org, dir, leaf_tmax(*t, *canon), &tu, &tv);
-        uint i1 = b + 1u < last ? b + 1u : last, i2 = b + 2u < last ? b + 2u : last;
-        uint i3 = b + 3u < last ? b + 3u : last;
-        lane_hit_update(tris, b, tt.x, tu.x, tv.x, t, canon, u, v);
-        lane_hit_update(tris, i1, tt.y, tu.y, tv.y, t, canon, u, v);
-        lane_hit_update(tris, i2, tt.z, tu.z, tv.z, t, canon, u, v);
-        lane_hit_update(tris, i3, tt.w, tu.w, tv.w, t, canon, u, v);
-      }
-    } else {
-      uint next = wide_visit(nodes, tris, ref, &ctx, *t, stack, stackT, &sp);
-      if (next != MCL_WIDE_EMPTY) {
-        ref = next;
-        continue;
-      }
-    }
-    if (!pop_entered(stack, stackT, &sp, *t, &ref)) return;
-  }
-}
-
-// The lanes set in bits traverse node ref's subtree one by one, their hit state in the packet's
-// vectors updated lane by lane.
+// The lanes set in bits traverse node ref's subtree one by one (the single-ray steps, the same box
+// and triangle arithmetic), their hit state in the packet's vectors updated lane by lane.
 MCL_INLINE void packet_lanes_subtree(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris, vfloat3 o,
                                      vfloat3 d, uint ref, uint bits, vfloat* ht, vuint* hcanon, vfloat* hu,
                                      vfloat* hv) {
@@ -191,8 +144,19 @@ MCL_INLINE void packet_lanes_subtree(MCL_GLOBAL const WideNode* nodes, MCL_GLOBA
   while (bits != 0u) {
     uint k = mcl_ctz(bits);
     bits &= bits - 1u;
-    wide_subtree_closest(nodes, tris, make_float3(ox[k], oy[k], oz[k]), make_float3(dx[k], dy[k], dz[k]), ref,
-                         &st[k], &scanon[k], &su[k], &sv[k]);
+    // wide_closest_hit's steps from node ref on, going on from the lane's hit so far.
+    WideClosest w;
+    wide_closest_begin(&w, make_float3(ox[k], oy[k], oz[k]), make_float3(dx[k], dy[k], dz[k]), st[k]);
+    w.hit.tri = scanon[k];
+    w.hit.u = su[k];
+    w.hit.v = sv[k];
+    w.ref = ref;
+    while (wide_closest_step(nodes, tris, 0, &w)) {
+    }
+    st[k] = w.hit.t;
+    scanon[k] = w.hit.tri;
+    su[k] = w.hit.u;
+    sv[k] = w.hit.v;
   }
   *ht = v_loadf_lanes(st);
   *hu = v_loadf_lanes(su);

@@ -253,6 +253,48 @@ MCL_INLINE float4 alpha_filter4(const AlphaScene* alpha, MCL_GLOBAL const Triang
   return t;
 }
 
+// Leaf ref's triangles against the ray, four at a time, updating *hit (t, canonical slot, u, v; tri
+// MCL_NO_HIT and t the ray's tmax while there is none) to the first hit in hit_before's order.
+// Returns 1 when it changed. Every single-ray closest hit of the wide layout takes its leaves here.
+MCL_ALWAYS_INLINE int wide_leaf_closest(MCL_GLOBAL const Triangle* tris, const AlphaScene* alpha, uint ref,
+                                        float3 org, float3 dir, Hit* hit) {
+  uint first = wide_leaf_first(ref), last = first + wide_leaf_count(ref) - 1u;
+  int changed = 0;
+  for (uint b = first; b <= last; b += 4u) {
+    float4 u, v;
+    const float tmax = leaf_tmax(hit->t, hit->tri);
+    float4 t = ray_triangle4(tris, b, last, org, dir, tmax, &u, &v);
+    if (alpha) t = alpha_filter4(alpha, tris, b, last, t, u, v, tmax);
+    // The nearest lane (the lowest on an equal t); then, only when it is a hit at or before the
+    // hit so far (rare), hit_before's rule among the lanes at exactly that t (a repeated last
+    // triangle ties with itself) and against the hit so far.
+    uint i1 = b + 1u < last ? b + 1u : last, i2 = b + 2u < last ? b + 2u : last;
+    uint i3 = b + 3u < last ? b + 3u : last;
+    float bt = t.x, bu = u.x, bv = v.x;
+    uint bi = b;
+    if (t.y < bt) { bt = t.y; bu = u.y; bv = v.y; bi = i1; }
+    if (t.z < bt) { bt = t.z; bu = u.z; bv = v.z; bi = i2; }
+    if (t.w < bt) { bt = t.w; bu = u.w; bv = v.w; bi = i3; }
+    if (bt <= hit->t && bt != INFINITY) {
+      uint bc = as_uint(tris[bi].e1.w), c;
+      c = as_uint(tris[i1].e1.w);
+      if (t.y == bt && c < bc) { bu = u.y; bv = v.y; bc = c; }
+      c = as_uint(tris[i2].e1.w);
+      if (t.z == bt && c < bc) { bu = u.z; bv = v.z; bc = c; }
+      c = as_uint(tris[i3].e1.w);
+      if (t.w == bt && c < bc) { bu = u.w; bv = v.w; bc = c; }
+      if (hit_before(bt, bc, hit->t, hit->tri)) {
+        hit->t = bt;
+        hit->tri = bc;
+        hit->u = bu;
+        hit->v = bv;
+        changed = 1;
+      }
+    }
+  }
+  return changed;
+}
+
 // One ray's closest-hit traversal (wide_closest_hit) as a state that advances one node or leaf
 // per wide_closest_step, so that two rays' traversals can interleave (wide_closest_hit2).
 typedef struct {
@@ -286,38 +328,7 @@ MCL_ALWAYS_INLINE int wide_closest_step(MCL_GLOBAL const WideNode* nodes, MCL_GL
     // An empty slot (leaf bit set) is no leaf: whatever the ray, traversal never reads
     // triangles through it (no finite ray enters its empty box; a non-finite ray starts here).
   } else if (ref & MCL_WIDE_LEAF) {
-    uint first = wide_leaf_first(ref), last = first + wide_leaf_count(ref) - 1u;
-    for (uint b = first; b <= last; b += 4u) {
-      float4 u, v;
-      const float tmax = leaf_tmax(s->hit.t, s->hit.tri);
-      float4 t = ray_triangle4(tris, b, last, s->org, s->dir, tmax, &u, &v);
-      if (alpha) t = alpha_filter4(alpha, tris, b, last, t, u, v, tmax);
-      // The nearest lane (the lowest on an equal t); then, only when it is a hit at or before the
-      // hit so far (rare), hit_before's rule among the lanes at exactly that t (a repeated last
-      // triangle ties with itself) and against the hit so far.
-      uint i1 = b + 1u < last ? b + 1u : last, i2 = b + 2u < last ? b + 2u : last;
-      uint i3 = b + 3u < last ? b + 3u : last;
-      float bt = t.x, bu = u.x, bv = v.x;
-      uint bi = b;
-      if (t.y < bt) { bt = t.y; bu = u.y; bv = v.y; bi = i1; }
-      if (t.z < bt) { bt = t.z; bu = u.z; bv = v.z; bi = i2; }
-      if (t.w < bt) { bt = t.w; bu = u.w; bv = v.w; bi = i3; }
-      if (bt <= s->hit.t && bt != INFINITY) {
-        uint bc = as_uint(tris[bi].e1.w), c;
-        c = as_uint(tris[i1].e1.w);
-        if (t.y == bt && c < bc) { bu = u.y; bv = v.y; bc = c; }
-        c = as_uint(tris[i2].e1.w);
-        if (t.z == bt && c < bc) { bu = u.z; bv = v.z; bc = c; }
-        c = as_uint(tris[i3].e1.w);
-        if (t.w == bt && c < bc) { bu = u.w; bv = v.w; bc = c; }
-        if (hit_before(bt, bc, s->hit.t, s->hit.tri)) {
-          s->hit.t = bt;
-          s->hit.tri = bc;
-          s->hit.u = bu;
-          s->hit.v = bv;
-        }
-      }
-    }
+    wide_leaf_closest(tris, alpha, ref, s->org, s->dir, &s->hit);
   } else {
     uint next = wide_visit(nodes, tris, ref, &s->ctx, s->hit.t, s->stack, s->stackT, &s->sp);
     if (next != MCL_WIDE_EMPTY) {
@@ -328,8 +339,7 @@ MCL_ALWAYS_INLINE int wide_closest_step(MCL_GLOBAL const WideNode* nodes, MCL_GL
   return pop_entered(s->stack, s->stackT, &s->sp, s->hit.t, &s->ref);
 }
 
-MCL_INLINE Hit wide_closest_end(MCL_GLOBAL const Triangle* tris, const WideClosest* s) {
-  (void)tris;
+MCL_INLINE Hit wide_closest_end(const WideClosest* s) {
   Hit hit = s->hit;  // tri: already the canonical slot
   if (hit.tri == MCL_NO_HIT) hit.t = INFINITY;
   return hit;
@@ -343,7 +353,7 @@ MCL_INLINE Hit wide_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL con
   wide_closest_begin(&s, org, dir, tmax);
   while (wide_closest_step(nodes, tris, alpha, &s)) {
   }
-  return wide_closest_end(tris, &s);
+  return wide_closest_end(&s);
 }
 
 // Two rays' closest hits (each wide_closest_hit's), their traversals interleaved a step at a
@@ -361,8 +371,8 @@ MCL_INLINE void wide_closest_hit2(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL c
   }
   while (live0) live0 = wide_closest_step(nodes, tris, alpha, &s0);
   while (live1) live1 = wide_closest_step(nodes, tris, alpha, &s1);
-  *hit0 = wide_closest_end(tris, &s0);
-  *hit1 = wide_closest_end(tris, &s1);
+  *hit0 = wide_closest_end(&s0);
+  *hit1 = wide_closest_end(&s1);
 }
 
 // One ray's any-hit traversal (wide_any_hit_from) as a state that advances one node or leaf per
