@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <random>
 
@@ -157,6 +158,46 @@ TEST_CASE("merge: layersFromFilm gives mean, count and the unbiased variance of 
   CHECK((*im.find("var.B"))[0] == 0.0f);
   CHECK((*im.find("R"))[1] == 0.0f);
   CHECK((*im.find("samples"))[1] == 0.0f);
+}
+
+TEST_CASE("merge: takeLayersFromFilm makes layersFromFilm's planes and frees the film's accumulators" * doctest::test_suite("cpu")) {
+  // A 3x2 film with two sub-sequences per pixel and AOV sums, random contents.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 4.0f);
+  Film film;
+  film.width = 3;
+  film.height = 2;
+  const std::size_t pixels = 6, k = 2;
+  auto rgb = [&] { return glm::vec4(u(rng), u(rng), u(rng), 0.0f); };
+  for (std::size_t p = 0; p < pixels; ++p) {
+    film.mean.push_back(rgb());
+    film.meanLo.push_back(rgb() * 1e-8f);
+    film.m2.push_back(rgb());
+    film.m2Lo.push_back(rgb() * 1e-8f);
+    film.count.push_back(p == 4 ? 0 : 2 + p);
+    for (std::size_t s = 0; s < k; ++s) {
+      glm::vec4 m = rgb();
+      const std::uint32_t n = p == 4 ? 0u : std::uint32_t(1 + s + p);
+      std::memcpy(&m.w, &n, 4);
+      film.split.push_back(m);
+    }
+    for (int a = 0; a < MCL_AOV_VECTORS; ++a) film.aovSum.push_back(rgb());
+  }
+  const Film copy = film;
+  const LayeredImage kept = layersFromFilm(copy);
+  const LayeredImage taken = takeLayersFromFilm(film);
+  REQUIRE(taken.channels == kept.channels);
+  CHECK(kept.find("split1.R") != nullptr);
+  for (std::size_t c = 0; c < kept.channels.size(); ++c) CHECK(taken.planes[c] == kept.planes[c]);
+  // Freed: mean, M2 and the sub-sequences; kept: size, counts and the AOV sums.
+  CHECK(film.mean.capacity() == 0);
+  CHECK(film.meanLo.capacity() == 0);
+  CHECK(film.m2.capacity() == 0);
+  CHECK(film.m2Lo.capacity() == 0);
+  CHECK(film.split.capacity() == 0);
+  CHECK(film.count == copy.count);
+  CHECK(film.aovSum == copy.aovSum);
+  CHECK(film.pixelCount() == pixels);
 }
 
 TEST_CASE("merge: combineStats equals the statistics of the combined sample set" * doctest::test_suite("cpu")) {

@@ -92,14 +92,17 @@ std::size_t nonFinitePixels(const LayeredImage& img) {
 // The EXR layers: R, G, B, samples, var.R/G/B, and the AOVs asked for, averaged over samples:
 // albedo.R/G/B, N.X/Y/Z (facing geometric normal), Z (distance along the camera ray),
 // emission.R/G/B (radiance emitted by what the camera ray sees directly).
-LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs) {
-  LayeredImage img = layersFromFilm(film);
-  if (aovs.empty()) return img;
+LayeredImage renderLayers(Film& film, const std::vector<std::string>& aovs) {
+  LayeredImage img = takeLayersFromFilm(film);
+  if (aovs.empty()) {
+    std::vector<glm::vec4>().swap(film.aovSum);
+    return img;
+  }
   auto wants = [&](const char* name) {
     return std::find(aovs.begin(), aovs.end(), name) != aovs.end() ||
            std::find(aovs.begin(), aovs.end(), "all") != aovs.end();
   };
-  const std::size_t pixels = film.mean.size();
+  const std::size_t pixels = film.pixelCount();
   auto plane = [&](int vec, int comp) {
     std::vector<float> out(pixels, 0.0f);
     for (std::size_t p = 0; p < pixels; ++p)
@@ -113,6 +116,7 @@ LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs
   if (wants("depth")) img.set("Z", plane(0, 3));
   if (wants("emission"))
     for (int c = 0; c < 3; ++c) img.set(std::string("emission.") + "RGB"[c], plane(2, c));
+  std::vector<glm::vec4>().swap(film.aovSum);
   return img;
 }
 

@@ -32,8 +32,9 @@ bool isExr(const std::string& path);
 std::size_t nonFinitePixels(const LayeredImage& img);
 // The EXR layers: R, G, B, samples, var.R/G/B, and the AOVs asked for, averaged over samples:
 // albedo.R/G/B, N.X/Y/Z (facing geometric normal), Z (distance along the camera ray),
-// emission.R/G/B (emission seen directly).
-LayeredImage renderLayers(const Film& film, const std::vector<std::string>& aovs);
+// emission.R/G/B (emission seen directly). The film's accumulators and AOV sums are freed as the
+// planes are made (takeLayersFromFilm): afterwards it holds its size and sample counts only.
+LayeredImage renderLayers(Film& film, const std::vector<std::string>& aovs);
 // Open Image Denoise on the film's mean less its emission AOV (added back to the output), with its
 // albedo and normal AOVs as guides (zero guides and nothing taken out when the film has none); a progress line on stderr unless quiet. Returns interleaved RGB and the filter's
 // seconds. Throws RuntimeError if the library fails.

@@ -136,11 +136,15 @@ std::string badPixelValue(const std::vector<const std::vector<float>*>& planes, 
   return "";
 }
 
-LayeredImage layersFromFilm(const Film& film) {
+namespace {
+
+// The planes from film; with release (the same film), each accumulator is freed once its planes
+// are made, so the film and the planes are never both whole.
+LayeredImage makeLayers(const Film& film, Film* release) {
   LayeredImage image;
   image.width = film.width;
   image.height = film.height;
-  const std::size_t count = film.mean.size();
+  const std::size_t count = film.pixelCount();
   std::vector<float> mean[3], var[3], samples(count, 0.0f);
   for (int c = 0; c < 3; ++c) {
     mean[c].assign(count, 0.0f);
@@ -158,6 +162,10 @@ LayeredImage layersFromFilm(const Film& film) {
   for (int c = 0; c < 3; ++c) image.set(channel::kMean[c], std::move(mean[c]));
   image.set(channel::kSamples, std::move(samples));
   for (int c = 0; c < 3; ++c) image.set(channel::kVariance[c], std::move(var[c]));
+  if (release) {
+    for (std::vector<glm::vec4>* v : {&release->mean, &release->meanLo, &release->m2, &release->m2Lo})
+      std::vector<glm::vec4>().swap(*v);
+  }
   // The sobol sampler's sub-sequences (Film::split): each one's mean and count, and the error of
   // the mean estimated from their spread; renders without them keep exactly the layers above.
   const std::size_t splits = film.splits();
@@ -182,8 +190,15 @@ LayeredImage layersFromFilm(const Film& film) {
       image.set(channel::kMeanError[c], std::move(err));
     }
   }
+  if (release) std::vector<glm::vec4>().swap(release->split);
   return image;
 }
+
+}  // namespace
+
+LayeredImage layersFromFilm(const Film& film) { return makeLayers(film, nullptr); }
+
+LayeredImage takeLayersFromFilm(Film& film) { return makeLayers(film, &film); }
 
 SampleStats combineStats(const std::vector<SampleStats>& parts) {
   SampleStats out;

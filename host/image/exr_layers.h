@@ -72,6 +72,9 @@ std::string badPixelValue(const std::vector<const std::vector<float>*>& planes, 
 // The renderer's AOV image from its film: R, G, B (mean), samples, var.R/G/B (unbiased s^2 of one
 // sample from the sums, clamped at 0). Add optional AOV planes with set() before writing.
 LayeredImage layersFromFilm(const Film& film);
+// The same, freeing the film's accumulators (mean, M2, sub-sequences) as their planes are made:
+// the film keeps its size, counts and AOV sums. What an output file needs at its peak memory.
+LayeredImage takeLayersFromFilm(Film& film);
 
 // --- merging -------------------------------------------------------------------------------
 // Statistics of one pixel channel: sample count, mean and unbiased variance of one sample.
