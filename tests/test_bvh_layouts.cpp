@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <string>
@@ -119,6 +120,23 @@ TEST_CASE("bvh layouts: wide and binary traversals give the same hits on the sha
     ++scenes;
   }
   CHECK(scenes > 0);
+}
+
+TEST_CASE("bvh layouts: wide node arrays start on 32 bytes, so no box row straddles a cache line" * doctest::test_suite("cpu")) {
+  // CPU devices read the host's node array in place (CL_MEM_USE_HOST_PTR): each 32-byte row of
+  // child bounds must lie in one cache line, which needs the array itself 32-byte aligned.
+  for (int n : {1, 300, 5000}) {
+    CAPTURE(n);
+    Bvh bvh = buildBvh(soup(n, 7u + uint(n), 1.0f));
+    const std::vector<WideNode>& wide = bvh.wideNodes();
+    REQUIRE(!wide.empty());
+    CHECK(reinterpret_cast<std::uintptr_t>(wide.data()) % 32 == 0);
+  }
+  // Arrays of many sizes, all alive at once (malloc's 16-byte alignment would leave some of them
+  // 16 bytes off).
+  std::vector<std::vector<WideNode>> arrays;
+  for (std::size_t k = 1; k <= 40; ++k) arrays.emplace_back(k * 37 + k % 3);
+  for (const std::vector<WideNode>& a : arrays) CHECK(reinterpret_cast<std::uintptr_t>(a.data()) % 32 == 0);
 }
 
 TEST_CASE("bvh layouts: names and the auto choice" * doctest::test_suite("cpu")) {

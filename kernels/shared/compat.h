@@ -21,6 +21,7 @@
 #define MCL_ATOMIC_INC(p) atomic_inc(p)
 #define MCL_STATIC_ASSERT(cond, msg)
 #define MCL_ALIGN16
+#define MCL_ALIGN32
 // A hint to fetch the cache line at p (no effect on results): set where the device build defines
 // MCL_PREFETCH_HINTS (host/cl/device_tuning.cpp: CPUs), else nothing.
 #ifdef MCL_PREFETCH_HINTS
@@ -68,6 +69,7 @@ using int2 = glm::ivec2;
 #define MCL_ALWAYS_INLINE inline
 #define MCL_STATIC_ASSERT(cond, msg) static_assert(cond, msg)
 #define MCL_ALIGN16 alignas(16)
+#define MCL_ALIGN32 alignas(32)
 inline float2 make_float2(float a, float b) { return float2(a, b); }
 inline float3 make_float3(float a, float b, float c) { return float3(a, b, c); }
 inline float4 make_float4(float a, float b, float c, float d) { return float4(a, b, c, d); }
