@@ -138,7 +138,7 @@ TEST_CASE("merge: channel names and values round-trip through the EXR writer and
   CHECK_THROWS_AS(readLayeredImage(dir.file("missing.exr")), InputError);
 }
 
-TEST_CASE("merge: layersFromFilm gives mean, count and the unbiased variance of one sample" * doctest::test_suite("cpu")) {
+TEST_CASE("merge: takeLayersFromFilm gives mean, count and the unbiased variance of one sample" * doctest::test_suite("cpu")) {
   Film film;
   film.width = 2;
   film.height = 1;
@@ -150,7 +150,7 @@ TEST_CASE("merge: layersFromFilm gives mean, count and the unbiased variance of 
   film.m2 = {glm::vec4(m2R, 4.0f * m2R, 0, 0), glm::vec4(0)};
   film.m2Lo = {glm::vec4(0), glm::vec4(0)};
   film.count = {3, 0};
-  LayeredImage im = layersFromFilm(film);
+  LayeredImage im = takeLayersFromFilm(film);
   CHECK((*im.find("R"))[0] == doctest::Approx(7.0 / 3.0));
   CHECK((*im.find("samples"))[0] == 3.0f);
   CHECK((*im.find("var.R"))[0] == doctest::Approx((21.0 - 49.0 / 3.0) / 2.0));
@@ -160,8 +160,8 @@ TEST_CASE("merge: layersFromFilm gives mean, count and the unbiased variance of 
   CHECK((*im.find("samples"))[1] == 0.0f);
 }
 
-TEST_CASE("merge: takeLayersFromFilm makes layersFromFilm's planes and frees the film's accumulators" * doctest::test_suite("cpu")) {
-  // A 3x2 film with two sub-sequences per pixel and AOV sums, random contents.
+TEST_CASE("merge: takeLayersFromFilm writes every plane from the film's accumulators, then frees them" * doctest::test_suite("cpu")) {
+  // A 3x2 film with two sub-sequences per pixel and AOV sums, random contents; pixel 4 has no samples.
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(0.0f, 4.0f);
   Film film;
@@ -184,11 +184,28 @@ TEST_CASE("merge: takeLayersFromFilm makes layersFromFilm's planes and frees the
     for (int a = 0; a < MCL_AOV_VECTORS; ++a) film.aovSum.push_back(rgb());
   }
   const Film copy = film;
-  const LayeredImage kept = layersFromFilm(copy);
-  const LayeredImage taken = takeLayersFromFilm(film);
-  REQUIRE(taken.channels == kept.channels);
-  CHECK(kept.find("split1.R") != nullptr);
-  for (std::size_t c = 0; c < kept.channels.size(); ++c) CHECK(taken.planes[c] == kept.planes[c]);
+  const LayeredImage im = takeLayersFromFilm(film);
+  auto plane = [&](const std::string& name) {
+    const std::vector<float>* pl = im.find(name);
+    REQUIRE(pl != nullptr);
+    REQUIRE(pl->size() == pixels);
+    return *pl;
+  };
+  // Each plane against the film's own accessors (a pixel without samples is 0 throughout).
+  for (std::size_t p = 0; p < pixels; ++p) {
+    CAPTURE(p);
+    const bool has = copy.count[p] > 0;
+    CHECK(plane("samples")[p] == float(copy.count[p]));
+    for (int c = 0; c < 3; ++c) {
+      CHECK(plane(channel::kMean[c])[p] == (has ? copy.mean[p][c] : 0.0f));
+      CHECK(plane(channel::kVariance[c])[p] == (has ? float(copy.variance(p, c)) : 0.0f));
+      const double e = has ? copy.meanVariance(p, c) : 0.0;
+      CHECK(plane(channel::kMeanError[c])[p] == (std::isfinite(e) ? float(e) : 0.0f));
+      for (std::size_t s = 0; s < k; ++s)
+        CHECK(plane(channel::splitPrefix(s) + "." + channel::kMean[c])[p] == copy.split[k * p + s][c]);
+    }
+    for (std::size_t s = 0; s < k; ++s) CHECK(plane(channel::splitPrefix(s) + ".n")[p] == float(copy.splitCount(p, s)));
+  }
   // Freed: mean, M2 and the sub-sequences; kept: size, counts and the AOV sums.
   CHECK(film.mean.capacity() == 0);
   CHECK(film.meanLo.capacity() == 0);

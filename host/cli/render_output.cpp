@@ -94,10 +94,6 @@ std::size_t nonFinitePixels(const LayeredImage& img) {
 // emission.R/G/B (radiance emitted by what the camera ray sees directly).
 LayeredImage renderLayers(Film& film, const std::vector<std::string>& aovs) {
   LayeredImage img = takeLayersFromFilm(film);
-  if (aovs.empty()) {
-    std::vector<glm::vec4>().swap(film.aovSum);
-    return img;
-  }
   auto wants = [&](const char* name) {
     return std::find(aovs.begin(), aovs.end(), name) != aovs.end() ||
            std::find(aovs.begin(), aovs.end(), "all") != aovs.end();

@@ -136,11 +136,9 @@ std::string badPixelValue(const std::vector<const std::vector<float>*>& planes, 
   return "";
 }
 
-namespace {
-
-// The planes from film; with release (the same film), each accumulator is freed once its planes
-// are made, so the film and the planes are never both whole.
-LayeredImage makeLayers(const Film& film, Film* release) {
+// Each accumulator is freed once its planes are made, so the film and the planes are never both
+// whole (an output file's peak memory).
+LayeredImage takeLayersFromFilm(Film& film) {
   LayeredImage image;
   image.width = film.width;
   image.height = film.height;
@@ -162,10 +160,8 @@ LayeredImage makeLayers(const Film& film, Film* release) {
   for (int c = 0; c < 3; ++c) image.set(channel::kMean[c], std::move(mean[c]));
   image.set(channel::kSamples, std::move(samples));
   for (int c = 0; c < 3; ++c) image.set(channel::kVariance[c], std::move(var[c]));
-  if (release) {
-    for (std::vector<glm::vec4>* v : {&release->mean, &release->meanLo, &release->m2, &release->m2Lo})
-      std::vector<glm::vec4>().swap(*v);
-  }
+  for (std::vector<glm::vec4>* v : {&film.mean, &film.meanLo, &film.m2, &film.m2Lo})
+    std::vector<glm::vec4>().swap(*v);
   // The sobol sampler's sub-sequences (Film::split): each one's mean and count, and the error of
   // the mean estimated from their spread; renders without them keep exactly the layers above.
   const std::size_t splits = film.splits();
@@ -190,15 +186,9 @@ LayeredImage makeLayers(const Film& film, Film* release) {
       image.set(channel::kMeanError[c], std::move(err));
     }
   }
-  if (release) std::vector<glm::vec4>().swap(release->split);
+  std::vector<glm::vec4>().swap(film.split);
   return image;
 }
-
-}  // namespace
-
-LayeredImage layersFromFilm(const Film& film) { return makeLayers(film, nullptr); }
-
-LayeredImage takeLayersFromFilm(Film& film) { return makeLayers(film, &film); }
 
 SampleStats combineStats(const std::vector<SampleStats>& parts) {
   SampleStats out;

@@ -70,10 +70,10 @@ LayeredImage readLayeredImage(const std::string& path, const ImageSizeCheck& che
 std::string badPixelValue(const std::vector<const std::vector<float>*>& planes, int width, float maxValue);
 
 // The renderer's AOV image from its film: R, G, B (mean), samples, var.R/G/B (unbiased s^2 of one
-// sample from the sums, clamped at 0). Add optional AOV planes with set() before writing.
-LayeredImage layersFromFilm(const Film& film);
-// The same, freeing the film's accumulators (mean, M2, sub-sequences) as their planes are made:
-// the film keeps its size, counts and AOV sums. What an output file needs at its peak memory.
+// sample from the sums, clamped at 0), and with sobol's sub-sequences split<k>.R/G/B/n and
+// err.R/G/B. Add optional AOV planes with set() before writing. The film's accumulators (mean, M2,
+// sub-sequences) are freed as their planes are made: afterwards it holds its size, sample counts
+// and AOV sums only (an output file's peak memory: the film and its planes are never both whole).
 LayeredImage takeLayersFromFilm(Film& film);
 
 // --- merging -------------------------------------------------------------------------------

@@ -42,11 +42,13 @@ typedef struct {
 } VEmitterSample;
 
 // Rows of the picked emitters per lane: from a small table (the lanes pick a few emitters) one
-// load per distinct index; from a large one (Sponza: 960 emitting triangles) the lanes mostly pick
-// different emitters, and one load per lane costs less than a pass per distinct index.
+// load per distinct index; from a table of at least MCL_EMITTER_LANE_ROWS_MIN (Sponza: 960
+// emitting triangles) the lanes mostly pick different emitters, and one load per lane costs less
+// than a pass per distinct index. Its own threshold, though today the guide table's value.
+#define MCL_EMITTER_LANE_ROWS_MIN 16u
 MCL_INLINE void v_gather4_emitters(uint count, MCL_GLOBAL const float* p, vuint idx, uint stride, vfloat* x,
                                    vfloat* y, vfloat* z, vfloat* w) {
-  if (count < MCL_EMITTER_GUIDE_MIN) v_gather4_few(p, idx, stride, x, y, z, w);
+  if (count < MCL_EMITTER_LANE_ROWS_MIN) v_gather4_few(p, idx, stride, x, y, z, w);
   else v_gather4(p, idx, stride, x, y, z, w);
 }
 
