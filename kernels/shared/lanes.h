@@ -151,6 +151,8 @@ typedef uint mcl_vuint_u __attribute__((ext_vector_type(MCL_LANES), aligned(4)))
 // A vfloat3's rows into three such arrays.
 #define v3_store_lanes(v, ax, ay, az) \
   (v_store_lanes((v).x, ax), v_store_lanes((v).y, ay), v_store_lanes((v).z, az))
+// The vfloat3 whose lanes are ax[k], ay[k], az[k] (arrays as for v_store_lanes).
+#define v3_load_lanes(ax, ay, az) v3_make(v_loadf_lanes(ax), v_loadf_lanes(ay), v_loadf_lanes(az))
 
 // Three lanes of floats: a float3 per lane, structure of arrays.
 typedef struct {

@@ -4,7 +4,8 @@
 // wide_entry per lane), the children that any ray enters are pushed with the mask of rays that
 // entered them and the nearest entry distance among those rays (the packet's order key and its
 // cull on pop), and leaf triangles are tested one by one for all rays of the popped entry
-// (ray_triangle4's operations per lane). Pure; W > 1 only (OpenCL).
+// (ray_triangle4's operations per lane); a cut-out's hits are kept only where its alpha test
+// passes (v_alpha_hits). Pure; W > 1 only (OpenCL).
 //
 // Same hit as wide_closest_hit per ray: both keep the first hit in hit_before's order (nearest t,
 // then the lowest canonical slot) over the triangles a ray intersects, with the same box and
@@ -92,6 +93,24 @@ MCL_INLINE vfloat v_ray_triangle(MCL_GLOBAL const Triangle* tris, uint j, vfloat
   return (te2.x * qx + te2.y * qy + te2.z * qz) * idet;
 }
 
+// The lanes of cand whose hit on triangle j (barycentrics u, v per lane) exists: all of them unless
+// alpha is set and j is a cut-out (MCL_ATTR_ALPHA), then those passing its alpha test
+// (alpha_hit_exists, lane by lane: the same test the single-ray leaves make, at the same u, v).
+MCL_INLINE vmask v_alpha_hits(const AlphaScene* alpha, MCL_GLOBAL const Triangle* tris, uint j, vmask cand,
+                              vfloat u, vfloat v) {
+  if (!alpha || !(as_uint(tris[j].e2.w) & MCL_ATTR_ALPHA)) return cand;
+  float su[MCL_LANES] MCL_LANE_ALIGN, sv[MCL_LANES] MCL_LANE_ALIGN;
+  v_store_lanes(u, su);
+  v_store_lanes(v, sv);
+  uint bits = v_bits(cand), gone = 0u;
+  while (bits != 0u) {
+    uint k = mcl_ctz(bits);
+    bits &= bits - 1u;
+    if (!alpha_hit_exists(alpha, tris, j, su[k], sv[k])) gone |= 1u << k;
+  }
+  return gone == 0u ? cand : cand & v_not(v_from_bits(gone));
+}
+
 // Lanes entering child c of node n (the slab test of wide_entry, per lane, each lane with its
 // own near and far rows: nx, ny, nz set where the direction is negative) among those in m, at or
 // before *tmax; their entry distances through tmin.
@@ -128,8 +147,8 @@ MCL_INLINE uint packet_switch(MCL_CONSTANT const FrameParams* f) {
 
 // The lanes set in bits traverse node ref's subtree one by one (the single-ray steps, the same box
 // and triangle arithmetic), their hit state in the packet's vectors updated lane by lane.
-MCL_INLINE void packet_lanes_subtree(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris, vfloat3 o,
-                                     vfloat3 d, uint ref, uint bits, vfloat* ht, vuint* hcanon, vfloat* hu,
+MCL_INLINE void packet_lanes_subtree(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
+                                     const AlphaScene* alpha, vfloat3 o, vfloat3 d, uint ref, uint bits, vfloat* ht, vuint* hcanon, vfloat* hu,
                                      vfloat* hv) {
   float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN;
   float dx[MCL_LANES] MCL_LANE_ALIGN, dy[MCL_LANES] MCL_LANE_ALIGN, dz[MCL_LANES] MCL_LANE_ALIGN;
@@ -151,7 +170,7 @@ MCL_INLINE void packet_lanes_subtree(MCL_GLOBAL const WideNode* nodes, MCL_GLOBA
     w.hit.u = su[k];
     w.hit.v = sv[k];
     w.ref = ref;
-    while (wide_closest_step(nodes, tris, 0, &w)) {
+    while (wide_closest_step(nodes, tris, alpha, &w)) {
     }
     st[k] = w.hit.t;
     scanon[k] = w.hit.tri;
@@ -167,10 +186,11 @@ MCL_INLINE void packet_lanes_subtree(MCL_GLOBAL const WideNode* nodes, MCL_GLOBA
 // The rays (origin o, inverse direction inv from safe_inverse, per lane) of the lanes set in act,
 // nx, ny, nz set where a lane's direction is negative (its near rows, as in make_ray_box_ctx).
 // *ht holds each ray's tmax on entry; on return t, canonical slot, u, v of each active lane's hit
-// (hcanon MCL_NO_HIT and t unchanged on a miss). An entry at most switchAt rays enter goes on ray
+// (hcanon MCL_NO_HIT and t unchanged on a miss); alpha (may be null) removes cut-out hits as the
+// single-ray traversals do. An entry at most switchAt rays enter goes on ray
 // by ray (packet_switch).
 MCL_INLINE void packet_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
-                                   vfloat3 o, vfloat3 d, vfloat3 inv, vmask act, vmask nx, vmask ny,
+                                   const AlphaScene* alpha, vfloat3 o, vfloat3 d, vfloat3 inv, vmask act, vmask nx, vmask ny,
                                    vmask nz, uint switchAt, vfloat* ht, vuint* hcanon, vfloat* hu, vfloat* hv) {
   uint stackRef[MCL_WIDE_STACK_SIZE], stackBits[MCL_WIDE_STACK_SIZE];
   float stackKey[MCL_WIDE_STACK_SIZE];
@@ -191,6 +211,9 @@ MCL_INLINE void packet_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL 
         vmask nearer = hitc & (t < *ht);
         vmask tie = hitc & (t == *ht) & (*hcanon != MCL_NO_HIT);
         if (!v_any(nearer | tie)) continue;
+        vmask exists = v_alpha_hits(alpha, tris, j, nearer | tie, u, v);
+        nearer = nearer & exists;
+        tie = tie & exists;
         uint canon = as_uint(tris[j].e1.w);
         vmask take = nearer | (tie & (v_u(canon) < *hcanon));
         *ht = vsel(take, t, *ht);
@@ -248,7 +271,7 @@ MCL_INLINE void packet_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL 
         found = 1;
         break;
       }
-      packet_lanes_subtree(nodes, tris, o, d, stackRef[sp], bits, ht, hcanon, hu, hv);
+      packet_lanes_subtree(nodes, tris, alpha, o, d, stackRef[sp], bits, ht, hcanon, hu, hv);
     }
     if (!found) return;
   }

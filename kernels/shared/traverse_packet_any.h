@@ -1,7 +1,8 @@
 // traverse_packet_any.h: any-hit (occlusion) traversal of the 8-wide BVH for a packet of W =
 // MCL_LANES rays with one shared stack: each visited node's child boxes are tested against every
 // ray of the packet not yet blocked (v_child_entry), the entered children pushed with the mask of
-// rays that entered them, and leaf triangles tested for all those rays at once (v_ray_triangle);
+// rays that entered them, and leaf triangles tested for all those rays at once (v_ray_triangle; a
+// cut-out blocks only the rays its alpha test passes for, v_alpha_hits);
 // a ray leaves the packet at its first hit, and the traversal ends when every ray is blocked or
 // the stack is empty. An entry that few unblocked rays still enter is traversed ray by ray
 // (wide_any_hit_from). Pure; W > 1 only (OpenCL).
@@ -15,9 +16,11 @@
 
 #if MCL_LANES > 1
 // The rays (origin o, direction d, inverse inv from packet_ray_setup with its nx, ny, nz) of the
-// lanes set in act, each with its own tmax: returns the lanes blocked by some triangle. An entry
+// lanes set in act, each with its own tmax: returns the lanes blocked by some triangle (alpha,
+// which may be null, as in the single-ray any-hit). An entry
 // at most switchAt unblocked rays enter goes on ray by ray (packet_switch).
-MCL_INLINE vmask packet_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris, vfloat3 o,
+MCL_INLINE vmask packet_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL const Triangle* tris,
+                                const AlphaScene* alpha, vfloat3 o,
                                 vfloat3 d, vfloat3 inv, vmask act, vmask nx, vmask ny, vmask nz, vfloat tmax,
                                 uint switchAt) {
   uint stackRef[MCL_WIDE_STACK_SIZE], stackBits[MCL_WIDE_STACK_SIZE];
@@ -41,6 +44,8 @@ MCL_INLINE vmask packet_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL con
         vmask bad;
         vfloat t = v_ray_triangle(tris, j, o, d, &u, &v, &bad);
         vmask hit = m & v_not(bad) & (t > 0.0f) & (t < tmax);
+        if (!v_any(hit)) continue;
+        hit = v_alpha_hits(alpha, tris, j, hit, u, v);
         blocked = blocked | hit;
         m = m & v_not(hit);
         if (!v_any(m)) break;
@@ -74,7 +79,7 @@ MCL_INLINE vmask packet_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL con
       while (bits != 0u) {
         uint k = mcl_ctz(bits);
         bits &= bits - 1u;
-        if (wide_any_hit_from(nodes, tris, 0, make_float3(ox[k], oy[k], oz[k]), make_float3(dx[k], dy[k], dz[k]),
+        if (wide_any_hit_from(nodes, tris, alpha, make_float3(ox[k], oy[k], oz[k]), make_float3(dx[k], dy[k], dz[k]),
                               tm[k], stackRef[sp]))
           open &= ~(1u << k);
       }

@@ -1,9 +1,9 @@
 // intersect_lanes.h: the packet form of intersect (intersect.h), the same hit per ray: W
 // consecutive rays, one per lane, through one packet traversal (shared/traverse_packet.h) when
 // they are coherent enough to share it: all finite and in one octant (camera rays; the incoherent
-// bounce rays of direct lighting mostly fail this and take the scalar traversal per ray). Scenes
-// with textures (alpha-tested cut-outs), a partial last packet and the binary BVH layout run the
-// scalar body.
+// bounce rays of direct lighting mostly fail this and take the scalar traversal per ray); cut-outs'
+// alpha test runs per lane inside it. Scenes with instances, a partial last packet and the binary
+// BVH layout run the scalar body.
 #pragma once
 #include "intersect.h"
 #include "stage_lanes.h"
@@ -56,7 +56,9 @@ MCL_INLINE void stage_intersect_lanes(const intersect_args* a, uint first) {
   }
   vfloat ht = tmax, hu = v_f(0.0f), hv = v_f(0.0f);
   vuint hcanon = v_u(MCL_NO_HIT);
-  packet_closest_hit(a->nodes, a->tris, v3_make(ox, oy, oz), v3_make(dx, dy, dz), inv, finite, nx, ny, nz,
+  AlphaScene as;
+  const AlphaScene* alpha = MCL_STAGE_ALPHA(a, as);
+  packet_closest_hit(a->nodes, a->tris, alpha, v3_make(ox, oy, oz), v3_make(dx, dy, dz), inv, finite, nx, ny, nz,
                      packet_switch(a->frame), &ht, &hcanon, &hu, &hv);
   ht = vsel(hcanon == MCL_NO_HIT, v_f(INFINITY), ht);
   v_store4((MCL_GLOBAL float*)(a->hits + first), ht, v_as_float(hcanon), hu, hv);

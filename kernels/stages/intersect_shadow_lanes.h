@@ -2,8 +2,8 @@
 // contributions: W consecutive occlusion queries, one per lane, through one packet any-hit
 // traversal (shared/traverse_packet_any.h) when they are coherent enough to share it: all finite
 // and in one octant (one pixel's samples towards a light), or any rays in a small tree
-// (FrameParams::packetAllRays). Scenes with textures (alpha-tested cut-outs) or instances, a
-// partial last packet and the binary BVH layout run the scalar body per query.
+// (FrameParams::packetAllRays); cut-outs' alpha test runs per lane inside it. Scenes with
+// instances, a partial last packet and the binary BVH layout run the scalar body per query.
 #pragma once
 #include "intersect_shadow.h"
 #include "stage_lanes.h"
@@ -57,7 +57,9 @@ MCL_INLINE void stage_intersect_shadow_lanes(const intersect_shadow_args* a, uin
     intersect_shadow_each(a, first, MCL_LANES);
     return;
   }
-  vmask blocked = packet_any_hit(a->nodes, a->tris, o, d, inv, finite, nx, ny, nz, tmax, packet_switch(a->frame));
+  AlphaScene as;
+  const AlphaScene* alpha = MCL_STAGE_ALPHA(a, as);
+  vmask blocked = packet_any_hit(a->nodes, a->tris, alpha, o, d, inv, finite, nx, ny, nz, tmax, packet_switch(a->frame));
   uint bits = v_bits(v_not(blocked));
   while (bits != 0u) {
     uint k = mcl_ctz(bits);

@@ -1,7 +1,9 @@
-// light_area_lanes.h: the area light kind (shared/light_area.h) per lane, for the packet stages:
-// reads the emitter table, the emitting triangles, their normals and materials; writes nothing.
+// light_area_lanes.h: the area light kind (shared/light_area.h) per lane, for the packet stages,
+// and every kind through the scalar sample_direct_light lane by lane: reads the emitter table, the
+// emitting triangles, their normals and materials (and the other lights' tables); writes nothing.
 // Each function does the scalar code's float operations in the same order (the same bits per lane).
 #pragma once
+#include "direct_light.h"
 #include "stage_lanes.h"
 
 // luminance (lights.h) per lane.
@@ -87,4 +89,45 @@ MCL_INLINE VEmitterSample v_sample_emitter(MCL_CONSTANT const FrameParams* f, MC
   vfloat pickP = emArea * v_luminance(s.le) / f->emitterPower;  // emitter_pick_probability
   s.pdf = vsel(s.ok, pickP / emArea * dist2 / cosLight, v_f(0.0f));  // area_to_solid_angle
   return s;
+}
+
+// sample_direct_light (stages/direct_light.h, every light kind) for the lanes set in m, lane by
+// lane through the scalar function; the other lanes get no sample (pdf 0).
+typedef struct {
+  vfloat3 wi, le;
+  vfloat pdf, tmax;
+  vmask delta;
+} VLightSample;
+
+MCL_INLINE VLightSample v_sample_direct_light_each(MCL_CONSTANT const FrameParams* f, LightScene lights, vmask m,
+                                                   vfloat3 origin, vfloat4 u) {
+  float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN;
+  float u0[MCL_LANES] MCL_LANE_ALIGN, u1[MCL_LANES] MCL_LANE_ALIGN, u2[MCL_LANES] MCL_LANE_ALIGN;
+  float u3[MCL_LANES] MCL_LANE_ALIGN;
+  float wx[MCL_LANES] MCL_LANE_ALIGN, wy[MCL_LANES] MCL_LANE_ALIGN, wz[MCL_LANES] MCL_LANE_ALIGN;
+  float lr[MCL_LANES] MCL_LANE_ALIGN, lg[MCL_LANES] MCL_LANE_ALIGN, lb[MCL_LANES] MCL_LANE_ALIGN;
+  float pp[MCL_LANES] MCL_LANE_ALIGN, tm[MCL_LANES] MCL_LANE_ALIGN;
+  uint set[MCL_LANES] MCL_LANE_ALIGN, dl[MCL_LANES] MCL_LANE_ALIGN;
+  v3_store_lanes(origin, ox, oy, oz);
+  v_store_lanes(u.x, u0);
+  v_store_lanes(u.y, u1);
+  v_store_lanes(u.z, u2);
+  v_store_lanes(u.w, u3);
+  v_store_lanes(v_mask01(m), set);
+  for (uint j = 0; j < MCL_LANES; ++j) {
+    LightSample ls = no_light_sample();
+    if (set[j]) ls = sample_direct_light(f, lights, make_float3(ox[j], oy[j], oz[j]), make_float4(u0[j], u1[j], u2[j], u3[j]));
+    wx[j] = ls.wi.x; wy[j] = ls.wi.y; wz[j] = ls.wi.z;
+    lr[j] = ls.le.x; lg[j] = ls.le.y; lb[j] = ls.le.z;
+    pp[j] = ls.pdf;
+    tm[j] = ls.tmax;
+    dl[j] = ls.delta != 0;
+  }
+  VLightSample r;
+  r.wi = v3_load_lanes(wx, wy, wz);
+  r.le = v3_load_lanes(lr, lg, lb);
+  r.pdf = v_loadf_lanes(pp);
+  r.tmax = v_loadf_lanes(tm);
+  r.delta = v_loadu_lanes(dl) != 0u;
+  return r;
 }

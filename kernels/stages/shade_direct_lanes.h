@@ -1,21 +1,23 @@
-// shade_direct_lanes.h: the packet form of shade_direct (shade_direct.h) for the common case, the
-// same bits per item: W consecutive camera hits, one per lane, on flat (no shading normals),
-// untextured, Lambertian surfaces of the diffuse kind (no glossy lobe) lit by emitter triangles: Le seen directly, the
-// light samples (an emitter by power, a uniform point on it; one atomic per packet per light
-// sample) and the BSDF ray (cosine lobe). Lanes that hit anything else (shading normals, an albedo
-// texture, a normal map, a glossy lobe) run the scalar body after the packet; so does every item of a packet
-// when an environment or a light record (point, spot, directional) lights the scene or an emission
-// is textured, and of a partial last packet.
+// shade_direct_lanes.h: the packet form of shade_direct (shade_direct.h), the same bits per item:
+// W consecutive camera hits, one per lane. The packet takes the misses (the background, or the
+// environment through the scalar light_eval per lane) and every hit on the diffuse kind without a
+// glossy lobe, textured or not, flat or smooth (lambert_lanes.h: the frame and albedo per lane,
+// from the scalar surface_at where the hit is not flat and untextured): Le seen directly, the light
+// samples (emitter triangles in lanes; with an environment or light records the scalar
+// sample_direct_light per lane; one atomic per packet per light sample) and the BSDF ray (the
+// cosine lobe, folded where smooth). Lanes that hit another kind run the scalar body after the
+// packet; so does every item of a packet in a scene with instances or textured emission, and of a
+// partial last packet.
 #pragma once
 #include "shade_direct.h"
+#include "lambert_lanes.h"
 #include "light_area_lanes.h"
 #include "stage_lanes.h"
 
 MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first) {
   if (first >= a->waveCount) return;
   MCL_CONSTANT const FrameParams* f = a->frame;
-  if (v_packet_partial(first, a->waveCount) || env_present(f) || f->lightCount > 0u || f->emissionTextured ||
-      f->instanceCount > 0u) {  // (instanced hits are shaded in their object space by the scalar body)
+  if (v_packet_partial(first, a->waveCount) || f->emissionTextured || f->instanceCount > 0u) {  // (instanced hits are shaded in their object space by the scalar body)
     for (uint k = 0; k < MCL_LANES && first + k < a->waveCount; ++k) stage_shade_direct(a, first + k);
     return;
   }
@@ -29,7 +31,8 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
   float4 bg = f->background;
   MCL_GLOBAL float* rad = (MCL_GLOBAL float*)(a->radiance + first);
   MCL_GLOBAL float* bounce = (MCL_GLOBAL float*)(a->bounce + first);
-  if (!v_any(hit)) {
+  const int env = env_present(f);
+  if (!v_any(hit) && !env) {
     v_store4(rad, v_f(bg.x), v_f(bg.y), v_f(bg.z), v_f(bg.w));
     v_store4_stride(bounce, 8, v_f(0.0f), v_f(0.0f), v_f(0.0f), v_f(0.0f));
     v_store4_stride(bounce + 4, 8, v_f(0.0f), v_f(0.0f), v_f(1.0f), v_f(-1.0f));
@@ -56,9 +59,10 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
   // bsdf_make's specProb, as the scalar body computes it: the packet takes the lanes where it is 0.
   vfloat ls = v_luminance(v3_make(ksx, ksy, ksz)), ld = v_luminance(v3_make(kdx, kdy, kdz));
   vfloat specProb = vsel(ls > 0.0f, ls / (ls + ld), v_f(0.0f));
-  vmask packet = hit & ((v_as_uint(e2w) & (MCL_ATTR_NORMALS | MCL_ATTR_COLOR)) == 0u) & (v_as_uint(kdw) == MCL_NO_TEXTURE) &
-                 (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse) &
-                 (v_as_uint(kmz) == 0u) & (v_as_uint(kmw) == 0u);  // no normal or bump map (Material::maps.z, w)
+  vmask packet = hit & (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse);
+  vmask flat = packet & ((v_as_uint(e2w) & (MCL_ATTR_NORMALS | MCL_ATTR_COLOR)) == 0u) &
+               (v_as_uint(kdw) == MCL_NO_TEXTURE) & (v_as_uint(kmz) == 0u) &
+               (v_as_uint(kmw) == 0u);  // no normal or bump map (Material::maps.z, w)
   vmask scalar = hit & v_not(packet);
   vfloat dx, dy, dz, dw;
   v_load4_stride((MCL_GLOBAL const float*)(a->rays + first) + 4, 8, &dx, &dy, &dz, &dw);
@@ -68,50 +72,92 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
   vmask front = v3_dot(n, dir) < 0.0f;
   vmask emits = front | (kew != 0.0f);
   vfloat3 le = v3_make(vsel(emits, kex, v_f(0.0f)), vsel(emits, key, v_f(0.0f)), vsel(emits, kez, v_f(0.0f)));
-  v_store4(rad, vsel(hit, le.x, v_f(bg.x)), vsel(hit, le.y, v_f(bg.y)), vsel(hit, le.z, v_f(bg.z)),
-           vsel(hit, v_f(0.0f), v_f(bg.w)));
+  LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf,
+                                       a->lightRecords, a->shading,
+                                       make_texture_tables(a->textures, a->textureLevels, a->texels));
+  vfloat3 miss = v3_make(v_f(bg.x), v_f(bg.y), v_f(bg.z));
+  vfloat missW = v_f(bg.w);
+  if (env) {  // the environment seen, lane by lane (light_eval)
+    float mx[MCL_LANES] MCL_LANE_ALIGN, my[MCL_LANES] MCL_LANE_ALIGN, mz[MCL_LANES] MCL_LANE_ALIGN;
+    uint gone[MCL_LANES] MCL_LANE_ALIGN;
+    v_store_lanes(v_mask01(v_not(hit)), gone);
+    for (uint j = 0; j < MCL_LANES; ++j) {
+      float3 m = make_float3(0.0f, 0.0f, 0.0f);
+      if (gone[j]) m = light_eval(f, lights, light_hit(a->hits[first + j], xyz(a->rays[first + j].dir)));
+      mx[j] = m.x;
+      my[j] = m.y;
+      mz[j] = m.z;
+    }
+    miss = v3_load_lanes(mx, my, mz);
+    missW = v_f(0.0f);
+  }
+  v_store4(rad, vsel(hit, le.x, miss.x), vsel(hit, le.y, miss.y), vsel(hit, le.z, miss.z), vsel(hit, v_f(0.0f), missW));
   vfloat3 bo = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f)), bd = v3_make(v_f(0.0f), v_f(0.0f), v_f(1.0f));
   vfloat btmax = v_f(-1.0f);
   if (v_any(packet)) {
-    vfloat3 p = v3_add(v3_add(v3_make(v0x, v0y, v0z), v3_scale(v3_make(e1x, e1y, e1z), hu)),
-                       v3_scale(v3_make(e2x, e2y, e2z), hv));
-    vfloat3 ng = v_orient_facing(n, dir);  // flat: ns = ng
-    vfloat3 kd = v3_make(kdx, kdy, kdz);
-    vfloat3 origin = v_offset_ray_origin(p, ng, f->offsetScale);
     vuint pixel, sample;
     v_item_pixel_sample(f, a->active, a->waveStart, first, &pixel, &sample);
+    LaneFrame sf;  // flat: surface_frame's operations on the triangle; the others from surface_at
+    sf.p = v3_add(v3_add(v3_make(v0x, v0y, v0z), v3_scale(v3_make(e1x, e1y, e1z), hu)),
+                  v3_scale(v3_make(e2x, e2y, e2z), hv));
+    sf.ng = v_orient_facing(n, dir);
+    sf.ns = sf.ng;
+    sf.kd = v3_make(kdx, kdy, kdz);
+    sf.smooth = v_not(hit | v_not(hit));  // none
+    vmask rich = packet & v_not(flat);
+    if (v_any(rich))
+      sf = lane_frame_rich(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->rays, first, rich, pixel, sample, 0u, sf);
+    vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
     const float nLight = (float)f->lightSamples;
-    const int useLight = f->directSampling != MCL_DIRECT_BRDF && f->emitterCount > 0;  // no environment here
+    const int otherLights = env || f->lightCount > 0u;  // sampled lane by lane (sample_direct_light)
+    const int useLight = f->directSampling != MCL_DIRECT_BRDF && (f->emitterCount > 0 || otherLights);
     const int useBrdf = f->directSampling != MCL_DIRECT_LIGHT;
     vuint slot0 = (first + v_lane_index()) * slots;
     for (uint k = 0; useLight && k < f->lightSamples; ++k) {
       vfloat4 u = v_sample_uniform4(f, pixel, sample, MCL_DIM_LIGHT + k);
-      // sample_direct_light without an environment (pEnv = 0): an emitter by power, a point on it.
-      VEmitterSample ls = v_sample_emitter(f, a->emitters, a->tris, a->normals, a->materials, u.x, u.y, u.z, origin);
-      vfloat3 wi = ls.wi, lle = ls.le;
-      vfloat dist = ls.dist, pdf = ls.pdf;
-      vmask ok = ls.ok;
-      wi = v3_select(ok, wi, v3_make(v_f(0.0f), v_f(0.0f), v_f(1.0f)));
-      lle = v3_select(ok, lle, v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f)));
-      vfloat tmax = vsel(ok, dist * (1.0f - 1e-4f), v_f(INFINITY));
-      vfloat cosSurf = v3_dot(ng, wi);  // frame_cosine, flat
-      vmask push = packet & (pdf > 0.0f) & (cosSurf > 0.0f);
-      vfloat weight = v_f(1.0f);
-      if (useBrdf) {  // power_heuristic(nLight, pdf, 1, bsdf_pdf): the Lambert pdf of wi
-        vfloat bsdfPdf = fmax(cosSurf, v_f(0.0f)) * MCL_INV_PI;
-        vfloat fw = nLight * pdf, gw = 1.0f * bsdfPdf;
-        weight = v_power_heuristic(fw, gw);
+      vfloat3 wi, lle;
+      vfloat pdf, tmax;
+      vmask delta;
+      if (!otherLights) {
+        // sample_direct_light with emitter triangles only: an emitter by power, a point on it.
+        VEmitterSample ls = v_sample_emitter(f, a->emitters, a->tris, a->normals, a->materials, u.x, u.y, u.z, origin);
+        vmask ok = ls.ok;
+        wi = v3_select(ok, ls.wi, v3_make(v_f(0.0f), v_f(0.0f), v_f(1.0f)));
+        lle = v3_select(ok, ls.le, v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f)));
+        tmax = vsel(ok, ls.dist * (1.0f - 1e-4f), v_f(INFINITY));
+        pdf = ls.pdf;
+        delta = v_not(ok | v_not(ok));  // none
+      } else {
+        VLightSample ls = v_sample_direct_light_each(f, lights, packet, origin, u);
+        wi = ls.wi;
+        lle = ls.le;
+        pdf = ls.pdf;
+        tmax = ls.tmax;
+        delta = ls.delta;
       }
-      vmask lit = cosSurf > 0.0f;  // bsdf_f: Kd / pi above the surface
-      vfloat3 fr = v3_make(vsel(lit, kd.x * MCL_INV_PI, v_f(0.0f)), vsel(lit, kd.y * MCL_INV_PI, v_f(0.0f)),
-                           vsel(lit, kd.z * MCL_INV_PI, v_f(0.0f)));
+      // frame_cosine; a Lambertian surface sees nothing below the geometric surface.
+      vmask above = v3_dot(sf.ng, wi) > 0.0f;
+      vfloat cn = v3_dot(sf.ns, wi);
+      vfloat cosSurf = vsel(sf.smooth, vsel(above, fmax(cn, v_f(0.0f)), v_f(0.0f)), cn);
+      vmask push = packet & (pdf > 0.0f) & above & (cosSurf > 0.0f);
+      if (!v_any(push)) continue;
+      vfloat weight = v_f(1.0f);
+      if (useBrdf) {  // power_heuristic(nLight, pdf, 1, bsdf_pdf), none for a delta light
+        vfloat fw = nLight * pdf, gw = 1.0f * v_lambert_pdf(sf, wi);
+        weight = vsel(delta, weight, v_power_heuristic(fw, gw));
+      }
+      vmask lit = above & (cn > 0.0f);  // bsdf_f: Kd / pi above the surface
+      vfloat3 fr = v3_make(vsel(lit, sf.kd.x * MCL_INV_PI, v_f(0.0f)), vsel(lit, sf.kd.y * MCL_INV_PI, v_f(0.0f)),
+                           vsel(lit, sf.kd.z * MCL_INV_PI, v_f(0.0f)));
       vfloat s = cosSurf * weight / (pdf * nLight);
       vfloat3 contrib = v3_scale(v3_mul(fr, lle), s);
       v_push_shadow_queries(a->queue, a->queueCount, push, origin, wi, tmax, contrib, slot0 + k);
     }
-    if (useBrdf) {  // Lambertian: the cosine lobe around ng
+    if (useBrdf) {  // Lambertian: the cosine lobe around ns, folded above ng where smooth
       vfloat4 u = v_sample_uniform4(f, pixel, sample, MCL_DIM_BRDF);
-      vfloat3 wi = v_to_world(v_sample_cosine_hemisphere(u.x, u.y), ng);
+      vfloat3 w = v_to_world(v_sample_cosine_hemisphere(u.x, u.y), sf.ns);
+      vfloat d = v3_dot(w, sf.ng);  // fold_above
+      vfloat3 wi = v3_select(sf.smooth & (d < 0.0f), v3_sub(w, v3_scale(sf.ng, 2.0f * d)), w);
       bo = v3_select(packet, origin, bo);
       bd = v3_select(packet, wi, bd);
       btmax = vsel(packet, v_f(INFINITY), btmax);

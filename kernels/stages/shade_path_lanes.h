@@ -1,18 +1,20 @@
-// shade_path_lanes.h: the packet form of shade_path (shade_path.h) for the common case, the same
-// bits per path: W consecutive queue entries k (rays[k], hits[k], path ids pathIds[k]; per-path
-// state gathered and scattered by id) whose rays escape (no environment: the background at bounce
-// 0, else nothing) or hit flat (no shading normals), untextured surfaces of the diffuse kind with
-// no glossy lobe, lit by emitter triangles: emission seen (MIS weighted after a BSDF bounce), the
-// next-event light samples (an emitter by power, a uniform point on it; one atomic per packet per
-// light sample), the cosine-lobe continuation with Russian roulette (one atomic per packet). Lanes
-// that hit anything else (a normal map too) run the scalar body after the packet; so does every entry of a packet
-// when an environment or a light record (point, spot, directional) lights the scene, there are
-// no emitters or an emission is textured, and of a partial last packet.
+// shade_path_lanes.h: the packet form of shade_path (shade_path.h), the same bits per path: W
+// consecutive queue entries k (rays[k], hits[k], path ids pathIds[k]; per-path state gathered and
+// scattered by id). The packet takes the misses (the background, or the environment through the
+// scalar path_miss per lane) and every hit on the diffuse kind without a glossy lobe, textured or
+// not, flat or smooth (lambert_lanes.h: the frame and albedo per lane, from the scalar surface_at
+// where the hit is not flat and untextured): emission seen (MIS weighted after a BSDF bounce), the
+// next-event light samples (emitter triangles in lanes; with an environment or light records the
+// scalar sample_direct_light per lane; one atomic per packet per light sample), the cosine-lobe
+// continuation with Russian roulette (one atomic per packet). Lanes that hit another kind run the
+// scalar body after the packet; so does every entry of a packet in a scene with instances or
+// textured emission, and of a partial last packet.
 // Queue order: the packet's shadow queries and continuations fill their entries in lane order, so
 // the next queue's order can differ from the scalar stage's; nothing depends on it (shadow queries
 // name their slot, path_gather adds slots in slot order, every random number comes from the
 // path's pixel and sample, and the path's state is indexed by its id).
 #pragma once
+#include "lambert_lanes.h"
 #include "light_area_lanes.h"
 #include "shade_path.h"
 #include "stage_lanes.h"
@@ -25,11 +27,15 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
   MCL_CONSTANT const FrameParams* f = a->frame;
   const uint bounce = a->pathBounce;
   const uint slots = f->shadowSlots;
-  if (v_packet_partial(first, count) || env_present(f) || f->emitterCount == 0u || f->lightCount > 0u ||
-      f->emissionTextured || f->instanceCount > 0u) {  // (instanced hits: the scalar body, object space)
+  if (v_packet_partial(first, count) || f->emissionTextured || f->instanceCount > 0u) {  // (instanced hits: object space)
     for (uint k = 0; k < MCL_LANES && first + k < count; ++k) stage_shade_path(a, first + k);
     return;
   }
+  // Lights other than emitter triangles: sampled and seen through the scalar light functions per lane.
+  const int otherLights = env_present(f) || f->lightCount > 0u;
+  LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf,
+                                       a->lightRecords, a->shading,
+                                       make_texture_tables(a->textures, a->textureLevels, a->texels));
   vuint id = bounce == 0 ? first + v_lane_index() : v_load_uints(a->pathIds + first);
   vfloat ht, htri, hu, hv;
   v_load4((MCL_GLOBAL const float*)(a->hits + first), &ht, &htri, &hu, &hv);
@@ -54,11 +60,13 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
   v_gather4(mf + 24, mat, MCL_MATERIAL_FLOATS, &kmx, &kmy, &kmz, &kmw);  // maps: z the normal map, w the bump map (+1)
   vfloat lks = v_luminance(v3_make(ksx, ksy, ksz)), lkd = v_luminance(v3_make(kdx, kdy, kdz));
   vfloat specProb = vsel(lks > 0.0f, lks / (lks + lkd), v_f(0.0f));  // bsdf_make's
-  vmask flat = hit & ((v_as_uint(e2w) & (MCL_ATTR_NORMALS | MCL_ATTR_COLOR)) == 0u) & (v_as_uint(kdw) == MCL_NO_TEXTURE) &
-               (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse) &
-               (v_as_uint(kmz) == 0u) & (v_as_uint(kmw) == 0u);  // no normal or bump map (Material::maps.z, w)
-  vmask scalar = hit & v_not(flat);
-  vmask mine = v_not(scalar);  // the packet's lanes: misses and the common hits
+  // The packet's hits: the diffuse kind without a glossy lobe; flat ones (no shading normals, vertex
+  // colours, albedo texture, normal or bump map) have their frame from the triangle alone.
+  vmask lamb = hit & (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse);
+  vmask flat = lamb & ((v_as_uint(e2w) & (MCL_ATTR_NORMALS | MCL_ATTR_COLOR)) == 0u) &
+               (v_as_uint(kdw) == MCL_NO_TEXTURE) & (v_as_uint(kmz) == 0u) & (v_as_uint(kmw) == 0u);
+  vmask scalar = hit & v_not(lamb);
+  vmask mine = v_not(scalar);  // the packet's lanes: misses and Lambertian hits
 
   uint ids[MCL_LANES] MCL_LANE_ALIGN, own[MCL_LANES] MCL_LANE_ALIGN;
   v_store_lanes(id, ids);
@@ -80,18 +88,36 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
   vfloat3 n = v3_make(nx, ny, nz);
   const float nLight = (float)f->lightSamples;
 
-  // Misses: path_miss without an environment.
-  float4 bg = bounce == 0 ? f->background : make_float4(0.0f, 0.0f, 0.0f, 0.0f);
-  vfloat3 Lmiss = v3_add(L, v3_mul(beta, v3_make(v_f(bg.x), v_f(bg.y), v_f(bg.z))));
+  // Misses: path_miss; without an environment the background at bounce 0, else nothing.
+  vfloat3 miss;
+  if (!env_present(f)) {
+    float4 bg = bounce == 0 ? f->background : make_float4(0.0f, 0.0f, 0.0f, 0.0f);
+    miss = v3_make(v_f(bg.x), v_f(bg.y), v_f(bg.z));
+  } else {
+    float mx[MCL_LANES] MCL_LANE_ALIGN, my[MCL_LANES] MCL_LANE_ALIGN, mz[MCL_LANES] MCL_LANE_ALIGN;
+    float lp[MCL_LANES] MCL_LANE_ALIGN;
+    uint gone[MCL_LANES] MCL_LANE_ALIGN;
+    v_store_lanes(lastPdf, lp);
+    v_store_lanes(v_mask01(v_not(hit)), gone);
+    for (uint j = 0; j < MCL_LANES; ++j) {
+      float3 m = make_float3(0.0f, 0.0f, 0.0f);
+      if (gone[j]) m = path_miss(f, lights, light_hit(a->hits[first + j], xyz(a->rays[first + j].dir)), bounce, lp[j]);
+      mx[j] = m.x;
+      my[j] = m.y;
+      mz[j] = m.z;
+    }
+    miss = v3_load_lanes(mx, my, mz);
+  }
+  vfloat3 Lmiss = v3_add(L, v3_mul(beta, miss));
   // Hits: Le seen (area_light_eval: emitted_toward), MIS weighted against light sampling after a
   // BSDF bounce (area_light_pdf).
   vmask front = v3_dot(n, dir) < 0.0f;
   vmask emits = front | (kew != 0.0f);
   vfloat3 le = v3_make(vsel(emits, kex, v_f(0.0f)), vsel(emits, key, v_f(0.0f)), vsel(emits, kez, v_f(0.0f)));
-  vmask glows = flat & ((le.x > 0.0f) | (le.y > 0.0f) | (le.z > 0.0f));
+  vmask glows = lamb & ((le.x > 0.0f) | (le.y > 0.0f) | (le.z > 0.0f));
   if (v_any(glows)) {
     vfloat weight = v_f(1.0f);
-    if (bounce > 0) {
+    if (bounce > 0 && f->emitterCount > 0u) {
       vfloat c = -v3_dot(n, dir);  // emitter_cosine
       vfloat cosLight = vsel(kew != 0.0f, fabs(c), c);
       vfloat pick = nw * v_luminance(v3_make(kex, key, kez)) / f->emitterPower;  // emitter_pick_probability
@@ -109,12 +135,7 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
       if (own[j]) a->radiance[ids[j]] = make_float4(lx[j], ly[j], lz[j], 0.0f);
   }
 
-  if ((f->maxDepth < 0 || (int)bounce + 1 < f->maxDepth) && v_any(flat)) {
-    vfloat3 p = v3_add(v3_add(v3_make(v0x, v0y, v0z), v3_scale(v3_make(e1x, e1y, e1z), hu)),
-                       v3_scale(v3_make(e2x, e2y, e2z), hv));
-    vfloat3 ng = v_orient_facing(n, dir);  // flat: ns = ng
-    vfloat3 kd = v3_make(kdx, kdy, kdz);
-    vfloat3 origin = v_offset_ray_origin(p, ng, f->offsetScale);
+  if ((f->maxDepth < 0 || (int)bounce + 1 < f->maxDepth) && v_any(lamb)) {
     vuint pixel, sample;
     if (!v_items_pixel_sample(f, a->active, a->waveStart, id, &pixel, &sample)) {
       uint px[MCL_LANES] MCL_LANE_ALIGN, sm[MCL_LANES] MCL_LANE_ALIGN;
@@ -125,39 +146,59 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
       pixel = v_loadu_lanes(px);
       sample = v_loadu_lanes(sm);
     }
+    LaneFrame sf;  // flat: surface_frame's operations on the triangle; the others from surface_at
+    sf.p = v3_add(v3_add(v3_make(v0x, v0y, v0z), v3_scale(v3_make(e1x, e1y, e1z), hu)),
+                  v3_scale(v3_make(e2x, e2y, e2z), hv));
+    sf.ng = v_orient_facing(n, dir);
+    sf.ns = sf.ng;
+    sf.kd = v3_make(kdx, kdy, kdz);
+    sf.smooth = v_not(hit | v_not(hit));  // none
+    vmask rich = lamb & v_not(flat);
+    if (v_any(rich))
+      sf = lane_frame_rich(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->rays, first, rich, pixel, sample, bounce, sf);
+    vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
+    const int nee = f->emitterCount > 0u || otherLights;  // a Lambertian lobe is never a delta lobe
     const float share = area_light_probability(f);  // sample_direct_light: the area kind's share
     vuint slot0 = id * slots;
-    for (uint s = 0; s < f->lightSamples; ++s) {
+    for (uint s = 0; nee && s < f->lightSamples; ++s) {
       vfloat4 u = v_sample_uniform4(f, pixel, sample, path_dim(bounce, 1u + s));
-      VEmitterSample ls = v_sample_emitter(f, a->emitters, a->tris, a->normals, a->materials, (u.x - 0.0f) / share,
-                                           u.y, u.z, origin);
-      vfloat3 wi = ls.wi, lle = ls.le;
-      vfloat dist = ls.dist;
-      vmask ok = ls.ok;
-      vfloat pdf = share * ls.pdf;
-      vfloat tmax = dist * (1.0f - 1e-4f);
-      // bsdf_eval (Lambert about ng): Kd cos / pi above the surface
-      vfloat cosI = v3_dot(ng, wi);
-      vmask lit = cosI > 0.0f;
-      vfloat cpi = cosI * MCL_INV_PI;
-      vfloat3 fcos = v3_make(vsel(lit, kd.x * cpi, v_f(0.0f)), vsel(lit, kd.y * cpi, v_f(0.0f)),
-                             vsel(lit, kd.z * cpi, v_f(0.0f)));
-      vmask push = flat & ok & (pdf > 0.0f) & (v_max_component(fcos) > 0.0f);
+      vfloat3 wi, lle;
+      vfloat pdf, tmax;
+      vmask delta;
+      if (!otherLights) {
+        VEmitterSample ls = v_sample_emitter(f, a->emitters, a->tris, a->normals, a->materials, (u.x - 0.0f) / share,
+                                             u.y, u.z, origin);
+        wi = ls.wi;
+        lle = ls.le;
+        pdf = vsel(ls.ok, share * ls.pdf, v_f(0.0f));
+        tmax = ls.dist * (1.0f - 1e-4f);
+        delta = v_not(ls.ok | v_not(ls.ok));  // none
+      } else {
+        VLightSample ls = v_sample_direct_light_each(f, lights, lamb, origin, u);
+        wi = ls.wi;
+        lle = ls.le;
+        pdf = ls.pdf;
+        tmax = ls.tmax;
+        delta = ls.delta;
+      }
+      vfloat3 fcos = v_lambert_eval(sf, wi);  // bsdf_eval
+      vmask push = lamb & (pdf > 0.0f) & (v_max_component(fcos) > 0.0f);
       if (!v_any(push)) continue;
-      vfloat bsdfPdf = fmax(cosI, v_f(0.0f)) * MCL_INV_PI;  // pdf_cosine_hemisphere
+      vfloat bsdfPdf = v_lambert_pdf(sf, wi);
       vfloat fw = nLight * pdf, gw = 1.0f * bsdfPdf;
-      vfloat weight = v_power_heuristic(fw, gw);
+      vfloat weight = vsel(delta, v_f(1.0f), v_power_heuristic(fw, gw));
       vfloat3 contrib = v3_scale(v3_mul(v3_mul(beta, fcos), lle), weight / (pdf * nLight));
+      // Lambertian lights are above the geometric surface: the query leaves from origin along wi.
       v_push_shadow_queries(a->queue, a->queueCount, push, origin, wi, tmax, contrib, slot0 + s);
     }
 
-    // bsdf_sample (Lambert about ng): the cosine lobe; weight Kd where the pdf is positive.
+    // bsdf_sample: the cosine lobe around the frame.
     vfloat4 u = v_sample_uniform4(f, pixel, sample, path_dim(bounce, 0u));  // z: roulette, w: lobe
-    vfloat3 dl = v_sample_cosine_hemisphere(u.x, u.y);
-    vfloat3 wi = v_to_world(dl, ng);
-    vfloat pdf = fmax(dl.z, v_f(0.0f)) * MCL_INV_PI;
-    vmask live = flat & (pdf > 0.0f);
-    vfloat3 next = v3_mul(beta, kd);
+    vfloat pdf;
+    vfloat3 bw;
+    vfloat3 wi = v_lambert_sample(sf, u.x, u.y, &pdf, &bw);
+    vmask live = lamb & (pdf > 0.0f);
+    vfloat3 next = v3_mul(beta, bw);
     if (bounce + 1u >= f->rrDepth) {  // Russian roulette (depth after this bounce: bounce + 1)
       vfloat q = fmin(v_f(0.95f), v_max_component(next));
       live = live & (u.z < q);

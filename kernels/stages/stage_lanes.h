@@ -25,9 +25,10 @@ MCL_INLINE vfloat v_power_heuristic(vfloat f, vfloat g) {
 // 1 when the packet starting at `first` does not lie wholly below count (W = 1: never).
 MCL_INLINE int v_packet_partial(uint first, uint count) { return MCL_LANES > 1 && count - first < MCL_LANES; }
 // 1 when the packet traversals cannot take the packet of rays at `first`: a partial packet, or a
-// scene whose traversals have no packet form (cut-outs' alpha test, a two-level BVH's instances).
+// scene whose traversals have no packet form (a two-level BVH's instances). Cut-outs do: their
+// alpha test runs per lane where a flagged triangle is hit (traverse_packet.h, v_alpha_hits).
 MCL_INLINE int packet_traversal_unfit(MCL_CONSTANT const FrameParams* f, uint first, uint count) {
-  return v_packet_partial(first, count) || f->textureCount > 0 || f->instanceCount > 0u;
+  return v_packet_partial(first, count) || f->instanceCount > 0u;
 }
 
 // The pixels and sample indices of wave items first .. first + W - 1 (item_pixel, item_sample):
