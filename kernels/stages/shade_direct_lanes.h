@@ -5,9 +5,10 @@
 // from the scalar surface_at where the hit is not flat and untextured): Le seen directly, the light
 // samples (emitter triangles in lanes; with an environment or light records the scalar
 // sample_direct_light per lane; one atomic per packet per light sample) and the BSDF ray (the
-// cosine lobe, folded where smooth). Lanes that hit another kind run the scalar body after the
-// packet; so does every item of a packet in a scene with instances or textured emission, and of a
-// partial last packet.
+// cosine lobe, folded where smooth). Hits on other kinds: their surface, light samples and BSDF
+// ray lane by lane through the scalar body's own functions (direct_light_sample, direct_bsdf_ray),
+// with the packet's random numbers. Every item of a packet in a scene with instances or textured
+// emission, and of a partial last packet, runs the scalar body.
 #pragma once
 #include "shade_direct.h"
 #include "lambert_lanes.h"
@@ -63,7 +64,7 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
   vmask flat = packet & ((v_as_uint(e2w) & (MCL_ATTR_NORMALS | MCL_ATTR_COLOR)) == 0u) &
                (v_as_uint(kdw) == MCL_NO_TEXTURE) & (v_as_uint(kmz) == 0u) &
                (v_as_uint(kmw) == 0u);  // no normal or bump map (Material::maps.z, w)
-  vmask scalar = hit & v_not(packet);
+  vmask other = hit & v_not(packet);  // other kinds: their surface and BSDF lane by lane
   vfloat dx, dy, dz, dw;
   v_load4_stride((MCL_GLOBAL const float*)(a->rays + first) + 4, 8, &dx, &dy, &dz, &dw);
   vfloat3 dir = v3_make(dx, dy, dz);
@@ -94,7 +95,10 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
   v_store4(rad, vsel(hit, le.x, miss.x), vsel(hit, le.y, miss.y), vsel(hit, le.z, miss.z), vsel(hit, v_f(0.0f), missW));
   vfloat3 bo = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f)), bd = v3_make(v_f(0.0f), v_f(0.0f), v_f(1.0f));
   vfloat btmax = v_f(-1.0f);
-  if (v_any(packet)) {
+  Ray otherRays[MCL_LANES];
+  uint others[MCL_LANES] MCL_LANE_ALIGN;
+  v_store_lanes(v_mask01(other), others);
+  if (v_any(hit)) {
     vuint pixel, sample;
     v_item_pixel_sample(f, a->active, a->waveStart, first, &pixel, &sample);
     LaneFrame sf;  // flat: surface_frame's operations on the triangle; the others from surface_at
@@ -113,8 +117,36 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
     const int useLight = f->directSampling != MCL_DIRECT_BRDF && (f->emitterCount > 0 || otherLights);
     const int useBrdf = f->directSampling != MCL_DIRECT_LIGHT;
     vuint slot0 = (first + v_lane_index()) * slots;
+    // The lanes of other kinds: surface_at and the offset origin, lane by lane.
+    Surface surfs[MCL_LANES];
+    float3 origins[MCL_LANES];
+    if (v_any(other)) {
+      uint px[MCL_LANES] MCL_LANE_ALIGN, sm[MCL_LANES] MCL_LANE_ALIGN;
+      v_store_lanes(pixel, px);
+      v_store_lanes(sample, sm);
+      for (uint j = 0; j < MCL_LANES; ++j) {
+        if (!others[j]) continue;
+        surfs[j] = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, a->hits[first + j], MCL_NO_INSTANCE,
+                              xyz(a->rays[first + j].dir), sample_ref(px[j], sm[j], 0u));
+        origins[j] = offset_ray_origin(surfs[j].frame.p, surfs[j].frame.ng, f->offsetScale);
+        others[j] = direct_takes_light_samples(f, surfs[j]) ? 2u : 1u;  // 2: light samples too
+      }
+    }
     for (uint k = 0; useLight && k < f->lightSamples; ++k) {
       vfloat4 u = v_sample_uniform4(f, pixel, sample, MCL_DIM_LIGHT + k);
+      if (v_any(other)) {
+        float u0[MCL_LANES] MCL_LANE_ALIGN, u1[MCL_LANES] MCL_LANE_ALIGN, u2[MCL_LANES] MCL_LANE_ALIGN;
+        float u3[MCL_LANES] MCL_LANE_ALIGN;
+        v_store_lanes(u.x, u0);
+        v_store_lanes(u.y, u1);
+        v_store_lanes(u.z, u2);
+        v_store_lanes(u.w, u3);
+        for (uint j = 0; j < MCL_LANES; ++j)
+          if (others[j] == 2u)
+            direct_light_sample(a, lights, surfs[j], -xyz(a->rays[first + j].dir), origins[j], useBrdf, first + j, k,
+                                make_float4(u0[j], u1[j], u2[j], u3[j]));
+      }
+      if (!v_any(packet)) continue;
       vfloat3 wi, lle;
       vfloat pdf, tmax;
       vmask delta;
@@ -155,6 +187,18 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
     }
     if (useBrdf) {  // Lambertian: the cosine lobe around ns, folded above ng where smooth
       vfloat4 u = v_sample_uniform4(f, pixel, sample, MCL_DIM_BRDF);
+      if (v_any(other)) {  // other kinds: direct_bsdf_ray, stored after the packet's rays
+        float u0[MCL_LANES] MCL_LANE_ALIGN, u1[MCL_LANES] MCL_LANE_ALIGN, u2[MCL_LANES] MCL_LANE_ALIGN;
+        float u3[MCL_LANES] MCL_LANE_ALIGN;
+        v_store_lanes(u.x, u0);
+        v_store_lanes(u.y, u1);
+        v_store_lanes(u.z, u2);
+        v_store_lanes(u.w, u3);
+        for (uint j = 0; j < MCL_LANES; ++j)
+          if (others[j])
+            otherRays[j] = direct_bsdf_ray(f, surfs[j], -xyz(a->rays[first + j].dir), origins[j],
+                                           make_float4(u0[j], u1[j], u2[j], u3[j]));
+      }
       vfloat3 w = v_to_world(v_sample_cosine_hemisphere(u.x, u.y), sf.ns);
       vfloat d = v3_dot(w, sf.ng);  // fold_above
       vfloat3 wi = v3_select(sf.smooth & (d < 0.0f), v3_sub(w, v3_scale(sf.ng, 2.0f * d)), w);
@@ -165,10 +209,7 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
   }
   v_store4_stride(bounce, 8, bo.x, bo.y, bo.z, v_f(0.0f));
   v_store4_stride(bounce + 4, 8, bd.x, bd.y, bd.z, btmax);
-  if (v_any(scalar)) {
-    uint s[MCL_LANES] MCL_LANE_ALIGN;
-    v_store_lanes(v_mask01(scalar), s);
-    for (uint k = 0; k < MCL_LANES; ++k)
-      if (s[k]) stage_shade_direct(a, first + k);
-  }
+  if (v_any(other) && f->directSampling != MCL_DIRECT_LIGHT)
+    for (uint j = 0; j < MCL_LANES; ++j)
+      if (others[j]) a->bounce[first + j] = otherRays[j];
 }

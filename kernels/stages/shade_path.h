@@ -32,6 +32,67 @@ MCL_INLINE uint path_dim(uint bounce, uint j) { return MCL_DIM_PATH + bounce * M
 
 MCL_INLINE float max_component(float3 c) { return fmax(c.x, fmax(c.y, c.z)); }
 
+// Light sample s (random numbers u) of next-event estimation at surface surf of path id (weight
+// beta; wo toward the viewer, origin the offset hit point): pushes its occlusion query to slot
+// id * shadowSlots + s, or nothing. The scalar body and the packet body's lanes of other kinds
+// take their light samples here.
+MCL_INLINE void path_light_sample(const shade_path_args* a, LightScene lights, Surface surf, float3 wo, float3 origin,
+                                  float3 beta, uint id, uint s, float4 u) {
+  MCL_CONSTANT const FrameParams* f = a->frame;
+  SurfaceFrame sf = surf.frame;
+  Bsdf bsdf = surf.bsdf;
+  float nLight = (float)f->lightSamples;
+  LightSample ls = sample_direct_light(f, lights, origin, u);
+  if (!(ls.pdf > 0.0f)) return;
+  float3 fcos = bsdf_eval(bsdf, sf, wo, ls.wi);
+  if (!(max_component(fcos) > 0.0f)) return;
+  // A delta light: no BSDF sample can reach it, so no MIS weight.
+  float weight = ls.delta ? 1.0f : power_heuristic(nLight, ls.pdf, 1.0f, bsdf_pdf(bsdf, sf, wo, ls.wi));
+  float3 c = beta * fcos * ls.le * (weight / (ls.pdf * nLight));
+  // A light below the geometric surface (seen through a transmitting lobe): the shadow ray
+  // leaves from the far side, as a transmitted BSDF ray does.
+  int above = above_surface(sf.ng, ls.wi);
+  float3 from = above ? origin : bsdf_ray_origin(sf.p, sf.ng, MCL_BSDF_TRANSMISSION, f->offsetScale);
+  float tmaxFrom;
+  float3 dirFrom = shadow_dir_from(origin, from, ls.wi, ls.tmax, &tmaxFrom);
+  push_shadow_query(a->queue, a->queueCount, from, above ? ls.wi : dirFrom, above ? ls.tmax : tmaxFrom, c,
+                    id * f->shadowSlots + s);
+}
+
+// The path's continuation from surface surf (random numbers u: x, y the BSDF sample, z roulette,
+// w the lobe): samples the BSDF, applies Russian roulette from depth rrDepth and pushes the ray onto
+// nextRays / nextPathIds with the new throughput, or ends the path.
+MCL_INLINE void path_continue(const shade_path_args* a, Surface surf, float3 wo, float3 origin, float3 beta, uint id,
+                              float4 u) {
+  MCL_CONSTANT const FrameParams* f = a->frame;
+  SurfaceFrame sf = surf.frame;
+  BsdfSample bs = bsdf_sample(surf.bsdf, sf, wo, u.x, u.y, u.w);
+  float3 wi = bs.wi;
+  float pdf = bs.pdf;
+  float3 next = beta * bs.weight;
+  if (!(pdf > 0.0f)) return;
+  if (a->pathBounce + 1u >= f->rrDepth) {  // Russian roulette (depth after this bounce: bounce + 1)
+    float q = fmin(0.95f, max_component(next));
+    if (!(u.z < q)) return;
+    next = next / q;
+  }
+  if (!(max_component(next) > 0.0f)) return;
+  a->throughput[id] = with_w(next, (bs.flags & MCL_BSDF_DELTA) ? 0.0f : pdf);  // w 0: no MIS at the next hit
+  uint slot = MCL_ATOMIC_INC(a->nextCount);
+  Ray r;
+  r.origin = with_w((bs.flags & MCL_BSDF_TRANSMISSION) ? bsdf_ray_origin(sf.p, sf.ng, bs.flags, f->offsetScale) : origin,
+                    0.0f);
+  r.dir = with_w(wi, INFINITY);
+  a->nextRays[slot] = r;
+  a->nextPathIds[slot] = id;
+}
+
+// Whether light samples are taken at surface surf: some light exists and the BSDF is not purely
+// delta (every light direction has f = 0 there; the emitter its BSDF sample finds counts fully).
+MCL_INLINE int path_takes_light_samples(MCL_CONSTANT const FrameParams* f, Surface surf) {
+  return (f->emitterCount > 0 || env_present(f) || f->lightCount > 0) && !bsdf_is_delta(surf.bsdf);
+}
+
 MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
   if (k >= *a->rayCount) return;
   MCL_CONSTANT const FrameParams* f = a->frame;
@@ -65,50 +126,9 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
   uint pixel = item_pixel(f, a->active, a->waveStart, id), sample = item_sample(f, a->waveStart, id);
   Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, hit_instance(f, a->hitInstances, k), dir,
                             sample_ref(pixel, sample, bounce));
-  SurfaceFrame sf = surf.frame;
-  Bsdf bsdf = surf.bsdf;
   float3 wo = dir * -1.0f;
-  float3 origin = offset_ray_origin(sf.p, sf.ng, f->offsetScale);
-  // No next-event estimation at a purely delta surface (every light direction has f = 0); the
-  // emitter its BSDF sample finds counts fully (throughput.w = 0 below: no MIS).
-  bool nee = (f->emitterCount > 0 || env_present(f) || f->lightCount > 0) && !bsdf_is_delta(bsdf);
-  for (uint s = 0; nee && s < f->lightSamples; ++s) {
-    float4 u = sample_uniform4(f, pixel, sample, path_dim(bounce, 1u + s));
-    LightSample ls = sample_direct_light(f, lights, origin, u);
-    if (!(ls.pdf > 0.0f)) continue;
-    float3 fcos = bsdf_eval(bsdf, sf, wo, ls.wi);
-    if (!(max_component(fcos) > 0.0f)) continue;
-    // A delta light: no BSDF sample can reach it, so no MIS weight.
-    float weight = ls.delta ? 1.0f : power_heuristic(nLight, ls.pdf, 1.0f, bsdf_pdf(bsdf, sf, wo, ls.wi));
-    float3 c = beta * fcos * ls.le * (weight / (ls.pdf * nLight));
-    // A light below the geometric surface (seen through a transmitting lobe): the shadow ray
-    // leaves from the far side, as a transmitted BSDF ray does.
-    int above = above_surface(sf.ng, ls.wi);
-    float3 from = above ? origin : bsdf_ray_origin(sf.p, sf.ng, MCL_BSDF_TRANSMISSION, f->offsetScale);
-    float tmaxFrom;
-    float3 dirFrom = shadow_dir_from(origin, from, ls.wi, ls.tmax, &tmaxFrom);
-    push_shadow_query(a->queue, a->queueCount, from, above ? ls.wi : dirFrom, above ? ls.tmax : tmaxFrom, c,
-                      id * f->shadowSlots + s);
-  }
-
-  float4 u = sample_uniform4(f, pixel, sample, path_dim(bounce, 0u));  // z: roulette, w: lobe
-  BsdfSample bs = bsdf_sample(bsdf, sf, wo, u.x, u.y, u.w);
-  float3 wi = bs.wi;
-  float pdf = bs.pdf;
-  float3 next = beta * bs.weight;
-  if (!(pdf > 0.0f)) return;
-  if (bounce + 1u >= f->rrDepth) {  // Russian roulette (depth after this bounce: bounce + 1)
-    float q = fmin(0.95f, max_component(next));
-    if (!(u.z < q)) return;
-    next = next / q;
-  }
-  if (!(max_component(next) > 0.0f)) return;
-  a->throughput[id] = with_w(next, (bs.flags & MCL_BSDF_DELTA) ? 0.0f : pdf);  // w 0: no MIS at the next hit
-  uint slot = MCL_ATOMIC_INC(a->nextCount);
-  Ray r;
-  r.origin = with_w((bs.flags & MCL_BSDF_TRANSMISSION) ? bsdf_ray_origin(sf.p, sf.ng, bs.flags, f->offsetScale) : origin,
-                    0.0f);
-  r.dir = with_w(wi, INFINITY);
-  a->nextRays[slot] = r;
-  a->nextPathIds[slot] = id;
+  float3 origin = offset_ray_origin(surf.frame.p, surf.frame.ng, f->offsetScale);
+  for (uint s = 0; path_takes_light_samples(f, surf) && s < f->lightSamples; ++s)
+    path_light_sample(a, lights, surf, wo, origin, beta, id, s, sample_uniform4(f, pixel, sample, path_dim(bounce, 1u + s)));
+  path_continue(a, surf, wo, origin, beta, id, sample_uniform4(f, pixel, sample, path_dim(bounce, 0u)));  // z: roulette, w: lobe
 }

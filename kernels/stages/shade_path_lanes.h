@@ -1,14 +1,16 @@
 // shade_path_lanes.h: the packet form of shade_path (shade_path.h), the same bits per path: W
 // consecutive queue entries k (rays[k], hits[k], path ids pathIds[k]; per-path state gathered and
-// scattered by id). The packet takes the misses (the background, or the environment through the
-// scalar path_miss per lane) and every hit on the diffuse kind without a glossy lobe, textured or
-// not, flat or smooth (lambert_lanes.h: the frame and albedo per lane, from the scalar surface_at
-// where the hit is not flat and untextured): emission seen (MIS weighted after a BSDF bounce), the
-// next-event light samples (emitter triangles in lanes; with an environment or light records the
-// scalar sample_direct_light per lane; one atomic per packet per light sample), the cosine-lobe
-// continuation with Russian roulette (one atomic per packet). Lanes that hit another kind run the
-// scalar body after the packet; so does every entry of a packet in a scene with instances or
-// textured emission, and of a partial last packet.
+// scattered by id), every lane in the packet. Misses: the background, or the environment through
+// the scalar path_miss per lane. Emission seen (MIS weighted after a BSDF bounce) for every hit.
+// Hits on the diffuse kind without a glossy lobe, textured or not, flat or smooth, in lanes
+// (lambert_lanes.h: the frame and albedo per lane, from the scalar surface_at where the hit is not
+// flat and untextured): the next-event light samples (emitter triangles in lanes; with an
+// environment or light records the scalar sample_direct_light per lane; one atomic per packet per
+// light sample) and the cosine-lobe continuation with Russian roulette (one atomic per packet).
+// Hits on other kinds: their surface, light samples and continuation lane by lane through the
+// scalar body's own functions (path_light_sample, path_continue), with the packet's random numbers.
+// Every entry of a packet in a scene with instances or textured emission, and of a partial last
+// packet, runs the scalar body.
 // Queue order: the packet's shadow queries and continuations fill their entries in lane order, so
 // the next queue's order can differ from the scalar stage's; nothing depends on it (shadow queries
 // name their slot, path_gather adds slots in slot order, every random number comes from the
@@ -65,8 +67,8 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
   vmask lamb = hit & (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse);
   vmask flat = lamb & ((v_as_uint(e2w) & (MCL_ATTR_NORMALS | MCL_ATTR_COLOR)) == 0u) &
                (v_as_uint(kdw) == MCL_NO_TEXTURE) & (v_as_uint(kmz) == 0u) & (v_as_uint(kmw) == 0u);
-  vmask scalar = hit & v_not(lamb);
-  vmask mine = v_not(scalar);  // the packet's lanes: misses and Lambertian hits
+  vmask other = hit & v_not(lamb);  // other kinds: their surface and BSDF lane by lane (path_light_sample, path_continue)
+  vmask mine = hit | v_not(hit);    // every lane
 
   uint ids[MCL_LANES] MCL_LANE_ALIGN, own[MCL_LANES] MCL_LANE_ALIGN;
   v_store_lanes(id, ids);
@@ -114,7 +116,7 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
   vmask front = v3_dot(n, dir) < 0.0f;
   vmask emits = front | (kew != 0.0f);
   vfloat3 le = v3_make(vsel(emits, kex, v_f(0.0f)), vsel(emits, key, v_f(0.0f)), vsel(emits, kez, v_f(0.0f)));
-  vmask glows = lamb & ((le.x > 0.0f) | (le.y > 0.0f) | (le.z > 0.0f));
+  vmask glows = hit & ((le.x > 0.0f) | (le.y > 0.0f) | (le.z > 0.0f));
   if (v_any(glows)) {
     vfloat weight = v_f(1.0f);
     if (bounce > 0 && f->emitterCount > 0u) {
@@ -135,7 +137,7 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
       if (own[j]) a->radiance[ids[j]] = make_float4(lx[j], ly[j], lz[j], 0.0f);
   }
 
-  if ((f->maxDepth < 0 || (int)bounce + 1 < f->maxDepth) && v_any(lamb)) {
+  if ((f->maxDepth < 0 || (int)bounce + 1 < f->maxDepth) && v_any(hit)) {
     vuint pixel, sample;
     if (!v_items_pixel_sample(f, a->active, a->waveStart, id, &pixel, &sample)) {
       uint px[MCL_LANES] MCL_LANE_ALIGN, sm[MCL_LANES] MCL_LANE_ALIGN;
@@ -157,11 +159,43 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
     if (v_any(rich))
       sf = lane_frame_rich(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->rays, first, rich, pixel, sample, bounce, sf);
     vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
+    // The lanes of other kinds: surface_at, the offset origin and the path weight, lane by lane.
+    Surface surfs[MCL_LANES];
+    float3 origins[MCL_LANES], betas[MCL_LANES];
+    uint others[MCL_LANES] MCL_LANE_ALIGN, px[MCL_LANES] MCL_LANE_ALIGN, sm[MCL_LANES] MCL_LANE_ALIGN;
+    v_store_lanes(v_mask01(other), others);
+    if (v_any(other)) {
+      float bx[MCL_LANES] MCL_LANE_ALIGN, by[MCL_LANES] MCL_LANE_ALIGN, bz[MCL_LANES] MCL_LANE_ALIGN;
+      v3_store_lanes(beta, bx, by, bz);
+      v_store_lanes(pixel, px);
+      v_store_lanes(sample, sm);
+      for (uint j = 0; j < MCL_LANES; ++j) {
+        if (!others[j]) continue;
+        surfs[j] = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, a->hits[first + j], MCL_NO_INSTANCE,
+                              xyz(a->rays[first + j].dir), sample_ref(px[j], sm[j], bounce));
+        origins[j] = offset_ray_origin(surfs[j].frame.p, surfs[j].frame.ng, f->offsetScale);
+        betas[j] = make_float3(bx[j], by[j], bz[j]);
+        others[j] = path_takes_light_samples(f, surfs[j]) ? 2u : 1u;  // 2: light samples too
+      }
+    }
     const int nee = f->emitterCount > 0u || otherLights;  // a Lambertian lobe is never a delta lobe
     const float share = area_light_probability(f);  // sample_direct_light: the area kind's share
     vuint slot0 = id * slots;
     for (uint s = 0; nee && s < f->lightSamples; ++s) {
       vfloat4 u = v_sample_uniform4(f, pixel, sample, path_dim(bounce, 1u + s));
+      if (v_any(other)) {
+        float u0[MCL_LANES] MCL_LANE_ALIGN, u1[MCL_LANES] MCL_LANE_ALIGN, u2[MCL_LANES] MCL_LANE_ALIGN;
+        float u3[MCL_LANES] MCL_LANE_ALIGN;
+        v_store_lanes(u.x, u0);
+        v_store_lanes(u.y, u1);
+        v_store_lanes(u.z, u2);
+        v_store_lanes(u.w, u3);
+        for (uint j = 0; j < MCL_LANES; ++j)
+          if (others[j] == 2u)
+            path_light_sample(a, lights, surfs[j], xyz(a->rays[first + j].dir) * -1.0f, origins[j], betas[j], ids[j], s,
+                              make_float4(u0[j], u1[j], u2[j], u3[j]));
+      }
+      if (!v_any(lamb)) continue;
       vfloat3 wi, lle;
       vfloat pdf, tmax;
       vmask delta;
@@ -192,8 +226,20 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
       v_push_shadow_queries(a->queue, a->queueCount, push, origin, wi, tmax, contrib, slot0 + s);
     }
 
-    // bsdf_sample: the cosine lobe around the frame.
+    // bsdf_sample: the cosine lobe around the frame; other kinds lane by lane.
     vfloat4 u = v_sample_uniform4(f, pixel, sample, path_dim(bounce, 0u));  // z: roulette, w: lobe
+    if (v_any(other)) {
+      float u0[MCL_LANES] MCL_LANE_ALIGN, u1[MCL_LANES] MCL_LANE_ALIGN, u2[MCL_LANES] MCL_LANE_ALIGN;
+      float u3[MCL_LANES] MCL_LANE_ALIGN;
+      v_store_lanes(u.x, u0);
+      v_store_lanes(u.y, u1);
+      v_store_lanes(u.z, u2);
+      v_store_lanes(u.w, u3);
+      for (uint j = 0; j < MCL_LANES; ++j)
+        if (others[j])
+          path_continue(a, surfs[j], xyz(a->rays[first + j].dir) * -1.0f, origins[j], betas[j], ids[j],
+                        make_float4(u0[j], u1[j], u2[j], u3[j]));
+    }
     vfloat pdf;
     vfloat3 bw;
     vfloat3 wi = v_lambert_sample(sf, u.x, u.y, &pdf, &bw);
@@ -228,11 +274,5 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
         ++at;
       }
     }
-  }
-  if (v_any(scalar)) {
-    uint sc[MCL_LANES] MCL_LANE_ALIGN;
-    v_store_lanes(v_mask01(scalar), sc);
-    for (uint j = 0; j < MCL_LANES; ++j)
-      if (sc[j]) stage_shade_path(a, first + j);
   }
 }
