@@ -1,7 +1,7 @@
 // lambert_lanes.h: a packet's Lambertian surfaces (the diffuse kind without a glossy lobe), per
 // lane: the shading frame and albedo of each lane's hit (LaneFrame: from the triangle alone for
-// flat untextured hits, else from the scalar surface_at, so textures, vertex colours, shading
-// normals, normal and bump maps are the scalar code's), and diffuse_eval / diffuse_pdf /
+// flat untextured world-space hits, else from the scalar surface_at, so textures, vertex colours,
+// shading normals, normal and bump maps and instances are the scalar code's), and diffuse_eval / diffuse_pdf /
 // diffuse_sample of bsdf_diffuse.h with specProb 0 around that frame, the scalar operations in the
 // same order per lane (shading.h's folding rule where a lane is smooth). Reads the hit buffers and
 // the scene's surface tables; writes nothing.
@@ -15,12 +15,12 @@ typedef struct {
 } LaneFrame;
 
 // The lanes set in `rich` of a frame whose other lanes are already set: each through the scalar
-// surface_at (world-space hits: the packet stages take no instanced scenes), for sample ref
-// (pixel, sample, bounce) of the lane; their BSDF is the diffuse kind without a glossy lobe
-// (the caller's mask says so from the material).
+// surface_at (in its hit's instance, hit_instance), for sample ref (pixel, sample, bounce) of the
+// lane; their BSDF is the diffuse kind without a glossy lobe (the caller's mask says so from the
+// material).
 MCL_INLINE LaneFrame lane_frame_rich(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const Hit* hits,
-                                     MCL_GLOBAL const Ray* rays, uint first, vmask rich, vuint pixel, vuint sample,
-                                     uint bounce, LaneFrame lf) {
+                                     MCL_GLOBAL const uint* hitInstances, MCL_GLOBAL const Ray* rays, uint first,
+                                     vmask rich, vuint pixel, vuint sample, uint bounce, LaneFrame lf) {
   uint set[MCL_LANES] MCL_LANE_ALIGN, px[MCL_LANES] MCL_LANE_ALIGN, sm[MCL_LANES] MCL_LANE_ALIGN;
   uint smo[MCL_LANES] MCL_LANE_ALIGN;
   float pX[MCL_LANES] MCL_LANE_ALIGN, pY[MCL_LANES] MCL_LANE_ALIGN, pZ[MCL_LANES] MCL_LANE_ALIGN;
@@ -37,7 +37,7 @@ MCL_INLINE LaneFrame lane_frame_rich(SurfaceScene sc, MCL_CONSTANT const FramePa
   v_store_lanes(v_mask01(lf.smooth), smo);
   for (uint j = 0; j < MCL_LANES; ++j) {
     if (!set[j]) continue;
-    Surface s = surface_at(sc, f, hits[first + j], MCL_NO_INSTANCE, xyz(rays[first + j].dir),
+    Surface s = surface_at(sc, f, hits[first + j], hit_instance(f, hitInstances, first + j), xyz(rays[first + j].dir),
                            sample_ref(px[j], sm[j], bounce));
     pX[j] = s.frame.p.x; pY[j] = s.frame.p.y; pZ[j] = s.frame.p.z;
     gX[j] = s.frame.ng.x; gY[j] = s.frame.ng.y; gZ[j] = s.frame.ng.z;

@@ -7,8 +7,8 @@
 // sample_direct_light per lane; one atomic per packet per light sample) and the BSDF ray (the
 // cosine lobe, folded where smooth). Hits on other kinds: their surface, light samples and BSDF
 // ray lane by lane through the scalar body's own functions (direct_light_sample, direct_bsdf_ray),
-// with the packet's random numbers. Every item of a packet in a scene with instances or textured
-// emission, and of a partial last packet, runs the scalar body.
+// with the packet's random numbers. Every item of a packet in a scene with textured emission, and
+// of a partial last packet, runs the scalar body.
 #pragma once
 #include "shade_direct.h"
 #include "lambert_lanes.h"
@@ -18,7 +18,7 @@
 MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first) {
   if (first >= a->waveCount) return;
   MCL_CONSTANT const FrameParams* f = a->frame;
-  if (v_packet_partial(first, a->waveCount) || f->emissionTextured || f->instanceCount > 0u) {  // (instanced hits are shaded in their object space by the scalar body)
+  if (v_packet_partial(first, a->waveCount) || f->emissionTextured) {
     for (uint k = 0; k < MCL_LANES && first + k < a->waveCount; ++k) stage_shade_direct(a, first + k);
     return;
   }
@@ -64,6 +64,11 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
   vmask flat = packet & ((v_as_uint(e2w) & (MCL_ATTR_NORMALS | MCL_ATTR_COLOR)) == 0u) &
                (v_as_uint(kdw) == MCL_NO_TEXTURE) & (v_as_uint(kmz) == 0u) &
                (v_as_uint(kmw) == 0u);  // no normal or bump map (Material::maps.z, w)
+  if (f->instanceCount > 0u) {  // instanced hits: their frame from surface_at, in object space
+    uint inst[MCL_LANES] MCL_LANE_ALIGN;
+    for (uint j = 0; j < MCL_LANES; ++j) inst[j] = hit_instance(f, a->hitInstances, first + j);
+    flat = flat & (v_loadu_lanes(inst) == MCL_NO_INSTANCE);
+  }
   vmask other = hit & v_not(packet);  // other kinds: their surface and BSDF lane by lane
   vfloat dx, dy, dz, dw;
   v_load4_stride((MCL_GLOBAL const float*)(a->rays + first) + 4, 8, &dx, &dy, &dz, &dw);
@@ -110,7 +115,7 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
     sf.smooth = v_not(hit | v_not(hit));  // none
     vmask rich = packet & v_not(flat);
     if (v_any(rich))
-      sf = lane_frame_rich(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->rays, first, rich, pixel, sample, 0u, sf);
+      sf = lane_frame_rich(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first, rich, pixel, sample, 0u, sf);
     vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
     const float nLight = (float)f->lightSamples;
     const int otherLights = env || f->lightCount > 0u;  // sampled lane by lane (sample_direct_light)
@@ -126,7 +131,7 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
       v_store_lanes(sample, sm);
       for (uint j = 0; j < MCL_LANES; ++j) {
         if (!others[j]) continue;
-        surfs[j] = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, a->hits[first + j], MCL_NO_INSTANCE,
+        surfs[j] = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, a->hits[first + j], hit_instance(f, a->hitInstances, first + j),
                               xyz(a->rays[first + j].dir), sample_ref(px[j], sm[j], 0u));
         origins[j] = offset_ray_origin(surfs[j].frame.p, surfs[j].frame.ng, f->offsetScale);
         others[j] = direct_takes_light_samples(f, surfs[j]) ? 2u : 1u;  // 2: light samples too

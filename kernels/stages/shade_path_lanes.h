@@ -9,8 +9,8 @@
 // light sample) and the cosine-lobe continuation with Russian roulette (one atomic per packet).
 // Hits on other kinds: their surface, light samples and continuation lane by lane through the
 // scalar body's own functions (path_light_sample, path_continue), with the packet's random numbers.
-// Every entry of a packet in a scene with instances or textured emission, and of a partial last
-// packet, runs the scalar body.
+// Every entry of a packet in a scene with textured emission, and of a partial last packet, runs
+// the scalar body.
 // Queue order: the packet's shadow queries and continuations fill their entries in lane order, so
 // the next queue's order can differ from the scalar stage's; nothing depends on it (shadow queries
 // name their slot, path_gather adds slots in slot order, every random number comes from the
@@ -29,7 +29,7 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
   MCL_CONSTANT const FrameParams* f = a->frame;
   const uint bounce = a->pathBounce;
   const uint slots = f->shadowSlots;
-  if (v_packet_partial(first, count) || f->emissionTextured || f->instanceCount > 0u) {  // (instanced hits: object space)
+  if (v_packet_partial(first, count) || f->emissionTextured) {
     for (uint k = 0; k < MCL_LANES && first + k < count; ++k) stage_shade_path(a, first + k);
     return;
   }
@@ -67,6 +67,11 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
   vmask lamb = hit & (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse);
   vmask flat = lamb & ((v_as_uint(e2w) & (MCL_ATTR_NORMALS | MCL_ATTR_COLOR)) == 0u) &
                (v_as_uint(kdw) == MCL_NO_TEXTURE) & (v_as_uint(kmz) == 0u) & (v_as_uint(kmw) == 0u);
+  if (f->instanceCount > 0u) {  // instanced hits: their frame from surface_at, in object space
+    uint inst[MCL_LANES] MCL_LANE_ALIGN;
+    for (uint j = 0; j < MCL_LANES; ++j) inst[j] = hit_instance(f, a->hitInstances, first + j);
+    flat = flat & (v_loadu_lanes(inst) == MCL_NO_INSTANCE);
+  }
   vmask other = hit & v_not(lamb);  // other kinds: their surface and BSDF lane by lane (path_light_sample, path_continue)
   vmask mine = hit | v_not(hit);    // every lane
 
@@ -157,7 +162,7 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
     sf.smooth = v_not(hit | v_not(hit));  // none
     vmask rich = lamb & v_not(flat);
     if (v_any(rich))
-      sf = lane_frame_rich(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->rays, first, rich, pixel, sample, bounce, sf);
+      sf = lane_frame_rich(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first, rich, pixel, sample, bounce, sf);
     vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
     // The lanes of other kinds: surface_at, the offset origin and the path weight, lane by lane.
     Surface surfs[MCL_LANES];
@@ -171,7 +176,7 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
       v_store_lanes(sample, sm);
       for (uint j = 0; j < MCL_LANES; ++j) {
         if (!others[j]) continue;
-        surfs[j] = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, a->hits[first + j], MCL_NO_INSTANCE,
+        surfs[j] = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, a->hits[first + j], hit_instance(f, a->hitInstances, first + j),
                               xyz(a->rays[first + j].dir), sample_ref(px[j], sm[j], bounce));
         origins[j] = offset_ray_origin(surfs[j].frame.p, surfs[j].frame.ng, f->offsetScale);
         betas[j] = make_float3(bx[j], by[j], bz[j]);
