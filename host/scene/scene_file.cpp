@@ -24,6 +24,7 @@
 #include "scene/mesh_loaders.h"
 #include "scene/environment_key.h"
 #include "scene/lights_key.h"
+#include "scene/pbrt_scene.h"
 #include "scene/scene.h"
 #include "util/errors.h"
 
@@ -333,6 +334,7 @@ void applyBareModelDefaults(Scene& scene) {
 
 Scene loadScene(const std::string& path, std::vector<std::string>& warnings, std::optional<MissingTextures> missing) {
   if (meshFormatOf(path) != MeshFormat::Unknown) return loadBareMesh(path, warnings, missing);
+  if (isPbrtScenePath(path)) return loadPbrtScene(path, warnings, missing);
   Ctx ctx{path, warnings};
   json root = parseJson(ctx, readSceneText(ctx));
   requireObject(ctx, root, "(top level)");

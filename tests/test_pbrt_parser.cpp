@@ -1,0 +1,306 @@
+// test_pbrt_parser.cpp: the pbrt-v4 reader (host/scene/pbrt_*.cpp) on small inline scene files:
+// pbrt's transform order, LookAt, the camera's handedness and its fov on the shorter axis, the
+// depth conversion, shapes and their sides, materials, instances, Include, and that bad input is
+// one "file:line:column" error while unsupported input is a file:line warning.
+#include <doctest/doctest.h>
+
+#include <glm/glm.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "cli_runner.h"
+#include "scene/camera_basis.h"
+#include "scene/pbrt_shapes.h"
+#include "scene/scene.h"
+#include "util/errors.h"
+
+using montecl::Scene;
+using montecl_test::TempDir;
+
+namespace {
+
+const char* kCamera = "Film \"rgb\" \"integer xresolution\" [ 32 ] \"integer yresolution\" [ 32 ]\n"
+                      "Camera \"perspective\" \"float fov\" [ 40 ]\n";
+
+// One triangle (0,0,0) (1,0,0) (0,1,0), front +z.
+const char* kTriangle = "Shape \"trianglemesh\" \"point3 P\" [ 0 0 0  1 0 0  0 1 0 ] \"integer indices\" [ 0 1 2 ]\n";
+
+Scene load(const TempDir& dir, const std::string& text, std::vector<std::string>* warningsOut = nullptr) {
+  dir.write("s.pbrt", text);
+  std::vector<std::string> warnings;
+  Scene s = montecl::loadScene(dir.file("s.pbrt"), warnings);
+  if (warningsOut) *warningsOut = warnings;
+  return s;
+}
+
+std::string loadError(const TempDir& dir, const std::string& text) {
+  dir.write("s.pbrt", text);
+  std::vector<std::string> warnings;
+  try {
+    montecl::loadScene(dir.file("s.pbrt"), warnings);
+  } catch (const montecl::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool near(const glm::vec3& a, const glm::vec3& b, float eps = 1e-5f) { return glm::length(a - b) <= eps; }
+
+glm::vec3 front(const montecl::SceneTriangle& t) { return glm::normalize(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0])); }
+
+bool anyContains(const std::vector<std::string>& lines, const std::string& a, const std::string& b = "") {
+  for (const std::string& l : lines)
+    if (l.find(a) != std::string::npos && l.find(b) != std::string::npos) return true;
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("pbrt: transforms compose as pbrt's (the last one given applies first)" * doctest::test_suite("pbrt")) {
+  TempDir dir;
+  // Translate then Scale: p' = T (S p), so (1, 0, 0) goes to (2 + 1, 0, 0); the other order gives 4.
+  Scene s = load(dir, std::string(kCamera) + "WorldBegin\nTranslate 1 0 0\nScale 2 2 2\n" + kTriangle);
+  REQUIRE(s.triangles.size() == 1);
+  CHECK(near(s.triangles[0].v[0], glm::vec3(1, 0, 0)));
+  CHECK(near(s.triangles[0].v[1], glm::vec3(3, 0, 0)));
+  CHECK(near(s.triangles[0].v[2], glm::vec3(1, 2, 0)));
+  // Rotate 90 about z turns +x into +y (right-handed, as pbrt's Rotate).
+  s = load(dir, std::string(kCamera) + "WorldBegin\nRotate 90 0 0 1\n" + kTriangle);
+  CHECK(near(s.triangles[0].v[1], glm::vec3(0, 1, 0)));
+  // Transform lists the matrix column by column: the translation is in values 12..14;
+  // ConcatTransform multiplies on the right; AttributeEnd restores; Identity resets.
+  s = load(dir, std::string(kCamera) + "WorldBegin\nTransform [ 1 0 0 0 0 1 0 0 0 0 1 0 5 6 7 1 ]\n"
+                "AttributeBegin\nConcatTransform [ 2 0 0 0 0 2 0 0 0 0 2 0 0 0 0 1 ]\n" + kTriangle +
+                "AttributeEnd\n" + kTriangle + "Identity\n" + kTriangle);
+  REQUIRE(s.triangles.size() == 3);
+  CHECK(near(s.triangles[0].v[1], glm::vec3(7, 6, 7)));
+  CHECK(near(s.triangles[1].v[1], glm::vec3(6, 6, 7)));
+  CHECK(near(s.triangles[2].v[1], glm::vec3(1, 0, 0)));
+  // CoordinateSystem / CoordSysTransform, and TransformBegin/End keep only the CTM.
+  s = load(dir, std::string(kCamera) + "WorldBegin\nTranslate 0 0 3\nCoordinateSystem \"lifted\"\nIdentity\n"
+                "TransformBegin\nScale 5 5 5\nTransformEnd\nCoordSysTransform \"lifted\"\n" + kTriangle);
+  CHECK(near(s.triangles[0].v[1], glm::vec3(1, 0, 3)));
+}
+
+TEST_CASE("pbrt: a Transform camera keeps its numbers; fov spans the shorter image axis" * doctest::test_suite("pbrt")) {
+  TempDir dir;
+  // The Bitterli Cornell box's camera: world-to-camera with z negated, camera at (0, 1, 6.8).
+  const std::string cam = "Transform [ 1 -0 -0 -0 -0 1 -0 -0 -0 -0 -1 -0 -0 -1 6.8 1 ]\n";
+  Scene s = load(dir, cam + "Film \"rgb\" \"integer xresolution\" [ 200 ] \"integer yresolution\" [ 100 ]\n"
+                          "Camera \"perspective\" \"float fov\" [ 30 ]\nWorldBegin\n" + kTriangle);
+  CHECK(near(s.camera.position, glm::vec3(0, 1, 6.8f)));
+  CHECK(near(glm::normalize(s.camera.target - s.camera.position), glm::vec3(0, 0, -1)));
+  CHECK(s.camera.width == 200);
+  CHECK(s.camera.height == 100);
+  CHECK(s.camera.fovY == doctest::Approx(30.0));  // landscape: the shorter axis is the vertical one
+  CHECK(near(s.triangles[0].v[1], glm::vec3(1, 0, 0)));  // this camera needs no mirror: the world stays
+  // Portrait: pbrt's fov is horizontal; montecl's vertical fov is wider.
+  s = load(dir, cam + "Film \"rgb\" \"integer xresolution\" [ 100 ] \"integer yresolution\" [ 200 ]\n"
+                      "Camera \"perspective\" \"float fov\" [ 30 ]\nWorldBegin\n" + kTriangle);
+  const double expect = 2.0 * std::atan(std::tan(15.0 * M_PI / 180.0) * 2.0) * 180.0 / M_PI;
+  CHECK(s.camera.fovY == doctest::Approx(expect).epsilon(1e-5));
+  // Lens: lensradius and focaldistance.
+  s = load(dir, cam + "Camera \"perspective\" \"float lensradius\" [ 0.1 ] \"float focaldistance\" [ 4 ]\nWorldBegin\n" + kTriangle);
+  CHECK(s.camera.apertureRadius == doctest::Approx(0.1));
+  CHECK(s.camera.focusDistance == doctest::Approx(4.0));
+}
+
+TEST_CASE("pbrt: a LookAt camera shows pbrt's picture, not its mirror image" * doctest::test_suite("pbrt")) {
+  TempDir dir;
+  // pbrt's LookAt camera space is left-handed: from +z looking at the origin with y up, pbrt's image
+  // right is world -x. The triangle at x < 0 must come out on montecl's image right.
+  Scene s = load(dir, "LookAt 0 0 5  0 0 0  0 1 0\n" + std::string(kCamera) +
+                          "WorldBegin\nShape \"trianglemesh\" \"point3 P\" [ -2 0 0  -1 0 0  -1 1 0 ] \"integer indices\" [ 0 1 2 ]\n");
+  REQUIRE(s.triangles.size() == 1);
+  CHECK(near(s.camera.position, glm::vec3(0, 0, 5)));
+  const montecl::CameraBasis b = montecl::cameraBasis(s.camera);
+  const glm::vec3 centre = (s.triangles[0].v[0] + s.triangles[0].v[1] + s.triangles[0].v[2]) / 3.0f;
+  CHECK(glm::dot(centre - s.camera.position, b.right) > 0.5f);
+  // The triangle's front (+z in pbrt, towards the camera) still faces the camera after the mirror.
+  CHECK(glm::dot(front(s.triangles[0]), s.camera.position - centre) > 0.0f);
+  // With pbrt-v3 exporters' Scale -1 1 1 in front of LookAt, pbrt's image right is world +x.
+  s = load(dir, "Scale -1 1 1\nLookAt 0 0 5  0 0 0  0 1 0\n" + std::string(kCamera) +
+                    "WorldBegin\nShape \"trianglemesh\" \"point3 P\" [ -2 0 0  -1 0 0  -1 1 0 ] \"integer indices\" [ 0 1 2 ]\n");
+  const montecl::CameraBasis b2 = montecl::cameraBasis(s.camera);
+  const glm::vec3 c2 = (s.triangles[0].v[0] + s.triangles[0].v[1] + s.triangles[0].v[2]) / 3.0f;
+  CHECK(glm::dot(c2 - s.camera.position, b2.right) < -0.5f);
+}
+
+TEST_CASE("pbrt: Integrator maxdepth, Sampler pixelsamples and other integrators" * doctest::test_suite("pbrt")) {
+  TempDir dir;
+  std::vector<std::string> warnings;
+  // pbrt's maxdepth counts bounces (1: direct light), montecl's max_depth path segments (2: direct).
+  Scene s = load(dir, "Integrator \"path\" \"integer maxdepth\" [ 1 ]\nSampler \"independent\" \"integer pixelsamples\" [ 7 ]\n" +
+                          std::string(kCamera) + "WorldBegin\n" + kTriangle, &warnings);
+  CHECK(s.render.integrator == montecl::Integrator::Path);
+  CHECK(s.render.maxDepth == 2);
+  CHECK(s.render.spp == 7);
+  CHECK(s.render.sampler == montecl::Sampler::Independent);
+  CHECK(warnings.empty());
+  s = load(dir, std::string(kCamera) + "WorldBegin\n" + kTriangle);  // pbrt's defaults: volpath, maxdepth 5, 16 spp
+  CHECK(s.render.maxDepth == 6);
+  CHECK(s.render.spp == 16);
+  s = load(dir, "Integrator \"bdpt\" \"integer maxdepth\" [ 9 ]\n" + std::string(kCamera) + "WorldBegin\n" + kTriangle, &warnings);
+  CHECK(s.render.integrator == montecl::Integrator::Path);
+  CHECK(s.render.maxDepth == 10);
+  CHECK(warnings.size() == 1);
+  CHECK(anyContains(warnings, "s.pbrt:1:1", "bdpt"));
+}
+
+TEST_CASE("pbrt: trianglemesh normals and ReverseOrientation decide the emitting side" * doctest::test_suite("pbrt")) {
+  TempDir dir;
+  const std::string light = "AreaLightSource \"diffuse\" \"rgb L\" [ 2 3 4 ]\n";
+  // Without N the front is the corners' cross product (+z); ReverseOrientation turns it.
+  Scene s = load(dir, std::string(kCamera) + "WorldBegin\nAttributeBegin\n" + light + kTriangle +
+                          "ReverseOrientation\n" + kTriangle + "AttributeEnd\n" + kTriangle);
+  REQUIRE(s.triangles.size() == 3);
+  CHECK(near(front(s.triangles[0]), glm::vec3(0, 0, 1)));
+  CHECK(near(front(s.triangles[1]), glm::vec3(0, 0, -1)));
+  CHECK(near(front(s.triangles[2]), glm::vec3(0, 0, 1)));
+  const montecl::MaterialDesc& lit = s.materials[s.triangles[0].material];
+  CHECK(lit.emission == glm::vec3(2, 3, 4));
+  CHECK_FALSE(lit.twoSidedEmission);
+  CHECK(s.materials[s.triangles[2].material].emission == glm::vec3(0.0f));  // AttributeEnd ended the light
+  // With N the front turns towards the normals (pbrt's FaceForward); a mirroring transform keeps it.
+  s = load(dir, std::string(kCamera) + "WorldBegin\n" + light +
+                    "Scale 1 1 -1\nShape \"trianglemesh\" \"point3 P\" [ 0 0 0  1 0 0  0 1 0 ] \"integer indices\" [ 0 1 2 ]"
+                    " \"normal N\" [ 0 0 1  0 0 1  0 0 1 ]\nIdentity\nScale -1 1 1\n" + kTriangle);
+  CHECK(near(front(s.triangles[0]), glm::vec3(0, 0, -1)));  // N (0 0 1) placed by the mirror: -z
+  CHECK(near(front(s.triangles[1]), glm::vec3(0, 0, 1)));   // a mirror without N: the same side of the surface
+}
+
+TEST_CASE("pbrt: spheres and disks are tessellated within the stated bound; bilinear patches" * doctest::test_suite("pbrt")) {
+  TempDir dir;
+  Scene s = load(dir, std::string(kCamera) + "WorldBegin\nTranslate 1 2 3\nShape \"sphere\" \"float radius\" [ 2 ]\n");
+  double area = 0.0, maxGap = 0.0;
+  bool outward = true;
+  for (const montecl::SceneTriangle& t : s.triangles) {
+    area += 0.5 * glm::length(glm::cross(glm::dvec3(t.v[1] - t.v[0]), glm::dvec3(t.v[2] - t.v[0])));
+    const glm::dvec3 c = (glm::dvec3(t.v[0]) + glm::dvec3(t.v[1]) + glm::dvec3(t.v[2])) / 3.0 - glm::dvec3(1, 2, 3);
+    maxGap = std::max(maxGap, 2.0 - glm::length(c));
+    outward = outward && glm::dot(glm::dvec3(front(t)), c) > 0.0;
+  }
+  const double exact = 4.0 * M_PI * 4.0;
+  CHECK(outward);
+  CHECK(area < exact);
+  CHECK(area > exact * (1.0 - 1e-3));
+  CHECK(maxGap < 2.0 * 2.0 * (1.0 - std::cos(M_PI / montecl::kSphereSegments)));  // centroids inside the bound
+  s = load(dir, std::string(kCamera) + "WorldBegin\nShape \"disk\" \"float radius\" [ 1 ] \"float height\" [ 0.5 ]\n");
+  area = 0.0;
+  for (const montecl::SceneTriangle& t : s.triangles) {
+    area += 0.5 * glm::length(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]));
+    CHECK(near(front(t), glm::vec3(0, 0, 1), 1e-4f));
+    CHECK(t.v[0].z == doctest::Approx(0.5));
+  }
+  CHECK(area == doctest::Approx(M_PI).epsilon(1e-3));
+  // A bilinear patch p00 p10 p01 p11 on the unit square: two triangles, front +z (dpdu x dpdv).
+  s = load(dir, std::string(kCamera) + "WorldBegin\nShape \"bilinearmesh\" \"point3 P\" [ 0 0 0  1 0 0  0 1 0  1 1 0 ]"
+                                       " \"integer indices\" [ 0 1 2 3 ]\n");
+  REQUIRE(s.triangles.size() == 2);
+  for (const montecl::SceneTriangle& t : s.triangles) CHECK(near(front(t), glm::vec3(0, 0, 1)));
+}
+
+TEST_CASE("pbrt: materials map to montecl's kinds with pbrt's parameters" * doctest::test_suite("pbrt")) {
+  TempDir dir;
+  std::vector<std::string> warnings;
+  Scene s = load(dir, std::string(kCamera) + "WorldBegin\n"
+                      "MakeNamedMaterial \"red\" \"string type\" [ \"diffuse\" ] \"rgb reflectance\" [ 0.6 0.1 0.1 ]\n"
+                      "MakeNamedMaterial \"cu\" \"string type\" [ \"conductor\" ] \"float roughness\" [ 0.25 ]\n"
+                      "MakeNamedMaterial \"ag\" \"string type\" [ \"conductor\" ] \"spectrum eta\" \"metal-Ag-eta\""
+                      " \"spectrum k\" \"metal-Ag-k\" \"float roughness\" [ 0.04 ] \"bool remaproughness\" false\n"
+                      "NamedMaterial \"red\"\n" + kTriangle + "NamedMaterial \"cu\"\n" + kTriangle +
+                      "NamedMaterial \"ag\"\n" + kTriangle +
+                      "Material \"dielectric\" \"spectrum eta\" \"glass-BK7\"\n" + kTriangle +
+                      "Material \"thindielectric\" \"float eta\" 1.33\n" + kTriangle +
+                      "Material \"coateddiffuse\" \"rgb reflectance\" [ 0.2 0.3 0.4 ]\n" + kTriangle, &warnings);
+  REQUIRE(s.triangles.size() == 6);
+  auto mat = [&](int i) { return s.materials[s.triangles[std::size_t(i)].material]; };
+  CHECK(mat(0).kind == MCL_MATERIAL_diffuse);
+  CHECK(mat(0).albedo == glm::vec3(0.6f, 0.1f, 0.1f));
+  CHECK(mat(1).kind == MCL_MATERIAL_conductor);
+  CHECK(mat(1).kindAlpha == doctest::Approx(0.5));  // remapped: alpha = sqrt(roughness)
+  CHECK(mat(1).eta.x == doctest::Approx(0.201005));  // pbrt's default conductor: copper
+  CHECK(mat(2).kindAlpha == doctest::Approx(0.04));  // not remapped
+  CHECK(mat(2).k.x == doctest::Approx(4.82835));
+  CHECK(mat(3).kind == MCL_MATERIAL_dielectric);
+  CHECK(mat(3).ior == doctest::Approx(1.5185).epsilon(1e-3));
+  CHECK(mat(4).kind == MCL_MATERIAL_thin_dielectric);
+  CHECK(mat(4).ior == doctest::Approx(1.33));
+  CHECK(mat(5).kind == MCL_MATERIAL_diffuse);
+  CHECK(mat(5).albedo == glm::vec3(0.2f, 0.3f, 0.4f));
+  CHECK(warnings.size() == 1);
+  CHECK(anyContains(warnings, "s.pbrt:", "coateddiffuse"));
+}
+
+TEST_CASE("pbrt: lights, instances and Include" * doctest::test_suite("pbrt")) {
+  TempDir dir;
+  dir.write("part.pbrt", "# included\n" + std::string(kTriangle));
+  Scene s = load(dir, std::string(kCamera) + "WorldBegin\n"
+                      "LightSource \"point\" \"rgb I\" [ 1 2 3 ] \"point3 from\" [ 0 4 0 ] \"float scale\" 2\n"
+                      "LightSource \"distant\" \"point3 from\" [ 0 0 0 ] \"point3 to\" [ 0 -1 0 ] \"rgb L\" [ 1 1 1 ]\n"
+                      "LightSource \"infinite\" \"rgb L\" [ 0.5 0.5 0.5 ]\n"
+                      "ObjectBegin \"tri\"\nTranslate 0 0 1\n" + kTriangle + "ObjectEnd\n"
+                      "Translate 10 0 0\nObjectInstance \"tri\"\nTranslate 10 0 0\nObjectInstance \"tri\"\n"
+                      "Include \"part.pbrt\"\n");
+  REQUIRE(s.lights.size() == 2);
+  CHECK(s.lights[0].kind == montecl::PunctualKind::Point);
+  CHECK(near(s.lights[0].position, glm::vec3(0, 4, 0)));
+  CHECK(s.lights[0].color == glm::vec3(2, 4, 6));
+  CHECK(s.lights[1].kind == montecl::PunctualKind::Directional);
+  CHECK(near(s.lights[1].direction, glm::vec3(0, -1, 0)));
+  CHECK(s.environment.enabled);
+  CHECK(s.environment.radiance == glm::vec3(0.5f));
+  REQUIRE(s.meshRanges.size() == 1);
+  REQUIRE(s.instances.size() == 2);
+  CHECK(s.instances[1].objectToWorld[3][0] == doctest::Approx(20.0));
+  CHECK(near(s.triangles[s.meshRanges[0].firstTri].v[0], glm::vec3(0, 0, 1)));  // object space has its own CTM
+  CHECK(s.triangles.size() == 2);  // the included triangle and the object's one
+}
+
+TEST_CASE("pbrt: malformed input is one error naming file:line:column" * doctest::test_suite("pbrt")) {
+  TempDir dir;
+  const std::string pre = std::string(kCamera) + "WorldBegin\n";  // lines 1-3
+  struct Case {
+    std::string text, where, what;
+  };
+  const std::vector<Case> cases = {
+      {pre + "Shape \"trianglemesh\" \"point3 P\" [ 0 0 0 1 0 ]\n", "s.pbrt:4:22:", "not a multiple of 3"},
+      {pre + "Shape \"trianglemesh\" \"point3 P\" [ 0 0 0 1 0 0 0 1 0 ] \"integer indices\" [ 0 1 5 ]\n", "s.pbrt:4:", "out of range"},
+      {pre + "Frobnicate 1 2\n", "s.pbrt:4:1:", "unknown directive 'Frobnicate'"},
+      {pre + "Shape \"sphere\" \"float radius\" [ 1 \n", "s.pbrt:4:", "']' is missing"},
+      {pre + "Shape \"sphere\" \"float radius [ 1 ]\n", "s.pbrt:4:16:", "unterminated string"},
+      {pre + "Translate 1 2\nShape \"sphere\"\n", "s.pbrt:5:1:", "Translate takes 3"},
+      {pre + "NamedMaterial \"nope\"\n", "s.pbrt:4:15:", "not defined"},
+      {pre + "AttributeEnd\n", "s.pbrt:4:1:", "without a matching AttributeBegin"},
+      {pre + "Include \"missing.pbrt\"\n", "s.pbrt:4:9:", "cannot open"},
+      {pre + "Shape \"sphere\" \"float radius\" [ 1x ]\n", "s.pbrt:4:33:", "malformed number"},
+      {pre + "Shape \"sphere\" \"floot radius\" [ 1 ]\n", "s.pbrt:4:16:", "unknown parameter type 'floot'"},
+      {"WorldBegin\nCamera \"perspective\"\n", "s.pbrt:2:1:", "not allowed after WorldBegin"},
+  };
+  for (const Case& c : cases) {
+    const std::string err = loadError(dir, c.text);
+    CAPTURE(c.text);
+    CAPTURE(err);
+    CHECK(err.find(c.where) != std::string::npos);
+    CHECK(err.find(c.what) != std::string::npos);
+    CHECK(err.find('\n') == std::string::npos);
+  }
+}
+
+TEST_CASE("pbrt: unsupported but valid input warns with file:line and the scene loads" * doctest::test_suite("pbrt")) {
+  TempDir dir;
+  std::vector<std::string> warnings;
+  Scene s = load(dir, std::string(kCamera) + "PixelFilter \"gaussian\"\nWorldBegin\n"
+                      "MakeNamedMedium \"fog\" \"string type\" [ \"homogeneous\" ]\n"
+                      "Shape \"curve\" \"point3 P\" [ 0 0 0 1 0 0 2 0 0 3 0 0 ]\n"
+                      "Shape \"sphere\" \"float radius\" 1 \"float zmin\" -0.5 \"float frobnicity\" 3\n", &warnings);
+  CHECK(!s.triangles.empty());
+  CHECK(anyContains(warnings, "s.pbrt:3:1:", "PixelFilter"));
+  CHECK(anyContains(warnings, "s.pbrt:5:1:", "MakeNamedMedium"));
+  CHECK(anyContains(warnings, "s.pbrt:6:1:", "curve"));
+  CHECK(anyContains(warnings, "s.pbrt:7:1:", "zmin"));
+  CHECK(anyContains(warnings, "s.pbrt:7:", "'float frobnicity' not used"));
+  CHECK(warnings.size() == 5);
+}
