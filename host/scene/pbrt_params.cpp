@@ -69,7 +69,7 @@ PbrtParams readPbrtParams(PbrtTokenizer& tok, const PbrtLoc& directive) {
       }
       if (!bracket && (p.numbers.size() + p.strings.size() + p.bools.size()) == 1) break;
       if (v.kind == PbrtToken::End)
-        pbrtFail(v.loc, "end of file inside the values of " + quoted(p) + (bracket ? " (a ']' is missing)" : ""));
+        pbrtFail(p.loc, "end of file inside the values of " + quoted(p) + (bracket ? " (a ']' is missing)" : ""));
       PbrtToken value = tok.next();
       if (value.kind == PbrtToken::Number && (numeric || spectrum)) {
         if (p.type == "integer" && value.number != std::floor(value.number))

@@ -14,9 +14,10 @@
 namespace montecl {
 
 // Sphere and disk tessellation: a sphere gets kSphereSegments steps in longitude and half as
-// many in latitude, a disk kSphereSegments steps around. The flat facets lie within
-// r (1 - cos(pi / kSphereSegments)) = 3.0e-4 r of the exact surface (relative area deficit about
-// 6e-4 for the sphere), and every corner carries the exact normal, so shading is round.
+// many in latitude, a disk kSphereSegments steps around. A facet spans at most 2 pi / 128 in
+// both directions, so it lies within r (1 - cos(sqrt(2) pi / 128)) = 6.0e-4 r of the exact
+// surface (the sphere's area comes out 5.0e-4 short: tests/test_pbrt_parser.cpp), and every
+// corner carries the exact normal, so shading is round.
 constexpr int kSphereSegments = 128;
 
 // Builds the object-space triangles of shape `type` (material index 0, to be set by the caller).
