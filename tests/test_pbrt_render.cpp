@@ -117,6 +117,8 @@ namespace {
 // the weighted sum of the channels', so z is conservative).
 struct BlockStats {
   double meanRel = 0.0, medianAbsRel = 0.0, p95AbsRel = 0.0, maxAbsZ = 0.0, maxAbsZNoFloor = 0.0, medianSeRel = 0.0;
+  int worstX = 0, worstY = 0;  // the block of maxAbsZ (in blocks)
+  double worstRel = 0.0, worstRef = 0.0;
 };
 BlockStats compareBlocks(const montecl::LayeredImage& img, const std::vector<double>& ref, int block, double floor) {
   const std::vector<float>&r = plane(img, "R"), &g = plane(img, "G"), &b = plane(img, "B");
@@ -143,7 +145,8 @@ BlockStats compareBlocks(const montecl::LayeredImage& img, const std::vector<dou
       rel.push_back(std::abs(m - rr) / std::max(rr, 1e-6));
       seRel.push_back(se / std::max(rr, 1e-6));
       s.maxAbsZNoFloor = std::max(s.maxAbsZNoFloor, std::abs(m - rr) / se);
-      s.maxAbsZ = std::max(s.maxAbsZ, std::abs(m - rr) / std::sqrt(se * se + floor * rr * floor * rr));
+      const double z = std::abs(m - rr) / std::sqrt(se * se + floor * rr * floor * rr);
+      if (z > s.maxAbsZ) s.maxAbsZ = z, s.worstX = bx, s.worstY = by, s.worstRel = (m - rr) / rr, s.worstRef = rr;
     }
   std::sort(rel.begin(), rel.end());
   std::sort(seRel.begin(), seRel.end());
@@ -196,13 +199,17 @@ TEST_CASE("pbrt cli: Bitterli's Cornell box agrees with Tungsten's reference per
   MCL_SKIP_UNLESS_PBRT_SCENE("cornell-box");
   TempDir dir;
   // Floor 0.25% of the block's value: what no sample count of montecl's removes (Tungsten's tent
-  // filter against montecl's box, the reference's own noise: 64 adaptive samples per pixel).
+  // filter against montecl's box, the reference's own noise: 64 adaptive samples per pixel). At
+  // this size the one known difference of the scenes stays under it: the pbrt file's lamp is an
+  // opaque black quad 2 cm under the ceiling, Tungsten's a "null" BSDF that light passes through,
+  // so the ceiling just behind the lamp is darker here (one 8x8 block 30% darker at 256x256).
   const double floor = 0.0025;
   const BlockStats full = renderAgainstTungsten(dir, "cornell-box", 64, 64, 1024, -1, floor);
   MESSAGE("cornell-box vs Tungsten (64x64, 1024 spp, 8x8 blocks of luminance): mean " << full.meanRel * 100
           << "%, block median |rel| " << full.medianAbsRel * 100 << "%, 95th percentile " << full.p95AbsRel * 100
           << "%, max |z| " << full.maxAbsZ << " (without the floor " << full.maxAbsZNoFloor
-          << "), median standard error " << full.medianSeRel * 100 << "%");
+          << "), median standard error " << full.medianSeRel * 100 << "%; worst block (" << full.worstX << ", "
+          << full.worstY << "): " << full.worstRel * 100 << "% of " << full.worstRef);
   CHECK(std::abs(full.meanRel) < 0.01);
   CHECK(full.medianAbsRel < 0.01);
   CHECK(full.p95AbsRel < 0.03);
