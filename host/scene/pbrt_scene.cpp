@@ -192,9 +192,9 @@ class Reader {
       const PbrtToken n = expect(PbrtToken::String, "a file name", d.loc);
       open(besideFile(main_, n.text), n.loc);
     } else if (w == "Option") {
-      const PbrtToken n = expect(PbrtToken::String, "an option", d.loc);
-      tok().next();
-      warn(n.loc, "Option '" + oneLine(n.text, 60) + "' not read by montecl, ignored");
+      const PbrtParams p = params(d);  // Option "bool disablepixeljitter" true: one parameter
+      if (p.list.empty()) pbrtFail(d.loc, "Option: expected a parameter \"type name\" value");
+      for (const PbrtParam& q : p.list) warn(q.loc, "Option '" + oneLine(q.name, 60) + "' not read by montecl, ignored");
     } else if (w == "ColorSpace") {
       const PbrtToken n = expect(PbrtToken::String, "a colour space", d.loc);
       if (n.text != "srgb") warn(n.loc, "ColorSpace '" + oneLine(n.text, 40) + "': montecl renders in linear sRGB; RGB values are read as sRGB");
@@ -383,16 +383,19 @@ class Reader {
   }
 
   void sampler(const PbrtToken& d, const std::string& type, const PbrtParams& p) {
-    int spp = p.getInt("pixelsamples", 16);
+    long long spp = p.getInt("pixelsamples", 16);
     if (type == "stratified") {
-      const int xs = p.getInt("xsamples", 4), ys = p.getInt("ysamples", 4);
+      const long long xs = p.getInt("xsamples", 4), ys = p.getInt("ysamples", 4);
       p.ignore("jitter");
-      spp = xs * ys;
+      spp = xs < 1 || ys < 1 ? 0 : xs * ys;
     }
-    if (spp < 1) pbrtFail(d.loc, "Sampler: the number of samples must be positive");
-    scene_.render.spp = spp;
+    if (spp < 1 || spp > 2147483647LL)
+      pbrtFail(d.loc, "Sampler: the number of samples per pixel must be 1 to 2147483647, got " + std::to_string(spp));
+    scene_.render.spp = int(spp);
     scene_.render.sampler = type == "independent" ? Sampler::Independent : Sampler::Sobol;
-    if (const PbrtParam* s = p.find("seed")) scene_.render.seed = std::uint32_t(std::llabs(static_cast<long long>(s->numbers.empty() ? 0 : s->numbers[0])));
+    const int seed = p.getInt("seed", 0);
+    if (seed < 0) pbrtFail(p.find("seed")->loc, "Sampler: 'seed' must be >= 0");
+    scene_.render.seed = std::uint32_t(seed);
     p.ignore("randomization");
     unused(p, "Sampler \"" + oneLine(type, 40) + "\"");
   }

@@ -212,13 +212,17 @@ void placePbrtTriangles(std::vector<SceneTriangle>& tris, const glm::dmat4& m, b
     glm::dvec3 want = (reverse != swaps) ? -g : g;
     if (t.attributes & kHasNormals) {
       glm::dvec3 sum(0.0);
+      bool finite = true;
       for (int k = 0; k < 3; ++k) {
         glm::dvec3 n = glm::normalize(normalMatrix * glm::dvec3(t.n[k]));
         if (reverse) n = -n;
         t.n[k] = glm::vec3(n);
+        finite = finite && std::isfinite(t.n[k].x) && std::isfinite(t.n[k].y) && std::isfinite(t.n[k].z);
         sum += n;
       }
-      if (glm::dot(want, sum) < 0.0) want = -want;
+      // A singular transform (Scale 1 1 0) has no normals' matrix: the flat normal then shades.
+      if (!finite) t.attributes = std::uint8_t(t.attributes & ~kHasNormals);
+      else if (glm::dot(want, sum) < 0.0) want = -want;
     }
     for (int k = 0; k < 3; ++k) t.v[k] = glm::vec3(v[k]);
     if (glm::dot(want, g) < 0.0) {

@@ -334,7 +334,11 @@ void applyBareModelDefaults(Scene& scene) {
 
 Scene loadScene(const std::string& path, std::vector<std::string>& warnings, std::optional<MissingTextures> missing) {
   if (meshFormatOf(path) != MeshFormat::Unknown) return loadBareMesh(path, warnings, missing);
-  if (isPbrtScenePath(path)) return loadPbrtScene(path, warnings, missing);
+  if (isPbrtScenePath(path)) {  // pbrt-v4 (scene/pbrt_scene.h)
+    Scene scene = loadPbrtScene(path, warnings, missing);
+    checkEmissionPower(scene);
+    return scene;
+  }
   Ctx ctx{path, warnings};
   json root = parseJson(ctx, readSceneText(ctx));
   requireObject(ctx, root, "(top level)");
