@@ -243,6 +243,45 @@ TEST_CASE("pbrt: materials map to montecl's kinds with pbrt's parameters" * doct
   CHECK(anyContains(warnings, "s.pbrt:", "coateddiffuse"));
 }
 
+TEST_CASE("pbrt: image textures become the material's texture; a missing one is an error at its line" * doctest::test_suite("cpu pbrt")) {
+  TempDir dir;
+  dir.write("wood.png", "the loader only opens it; the renderer decodes it");
+  std::vector<std::string> warnings;
+  const std::string tex = "Texture \"w\" \"spectrum\" \"imagemap\" \"string filename\" \"wood.png\" \"float uscale\" 2"
+                          " \"float vdelta\" 0.5\n"
+                          "Texture \"dim\" \"spectrum\" \"scale\" \"texture tex\" \"w\" \"float scale\" 0.25\n"
+                          "Texture \"c\" \"spectrum\" \"checkerboard\" \"rgb tex1\" [ 1 0 0 ] \"rgb tex2\" [ 0 0 1 ]\n";
+  Scene s = load(dir, std::string(kCamera) + "WorldBegin\n" + tex + "Material \"diffuse\" \"texture reflectance\" \"dim\"\n" +
+                          kTriangle + "Material \"diffuse\" \"texture reflectance\" \"c\"\n" + kTriangle, &warnings);
+  REQUIRE(s.triangles.size() == 2);
+  const montecl::MaterialDesc& wood = s.materials[s.triangles[0].material];
+  CHECK(wood.albedoTexture == dir.file("wood.png"));
+  CHECK(wood.albedo == glm::vec3(0.25f));                           // the scale texture's factor
+  CHECK(wood.albedoSampling.row0 == glm::vec3(2.0f, 0.0f, 0.0f));  // pbrt's s = 2 u
+  CHECK(wood.albedoSampling.row1 == glm::vec3(0.0f, 1.0f, 0.5f));  // t = v + 0.5
+  // A checkerboard is not rendered: its mean colour, with one warning at its line.
+  const montecl::MaterialDesc& checker = s.materials[s.triangles[1].material];
+  CHECK(checker.albedoTexture.empty());
+  CHECK(checker.albedo == glm::vec3(0.5f, 0.0f, 0.5f));
+  CHECK(warnings.size() == 1);
+  CHECK(anyContains(warnings, "s.pbrt:7:1:", "checkerboard"));
+  // A texture file that cannot be opened: one error naming the scene file and its line.
+  const std::string err = loadError(dir, std::string(kCamera) + "WorldBegin\n"
+                                         "Texture \"w\" \"spectrum\" \"imagemap\" \"string filename\" \"nope.png\"\n" + kTriangle);
+  CHECK(err.find("s.pbrt: line 5: imagemap") != std::string::npos);
+  CHECK(err.find("nope.png") != std::string::npos);
+}
+
+TEST_CASE("pbrt: CoordSysTransform \"camera\" places things in the camera's frame" * doctest::test_suite("cpu pbrt")) {
+  TempDir dir;
+  // The camera of the Cornell box test (at (0, 1, 6.8) looking down -z, no mirror): one unit in
+  // front of it along its +z is world (0, 1, 5.8).
+  Scene s = load(dir, "Transform [ 1 0 0 0 0 1 0 0 0 0 -1 0 0 -1 6.8 1 ]\n" + std::string(kFilm) +
+                          "WorldBegin\nCoordSysTransform \"camera\"\nTranslate 0 0 1\n" + kTriangle);
+  REQUIRE(s.triangles.size() == 1);
+  CHECK(near(s.triangles[0].v[0], glm::vec3(0, 1, 5.8f), 1e-5f));
+}
+
 TEST_CASE("pbrt: lights, instances and Include" * doctest::test_suite("cpu pbrt")) {
   TempDir dir;
   dir.write("part.pbrt", "# included\n" + std::string(kTriangle));

@@ -130,7 +130,11 @@ PbrtTexture pbrtTexture(const std::string& klass, const PbrtParams& p, const Pbr
     const std::uint32_t w = wrap == "clamp" ? 1u : 0u;
     if (wrap != "repeat" && wrap != "clamp") warnings.push_back(at(p) + "imagemap: wrap '" + wrap + "' not read by montecl; repeat used");
     t.sampling.wrapS = t.sampling.wrapT = w;
-    for (const char* quiet : {"filter", "maxanisotropy", "encoding"}) p.ignore(quiet);  // montecl's own filtering and decoding
+    for (const char* quiet : {"filter", "maxanisotropy"}) p.ignore(quiet);  // montecl filters with its own footprints
+    const std::string encoding = p.getString("encoding", "sRGB");
+    if (encoding != "sRGB")
+      warnings.push_back(at(p) + "imagemap: encoding '" + oneLine(encoding, 40) +
+                         "' not read by montecl; it decodes 8-bit images as sRGB and float ones as linear");
     return t;
   }
   if (klass == "constant") return colour("value", glm::vec3(1.0f));
