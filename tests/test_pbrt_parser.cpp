@@ -265,6 +265,12 @@ TEST_CASE("pbrt: image textures become the material's texture; a missing one is 
   CHECK(checker.albedo == glm::vec3(0.5f, 0.0f, 0.5f));
   CHECK(warnings.size() == 1);
   CHECK(anyContains(warnings, "s.pbrt:7:1:", "checkerboard"));
+  // A shape's alpha: an image texture cuts it out; a constant 0 leaves it out.
+  s = load(dir, std::string(kCamera) + "WorldBegin\n" + tex + "Shape \"trianglemesh\" \"point3 P\" [ 0 0 0 1 0 0 0 1 0 ]"
+                " \"texture alpha\" \"w\"\n" + kTriangle + "Shape \"sphere\" \"float alpha\" 0\n");
+  REQUIRE(s.triangles.size() == 2);
+  CHECK(s.materials[s.triangles[0].material].alphaTexture == dir.file("wood.png"));
+  CHECK(s.materials[s.triangles[1].material].alphaTexture.empty());
   // A texture file that cannot be opened: one error naming the scene file and its line.
   const std::string err = loadError(dir, std::string(kCamera) + "WorldBegin\n"
                                          "Texture \"w\" \"spectrum\" \"imagemap\" \"string filename\" \"nope.png\"\n" + kTriangle);

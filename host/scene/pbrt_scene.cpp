@@ -11,6 +11,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <tuple>
 
@@ -451,21 +452,53 @@ class Reader {
     scene_.inputFiles.push_back(t.file);
   }
 
-  // The scene material for the current state: the material, with the area light's emission.
-  std::uint32_t materialFor(const GraphicsState& g) {
+  // The scene material for the current state: the material, with the area light's emission and
+  // the shape's alpha texture (by its texture name; "" for none).
+  std::uint32_t materialFor(const GraphicsState& g, const std::string& alphaName) {
     const glm::vec3 L = g.area.on ? g.area.L : glm::vec3(0.0f);
     const bool twoSided = g.area.on && g.area.twoSided;
-    const auto key = std::make_tuple(g.material, L.x, L.y, L.z, twoSided);
+    const auto key = std::make_tuple(g.material, L.x, L.y, L.z, twoSided, alphaName);
     auto it = materialIndex_.find(key);
     if (it != materialIndex_.end()) return it->second;
     MaterialDesc m = materials_[std::size_t(g.material)];
     m.emission = L;
     m.twoSidedEmission = twoSided;
     if (g.area.on) m.name += " (emitting)";
+    if (!alphaName.empty()) {
+      const PbrtTexture& t = textures_.at(alphaName);
+      m.alphaTexture = t.file;
+      m.alphaSampling = t.sampling;
+      m.name += " (alpha '" + alphaName + "')";
+    }
     scene_.materials.push_back(m);
     const std::uint32_t index = std::uint32_t(scene_.materials.size() - 1);
     materialIndex_[key] = index;
     return index;
+  }
+
+  // The shape's "alpha": "" (opaque), the name of an image texture cutting it out, or nullopt
+  // when it is not there at all (alpha 0).
+  std::optional<std::string> alphaOf(const PbrtParams& p) {
+    const PbrtParam* a = p.find("alpha");
+    if (!a) return std::string();
+    double value = 1.0;
+    if (a->type == "texture") {
+      if (a->strings.size() != 1) pbrtFail(a->loc, "'texture alpha' must name one texture");
+      auto it = textures_.find(a->strings[0]);
+      if (it == textures_.end()) pbrtFail(a->loc, "texture '" + oneLine(a->strings[0], 60) + "' is not defined");
+      if (!it->second.file.empty()) {
+        if (it->second.value.x != 1.0f) warn(a->loc, "Shape: the alpha texture's scale is not read by montecl; its image alone cuts out");
+        return it->first;  // montecl cuts out where the image's alpha channel (else its first) is below 0.5
+      }
+      value = it->second.value.x;
+    } else if (a->type == "float" && a->numbers.size() == 1) {
+      value = a->numbers[0];
+    } else {
+      pbrtFail(a->loc, "'alpha' must be a float or a texture, got " + a->type);
+    }
+    if (value <= 0.0) return std::nullopt;
+    if (value < 1.0) warn(a->loc, "Shape: a constant alpha between 0 and 1 is not read by montecl; the shape is opaque");
+    return std::string();
   }
 
   void shape(const PbrtToken& d) {
@@ -475,13 +508,10 @@ class Reader {
     std::vector<std::string> plys;
     const bool read = pbrtShapeTriangles(type, p, main_, tris, warnings_, plys);
     for (const std::string& f : plys) scene_.inputFiles.push_back(f);
-    if (const PbrtParam* a = p.find("alpha")) {
-      if (a->type != "float" || a->numbers.size() != 1 || a->numbers[0] != 1.0)
-        warn(a->loc, "Shape: 'alpha' (cut-outs) not read by montecl; the shape is opaque");
-    }
+    const std::optional<std::string> alpha = alphaOf(p);
     for (const char* quiet : {"emissionfilename", "faceIndices"}) p.ignore(quiet);
     if (read) unused(p, "Shape \"" + oneLine(type, 40) + "\"");
-    if (!read || tris.empty()) return;
+    if (!read || tris.empty() || !alpha) return;  // alpha 0: pbrt leaves the shape out
     GraphicsState g = state_;
     if (inObject_) {
       if (g.area.on && !instanceLightWarned_) {
@@ -490,13 +520,13 @@ class Reader {
       }
       g.area.on = false;
       placePbrtTriangles(tris, g.ctm, g.reverseOrientation);
-      const std::uint32_t m = materialFor(g);
+      const std::uint32_t m = materialFor(g, *alpha);
       ObjectDef& o = objects_[objectName_];
       for (SceneTriangle& t : tris) t.material = m, o.triangles.push_back(t);
       return;
     }
     placePbrtTriangles(tris, mirror_ * g.ctm, g.reverseOrientation);
-    const std::uint32_t m = materialFor(g);
+    const std::uint32_t m = materialFor(g, *alpha);
     for (SceneTriangle& t : tris) {
       t.material = m;
       appendTriangle(scene_, t);
@@ -530,7 +560,7 @@ class Reader {
   std::vector<MaterialDesc> materials_;  // every material defined ([0]: pbrt's default)
   std::map<std::string, int> namedMaterials_;
   std::map<std::string, MaterialDesc> namedMaterialDescs_;
-  std::map<std::tuple<int, float, float, float, bool>, std::uint32_t> materialIndex_;
+  std::map<std::tuple<int, float, float, float, bool, std::string>, std::uint32_t> materialIndex_;
   PbrtTextures textures_;
   std::map<std::string, ObjectDef> objects_;
   bool inObject_ = false;
