@@ -20,6 +20,7 @@
 #include "scene/pbrt_camera.h"
 #include "scene/pbrt_lights.h"
 #include "scene/pbrt_materials.h"
+#include "scene/pbrt_options.h"
 #include "scene/pbrt_params.h"
 #include "scene/pbrt_shapes.h"
 #include "scene/pbrt_tokenizer.h"
@@ -43,7 +44,6 @@ struct GraphicsState {
   bool reverseOrientation = false;
   int material = 0;  // index into Reader::materials_
   AreaLight area;
-  std::string alphaNote;  // unused
   PbrtLoc loc;            // where the block began (for a missing End)
   bool transformOnly = false;  // TransformBegin: only the CTM is restored
 };
@@ -210,23 +210,19 @@ class Reader {
     } else if (w == "Film") {
       optionsOnly(d);
       const std::string type = name(d);  // before the parameters (argument order is unspecified)
-      film(d, type, params(d));
+      pbrtFilm(type, params(d), width_, height_, warnings_);
     } else if (w == "Sampler") {
       optionsOnly(d);
       const std::string type = name(d);  // before the parameters (argument order is unspecified)
-      sampler(d, type, params(d));
+      pbrtSampler(type, params(d), scene_.render, warnings_);
     } else if (w == "Integrator") {
       optionsOnly(d);
       const std::string type = name(d);  // before the parameters (argument order is unspecified)
-      integrator(d, type, params(d));
+      pbrtIntegrator(type, params(d), scene_.render, warnings_);
     } else if (w == "PixelFilter") {
       optionsOnly(d);
-      const std::string type = name(d);
-      const PbrtParams p = params(d);
-      const double xr = p.getFloat("xradius", 0.5), yr = p.getFloat("yradius", 0.5);
-      if (type != "box" || xr != 0.5 || yr != 0.5)
-        warn(d.loc, "PixelFilter \"" + oneLine(type, 40) + "\": montecl has no pixel reconstruction filters; each pixel is the plain mean of its samples (a box of radius 0.5)");
-      for (const PbrtParam& q : p.list) q.used = true;
+      const std::string type = name(d);  // before the parameters (argument order is unspecified)
+      pbrtPixelFilter(type, params(d), warnings_);
     } else if (w == "Accelerator") {
       optionsOnly(d);
       name(d);
@@ -365,61 +361,6 @@ class Reader {
     worldFromCamera[2] = glm::dvec4(f, 0.0);
     worldFromCamera[3] = glm::dvec4(eye, 1.0);
     return glm::inverse(worldFromCamera);
-  }
-
-  void film(const PbrtToken& d, const std::string& type, const PbrtParams& p) {
-    if (type != "rgb" && type != "gbuffer" && type != "spectral")
-      warn(d.loc, "Film \"" + oneLine(type, 40) + "\" not known; read as \"rgb\"");
-    width_ = p.getInt("xresolution", 1280);
-    height_ = p.getInt("yresolution", 720);
-    if (width_ < 1 || width_ > kMaxImageSide || height_ < 1 || height_ > kMaxImageSide)
-      pbrtFail(d.loc, "Film: the resolution must be 1 to " + std::to_string(kMaxImageSide) + " pixels a side, got " +
-                          std::to_string(width_) + " x " + std::to_string(height_));
-    p.ignore("filename");  // the command line's -o names the output
-    if (type != "rgb") for (const PbrtParam& q : p.list) q.used = true;
-    for (const char* quiet : {"sensor", "iso", "whitebalance", "exposuretime", "savefp16", "maxcomponentvalue", "diagonal"})
-      p.ignore(quiet);  // pbrt's defaults leave RGB radiance as it is (imaging ratio 1)
-    if (p.find("cropwindow") || p.find("pixelbounds")) warn(d.loc, "Film: cropping is not read by montecl; the whole image is rendered");
-    unused(p, "Film");
-  }
-
-  void sampler(const PbrtToken& d, const std::string& type, const PbrtParams& p) {
-    long long spp = p.getInt("pixelsamples", 16);
-    if (type == "stratified") {
-      const long long xs = p.getInt("xsamples", 4), ys = p.getInt("ysamples", 4);
-      p.ignore("jitter");
-      spp = xs < 1 || ys < 1 ? 0 : xs * ys;
-    }
-    if (spp < 1 || spp > 2147483647LL)
-      pbrtFail(d.loc, "Sampler: the number of samples per pixel must be 1 to 2147483647, got " + std::to_string(spp));
-    scene_.render.spp = int(spp);
-    scene_.render.sampler = type == "independent" ? Sampler::Independent : Sampler::Sobol;
-    const int seed = p.getInt("seed", 0);
-    if (seed < 0) pbrtFail(p.find("seed")->loc, "Sampler: 'seed' must be >= 0");
-    scene_.render.seed = std::uint32_t(seed);
-    p.ignore("randomization");
-    unused(p, "Sampler \"" + oneLine(type, 40) + "\"");
-  }
-
-  void integrator(const PbrtToken& d, const std::string& type, const PbrtParams& p) {
-    // pbrt's maxdepth counts bounces (0: emitters seen, 1: direct lighting); montecl's max_depth
-    // is Mitsuba's, counting path segments (1: emitters seen, 2: direct): one more.
-    const int depth = p.getInt("maxdepth", 5);
-    if (depth < 0) pbrtFail(d.loc, "Integrator: 'maxdepth' must be >= 0");
-    scene_.render.integrator = Integrator::Path;
-    scene_.render.maxDepth = depth >= 1000000 ? -1 : depth + 1;
-    p.ignore("regularize");
-    p.ignore("lightsampler");
-    if (type == "ambientocclusion") {
-      scene_.render.integrator = Integrator::Ao;
-      scene_.render.aoSampling = p.getBool("cossample", true) ? AoSampling::Cosine : AoSampling::Uniform;
-      const double dist = p.getFloat("maxdistance", 1e30);
-      scene_.render.aoDistance = float(std::min(dist, 1e30));
-    } else if (type != "path" && type != "volpath") {
-      warn(d.loc, "Integrator \"" + oneLine(type, 40) + "\": montecl renders it with its path tracer (same maxdepth)");
-      for (const PbrtParam& q : p.list) q.used = true;
-    }
-    unused(p, "Integrator \"" + oneLine(type, 40) + "\"");
   }
 
   void worldBegin(const PbrtToken& d) {
