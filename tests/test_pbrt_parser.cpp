@@ -311,6 +311,11 @@ TEST_CASE("pbrt: lights, instances and Include" * doctest::test_suite("cpu pbrt"
   CHECK(s.instances[1].objectToWorld[3][0] == doctest::Approx(20.0));
   CHECK(near(s.triangles[s.meshRanges[0].firstTri].v[0], glm::vec3(0, 0, 1)));  // object space has its own CTM
   CHECK(s.triangles.size() == 2);  // the included triangle and the object's one
+  // pbrt normalises a light's non-RGB spectrum to luminance 1 before its scale: a flat spectrum
+  // of 7 is white 1 (x scale 3); RGB is taken as it is.
+  s = load(dir, std::string(kCamera) + "WorldBegin\nAreaLightSource \"diffuse\" \"spectrum L\" [ 400 7 700 7 ] \"float scale\" 3\n" +
+                    kTriangle);
+  CHECK(near(s.materials[s.triangles[0].material].emission, glm::vec3(3.0f), 1e-4f));
 }
 
 TEST_CASE("pbrt: malformed input is one error naming file:line:column" * doctest::test_suite("cpu pbrt")) {

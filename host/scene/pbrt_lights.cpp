@@ -28,7 +28,7 @@ glm::vec3 placeDirection(const PbrtParams& p, const glm::dmat4& m, glm::vec3 d) 
 
 glm::vec3 emission(const PbrtParams& p, const std::string& name, std::vector<std::string>& warnings) {
   glm::vec3 c(1.0f);
-  pbrtSpectrum(p, name, c, warnings);
+  pbrtLightSpectrum(p, name, c, warnings);
   const float scale = float(p.getFloat("scale", 1.0));
   c *= scale;
   if (!(c.x >= 0.0f && c.y >= 0.0f && c.z >= 0.0f && std::isfinite(c.x + c.y + c.z)))
@@ -78,7 +78,7 @@ void pbrtLightSource(const std::string& type, const PbrtParams& p, const glm::dm
     env.enabled = true;
     const std::string file = p.getString("filename", "");
     glm::vec3 L(1.0f);
-    const bool hasL = pbrtSpectrum(p, "L", L, warnings);
+    const bool hasL = pbrtLightSpectrum(p, "L", L, warnings);
     if (!file.empty() && hasL) pbrtFail(p.loc, "infinite: give either 'L' or 'filename', not both");
     env.radiance = L;
     env.scale = float(p.getFloat("scale", 1.0));

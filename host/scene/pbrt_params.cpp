@@ -177,7 +177,7 @@ bool pbrtSpectrum(const PbrtParams& ps, const std::string& name, glm::vec3& rgb,
     return true;
   }
   if (p->type == "blackbody") {
-    warnings.push_back(p->loc.str() + ": " + quoted(*p) + ": blackbody spectra are not converted by montecl, read as white (1, 1, 1)");
+    warnings.push_back(p->loc.str() + ": " + quoted(*p) + ": montecl does not convert blackbody spectra to colour; read as white (1, 1, 1)");
     rgb = glm::vec3(1.0f);
     return true;
   }
@@ -216,6 +216,24 @@ bool pbrtSpectrum(const PbrtParams& ps, const std::string& name, glm::vec3& rgb,
     return v[v.size() - 1];
   };
   rgb = glm::vec3(float(at(610.0)), float(at(550.0)), float(at(465.0)));
+  return true;
+}
+
+bool pbrtLightSpectrum(const PbrtParams& ps, const std::string& name, glm::vec3& rgb, std::vector<std::string>& warnings) {
+  const PbrtParam* p = ps.find(name);
+  if (!p) return false;
+  if (p->type == "spectrum" && !p->strings.empty() && p->strings[0].rfind("stdillum-", 0) == 0) {
+    // pbrt's standard illuminants at luminance 1: D65 is montecl's white; the others' tint is not read.
+    if (p->strings[0] != "stdillum-D65")
+      warnings.push_back(p->loc.str() + ": " + quoted(*p) + ": montecl does not convert '" + oneLine(p->strings[0], 40) +
+                         "' to colour; read as white (1, 1, 1) of the same luminance");
+    rgb = glm::vec3(1.0f);
+    return true;
+  }
+  if (!pbrtSpectrum(ps, name, rgb, warnings)) return false;
+  if (p->type == "rgb" || p->type == "color") return true;
+  const float y = 0.2126f * rgb.x + 0.7152f * rgb.y + 0.0722f * rgb.z;
+  if (y > 0.0f && std::isfinite(y)) rgb /= y;
   return true;
 }
 

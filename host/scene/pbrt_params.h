@@ -51,4 +51,9 @@ PbrtParams readPbrtParams(PbrtTokenizer& tok, const PbrtLoc& directive);
 // index at about 550 nm (all three channels); blackbody and unknown names are warned about.
 bool pbrtSpectrum(const PbrtParams& p, const std::string& name, glm::vec3& rgb, std::vector<std::string>& warnings);
 
+// A light's emission spectrum as pbrt-v4 means it: an RGB value is the radiance (intensity,
+// irradiance) itself; any other spectrum (values, a name, blackbody) is normalised by pbrt to
+// luminance 1 before the light's scale multiplies it, so its RGB reduction is scaled to luminance 1.
+bool pbrtLightSpectrum(const PbrtParams& p, const std::string& name, glm::vec3& rgb, std::vector<std::string>& warnings);
+
 }  // namespace montecl

@@ -299,7 +299,7 @@ class Reader {
       a.on = true;
       a.loc = d.loc;
       a.L = glm::vec3(1.0f);
-      pbrtSpectrum(p, "L", a.L, warnings_);
+      pbrtLightSpectrum(p, "L", a.L, warnings_);
       a.L *= float(p.getFloat("scale", 1.0));
       a.twoSided = p.getBool("twosided", false);
       if (!(a.L.x >= 0.0f && a.L.y >= 0.0f && a.L.z >= 0.0f && std::isfinite(a.L.x + a.L.y + a.L.z)))
