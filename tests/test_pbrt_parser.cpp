@@ -6,12 +6,15 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "cli_runner.h"
+#include "mesh_files.h"
 #include "scene/camera_basis.h"
+#include "scene/mesh_loaders.h"
 #include "scene/pbrt_shapes.h"
 #include "scene/scene.h"
 #include "util/errors.h"
@@ -209,6 +212,33 @@ TEST_CASE("pbrt: spheres and disks are tessellated within the stated bound; bili
                                        " \"integer indices\" [ 0 1 2 3 ]\n");
   REQUIRE(s.triangles.size() == 2);
   for (const montecl::SceneTriangle& t : s.triangles) CHECK(near(front(t), glm::vec3(0, 0, 1)));
+}
+
+TEST_CASE("pbrt: plymesh goes through montecl's PLY reader, placed and given the current material" * doctest::test_suite("cpu pbrt")) {
+  TempDir dir;
+  const montecl_test::MeshData tent = montecl_test::tentMesh();
+  dir.write("tent.ply", montecl_test::plyText(tent, montecl_test::PlyEncoding::LittleEndian));
+  std::vector<montecl::SceneTriangle> alone;
+  {
+    Scene ply;
+    montecl::loadPlyInto(dir.file("tent.ply"), ply);
+    alone = ply.triangles;
+  }
+  Scene s = load(dir, std::string(kCamera) + "WorldBegin\nMaterial \"conductor\"\nTranslate 0 0 -3\n"
+                                             "Shape \"plymesh\" \"string filename\" \"tent.ply\"\n");
+  REQUIRE(s.triangles.size() == alone.size());
+  for (std::size_t i = 0; i < alone.size(); ++i) {
+    CHECK(s.materials[s.triangles[i].material].kind == MCL_MATERIAL_conductor);
+    CHECK(s.triangles[i].attributes == alone[i].attributes);
+    // Its corners (in some rotation, the winding kept or turned to the normals) moved by -3 in z.
+    const glm::vec3 sum = s.triangles[i].v[0] + s.triangles[i].v[1] + s.triangles[i].v[2];
+    CHECK(near(sum, alone[i].v[0] + alone[i].v[1] + alone[i].v[2] + glm::vec3(0, 0, -9), 1e-5f));
+  }
+  CHECK(std::find(s.inputFiles.begin(), s.inputFiles.end(), dir.file("tent.ply")) != s.inputFiles.end());
+  // A missing PLY file is an error at the parameter naming it.
+  const std::string err = loadError(dir, std::string(kCamera) + "WorldBegin\nShape \"plymesh\" \"string filename\" \"gone.ply\"\n");
+  CAPTURE(err);
+  CHECK(err.find("s.pbrt:5:17: plymesh: cannot open 'gone.ply'") != std::string::npos);
 }
 
 TEST_CASE("pbrt: materials map to montecl's kinds with pbrt's parameters" * doctest::test_suite("cpu pbrt")) {
