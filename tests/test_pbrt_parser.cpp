@@ -14,6 +14,7 @@
 #include "cli_runner.h"
 #include "mesh_files.h"
 #include "scene/camera_basis.h"
+#include "scene/equal_area.h"
 #include "scene/mesh_loaders.h"
 #include "scene/pbrt_shapes.h"
 #include "scene/scene.h"
@@ -393,3 +394,63 @@ TEST_CASE("pbrt: unsupported but valid input warns with file:line and the scene 
   CHECK(anyContains(warnings, "s.pbrt:8:", "'float frobnicity' not used"));
   CHECK(warnings.size() == 5);
 }
+
+TEST_CASE("pbrt: the equal-area octahedral mapping is pbrt-v4's and keeps areas" * doctest::test_suite("cpu pbrt")) {
+  using montecl::equalAreaSphereToSquare;
+  auto at = [](double x, double y, double z) { return equalAreaSphereToSquare(glm::normalize(glm::dvec3(x, y, z))); };
+  CHECK(glm::length(at(0, 0, 1) - glm::dvec2(0.5, 0.5)) < 1e-12);  // +z at the centre
+  CHECK(glm::length(at(1, 0, 0) - glm::dvec2(1.0, 0.5)) < 1e-12);
+  CHECK(glm::length(at(-1, 0, 0) - glm::dvec2(0.0, 0.5)) < 1e-12);
+  CHECK(glm::length(at(0, 1, 0) - glm::dvec2(0.5, 1.0)) < 1e-12);
+  CHECK(glm::length(at(0, -1, 0) - glm::dvec2(0.5, 0.0)) < 1e-12);
+  CHECK(glm::length(at(1e-9, 1e-9, -1) - glm::dvec2(1.0, 1.0)) < 1e-6);  // -z at the corners
+  // Equal area: uniform directions fall uniformly into an 8 x 8 grid of the square (every cell
+  // within 5 standard deviations of n / 64).
+  const int n = 256000;
+  std::vector<int> cells(64, 0);
+  std::uint64_t state = 12345;
+  auto uniform = [&state] {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return double(state >> 11) / 9007199254740992.0;
+  };
+  for (int i = 0; i < n; ++i) {
+    const double z = 1.0 - 2.0 * uniform(), phi = 2.0 * M_PI * uniform(), s = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const glm::dvec2 uv = equalAreaSphereToSquare(glm::dvec3(s * std::cos(phi), s * std::sin(phi), z));
+    cells[std::size_t(std::min(7, int(uv.y * 8)) * 8 + std::min(7, int(uv.x * 8)))]++;
+  }
+  const double expect = n / 64.0, sigma = std::sqrt(expect * (1.0 - 1.0 / 64.0));
+  for (int c : cells) CHECK(std::abs(c - expect) < 5.0 * sigma);
+}
+
+TEST_CASE("pbrt: an infinite light's map is resampled through its transform" * doctest::test_suite("cpu pbrt")) {
+  TempDir dir;
+  dir.write("sky.exr", "only opened by the loader");
+  // pbrt-v4 scenes turn their maps' +z up with Rotate -90 1 0 0: the map's centre (+z) lights from +y.
+  Scene s = load(dir, std::string(kCamera) + "WorldBegin\nAttributeBegin\nRotate -90 1 0 0\n"
+                                             "LightSource \"infinite\" \"string filename\" \"sky.exr\"\nAttributeEnd\n" + kTriangle);
+  REQUIRE(s.environment.enabled);
+  CHECK(s.environment.equalArea);
+  CHECK(s.environment.file == dir.file("sky.exr"));
+  // A 16 x 16 map, red in its 4 centre texels: the red texels of the latitude-longitude map are
+  // around +y (montecl's row 0).
+  const int side = 16;
+  std::vector<glm::vec3> square(std::size_t(side * side), glm::vec3(0.0f, 0.0f, 1.0f));
+  for (int y = 7; y <= 8; ++y)
+    for (int x = 7; x <= 8; ++x) square[std::size_t(y * side + x)] = glm::vec3(1.0f, 0.0f, 0.0f);
+  int width = 0, height = 0;
+  const std::vector<glm::vec3> ll = montecl::latLongFromEqualArea(square, side, s.environment.mapFromWorld, width, height);
+  CHECK(width == 32);
+  CHECK(height == 16);
+  glm::dvec3 sum(0.0);
+  int red = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      if (ll[std::size_t(y * width + x)].x == 1.0f) {
+        const double theta = M_PI * (y + 0.5) / height, phi = 2.0 * M_PI * (x + 0.5) / width;
+        sum += glm::dvec3(std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi));
+        ++red;
+      }
+  REQUIRE(red > 0);
+  CHECK(glm::normalize(sum).y > 0.99);
+}
+

@@ -109,6 +109,47 @@ TEST_CASE("pbrt cli: a LookAt camera's picture is pbrt's, not mirrored" * doctes
   CHECK(right > 0.5 * img.width * img.height / 2);
 }
 
+TEST_CASE("pbrt cli: an equal-area sky lights from the direction its transform turns it to" * doctest::test_suite("cli pbrt")) {
+  TempDir dir;
+  // A 128 x 128 equal-area map: radiance 1 within 0.2 of the centre (light space +z, about 34
+  // degrees around it), 0 elsewhere. Rotate -90 1 0 0 turns +z to world +y: an upward floor is
+  // lit and a downward one is not; with Rotate 90 1 0 0 the other way round.
+  const int side = 128;
+  montecl::LayeredImage sky;
+  sky.width = sky.height = side;
+  std::vector<float> cap(std::size_t(side * side), 0.0f);
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x)
+      if (std::hypot(x + 0.5 - side / 2.0, y + 0.5 - side / 2.0) < 0.2 * side) cap[std::size_t(y * side + x)] = 1.0f;
+  for (const char* c : {"R", "G", "B"}) sky.set(c, cap);
+  montecl::writeLayeredExr(dir.file("sky.exr"), sky);
+  auto floorBrightness = [&](const std::string& rotate) {
+    // The camera looks down at a floor quad facing up (+y), from above.
+    dir.write("s.pbrt", "LookAt 0 3 0.01  0 0 0  0 1 0\nFilm \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 8 ]\n"
+                        "Camera \"perspective\" \"float fov\" [ 20 ]\nSampler \"independent\" \"integer pixelsamples\" [ 64 ]\n"
+                        "Integrator \"path\" \"integer maxdepth\" [ 1 ]\nWorldBegin\nAttributeBegin\n" + rotate +
+                        "\nLightSource \"infinite\" \"string filename\" \"sky.exr\"\nAttributeEnd\n"
+                        "Shape \"trianglemesh\" \"point3 P\" [ -1 0 -1  1 0 -1  1 0 1  -1 0 1 ] \"integer indices\" [ 0 2 1 0 3 2 ]\n");
+    CliResult r = runMontecl({"render", dir.file("s.pbrt"), "-q", "-o", dir.file("out.exr")});
+    INFO("stderr: " << r.err);
+    REQUIRE(r.exitCode == 0);
+    const montecl::LayeredImage img = montecl::readImageFile(dir.file("out.exr"));
+    double sum = 0.0;
+    for (float v : plane(img, "G")) sum += v;
+    return sum / double(img.width * img.height);
+  };
+  // The map is equal-area: the cap's texels, a fraction f of the square, are a fraction f of the
+  // sphere, a cone of half-angle a with 1 - cos a = 2 f around the normal. A Lambertian floor of
+  // albedo 0.5 under radiance 1 from it shows 0.5 sin^2 a (0.2197 here).
+  double f = 0.0;
+  for (float v : cap) f += v / double(side * side);
+  const double cosA = 1.0 - 2.0 * f, expect = 0.5 * (1.0 - cosA * cosA);
+  const double up = floorBrightness("Rotate -90 1 0 0"), down = floorBrightness("Rotate 90 1 0 0");
+  MESSAGE("floor under the sky's bright cap: " << up << " (expected " << expect << "), with the cap below: " << down);
+  CHECK(up == doctest::Approx(expect).epsilon(0.02).scale(0.0));
+  CHECK(down == doctest::Approx(0.0));
+}
+
 namespace {
 
 // Block statistics of montecl's render against a reference (luminance, blocks of `block` pixels):

@@ -38,7 +38,7 @@ glm::vec3 emission(const PbrtParams& p, const std::string& name, std::vector<std
 
 }  // namespace
 
-void pbrtLightSource(const std::string& type, const PbrtParams& p, const glm::dmat4& m, bool worldMirrored,
+void pbrtLightSource(const std::string& type, const PbrtParams& p, const glm::dmat4& m,
                      const std::string& baseFile, Scene& scene, std::vector<std::string>& warnings) {
   const std::string at = p.loc.str() + ": LightSource \"" + oneLine(type, 40) + "\": ";
   LightDesc l;
@@ -88,11 +88,10 @@ void pbrtLightSource(const std::string& type, const PbrtParams& p, const glm::dm
       const std::string problem = fileProblem(env.file);
       if (!problem.empty()) pbrtFail(p.find("filename")->loc, "infinite: cannot open '" + oneLine(file, 100) + "': " + problem);
       scene.inputFiles.push_back(env.file);
-      warnings.push_back(at + "pbrt-v4 maps '" + oneLine(file, 60) +
-                         "' by its equal-area octahedral mapping, montecl reads environment maps as "
-                         "latitude-longitude; the light's orientation and mapping are not pbrt's");
-      if (glm::dmat3(m) != glm::dmat3(1.0) || worldMirrored)
-        warnings.push_back(at + "the map's rotation (and the world's mirror for pbrt's camera handedness) is not applied by montecl");
+      // pbrt-v4's map is equal-area octahedral, looked up in light space: resampled when the
+      // environment is built, through the light's transform and the world's mirror alike.
+      env.equalArea = true;
+      env.mapFromWorld = glm::inverse(glm::dmat3(m));
     }
     return;
   } else {

@@ -13,7 +13,7 @@
 namespace montecl {
 
 // toWorld: the light's CTM (with the world's mirror, pbrt_camera.h). baseFile resolves file names.
-void pbrtLightSource(const std::string& type, const PbrtParams& params, const glm::dmat4& toWorld, bool worldMirrored,
+void pbrtLightSource(const std::string& type, const PbrtParams& params, const glm::dmat4& toWorld,
                      const std::string& baseFile, Scene& scene, std::vector<std::string>& warnings);
 
 }  // namespace montecl

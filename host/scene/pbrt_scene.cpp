@@ -311,7 +311,7 @@ class Reader {
       worldOnly(d);
       const std::string type = name(d);
       const PbrtParams p = params(d);
-      pbrtLightSource(type, p, mirror_ * g.ctm, mirrored_, main_, scene_, warnings_);
+      pbrtLightSource(type, p, mirror_ * g.ctm, main_, scene_, warnings_);
       unused(p, "LightSource \"" + oneLine(type, 40) + "\"");
     } else if (w == "Shape") {
       worldOnly(d);
@@ -372,7 +372,6 @@ class Reader {
     if (cameraSet_) unused(cameraParams_, "Camera \"" + oneLine(cameraType_, 40) + "\"");
     scene_.camera = cam.camera;
     mirror_ = cam.worldMirror;
-    mirrored_ = cam.mirrored;
     // pbrt-v4 resets the CTM at WorldBegin and names it "world".
     state_.ctm = glm::dmat4(1.0);
     namedCoords_["world"] = state_.ctm;
@@ -513,7 +512,6 @@ class Reader {
   glm::dmat4 cameraFromWorld_{1.0};
   int width_ = 1280, height_ = 720;  // pbrt-v4's default film
   glm::dmat4 mirror_{1.0};
-  bool mirrored_ = false;
 };
 
 }  // namespace
