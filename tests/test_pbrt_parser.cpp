@@ -7,11 +7,13 @@
 #include <glm/glm.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "cli_runner.h"
+#include "skip.h"
 #include "mesh_files.h"
 #include "scene/camera_basis.h"
 #include "scene/equal_area.h"
@@ -452,5 +454,33 @@ TEST_CASE("pbrt: an infinite light's map is resampled through its transform" * d
       }
   REQUIRE(red > 0);
   CHECK(glm::normalize(sum).y > 0.99);
+}
+
+TEST_CASE("pbrt: a file of 100k inline triangles loads in under a second" * doctest::test_suite("cpu slow uninstrumented")) {
+#if defined(__SANITIZE_ADDRESS__) || !defined(NDEBUG)
+  MCL_SKIP_UNLESS(false, "load times are measured in release builds without sanitizers");
+#endif
+  TempDir dir;
+  const int n = 100000;
+  std::string text = std::string(kCamera) + "WorldBegin\nShape \"trianglemesh\" \"point3 P\" [\n";
+  std::uint64_t state = 7;
+  for (int i = 0; i < 3 * n; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      text += std::to_string(double(state >> 11) / 9007199254740992.0) + (c < 2 ? " " : "\n");
+    }
+  }
+  text += "] \"integer indices\" [\n";
+  for (int i = 0; i < 3 * n; ++i) text += std::to_string(i) + (i % 12 == 11 ? "\n" : " ");
+  text += "]\n";
+  dir.write("s.pbrt", text);
+  std::vector<std::string> warnings;
+  const auto t0 = std::chrono::steady_clock::now();
+  const Scene s = montecl::loadScene(dir.file("s.pbrt"), warnings);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double megabytes = double(text.size()) / 1e6;
+  MESSAGE(megabytes << " MB, " << s.triangles.size() << " triangles loaded in " << seconds << " s");
+  CHECK(s.triangles.size() > std::size_t(n) * 99 / 100);  // random triangles: a few may be degenerate
+  CHECK(seconds < 1.0);
 }
 
