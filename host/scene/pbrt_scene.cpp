@@ -2,7 +2,7 @@
 // Includes token by token, keeps pbrt's graphics state (the CTM, attribute and transform blocks,
 // the current material, area light and orientation, named coordinate systems, materials,
 // textures and objects), and writes a montecl Scene. The directives' pieces are read by
-// pbrt_camera, pbrt_shapes, pbrt_materials and pbrt_lights.
+// pbrt_camera, pbrt_options, pbrt_shapes, pbrt_materials and pbrt_lights.
 #include "scene/pbrt_scene.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -12,7 +12,6 @@
 #include <map>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <tuple>
 
 #include "scene/load_util.h"
@@ -36,7 +35,6 @@ struct AreaLight {
   bool on = false;
   glm::vec3 L{0.0f};
   bool twoSided = false;
-  PbrtLoc loc;
 };
 
 struct GraphicsState {
@@ -44,7 +42,7 @@ struct GraphicsState {
   bool reverseOrientation = false;
   int material = 0;  // index into Reader::materials_
   AreaLight area;
-  PbrtLoc loc;            // where the block began (for a missing End)
+  PbrtLoc loc;                 // where the block began (for a missing End)
   bool transformOnly = false;  // TransformBegin: only the CTM is restored
 };
 
@@ -297,7 +295,6 @@ class Reader {
       }
       AreaLight a;
       a.on = true;
-      a.loc = d.loc;
       a.L = glm::vec3(1.0f);
       pbrtLightSpectrum(p, "L", a.L, warnings_);
       a.L *= float(p.getFloat("scale", 1.0));
