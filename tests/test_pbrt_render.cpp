@@ -70,6 +70,24 @@ TEST_CASE("pbrt cli: a malformed .pbrt file exits 2 with one line naming file:li
   CHECK(r.err.find("noise.pbrt:1:") != std::string::npos);
 }
 
+TEST_CASE("cli: a file of a kind montecl does not read says which it reads, not 'malformed JSON'" * doctest::test_suite("cli pbrt")) {
+  TempDir dir;
+  dir.write("x.stl", "solid x\nendsolid x\n");
+  CliResult r = runMontecl({"render", dir.file("x.stl"), "-q", "-o", dir.file("out.png")});
+  INFO("stderr: " << r.err);
+  CHECK(r.exitCode == 2);
+  CHECK(lines(r.err).size() == 1);
+  CHECK(r.err.find("x.stl: not a file montecl reads") != std::string::npos);
+  CHECK(r.err.find(".pbrt") != std::string::npos);
+  CHECK(r.err.find("malformed JSON") == std::string::npos);
+  // Text that starts like a scene file is still read as one under another name.
+  dir.write("scene.txt", "{ }\n");
+  r = runMontecl({"render", dir.file("scene.txt"), "-q", "-o", dir.file("out.png")});
+  CHECK(r.exitCode == 2);
+  CHECK(r.err.find("not a file montecl reads") == std::string::npos);
+  CHECK(r.err.find("missing required key") != std::string::npos);
+}
+
 TEST_CASE("pbrt cli: unsupported directives warn with file:line and the render goes on" * doctest::test_suite("cli pbrt")) {
   TempDir dir;
   dir.write("s.pbrt",

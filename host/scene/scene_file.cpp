@@ -340,7 +340,15 @@ Scene loadScene(const std::string& path, std::vector<std::string>& warnings, std
     return scene;
   }
   Ctx ctx{path, warnings};
-  json root = parseJson(ctx, readSceneText(ctx));
+  const std::string text = readSceneText(ctx);
+  // A file of another kind (x.stl, a pbrt-v3 .lxs) is not reported as malformed JSON: JSON is
+  // tried under another extension only when the text starts like a scene file, with '{'.
+  const std::string ext = lowerExtension(path);
+  const std::size_t first = text.find_first_not_of(" \t\r\n");
+  if (!ext.empty() && ext != ".json" && (first == std::string::npos || text[first] != '{'))
+    throwInputError(oneLine(path), "", "not a file montecl reads: scene files .json and .pbrt (pbrt-v4), meshes .obj, "
+                                       ".ply, .gltf and .glb");
+  json root = parseJson(ctx, text);
   requireObject(ctx, root, "(top level)");
   warnUnknownKeys(ctx, root, "", {"camera", "meshes", "render", "environment", "lights"});
   Scene scene;
