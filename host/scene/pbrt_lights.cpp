@@ -26,7 +26,7 @@ glm::vec3 placeDirection(const PbrtParams& p, const glm::dmat4& m, glm::vec3 d) 
   return glm::vec3(glm::normalize(w));
 }
 
-glm::vec3 emission(const PbrtParams& p, const std::string& name, std::vector<std::string>& warnings) {
+glm::vec3 lightEmission(const PbrtParams& p, const std::string& name, std::vector<std::string>& warnings) {
   glm::vec3 c(1.0f);
   pbrtLightSpectrum(p, name, c, warnings);
   const float scale = float(p.getFloat("scale", 1.0));
@@ -45,13 +45,13 @@ void pbrtLightSource(const std::string& type, const PbrtParams& p, const glm::dm
   if (type == "point") {
     l.kind = PunctualKind::Point;
     l.position = placePoint(m, point(p, "from", glm::vec3(0.0f)));
-    l.color = emission(p, "I", warnings);
+    l.color = lightEmission(p, "I", warnings);
   } else if (type == "spot") {
     l.kind = PunctualKind::Spot;
     const glm::vec3 from = point(p, "from", glm::vec3(0.0f)), to = point(p, "to", glm::vec3(0, 0, 1));
     l.position = placePoint(m, from);
     l.direction = placeDirection(p, m, to - from);
-    l.color = emission(p, "I", warnings);
+    l.color = lightEmission(p, "I", warnings);
     // pbrt: full intensity within coneangle - conedelta, a smoothstep falloff to zero at coneangle.
     // montecl's spot: cutoff_angle and beam_width with its own falloff between them.
     double cone = p.getFloat("coneangle", 30.0), delta = p.getFloat("conedelta", 5.0);
@@ -67,7 +67,7 @@ void pbrtLightSource(const std::string& type, const PbrtParams& p, const glm::dm
     l.kind = PunctualKind::Directional;
     const glm::vec3 from = point(p, "from", glm::vec3(0.0f)), to = point(p, "to", glm::vec3(0, 0, 1));
     l.direction = placeDirection(p, m, to - from);
-    l.color = emission(p, "L", warnings);
+    l.color = lightEmission(p, "L", warnings);
   } else if (type == "infinite") {
     if (scene.environment.enabled) {
       warnings.push_back(at + "montecl has one environment light; this second one is left out");

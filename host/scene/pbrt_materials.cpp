@@ -10,7 +10,7 @@
 namespace montecl {
 namespace {
 
-std::string at(const PbrtParams& p) { return p.loc.str() + ": "; }
+std::string whereOf(const PbrtParams& p) { return p.loc.str() + ": "; }
 
 // A colour parameter given as a spectrum or as a named texture: the constant into *value, an
 // image into *file (with its sampling). False when absent.
@@ -56,11 +56,11 @@ float alphaOf(const PbrtParams& p, const PbrtTextures& textures, const std::stri
   if (!(u >= 0.0 && v >= 0.0)) pbrtFail(p.loc, "roughness must be >= 0");
   double au = remap ? std::sqrt(u) : u, av = remap ? std::sqrt(v) : v;
   if (std::abs(au - av) > 1e-6 * std::max(au, av))
-    warnings.push_back(at(p) + "anisotropic roughness (u " + std::to_string(u) + ", v " + std::to_string(v) +
+    warnings.push_back(whereOf(p) + "anisotropic roughness (u " + std::to_string(u) + ", v " + std::to_string(v) +
                        ") not read by montecl; the isotropic mean sqrt(alpha_u alpha_v) is used");
   double a = std::sqrt(au * av);
   if (a > 1.0) {
-    warnings.push_back(at(p) + "GGX alpha " + std::to_string(a) + " above montecl's limit 1, clamped");
+    warnings.push_back(whereOf(p) + "GGX alpha " + std::to_string(a) + " above montecl's limit 1, clamped");
     a = 1.0;
   }
   return float(a);
@@ -118,9 +118,9 @@ PbrtTexture pbrtTexture(const std::string& klass, const PbrtParams& p, const Pbr
     if (name.empty()) pbrtFail(p.loc, "imagemap: 'string filename' is required");
     t.file = besideFile(baseFile, name);
     t.value = glm::vec3(float(p.getFloat("scale", 1.0)));
-    if (p.getBool("invert", false)) warnings.push_back(at(p) + "imagemap: 'invert' not read by montecl, ignored");
+    if (p.getBool("invert", false)) warnings.push_back(whereOf(p) + "imagemap: 'invert' not read by montecl, ignored");
     const std::string mapping = p.getString("mapping", "uv");
-    if (mapping != "uv") warnings.push_back(at(p) + "imagemap: mapping '" + mapping + "' not read by montecl; uv used");
+    if (mapping != "uv") warnings.push_back(whereOf(p) + "imagemap: mapping '" + mapping + "' not read by montecl; uv used");
     // pbrt's uv mapping: s = su u + du, t = sv v + dv.
     const float su = float(p.getFloat("uscale", 1.0)), sv = float(p.getFloat("vscale", 1.0));
     const float du = float(p.getFloat("udelta", 0.0)), dv = float(p.getFloat("vdelta", 0.0));
@@ -128,12 +128,12 @@ PbrtTexture pbrtTexture(const std::string& klass, const PbrtParams& p, const Pbr
     t.sampling.row1 = glm::vec3(0.0f, sv, dv);
     const std::string wrap = p.getString("wrap", "repeat");
     const std::uint32_t w = wrap == "clamp" ? 1u : 0u;
-    if (wrap != "repeat" && wrap != "clamp") warnings.push_back(at(p) + "imagemap: wrap '" + wrap + "' not read by montecl; repeat used");
+    if (wrap != "repeat" && wrap != "clamp") warnings.push_back(whereOf(p) + "imagemap: wrap '" + wrap + "' not read by montecl; repeat used");
     t.sampling.wrapS = t.sampling.wrapT = w;
     for (const char* quiet : {"filter", "maxanisotropy"}) p.ignore(quiet);  // montecl filters with its own footprints
     const std::string encoding = p.getString("encoding", "sRGB");
     if (encoding != "sRGB")
-      warnings.push_back(at(p) + "imagemap: encoding '" + oneLine(encoding, 40) +
+      warnings.push_back(whereOf(p) + "imagemap: encoding '" + oneLine(encoding, 40) +
                          "' not read by montecl; it decodes 8-bit images as sRGB and float ones as linear");
     return t;
   }
@@ -141,7 +141,7 @@ PbrtTexture pbrtTexture(const std::string& klass, const PbrtParams& p, const Pbr
   if (klass == "scale") {
     PbrtTexture a = colour("tex", glm::vec3(1.0f)), b = colour("scale", glm::vec3(1.0f));
     if (!a.file.empty() && !b.file.empty()) {
-      warnings.push_back(at(p) + "scale: the product of two images is not read by montecl; the first image is used");
+      warnings.push_back(whereOf(p) + "scale: the product of two images is not read by montecl; the first image is used");
       b.file.clear(), b.value = glm::vec3(1.0f);
     }
     PbrtTexture out = a.file.empty() ? b : a;
@@ -155,13 +155,13 @@ PbrtTexture pbrtTexture(const std::string& klass, const PbrtParams& p, const Pbr
     float amount = 0.5f;
     if (klass == "mix") amount = float(p.getFloat("amount", 0.5));
     for (const char* quiet : {"dimension", "uscale", "vscale", "udelta", "vdelta", "mapping", "dir"}) p.ignore(quiet);
-    warnings.push_back(at(p) + "Texture \"" + klass + "\" is not rendered by montecl; its mean colour is used");
+    warnings.push_back(whereOf(p) + "Texture \"" + klass + "\" is not rendered by montecl; its mean colour is used");
     PbrtTexture out;
     out.value = a.value * (1.0f - amount) + b.value * amount;
     out.exact = false;
     return out;
   }
-  warnings.push_back(at(p) + "Texture \"" + oneLine(klass, 40) + "\" not read by montecl; white used");
+  warnings.push_back(whereOf(p) + "Texture \"" + oneLine(klass, 40) + "\" not read by montecl; white used");
   for (const PbrtParam& q : p.list) q.used = true;
   t.exact = false;
   return t;
@@ -190,34 +190,34 @@ MaterialDesc pbrtMaterial(const std::string& type, const PbrtParams& p, const Pb
     }
   } else if (type == "coateddiffuse") {
     diffuse("reflectance", glm::vec3(0.5f));
-    warnings.push_back(at(p) + "Material \"coateddiffuse\": montecl has no layered material; rendered as its diffuse base (no coating)");
+    warnings.push_back(whereOf(p) + "Material \"coateddiffuse\": montecl has no layered material; rendered as its diffuse base (no coating)");
     for (const char* coat : {"roughness", "uroughness", "vroughness", "thickness", "eta", "albedo", "g", "maxdepth",
                              "nsamples", "remaproughness"})
       p.ignore(coat);
   } else if (type == "coatedconductor") {
     conductor(p, textures, "conductor.", d, warnings);
-    warnings.push_back(at(p) + "Material \"coatedconductor\": montecl has no layered material; rendered as its conductor base (no coating)");
+    warnings.push_back(whereOf(p) + "Material \"coatedconductor\": montecl has no layered material; rendered as its conductor base (no coating)");
     for (const char* coat : {"interface.roughness", "interface.uroughness", "interface.vroughness", "interface.eta",
                              "thickness", "albedo", "g", "maxdepth", "nsamples"})
       p.ignore(coat);
   } else if (type == "diffusetransmission") {
     diffuse("reflectance", glm::vec3(0.25f));
     p.ignore("transmittance");
-    warnings.push_back(at(p) + "Material \"diffusetransmission\": montecl renders its reflection only (diffuse)");
+    warnings.push_back(whereOf(p) + "Material \"diffusetransmission\": montecl renders its reflection only (diffuse)");
   } else if (type == "mix") {
     const PbrtParam* m = p.find("materials");
     if (!m || m->type != "string" || m->strings.empty()) pbrtFail(p.loc, "mix: 'string materials' [ \"a\" \"b\" ] is required");
     p.ignore("amount");
     auto it = named.find(m->strings[0]);
     if (it == named.end()) pbrtFail(m->loc, "mix: material '" + oneLine(m->strings[0], 60) + "' is not defined");
-    warnings.push_back(at(p) + "Material \"mix\": montecl does not mix materials; the first, '" + oneLine(m->strings[0], 60) + "', is used");
+    warnings.push_back(whereOf(p) + "Material \"mix\": montecl does not mix materials; the first, '" + oneLine(m->strings[0], 60) + "', is used");
     d = it->second;
   } else if (type == "interface" || type == "none" || type == "") {
     // No surface (a medium's boundary): a sheet of index 1 lets light through unchanged.
     d.kind = MCL_MATERIAL_thin_dielectric;
     d.ior = 1.0f;
   } else {
-    warnings.push_back(at(p) + "Material \"" + oneLine(type, 40) + "\" not read by montecl; rendered as diffuse grey 0.5");
+    warnings.push_back(whereOf(p) + "Material \"" + oneLine(type, 40) + "\" not read by montecl; rendered as diffuse grey 0.5");
     for (const PbrtParam& q : p.list) q.used = true;
   }
   if (const std::string nm = p.getString("normalmap", ""); !nm.empty()) d.normalTexture = besideFile(baseFile, nm);

@@ -10,7 +10,7 @@
 namespace montecl {
 namespace {
 
-void warn(const PbrtParams& p, std::vector<std::string>& warnings, const std::string& text) {
+void warnAt(const PbrtParams& p, std::vector<std::string>& warnings, const std::string& text) {
   warnings.push_back(p.loc.str() + ": " + text);
 }
 
@@ -18,7 +18,7 @@ void warn(const PbrtParams& p, std::vector<std::string>& warnings, const std::st
 
 void pbrtFilm(const std::string& type, const PbrtParams& p, int& width, int& height, std::vector<std::string>& warnings) {
   if (type != "rgb" && type != "gbuffer" && type != "spectral")
-    warn(p, warnings, "Film \"" + oneLine(type, 40) + "\" not known; read as \"rgb\"");
+    warnAt(p, warnings, "Film \"" + oneLine(type, 40) + "\" not known; read as \"rgb\"");
   width = p.getInt("xresolution", 1280);
   height = p.getInt("yresolution", 720);
   if (width < 1 || width > kMaxImageSide || height < 1 || height > kMaxImageSide)
@@ -28,7 +28,7 @@ void pbrtFilm(const std::string& type, const PbrtParams& p, int& width, int& hei
   if (type != "rgb") for (const PbrtParam& q : p.list) q.used = true;
   for (const char* quiet : {"sensor", "iso", "whitebalance", "exposuretime", "savefp16", "maxcomponentvalue", "diagonal"})
     p.ignore(quiet);  // pbrt's defaults leave RGB radiance as it is (imaging ratio 1)
-  if (p.find("cropwindow") || p.find("pixelbounds")) warn(p, warnings, "Film: cropping is not read by montecl; the whole image is rendered");
+  if (p.find("cropwindow") || p.find("pixelbounds")) warnAt(p, warnings, "Film: cropping is not read by montecl; the whole image is rendered");
   p.reportUnused("Film", warnings);
 }
 
@@ -66,7 +66,7 @@ void pbrtIntegrator(const std::string& type, const PbrtParams& p, RenderSettings
     if (!(dist > 0.0)) pbrtFail(p.loc, "Integrator: 'maxdistance' must be > 0");
     r.aoDistance = float(std::min(dist, 1e30));
   } else if (type != "path" && type != "volpath") {
-    warn(p, warnings, "Integrator \"" + oneLine(type, 40) + "\": montecl renders it with its path tracer (same maxdepth)");
+    warnAt(p, warnings, "Integrator \"" + oneLine(type, 40) + "\": montecl renders it with its path tracer (same maxdepth)");
     for (const PbrtParam& q : p.list) q.used = true;
   }
   p.reportUnused("Integrator \"" + oneLine(type, 40) + "\"", warnings);
@@ -75,7 +75,7 @@ void pbrtIntegrator(const std::string& type, const PbrtParams& p, RenderSettings
 void pbrtPixelFilter(const std::string& type, const PbrtParams& p, std::vector<std::string>& warnings) {
   const double xr = p.getFloat("xradius", 0.5), yr = p.getFloat("yradius", 0.5);
   if (type != "box" || xr != 0.5 || yr != 0.5)
-    warn(p, warnings, "PixelFilter \"" + oneLine(type, 40) +
+    warnAt(p, warnings, "PixelFilter \"" + oneLine(type, 40) +
                           "\": montecl has no pixel reconstruction filters; each pixel is the plain mean of its "
                           "samples (a box of radius 0.5)");
   for (const PbrtParam& q : p.list) q.used = true;  // one warning for the filter, none per parameter

@@ -109,7 +109,7 @@ const PbrtParam* PbrtParams::find(const std::string& name) const {
 }
 
 namespace {
-const PbrtParam* one(const PbrtParams& ps, const std::string& name, std::initializer_list<const char*> types) {
+const PbrtParam* paramOfType(const PbrtParams& ps, const std::string& name, std::initializer_list<const char*> types) {
   const PbrtParam* p = ps.find(name);
   if (!p) return nullptr;
   bool ok = false;
@@ -123,25 +123,25 @@ const PbrtParam* one(const PbrtParams& ps, const std::string& name, std::initial
 }  // namespace
 
 double PbrtParams::getFloat(const std::string& name, double fallback) const {
-  const PbrtParam* p = one(*this, name, {"float"});
+  const PbrtParam* p = paramOfType(*this, name, {"float"});
   return p ? p->numbers[0] : fallback;
 }
 int PbrtParams::getInt(const std::string& name, int fallback) const {
-  const PbrtParam* p = one(*this, name, {"integer"});
+  const PbrtParam* p = paramOfType(*this, name, {"integer"});
   if (p && std::abs(p->numbers[0]) > 2147483647.0) pbrtFail(p->loc, quoted(*p) + ": out of the integer range");
   return p ? int(p->numbers[0]) : fallback;
 }
 bool PbrtParams::getBool(const std::string& name, bool fallback) const {
-  const PbrtParam* p = one(*this, name, {"bool"});
+  const PbrtParam* p = paramOfType(*this, name, {"bool"});
   return p ? bool(p->bools[0]) : fallback;
 }
 std::string PbrtParams::getString(const std::string& name, const std::string& fallback) const {
-  const PbrtParam* p = one(*this, name, {"string"});
+  const PbrtParam* p = paramOfType(*this, name, {"string"});
   return p ? p->strings[0] : fallback;
 }
 std::string PbrtParams::getTexture(const std::string& name) const {
   for (const PbrtParam& p : list)
-    if (p.name == name && p.type == "texture") return one(*this, name, {"texture"})->strings[0];
+    if (p.name == name && p.type == "texture") return paramOfType(*this, name, {"texture"})->strings[0];
   return "";
 }
 

@@ -11,7 +11,7 @@
 namespace montecl {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPbrtPi = 3.14159265358979323846;
 
 // Triangles from indexed positions with optional normals and uvs (pbrt's trianglemesh).
 void indexedTriangles(const PbrtParams& p, const std::vector<double>& P, const std::vector<double>& N,
@@ -87,13 +87,13 @@ void bilinearMesh(const PbrtParams& p, std::vector<SceneTriangle>& out) {
 }
 
 // pbrt's sphere (radius, full: zmin, zmax and phimax are warned about when given), outward normals.
-void sphere(const PbrtParams& p, std::vector<SceneTriangle>& out) {
+void tessellateSphere(const PbrtParams& p, std::vector<SceneTriangle>& out) {
   const double r = p.getFloat("radius", 1.0);
   if (!(r > 0.0 && std::isfinite(r))) pbrtFail(p.loc, "sphere: 'float radius' must be > 0");
   const int nPhi = kSphereSegments, nTheta = kSphereSegments / 2;
   auto corner = [&](int i, int j, glm::vec3& pos, glm::vec3& n, glm::vec2& uv) {
-    const double theta = kPi * double(j) / nTheta;  // from the -z pole (v = 0) to +z, as pbrt's v
-    const double phi = 2.0 * kPi * double(i) / nPhi;
+    const double theta = kPbrtPi * double(j) / nTheta;  // from the -z pole (v = 0) to +z, as pbrt's v
+    const double phi = 2.0 * kPbrtPi * double(i) / nPhi;
     const glm::dvec3 d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), -std::cos(theta));
     n = glm::vec3(d);
     pos = glm::vec3(d * r);
@@ -121,13 +121,13 @@ void sphere(const PbrtParams& p, std::vector<SceneTriangle>& out) {
 }
 
 // pbrt's disk: radius, innerradius, at z = height, normal +z.
-void disk(const PbrtParams& p, std::vector<SceneTriangle>& out) {
+void tessellateDisk(const PbrtParams& p, std::vector<SceneTriangle>& out) {
   const double r = p.getFloat("radius", 1.0), ri = p.getFloat("innerradius", 0.0), h = p.getFloat("height", 0.0);
   if (!(r > 0.0 && std::isfinite(r))) pbrtFail(p.loc, "disk: 'float radius' must be > 0");
   if (!(ri >= 0.0 && ri < r)) pbrtFail(p.loc, "disk: 'float innerradius' must be in [0, radius)");
   const int n = kSphereSegments;
   for (int i = 0; i < n; ++i) {
-    const double a0 = 2.0 * kPi * i / n, a1 = 2.0 * kPi * (i + 1) / n;
+    const double a0 = 2.0 * kPbrtPi * i / n, a1 = 2.0 * kPbrtPi * (i + 1) / n;
     const glm::vec3 o0(float(r * std::cos(a0)), float(r * std::sin(a0)), float(h));
     const glm::vec3 o1(float(r * std::cos(a1)), float(r * std::sin(a1)), float(h));
     const glm::vec3 i0(float(ri * std::cos(a0)), float(ri * std::sin(a0)), float(h));
@@ -140,8 +140,8 @@ void disk(const PbrtParams& p, std::vector<SceneTriangle>& out) {
         // pbrt's disk uv: u = phi / phimax, v = (radius - r) / (radius - innerradius)
         const double rr = std::sqrt(double(t.v[k].x) * t.v[k].x + double(t.v[k].y) * t.v[k].y);
         double phi = std::atan2(double(t.v[k].y), double(t.v[k].x));
-        if (phi < 0) phi += 2 * kPi;
-        t.uv[k] = glm::vec2(float(phi / (2 * kPi)), float((r - rr) / (r - ri)));
+        if (phi < 0) phi += 2 * kPbrtPi;
+        t.uv[k] = glm::vec2(float(phi / (2 * kPbrtPi)), float((r - rr) / (r - ri)));
       }
       t.attributes = kHasNormals | kHasUv;
       out.push_back(t);
@@ -168,11 +168,11 @@ bool pbrtShapeTriangles(const std::string& type, const PbrtParams& params, const
     for (const char* partial : {"zmin", "zmax", "phimax"})
       if (params.find(partial))
         warnings.push_back(params.loc.str() + ": Shape \"sphere\": '" + partial + "' (a partial sphere) not read by montecl; the whole sphere is rendered");
-    sphere(params, out);
+    tessellateSphere(params, out);
   } else if (type == "disk") {
     if (params.find("phimax"))
       warnings.push_back(params.loc.str() + ": Shape \"disk\": 'phimax' (a partial disk) not read by montecl; the whole disk is rendered");
-    disk(params, out);
+    tessellateDisk(params, out);
   } else if (type == "plymesh") {
     const std::string name = params.getString("filename", "");
     if (name.empty()) pbrtFail(params.loc, "plymesh: 'string filename' is required");
