@@ -270,10 +270,25 @@ TEST_CASE("pbrt: materials map to montecl's kinds with pbrt's parameters" * doct
   CHECK(mat(3).ior == doctest::Approx(1.5185).epsilon(1e-3));
   CHECK(mat(4).kind == MCL_MATERIAL_thin_dielectric);
   CHECK(mat(4).ior == doctest::Approx(1.33));
-  CHECK(mat(5).kind == MCL_MATERIAL_diffuse);
-  CHECK(mat(5).albedo == glm::vec3(0.2f, 0.3f, 0.4f));
+  // coateddiffuse: metal_rough (metallic 0, smooth), its base darkened by the coat's internal
+  // reflections: rho (1 - r_i) T^2 / (1 - rho r_i T^2), r_i = 0.5968 at index 1.5, T^2 = exp(-0.04).
+  CHECK(mat(5).kind == MCL_MATERIAL_metal_rough);
+  CHECK(mat(5).metallic == 0.0f);
+  CHECK(mat(5).roughness == 0.0f);
+  const double ri = -1.440 / 2.25 + 0.710 / 1.5 + 0.668 + 0.0636 * 1.5, t2 = std::exp(-0.04);
+  for (int c = 0; c < 3; ++c) {
+    const double rho = 0.2 + 0.1 * c;
+    CHECK(mat(5).albedo[c] == doctest::Approx(rho * (1 - ri) * t2 / (1 - rho * ri * t2)).epsilon(1e-5));
+  }
   CHECK(warnings.size() == 1);
   CHECK(anyContains(warnings, "s.pbrt:", "coateddiffuse"));
+  // A white base under a clear coat without absorption keeps all of its light; grey 0.5 becomes 0.29.
+  s = load(dir, std::string(kCamera) + "WorldBegin\nMaterial \"coateddiffuse\" \"rgb reflectance\" [ 1 0.5 0 ]"
+                " \"float thickness\" 0 \"float roughness\" 0.04\n" + kTriangle);
+  CHECK(mat(0).albedo.x == doctest::Approx(1.0));
+  CHECK(mat(0).albedo.y == doctest::Approx(0.2877).epsilon(1e-3));
+  CHECK(mat(0).albedo.z == 0.0f);
+  CHECK(mat(0).roughness == doctest::Approx(std::sqrt(0.2)));  // alpha sqrt(0.04); metal_rough squares
 }
 
 TEST_CASE("pbrt: image textures become the material's texture; a missing one is an error at its line" * doctest::test_suite("cpu pbrt")) {
