@@ -56,6 +56,8 @@ struct Sandbox {
     for (const char* f : {"demo.obj", "demo.mtl"}) fs::copy_file(demo / f, fs::path(dir) / f);
     writeFile(fs::path(dir) / "tent.bin", montecl_test::gltfBuffer(montecl_test::tentMesh()));
     writeFile(fs::path(dir) / "wood.png", std::string("not decoded by the loader"));
+    writeFile(fs::path(dir) / "tent.ply", montecl_test::plyText(montecl_test::tentMesh(), montecl_test::PlyEncoding::LittleEndian));
+    writeFile(fs::path(dir) / "part.pbrt", std::string("Translate 0 1 0\nShape \"disk\" \"float radius\" 0.5\n"));
   }
   ~Sandbox() {
     std::error_code ec;
@@ -240,6 +242,40 @@ std::vector<std::string> gltfSeeds() {
   return seeds;
 }
 
+// Every directive the pbrt reader knows, over a few small scenes (and the .pbrt files in the tree).
+// No sphere: each is 16k triangles, and mutations that repeat it only measure the tessellation.
+std::vector<std::string> pbrtSeeds() {
+  const std::string camera =
+      "LookAt 0 1 5  0 1 0  0 1 0\nFilm \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 6 ]\n"
+      "Camera \"perspective\" \"float fov\" [ 40 ] \"float lensradius\" 0.01 \"float focaldistance\" 5\n"
+      "Sampler \"independent\" \"integer pixelsamples\" [ 4 ]\nIntegrator \"path\" \"integer maxdepth\" [ 3 ]\n"
+      "PixelFilter \"box\"\n";
+  std::vector<std::string> seeds = {
+      camera + "WorldBegin\nAttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 4 4 4 ] \"bool twosided\" true\n"
+               "Shape \"trianglemesh\" \"point3 P\" [ -1 0 0 1 0 0 1 2 0 -1 2 0 ] \"integer indices\" [ 0 1 2 0 2 3 ]"
+               " \"normal N\" [ 0 0 1 0 0 1 0 0 1 0 0 1 ] \"point2 uv\" [ 0 0 1 0 1 1 0 1 ]\nAttributeEnd\n"
+               "Shape \"disk\" \"float radius\" 0.5 \"float height\" 0.1\nReverseOrientation\nShape \"disk\" \"float innerradius\" 0.2\n",
+      camera + "WorldBegin\nMakeNamedMaterial \"cu\" \"string type\" \"conductor\" \"spectrum eta\" \"metal-Cu-eta\""
+               " \"spectrum k\" \"metal-Cu-k\" \"float uroughness\" 0.1 \"float vroughness\" 0.2\n"
+               "Texture \"t\" \"spectrum\" \"checkerboard\" \"rgb tex1\" [ 1 0 0 ]\n"
+               "Texture \"w\" \"spectrum\" \"imagemap\" \"string filename\" \"wood.png\" \"float uscale\" 2\n"
+               "Material \"diffuse\" \"texture reflectance\" \"t\"\nNamedMaterial \"cu\"\n"
+               "Transform [ 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1 ]\nShape \"plymesh\" \"string filename\" \"tent.ply\"\n"
+               "Material \"dielectric\" \"spectrum eta\" \"glass-BK7\" \"float roughness\" 0.1\n"
+               "Shape \"bilinearmesh\" \"point3 P\" [ 0 0 0 1 0 0 0 1 0 1 1 0 ]\n",
+      camera + "WorldBegin\nLightSource \"point\" \"rgb I\" [ 1 1 1 ] \"point3 from\" [ 0 3 0 ]\n"
+               "LightSource \"spot\" \"point3 from\" [ 0 3 0 ] \"point3 to\" [ 0 0 0 ] \"float coneangle\" 30\n"
+               "LightSource \"distant\" \"blackbody L\" [ 5500 ]\nLightSource \"infinite\" \"rgb L\" [ .2 .2 .2 ]\n"
+               "ObjectBegin \"o\"\nShape \"trianglemesh\" \"point3 P\" [ 0 0 0 1 0 0 0 1 0 ]\nObjectEnd\n"
+               "TransformBegin\nTranslate 1 0 0\nRotate 30 0 1 0\nScale 2 2 2\nObjectInstance \"o\"\nTransformEnd\n"
+               "CoordinateSystem \"c\"\nCoordSysTransform \"c\"\nConcatTransform [ 1 0 0 0 0 1 0 0 0 0 1 0 0 0 1 1 ]\n"
+               "MakeNamedMedium \"m\" \"string type\" \"homogeneous\"\nMediumInterface \"m\" \"\"\n"
+               "Include \"part.pbrt\"\n",
+  };
+  for (const std::string& s : filesSeeds({".pbrt"})) seeds.push_back(s);
+  return seeds;
+}
+
 std::vector<std::string> exrSeeds() {
   using montecl::LayeredImage;
   std::vector<std::string> seeds;
@@ -289,6 +325,7 @@ const char* loaderName(Loader l) {
     case Loader::Cache: return "cache";
     case Loader::Ply: return "ply";
     case Loader::Gltf: return "gltf";
+    case Loader::Pbrt: return "pbrt";
   }
   return "?";
 }
@@ -371,6 +408,16 @@ Outcome fuzzGltf(const std::uint8_t* data, std::size_t size) {
   });
 }
 
+Outcome fuzzPbrt(const std::uint8_t* data, std::size_t size) {
+  const fs::path p = fs::path(sandboxDir()) / "fuzz.pbrt";
+  writeFile(p, reinterpret_cast<const char*>(data), size);
+  return guarded([&] {
+    std::vector<std::string> warnings;
+    montecl::loadScene(p.string(), warnings);
+    return true;
+  });
+}
+
 Outcome runEntry(Loader l, const std::uint8_t* data, std::size_t size) {
   switch (l) {
     case Loader::Scene: return fuzzScene(data, size);
@@ -379,6 +426,7 @@ Outcome runEntry(Loader l, const std::uint8_t* data, std::size_t size) {
     case Loader::Cache: return fuzzCache(data, size);
     case Loader::Ply: return fuzzPly(data, size);
     case Loader::Gltf: return fuzzGltf(data, size);
+    case Loader::Pbrt: return fuzzPbrt(data, size);
   }
   throw std::logic_error("unknown loader");
 }
@@ -391,6 +439,7 @@ std::vector<std::string> seedInputs(Loader l) {
     case Loader::Cache: return cacheSeeds();
     case Loader::Ply: return plySeeds();
     case Loader::Gltf: return gltfSeeds();
+    case Loader::Pbrt: return pbrtSeeds();
   }
   return {};
 }

@@ -17,9 +17,10 @@ namespace montecl_fuzz {
 
 enum class Outcome { Loaded, Rejected };
 
-enum class Loader { Scene, Obj, Exr, Cache, Ply, Gltf };
-constexpr Loader kLoaders[] = {Loader::Scene, Loader::Obj, Loader::Exr, Loader::Cache, Loader::Ply, Loader::Gltf};
-const char* loaderName(Loader l);  // "scene", "obj", "exr", "cache", "ply", "gltf"
+enum class Loader { Scene, Obj, Exr, Cache, Ply, Gltf, Pbrt };
+constexpr Loader kLoaders[] = {Loader::Scene, Loader::Obj,  Loader::Exr, Loader::Cache,
+                               Loader::Ply,   Loader::Gltf, Loader::Pbrt};
+const char* loaderName(Loader l);  // "scene", "obj", "exr", "cache", "ply", "gltf", "pbrt"
 
 // Scene JSON: the bytes are <sandbox>/scene.json, loaded by loadScene(). The sandbox folder also
 // holds quad.obj/quad.mtl (scenes/test/good) and demo.obj/demo.mtl (scenes/demo), so that mesh
@@ -47,6 +48,10 @@ Outcome fuzzPly(const std::uint8_t* data, std::size_t size);
 // loaded by loadGltfInto(). The sandbox also holds tent.bin (the external buffer of a seed) and
 // wood.png (a texture the seeds name).
 Outcome fuzzGltf(const std::uint8_t* data, std::size_t size);
+
+// pbrt-v4: the bytes are <sandbox>/fuzz.pbrt, loaded by loadScene(). The sandbox also holds
+// tent.ply (a plymesh the seeds name) and part.pbrt (an Include).
+Outcome fuzzPbrt(const std::uint8_t* data, std::size_t size);
 
 Outcome runEntry(Loader l, const std::uint8_t* data, std::size_t size);
 

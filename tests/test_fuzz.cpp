@@ -164,3 +164,6 @@ TEST_CASE("fuzz: 10k mutated PLY files (ASCII and binary) load or fail with Inpu
 TEST_CASE("fuzz: 10k mutated glTF files (.gltf and .glb) load or fail with InputError" * doctest::test_suite("cpu slow")) {
   fuzzLoop(Loader::Gltf);
 }
+TEST_CASE("fuzz: 10k mutated pbrt-v4 files load or fail with InputError" * doctest::test_suite("cpu slow")) {
+  fuzzLoop(Loader::Pbrt);
+}

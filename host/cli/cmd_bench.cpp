@@ -21,7 +21,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   CLI::App* cmd = app.add_subcommand(
       "bench", "Benchmark BVH build and traversal kernels (primary, AO, shadow rays) against the host "
                "reference and Embree");
-  cmd->add_option("scene", o->scene, "Scene file (.json) or a bare mesh (.obj, .ply, .gltf, .glb)")->required();
+  cmd->add_option("scene", o->scene, "Scene file (.json or pbrt-v4 .pbrt) or a bare mesh (.obj, .ply, .gltf, .glb)")->required();
   cmd->add_option("--repeat", o->repeat, "Timed repetitions per kernel (median and minimum reported)")
       ->check(positiveInteger());
   cmd->add_option("--warmup", o->warmup, "Untimed runs before the timed ones")->check(integerIn(0, std::numeric_limits<int>::max(), "a non-negative integer"));

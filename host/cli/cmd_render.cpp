@@ -332,7 +332,7 @@ int runRender(const RenderArgs& a) {
 void addRenderCommand(CLI::App& app, int& exitCode) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene file (.json) or a bare mesh (.obj, .ply, .gltf, .glb)");
-  cmd->add_option("scene", args->scene, "Scene file (.json) or a bare mesh (.obj, .ply, .gltf, .glb)")->required();
+  cmd->add_option("scene", args->scene, "Scene file (.json or pbrt-v4 .pbrt) or a bare mesh (.obj, .ply, .gltf, .glb)")->required();
   cmd->add_option("-o,--output", args->output,
                   "Output image: .png (8-bit sRGB), .pfm (linear float), .exr (linear float with channels R, G, B, "
                   "samples, var.R, var.G, var.B); default: <scene name>.png in the current folder (<folder "

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "image/exr_layers.h"
+#include "scene/equal_area.h"
 #include "util/host_memory.h"
 #include "util/errors.h"
 
@@ -79,7 +80,14 @@ EnvironmentTable buildEnvironment(const Scene& scene) {
   std::vector<glm::vec3> rgb(count);
   for (std::size_t i = 0; i < count; ++i)
     for (int c = 0; c < 3; ++c) rgb[i][c] = (*planes[c])[i];
-  EnvironmentTable t = environmentFromPixels(image.width, image.height, rgb);
+  int width = image.width, height = image.height;
+  if (env.equalArea) {  // a pbrt-v4 map (scene/equal_area.h)
+    if (width != height)
+      throwInputError(scene.path, where, "'" + env.file + "': pbrt-v4's equal-area map must be square, got " +
+                                             std::to_string(width) + " x " + std::to_string(height));
+    rgb = latLongFromEqualArea(rgb, width, env.mapFromWorld, width, height);
+  }
+  EnvironmentTable t = environmentFromPixels(width, height, rgb);
   t.radiance = constant.radiance;
   t.rotateY = constant.rotateY;
   return t;

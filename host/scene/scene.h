@@ -119,6 +119,11 @@ struct EnvironmentDesc {
   std::string file;          // "file": latitude-longitude map (resolved path); empty: constant
   float scale = 1.0f;        // "scale" (>= 0): multiplies the radiance
   float rotateYDegrees = 0.0f;  // "rotate_y": rotation of the map about +y
+  // A pbrt-v4 infinite light's map (host/scene/equal_area.h): a square equal-area octahedral
+  // image, looked up in the direction mapFromWorld * (the escaping ray's); resampled to
+  // latitude-longitude when the environment is built. False: the map is latitude-longitude.
+  bool equalArea = false;
+  glm::dmat3 mapFromWorld{1.0};
 };
 
 // A light that is not a triangle (scene key "lights", host/scene/lights_key.cpp; kinds in

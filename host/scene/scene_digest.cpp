@@ -128,6 +128,10 @@ std::string sceneDigest(const Scene& scene) {
     appendVec(bytes, e.radiance);
     append(bytes, &e.scale, sizeof e.scale);
     append(bytes, &e.rotateYDegrees, sizeof e.rotateYDegrees);
+    if (e.equalArea) {  // (only pbrt scenes' maps: the others keep their digests)
+      bytes.add("equal-area");
+      append(bytes, &e.mapFromWorld[0][0], sizeof e.mapFromWorld);
+    }
   }
   if (!scene.lights.empty()) {  // (scenes without "lights" keep their digests)
     bytes.add("lights");

@@ -24,6 +24,7 @@
 #include "scene/mesh_loaders.h"
 #include "scene/environment_key.h"
 #include "scene/lights_key.h"
+#include "scene/pbrt_scene.h"
 #include "scene/scene.h"
 #include "util/errors.h"
 
@@ -333,8 +334,21 @@ void applyBareModelDefaults(Scene& scene) {
 
 Scene loadScene(const std::string& path, std::vector<std::string>& warnings, std::optional<MissingTextures> missing) {
   if (meshFormatOf(path) != MeshFormat::Unknown) return loadBareMesh(path, warnings, missing);
+  if (isPbrtScenePath(path)) {  // pbrt-v4 (scene/pbrt_scene.h)
+    Scene scene = loadPbrtScene(path, warnings, missing);
+    checkEmissionPower(scene);
+    return scene;
+  }
   Ctx ctx{path, warnings};
-  json root = parseJson(ctx, readSceneText(ctx));
+  const std::string text = readSceneText(ctx);
+  // A file of another kind (x.stl, a pbrt-v3 .lxs) is not reported as malformed JSON: JSON is
+  // tried under another extension only when the text starts like a scene file, with '{'.
+  const std::string ext = lowerExtension(path);
+  const std::size_t first = text.find_first_not_of(" \t\r\n");
+  if (!ext.empty() && ext != ".json" && (first == std::string::npos || text[first] != '{'))
+    throwInputError(oneLine(path), "", "not a file montecl reads: scene files .json and .pbrt (pbrt-v4), meshes .obj, "
+                                       ".ply, .gltf and .glb");
+  json root = parseJson(ctx, text);
   requireObject(ctx, root, "(top level)");
   warnUnknownKeys(ctx, root, "", {"camera", "meshes", "render", "environment", "lights"});
   Scene scene;

@@ -1,0 +1,236 @@
+// pbrt_shapes.cpp: pbrt-v4 shapes as triangles (pbrt_shapes.h): reads Shape parameters and PLY
+// files, writes object-space triangles and places them.
+#include "scene/pbrt_shapes.h"
+
+#include <cmath>
+#include <utility>
+
+#include "scene/load_util.h"
+#include "scene/mesh_loaders.h"
+
+namespace montecl {
+namespace {
+
+constexpr double kPbrtPi = 3.14159265358979323846;
+
+// Triangles from indexed positions with optional normals and uvs (pbrt's trianglemesh).
+void indexedTriangles(const PbrtParams& p, const std::vector<double>& P, const std::vector<double>& N,
+                      const std::vector<double>& uv, const std::vector<std::size_t>& idx,
+                      std::vector<SceneTriangle>& out) {
+  const std::size_t nv = P.size() / 3;
+  if (!N.empty() && N.size() != P.size())
+    pbrtFail(p.loc, "'normal N' has " + std::to_string(N.size() / 3) + " normals for " + std::to_string(nv) + " points");
+  if (!uv.empty() && uv.size() / 2 != nv)
+    pbrtFail(p.loc, "'point2 uv' has " + std::to_string(uv.size() / 2) + " coordinates for " + std::to_string(nv) + " points");
+  for (std::size_t t = 0; t + 2 < idx.size(); t += 3) {
+    SceneTriangle tri{};
+    bool normals = !N.empty();
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t i = idx[t + std::size_t(k)];
+      tri.v[k] = glm::vec3(float(P[3 * i]), float(P[3 * i + 1]), float(P[3 * i + 2]));
+      if (normals) {
+        const glm::vec3 n = glm::vec3(N[3 * i], N[3 * i + 1], N[3 * i + 2]);
+        const float len = glm::length(n);
+        if (!(len > 0.0f) || !std::isfinite(len)) normals = false;
+        else tri.n[k] = n / len;
+      }
+      if (!uv.empty()) tri.uv[k] = glm::vec2(float(uv[2 * i]), float(uv[2 * i + 1]));
+    }
+    tri.attributes = std::uint8_t((normals ? kHasNormals : 0) | (uv.empty() ? 0 : kHasUv));
+    out.push_back(tri);
+  }
+}
+
+std::vector<std::size_t> checkedIndices(const PbrtParams& p, const std::vector<double>& raw, std::size_t nv, int group) {
+  std::vector<std::size_t> idx;
+  idx.reserve(raw.size());
+  const PbrtParam* param = p.find("indices");
+  for (double d : raw) {
+    if (!(d >= 0.0 && d < double(nv)))
+      pbrtFail(param->loc, "'integer indices': index " + std::to_string(static_cast<long long>(d)) + " out of range (" + std::to_string(nv) + " points)");
+    idx.push_back(std::size_t(d));
+  }
+  if (idx.size() % std::size_t(group) != 0)
+    pbrtFail(param->loc, "'integer indices': " + std::to_string(idx.size()) + " indices, not a multiple of " + std::to_string(group));
+  return idx;
+}
+
+void triangleMesh(const PbrtParams& p, std::vector<SceneTriangle>& out) {
+  const std::vector<double> P = p.getNumbers("P", {"point3", "point"}, 3);
+  if (P.empty()) pbrtFail(p.loc, "trianglemesh: 'point3 P' is required");
+  std::vector<double> raw = p.getNumbers("indices", {"integer"}, 1);
+  if (raw.empty()) {
+    if (P.size() != 9) pbrtFail(p.loc, "trianglemesh: 'integer indices' is required unless there are exactly 3 points");
+    raw = {0, 1, 2};
+  }
+  const std::vector<size_t> idx = checkedIndices(p, raw, P.size() / 3, 3);
+  indexedTriangles(p, P, p.getNumbers("N", {"normal", "normal3"}, 3), p.getNumbers("uv", {"point2", "float"}, 2), idx, out);
+}
+
+// Each patch (p00, p10, p01, p11) as the triangles (p00, p10, p11) and (p00, p11, p01): the side
+// of cross(p10 - p00, p01 - p00), pbrt's dpdu x dpdv, for a flat convex patch.
+void bilinearMesh(const PbrtParams& p, std::vector<SceneTriangle>& out) {
+  const std::vector<double> P = p.getNumbers("P", {"point3", "point"}, 3);
+  if (P.empty()) pbrtFail(p.loc, "bilinearmesh: 'point3 P' is required");
+  std::vector<double> raw = p.getNumbers("indices", {"integer"}, 1);
+  if (raw.empty()) {
+    if (P.size() != 12) pbrtFail(p.loc, "bilinearmesh: 'integer indices' is required unless there are exactly 4 points");
+    raw = {0, 1, 2, 3};
+  }
+  const std::vector<size_t> quads = checkedIndices(p, raw, P.size() / 3, 4);
+  std::vector<std::size_t> idx;
+  for (std::size_t q = 0; q < quads.size(); q += 4) {
+    const std::size_t a = quads[q], b = quads[q + 1], c = quads[q + 2], d = quads[q + 3];
+    idx.insert(idx.end(), {a, b, d, a, d, c});
+  }
+  indexedTriangles(p, P, p.getNumbers("N", {"normal", "normal3"}, 3), p.getNumbers("uv", {"point2", "float"}, 2), idx, out);
+}
+
+// pbrt's sphere (radius, full: zmin, zmax and phimax are warned about when given), outward normals.
+void tessellateSphere(const PbrtParams& p, std::vector<SceneTriangle>& out) {
+  const double r = p.getFloat("radius", 1.0);
+  if (!(r > 0.0 && std::isfinite(r))) pbrtFail(p.loc, "sphere: 'float radius' must be > 0");
+  const int nPhi = kSphereSegments, nTheta = kSphereSegments / 2;
+  auto corner = [&](int i, int j, glm::vec3& pos, glm::vec3& n, glm::vec2& uv) {
+    const double theta = kPbrtPi * double(j) / nTheta;  // from the -z pole (v = 0) to +z, as pbrt's v
+    const double phi = 2.0 * kPbrtPi * double(i) / nPhi;
+    const glm::dvec3 d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), -std::cos(theta));
+    n = glm::vec3(d);
+    pos = glm::vec3(d * r);
+    uv = glm::vec2(float(double(i) / nPhi), float(double(j) / nTheta));
+  };
+  for (int j = 0; j < nTheta; ++j)
+    for (int i = 0; i < nPhi; ++i) {
+      SceneTriangle a{}, b{};
+      glm::vec3 P[4], N[4];
+      glm::vec2 UV[4];
+      corner(i, j, P[0], N[0], UV[0]);
+      corner(i + 1, j, P[1], N[1], UV[1]);
+      corner(i + 1, j + 1, P[2], N[2], UV[2]);
+      corner(i, j + 1, P[3], N[3], UV[3]);
+      // P0 -> P1 runs east, P0 -> P3 north: cross(east, north) points outward.
+      const int ta[3] = {0, 1, 2}, tb[3] = {0, 2, 3};
+      for (int k = 0; k < 3; ++k) {
+        a.v[k] = P[ta[k]], a.n[k] = N[ta[k]], a.uv[k] = UV[ta[k]];
+        b.v[k] = P[tb[k]], b.n[k] = N[tb[k]], b.uv[k] = UV[tb[k]];
+      }
+      a.attributes = b.attributes = kHasNormals | kHasUv;
+      if (j > 0) out.push_back(a);  // at the poles two corners meet: skip the zero-area half
+      if (j + 1 < nTheta) out.push_back(b);
+    }
+}
+
+// pbrt's disk: radius, innerradius, at z = height, normal +z.
+void tessellateDisk(const PbrtParams& p, std::vector<SceneTriangle>& out) {
+  const double r = p.getFloat("radius", 1.0), ri = p.getFloat("innerradius", 0.0), h = p.getFloat("height", 0.0);
+  if (!(r > 0.0 && std::isfinite(r))) pbrtFail(p.loc, "disk: 'float radius' must be > 0");
+  if (!(ri >= 0.0 && ri < r)) pbrtFail(p.loc, "disk: 'float innerradius' must be in [0, radius)");
+  const int n = kSphereSegments;
+  for (int i = 0; i < n; ++i) {
+    const double a0 = 2.0 * kPbrtPi * i / n, a1 = 2.0 * kPbrtPi * (i + 1) / n;
+    const glm::vec3 o0(float(r * std::cos(a0)), float(r * std::sin(a0)), float(h));
+    const glm::vec3 o1(float(r * std::cos(a1)), float(r * std::sin(a1)), float(h));
+    const glm::vec3 i0(float(ri * std::cos(a0)), float(ri * std::sin(a0)), float(h));
+    const glm::vec3 i1(float(ri * std::cos(a1)), float(ri * std::sin(a1)), float(h));
+    auto tri = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+      SceneTriangle t{};
+      t.v[0] = a, t.v[1] = b, t.v[2] = c;
+      for (int k = 0; k < 3; ++k) {
+        t.n[k] = glm::vec3(0, 0, 1);
+        // pbrt's disk uv: u = phi / phimax, v = (radius - r) / (radius - innerradius)
+        const double rr = std::sqrt(double(t.v[k].x) * t.v[k].x + double(t.v[k].y) * t.v[k].y);
+        double phi = std::atan2(double(t.v[k].y), double(t.v[k].x));
+        if (phi < 0) phi += 2 * kPbrtPi;
+        t.uv[k] = glm::vec2(float(phi / (2 * kPbrtPi)), float((r - rr) / (r - ri)));
+      }
+      t.attributes = kHasNormals | kHasUv;
+      out.push_back(t);
+    };
+    tri(i0, o0, o1);  // counter-clockwise seen from +z: the front is +z
+    if (ri > 0.0) tri(i0, o1, i1);
+  }
+}
+
+}  // namespace
+
+bool pbrtShapeTriangles(const std::string& type, const PbrtParams& params, const std::string& baseFile,
+                        std::vector<SceneTriangle>& out, std::vector<std::string>& warnings,
+                        std::vector<std::string>& plyInputs) {
+  if (type == "trianglemesh") {
+    triangleMesh(params, out);
+  } else if (type == "bilinearmesh") {
+    bilinearMesh(params, out);
+  } else if (type == "loopsubdiv") {
+    warnings.push_back(params.loc.str() + ": Shape \"loopsubdiv\": montecl does not subdivide; its control mesh is rendered");
+    params.ignore("levels");
+    triangleMesh(params, out);
+  } else if (type == "sphere") {
+    for (const char* partial : {"zmin", "zmax", "phimax"})
+      if (params.find(partial))
+        warnings.push_back(params.loc.str() + ": Shape \"sphere\": '" + partial + "' (a partial sphere) not read by montecl; the whole sphere is rendered");
+    tessellateSphere(params, out);
+  } else if (type == "disk") {
+    if (params.find("phimax"))
+      warnings.push_back(params.loc.str() + ": Shape \"disk\": 'phimax' (a partial disk) not read by montecl; the whole disk is rendered");
+    tessellateDisk(params, out);
+  } else if (type == "plymesh") {
+    const std::string name = params.getString("filename", "");
+    if (name.empty()) pbrtFail(params.loc, "plymesh: 'string filename' is required");
+    const std::string path = besideFile(baseFile, name);
+    const std::string problem = fileProblem(path);
+    if (!problem.empty()) pbrtFail(params.find("filename")->loc, "plymesh: cannot open '" + oneLine(name, 100) + "': " + problem);
+    if (lowerExtension(path) == ".gz")
+      pbrtFail(params.find("filename")->loc, "plymesh: '" + oneLine(name, 100) + "' is compressed; montecl reads uncompressed PLY only (gunzip it)");
+    Scene ply;  // the loader's own scene: its default material is replaced by the caller's
+    loadPlyInto(path, ply, &warnings);
+    plyInputs.push_back(path);
+    for (SceneTriangle& t : ply.triangles) {
+      t.material = 0;
+      out.push_back(t);
+    }
+    for (const char* displacement : {"displacement", "edgelength"})
+      if (params.find(displacement))
+        warnings.push_back(params.loc.str() + ": Shape \"plymesh\": '" + displacement + "' (displacement) not read by montecl, ignored");
+  } else {
+    warnings.push_back(params.loc.str() + ": Shape \"" + oneLine(type, 40) +
+                       "\" not read by montecl (it reads trianglemesh, plymesh, bilinearmesh, sphere, disk, "
+                       "loopsubdiv), left out");
+    for (const PbrtParam& p : params.list) p.used = true;  // one warning for the whole shape
+    return false;
+  }
+  return true;
+}
+
+void placePbrtTriangles(std::vector<SceneTriangle>& tris, const glm::dmat4& m, bool reverse) {
+  const glm::dmat3 lin(m);
+  const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(lin));
+  const bool swaps = glm::determinant(lin) < 0.0;
+  for (SceneTriangle& t : tris) {
+    glm::dvec3 v[3];
+    for (int k = 0; k < 3; ++k) v[k] = glm::dvec3(m * glm::dvec4(glm::dvec3(t.v[k]), 1.0));
+    const glm::dvec3 g = glm::cross(v[1] - v[0], v[2] - v[0]);
+    glm::dvec3 want = (reverse != swaps) ? -g : g;
+    if (t.attributes & kHasNormals) {
+      glm::dvec3 sum(0.0);
+      bool finite = true;
+      for (int k = 0; k < 3; ++k) {
+        glm::dvec3 n = glm::normalize(normalMatrix * glm::dvec3(t.n[k]));
+        if (reverse) n = -n;
+        t.n[k] = glm::vec3(n);
+        finite = finite && std::isfinite(t.n[k].x) && std::isfinite(t.n[k].y) && std::isfinite(t.n[k].z);
+        sum += n;
+      }
+      // A singular transform (Scale 1 1 0) has no normals' matrix: the flat normal then shades.
+      if (!finite) t.attributes = std::uint8_t(t.attributes & ~kHasNormals);
+      else if (glm::dot(want, sum) < 0.0) want = -want;
+    }
+    for (int k = 0; k < 3; ++k) t.v[k] = glm::vec3(v[k]);
+    if (glm::dot(want, g) < 0.0) {
+      std::swap(t.v[1], t.v[2]);
+      std::swap(t.n[1], t.n[2]);
+      std::swap(t.uv[1], t.uv[2]);
+    }
+  }
+}
+
+}  // namespace montecl
