@@ -63,14 +63,16 @@ uint referenceOwen(uint x, uint seed) {
   return reverseByLoop(y);
 }
 
+// The five scramble seeds hashed from (seed, pixel, set) as sobol.h states them: pcg4d's four
+// outputs (the index's seed, then dimensions 0..2) and a mix of the first for dimension 3.
 RngOut referencePoint(uint seed, uint pixel, uint sample, uint set) {
-  SobolSeeds s = mcl_sobol_seeds(seed, pixel, set);
-  uint index = referenceOwen(sample, s.index);
+  RngOut h = pcg4d(pixel, mcl_mix32(set), seed, 0x50b01u);
+  uint index = referenceOwen(sample, h.x);
   RngOut r;
-  r.x = referenceOwen(plainSobol(index, 0), s.d0);
-  r.y = referenceOwen(plainSobol(index, 1), s.d1);
-  r.z = referenceOwen(plainSobol(index, 2), s.d2);
-  r.w = referenceOwen(plainSobol(index, 3), s.d3);
+  r.x = referenceOwen(plainSobol(index, 0), h.y);
+  r.y = referenceOwen(plainSobol(index, 1), h.z);
+  r.z = referenceOwen(plainSobol(index, 2), h.w);
+  r.w = referenceOwen(plainSobol(index, 3), mcl_mix32(h.x ^ 0x9e3779b9u));
   return r;
 }
 

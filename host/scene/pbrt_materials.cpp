@@ -260,4 +260,20 @@ MaterialDesc pbrtMaterial(const std::string& type, const PbrtParams& p, const Pb
   return d;
 }
 
+void notePbrtTextureFile(Scene& scene, PbrtTexture& t, const PbrtParams& p) {
+  if (!fileProblem(t.file).empty()) {
+    MissingTexture m;
+    const PbrtLoc& at = p.find("filename")->loc;
+    m.file = at.file;
+    m.where = "line " + std::to_string(at.line);
+    m.lead = "imagemap '" + oneLine(t.file, 120) + "' cannot be opened";
+    m.brief = oneLine(t.file, 120);
+    noteMissingTexture(scene.missingTextures, m);
+    t.file.clear();
+    return;
+  }
+  scene.inputFiles.push_back(t.file);
+}
+
+
 }  // namespace montecl

@@ -24,6 +24,10 @@ struct PbrtTexture {
 using PbrtTextures = std::map<std::string, PbrtTexture>;
 
 // Texture "name" "spectrum"|"float" "<klass>" params. baseFile: the main scene file, whose folder resolves file names (as pbrt does).
+// Records texture t's file among the scene's inputs, or, when it cannot be opened, as a missing
+// texture at its "filename" parameter (the texture is then left without a file).
+void notePbrtTextureFile(Scene& scene, PbrtTexture& t, const PbrtParams& p);
+
 PbrtTexture pbrtTexture(const std::string& klass, const PbrtParams& params, const PbrtTextures& known,
                         const std::string& baseFile, std::vector<std::string>& warnings);
 

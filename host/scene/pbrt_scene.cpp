@@ -17,19 +17,19 @@
 #include "scene/load_util.h"
 #include "scene/mesh_entry.h"
 #include "scene/pbrt_camera.h"
+#include "scene/pbrt_input.h"
 #include "scene/pbrt_lights.h"
 #include "scene/pbrt_materials.h"
 #include "scene/pbrt_options.h"
 #include "scene/pbrt_params.h"
 #include "scene/pbrt_shapes.h"
 #include "scene/pbrt_tokenizer.h"
+#include "scene/pbrt_transforms.h"
 #include "scene/scene_instances.h"
 #include "util/errors.h"
 
 namespace montecl {
 namespace {
-
-constexpr int kMaxIncludeDepth = 32;
 
 struct AreaLight {
   bool on = false;
@@ -65,11 +65,11 @@ class Reader {
   }
 
   Scene read() {
-    open(main_, PbrtLoc{main_, 0, 0});
-    while (!files_.empty()) {
-      PbrtToken t = files_.back()->next();
+    in_.open(main_, PbrtLoc{main_, 0, 0}, scene_.inputFiles);
+    while (!in_.empty()) {
+      PbrtToken t = in_.tok().next();
       if (t.kind == PbrtToken::End) {
-        files_.pop_back();
+        in_.close();
         continue;
       }
       if (t.kind != PbrtToken::Word) pbrtFail(t.loc, "expected a directive, got '" + oneLine(t.text, 40) + "'");
@@ -83,39 +83,6 @@ class Reader {
   }
 
  private:
-  // ---- input ----
-  void open(const std::string& path, const PbrtLoc& from) {
-    if (int(files_.size()) >= kMaxIncludeDepth) pbrtFail(from, "Includes nested deeper than " + std::to_string(kMaxIncludeDepth) + " (an Include cycle?)");
-    const std::string problem = fileProblem(path);
-    if (!problem.empty()) {
-      if (from.line == 0) throwInputError(path, "", "cannot open: " + problem);
-      pbrtFail(from, "cannot open '" + oneLine(path, 120) + "': " + problem);
-    }
-    if (lowerExtension(path) == ".gz") pbrtFail(from, "'" + oneLine(path, 120) + "' is compressed; montecl reads uncompressed .pbrt files only (gunzip it)");
-    if (from.line != 0) scene_.inputFiles.push_back(path);
-    files_.push_back(std::make_unique<PbrtTokenizer>(path, readWholeFile(path)));
-  }
-  PbrtTokenizer& tok() { return *files_.back(); }
-
-  PbrtToken expect(PbrtToken::Kind kind, const char* what, const PbrtLoc& directive) {
-    PbrtToken t = tok().next();
-    if (t.kind != kind)
-      pbrtFail(t.kind == PbrtToken::End ? directive : t.loc,
-               std::string("expected ") + what + (t.kind == PbrtToken::End ? ", got the end of the file" : ", got '" + oneLine(t.text, 40) + "'"));
-    return t;
-  }
-  std::string name(const PbrtToken& d) { return expect(PbrtToken::String, ("a quoted name after " + d.text).c_str(), d.loc).text; }
-  // n numbers, optionally in brackets (pbrt accepts both for every transform).
-  std::vector<double> numbers(const PbrtToken& d, int n) {
-    const bool bracket = tok().peek().kind == PbrtToken::Open;
-    if (bracket) tok().next();
-    std::vector<double> v;
-    for (int i = 0; i < n; ++i) v.push_back(expect(PbrtToken::Number, ("a number (" + d.text + " takes " + std::to_string(n) + ")").c_str(), d.loc).number);
-    if (bracket) expect(PbrtToken::Close, ("']' after " + d.text + "'s " + std::to_string(n) + " numbers").c_str(), d.loc);
-    return v;
-  }
-  PbrtParams params(const PbrtToken& d) { return readPbrtParams(tok(), d.loc); }
-
   void warn(const PbrtLoc& loc, const std::string& text) { warnings_.push_back(loc.str() + ": " + text); }
   void unused(const PbrtParams& p, const std::string& what) { p.reportUnused(what, warnings_); }
 
@@ -130,43 +97,23 @@ class Reader {
   void directive(const PbrtToken& d) {
     const std::string& w = d.text;
     GraphicsState& g = state_;
-    if (w == "Identity") {
-      g.ctm = glm::dmat4(1.0);
-    } else if (w == "Translate") {
-      const auto v = numbers(d, 3);
-      g.ctm = glm::translate(g.ctm, glm::dvec3(v[0], v[1], v[2]));
-    } else if (w == "Scale") {
-      const auto v = numbers(d, 3);
-      g.ctm = glm::scale(g.ctm, glm::dvec3(v[0], v[1], v[2]));
-    } else if (w == "Rotate") {
-      const auto v = numbers(d, 4);
-      const glm::dvec3 axis(v[1], v[2], v[3]);
-      if (!(glm::length(axis) > 0.0)) pbrtFail(d.loc, "Rotate: the axis must not be zero");
-      g.ctm = glm::rotate(g.ctm, glm::radians(v[0]), glm::normalize(axis));
-    } else if (w == "LookAt") {
-      const auto v = numbers(d, 9);
-      g.ctm = g.ctm * lookAt(d, glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5]), glm::dvec3(v[6], v[7], v[8]));
-    } else if (w == "Transform" || w == "ConcatTransform") {
-      // pbrt lists the matrix column by column (its translation in values 12..14), as glm stores it.
-      const auto v = numbers(d, 16);
-      const glm::dmat4 m = glm::make_mat4(v.data());
-      g.ctm = w == "Transform" ? m : g.ctm * m;
+    if (applyPbrtTransform(d, in_, g.ctm)) {
     } else if (w == "CoordinateSystem") {
-      namedCoords_[name(d)] = g.ctm;
+      namedCoords_[in_.name(d)] = g.ctm;
     } else if (w == "CoordSysTransform") {
-      const PbrtToken n = expect(PbrtToken::String, "a coordinate system's name", d.loc);
+      const PbrtToken n = in_.expect(PbrtToken::String, "a coordinate system's name", d.loc);
       auto it = namedCoords_.find(n.text);
       if (it == namedCoords_.end()) warn(n.loc, "CoordSysTransform: coordinate system '" + oneLine(n.text, 40) + "' is not defined, ignored (as pbrt does)");
       else g.ctm = it->second;
     } else if (w == "ActiveTransform") {
-      const PbrtToken which = expect(PbrtToken::Word, "StartTime, EndTime or All", d.loc);
+      const PbrtToken which = in_.expect(PbrtToken::Word, "StartTime, EndTime or All", d.loc);
       if (which.text != "StartTime" && which.text != "EndTime" && which.text != "All") pbrtFail(which.loc, "ActiveTransform: expected StartTime, EndTime or All");
       if (which.text != "All" && !motionWarned_) {
         motionWarned_ = true;
         warn(d.loc, "ActiveTransform: montecl renders no motion blur; every transform applies at once (the end times' too)");
       }
     } else if (w == "TransformTimes") {
-      numbers(d, 2);
+      in_.numbers(d, 2);
     } else if (w == "ReverseOrientation") {
       g.reverseOrientation = !g.reverseOrientation;
     } else if (w == "AttributeBegin" || w == "TransformBegin") {
@@ -183,57 +130,57 @@ class Reader {
       else g = stack_.back();
       stack_.pop_back();
     } else if (w == "Attribute") {
-      name(d);
-      const PbrtParams p = params(d);
+      in_.name(d);
+      const PbrtParams p = in_.params(d);
       warn(d.loc, "Attribute: default parameters for a category are not read by montecl, ignored");
       for (const PbrtParam& q : p.list) q.used = true;
     } else if (w == "Include" || w == "Import") {
-      const PbrtToken n = expect(PbrtToken::String, "a file name", d.loc);
-      open(besideFile(main_, n.text), n.loc);
+      const PbrtToken n = in_.expect(PbrtToken::String, "a file name", d.loc);
+      in_.open(besideFile(main_, n.text), n.loc, scene_.inputFiles);
     } else if (w == "Option") {
-      const PbrtParams p = params(d);  // Option "bool disablepixeljitter" true: one parameter
+      const PbrtParams p = in_.params(d);  // Option "bool disablepixeljitter" true: one parameter
       if (p.list.empty()) pbrtFail(d.loc, "Option: expected a parameter \"type name\" value");
       for (const PbrtParam& q : p.list) warn(q.loc, "Option '" + oneLine(q.name, 60) + "' not read by montecl, ignored");
     } else if (w == "ColorSpace") {
-      const PbrtToken n = expect(PbrtToken::String, "a colour space", d.loc);
+      const PbrtToken n = in_.expect(PbrtToken::String, "a colour space", d.loc);
       if (n.text != "srgb") warn(n.loc, "ColorSpace '" + oneLine(n.text, 40) + "': montecl renders in linear sRGB; RGB values are read as sRGB");
     } else if (w == "Camera") {
       optionsOnly(d);
-      cameraType_ = name(d);
-      cameraParams_ = params(d);
+      cameraType_ = in_.name(d);
+      cameraParams_ = in_.params(d);
       cameraFromWorld_ = g.ctm;
       cameraSet_ = true;
       // pbrt names the camera's space "camera" (camera-to-world).
       namedCoords_["camera"] = glm::inverse(g.ctm);
     } else if (w == "Film") {
       optionsOnly(d);
-      const std::string type = name(d);  // before the parameters (argument order is unspecified)
-      pbrtFilm(type, params(d), width_, height_, warnings_);
+      const std::string type = in_.name(d);  // before the parameters (argument order is unspecified)
+      pbrtFilm(type, in_.params(d), width_, height_, warnings_);
     } else if (w == "Sampler") {
       optionsOnly(d);
-      const std::string type = name(d);  // before the parameters (argument order is unspecified)
-      pbrtSampler(type, params(d), scene_.render, warnings_);
+      const std::string type = in_.name(d);  // before the parameters (argument order is unspecified)
+      pbrtSampler(type, in_.params(d), scene_.render, warnings_);
     } else if (w == "Integrator") {
       optionsOnly(d);
-      const std::string type = name(d);  // before the parameters (argument order is unspecified)
-      pbrtIntegrator(type, params(d), scene_.render, warnings_);
+      const std::string type = in_.name(d);  // before the parameters (argument order is unspecified)
+      pbrtIntegrator(type, in_.params(d), scene_.render, warnings_);
     } else if (w == "PixelFilter") {
       optionsOnly(d);
-      const std::string type = name(d);  // before the parameters (argument order is unspecified)
-      pbrtPixelFilter(type, params(d), warnings_);
+      const std::string type = in_.name(d);  // before the parameters (argument order is unspecified)
+      pbrtPixelFilter(type, in_.params(d), warnings_);
     } else if (w == "Accelerator") {
       optionsOnly(d);
-      name(d);
-      const PbrtParams p = params(d);
+      in_.name(d);
+      const PbrtParams p = in_.params(d);
       for (const PbrtParam& q : p.list) q.used = true;  // montecl builds its own BVH
     } else if (w == "MakeNamedMedium") {
-      name(d);
-      const PbrtParams p = params(d);
+      in_.name(d);
+      const PbrtParams p = in_.params(d);
       for (const PbrtParam& q : p.list) q.used = true;
       warn(d.loc, "MakeNamedMedium: montecl renders no participating media; the medium is left out");
     } else if (w == "MediumInterface" || w == "CameraMedium") {
-      expect(PbrtToken::String, "a medium's name", d.loc);
-      if (w == "MediumInterface" && tok().peek().kind == PbrtToken::String) tok().next();
+      in_.expect(PbrtToken::String, "a medium's name", d.loc);
+      if (w == "MediumInterface" && in_.tok().peek().kind == PbrtToken::String) in_.tok().next();
       if (!mediaWarned_) {
         mediaWarned_ = true;
         warn(d.loc, w + ": montecl renders no participating media; media are left out");
@@ -245,8 +192,8 @@ class Reader {
       warn(d.loc, "WorldEnd is pbrt-v3's; pbrt-v4 ends the scene at the end of the file, ignored");
     } else if (w == "MakeNamedMaterial") {
       worldOnly(d);
-      const PbrtToken n = expect(PbrtToken::String, "a material's name", d.loc);
-      const PbrtParams p = params(d);
+      const PbrtToken n = in_.expect(PbrtToken::String, "a material's name", d.loc);
+      const PbrtParams p = in_.params(d);
       const std::string type = p.getString("type", "");
       if (!p.find("type")) pbrtFail(d.loc, "MakeNamedMaterial '" + oneLine(n.text, 40) + "': 'string type' is required");
       if (namedMaterials_.count(n.text)) warn(n.loc, "MakeNamedMaterial: '" + oneLine(n.text, 40) + "' redefined; the new one is used from here on");
@@ -258,14 +205,14 @@ class Reader {
       namedMaterials_[n.text] = int(materials_.size()) - 1;
     } else if (w == "NamedMaterial") {
       worldOnly(d);
-      const PbrtToken n = expect(PbrtToken::String, "a material's name", d.loc);
+      const PbrtToken n = in_.expect(PbrtToken::String, "a material's name", d.loc);
       auto it = namedMaterials_.find(n.text);
       if (it == namedMaterials_.end()) pbrtFail(n.loc, "NamedMaterial: material '" + oneLine(n.text, 60) + "' is not defined");
       g.material = it->second;
     } else if (w == "Material") {
       worldOnly(d);
-      const std::string type = name(d);
-      const PbrtParams p = params(d);
+      const std::string type = in_.name(d);
+      const PbrtParams p = in_.params(d);
       MaterialDesc m = pbrtMaterial(type, p, textures_, namedMaterialDescs_, main_, warnings_);
       m.name = type + " (" + d.loc.str() + ")";
       unused(p, "Material \"" + oneLine(type, 40) + "\"");
@@ -273,20 +220,20 @@ class Reader {
       g.material = int(materials_.size()) - 1;
     } else if (w == "Texture") {
       worldOnly(d);
-      const PbrtToken n = expect(PbrtToken::String, "a texture's name", d.loc);
-      const PbrtToken kind = expect(PbrtToken::String, "\"spectrum\" or \"float\"", d.loc);
+      const PbrtToken n = in_.expect(PbrtToken::String, "a texture's name", d.loc);
+      const PbrtToken kind = in_.expect(PbrtToken::String, "\"spectrum\" or \"float\"", d.loc);
       if (kind.text != "spectrum" && kind.text != "float" && kind.text != "color")
         pbrtFail(kind.loc, "Texture: expected \"spectrum\" or \"float\", got \"" + oneLine(kind.text, 40) + "\"");
-      const std::string klass = name(d);
-      const PbrtParams p = params(d);
+      const std::string klass = in_.name(d);
+      const PbrtParams p = in_.params(d);
       PbrtTexture t = pbrtTexture(klass, p, textures_, main_, warnings_);
-      if (!t.file.empty()) noteTextureFile(t, p);
+      if (!t.file.empty()) notePbrtTextureFile(scene_, t, p);
       unused(p, "Texture '" + oneLine(n.text, 40) + "'");
       textures_[n.text] = t;
     } else if (w == "AreaLightSource") {
       worldOnly(d);
-      const std::string type = name(d);
-      const PbrtParams p = params(d);
+      const std::string type = in_.name(d);
+      const PbrtParams p = in_.params(d);
       if (type != "diffuse") {
         warn(d.loc, "AreaLightSource \"" + oneLine(type, 40) + "\" not read by montecl (it reads \"diffuse\"); the shapes do not emit");
         for (const PbrtParam& q : p.list) q.used = true;
@@ -306,8 +253,8 @@ class Reader {
       g.area = a;
     } else if (w == "LightSource") {
       worldOnly(d);
-      const std::string type = name(d);
-      const PbrtParams p = params(d);
+      const std::string type = in_.name(d);
+      const PbrtParams p = in_.params(d);
       pbrtLightSource(type, p, mirror_ * g.ctm, main_, scene_, warnings_);
       unused(p, "LightSource \"" + oneLine(type, 40) + "\"");
     } else if (w == "Shape") {
@@ -315,7 +262,7 @@ class Reader {
       shape(d);
     } else if (w == "ObjectBegin") {
       worldOnly(d);
-      const PbrtToken n = expect(PbrtToken::String, "an object's name", d.loc);
+      const PbrtToken n = in_.expect(PbrtToken::String, "an object's name", d.loc);
       if (inObject_) pbrtFail(d.loc, "ObjectBegin inside the ObjectBegin of " + objectLoc_.str());
       GraphicsState saved = g;
       saved.loc = d.loc;
@@ -333,7 +280,7 @@ class Reader {
       stack_.pop_back();
     } else if (w == "ObjectInstance") {
       worldOnly(d);
-      const PbrtToken n = expect(PbrtToken::String, "an object's name", d.loc);
+      const PbrtToken n = in_.expect(PbrtToken::String, "an object's name", d.loc);
       if (inObject_) pbrtFail(d.loc, "ObjectInstance inside an object definition (pbrt-v4 does not nest instances)");
       auto it = objects_.find(n.text);
       if (it == objects_.end()) pbrtFail(n.loc, "ObjectInstance: object '" + oneLine(n.text, 60) + "' is not defined");
@@ -341,23 +288,6 @@ class Reader {
     } else {
       pbrtFail(d.loc, "unknown directive '" + oneLine(w, 40) + "'");
     }
-  }
-
-  static glm::dmat4 lookAt(const PbrtToken& d, glm::dvec3 eye, glm::dvec3 look, glm::dvec3 up) {
-    // pbrt's LookAt: camera-from-world of a camera at eye looking at look, right = up x dir.
-    const glm::dvec3 dir = look - eye;
-    if (!(glm::length(dir) > 0.0)) pbrtFail(d.loc, "LookAt: the eye and the point looked at are the same");
-    const glm::dvec3 f = glm::normalize(dir);
-    if (!(glm::length(up) > 0.0) || glm::length(glm::cross(glm::normalize(up), f)) < 1e-12)
-      pbrtFail(d.loc, "LookAt: the up vector is zero or along the viewing direction");
-    const glm::dvec3 right = glm::normalize(glm::cross(glm::normalize(up), f));
-    const glm::dvec3 newUp = glm::cross(f, right);
-    glm::dmat4 worldFromCamera(1.0);
-    worldFromCamera[0] = glm::dvec4(right, 0.0);
-    worldFromCamera[1] = glm::dvec4(newUp, 0.0);
-    worldFromCamera[2] = glm::dvec4(f, 0.0);
-    worldFromCamera[3] = glm::dvec4(eye, 1.0);
-    return glm::inverse(worldFromCamera);
   }
 
   void worldBegin(const PbrtToken& d) {
@@ -372,21 +302,6 @@ class Reader {
     // pbrt-v4 resets the CTM at WorldBegin and names it "world".
     state_.ctm = glm::dmat4(1.0);
     namedCoords_["world"] = state_.ctm;
-  }
-
-  void noteTextureFile(PbrtTexture& t, const PbrtParams& p) {
-    if (!fileProblem(t.file).empty()) {
-      MissingTexture m;
-      const PbrtLoc& at = p.find("filename")->loc;
-      m.file = at.file;
-      m.where = "line " + std::to_string(at.line);
-      m.lead = "imagemap '" + oneLine(t.file, 120) + "' cannot be opened";
-      m.brief = oneLine(t.file, 120);
-      noteMissingTexture(scene_.missingTextures, m);
-      t.file.clear();
-      return;
-    }
-    scene_.inputFiles.push_back(t.file);
   }
 
   // The scene material for the current state: the material, with the area light's emission and
@@ -439,8 +354,8 @@ class Reader {
   }
 
   void shape(const PbrtToken& d) {
-    const std::string type = name(d);
-    const PbrtParams p = params(d);
+    const std::string type = in_.name(d);
+    const PbrtParams p = in_.params(d);
     std::vector<SceneTriangle> tris;
     std::vector<std::string> plys;
     const bool read = pbrtShapeTriangles(type, p, main_, tris, warnings_, plys);
@@ -490,7 +405,7 @@ class Reader {
   std::string main_;
   std::vector<std::string>& warnings_;
   Scene scene_;
-  std::vector<std::unique_ptr<PbrtTokenizer>> files_;
+  PbrtInput in_;
   GraphicsState state_;
   std::vector<GraphicsState> stack_;
   std::map<std::string, glm::dmat4> namedCoords_;

@@ -24,21 +24,29 @@ typedef struct {
   uint x, y, z, w;
 } RngOut;
 
-MCL_INLINE RngOut pcg4d(uint x, uint y, uint z, uint w) {
-  x = x * 1664525u + 1013904223u;
-  y = y * 1664525u + 1013904223u;
-  z = z * 1664525u + 1013904223u;
-  w = w * 1664525u + 1013904223u;
-  x += y * w; y += z * x; z += x * y; w += y * z;
-  x ^= x >> 16; y ^= y >> 16; z ^= z >> 16; w ^= w >> 16;
-  x += y * w; y += z * x; z += x * y; w += y * z;
-  RngOut r;
-  r.x = x; r.y = y; r.z = z; r.w = w;
-  return r;
-}
+// Written once for any unsigned 32-bit type T and its four-tuple Out (uint and RngOut here; the
+// packet stages' vuint lanes and vRngOut, kernels/stages/stage_lanes.h): the same operations, so
+// each lane gives the scalar bits.
+#define MCL_DEFINE_PCG4D(name, T, Out)                               \
+  MCL_INLINE Out name(T x, T y, T z, T w) {                          \
+    x = x * 1664525u + 1013904223u;                                  \
+    y = y * 1664525u + 1013904223u;                                  \
+    z = z * 1664525u + 1013904223u;                                  \
+    w = w * 1664525u + 1013904223u;                                  \
+    x += y * w; y += z * x; z += x * y; w += y * z;                  \
+    x ^= x >> 16; y ^= y >> 16; z ^= z >> 16; w ^= w >> 16;          \
+    x += y * w; y += z * x; z += x * y; w += y * z;                  \
+    Out r;                                                           \
+    r.x = x; r.y = y; r.z = z; r.w = w;                              \
+    return r;                                                        \
+  }
+MCL_DEFINE_PCG4D(pcg4d, uint, RngOut)
 
-// Top 24 bits to a float in [0, 1): exact, never 1.0f.
-MCL_INLINE float u32_to_unit(uint u) { return (float)(u >> 8) * (1.0f / 16777216.0f); }
+// Top 24 bits to a float in [0, 1): exact, never 1.0f. For any T, with its conversion to float F.
+#define MCL_DEFINE_U32_TO_UNIT(name, T, F, cvt) \
+  MCL_INLINE F name(T u) { return cvt(u >> 8) * (1.0f / 16777216.0f); }
+#define MCL_CVT_FLOAT(x) ((float)(x))
+MCL_DEFINE_U32_TO_UNIT(u32_to_unit, uint, float, MCL_CVT_FLOAT)
 
 // A bijection of 32 bits that spreads every input bit over all output bits (Wellons' "lowbias32"
 // constants). pcg4d alone mixes differences in an input's high bits poorly: its first round only
@@ -58,8 +66,16 @@ MCL_INLINE float u32_to_unit(uint u) { return (float)(u >> 8) * (1.0f / 16777216
   }
 MCL_DEFINE_MIX32(mcl_mix32, uint)
 
-// Four uniform numbers in [0, 1) for dimension group `group` of the given sample.
-MCL_INLINE float4 rng_uniform4(uint seed, uint pixel, uint sample, uint group) {
-  RngOut r = pcg4d(pixel, sample, mcl_mix32(group), seed);
-  return make_float4(u32_to_unit(r.x), u32_to_unit(r.y), u32_to_unit(r.z), u32_to_unit(r.w));
-}
+// Four uniform numbers in [0, 1) for dimension group `group` of the given sample; for T uint or
+// the lanes' vuint, F4 float4 or vfloat4 (with that type's pcg4d and u32_to_unit).
+#define MCL_DEFINE_RNG_UNIFORM4(name, T, F4, Out, pcg, unit)                \
+  MCL_INLINE F4 name(uint seed, T pixel, T sample, uint group) {            \
+    Out r = pcg(pixel, sample, (T)(mcl_mix32(group)), (T)(seed));           \
+    F4 u;                                                                   \
+    u.x = unit(r.x);                                                        \
+    u.y = unit(r.y);                                                        \
+    u.z = unit(r.z);                                                        \
+    u.w = unit(r.w);                                                        \
+    return u;                                                               \
+  }
+MCL_DEFINE_RNG_UNIFORM4(rng_uniform4, uint, float4, RngOut, pcg4d, u32_to_unit)

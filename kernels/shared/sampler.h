@@ -18,23 +18,42 @@ MCL_INLINE uint sampler_coupled_to_camera(uint group) {
 // Sub-sequences: sample s belongs to sub-sequence k = s % splits and is point s / splits of it;
 // each sub-sequence has its own scramble seeds (the seed offset by k), so the K sub-means of a
 // pixel are independent and their spread estimates the error of the pixel's mean (the film's
-// split accumulators, kernels/stages/accumulate.h). splits = 1 is the one sequence per pixel.
-MCL_INLINE uint sobol_split_seed(uint seed, uint splits, uint sample) { return seed + (sample % splits) * 0x9e3779b9u; }
-
-MCL_INLINE float4 sobol_uniform4(uint seed, uint splits, uint pixel, uint sample, uint group) {
-  seed = sobol_split_seed(seed, splits, sample);
-  sample /= splits;
-  RngOut p = sobol_owen4_bits(seed, pixel, sample, group);
-  if (sampler_coupled_to_camera(group)) {
-    RngOut c = sobol_owen4_bits(seed, pixel, sample, MCL_DIM_CAMERA);
-    p.w = p.y;
-    p.y = c.z;
-    p.z = c.w;
+// split accumulators, kernels/stages/accumulate.h). splits = 1 is the one sequence per pixel. A
+// mask and a shift when K is a power of two (the default 4): a division per lane does not
+// vectorise, and both give the same integers. Each function here is written once for T uint
+// (F4 float4) and the packet stages' vuint lanes (vfloat4, kernels/stages/stage_lanes.h).
+#define MCL_DEFINE_SOBOL_UNIFORM4(name, T, F4, Out, bits, unit)              \
+  MCL_INLINE F4 name(uint seed, uint splits, T pixel, T sample, uint group) { \
+    T sub;                                                                   \
+    if ((splits & (splits - 1u)) == 0u) {                                    \
+      uint shift = 0u;                                                       \
+      while ((1u << shift) < splits) ++shift;                                \
+      sub = sample & (splits - 1u);                                          \
+      sample = sample >> shift;                                              \
+    } else {                                                                 \
+      sub = sample % splits;                                                 \
+      sample = sample / splits;                                              \
+    }                                                                        \
+    T seeds = seed + sub * 0x9e3779b9u;                                      \
+    Out p = bits(seeds, pixel, sample, group);                               \
+    if (sampler_coupled_to_camera(group)) {                                  \
+      Out c = bits(seeds, pixel, sample, MCL_DIM_CAMERA);                    \
+      p.w = p.y;                                                             \
+      p.y = c.z;                                                             \
+      p.z = c.w;                                                             \
+    }                                                                        \
+    F4 u;                                                                    \
+    u.x = unit(p.x);                                                         \
+    u.y = unit(p.y);                                                         \
+    u.z = unit(p.z);                                                         \
+    u.w = unit(p.w);                                                         \
+    return u;                                                                \
   }
-  return make_float4(u32_to_unit(p.x), u32_to_unit(p.y), u32_to_unit(p.z), u32_to_unit(p.w));
-}
+MCL_DEFINE_SOBOL_UNIFORM4(sobol_uniform4, uint, float4, RngOut, sobol_owen4_bits, u32_to_unit)
 
-MCL_INLINE float4 sample_uniform4(MCL_CONSTANT const FrameParams* f, uint pixel, uint sample, uint group) {
-  if (f->sampler == MCL_SAMPLER_SOBOL) return sobol_uniform4(f->seed, f->sobolSplits, pixel, sample, group);
-  return rng_uniform4(f->seed, pixel, sample, group);
-}
+#define MCL_DEFINE_SAMPLE_UNIFORM4(name, T, F4, sobol, rng)                                       \
+  MCL_INLINE F4 name(MCL_CONSTANT const FrameParams* f, T pixel, T sample, uint group) {          \
+    if (f->sampler == MCL_SAMPLER_SOBOL) return sobol(f->seed, f->sobolSplits, pixel, sample, group); \
+    return rng(f->seed, pixel, sample, group);                                                    \
+  }
+MCL_DEFINE_SAMPLE_UNIFORM4(sample_uniform4, uint, float4, sobol_uniform4, rng_uniform4)

@@ -5,7 +5,7 @@
 // per (seed, pixel, set), so each pixel walks its own randomly placed, aligned block of the
 // sequence (Burley 2020, "Practical Hash-based Owen Scrambling"). Sets are decorrelated by hashing
 // (seed, pixel, set) into all five scramble seeds. uint arithmetic only: the same bits on every
-// device, and the lane form (kernels/stages/stage_lanes.h) repeats these operations per lane.
+// device, and each function is written once for uint and the lanes' vuint (stage_lanes.h).
 #pragma once
 #include "rng.h"
 
@@ -42,57 +42,49 @@ MCL_DEFINE_OWEN_SCRAMBLE(mcl_owen_scramble, uint, mcl_reverse_bits)
 // dim 1 (x + 1, m = 1):                 v_k = v_{k-1} ^ (v_{k-1} >> 1)
 // dim 2 (x^2 + x + 1, m = 1, 3):        v_k = v_{k-1} ^ v_{k-2} ^ (v_{k-2} >> 2)
 // dim 3 (x^3 + x + 1, m = 1, 3, 1):     v_k = v_{k-2} ^ v_{k-3} ^ (v_{k-3} >> 3)
-// Every bit of i is visited (an Owen-scrambled index is anywhere in [0, 2^32)).
-MCL_INLINE RngOut mcl_sobol4(uint i) {
-  uint d1 = 0x80000000u;
-  uint p2 = 0x80000000u, q2 = 0xc0000000u;
-  uint p3 = 0x80000000u, q3 = 0xc0000000u, r3 = 0x20000000u;
-  uint x1 = 0u, x2 = 0u, x3 = 0u;
-  for (uint k = 0; k < 32u; ++k) {
-    uint bit = 0u - ((i >> k) & 1u);  // all ones where bit k of i is set
-    x1 ^= bit & d1;
-    x2 ^= bit & p2;
-    x3 ^= bit & p3;
-    d1 ^= d1 >> 1;
-    uint n2 = q2 ^ p2 ^ (p2 >> 2);
-    p2 = q2;
-    q2 = n2;
-    uint n3 = q3 ^ p3 ^ (p3 >> 3);
-    p3 = q3;
-    q3 = r3;
-    r3 = n3;
+// Every bit of i is visited (an Owen-scrambled index is anywhere in [0, 2^32)). Written once for
+// the index type T (uint, or the lanes' vuint: the direction numbers are the same in every lane).
+#define MCL_DEFINE_SOBOL4(name, T, Out, reverse)                                \
+  MCL_INLINE Out name(T i) {                                                    \
+    uint d1 = 0x80000000u;                                                      \
+    uint p2 = 0x80000000u, q2 = 0xc0000000u;                                    \
+    uint p3 = 0x80000000u, q3 = 0xc0000000u, r3 = 0x20000000u;                  \
+    T x1 = (T)(0u), x2 = (T)(0u), x3 = (T)(0u);                                 \
+    for (uint k = 0; k < 32u; ++k) {                                            \
+      T bit = (T)(0u) - ((i >> k) & 1u); /* all ones where bit k of i is set */ \
+      x1 ^= bit & d1;                                                           \
+      x2 ^= bit & p2;                                                           \
+      x3 ^= bit & p3;                                                           \
+      d1 ^= d1 >> 1;                                                            \
+      uint n2 = q2 ^ p2 ^ (p2 >> 2);                                            \
+      p2 = q2;                                                                  \
+      q2 = n2;                                                                  \
+      uint n3 = q3 ^ p3 ^ (p3 >> 3);                                            \
+      p3 = q3;                                                                  \
+      q3 = r3;                                                                  \
+      r3 = n3;                                                                  \
+    }                                                                           \
+    Out r;                                                                      \
+    r.x = reverse(i);                                                           \
+    r.y = x1;                                                                   \
+    r.z = x2;                                                                   \
+    r.w = x3;                                                                   \
+    return r;                                                                   \
   }
-  RngOut r;
-  r.x = mcl_reverse_bits(i);
-  r.y = x1;
-  r.z = x2;
-  r.w = x3;
-  return r;
-}
+MCL_DEFINE_SOBOL4(mcl_sobol4, uint, RngOut, mcl_reverse_bits)
 
-// The five scramble seeds of (seed, pixel, set): x for the index, then one per dimension.
-typedef struct {
-  uint index, d0, d1, d2, d3;
-} SobolSeeds;
-
-MCL_INLINE SobolSeeds mcl_sobol_seeds(uint seed, uint pixel, uint set) {
-  RngOut h = pcg4d(pixel, mcl_mix32(set), seed, 0x50b01u);
-  SobolSeeds s;
-  s.index = h.x;
-  s.d0 = h.y;
-  s.d1 = h.z;
-  s.d2 = h.w;
-  s.d3 = mcl_mix32(h.x ^ 0x9e3779b9u);
-  return s;
-}
-
-// The 4D point `sample` of dimension set `set` of this pixel, 32-bit fixed point per dimension.
-MCL_INLINE RngOut sobol_owen4_bits(uint seed, uint pixel, uint sample, uint set) {
-  SobolSeeds s = mcl_sobol_seeds(seed, pixel, set);
-  RngOut p = mcl_sobol4(mcl_owen_scramble(sample, s.index));
-  p.x = mcl_owen_scramble(p.x, s.d0);
-  p.y = mcl_owen_scramble(p.y, s.d1);
-  p.z = mcl_owen_scramble(p.z, s.d2);
-  p.w = mcl_owen_scramble(p.w, s.d3);
-  return p;
-}
+// The 4D point `sample` of dimension set `set` of this pixel, 32-bit fixed point per dimension:
+// the five scramble seeds of (seed, pixel, set) (x for the index, then one per dimension), the
+// scrambled index's Sobol point, each dimension scrambled. For T uint or vuint (with its pcg4d,
+// sobol4, Owen scramble and mix32).
+#define MCL_DEFINE_SOBOL_OWEN4_BITS(name, T, Out, pcg, sobol4, scramble, mix)   \
+  MCL_INLINE Out name(T seed, T pixel, T sample, uint set) {                    \
+    Out h = pcg(pixel, (T)(mcl_mix32(set)), seed, (T)(0x50b01u));               \
+    Out p = sobol4(scramble(sample, h.x));                                      \
+    p.x = scramble(p.x, h.y);                                                   \
+    p.y = scramble(p.y, h.z);                                                   \
+    p.z = scramble(p.z, h.w);                                                   \
+    p.w = scramble(p.w, mix(h.x ^ 0x9e3779b9u));                                \
+    return p;                                                                   \
+  }
+MCL_DEFINE_SOBOL_OWEN4_BITS(sobol_owen4_bits, uint, RngOut, pcg4d, mcl_sobol4, mcl_owen_scramble, mcl_mix32)

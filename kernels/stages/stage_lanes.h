@@ -77,107 +77,18 @@ typedef struct {
   vuint x, y, z, w;
 } vRngOut;
 
-MCL_INLINE vRngOut v_pcg4d(vuint x, vuint y, vuint z, vuint w) {
-  x = x * 1664525u + 1013904223u;
-  y = y * 1664525u + 1013904223u;
-  z = z * 1664525u + 1013904223u;
-  w = w * 1664525u + 1013904223u;
-  x += y * w; y += z * x; z += x * y; w += y * z;
-  x ^= x >> 16; y ^= y >> 16; z ^= z >> 16; w ^= w >> 16;
-  x += y * w; y += z * x; z += x * y; w += y * z;
-  vRngOut r;
-  r.x = x; r.y = y; r.z = z; r.w = w;
-  return r;
-}
+MCL_DEFINE_PCG4D(v_pcg4d, vuint, vRngOut)
+MCL_DEFINE_U32_TO_UNIT(v_u32_to_unit, vuint, vfloat, v_cvt_f_u)
+MCL_DEFINE_RNG_UNIFORM4(v_rng_uniform4, vuint, vfloat4, vRngOut, v_pcg4d, v_u32_to_unit)
 
-MCL_INLINE vfloat v_u32_to_unit(vuint u) { return v_cvt_f_u(u >> 8) * (1.0f / 16777216.0f); }
-
-MCL_INLINE vfloat4 v_rng_uniform4(uint seed, vuint pixel, vuint sample, uint group) {
-  vRngOut r = v_pcg4d(pixel, sample, v_u(mcl_mix32(group)), v_u(seed));
-  vfloat4 u;
-  u.x = v_u32_to_unit(r.x);
-  u.y = v_u32_to_unit(r.y);
-  u.z = v_u32_to_unit(r.z);
-  u.w = v_u32_to_unit(r.w);
-  return u;
-}
-
-// --- Sobol (shared/sobol.h, shared/sampler.h), the same uint operations per lane --------------
+// --- Sobol (shared/sobol.h, shared/sampler.h) -------------------------------------------------
 MCL_DEFINE_MIX32(v_mix32, vuint)
 MCL_DEFINE_REVERSE_BITS(v_reverse_bits, vuint)
 MCL_DEFINE_OWEN_SCRAMBLE(v_owen_scramble, vuint, v_reverse_bits)
-
-MCL_INLINE vRngOut v_sobol4(vuint i) {
-  uint d1 = 0x80000000u;  // the direction numbers are the same in every lane
-  uint p2 = 0x80000000u, q2 = 0xc0000000u;
-  uint p3 = 0x80000000u, q3 = 0xc0000000u, r3 = 0x20000000u;
-  vuint x1 = v_u(0u), x2 = v_u(0u), x3 = v_u(0u);
-  for (uint k = 0; k < 32u; ++k) {
-    vuint bit = v_u(0u) - ((i >> k) & 1u);
-    x1 ^= bit & d1;
-    x2 ^= bit & p2;
-    x3 ^= bit & p3;
-    d1 ^= d1 >> 1;
-    uint n2 = q2 ^ p2 ^ (p2 >> 2);
-    p2 = q2;
-    q2 = n2;
-    uint n3 = q3 ^ p3 ^ (p3 >> 3);
-    p3 = q3;
-    q3 = r3;
-    r3 = n3;
-  }
-  vRngOut r;
-  r.x = v_reverse_bits(i);
-  r.y = x1;
-  r.z = x2;
-  r.w = x3;
-  return r;
-}
-
-MCL_INLINE vRngOut v_sobol_owen4_bits(vuint seed, vuint pixel, vuint sample, uint set) {
-  vRngOut h = v_pcg4d(pixel, v_u(mcl_mix32(set)), seed, v_u(0x50b01u));
-  vRngOut p = v_sobol4(v_owen_scramble(sample, h.x));
-  p.x = v_owen_scramble(p.x, h.y);
-  p.y = v_owen_scramble(p.y, h.z);
-  p.z = v_owen_scramble(p.z, h.w);
-  p.w = v_owen_scramble(p.w, v_mix32(h.x ^ 0x9e3779b9u));
-  return p;
-}
-
-MCL_INLINE vfloat4 v_sobol_uniform4(uint seed, uint splits, vuint pixel, vuint sample, uint group) {
-  // sobol_split_seed: sub-sequence s % K, point s / K; a mask and a shift when K is a power of
-  // two (the default 4), since a division per lane does not vectorise.
-  vuint sub;
-  if ((splits & (splits - 1u)) == 0u) {
-    uint shift = 0u;
-    while ((1u << shift) < splits) ++shift;
-    sub = sample & (splits - 1u);
-    sample = sample >> shift;
-  } else {
-    sub = sample % splits;
-    sample = sample / splits;
-  }
-  vuint seeds = seed + sub * 0x9e3779b9u;
-  vRngOut p = v_sobol_owen4_bits(seeds, pixel, sample, group);
-  if (sampler_coupled_to_camera(group)) {
-    vRngOut c = v_sobol_owen4_bits(seeds, pixel, sample, MCL_DIM_CAMERA);
-    p.w = p.y;
-    p.y = c.z;
-    p.z = c.w;
-  }
-  vfloat4 u;
-  u.x = v_u32_to_unit(p.x);
-  u.y = v_u32_to_unit(p.y);
-  u.z = v_u32_to_unit(p.z);
-  u.w = v_u32_to_unit(p.w);
-  return u;
-}
-
-// sample_uniform4 (shared/sampler.h) per lane.
-MCL_INLINE vfloat4 v_sample_uniform4(MCL_CONSTANT const FrameParams* f, vuint pixel, vuint sample, uint group) {
-  if (f->sampler == MCL_SAMPLER_SOBOL) return v_sobol_uniform4(f->seed, f->sobolSplits, pixel, sample, group);
-  return v_rng_uniform4(f->seed, pixel, sample, group);
-}
+MCL_DEFINE_SOBOL4(v_sobol4, vuint, vRngOut, v_reverse_bits)
+MCL_DEFINE_SOBOL_OWEN4_BITS(v_sobol_owen4_bits, vuint, vRngOut, v_pcg4d, v_sobol4, v_owen_scramble, v_mix32)
+MCL_DEFINE_SOBOL_UNIFORM4(v_sobol_uniform4, vuint, vfloat4, vRngOut, v_sobol_owen4_bits, v_u32_to_unit)
+MCL_DEFINE_SAMPLE_UNIFORM4(v_sample_uniform4, vuint, vfloat4, v_sobol_uniform4, v_rng_uniform4)
 
 // --- trig.h, sampling.h ------------------------------------------------------------------------
 MCL_INLINE void v_sincos_poly(vfloat x, vfloat* sn, vfloat* cs) {
