@@ -1,5 +1,6 @@
 // light_area_lanes.h: the area light kind (shared/light_area.h) per lane, for the packet stages,
-// and every kind through the scalar sample_direct_light lane by lane: reads the emitter table, the
+// and light sampling over every kind (the area kind in lanes, the others through the scalar
+// sample_direct_light lane by lane): reads the emitter table, the
 // emitting triangles, their normals and materials (and the other lights' tables); writes nothing.
 // Each function does the scalar code's float operations in the same order (the same bits per lane).
 #pragma once
@@ -91,16 +92,52 @@ MCL_INLINE VEmitterSample v_sample_emitter(MCL_CONSTANT const FrameParams* f, MC
   return s;
 }
 
-// sample_direct_light (stages/direct_light.h, every light kind) for the lanes set in m, lane by
-// lane through the scalar function; the other lanes get no sample (pdf 0).
+// sample_direct_light (stages/direct_light.h) for the lanes set in m, the kind picked per lane as
+// the scalar function picks it (the last kind in table order with a positive share whose share
+// starts at or below u.x): the area kind's lanes in lanes (v_sample_emitter), the other kinds'
+// lane by lane through the scalar function. The other lanes get no sample (pdf 0).
 typedef struct {
   vfloat3 wi, le;
   vfloat pdf, tmax;
   vmask delta;
 } VLightSample;
 
-MCL_INLINE VLightSample v_sample_direct_light_each(MCL_CONSTANT const FrameParams* f, LightScene lights, vmask m,
-                                                   vfloat3 origin, vfloat4 u) {
+MCL_INLINE VLightSample v_sample_direct_light(MCL_CONSTANT const FrameParams* f, LightScene lights, vmask m,
+                                              vfloat3 origin, vfloat4 u) {
+  vuint kind = v_u(MCL_LIGHT_KIND_COUNT);
+  vfloat start = v_f(0.0f), share = v_f(0.0f);
+  float before = 0.0f;
+#define MCL_V_LIGHT_PICK(k)                                    \
+  {                                                            \
+    float p = k##_light_probability(f);                        \
+    if (p > 0.0f) {                                            \
+      vmask at = u.x >= before;                                \
+      kind = vsel(at, v_u((uint)MCL_LIGHT_##k), kind);         \
+      start = vsel(at, v_f(before), start);                    \
+      share = vsel(at, v_f(p), share);                         \
+    }                                                          \
+    before += p;                                               \
+  }
+  MCL_LIGHT_KINDS(MCL_V_LIGHT_PICK)
+#undef MCL_V_LIGHT_PICK
+  VLightSample r;
+  r.wi = v3_make(v_f(0.0f), v_f(0.0f), v_f(1.0f));
+  r.le = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f));
+  r.pdf = v_f(0.0f);
+  r.tmax = v_f(INFINITY);
+  r.delta = v_not(m | v_not(m));  // none
+  vmask area = m & (kind == (uint)MCL_LIGHT_area);
+  if (v_any(area)) {
+    VEmitterSample es = v_sample_emitter(f, lights.emitters, lights.tris, lights.normals, lights.materials,
+                                         (u.x - start) / share, u.y, u.z, origin);
+    vmask ok = area & es.ok;
+    r.wi = v3_select(ok, es.wi, r.wi);
+    r.le = v3_select(ok, es.le, r.le);
+    r.pdf = vsel(ok, share * es.pdf, r.pdf);
+    r.tmax = vsel(ok, es.dist * (1.0f - 1e-4f), r.tmax);
+  }
+  vmask rest = m & v_not(area);
+  if (!v_any(rest)) return r;
   float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN;
   float u0[MCL_LANES] MCL_LANE_ALIGN, u1[MCL_LANES] MCL_LANE_ALIGN, u2[MCL_LANES] MCL_LANE_ALIGN;
   float u3[MCL_LANES] MCL_LANE_ALIGN;
@@ -113,17 +150,22 @@ MCL_INLINE VLightSample v_sample_direct_light_each(MCL_CONSTANT const FrameParam
   v_store_lanes(u.y, u1);
   v_store_lanes(u.z, u2);
   v_store_lanes(u.w, u3);
-  v_store_lanes(v_mask01(m), set);
+  v3_store_lanes(r.wi, wx, wy, wz);
+  v3_store_lanes(r.le, lr, lg, lb);
+  v_store_lanes(r.pdf, pp);
+  v_store_lanes(r.tmax, tm);
+  v_store_lanes(v_mask01(r.delta), dl);
+  v_store_lanes(v_mask01(rest), set);
   for (uint j = 0; j < MCL_LANES; ++j) {
-    LightSample ls = no_light_sample();
-    if (set[j]) ls = sample_direct_light(f, lights, make_float3(ox[j], oy[j], oz[j]), make_float4(u0[j], u1[j], u2[j], u3[j]));
+    if (!set[j]) continue;
+    LightSample ls =
+        sample_direct_light(f, lights, make_float3(ox[j], oy[j], oz[j]), make_float4(u0[j], u1[j], u2[j], u3[j]));
     wx[j] = ls.wi.x; wy[j] = ls.wi.y; wz[j] = ls.wi.z;
     lr[j] = ls.le.x; lg[j] = ls.le.y; lb[j] = ls.le.z;
     pp[j] = ls.pdf;
     tm[j] = ls.tmax;
     dl[j] = ls.delta != 0;
   }
-  VLightSample r;
   r.wi = v3_load_lanes(wx, wy, wz);
   r.le = v3_load_lanes(lr, lg, lb);
   r.pdf = v_loadf_lanes(pp);

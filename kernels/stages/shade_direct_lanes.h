@@ -3,8 +3,9 @@
 // environment through the scalar light_eval per lane) and every hit on the diffuse kind without a
 // glossy lobe, textured or not, flat or smooth (lambert_lanes.h: the frame and albedo per lane,
 // from the scalar surface_at where the hit is not flat and untextured): Le seen directly, the light
-// samples (emitter triangles in lanes; with an environment or light records the scalar
-// sample_direct_light per lane; one atomic per packet per light sample) and the BSDF ray (the
+// samples (the kind picked per lane; lanes that pick emitter triangles in lanes, the others
+// through the scalar sample_direct_light, v_sample_direct_light; one atomic per packet per light
+// sample) and the BSDF ray (the
 // cosine lobe, folded where smooth). Hits on other kinds: their surface, light samples and BSDF
 // ray lane by lane through the scalar body's own functions (direct_light_sample, direct_bsdf_ray),
 // with the packet's random numbers. Every item of a packet in a scene with textured emission, and
@@ -118,8 +119,7 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
       sf = lane_frame_rich(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first, rich, pixel, sample, 0u, sf);
     vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
     const float nLight = (float)f->lightSamples;
-    const int otherLights = env || f->lightCount > 0u;  // sampled lane by lane (sample_direct_light)
-    const int useLight = f->directSampling != MCL_DIRECT_BRDF && (f->emitterCount > 0 || otherLights);
+    const int useLight = f->directSampling != MCL_DIRECT_BRDF && (f->emitterCount > 0 || env || f->lightCount > 0u);
     const int useBrdf = f->directSampling != MCL_DIRECT_LIGHT;
     vuint slot0 = (first + v_lane_index()) * slots;
     // The lanes of other kinds: surface_at and the offset origin, lane by lane.
@@ -155,23 +155,12 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
       vfloat3 wi, lle;
       vfloat pdf, tmax;
       vmask delta;
-      if (!otherLights) {
-        // sample_direct_light with emitter triangles only: an emitter by power, a point on it.
-        VEmitterSample ls = v_sample_emitter(f, a->emitters, a->tris, a->normals, a->materials, u.x, u.y, u.z, origin);
-        vmask ok = ls.ok;
-        wi = v3_select(ok, ls.wi, v3_make(v_f(0.0f), v_f(0.0f), v_f(1.0f)));
-        lle = v3_select(ok, ls.le, v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f)));
-        tmax = vsel(ok, ls.dist * (1.0f - 1e-4f), v_f(INFINITY));
-        pdf = ls.pdf;
-        delta = v_not(ok | v_not(ok));  // none
-      } else {
-        VLightSample ls = v_sample_direct_light_each(f, lights, packet, origin, u);
-        wi = ls.wi;
-        lle = ls.le;
-        pdf = ls.pdf;
-        tmax = ls.tmax;
-        delta = ls.delta;
-      }
+      VLightSample ls = v_sample_direct_light(f, lights, packet, origin, u);
+      wi = ls.wi;
+      lle = ls.le;
+      pdf = ls.pdf;
+      tmax = ls.tmax;
+      delta = ls.delta;
       // frame_cosine; a Lambertian surface sees nothing below the geometric surface.
       vmask above = v3_dot(sf.ng, wi) > 0.0f;
       vfloat cn = v3_dot(sf.ns, wi);

@@ -4,9 +4,9 @@
 // the scalar path_miss per lane. Emission seen (MIS weighted after a BSDF bounce) for every hit.
 // Hits on the diffuse kind without a glossy lobe, textured or not, flat or smooth, in lanes
 // (lambert_lanes.h: the frame and albedo per lane, from the scalar surface_at where the hit is not
-// flat and untextured): the next-event light samples (emitter triangles in lanes; with an
-// environment or light records the scalar sample_direct_light per lane; one atomic per packet per
-// light sample) and the cosine-lobe continuation with Russian roulette (one atomic per packet).
+// flat and untextured): the next-event light samples (the kind picked per lane; lanes that pick
+// emitter triangles in lanes, the others through the scalar sample_direct_light, v_sample_direct_light;
+// one atomic per packet per light sample) and the cosine-lobe continuation with Russian roulette (one atomic per packet).
 // Hits on other kinds: their surface, light samples and continuation lane by lane through the
 // scalar body's own functions (path_light_sample, path_continue), with the packet's random numbers.
 // Every entry of a packet in a scene with textured emission, and of a partial last packet, runs
@@ -33,8 +33,6 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
     for (uint k = 0; k < MCL_LANES && first + k < count; ++k) stage_shade_path(a, first + k);
     return;
   }
-  // Lights other than emitter triangles: sampled and seen through the scalar light functions per lane.
-  const int otherLights = env_present(f) || f->lightCount > 0u;
   LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf,
                                        a->lightRecords, a->shading,
                                        make_texture_tables(a->textures, a->textureLevels, a->texels));
@@ -183,8 +181,8 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
         others[j] = path_takes_light_samples(f, surfs[j]) ? 2u : 1u;  // 2: light samples too
       }
     }
-    const int nee = f->emitterCount > 0u || otherLights;  // a Lambertian lobe is never a delta lobe
-    const float share = area_light_probability(f);  // sample_direct_light: the area kind's share
+    // Some light exists (a Lambertian lobe is never a delta lobe).
+    const int nee = f->emitterCount > 0u || env_present(f) || f->lightCount > 0u;
     vuint slot0 = id * slots;
     for (uint s = 0; nee && s < f->lightSamples; ++s) {
       vfloat4 u = v_sample_uniform4(f, pixel, sample, path_dim(bounce, 1u + s));
@@ -204,22 +202,12 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
       vfloat3 wi, lle;
       vfloat pdf, tmax;
       vmask delta;
-      if (!otherLights) {
-        VEmitterSample ls = v_sample_emitter(f, a->emitters, a->tris, a->normals, a->materials, (u.x - 0.0f) / share,
-                                             u.y, u.z, origin);
-        wi = ls.wi;
-        lle = ls.le;
-        pdf = vsel(ls.ok, share * ls.pdf, v_f(0.0f));
-        tmax = ls.dist * (1.0f - 1e-4f);
-        delta = v_not(ls.ok | v_not(ls.ok));  // none
-      } else {
-        VLightSample ls = v_sample_direct_light_each(f, lights, lamb, origin, u);
-        wi = ls.wi;
-        lle = ls.le;
-        pdf = ls.pdf;
-        tmax = ls.tmax;
-        delta = ls.delta;
-      }
+      VLightSample ls = v_sample_direct_light(f, lights, lamb, origin, u);
+      wi = ls.wi;
+      lle = ls.le;
+      pdf = ls.pdf;
+      tmax = ls.tmax;
+      delta = ls.delta;
       vfloat3 fcos = v_lambert_eval(sf, wi);  // bsdf_eval
       vmask push = lamb & (pdf > 0.0f) & (v_max_component(fcos) > 0.0f);
       if (!v_any(push)) continue;
