@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cli_runner.h"
+#include "lanes_vs_host.h"
 #include "kernels/stages/stage_common.h"
 #include "skip.h"
 
@@ -106,17 +107,6 @@ TEST_CASE("sample blocks: renders with blocks of 4, 8, 16 samples and cut waves 
     std::vector<std::string> common = {"render", scene, "-q", "--width", "19", "--height", "13",
                                        "--integrator", integrator, "--spp", spp, "--overwrite"};
     if (*wave) common.insert(common.end(), {"--wave-size", wave});
-    std::vector<std::string> host = common;
-    host.insert(host.end(), {"--device", "host", "-o", dir.file("host.pfm")});
-    CliResult h = runMontecl(host);
-    REQUIRE_MESSAGE(h.exitCode == 0, h.err);
-    for (const char* lanes : {"16", "4"}) {
-      CAPTURE(lanes);
-      std::vector<std::string> cl = common;
-      cl.insert(cl.end(), {"--lanes", lanes, "-o", dir.file("cl.pfm")});
-      CliResult r = runMontecl(cl);
-      REQUIRE_MESSAGE(r.exitCode == 0, r.err);
-      CHECK(readAll(dir.file("cl.pfm")) == readAll(dir.file("host.pfm")));
-    }
+    checkLanesMatchHost(common, dir, {"16", "4"});
   }
 }

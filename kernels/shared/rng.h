@@ -47,6 +47,17 @@ MCL_DEFINE_PCG4D(pcg4d, uint, RngOut)
   MCL_INLINE F name(T u) { return cvt(u >> 8) * (1.0f / 16777216.0f); }
 #define MCL_CVT_FLOAT(x) ((float)(x))
 MCL_DEFINE_U32_TO_UNIT(u32_to_unit, uint, float, MCL_CVT_FLOAT)
+// The four numbers of r so (F4 float4 or the lanes' vfloat4; `unit` the matching u32_to_unit).
+#define MCL_DEFINE_UNIT4(name, F4, Out, unit) \
+  MCL_INLINE F4 name(Out r) {                 \
+    F4 u;                                     \
+    u.x = unit(r.x);                          \
+    u.y = unit(r.y);                          \
+    u.z = unit(r.z);                          \
+    u.w = unit(r.w);                          \
+    return u;                                 \
+  }
+MCL_DEFINE_UNIT4(unit4, float4, RngOut, u32_to_unit)
 
 // A bijection of 32 bits that spreads every input bit over all output bits (Wellons' "lowbias32"
 // constants). pcg4d alone mixes differences in an input's high bits poorly: its first round only
@@ -67,15 +78,9 @@ MCL_DEFINE_U32_TO_UNIT(u32_to_unit, uint, float, MCL_CVT_FLOAT)
 MCL_DEFINE_MIX32(mcl_mix32, uint)
 
 // Four uniform numbers in [0, 1) for dimension group `group` of the given sample; for T uint or
-// the lanes' vuint, F4 float4 or vfloat4 (with that type's pcg4d and u32_to_unit).
-#define MCL_DEFINE_RNG_UNIFORM4(name, T, F4, Out, pcg, unit)                \
-  MCL_INLINE F4 name(uint seed, T pixel, T sample, uint group) {            \
-    Out r = pcg(pixel, sample, (T)(mcl_mix32(group)), (T)(seed));           \
-    F4 u;                                                                   \
-    u.x = unit(r.x);                                                        \
-    u.y = unit(r.y);                                                        \
-    u.z = unit(r.z);                                                        \
-    u.w = unit(r.w);                                                        \
-    return u;                                                               \
+// the lanes' vuint, F4 float4 or vfloat4 (with that type's pcg4d and unit4).
+#define MCL_DEFINE_RNG_UNIFORM4(name, T, F4, Out, pcg, unit4)            \
+  MCL_INLINE F4 name(uint seed, T pixel, T sample, uint group) {          \
+    return unit4(pcg(pixel, sample, (T)(mcl_mix32(group)), (T)(seed)));   \
   }
-MCL_DEFINE_RNG_UNIFORM4(rng_uniform4, uint, float4, RngOut, pcg4d, u32_to_unit)
+MCL_DEFINE_RNG_UNIFORM4(rng_uniform4, uint, float4, RngOut, pcg4d, unit4)

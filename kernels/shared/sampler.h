@@ -22,7 +22,7 @@ MCL_INLINE uint sampler_coupled_to_camera(uint group) {
 // mask and a shift when K is a power of two (the default 4): a division per lane does not
 // vectorise, and both give the same integers. Each function here is written once for T uint
 // (F4 float4) and the packet stages' vuint lanes (vfloat4, kernels/stages/stage_lanes.h).
-#define MCL_DEFINE_SOBOL_UNIFORM4(name, T, F4, Out, bits, unit)              \
+#define MCL_DEFINE_SOBOL_UNIFORM4(name, T, F4, Out, bits, unit4)             \
   MCL_INLINE F4 name(uint seed, uint splits, T pixel, T sample, uint group) { \
     T sub;                                                                   \
     if ((splits & (splits - 1u)) == 0u) {                                    \
@@ -42,14 +42,9 @@ MCL_INLINE uint sampler_coupled_to_camera(uint group) {
       p.y = c.z;                                                             \
       p.z = c.w;                                                             \
     }                                                                        \
-    F4 u;                                                                    \
-    u.x = unit(p.x);                                                         \
-    u.y = unit(p.y);                                                         \
-    u.z = unit(p.z);                                                         \
-    u.w = unit(p.w);                                                         \
-    return u;                                                                \
+    return unit4(p);                                                         \
   }
-MCL_DEFINE_SOBOL_UNIFORM4(sobol_uniform4, uint, float4, RngOut, sobol_owen4_bits, u32_to_unit)
+MCL_DEFINE_SOBOL_UNIFORM4(sobol_uniform4, uint, float4, RngOut, sobol_owen4_bits, unit4)
 
 #define MCL_DEFINE_SAMPLE_UNIFORM4(name, T, F4, sobol, rng)                                       \
   MCL_INLINE F4 name(MCL_CONSTANT const FrameParams* f, T pixel, T sample, uint group) {          \

@@ -54,6 +54,40 @@ MCL_INLINE LaneFrame lane_frame_rich(SurfaceScene sc, MCL_CONSTANT const FramePa
   return r;
 }
 
+// The frame of W hits: flat world-space hits from their triangle (vertex v0, edges e1, e2 at
+// barycentrics hu, hv; unit normal n; Kd), surface_frame's operations; the lanes in `rich` from
+// surface_at (lane_frame_rich).
+MCL_INLINE LaneFrame lane_frame(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const Hit* hits,
+                                MCL_GLOBAL const uint* hitInstances, MCL_GLOBAL const Ray* rays, uint first, vmask rich,
+                                vuint pixel, vuint sample, uint bounce, vfloat3 v0, vfloat3 e1, vfloat3 e2, vfloat hu,
+                                vfloat hv, vfloat3 n, vfloat3 dir, vfloat3 kd) {
+  LaneFrame lf;
+  lf.p = v3_add(v3_add(v0, v3_scale(e1, hu)), v3_scale(e2, hv));
+  lf.ng = v_orient_facing(n, dir);
+  lf.ns = lf.ng;
+  lf.kd = kd;
+  lf.smooth = v_not(rich | v_not(rich));  // none
+  if (!v_any(rich)) return lf;
+  return lane_frame_rich(sc, f, hits, hitInstances, rays, first, rich, pixel, sample, bounce, lf);
+}
+
+// The surfaces (surface_at) and offset ray origins of the lanes set in which[] (nonzero), the
+// hits' of other kinds, which the stages shade lane by lane through their scalar functions.
+MCL_INLINE void lane_surfaces(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const Hit* hits,
+                              MCL_GLOBAL const uint* hitInstances, MCL_GLOBAL const Ray* rays, uint first,
+                              const uint* which, vuint pixel, vuint sample, uint bounce, Surface* surfs,
+                              float3* origins) {
+  uint px[MCL_LANES] MCL_LANE_ALIGN, sm[MCL_LANES] MCL_LANE_ALIGN;
+  v_store_lanes(pixel, px);
+  v_store_lanes(sample, sm);
+  for (uint j = 0; j < MCL_LANES; ++j) {
+    if (!which[j]) continue;
+    surfs[j] = surface_at(sc, f, hits[first + j], hit_instance(f, hitInstances, first + j), xyz(rays[first + j].dir),
+                          sample_ref(px[j], sm[j], bounce));
+    origins[j] = offset_ray_origin(surfs[j].frame.p, surfs[j].frame.ng, f->offsetScale);
+  }
+}
+
 // pdf_cosine_hemisphere (sampling.h) per lane.
 MCL_INLINE vfloat v_pdf_cosine_hemisphere(vfloat c) { return fmax(c, v_f(0.0f)) * MCL_INV_PI; }
 

@@ -139,17 +139,12 @@ MCL_INLINE VLightSample v_sample_direct_light(MCL_CONSTANT const FrameParams* f,
   vmask rest = m & v_not(area);
   if (!v_any(rest)) return r;
   float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN;
-  float u0[MCL_LANES] MCL_LANE_ALIGN, u1[MCL_LANES] MCL_LANE_ALIGN, u2[MCL_LANES] MCL_LANE_ALIGN;
-  float u3[MCL_LANES] MCL_LANE_ALIGN;
+  Float4Lanes ul = float4_lanes(u);
   float wx[MCL_LANES] MCL_LANE_ALIGN, wy[MCL_LANES] MCL_LANE_ALIGN, wz[MCL_LANES] MCL_LANE_ALIGN;
   float lr[MCL_LANES] MCL_LANE_ALIGN, lg[MCL_LANES] MCL_LANE_ALIGN, lb[MCL_LANES] MCL_LANE_ALIGN;
   float pp[MCL_LANES] MCL_LANE_ALIGN, tm[MCL_LANES] MCL_LANE_ALIGN;
   uint set[MCL_LANES] MCL_LANE_ALIGN, dl[MCL_LANES] MCL_LANE_ALIGN;
   v3_store_lanes(origin, ox, oy, oz);
-  v_store_lanes(u.x, u0);
-  v_store_lanes(u.y, u1);
-  v_store_lanes(u.z, u2);
-  v_store_lanes(u.w, u3);
   v3_store_lanes(r.wi, wx, wy, wz);
   v3_store_lanes(r.le, lr, lg, lb);
   v_store_lanes(r.pdf, pp);
@@ -159,7 +154,7 @@ MCL_INLINE VLightSample v_sample_direct_light(MCL_CONSTANT const FrameParams* f,
   for (uint j = 0; j < MCL_LANES; ++j) {
     if (!set[j]) continue;
     LightSample ls =
-        sample_direct_light(f, lights, make_float3(ox[j], oy[j], oz[j]), make_float4(u0[j], u1[j], u2[j], u3[j]));
+        sample_direct_light(f, lights, make_float3(ox[j], oy[j], oz[j]), float4_lane(&ul, j));
     wx[j] = ls.wi.x; wy[j] = ls.wi.y; wz[j] = ls.wi.z;
     lr[j] = ls.le.x; lg[j] = ls.le.y; lb[j] = ls.le.z;
     pp[j] = ls.pdf;

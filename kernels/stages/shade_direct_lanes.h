@@ -107,16 +107,9 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
   if (v_any(hit)) {
     vuint pixel, sample;
     v_item_pixel_sample(f, a->active, a->waveStart, first, &pixel, &sample);
-    LaneFrame sf;  // flat: surface_frame's operations on the triangle; the others from surface_at
-    sf.p = v3_add(v3_add(v3_make(v0x, v0y, v0z), v3_scale(v3_make(e1x, e1y, e1z), hu)),
-                  v3_scale(v3_make(e2x, e2y, e2z), hv));
-    sf.ng = v_orient_facing(n, dir);
-    sf.ns = sf.ng;
-    sf.kd = v3_make(kdx, kdy, kdz);
-    sf.smooth = v_not(hit | v_not(hit));  // none
-    vmask rich = packet & v_not(flat);
-    if (v_any(rich))
-      sf = lane_frame_rich(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first, rich, pixel, sample, 0u, sf);
+    LaneFrame sf = lane_frame(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first,
+                              packet & v_not(flat), pixel, sample, 0u, v3_make(v0x, v0y, v0z),
+                              v3_make(e1x, e1y, e1z), v3_make(e2x, e2y, e2z), hu, hv, n, dir, v3_make(kdx, kdy, kdz));
     vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
     const float nLight = (float)f->lightSamples;
     const int useLight = f->directSampling != MCL_DIRECT_BRDF && (f->emitterCount > 0 || env || f->lightCount > 0u);
@@ -126,41 +119,25 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
     Surface surfs[MCL_LANES];
     float3 origins[MCL_LANES];
     if (v_any(other)) {
-      uint px[MCL_LANES] MCL_LANE_ALIGN, sm[MCL_LANES] MCL_LANE_ALIGN;
-      v_store_lanes(pixel, px);
-      v_store_lanes(sample, sm);
-      for (uint j = 0; j < MCL_LANES; ++j) {
-        if (!others[j]) continue;
-        surfs[j] = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, a->hits[first + j], hit_instance(f, a->hitInstances, first + j),
-                              xyz(a->rays[first + j].dir), sample_ref(px[j], sm[j], 0u));
-        origins[j] = offset_ray_origin(surfs[j].frame.p, surfs[j].frame.ng, f->offsetScale);
-        others[j] = direct_takes_light_samples(f, surfs[j]) ? 2u : 1u;  // 2: light samples too
-      }
+      lane_surfaces(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first, others, pixel, sample, 0u,
+                    surfs, origins);
+      for (uint j = 0; j < MCL_LANES; ++j)
+        if (others[j]) others[j] = direct_takes_light_samples(f, surfs[j]) ? 2u : 1u;  // 2: light samples too
     }
     for (uint k = 0; useLight && k < f->lightSamples; ++k) {
       vfloat4 u = v_sample_uniform4(f, pixel, sample, MCL_DIM_LIGHT + k);
       if (v_any(other)) {
-        float u0[MCL_LANES] MCL_LANE_ALIGN, u1[MCL_LANES] MCL_LANE_ALIGN, u2[MCL_LANES] MCL_LANE_ALIGN;
-        float u3[MCL_LANES] MCL_LANE_ALIGN;
-        v_store_lanes(u.x, u0);
-        v_store_lanes(u.y, u1);
-        v_store_lanes(u.z, u2);
-        v_store_lanes(u.w, u3);
+        Float4Lanes ul = float4_lanes(u);
         for (uint j = 0; j < MCL_LANES; ++j)
           if (others[j] == 2u)
             direct_light_sample(a, lights, surfs[j], -xyz(a->rays[first + j].dir), origins[j], useBrdf, first + j, k,
-                                make_float4(u0[j], u1[j], u2[j], u3[j]));
+                                float4_lane(&ul, j));
       }
       if (!v_any(packet)) continue;
-      vfloat3 wi, lle;
-      vfloat pdf, tmax;
-      vmask delta;
       VLightSample ls = v_sample_direct_light(f, lights, packet, origin, u);
-      wi = ls.wi;
-      lle = ls.le;
-      pdf = ls.pdf;
-      tmax = ls.tmax;
-      delta = ls.delta;
+      vfloat3 wi = ls.wi, lle = ls.le;
+      vfloat pdf = ls.pdf, tmax = ls.tmax;
+      vmask delta = ls.delta;
       // frame_cosine; a Lambertian surface sees nothing below the geometric surface.
       vmask above = v3_dot(sf.ng, wi) > 0.0f;
       vfloat cn = v3_dot(sf.ns, wi);
@@ -182,16 +159,9 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
     if (useBrdf) {  // Lambertian: the cosine lobe around ns, folded above ng where smooth
       vfloat4 u = v_sample_uniform4(f, pixel, sample, MCL_DIM_BRDF);
       if (v_any(other)) {  // other kinds: direct_bsdf_ray, stored after the packet's rays
-        float u0[MCL_LANES] MCL_LANE_ALIGN, u1[MCL_LANES] MCL_LANE_ALIGN, u2[MCL_LANES] MCL_LANE_ALIGN;
-        float u3[MCL_LANES] MCL_LANE_ALIGN;
-        v_store_lanes(u.x, u0);
-        v_store_lanes(u.y, u1);
-        v_store_lanes(u.z, u2);
-        v_store_lanes(u.w, u3);
+        Float4Lanes ul = float4_lanes(u);
         for (uint j = 0; j < MCL_LANES; ++j)
-          if (others[j])
-            otherRays[j] = direct_bsdf_ray(f, surfs[j], -xyz(a->rays[first + j].dir), origins[j],
-                                           make_float4(u0[j], u1[j], u2[j], u3[j]));
+          if (others[j]) otherRays[j] = direct_bsdf_ray(f, surfs[j], -xyz(a->rays[first + j].dir), origins[j], float4_lane(&ul, j));
       }
       vfloat3 w = v_to_world(v_sample_cosine_hemisphere(u.x, u.y), sf.ns);
       vfloat d = v3_dot(w, sf.ng);  // fold_above

@@ -151,32 +151,22 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
       pixel = v_loadu_lanes(px);
       sample = v_loadu_lanes(sm);
     }
-    LaneFrame sf;  // flat: surface_frame's operations on the triangle; the others from surface_at
-    sf.p = v3_add(v3_add(v3_make(v0x, v0y, v0z), v3_scale(v3_make(e1x, e1y, e1z), hu)),
-                  v3_scale(v3_make(e2x, e2y, e2z), hv));
-    sf.ng = v_orient_facing(n, dir);
-    sf.ns = sf.ng;
-    sf.kd = v3_make(kdx, kdy, kdz);
-    sf.smooth = v_not(hit | v_not(hit));  // none
-    vmask rich = lamb & v_not(flat);
-    if (v_any(rich))
-      sf = lane_frame_rich(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first, rich, pixel, sample, bounce, sf);
+    LaneFrame sf = lane_frame(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first,
+                              lamb & v_not(flat), pixel, sample, bounce, v3_make(v0x, v0y, v0z),
+                              v3_make(e1x, e1y, e1z), v3_make(e2x, e2y, e2z), hu, hv, n, dir, v3_make(kdx, kdy, kdz));
     vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
     // The lanes of other kinds: surface_at, the offset origin and the path weight, lane by lane.
     Surface surfs[MCL_LANES];
     float3 origins[MCL_LANES], betas[MCL_LANES];
-    uint others[MCL_LANES] MCL_LANE_ALIGN, px[MCL_LANES] MCL_LANE_ALIGN, sm[MCL_LANES] MCL_LANE_ALIGN;
+    uint others[MCL_LANES] MCL_LANE_ALIGN;
     v_store_lanes(v_mask01(other), others);
     if (v_any(other)) {
+      lane_surfaces(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first, others, pixel, sample,
+                    bounce, surfs, origins);
       float bx[MCL_LANES] MCL_LANE_ALIGN, by[MCL_LANES] MCL_LANE_ALIGN, bz[MCL_LANES] MCL_LANE_ALIGN;
       v3_store_lanes(beta, bx, by, bz);
-      v_store_lanes(pixel, px);
-      v_store_lanes(sample, sm);
       for (uint j = 0; j < MCL_LANES; ++j) {
         if (!others[j]) continue;
-        surfs[j] = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, a->hits[first + j], hit_instance(f, a->hitInstances, first + j),
-                              xyz(a->rays[first + j].dir), sample_ref(px[j], sm[j], bounce));
-        origins[j] = offset_ray_origin(surfs[j].frame.p, surfs[j].frame.ng, f->offsetScale);
         betas[j] = make_float3(bx[j], by[j], bz[j]);
         others[j] = path_takes_light_samples(f, surfs[j]) ? 2u : 1u;  // 2: light samples too
       }
@@ -187,27 +177,17 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
     for (uint s = 0; nee && s < f->lightSamples; ++s) {
       vfloat4 u = v_sample_uniform4(f, pixel, sample, path_dim(bounce, 1u + s));
       if (v_any(other)) {
-        float u0[MCL_LANES] MCL_LANE_ALIGN, u1[MCL_LANES] MCL_LANE_ALIGN, u2[MCL_LANES] MCL_LANE_ALIGN;
-        float u3[MCL_LANES] MCL_LANE_ALIGN;
-        v_store_lanes(u.x, u0);
-        v_store_lanes(u.y, u1);
-        v_store_lanes(u.z, u2);
-        v_store_lanes(u.w, u3);
+        Float4Lanes ul = float4_lanes(u);
         for (uint j = 0; j < MCL_LANES; ++j)
           if (others[j] == 2u)
             path_light_sample(a, lights, surfs[j], xyz(a->rays[first + j].dir) * -1.0f, origins[j], betas[j], ids[j], s,
-                              make_float4(u0[j], u1[j], u2[j], u3[j]));
+                              float4_lane(&ul, j));
       }
       if (!v_any(lamb)) continue;
-      vfloat3 wi, lle;
-      vfloat pdf, tmax;
-      vmask delta;
       VLightSample ls = v_sample_direct_light(f, lights, lamb, origin, u);
-      wi = ls.wi;
-      lle = ls.le;
-      pdf = ls.pdf;
-      tmax = ls.tmax;
-      delta = ls.delta;
+      vfloat3 wi = ls.wi, lle = ls.le;
+      vfloat pdf = ls.pdf, tmax = ls.tmax;
+      vmask delta = ls.delta;
       vfloat3 fcos = v_lambert_eval(sf, wi);  // bsdf_eval
       vmask push = lamb & (pdf > 0.0f) & (v_max_component(fcos) > 0.0f);
       if (!v_any(push)) continue;
@@ -222,16 +202,11 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
     // bsdf_sample: the cosine lobe around the frame; other kinds lane by lane.
     vfloat4 u = v_sample_uniform4(f, pixel, sample, path_dim(bounce, 0u));  // z: roulette, w: lobe
     if (v_any(other)) {
-      float u0[MCL_LANES] MCL_LANE_ALIGN, u1[MCL_LANES] MCL_LANE_ALIGN, u2[MCL_LANES] MCL_LANE_ALIGN;
-      float u3[MCL_LANES] MCL_LANE_ALIGN;
-      v_store_lanes(u.x, u0);
-      v_store_lanes(u.y, u1);
-      v_store_lanes(u.z, u2);
-      v_store_lanes(u.w, u3);
+      Float4Lanes ul = float4_lanes(u);
       for (uint j = 0; j < MCL_LANES; ++j)
         if (others[j])
           path_continue(a, surfs[j], xyz(a->rays[first + j].dir) * -1.0f, origins[j], betas[j], ids[j],
-                        make_float4(u0[j], u1[j], u2[j], u3[j]));
+                        float4_lane(&ul, j));
     }
     vfloat pdf;
     vfloat3 bw;

@@ -77,9 +77,25 @@ typedef struct {
   vuint x, y, z, w;
 } vRngOut;
 
+// A vfloat4's lanes as four arrays, for per-lane code: float4_lanes stores them, float4_lane reads
+// lane j back as a float4.
+typedef struct {
+  float x[MCL_LANES] MCL_LANE_ALIGN, y[MCL_LANES] MCL_LANE_ALIGN, z[MCL_LANES] MCL_LANE_ALIGN, w[MCL_LANES] MCL_LANE_ALIGN;
+} Float4Lanes;
+MCL_INLINE Float4Lanes float4_lanes(vfloat4 v) {
+  Float4Lanes l;
+  v_store_lanes(v.x, l.x);
+  v_store_lanes(v.y, l.y);
+  v_store_lanes(v.z, l.z);
+  v_store_lanes(v.w, l.w);
+  return l;
+}
+MCL_INLINE float4 float4_lane(const Float4Lanes* l, uint j) { return make_float4(l->x[j], l->y[j], l->z[j], l->w[j]); }
+
 MCL_DEFINE_PCG4D(v_pcg4d, vuint, vRngOut)
 MCL_DEFINE_U32_TO_UNIT(v_u32_to_unit, vuint, vfloat, v_cvt_f_u)
-MCL_DEFINE_RNG_UNIFORM4(v_rng_uniform4, vuint, vfloat4, vRngOut, v_pcg4d, v_u32_to_unit)
+MCL_DEFINE_UNIT4(v_unit4, vfloat4, vRngOut, v_u32_to_unit)
+MCL_DEFINE_RNG_UNIFORM4(v_rng_uniform4, vuint, vfloat4, vRngOut, v_pcg4d, v_unit4)
 
 // --- Sobol (shared/sobol.h, shared/sampler.h) -------------------------------------------------
 MCL_DEFINE_MIX32(v_mix32, vuint)
@@ -87,7 +103,7 @@ MCL_DEFINE_REVERSE_BITS(v_reverse_bits, vuint)
 MCL_DEFINE_OWEN_SCRAMBLE(v_owen_scramble, vuint, v_reverse_bits)
 MCL_DEFINE_SOBOL4(v_sobol4, vuint, vRngOut, v_reverse_bits)
 MCL_DEFINE_SOBOL_OWEN4_BITS(v_sobol_owen4_bits, vuint, vRngOut, v_pcg4d, v_sobol4, v_owen_scramble, v_mix32)
-MCL_DEFINE_SOBOL_UNIFORM4(v_sobol_uniform4, vuint, vfloat4, vRngOut, v_sobol_owen4_bits, v_u32_to_unit)
+MCL_DEFINE_SOBOL_UNIFORM4(v_sobol_uniform4, vuint, vfloat4, vRngOut, v_sobol_owen4_bits, v_unit4)
 MCL_DEFINE_SAMPLE_UNIFORM4(v_sample_uniform4, vuint, vfloat4, v_sobol_uniform4, v_rng_uniform4)
 
 // --- trig.h, sampling.h ------------------------------------------------------------------------
