@@ -14,6 +14,8 @@
 #include "image/oidn_denoiser.h"
 #include "skip.h"
 
+namespace test_file_denoise {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -50,7 +52,7 @@ double rmse(const std::vector<float>& a, const std::vector<float>& b) {
 #endif
 
 TEST_CASE("denoise: without the library --denoise is one line naming the set-up command, exit 2, nothing written" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   for (const char* out : {"a.png", "a.exr"}) {
     CliResult r = runMontecl({"render", demoScene(), "-o", dir.file(out), "--width", "8", "--height", "8", "--spp",
@@ -145,7 +147,7 @@ TEST_CASE("denoise: a 16-spp Cornell box denoised is closer to a 2048-spp refere
 }
 
 TEST_CASE("denoise: render.denoise in the scene file is a boolean; anything else is one line, exit 2" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const std::string obj = std::string(MONTECL_SOURCE_DIR) + "/scenes/demo/demo.obj";
   auto sceneWith = [&](const std::string& value) {
@@ -184,3 +186,5 @@ TEST_CASE("denoise: merge combines a denoised and a plain part and leaves the de
   CHECK(merged.channels.size() == plain.channels.size());
   for (const std::string& ch : merged.channels) CHECK(ch.rfind("denoised.", 0) != 0);
 }
+
+}  // namespace test_file_denoise

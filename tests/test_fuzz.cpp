@@ -23,6 +23,8 @@
 #include "fuzz_entries.h"
 #include "mutator.h"
 
+namespace test_file_fuzz {  // keeps this file's helpers apart in a unity batch
+
 namespace {
 
 using montecl_fuzz::Loader;
@@ -164,3 +166,5 @@ TEST_CASE("fuzz: 10k mutated PLY files (ASCII and binary) load or fail with Inpu
 TEST_CASE("fuzz: 10k mutated glTF files (.gltf and .glb) load or fail with InputError" * doctest::test_suite("cpu slow")) {
   fuzzLoop(Loader::Gltf);
 }
+
+}  // namespace test_file_fuzz

@@ -19,6 +19,8 @@
 #include "skip.h"
 #include "util/errors.h"
 
+namespace test_file_lanes {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -81,7 +83,9 @@ TEST_CASE("packet stages: adaptive sampling (active lists out of order, wrapping
   // (integrator, sampler): the Sobol points' lane form, with packets that wrap the active list.
   const std::pair<const char*, const char*> configs[] = {
       {"ao", "independent"}, {"direct", "independent"}, {"direct", "sobol"}};
-  for (const auto& [integrator, sampler] : configs) {
+  for (const auto& row : configs) {
+    const auto& integrator = std::get<0>(row);
+    const auto& sampler = std::get<1>(row);
     CAPTURE(integrator);
     CAPTURE(sampler);
     const std::vector<std::string> common = {"render", scene, "-q", "--width", "37", "--height", "23",
@@ -102,3 +106,5 @@ TEST_CASE("packet stages: adaptive sampling (active lists out of order, wrapping
     }
   }
 }
+
+}  // namespace test_file_lanes

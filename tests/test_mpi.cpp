@@ -20,6 +20,8 @@
 #include "image/exr_layers.h"
 #include "skip.h"
 
+namespace test_file_mpi {  // keeps this file's helpers apart in a unity batch
+
 extern char** environ;
 
 using montecl::LayeredImage;
@@ -91,19 +93,19 @@ void checkMpiMatchesOneProcess(const std::vector<std::string>& extra) {
 
 }  // namespace
 
-TEST_CASE("mpi: mpirun -np 1|2|3 AO render is bit-identical to one process; a skipped pixel is caught" * doctest::test_suite("cli")) {
+TEST_CASE("mpi: mpirun -np 1|2|3 AO render is bit-identical to one process; a skipped pixel is caught" * doctest::test_suite("cli sanitize")) {
   checkMpiMatchesOneProcess({"--aov", "all"});
 }
 
-TEST_CASE("mpi: mpirun -np 1|2|3 direct render is bit-identical to one process" * doctest::test_suite("cli")) {
+TEST_CASE("mpi: mpirun -np 1|2|3 direct render is bit-identical to one process" * doctest::test_suite("cli sanitize")) {
   checkMpiMatchesOneProcess({"--integrator", "direct", "--device", "host"});
 }
 
-TEST_CASE("mpi: mpirun -np 1|2|3 adaptive render is bit-identical to one process" * doctest::test_suite("cli")) {
+TEST_CASE("mpi: mpirun -np 1|2|3 adaptive render is bit-identical to one process" * doctest::test_suite("cli sanitize")) {
   checkMpiMatchesOneProcess({"--target-error", "0.05", "--min-spp", "4", "--max-spp", "64"});
 }
 
-TEST_CASE("mpi: a rank with a bad --device or an unreadable scene ends the job fast, with its message, no file" * doctest::test_suite("cli")) {
+TEST_CASE("mpi: a rank with a bad --device or an unreadable scene ends the job fast, with its message, no file" * doctest::test_suite("cli sanitize")) {
   MCL_SKIP_UNLESS(haveMpirun(), "mpirun not found (scripts/setup.sh installs openmpi-bin)");
   TempDir dir;
   const std::string out = dir.file("out.exr");
@@ -128,7 +130,7 @@ TEST_CASE("mpi: a rank with a bad --device or an unreadable scene ends the job f
   }
 }
 
-TEST_CASE("checkpoint: a render killed by SIGKILL after its first checkpoint resumes bit-identically" * doctest::test_suite("cli")) {
+TEST_CASE("checkpoint: a render killed by SIGKILL after its first checkpoint resumes bit-identically" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const int kSpp = 160;  // long enough (~1 s with a checkpoint per wave) to be killed mid-render
   const std::vector<std::string> extra{"--device", "host", "--wave-size", "64", "--integrator", "direct"};
@@ -183,3 +185,5 @@ TEST_CASE("checkpoint: a render killed by SIGKILL after its first checkpoint res
     CHECK(!fs::exists(dir.file("refused.exr")));
   }
 }
+
+}  // namespace test_file_mpi

@@ -19,6 +19,8 @@
 #include "test_images.h"
 #include "texture/mip_chain.h"
 
+namespace test_file_texture_sampling {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 using nlohmann::json;
@@ -294,7 +296,7 @@ TEST_CASE("KHR_materials_unlit: the base colour is the radiance seen, with zero 
   CHECK(checked == 16 * 10 * 10);
 }
 
-TEST_CASE("texture transform, texCoord and wrap: bad values are one line naming the key, exit 2" * doctest::test_suite("cli")) {
+TEST_CASE("texture transform, texCoord and wrap: bad values are one line naming the key, exit 2" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   writeCells(dir.file("cells.png"));
   struct Case {
@@ -384,3 +386,5 @@ TEST_CASE("COLOR_0: vertex colours multiply the base colour, interpolated over e
     CHECK(got.z == doctest::Approx(0.75).epsilon(1e-5));
   }
 }
+
+}  // namespace test_file_texture_sampling
