@@ -22,9 +22,10 @@
 #include "cli_runner.h"
 #include "image/image_io.h"
 
+extern char** environ;  // global: the process environment (unistd.h)
+
 namespace test_file_cli_checkpoint {  // keeps this file's helpers apart in a unity batch
 
-extern char** environ;
 
 using montecl_test::CliResult;
 using montecl_test::readAll;

@@ -21,9 +21,10 @@
 #include "cli_runner.h"
 #include "image/exr_layers.h"
 
+extern char** environ;  // global: the process environment (unistd.h)
+
 namespace test_file_cli_files {  // keeps this file's helpers apart in a unity batch
 
-extern char** environ;
 
 using montecl::LayeredImage;
 using montecl::readLayeredImage;

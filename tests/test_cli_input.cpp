@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "cli_runner.h"
+#include "sanitizers.h"
 #include "skip.h"
 #include "cl/devices.h"
 #include "render/memory_check.h"
@@ -154,7 +155,7 @@ TEST_CASE("cli: on a CPU OpenCL device the device buffers count against this mac
 }
 
 TEST_CASE("cli: running out of memory is one clear line and exit 1, never a bare std::bad_alloc" * doctest::test_suite("cli sanitize")) {
-#if defined(__SANITIZE_ADDRESS__)
+#if MCL_TEST_UNDER_ASAN
   // ASan reserves terabytes of shadow address space at start-up: under `ulimit -v` it cannot start.
   MCL_SKIP_UNLESS(false, "an address-space limit (ulimit -v) cannot run an AddressSanitizer build");
 #endif

@@ -12,6 +12,7 @@
 #include "cli_runner.h"
 #include "image/exr_layers.h"
 #include "image/oidn_denoiser.h"
+#include "sanitizers.h"
 #include "skip.h"
 
 namespace test_file_denoise {  // keeps this file's helpers apart in a unity batch
@@ -43,7 +44,7 @@ double rmse(const std::vector<float>& a, const std::vector<float>& b) {
 // Under AddressSanitizer the filter cannot run: OIDN's TBB dlopens libtbbbind with RTLD_DEEPBIND,
 // which the ASan runtime refuses (google/sanitizers#611), so those cases skip there (the release
 // suite runs them).
-#if defined(__SANITIZE_ADDRESS__)
+#if MCL_TEST_UNDER_ASAN
 #define MCL_SKIP_UNLESS_OIDN() \
   MCL_SKIP_UNLESS(false, "under AddressSanitizer: OIDN's TBB dlopens libtbbbind with RTLD_DEEPBIND, which ASan refuses")
 #else

@@ -249,6 +249,7 @@ TEST_CASE("exr read: a corrupt or truncated EXR is one InputError naming the fil
       readImageMemory("mutant.exr", std::vector<unsigned char>(m.begin(), m.end()));
       ++decoded;
     } catch (const InputError& e) {
+      INFO("mutant " << i << ": " << std::string(e.what()));
       CHECK(std::string(e.what()).rfind("mutant.exr: cannot read image: ", 0) == 0);
       CHECK(std::string(e.what()).find('\n') == std::string::npos);
       ++refused;

@@ -18,11 +18,13 @@
 
 #include "cli_runner.h"
 #include "image/exr_layers.h"
+#include "sanitizers.h"
 #include "skip.h"
+
+extern char** environ;  // global: the process environment (unistd.h)
 
 namespace test_file_mpi {  // keeps this file's helpers apart in a unity batch
 
-extern char** environ;
 
 using montecl::LayeredImage;
 using montecl::readLayeredImage;
@@ -37,7 +39,7 @@ namespace {
 const std::vector<std::string> kMpiEnv{"OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1",
                                        "OMPI_MCA_btl_vader_single_copy_mechanism=none", "OMPI_MCA_rmaps_base_oversubscribe=1"};
 
-#if defined(__SANITIZE_ADDRESS__)
+#if MCL_TEST_UNDER_ASAN
 // Under ASan (build-asan): Open MPI dlcloses its MCA components in MPI_Finalize, so what they keep
 // for the process lifetime is reported as leaks with unknown frames that no library-name
 // suppression can match. Leak checking is off for the ranks; ASan's memory-error checks stay on.

@@ -78,7 +78,7 @@ json quadGltf(const std::vector<float>& uv0, const std::vector<float>& uv1, cons
   g["meshes"] = {{{"primitives", {{{"attributes", attributes}, {"indices", 1}, {"material", 0}}}}}};
   g["nodes"] = {{{"mesh", 0}}};
   g["scenes"] = {{{"nodes", {0}}}};
-  g["materials"] = {material};
+  g["materials"] = json::array({material});  // not {material}: clang makes that a copy of the object
   return g;
 }
 
@@ -276,7 +276,7 @@ TEST_CASE("KHR_materials_unlit: the base colour is the radiance seen, with zero 
   }
   // With a base colour texture: factor x texel (interiors of the cells).
   m["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
-  g["materials"] = {m};
+  g["materials"] = json::array({m});
   g["images"] = {{{"uri", "cells.png"}}};
   g["textures"] = {{{"source", 0}}};
   dir.write("tex.gltf", g.dump());
