@@ -3,7 +3,7 @@
 // loader. Each input must end in success or the loader's InputError/RuntimeError within 2 s; any
 // other exception or a slow input fails the case, and a hung input (30 s) ends the process. The
 // failing inputs are saved to fuzz-findings/<loader>-<n>.bin in the working folder (the build
-// folder under CTest); replay one with build-fuzz/fuzz_<loader> <file> or this case.
+// folder under CTest); replay one with build-asan/fuzz_<loader> <file> or this case.
 // MONTECL_FUZZ_INPUTS raises the input count, MONTECL_FUZZ_SEED the mutator's seed.
 #include <doctest/doctest.h>
 
