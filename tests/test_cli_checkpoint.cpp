@@ -26,7 +26,6 @@ extern char** environ;  // global: the process environment (unistd.h)
 
 namespace test_file_cli_checkpoint {  // keeps this file's helpers apart in a unity batch
 
-
 using montecl_test::CliResult;
 using montecl_test::readAll;
 using montecl_test::runMontecl;

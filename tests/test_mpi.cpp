@@ -25,7 +25,6 @@ extern char** environ;  // global: the process environment (unistd.h)
 
 namespace test_file_mpi {  // keeps this file's helpers apart in a unity batch
 
-
 using montecl::LayeredImage;
 using montecl::readLayeredImage;
 using montecl_test::CliResult;
