@@ -2,7 +2,8 @@
 # The first command on a fresh Debian 12 machine (reads scenes/, writes build/ and out/): installs
 # what is missing, builds the montecl target only, and renders two images, printing their paths:
 #   out/materials-path.png  the materials Cornell box (smooth and rough glass, a mirror, rough gold)
-#                           path traced with next-event estimation and MIS, 256x256, 128 spp
+#                           path traced with next-event estimation and MIS, 256x256, 128 spp,
+#                           denoised where Open Image Denoise is installed (setup.sh --oidn)
 #   out/demo-ao.png         the lecture's ambient-occlusion scene (scenes/demo), 640x480, 64 spp
 # Compiler output and the OpenCL runtime's kernel-build messages go to out/demo.log, which is
 # printed when a step fails. Prints the build and render times apart.
@@ -29,7 +30,12 @@ echo "demo: building montecl (build/; compiler output in $log)" >&2
 step build bash scripts/build.sh montecl
 built=$SECONDS
 echo "demo: rendering" >&2
-step "path render" build/montecl render scenes/materials/scene.json --integrator path -o out/materials-path.png
+path=(build/montecl render scenes/materials/scene.json --integrator path -o out/materials-path.png)
+echo "== path render, denoised: ${path[*]} --denoise" >>"$log"
+if ! "${path[@]}" --denoise >>"$log" 2>&1; then  # exit 2 at once without the library
+  echo "demo: not denoised (Open Image Denoise is not installed: bash scripts/setup.sh --oidn)" >&2
+  step "path render" "${path[@]}"
+fi
 step "AO render" build/montecl render scenes/demo/scene.json -o out/demo-ao.png
 echo "demo: build $((built - start)) s, renders $((SECONDS - built)) s" >&2
 echo "$(pwd)/out/materials-path.png"
