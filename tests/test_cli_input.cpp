@@ -2,6 +2,7 @@
 // numeric option is checked before any work, with a short message (no 300-digit bounds), NaN and
 // infinity are refused, and the image size and light samples follow the scene file's limits.
 #include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -20,6 +21,7 @@
 #include "skip.h"
 #include "cl/devices.h"
 #include "render/memory_check.h"
+#include "scene/render_settings.h"
 #include "util/errors.h"
 
 namespace test_file_cli_input {  // keeps this file's helpers apart in a unity batch
@@ -280,6 +282,29 @@ TEST_CASE("cli: -v prints the camera as scene JSON; pasted into a scene file it 
   INFO("scene stderr: " << scene.err << " camera: " << camera);
   REQUIRE(scene.exitCode == 0);
   CHECK(fileText(dir.file("bare.pfm")) == fileText(dir.file("scene.pfm")));
+}
+
+
+TEST_CASE("cli: settings --json is every setting's default, by key, as the table has it" * doctest::test_suite("cli sanitize")) {
+  const CliResult r = runMontecl({"settings", "--json"});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  const montecl::RenderSettings defaults;
+  CHECK(j.size() == montecl::renderSettings().size());
+  for (const montecl::RenderSetting& s : montecl::renderSettings()) {
+    CAPTURE(s.key);
+    REQUIRE(j.contains(s.key));
+    const std::string text = montecl::settingValueText(s.get(defaults));
+    const nlohmann::json& v = j[s.key];
+    if (v.is_string()) CHECK(v.get<std::string>() == text);
+    if (v.is_boolean()) CHECK((v.get<bool>() ? "true" : "false") == text);
+    if (v.is_number()) CHECK(v.get<double>() == doctest::Approx(std::stod(text)).epsilon(1e-6));
+    if (v.is_array()) CHECK(v.size() == 3);
+  }
+  CHECK(j["spp"] == defaults.spp);
+  CHECK(j["max_depth"] == defaults.maxDepth);
+  CHECK(runMontecl({"settings", "--json", "--markdown"}).exitCode == 2);
 }
 
 }  // namespace test_file_cli_input
