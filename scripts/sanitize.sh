@@ -8,7 +8,7 @@
 # the tests of the existing build-asan; without either it does both. The tests run by default
 # (CI) are the `cpu` cases and the `sanitize` ones (loader, image, checkpoint, merge, MPI and
 # command-line cases whose work is host code); `--all` runs every case but the `uninstrumented` ones
-# (as CI did before: about 400 s more; docs/testing.md says when). MONTECL_UNITY_BUILD as in
+# (as CI did before: the g++ build took 395 s for it; docs/testing.md says when). MONTECL_UNITY_BUILD as in
 # scripts/configure.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
