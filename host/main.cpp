@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   addGenerateCommand(app, exitCode);
   addConformanceCommand(app, exitCode);
   addSettingsCommand(app, exitCode);
+  addKindsCommand(app, exitCode);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -4,7 +4,8 @@
 set -euo pipefail
 
 packages=(
-  cmake g++ make pkg-config
+  cmake g++ make ninja-build pkg-config
+  clang-14 libclang-rt-14-dev
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo oclgrind
   libglm-dev libtinyobjloader-dev libtinygltf-dev libdraco-dev libopenimageio-dev libopenexr-dev openimageio-tools libpng-dev
   libjpeg62-turbo-dev libstb-dev
@@ -13,9 +14,9 @@ packages=(
   openmpi-bin libopenmpi-dev
 )
 
-# Only the plotting scripts need matplotlib: `setup.sh --plots` adds it. Only the libFuzzer
-# harnesses (scripts/fuzz.sh, cmake -DMONTECL_FUZZ=ON) need clang and its fuzzer/sanitizer
-# runtimes: `setup.sh --fuzz` adds them (the ASan/UBSan build of the suite uses g++'s libasan).
+# clang-14 and its ASan/UBSan/libFuzzer runtimes (libclang-rt-14-dev) build the sanitized build
+# (scripts/sanitize.sh: the suite and the libFuzzer harnesses in one). Only the plotting scripts
+# need matplotlib: `setup.sh --plots` adds it.
 # Only scripts/vs_mitsuba.py (and its test) needs Mitsuba 3: `setup.sh --mitsuba` adds python3-venv
 # and libllvm19 (Mitsuba's llvm_ad_rgb variant needs an LLVM newer than Debian's default) and
 # installs PyPI's mitsuba + numpy into a cached venv, $MONTECL_MITSUBA_VENV or
@@ -34,7 +35,6 @@ oidn=0
 for arg in "$@"; do
   case "$arg" in
     --plots) packages+=(python3-matplotlib) ;;
-    --fuzz) packages+=(clang-14 libclang-rt-14-dev) ;;
     --mitsuba) packages+=(python3-venv libllvm19); mitsuba=1 ;;
     --intel-opencl) packages+=(python3-venv); intel_opencl=1 ;;
     --oidn) packages+=(python3-venv); oidn=1 ;;

@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# One command on a fresh Debian 12 machine: installs what is missing, builds, and runs the whole
-# test suite (doctest through CTest, on PoCL); then builds the suite again with ASan + UBSan
-# (build-asan, cmake -DMONTECL_SANITIZE=ON) and runs it there (docs/fuzzing.md says what runs).
-# Then builds the libFuzzer harnesses (clang-14, build-fuzz) and runs each loader's harness for a
-# short fixed number of inputs (scripts/fuzz_smoke.sh), so a harness that stops linking fails CI.
-# MONTECL_SKIP_SANITIZE=1 skips the sanitizer pass and MONTECL_SKIP_FUZZ=1 the fuzz pass (a quick
-# local run). Also installs Intel's CPU
+# One command on a fresh Debian 12 machine (CI: .ci/run): installs what is missing, builds (Release,
+# build/) and runs the whole test suite (doctest through CTest, on PoCL). Then the sanitized build
+# (scripts/sanitize.sh: clang-14, ASan + UBSan, build-asan/, which also links the libFuzzer
+# harnesses) runs the `cpu` and `sanitize` cases (the host-code cases: loaders, images, checkpoints,
+# merge, the command line), and each loader's harness runs a short fixed number of inputs
+# (scripts/fuzz_smoke.sh), so a harness that stops linking fails CI. docs/testing.md says what runs
+# where and when to run the full sanitized suite (scripts/sanitize.sh --all).
+# MONTECL_SKIP_SANITIZE=1 skips the sanitized build, its tests and the fuzz runs (a quick local run).
+# Also installs Intel's CPU
 # OpenCL runtime (setup.sh --intel-opencl: a cached venv, about 270 MB from PyPI once), so the
 # conformance tests run on two OpenCL implementations plus Oclgrind; where that install fails (no
 # PyPI, not x86-64) its test skips with the reason. MONTECL_NO_INTEL_OPENCL=1 does not install it.
@@ -31,7 +33,7 @@ step_done() {
   mark_wall=$SECONDS
   mark_cpu=$cpu
 }
-# A clean checkout has no compiler cache: batched (unity) compiles halve the build's CPU time.
+# A clean checkout has no compiler cache: batched (unity) compiles halve the builds' CPU time.
 export MONTECL_UNITY_BUILD=${MONTECL_UNITY_BUILD:-ON}
 times_file=$(mktemp)
 trap 'rm -f "$times_file"; [ ${#steps[@]} = 0 ] || printf "test: %s\n" "steps so far:" "${steps[@]}" >&2' EXIT
@@ -59,11 +61,9 @@ ctest --test-dir build --output-on-failure -j"$(nproc)"
 step_done tests
 if [ "${MONTECL_SKIP_SANITIZE:-0}" != 1 ]; then
   bash scripts/sanitize.sh build
-  step_done "asan build"
+  step_done "sanitized build"
   bash scripts/sanitize.sh test
-  step_done "asan tests"
-fi
-if [ "${MONTECL_SKIP_FUZZ:-0}" != 1 ]; then
+  step_done "sanitized tests"
   bash scripts/fuzz_smoke.sh
-  step_done "fuzz build + runs"
+  step_done "fuzz runs"
 fi

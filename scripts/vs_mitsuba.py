@@ -475,7 +475,7 @@ def worker_base(sc, work, width, height, variant, integ, sampling, max_depth, rr
                        "map_Ke": sh["map_Ke"]})
     return {"camera": sc["camera"], "shapes": shapes, "environment": sc["environment"], "lights": sc["lights"],
             "width": width, "height": height, "variant": variant, "integrator": integ, "direct_sampling": sampling,
-            "light_samples": sc["render"].get("light_samples", 1), "max_depth": max_depth, "rr_depth": rr_depth}
+            "light_samples": sc["render"]["light_samples"], "max_depth": max_depth, "rr_depth": rr_depth}
 
 
 def parse_args(argv):
@@ -487,8 +487,8 @@ def parse_args(argv):
     p.add_argument("--seed", type=int, default=None)
     p.add_argument("--integrator", choices=["direct", "path"], default=None)
     p.add_argument("--direct-sampling", choices=["light", "brdf", "mis"], default=None)
-    p.add_argument("--max-depth", type=int, default=None, help="path: default the scene's max_depth, else -1")
-    p.add_argument("--rr-depth", type=int, default=None, help="path: default the scene's rr_depth, else 5")
+    p.add_argument("--max-depth", type=int, default=None, help="path: default the scene's max_depth, else montecl's (montecl settings --json)")
+    p.add_argument("--rr-depth", type=int, default=None, help="path: default the scene's rr_depth, else montecl's")
     p.add_argument("--repeat", type=int, default=3, help="timed runs of each renderer (median)")
     p.add_argument("--ref-factor", type=int, default=4, help="Mitsuba reference spp = factor x spp")
     p.add_argument("--ref-seeds", type=int, default=16, help="independent Mitsuba renders in the reference")
@@ -527,16 +527,19 @@ def main(argv):
     if not os.path.exists(a.montecl):
         raise BadInput(f"{a.montecl}: no montecl executable (build it, or pass --montecl)")
     sc = load_scene(a.scene)  # checks what the worker will do, before any render
+    # The scene's render block over montecl's own defaults (`montecl settings --json`), not a copy of them.
+    defaults = subprocess.run([a.montecl, "settings", "--json"], check=True, capture_output=True, text=True).stdout
+    sc["render"] = {**json.loads(defaults), **sc["render"]}
     cam, rnd = sc["camera"], sc["render"]
     width, height = a.width or cam.get("width", 512), a.height or cam.get("height", 512)
-    spp = a.spp or rnd.get("spp", 64)
-    seed = a.seed if a.seed is not None else rnd.get("seed", 0)
-    integ = a.integrator or rnd.get("integrator", "ao")
+    spp = a.spp or rnd["spp"]
+    seed = a.seed if a.seed is not None else rnd["seed"]
+    integ = a.integrator or rnd["integrator"]
     if integ not in ("direct", "path"):
         raise BadInput(f"{a.scene}: render.integrator: {integ}: Mitsuba has no '{integ}' (use --integrator)")
-    sampling = a.direct_sampling or rnd.get("direct_sampling", "mis")
-    a.max_depth = a.max_depth if a.max_depth is not None else rnd.get("max_depth", -1)
-    a.rr_depth = a.rr_depth if a.rr_depth is not None else rnd.get("rr_depth", 5)
+    sampling = a.direct_sampling or rnd["direct_sampling"]
+    a.max_depth = a.max_depth if a.max_depth is not None else rnd["max_depth"]
+    a.rr_depth = a.rr_depth if a.rr_depth is not None else rnd["rr_depth"]
     variant = {"llvm": "llvm_ad_rgb", "scalar": "scalar_rgb"}[
         a.variant if a.variant != "auto" else ("llvm" if os.path.exists(LLVM19) or
                                                "DRJIT_LIBLLVM_PATH" in os.environ else "scalar")]

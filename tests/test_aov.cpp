@@ -18,6 +18,8 @@
 #include "skip.h"
 #include "test_scenes.h"
 
+namespace test_file_aov {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -121,7 +123,7 @@ TEST_CASE("AOVs: the emission AOV is Le exactly on the Cornell box's pixels full
   }
 }
 
-TEST_CASE("--aov all writes named albedo, normal and depth channels; --aov with .png is bad input" * doctest::test_suite("cli")) {
+TEST_CASE("--aov all writes named albedo, normal and depth channels; --aov with .png is bad input" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   std::string scene = std::string(MONTECL_SOURCE_DIR) + "/scenes/demo/scene.json";
   CliResult r = runMontecl({"render", scene, "-o", dir.file("a.exr"), "--width", "16", "--height", "12", "--spp",
@@ -137,3 +139,5 @@ TEST_CASE("--aov all writes named albedo, normal and depth channels; --aov with 
   CHECK(bad.exitCode == 2);
   CHECK(bad.err.find("--aov") != std::string::npos);
 }
+
+}  // namespace test_file_aov

@@ -14,6 +14,8 @@
 #include "bvh/bvh_visit_counts.h"
 #include "cli_runner.h"
 
+namespace test_file_bench {  // keeps this file's helpers apart in a unity batch
+
 using montecl_test::CliResult;
 using montecl_test::runMontecl;
 using montecl_test::TempDir;
@@ -129,7 +131,7 @@ TEST_CASE("bench with the binary BVH layout: all rays match its host reference" 
   CHECK(runMontecl({"bench", MONTECL_SOURCE_DIR "/scenes/demo/scene.json", "--bvh-layout", "quad"}).exitCode == 2);
 }
 
-TEST_CASE("bench bad input exits 2 with one line" * doctest::test_suite("cli")) {
+TEST_CASE("bench bad input exits 2 with one line" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   CliResult r = runMontecl({"bench", dir.file("missing.json")});
   CHECK(r.exitCode == 2);
@@ -175,3 +177,5 @@ TEST_CASE("bench visit counts: one triangle is the root node and one leaf" * doc
     CHECK(c.leaves == 0.5);
   }
 }
+
+}  // namespace test_file_bench

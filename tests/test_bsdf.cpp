@@ -14,6 +14,8 @@
 #include "bsdf_chi2.h"
 #include "stats.h"
 
+namespace test_file_bsdf {  // keeps this file's helpers apart in a unity batch
+
 using montecl_test::chiSquareCritical;
 using montecl_test::chiSquareStat;
 using montecl_test::RunningStats;
@@ -232,3 +234,5 @@ TEST_CASE("Surface BSDF: directions below the geometric surface get f = 0 and pd
     REQUIRE(s1.wi.x == s2.wi.x);
   }
 }
+
+}  // namespace test_file_bsdf

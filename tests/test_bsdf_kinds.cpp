@@ -14,6 +14,8 @@
 #include "render/device_materials.h"
 #include "stats.h"
 
+namespace test_file_bsdf_kinds {  // keeps this file's helpers apart in a unity batch
+
 using montecl::MaterialDesc;
 using montecl_test::chiDirFromAngles;
 using montecl_test::chiSquareCritical;
@@ -208,3 +210,5 @@ TEST_CASE("bsdf: delta lobes: eval and pdf 0; mirror weight F; smooth dielectric
     CHECK(t.flags == (MCL_BSDF_DELTA | MCL_BSDF_TRANSMISSION));
   }
 }
+
+}  // namespace test_file_bsdf_kinds

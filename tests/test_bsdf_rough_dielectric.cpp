@@ -19,6 +19,8 @@
 #include "bsdf_chi2.h"
 #include "stats.h"
 
+namespace test_file_bsdf_rough_dielectric {  // keeps this file's helpers apart in a unity batch
+
 using montecl_test::chiDirFromAngles;
 using montecl_test::chiSquareCritical;
 using montecl_test::RunningStats;
@@ -269,3 +271,5 @@ TEST_CASE("rough dielectric: the albedo AOV is the directional albedo at normal 
     }
   CHECK(dielectric_albedo(dielectric_make(1.5f, 0.0f)).x == 1.0f);  // smooth: all of it
 }
+
+}  // namespace test_file_bsdf_rough_dielectric

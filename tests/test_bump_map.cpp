@@ -21,6 +21,8 @@
 #include "texture/bump_gradient.h"
 #include "texture/scene_textures.h"
 
+namespace test_file_bump_map {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -250,7 +252,7 @@ TEST_CASE("bump map: MTL bump, map_Bump and map_bump load with their -bm; beside
 }
 
 TEST_CASE("bump map: a -bm that is not a finite number, or a missing bump file, is one line naming the MTL and line, exit 2" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   writeRamp(dir.file("h.png"));
   dir.write("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl a\nf 1/1 2/2 3/3\n");
@@ -275,3 +277,5 @@ TEST_CASE("bump map: a -bm that is not a finite number, or a missing bump file, 
     CHECK_FALSE(std::filesystem::exists(dir.file("out.png")));
   }
 }
+
+}  // namespace test_file_bump_map

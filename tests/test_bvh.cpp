@@ -26,6 +26,8 @@
 #include "soups.h"
 #include "skip.h"
 
+namespace test_file_bvh {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using glm::vec3;
 using montecl_test::BruteForce;
@@ -614,3 +616,5 @@ TEST_CASE("bvh: binned SAH cost is close to a full-sweep SAH build and beats a m
     CHECK(bvh.sahCost < 0.9 * median);
   }
 }
+
+}  // namespace test_file_bvh

@@ -26,6 +26,8 @@
 #include "skip.h"
 #include "soups.h"
 
+namespace test_file_bvh_instances {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using glm::vec3;
 
@@ -334,3 +336,5 @@ TEST_CASE("bvh instances: the scene view maps every slot to its scene triangle" 
   REQUIRE(shading.size() == view.triangles.size());
   for (std::size_t i = 0; i < shading.size(); ++i) CHECK(shading[i].n0.w == float(view.order[i]));
 }
+
+}  // namespace test_file_bvh_instances

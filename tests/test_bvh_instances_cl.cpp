@@ -18,6 +18,8 @@
 #include "cli_runner.h"
 #include "soups.h"
 
+namespace test_file_bvh_instances_cl {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using glm::vec3;
 using montecl_test::TempDir;
@@ -134,3 +136,5 @@ __kernel void layout(__global uint* out) {
   MESSAGE(hitCount << " of " << rays.size() << " rays hit on " << dev.name);
   CHECK(hitCount > 400);
 }
+
+}  // namespace test_file_bvh_instances_cl

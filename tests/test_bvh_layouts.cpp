@@ -23,6 +23,8 @@
 #include "util/errors.h"
 #include "skip.h"
 
+namespace test_file_bvh_layouts {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -221,3 +223,5 @@ TEST_CASE("bvh layouts: the wide traversal never reads an empty slot, whatever i
   }
   CHECK(bad == 0);
 }
+
+}  // namespace test_file_bvh_layouts

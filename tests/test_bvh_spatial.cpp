@@ -20,6 +20,8 @@
 #include "scene/builtin_scenes.h"
 #include "soups.h"
 
+namespace test_file_bvh_spatial {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl::bvhbuild;
 using glm::vec3;
@@ -274,3 +276,5 @@ TEST_CASE("bvh spatial: a direct-lighting render is bit-identical with and witho
   CHECK(a.m2 == b.m2);
   CHECK(a.count == b.count);
 }
+
+}  // namespace test_file_bvh_spatial

@@ -23,6 +23,8 @@
 #include "kernels/shared/types.h"
 #include "util/errors.h"
 
+namespace test_file_cl {  // keeps this file's helpers apart in a unity batch
+
 namespace fs = std::filesystem;
 using namespace montecl;
 
@@ -88,7 +90,7 @@ __kernel void twice(__global uint* out) {
 
 // --- devices ------------------------------------------------------------------------------------
 
-TEST_CASE("cl: listDevices finds a usable device" * doctest::test_suite("opencl")) {
+TEST_CASE("cl: listDevices finds a usable device" * doctest::test_suite("opencl sanitize")) {
   DeviceList list = listDevices();
   for (const auto& e : list.platformErrors) MESSAGE("platform error: " << e);
   REQUIRE(!list.devices.empty());
@@ -103,7 +105,7 @@ TEST_CASE("cl: listDevices finds a usable device" * doctest::test_suite("opencl"
   }
 }
 
-TEST_CASE("cl: selectDevice by default, index, and name" * doctest::test_suite("opencl")) {
+TEST_CASE("cl: selectDevice by default, index, and name" * doctest::test_suite("opencl sanitize")) {
   DeviceInfo def = selectDevice("");
   CHECK(!def.name.empty());
 
@@ -128,7 +130,7 @@ TEST_CASE("cl: selectDevice by default, index, and name" * doctest::test_suite("
          lower(byPlatform.platformName).find(lower(plat)) != std::string::npos));
 }
 
-TEST_CASE("cl: selectDevice rejects specs that match nothing" * doctest::test_suite("opencl")) {
+TEST_CASE("cl: selectDevice rejects specs that match nothing" * doctest::test_suite("opencl sanitize")) {
   CHECK_THROWS_AS(selectDevice("nonexistent-xyz"), InputError);
   CHECK(thrownMessage([] { selectDevice("nonexistent-xyz"); }) ==
         "--device: no OpenCL device matches \"nonexistent-xyz\" (run 'montecl devices' to list "
@@ -136,7 +138,7 @@ TEST_CASE("cl: selectDevice rejects specs that match nothing" * doctest::test_su
   CHECK_THROWS_AS(selectDevice("9:9"), InputError);
 }
 
-TEST_CASE("cl: selectDevice(\"host\") is the host backend, whatever the case" * doctest::test_suite("opencl")) {
+TEST_CASE("cl: selectDevice(\"host\") is the host backend, whatever the case" * doctest::test_suite("opencl sanitize")) {
   for (const char* spec : {"host", "Host", " HOST "}) {
     DeviceInfo d = selectDevice(spec);
     CHECK(d.isHost);
@@ -221,7 +223,7 @@ TEST_CASE("cl: expandedKernelSource expands includes once, relative to the inclu
 
 // --- program cache ------------------------------------------------------------------------------
 
-TEST_CASE("cl: program cache hits, misses, falls back, and runs the cached program" * doctest::test_suite("opencl")) {
+TEST_CASE("cl: program cache hits, misses, falls back, and runs the cached program" * doctest::test_suite("opencl sanitize")) {
   TempDir dir;
   ScopedEnv env("MONTECL_CACHE_DIR", (dir.path + "/cache").c_str());
   CHECK(programCacheDir() == dir.path + "/cache");
@@ -270,7 +272,7 @@ TEST_CASE("cl: program cache hits, misses, falls back, and runs the cached progr
   CHECK_FALSE(buildProgramCached(context, dev, kDoubleKernel, opts).fromCache);
 }
 
-TEST_CASE("cl: program cache never fails a build when the folder is unusable" * doctest::test_suite("opencl")) {
+TEST_CASE("cl: program cache never fails a build when the folder is unusable" * doctest::test_suite("opencl sanitize")) {
   TempDir dir;
   dir.write("not-a-folder", "x");
   ScopedEnv env("MONTECL_CACHE_DIR", (dir.path + "/not-a-folder/cache").c_str());
@@ -282,7 +284,7 @@ TEST_CASE("cl: program cache never fails a build when the folder is unusable" * 
   CHECK(b.program() != nullptr);
 }
 
-TEST_CASE("cl: a kernel build error carries the build log" * doctest::test_suite("opencl")) {
+TEST_CASE("cl: a kernel build error carries the build log" * doctest::test_suite("opencl sanitize")) {
   TempDir dir;
   ScopedEnv env("MONTECL_CACHE_DIR", dir.path.c_str());
   DeviceInfo dev = selectDevice("");
@@ -314,7 +316,7 @@ TEST_CASE("cl: a kernel build error carries the build log" * doctest::test_suite
 
 // --- struct layout ------------------------------------------------------------------------------
 
-TEST_CASE("cl: shared struct layout matches between host and device" * doctest::test_suite("opencl")) {
+TEST_CASE("cl: shared struct layout matches between host and device" * doctest::test_suite("opencl sanitize")) {
   TempDir dir;
   ScopedEnv cache("MONTECL_CACHE_DIR", dir.path.c_str());
   ScopedEnv kdir("MONTECL_KERNEL_DIR", nullptr);  // the embedded (real) headers
@@ -386,3 +388,5 @@ __kernel void probe(__global uint* out) {
     CHECK(device[i] == host[i].second);
   }
 }
+
+}  // namespace test_file_cl

@@ -22,7 +22,9 @@
 #include "cli_runner.h"
 #include "image/image_io.h"
 
-extern char** environ;
+extern char** environ;  // global: the process environment (unistd.h)
+
+namespace test_file_cli_checkpoint {  // keeps this file's helpers apart in a unity batch
 
 using montecl_test::CliResult;
 using montecl_test::readAll;
@@ -88,7 +90,7 @@ pid_t spawnMontecl(const std::vector<std::string>& args, const std::string& errF
 
 }  // namespace
 
-TEST_CASE("checkpoint: --resume after a change of environment, specular, texture, alpha cutoff or two-sided emission is refused" * doctest::test_suite("cli")) {
+TEST_CASE("checkpoint: --resume after a change of environment, specular, texture, alpha cutoff or two-sided emission is refused" * doctest::test_suite("cli sanitize")) {
   struct Change {
     const char* name;
     std::function<void(Params&)> apply;
@@ -123,7 +125,7 @@ TEST_CASE("checkpoint: --resume after a change of environment, specular, texture
   }
 }
 
-TEST_CASE("checkpoint: a --checkpoint that is an input, the output, a foreign file or uncreatable is refused before any work" * doctest::test_suite("cli")) {
+TEST_CASE("checkpoint: a --checkpoint that is an input, the output, a foreign file or uncreatable is refused before any work" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const std::string scene = writeScene(dir, Params{});
   dir.write("notes.txt", "my notes\n");
@@ -158,7 +160,7 @@ TEST_CASE("checkpoint: a --checkpoint that is an input, the output, a foreign fi
   CHECK(readAll(dir.file("render.exr")) == ckptBefore);
 }
 
-TEST_CASE("checkpoint: a checkpoint write that fails mid-render is a warning; the image is still written" * doctest::test_suite("cli slow")) {
+TEST_CASE("checkpoint: a checkpoint write that fails mid-render is a warning; the image is still written" * doctest::test_suite("cli sanitize slow")) {
   TempDir dir;
   fs::create_directory(dir.file("ckpts"));
   const std::string ckpt = dir.file("ckpts/render.ckpt"), out = dir.file("out.exr"), err = dir.file("err.txt");
@@ -183,7 +185,7 @@ TEST_CASE("checkpoint: a checkpoint write that fails mid-render is a warning; th
   CHECK(std::count(stderrText.begin(), stderrText.end(), '\n') == 1);  // warned once, not every wave
 }
 
-TEST_CASE("checkpoint: --resume of a FIFO, a folder or a device is one line, exit 2, at once" * doctest::test_suite("cli")) {
+TEST_CASE("checkpoint: --resume of a FIFO, a folder or a device is one line, exit 2, at once" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const std::string scene = writeScene(dir, Params{});
   REQUIRE(::mkfifo(dir.file("fifo.ckpt").c_str(), 0600) == 0);
@@ -217,3 +219,5 @@ TEST_CASE("checkpoint: --resume of a FIFO, a folder or a device is one line, exi
   done = true;
   writer.join();
 }
+
+}  // namespace test_file_cli_checkpoint

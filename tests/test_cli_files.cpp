@@ -21,7 +21,9 @@
 #include "cli_runner.h"
 #include "image/exr_layers.h"
 
-extern char** environ;
+extern char** environ;  // global: the process environment (unistd.h)
+
+namespace test_file_cli_files {  // keeps this file's helpers apart in a unity batch
 
 using montecl::LayeredImage;
 using montecl::readLayeredImage;
@@ -89,7 +91,7 @@ bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size
 
 }  // namespace
 
-TEST_CASE("cli: SIGTERM finishes the wave, writes the image so far, exits 143" * doctest::test_suite("cli slow")) {
+TEST_CASE("cli: SIGTERM finishes the wave, writes the image so far, exits 143" * doctest::test_suite("cli sanitize slow")) {
   TempDir dir, log;
   std::vector<std::string> args = longRender(dir.file("t.exr"));
   args.push_back("-v");
@@ -106,7 +108,7 @@ TEST_CASE("cli: SIGTERM finishes the wave, writes the image so far, exits 143" *
   CHECK(entries(dir.path) == std::vector<std::string>{"t.exr"});
 }
 
-TEST_CASE("cli: an inherited SIG_IGN for SIGINT stays ignored (background jobs)" * doctest::test_suite("cli slow")) {
+TEST_CASE("cli: an inherited SIG_IGN for SIGINT stays ignored (background jobs)" * doctest::test_suite("cli sanitize slow")) {
   TempDir dir;
   struct sigaction ignore {}, previous {};
   ignore.sa_handler = SIG_IGN;
@@ -128,7 +130,7 @@ TEST_CASE("cli: an inherited SIG_IGN for SIGINT stays ignored (background jobs)"
   }
 }
 
-TEST_CASE("cli: a SIGINT while a complete render is being written exits 0 with the full image" * doctest::test_suite("cli slow")) {
+TEST_CASE("cli: a SIGINT while a complete render is being written exits 0 with the full image" * doctest::test_suite("cli sanitize slow")) {
   // A big EXR with every AOV takes a while to compress and write; the render itself is short. The
   // signal is sent as soon as the temporary file has data, i.e. after the last wave.
   TempDir dir;
@@ -158,7 +160,7 @@ TEST_CASE("cli: a SIGINT while a complete render is being written exits 0 with t
   CHECK(entries(dir.path) == std::vector<std::string>{"w.exr"});
 }
 
-TEST_CASE("cli: an output that is one of the render's inputs is refused (exit 2), the input untouched" * doctest::test_suite("cli")) {
+TEST_CASE("cli: an output that is one of the render's inputs is refused (exit 2), the input untouched" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const std::string obj = std::string(MONTECL_SOURCE_DIR) + "/scenes/test/good/quad.obj";
   const std::string mtl = std::string(MONTECL_SOURCE_DIR) + "/scenes/test/good/quad.mtl";
@@ -183,7 +185,7 @@ TEST_CASE("cli: an output that is one of the render's inputs is refused (exit 2)
   CHECK(readAll(scene) == sceneBefore);
 }
 
-TEST_CASE("cli: an output that cannot be written fails before the render (exit 2); a 254-byte name works" * doctest::test_suite("cli")) {
+TEST_CASE("cli: an output that cannot be written fails before the render (exit 2); a 254-byte name works" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const std::string scene = montecl_test::demoScene();
   for (const std::string& out : {dir.file(std::string(256, 'n') + ".png"), std::string("/proc/montecl-out.png"),
@@ -202,7 +204,7 @@ TEST_CASE("cli: an output that cannot be written fails before the render (exit 2
   CHECK(entries(dir.path) == std::vector<std::string>{std::string(250, 'l') + ".png"});
 }
 
-TEST_CASE("cli: emission whose luminance x area overflows a float is refused at load, naming the material" * doctest::test_suite("cli")) {
+TEST_CASE("cli: emission whose luminance x area overflows a float is refused at load, naming the material" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   dir.write("big.json", "{\"camera\": {\"position\": [0, 1, 5], \"target\": [0, 0, 0], \"up\": [0, 1, 0], \"fov_y\": 40, \"width\": 8, \"height\": 8}, \"meshes\": [{\"file\": \"" + std::string(MONTECL_SOURCE_DIR) +
                             "/scenes/demo/demo.obj\", \"emission\": [3.4e38, 3.4e38, 3.4e38]}],"
@@ -217,7 +219,7 @@ TEST_CASE("cli: emission whose luminance x area overflows a float is refused at 
   CHECK(!fs::exists(dir.file("o.png")));
 }
 
-TEST_CASE("cli: a render whose values overflow a float writes no image and exits 1 naming how many pixels" * doctest::test_suite("cli")) {
+TEST_CASE("cli: a render whose values overflow a float writes no image and exits 1 naming how many pixels" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   writeLampScene(dir, "3.4e38");
   CliResult r = runMontecl({"render", dir.file("scene.json"), "-o", dir.file("o.exr"), "-q"});
@@ -230,3 +232,5 @@ TEST_CASE("cli: a render whose values overflow a float writes no image and exits
   r = runMontecl({"render", dir.file("scene.json"), "-o", dir.file("o.exr"), "-q"});
   CHECK(r.exitCode == 0);
 }
+
+}  // namespace test_file_cli_files

@@ -14,6 +14,8 @@
 #include "image/exr_layers.h"
 #include "mesh_files.h"
 
+namespace test_file_cli_formats {  // keeps this file's helpers apart in a unity batch
+
 using montecl_test::PlyEncoding;
 using montecl_test::runMontecl;
 using montecl_test::TempDir;
@@ -30,7 +32,7 @@ montecl::LayeredImage render(const TempDir& dir, const std::string& input, const
 }  // namespace
 
 TEST_CASE("cli: one model as bare OBJ, PLY (ASCII, big endian) and .glb renders bit-identical images" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const montecl_test::MeshData tent = montecl_test::tentMesh();
   dir.write("tent.obj", montecl_test::objText(tent));
@@ -50,7 +52,7 @@ TEST_CASE("cli: one model as bare OBJ, PLY (ASCII, big endian) and .glb renders 
   }
 }
 
-TEST_CASE("cli: a bare glTF with a camera renders through it; -v prints that camera" * doctest::test_suite("cli")) {
+TEST_CASE("cli: a bare glTF with a camera renders through it; -v prints that camera" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   nlohmann::json g = nlohmann::json::parse(montecl_test::gltfText(montecl_test::tentMesh(), 0.5f, ""));
   g["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.7}, {"aspectRatio", 2.0}, {"znear", 0.1}}}}};
@@ -63,3 +65,5 @@ TEST_CASE("cli: a bare glTF with a camera renders through it; -v prints that cam
   CHECK(r.err.find("\"position\": [1, 1, 6]") != std::string::npos);
   CHECK(r.err.find("\"target\": [1, 1, 5]") != std::string::npos);
 }
+
+}  // namespace test_file_cli_formats

@@ -18,6 +18,8 @@
 #include "image/image_io.h"
 #include "mesh_files.h"
 
+namespace test_file_cli_guards {  // keeps this file's helpers apart in a unity batch
+
 using montecl_test::CliResult;
 using montecl_test::readAll;
 using montecl_test::runMontecl;
@@ -68,7 +70,7 @@ std::string glbWithJson(const std::string& glb, std::string json) {
 
 }  // namespace
 
-TEST_CASE("cli: an output that is a mesh material override's texture is refused (exit 2), the texture untouched" * doctest::test_suite("cli")) {
+TEST_CASE("cli: an output that is a mesh material override's texture is refused (exit 2), the texture untouched" * doctest::test_suite("cli sanitize")) {
   for (const char* key : {"albedo_texture", "alpha_texture"}) {
     TempDir dir;
     montecl::writeRgbImage(dir.file("wood.png"), 2, 2, std::vector<float>(12, 0.25f));
@@ -83,7 +85,7 @@ TEST_CASE("cli: an output that is a mesh material override's texture is refused 
   }
 }
 
-TEST_CASE("cli: an output that is a glTF buffer named by a percent-encoded URI is refused (exit 2), the buffer untouched" * doctest::test_suite("cli")) {
+TEST_CASE("cli: an output that is a glTF buffer named by a percent-encoded URI is refused (exit 2), the buffer untouched" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const montecl_test::MeshData mesh = montecl_test::tentMesh();
   // The buffer's file is "geo data.pfm" (an image extension, so -o may name it); the URI encodes the space.
@@ -100,7 +102,7 @@ TEST_CASE("cli: an output that is a glTF buffer named by a percent-encoded URI i
   CHECK(readAll(dir.file("geo data.pfm")) == before);
 }
 
-TEST_CASE("cli: a glTF or scene file nested 15000 arrays deep is refused with one line, not a crash" * doctest::test_suite("cli")) {
+TEST_CASE("cli: a glTF or scene file nested 15000 arrays deep is refused with one line, not a crash" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const montecl_test::MeshData mesh = montecl_test::tentMesh();
   dir.write("deep.gltf", withDeepExtras(montecl_test::gltfText(mesh, 0.5f, ""), 15000));
@@ -134,7 +136,7 @@ TEST_CASE("cli: a glTF or scene file nested 15000 arrays deep is refused with on
   }
 }
 
-TEST_CASE("cli: a sample range past 2^32 is refused (exit 2), not wrapped to sample 0" * doctest::test_suite("cli")) {
+TEST_CASE("cli: a sample range past 2^32 is refused (exit 2), not wrapped to sample 0" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const std::string scene = montecl_test::demoScene();
   const std::string out = dir.file("out.exr");
@@ -153,7 +155,7 @@ TEST_CASE("cli: a sample range past 2^32 is refused (exit 2), not wrapped to sam
   CHECK_MESSAGE(r.exitCode == 0, r.err);
 }
 
-TEST_CASE("cli: a --texture-budget whose byte count overflows 64 bits is refused (exit 2)" * doctest::test_suite("cli")) {
+TEST_CASE("cli: a --texture-budget whose byte count overflows 64 bits is refused (exit 2)" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   montecl::writeRgbImage(dir.file("wood.png"), 4, 4, std::vector<float>(48, 0.25f));
   const std::string scene = writeOverrideScene(dir, R"({"albedo_texture": "wood.png"})");
@@ -182,7 +184,7 @@ nlohmann::json glbJson(const std::string& glb) {
 }  // namespace
 
 TEST_CASE("cli: a GLB whose BIN chunk claims more bytes than the file holds is refused (exit 2), not read past" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const std::string glb = montecl_test::glbBytes(montecl_test::tentMesh(), 0.5f);
   nlohmann::json j = glbJson(glb);
@@ -206,7 +208,7 @@ TEST_CASE("cli: a GLB whose BIN chunk claims more bytes than the file holds is r
 }
 
 TEST_CASE("cli: a GLB buffer of byteLength 0 is refused with one line naming the file and the buffer (exit 2)" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const std::string glb = montecl_test::glbBytes(montecl_test::tentMesh(), 0.5f);
   nlohmann::json j = glbJson(glb);
@@ -222,7 +224,7 @@ TEST_CASE("cli: a GLB buffer of byteLength 0 is refused with one line naming the
 }
 
 TEST_CASE("cli: a mesh transform that leaves no triangle is refused naming the scene file (exit 2)" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   dir.write("quad.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
   // Scaled by 1e-30 every triangle's area underflows to 0: all of them are dropped as degenerate.
@@ -238,7 +240,7 @@ TEST_CASE("cli: a mesh transform that leaves no triangle is refused naming the s
   CHECK(!fs::exists(dir.file("out.png")));
 }
 
-TEST_CASE("cli: --split-budget nan is refused with the option's rule (exit 2)" * doctest::test_suite("cli")) {
+TEST_CASE("cli: --split-budget nan is refused with the option's rule (exit 2)" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const std::string scene = montecl_test::demoScene();
   for (const std::string value : {"nan", "-nan", "5", "-1"}) {
@@ -254,7 +256,7 @@ TEST_CASE("cli: --split-budget nan is refused with the option's rule (exit 2)" *
 }
 
 TEST_CASE("cli: an EXR or PFM output past ulimit -f fails with one line (exit 1) and no partial file, not SIGXFSZ" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   const std::string scene = montecl_test::demoScene();
   for (const char* name : {"out.exr", "out.pfm"}) {
     TempDir dir;
@@ -271,3 +273,5 @@ TEST_CASE("cli: an EXR or PFM output past ulimit -f fails with one line (exit 1)
     CHECK(dir.entries().empty());  // no temporary left behind either
   }
 }
+
+}  // namespace test_file_cli_guards

@@ -2,6 +2,7 @@
 // numeric option is checked before any work, with a short message (no 300-digit bounds), NaN and
 // infinity are refused, and the image size and light samples follow the scene file's limits.
 #include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -16,10 +17,14 @@
 #include <thread>
 
 #include "cli_runner.h"
+#include "sanitizers.h"
 #include "skip.h"
 #include "cl/devices.h"
 #include "render/memory_check.h"
+#include "scene/render_settings.h"
 #include "util/errors.h"
+
+namespace test_file_cli_input {  // keeps this file's helpers apart in a unity batch
 
 using montecl_test::CliResult;
 using montecl_test::runMontecl;
@@ -44,7 +49,7 @@ std::string badOption(const std::string& option, const std::string& value) {
 
 }  // namespace
 
-TEST_CASE("cli: integer options out of range say 'must be a positive integer'" * doctest::test_suite("cli")) {
+TEST_CASE("cli: integer options out of range say 'must be a positive integer'" * doctest::test_suite("cli sanitize")) {
   for (const char* opt : {"--spp", "--width", "--height", "--light-samples", "--wave-size", "--work-group-size"})
     for (const char* value : {"0", "-3", "1.5", "nan"}) {
       std::string err = badOption(opt, value);
@@ -52,7 +57,7 @@ TEST_CASE("cli: integer options out of range say 'must be a positive integer'" *
     }
 }
 
-TEST_CASE("cli: choice options take their names only, not the enum's numbers" * doctest::test_suite("cli")) {
+TEST_CASE("cli: choice options take their names only, not the enum's numbers" * doctest::test_suite("cli sanitize")) {
   const std::string scene = MONTECL_SOURCE_DIR "/scenes/demo/scene.json";
   TempDir dir;
   for (const char* option : {"--integrator", "--ao-sampling", "--direct-sampling"})
@@ -66,7 +71,7 @@ TEST_CASE("cli: choice options take their names only, not the enum's numbers" * 
     }
 }
 
-TEST_CASE("cli: float options refuse zero, NaN and infinity: 'must be a positive number'" * doctest::test_suite("cli")) {
+TEST_CASE("cli: float options refuse zero, NaN and infinity: 'must be a positive number'" * doctest::test_suite("cli sanitize")) {
   for (const char* opt : {"--ao-distance", "--target-error", "--time"})
     for (const char* value : {"0", "-1", "nan", "NaN", "inf", "-inf", "1e999"}) {
       std::string err = badOption(opt, value);
@@ -76,7 +81,7 @@ TEST_CASE("cli: float options refuse zero, NaN and infinity: 'must be a positive
   CHECK(badOption("--ao-distance", "1e39").find("up to 3.40282e+38") != std::string::npos);
 }
 
-TEST_CASE("cli: --width/--height follow the scene file's 16384 cap; --light-samples its 1024 cap" * doctest::test_suite("cli")) {
+TEST_CASE("cli: --width/--height follow the scene file's 16384 cap; --light-samples its 1024 cap" * doctest::test_suite("cli sanitize")) {
   CHECK(badOption("--width", "16385").find("up to 16384") != std::string::npos);
   CHECK(badOption("--height", "20000").find("up to 16384") != std::string::npos);
   CHECK(badOption("--light-samples", "1025").find("up to 1024") != std::string::npos);
@@ -89,7 +94,7 @@ TEST_CASE("cli: --width/--height follow the scene file's 16384 cap; --light-samp
   CHECK(r.exitCode == 0);
 }
 
-TEST_CASE("cli: an mtllib that is a FIFO is refused at once, not opened (which would block)" * doctest::test_suite("cli")) {
+TEST_CASE("cli: an mtllib that is a FIFO is refused at once, not opened (which would block)" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   REQUIRE(::mkfifo(dir.file("fifo.mtl").c_str(), 0600) == 0);
   dir.write("model.obj", "mtllib fifo.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
@@ -121,7 +126,7 @@ TEST_CASE("cli: an mtllib that is a FIFO is refused at once, not opened (which w
   CHECK(!fs::exists(dir.file("out.png")));
 }
 
-TEST_CASE("cli: an image too large for memory is refused before allocating, saying how much it needs" * doctest::test_suite("cli")) {
+TEST_CASE("cli: an image too large for memory is refused before allocating, saying how much it needs" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   // 8192x8192 needs several GiB; the machine is declared to have 1 GB. Without the check the
   // render starts (and --time stops it after one wave, exit 0).
@@ -136,7 +141,7 @@ TEST_CASE("cli: an image too large for memory is refused before allocating, sayi
   CHECK(!fs::exists(dir.file("out.png")));
 }
 
-TEST_CASE("cli: on a CPU OpenCL device the device buffers count against this machine's memory too" * doctest::test_suite("cli")) {
+TEST_CASE("cli: on a CPU OpenCL device the device buffers count against this machine's memory too" * doctest::test_suite("cli sanitize")) {
   MCL_SKIP_UNLESS(montecl::selectDevice("").isCpu, "the default OpenCL device is not a CPU");
   TempDir dir;
   // 4096x4096: the host's copies (film read back, output planes) take about 2.1 GB and the device's
@@ -151,8 +156,8 @@ TEST_CASE("cli: on a CPU OpenCL device the device buffers count against this mac
   CHECK(!fs::exists(dir.file("out.png")));
 }
 
-TEST_CASE("cli: running out of memory is one clear line and exit 1, never a bare std::bad_alloc" * doctest::test_suite("cli")) {
-#if defined(__SANITIZE_ADDRESS__)
+TEST_CASE("cli: running out of memory is one clear line and exit 1, never a bare std::bad_alloc" * doctest::test_suite("cli sanitize")) {
+#if MCL_TEST_UNDER_ASAN
   // ASan reserves terabytes of shadow address space at start-up: under `ulimit -v` it cannot start.
   MCL_SKIP_UNLESS(false, "an address-space limit (ulimit -v) cannot run an AddressSanitizer build");
 #endif
@@ -189,7 +194,7 @@ TEST_CASE("memory check: an OpenCL device's global memory bounds the film; the h
   }
 }
 
-TEST_CASE("cli: direct render of emitters facing away from everything warns; two_sided_emission lights it" * doctest::test_suite("cli")) {
+TEST_CASE("cli: direct render of emitters facing away from everything warns; two_sided_emission lights it" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   // Floor at y = 0; a light quad at y = 1 whose front face (counter-clockwise) looks up, away.
   dir.write("floor.obj", "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nf 1 4 3 2\n");
@@ -227,7 +232,7 @@ std::string fileText(const std::string& path) {
 
 }  // namespace
 
-TEST_CASE("cli: the default output of a scene.json is named after its folder and never replaces a file" * doctest::test_suite("cli")) {
+TEST_CASE("cli: the default output of a scene.json is named after its folder and never replaces a file" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   fs::create_directories(dir.file("cornell-box"));
   fs::create_directories(dir.file("work"));
@@ -261,7 +266,7 @@ TEST_CASE("cli: the default output of a scene.json is named after its folder and
   CHECK(!fs::exists(dir.file("work/cornell-box-3.png")));
 }
 
-TEST_CASE("cli: -v prints the camera as scene JSON; pasted into a scene file it renders the same image" * doctest::test_suite("cli")) {
+TEST_CASE("cli: -v prints the camera as scene JSON; pasted into a scene file it renders the same image" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const std::string obj = std::string(MONTECL_SOURCE_DIR) + "/scenes/test/good/quad.obj";
   // AO, the scene file's default integrator (a bare model's is path under a sky: test_cli_view_env).
@@ -278,3 +283,28 @@ TEST_CASE("cli: -v prints the camera as scene JSON; pasted into a scene file it 
   REQUIRE(scene.exitCode == 0);
   CHECK(fileText(dir.file("bare.pfm")) == fileText(dir.file("scene.pfm")));
 }
+
+
+TEST_CASE("cli: settings --json is every setting's default, by key, as the table has it" * doctest::test_suite("cli sanitize")) {
+  const CliResult r = runMontecl({"settings", "--json"});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  const montecl::RenderSettings defaults;
+  CHECK(j.size() == montecl::renderSettings().size());
+  for (const montecl::RenderSetting& s : montecl::renderSettings()) {
+    CAPTURE(s.key);
+    REQUIRE(j.contains(s.key));
+    const std::string text = montecl::settingValueText(s.get(defaults));
+    const nlohmann::json& v = j[s.key];
+    if (v.is_string()) CHECK(v.get<std::string>() == text);
+    if (v.is_boolean()) CHECK((v.get<bool>() ? "true" : "false") == text);
+    if (v.is_number()) CHECK(v.get<double>() == doctest::Approx(std::stod(text)).epsilon(1e-6));
+    if (v.is_array()) CHECK(v.size() == 3);
+  }
+  CHECK(j["spp"] == defaults.spp);
+  CHECK(j["max_depth"] == defaults.maxDepth);
+  CHECK(runMontecl({"settings", "--json", "--markdown"}).exitCode == 2);
+}
+
+}  // namespace test_file_cli_input

@@ -13,6 +13,8 @@
 #include "cli_runner.h"
 #include "test_images.h"
 
+namespace test_file_cli_limits {  // keeps this file's helpers apart in a unity batch
+
 using montecl_test::CliResult;
 using montecl_test::runMontecl;
 using montecl_test::TempDir;
@@ -32,7 +34,7 @@ CliResult render(const std::string& scene, const std::string& out) {
 
 }  // namespace
 
-TEST_CASE("cli: an output path over PATH_MAX or with a name over NAME_MAX is one line, exit 2, before rendering" * doctest::test_suite("cli")) {
+TEST_CASE("cli: an output path over PATH_MAX or with a name over NAME_MAX is one line, exit 2, before rendering" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   dir.write("quad.obj", kQuad);
   std::string deep = dir.path;
@@ -49,7 +51,7 @@ TEST_CASE("cli: an output path over PATH_MAX or with a name over NAME_MAX is one
   CHECK(dir.entries() == std::vector<std::string>{"quad.obj"});
 }
 
-TEST_CASE("cli: a truncated PNG texture is one line (libpng's own message is not printed)" * doctest::test_suite("cli")) {
+TEST_CASE("cli: a truncated PNG texture is one line (libpng's own message is not printed)" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   dir.write("quad.obj", std::string("mtllib quad.mtl\nusemtl m\n") + kQuad);
   dir.write("quad.mtl", "newmtl m\nKd 1 1 1\nmap_Kd tex.png\n");
@@ -76,7 +78,7 @@ TEST_CASE("cli: a truncated PNG texture is one line (libpng's own message is not
   CHECK(ok.err.find("texture budget") != std::string::npos);
 }
 
-TEST_CASE("cli: a background over 65504 is refused at load, not when the EXR is written" * doctest::test_suite("cli")) {
+TEST_CASE("cli: a background over 65504 is refused at load, not when the EXR is written" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   dir.write("quad.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nf 1 2 3\n");
   const auto scene = [&](const std::string& background) {
@@ -94,7 +96,7 @@ TEST_CASE("cli: a background over 65504 is refused at load, not when the EXR is 
 }
 
 TEST_CASE("cli: an emitter with legs of 3e-10 renders finite with MIS (its pdfs' squares overflow a float)" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   dir.write("tiny.obj",
             "mtllib tiny.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 1 0\nv 3e-10 1 0\nv 0 1 3e-10\n"
@@ -114,3 +116,5 @@ TEST_CASE("cli: an emitter with legs of 3e-10 renders finite with MIS (its pdfs'
   // The host backend and the kernels agree bit for bit on the fallback weight too.
   CHECK(montecl_test::readAll(dir.file("host-direct.pfm")) == montecl_test::readAll(dir.file("portable-direct.pfm")));
 }
+
+}  // namespace test_file_cli_limits

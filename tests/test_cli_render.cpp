@@ -22,7 +22,9 @@
 #include "skip.h"
 #include "image/exr_layers.h"
 
-extern char** environ;
+extern char** environ;  // global: the process environment (unistd.h)
+
+namespace test_file_cli_render {  // keeps this file's helpers apart in a unity batch
 
 using montecl::LayeredImage;
 using montecl::readLayeredImage;
@@ -59,7 +61,7 @@ std::string renderExpectingBadInput(const std::string& scene, const std::vector<
 
 }  // namespace
 
-TEST_CASE("cli: every bad scene under scenes/test/bad exits 2 with one line naming file and key" * doctest::test_suite("cli")) {
+TEST_CASE("cli: every bad scene under scenes/test/bad exits 2 with one line naming file and key" * doctest::test_suite("cli sanitize")) {
   std::vector<fs::path> cases;
   for (const auto& entry : fs::directory_iterator(kScenes + "/bad")) cases.push_back(entry.path());
   std::sort(cases.begin(), cases.end());
@@ -76,19 +78,19 @@ TEST_CASE("cli: every bad scene under scenes/test/bad exits 2 with one line nami
   }
 }
 
-TEST_CASE("cli: a missing scene file exits 2 naming it" * doctest::test_suite("cli")) {
+TEST_CASE("cli: a missing scene file exits 2 naming it" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   std::string err = renderExpectingBadInput(dir.file("no-such-scene.json"));
   CHECK(err.find("no-such-scene.json") != std::string::npos);
 }
 
-TEST_CASE("cli: a bad --device spec exits 2" * doctest::test_suite("cli")) {
+TEST_CASE("cli: a bad --device spec exits 2" * doctest::test_suite("cli sanitize")) {
   std::string err = renderExpectingBadInput(kScenes + "/good/scene.json", {"--device", "9:9"});
   std::transform(err.begin(), err.end(), err.begin(), [](unsigned char c) { return std::tolower(c); });
   CHECK(err.find("device") != std::string::npos);
 }
 
-TEST_CASE("--time stops after the wave that crosses the limit and writes the image so far" * doctest::test_suite("cli")) {
+TEST_CASE("--time stops after the wave that crosses the limit and writes the image so far" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   std::string scene = std::string(MONTECL_SOURCE_DIR) + "/scenes/demo/scene.json";
   CliResult r = runMontecl({"render", scene, "-o", dir.file("t.exr"), "--width", "64", "--height", "48", "--spp",
@@ -103,7 +105,7 @@ TEST_CASE("--time stops after the wave that crosses the limit and writes the ima
   CHECK(hi < 1000000.0f);
 }
 
-TEST_CASE("SIGINT finishes the wave, writes a valid image with its true sample counts, exits 130" * doctest::test_suite("cli slow")) {
+TEST_CASE("SIGINT finishes the wave, writes a valid image with its true sample counts, exits 130" * doctest::test_suite("cli sanitize slow")) {
   TempDir dir;
   std::string scene = std::string(MONTECL_SOURCE_DIR) + "/scenes/demo/scene.json";
   std::string out = dir.file("i.exr");
@@ -134,7 +136,7 @@ TEST_CASE("SIGINT finishes the wave, writes a valid image with its true sample c
   for (float v : *img.find("R")) REQUIRE(std::isfinite(v));
 }
 
-TEST_CASE("cli: --min-spp above --max-spp exits 2 before any work" * doctest::test_suite("cli")) {
+TEST_CASE("cli: --min-spp above --max-spp exits 2 before any work" * doctest::test_suite("cli sanitize")) {
   // Checked first: the scene is missing and the device bad too, yet the error is about --min-spp.
   TempDir dir;
   std::string err = renderExpectingBadInput(dir.file("no-such-scene.json"), {"--target-error", "0.1", "--min-spp",
@@ -146,6 +148,8 @@ TEST_CASE("cli: --min-spp above --max-spp exits 2 before any work" * doctest::te
 // Program cache robustness: a damaged cache must never break a later run. Each case fails without
 // the fix: a truncated or byte-flipped cache file crashed PoCL (exit 139) on every later run, a FIFO blocked (timeout), and
 // XDG_CACHE_HOME under a regular file made PoCL report "no OpenCL device found" (exit 1).
+// Not `sanitize`: its time is PoCL rebuilding the kernels after each damage (77 s under ASan); the
+// cache entries' host code runs sanitized in the cpu case "fuzz: 10k mutated program-cache entries".
 TEST_CASE("cli: a damaged, odd or unwritable program cache never crashes, hangs or hides the device" * doctest::test_suite("cli")) {
   namespace fs = std::filesystem;
   TempDir dir;
@@ -197,7 +201,7 @@ TEST_CASE("cli: a damaged, odd or unwritable program cache never crashes, hangs 
 // Oclgrind: montecl adds -cl-opt-disable itself on the Oclgrind platform. Without it
 // Debian's Oclgrind 21.10 aborts (SIGSEGV) on LLVM `freeze` in the optimised kernels unless the
 // user sets OCLGRIND_BUILD_OPTIONS=-cl-opt-disable.
-TEST_CASE("cli: oclgrind montecl render --device oclgrind works without OCLGRIND_BUILD_OPTIONS" * doctest::test_suite("cli")) {
+TEST_CASE("cli: oclgrind montecl render --device oclgrind works without OCLGRIND_BUILD_OPTIONS" * doctest::test_suite("cli sanitize")) {
   MCL_SKIP_UNLESS(std::ifstream("/usr/bin/oclgrind").good(), "oclgrind is not installed");
   TempDir dir;
   CliResult r = montecl_test::runProgram(
@@ -207,3 +211,5 @@ TEST_CASE("cli: oclgrind montecl render --device oclgrind works without OCLGRIND
   INFO(r.err);
   CHECK(r.exitCode == 0);
 }
+
+}  // namespace test_file_cli_render

@@ -27,6 +27,8 @@
 #include "mesh_files.h"
 #include "test_images.h"
 
+namespace test_file_cli_trust {  // keeps this file's helpers apart in a unity batch
+
 using montecl_test::CliResult;
 using montecl_test::runMontecl;
 using montecl_test::TempDir;
@@ -88,7 +90,7 @@ CliResult render(const std::string& scene, const std::string& out, std::vector<s
 
 }  // namespace
 
-TEST_CASE("cli: a texture declaring more texels than --texture-budget keeps is refused from its header" * doctest::test_suite("cli")) {
+TEST_CASE("cli: a texture declaring more texels than --texture-budget keeps is refused from its header" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const std::string scene = writeTexturedQuad(dir, "tex.png"), out = dir.file("out.png");
   // 256x256 half-float RGBA texels are 512 KiB: over a 0.25 MiB budget (it rendered, levels dropped).
@@ -102,7 +104,7 @@ TEST_CASE("cli: a texture declaring more texels than --texture-budget keeps is r
   checkRefused(render(scene, out), out, {"tex.png: material 'm' map_Kd", "16384x16384", "--texture-budget"});
 }
 
-TEST_CASE("cli: an environment map or merge input too large for the memory check is refused before decoding" * doctest::test_suite("cli")) {
+TEST_CASE("cli: an environment map or merge input too large for the memory check is refused before decoding" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const std::string out = dir.file("out.png");
   dir.write("quad.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
@@ -127,7 +129,7 @@ TEST_CASE("cli: an environment map or merge input too large for the memory check
   CHECK(runMontecl(merge, {"MONTECL_MEMORY_LIMIT=10000000"}).exitCode == 0);
 }
 
-TEST_CASE("cli: an albedo texture with NaN, negative or over-half-float texels is refused before rendering" * doctest::test_suite("cli")) {
+TEST_CASE("cli: an albedo texture with NaN, negative or over-half-float texels is refused before rendering" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const std::string scene = writeTexturedQuad(dir, "tex.exr"), out = dir.file("out.png");
   for (float bad : {std::numeric_limits<float>::quiet_NaN(), -0.5f, 70000.0f, std::numeric_limits<float>::infinity()}) {
@@ -141,7 +143,7 @@ TEST_CASE("cli: an albedo texture with NaN, negative or over-half-float texels i
   CHECK(render(scene, out).exitCode == 0);
 }
 
-TEST_CASE("cli: a PLY float index that is fractional, NaN or out of range is one line naming the row and the number" * doctest::test_suite("cli")) {
+TEST_CASE("cli: a PLY float index that is fractional, NaN or out of range is one line naming the row and the number" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const std::string head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                            "property float z\nelement face 1\nproperty list uchar float vertex_indices\nend_header\n"
@@ -153,7 +155,9 @@ TEST_CASE("cli: a PLY float index that is fractional, NaN or out of range is one
       {"3 0 1 1e30\n", "element 'face' row 0: vertex index 1e+30 out of range"},
       {"3 0 1 -inf\n", "element 'face' row 0: vertex index -inf out of range"},
   };
-  for (const auto& [face, needle] : cases) {
+  for (const auto& row : cases) {
+    const auto& face = std::get<0>(row);
+    const auto& needle = std::get<1>(row);
     CAPTURE(face);
     dir.write("bad.ply", head + face);
     checkRefused(render(dir.file("bad.ply"), out), out, {dir.file("bad.ply") + ": " + needle});
@@ -167,7 +171,7 @@ TEST_CASE("cli: a PLY float index that is fractional, NaN or out of range is one
   CHECK(render(dir.file("good.ply"), out).exitCode == 0);
 }
 
-TEST_CASE("cli: the summary after --resume reports the samples the image holds, not only this run's" * doctest::test_suite("cli")) {
+TEST_CASE("cli: the summary after --resume reports the samples the image holds, not only this run's" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   // Both runs stop at the time limit, so the checkpoint is partial and the resumed run adds to it.
   const auto args = [&](const std::string& out, const std::vector<std::string>& extra) {
@@ -224,7 +228,7 @@ montecl::LayeredImage onesImage(int w, int h) {
 
 }  // namespace
 
-TEST_CASE("cli: merge refuses NaN or infinite inputs, a data window off the origin and an output that is an input" * doctest::test_suite("cli")) {
+TEST_CASE("cli: merge refuses NaN or infinite inputs, a data window off the origin and an output that is an input" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   montecl::writeLayeredExr(dir.file("a.exr"), onesImage(4, 3));
   const auto merge = [&](const std::string& b, const std::string& out) {
@@ -249,7 +253,7 @@ TEST_CASE("cli: merge refuses NaN or infinite inputs, a data window off the orig
   CHECK(montecl_test::readAll(dir.file("a.exr")) == before);
 }
 
-TEST_CASE("cli: glTF negative byteOffset, projective matrix, string emissiveStrength, %00 URI, GLB 1 and runaway instancing are refused" * doctest::test_suite("cli")) {
+TEST_CASE("cli: glTF negative byteOffset, projective matrix, string emissiveStrength, %00 URI, GLB 1 and runaway instancing are refused" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const montecl_test::MeshData mesh = montecl_test::tentMesh();
   const nlohmann::json good = nlohmann::json::parse(montecl_test::gltfText(mesh, 0.5f, ""));
@@ -311,3 +315,5 @@ TEST_CASE("cli: glTF negative byteOffset, projective matrix, string emissiveStre
     }
   }
 }
+
+}  // namespace test_file_cli_trust

@@ -16,6 +16,8 @@
 #include "cli_runner.h"
 #include "image/exr_layers.h"
 
+namespace test_file_cli_view_env {  // keeps this file's helpers apart in a unity batch
+
 using montecl_test::CliResult;
 using montecl_test::runMontecl;
 using montecl_test::TempDir;
@@ -42,7 +44,7 @@ std::vector<float> plane(const std::string& exr, const char* name) { return *mon
 }  // namespace
 
 TEST_CASE("cli: --env lights a bare model as a scene file's environment does; --view frames it from each side" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   dir.write("box.obj", kBox);
   // A constant given directly and as 2x the radiance at --env-scale 0.5 light the same image.
@@ -129,3 +131,5 @@ TEST_CASE("cli: a bare model path-traces under the default white sky, as a scene
   render("box.obj", "dim.pfm", {"--env", "0.25,0.25,0.25"});
   CHECK(fileText(dir.file("dim.pfm")) != fileText(dir.file("bare.pfm")));
 }
+
+}  // namespace test_file_cli_view_env

@@ -17,6 +17,8 @@
 #include "conformance/conformance.h"
 #include "skip.h"
 
+namespace test_file_conformance {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -163,3 +165,5 @@ TEST_CASE("kernel hygiene: no doubles, no unsuffixed float literals, no FP contr
     if (std::string(file) == "montecl.cl") CHECK(source.find("#pragma OPENCL FP_CONTRACT OFF") != std::string::npos);
   }
 }
+
+}  // namespace test_file_conformance

@@ -16,6 +16,8 @@
 #include "scene/render_choices.h"
 #include "test_scenes.h"
 
+namespace test_file_delta_render {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -108,3 +110,5 @@ TEST_CASE("delta: a perfect mirror cube shows the environment exactly (path; dir
   CHECK(off == 0);
   CHECK(black > int(path.mean.size()));  // over a third of the pixel channels
 }
+
+}  // namespace test_file_delta_render

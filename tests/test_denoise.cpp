@@ -12,7 +12,10 @@
 #include "cli_runner.h"
 #include "image/exr_layers.h"
 #include "image/oidn_denoiser.h"
+#include "sanitizers.h"
 #include "skip.h"
+
+namespace test_file_denoise {  // keeps this file's helpers apart in a unity batch
 
 using namespace montecl;
 using namespace montecl_test;
@@ -41,7 +44,7 @@ double rmse(const std::vector<float>& a, const std::vector<float>& b) {
 // Under AddressSanitizer the filter cannot run: OIDN's TBB dlopens libtbbbind with RTLD_DEEPBIND,
 // which the ASan runtime refuses (google/sanitizers#611), so those cases skip there (the release
 // suite runs them).
-#if defined(__SANITIZE_ADDRESS__)
+#if MCL_TEST_UNDER_ASAN
 #define MCL_SKIP_UNLESS_OIDN() \
   MCL_SKIP_UNLESS(false, "under AddressSanitizer: OIDN's TBB dlopens libtbbbind with RTLD_DEEPBIND, which ASan refuses")
 #else
@@ -50,7 +53,7 @@ double rmse(const std::vector<float>& a, const std::vector<float>& b) {
 #endif
 
 TEST_CASE("denoise: without the library --denoise is one line naming the set-up command, exit 2, nothing written" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   for (const char* out : {"a.png", "a.exr"}) {
     CliResult r = runMontecl({"render", demoScene(), "-o", dir.file(out), "--width", "8", "--height", "8", "--spp",
@@ -145,7 +148,7 @@ TEST_CASE("denoise: a 16-spp Cornell box denoised is closer to a 2048-spp refere
 }
 
 TEST_CASE("denoise: render.denoise in the scene file is a boolean; anything else is one line, exit 2" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const std::string obj = std::string(MONTECL_SOURCE_DIR) + "/scenes/demo/demo.obj";
   auto sceneWith = [&](const std::string& value) {
@@ -184,3 +187,5 @@ TEST_CASE("denoise: merge combines a denoised and a plain part and leaves the de
   CHECK(merged.channels.size() == plain.channels.size());
   for (const std::string& ch : merged.channels) CHECK(ch.rfind("denoised.", 0) != 0);
 }
+
+}  // namespace test_file_denoise

@@ -16,6 +16,8 @@
 #include "test_scenes.h"
 #include "skip.h"
 
+namespace test_file_direct {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -140,7 +142,9 @@ TEST_CASE("sobol: direct lighting matches the polygon form factor within 4 SE ov
   // The square by light sampling, the triangle by MIS (each pair would take twice as long).
   const std::pair<std::vector<glm::vec3>, const char*> cases[] = {
       {square({0.2f, 1, 0.1f}, glm::vec3(0, -1, 0), 0.6f), "light"}, {tri, "mis"}};
-  for (const auto& [poly, strategy] : cases) {
+  for (const auto& row : cases) {
+    const auto& poly = std::get<0>(row);
+    const auto& strategy = std::get<1>(row);
     std::vector<glm::dvec3> dpoly;
     for (glm::vec3 v : poly) dpoly.push_back(glm::dvec3(v));
     const double F = formFactor(dpoly, glm::dvec3(0), glm::dvec3(0, 1, 0));
@@ -318,3 +322,5 @@ TEST_CASE("2^26 samples in one pixel: a small light by BRDF sampling stays withi
     CHECK(std::fabs(mean - expected) <= 4.0 * se);
   }
 }
+
+}  // namespace test_file_direct

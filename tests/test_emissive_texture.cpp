@@ -25,6 +25,8 @@
 #include "test_scenes.h"
 #include "texture/scene_textures.h"
 
+namespace test_file_emissive_texture {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -265,3 +267,5 @@ TEST_CASE("emission texture: the scene file's emission_texture and MTL map_Ke" *
   dir.write("bad.json", R"({"camera": {"position": [0, 0, 3], "target": [0, 0, 0], "fov_y": 40, "width": 8, "height": 8}, "meshes": [{"file": "q.obj", "material": {"emission_texture": "missing.png"}}]})");
   CHECK_THROWS_WITH(loadScene(dir.file("bad.json"), warnings), doctest::Contains("meshes[0].material.emission_texture"));
 }
+
+}  // namespace test_file_emissive_texture

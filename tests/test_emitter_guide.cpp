@@ -12,6 +12,8 @@
 #include "kernels/shared/lights.h"
 #include "render/emitter_guide.h"
 
+namespace test_file_emitter_guide {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 
 namespace {
@@ -104,3 +106,5 @@ TEST_CASE("emitter guide: each bucket's range is narrow on an even table" * doct
   CHECK(e[0].guide == 0u);
   CHECK(e[959].guide == 959u);
 }
+
+}  // namespace test_file_emitter_guide

@@ -21,6 +21,8 @@
 #include "stats.h"
 #include "test_scenes.h"
 
+namespace test_file_env_glossy {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -193,7 +195,7 @@ std::string writeScene(const TempDir& dir, const std::string& environment, const
 
 }  // namespace
 
-TEST_CASE("cli: bad environment and glossy input: one line, exit 2, no output" * doctest::test_suite("cli")) {
+TEST_CASE("cli: bad environment and glossy input: one line, exit 2, no output" * doctest::test_suite("cli sanitize")) {
   struct Case {
     std::string environment, mtl, needle;
   };
@@ -222,7 +224,7 @@ TEST_CASE("cli: bad environment and glossy input: one line, exit 2, no output" *
   }
 }
 
-TEST_CASE("cli: Kd + Ks above 1 is scaled down with one warning naming the file; an environment map renders" * doctest::test_suite("cli")) {
+TEST_CASE("cli: Kd + Ks above 1 is scaled down with one warning naming the file; an environment map renders" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   LayeredImage img;
   img.width = 8;
@@ -329,3 +331,5 @@ TEST_CASE("path: glossy furnace: inside a closed box of Kd = Ks = 0.3 emitting L
   CHECK(e.mean > 1.0 / 0.7 + 4.0 * e.standardError);   // the glossy lobe adds light
   CHECK(e.mean < 1.0 / 0.4 - 4.0 * e.standardError);   // but never more than Kd + Ks allows
 }
+
+}  // namespace test_file_env_glossy

@@ -14,6 +14,8 @@
 #include "render/environment_table.h"
 #include "stats.h"
 
+namespace test_file_environment {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using montecl_test::chiSquareCritical;
 using montecl_test::RunningStats;
@@ -143,3 +145,5 @@ TEST_CASE("mcl_sincos_turns: sine and cosine of 2 pi t within 1e-7 of the librar
   }
   CHECK(worst < 2e-7);
 }
+
+}  // namespace test_file_environment

@@ -14,6 +14,8 @@
 #include "stats.h"
 #include "test_scenes.h"
 
+namespace test_file_estimator {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -245,7 +247,9 @@ TEST_CASE("sobol: the sub-sequence error estimate matches the spread over 40 see
 // sub-sequences; with the default K = 4 the estimate has 3 degrees of freedom per pixel, pixels
 // that underestimate stop early, and the real RMS error is up to 1.3 times the target (measured 1.21).
 TEST_CASE("adaptive sampling with sobol meets its target on 99% of pixels, and the real error too" * doctest::test_suite("opencl slow uninstrumented")) {
-  for (const auto& [splits, allowed] : {std::pair<int, double>{4, 1.3}, std::pair<int, double>{8, 1.0}}) {
+  for (const auto& row : {std::pair<int, double>{4, 1.3}, std::pair<int, double>{8, 1.0}}) {
+    const int splits = row.first;
+    const double allowed = row.second;
     Scene s = easyAndHardScene(24);
     s.render.sampler = montecl::Sampler::Sobol;
     s.render.sobolSplits = splits;
@@ -288,3 +292,5 @@ TEST_CASE("adaptive sampling with sobol meets its target on 99% of pixels, and t
     CHECK(rms <= allowed * o.targetError);
   }
 }
+
+}  // namespace test_file_estimator

@@ -36,6 +36,8 @@
 #include "image/oiio_loader.h"
 #include "util/errors.h"
 
+namespace test_file_exr_hdr_read {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -247,6 +249,7 @@ TEST_CASE("exr read: a corrupt or truncated EXR is one InputError naming the fil
       readImageMemory("mutant.exr", std::vector<unsigned char>(m.begin(), m.end()));
       ++decoded;
     } catch (const InputError& e) {
+      INFO("mutant " << i << ": " << std::string(e.what()));
       CHECK(std::string(e.what()).rfind("mutant.exr: cannot read image: ", 0) == 0);
       CHECK(std::string(e.what()).find('\n') == std::string::npos);
       ++refused;
@@ -337,7 +340,7 @@ TEST_CASE("hdr read: montecl's Radiance reader gives OpenImageIO's floats, run-l
 }
 
 TEST_CASE("exr/hdr read: EXR- and HDR-lit renders and merge need no OpenImageIO module; a corrupt map is exit 2" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   writeExr(dir.file("sky.exr"), 16, 8, {{"R", Imf::HALF}, {"G", Imf::HALF}, {"B", Imf::HALF}});
   writeFlatHdr(dir.file("sky.hdr"), 16, 8, [](int x, int y) {
@@ -382,3 +385,5 @@ TEST_CASE("exr/hdr read: EXR- and HDR-lit renders and merge need no OpenImageIO 
     CHECK(!std::filesystem::exists(dir.file("bad.png")));
   }
 }
+
+}  // namespace test_file_exr_hdr_read

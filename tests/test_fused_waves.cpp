@@ -14,6 +14,8 @@
 #include "cli_runner.h"
 #include "skip.h"
 
+namespace test_file_fused_waves {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl_test;
 
 namespace {
@@ -117,3 +119,5 @@ TEST_CASE("fused waves: --profile shows one fused launch per wave or bounce, and
   CHECK(stages({"--integrator", "path", "--lanes", "1"}) ==
         V{"generate", "intersect", "shade_path", "intersect_shadow", "path_gather", "accumulate"});
 }
+
+}  // namespace test_file_fused_waves

@@ -17,6 +17,8 @@
 #include "scene/scene.h"
 #include "util/errors.h"
 
+namespace test_file_gltf {  // keeps this file's helpers apart in a unity batch
+
 using montecl::Scene;
 using montecl_test::TempDir;
 using nlohmann::json;
@@ -339,3 +341,5 @@ TEST_CASE("glTF: a triangle strip and a fan give the triangles of the equivalent
   dir.write("short.gltf", g.dump());
   CHECK(loadGltf(dir.file("short.gltf")).triangles.size() == 6);
 }
+
+}  // namespace test_file_gltf

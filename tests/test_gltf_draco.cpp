@@ -24,6 +24,8 @@
 #include "scene/scene.h"
 #include "util/errors.h"
 
+namespace test_file_gltf_draco {  // keeps this file's helpers apart in a unity batch
+
 using montecl::Scene;
 using montecl_test::TempDir;
 using nlohmann::json;
@@ -168,7 +170,7 @@ TEST_CASE("glTF Draco, quantized (edgebreaker): every vertex within half a quant
 }
 
 TEST_CASE("glTF Draco renders: lossless bit for bit as the float file; quantized depth within the step away from edges" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const montecl_test::MeshData tent = montecl_test::tentMesh();
   const montecl::LayeredImage ref = render(dir, "float.gltf", montecl_test::gltfText(tent, 0.5f, ""));
@@ -273,14 +275,17 @@ TEST_CASE("glTF Draco: an accessor count, id or type that disagrees with the buf
 }
 
 TEST_CASE("glTF Draco through the command line: a truncated buffer and a disagreeing count exit 2 with one line" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const json g = json::parse(montecl_test::gltfDracoText(montecl_test::tentMesh(), 0.5f, 11));
   json cut = g, count = g;
   cut["bufferViews"][0]["byteLength"] = 20;
   count["accessors"][0]["count"] = 5;
-  for (const auto& [name, file, what] : {std::tuple<const char*, json, const char*>{"cut.gltf", cut, "cannot be decoded"},
+  for (const auto& row : {std::tuple<const char*, json, const char*>{"cut.gltf", cut, "cannot be decoded"},
                                          {"count.gltf", count, "the Draco buffer decodes"}}) {
+    const auto& name = std::get<0>(row);
+    const auto& file = std::get<1>(row);
+    const auto& what = std::get<2>(row);
     CAPTURE(name);
     dir.write(name, file.dump());
     const montecl_test::CliResult r = montecl_test::runMontecl({"render", dir.file(name), "-o", dir.file("x.png"), "-q"});
@@ -292,3 +297,5 @@ TEST_CASE("glTF Draco through the command line: a truncated buffer and a disagre
     CHECK(!montecl_test::readAll(dir.file("x.png")).size());
   }
 }
+
+}  // namespace test_file_gltf_draco

@@ -18,6 +18,8 @@
 #include "mesh_files.h"
 #include "test_images.h"
 
+namespace test_file_gltf_images {  // keeps this file's helpers apart in a unity batch
+
 using montecl_test::CliResult;
 using montecl_test::runMontecl;
 using montecl_test::TempDir;
@@ -80,7 +82,7 @@ std::vector<std::vector<float>> albedoOf(const TempDir& dir, const std::string& 
 }  // namespace
 
 TEST_CASE("glTF: a texture as a file, a data URI or a GLB bufferView renders bit-identically, textured" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   montecl_test::writeImage8(dir.file("tex.png"), 8, 8, 3, [](int x, int y, int c) { return (x * 32 + y * 7 + c * 80) % 256; });
   const std::string png = fileBytes(dir.file("tex.png"));
@@ -170,3 +172,5 @@ TEST_CASE("glTF: a bare textured .glb renders coloured by default (lit by the de
   CHECK(*ao.find("albedo.B") == *lit.find("albedo.B"));
   CHECK(colourfulness(ao, "R", "B") == 0.0f);
 }
+
+}  // namespace test_file_gltf_images

@@ -16,6 +16,8 @@
 #include "scene/scene.h"
 #include "util/errors.h"
 
+namespace test_file_gltf_lights {  // keeps this file's helpers apart in a unity batch
+
 using montecl::LightDesc;
 using montecl::PunctualKind;
 using montecl::Scene;
@@ -116,7 +118,7 @@ TEST_CASE("glTF: KHR_lights_punctual point, spot and directional lights are plac
 }
 
 TEST_CASE("glTF: a bare glTF lit only by its KHR_lights_punctual light renders lit through the command line" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   dir.write("lit.gltf", litTent().dump());
   const montecl_test::CliResult r =
@@ -126,3 +128,5 @@ TEST_CASE("glTF: a bare glTF lit only by its KHR_lights_punctual light renders l
   CHECK(r.exitCode == 0);
   CHECK(r.err.find("nothing emits") == std::string::npos);
 }
+
+}  // namespace test_file_gltf_lights

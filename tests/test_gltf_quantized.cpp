@@ -19,6 +19,8 @@
 #include "scene/scene.h"
 #include "util/errors.h"
 
+namespace test_file_gltf_quantized {  // keeps this file's helpers apart in a unity batch
+
 using montecl::Scene;
 using montecl_test::TempDir;
 using nlohmann::json;
@@ -172,7 +174,7 @@ TEST_CASE("glTF KHR_mesh_quantization: integer and normalized attributes load to
 }
 
 TEST_CASE("glTF extensionsRequired: every extension montecl does not read is refused by name" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   for (const char* ext : {"EXT_meshopt_compression", "KHR_something_new"}) {
     INFO(ext);
@@ -188,3 +190,5 @@ TEST_CASE("glTF extensionsRequired: every extension montecl does not read is ref
   CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
   CHECK(r.err.find("EXT_meshopt_compression") != std::string::npos);
 }
+
+}  // namespace test_file_gltf_quantized

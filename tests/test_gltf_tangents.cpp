@@ -22,6 +22,8 @@
 #include "render/wavefront.h"
 #include "test_images.h"
 
+namespace test_file_gltf_tangents {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -265,7 +267,7 @@ TEST_CASE("glTF TANGENT: quantized (normalized SHORT) tangents load; kHasTangent
 }
 
 TEST_CASE("glTF TANGENT: a wrong type, component type or count is one line naming the file and the attribute, exit 2" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   writeNormalMap(dir);
   const glm::vec4 t(1, 0, 0, 1);
@@ -317,3 +319,5 @@ TEST_CASE("glTF TANGENT: the conformance set's tangent case shades by its tangen
   INFO("pixels that differ: " << differ << " of " << uv.mean.size());
   CHECK(differ >= uv.mean.size() / 4);
 }
+
+}  // namespace test_file_gltf_tangents

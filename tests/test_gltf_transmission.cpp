@@ -18,6 +18,8 @@
 #include "render/wavefront.h"
 #include "util/errors.h"
 
+namespace test_file_gltf_transmission {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -286,3 +288,5 @@ TEST_CASE("glTF transmission: bad values are one line naming the key" * doctest:
   for (const std::string& w : warnings) warned = warned || w.find("ior 0") != std::string::npos;
   CHECK(warned);
 }
+
+}  // namespace test_file_gltf_transmission

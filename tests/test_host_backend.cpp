@@ -14,6 +14,8 @@
 #include "nan_wave.h"
 #include "test_scenes.h"
 
+namespace test_file_host_backend {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -148,3 +150,5 @@ TEST_CASE("tiny scenes: a scene scaled by 2^-20 or 2^-40 renders the same AO bit
     CHECK(std::abs(sum - unitSum) < 0.02 * unitSum);
   }
 }
+
+}  // namespace test_file_host_backend

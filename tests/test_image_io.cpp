@@ -13,6 +13,8 @@
 #include "image/exr_layers.h"
 #include "image/png_write.h"
 
+namespace test_file_image_io {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl_test;
 
 namespace {
@@ -28,7 +30,7 @@ montecl::LayeredImage renderWithExr(const TempDir& dir, const std::string& ext) 
 
 }  // namespace
 
-TEST_CASE("a .pfm render is a little-endian float map with the image's size and values" * doctest::test_suite("cli")) {
+TEST_CASE("a .pfm render is a little-endian float map with the image's size and values" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   montecl::LayeredImage exr = renderWithExr(dir, ".pfm");
   std::ifstream in(dir.file("x.pfm"), std::ios::binary);
@@ -50,7 +52,7 @@ TEST_CASE("a .pfm render is a little-endian float map with the image's size and 
       REQUIRE(data[(std::size_t(h - 1 - y) * w + x) * 3 + 1] == (*exr.find("G"))[std::size_t(y) * w + x]);
 }
 
-TEST_CASE("a .png render is the sRGB encoding of the same render's EXR means, 8 bits, clamped" * doctest::test_suite("cli")) {
+TEST_CASE("a .png render is the sRGB encoding of the same render's EXR means, 8 bits, clamped" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   montecl::LayeredImage exr = renderWithExr(dir, ".png");
   montecl::LayeredImage png = montecl::readLayeredImage(dir.file("x.png"));
@@ -78,7 +80,7 @@ TEST_CASE("linearToSrgb8 follows the sRGB curve: linear toe, 2.4 power, clamping
   CHECK(montecl::linearToSrgb8(0.22f) == 129);   // (1.055 * 0.22^(1/2.4) - 0.055) * 255 = 129.13
 }
 
-TEST_CASE("EXR output needs no OpenImageIO module; reading an image without it fails with one line" * doctest::test_suite("cli")) {
+TEST_CASE("EXR output needs no OpenImageIO module; reading an image without it fails with one line" * doctest::test_suite("cli sanitize")) {
   // EXR files are written with OpenEXR itself (image/exr_writer.h): loading the OpenImageIO
   // module for a write cost ~120 MiB of resident memory. EXR reads use OpenEXR too
   // (image/exr_read.h); other formats (a TIFF here) still go through the module.
@@ -100,3 +102,5 @@ TEST_CASE("EXR output needs no OpenImageIO module; reading an image without it f
   // PNG output does not need the module either.
   CHECK(runMontecl(demoRenderArgs(dir.file("x.png"), 1, 0), {missing}).exitCode == 0);
 }
+
+}  // namespace test_file_image_io

@@ -22,6 +22,8 @@
 #include "image/oiio_loader.h"
 #include "util/errors.h"
 
+namespace test_file_image_read {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -227,7 +229,7 @@ TEST_CASE("image read: a corrupt or truncated PNG or JPEG is one InputError nami
 }
 
 TEST_CASE("image read: a PNG- and JPEG-textured render needs no OpenImageIO module; a corrupt texture is exit 2" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   dir.write("quad.obj",
             "mtllib quad.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
@@ -293,3 +295,5 @@ TEST_CASE("image read: 3000 mutated PNGs and JPEGs each decode or are one InputE
     CHECK(refused > 0);
   }
 }
+
+}  // namespace test_file_image_read

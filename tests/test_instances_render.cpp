@@ -21,6 +21,8 @@
 #include "scene/scene_digest.h"
 #include "scene/scene_instances.h"
 
+namespace test_file_instances_render {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using montecl_test::CliResult;
 using montecl_test::runMontecl;
@@ -145,7 +147,7 @@ TEST_CASE("instances: a scene file keeps non-emitting instances as one mesh; bou
 }
 
 TEST_CASE("instances: --bvh-layout binary with instances is one line naming the option, exit 2" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   writeMeshes(dir);
   dir.write("scene.json", instancedScene("ao").dump());
@@ -186,3 +188,5 @@ TEST_CASE("instances: the conformance set's instanced spheres cover part of its 
   }
   CHECK(found == 3);
 }
+
+}  // namespace test_file_instances_render

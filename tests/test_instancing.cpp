@@ -23,6 +23,8 @@
 #include "scene/scene.h"
 #include "scene/scene_instances.h"
 
+namespace test_file_instancing {  // keeps this file's helpers apart in a unity batch
+
 using montecl::Scene;
 using montecl_test::CliResult;
 using montecl_test::runMontecl;
@@ -128,7 +130,7 @@ bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size
 }  // namespace
 
 TEST_CASE("instancing: EXT_mesh_gpu_instancing gives the triangles and image of one child node per instance" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const std::size_t n = 5;
   const Instances in = someInstances(int(n));
@@ -199,7 +201,7 @@ TEST_CASE("instancing: a glTF's shared mesh under a scene-file entry: the transf
 }
 
 TEST_CASE("instancing: bad EXT_mesh_gpu_instancing accessors are one line naming the attribute, exit 2" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const Instances in = someInstances(3);
   const std::string key = ": nodes[0].extensions.EXT_mesh_gpu_instancing.attributes.";
@@ -248,7 +250,7 @@ TEST_CASE("instancing: bad EXT_mesh_gpu_instancing accessors are one line naming
 }
 
 TEST_CASE("instancing: instance counts past the memory check are refused before the copies are made" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   // 10 and 10000 instances of the 4-triangle tent on a machine declared to have 2 MB: 40000
   // triangles need megabytes (the 16x12 image fits).
@@ -313,7 +315,7 @@ TEST_CASE("instancing: instance counts past the memory check are refused before 
 }
 
 TEST_CASE("instancing: a scene file's instances, flattened, equal one mesh entry per transform, bit for bit" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   dir.write("tent.obj", montecl_test::objText(montecl_test::tentMesh()));
   const json transforms = json::array({json{{"translate", {0.5, 0, -1}}},
@@ -363,3 +365,5 @@ TEST_CASE("instancing: a scene file's instances, flattened, equal one mesh entry
     CHECK(r.err.find(dir.file("bad.json") + ": " + bad.second) != std::string::npos);
   }
 }
+
+}  // namespace test_file_instancing

@@ -16,6 +16,8 @@
 #include "kernels/shared/integrands.h"
 #include "stats.h"
 
+namespace test_file_integrate {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 
 namespace {
@@ -194,7 +196,7 @@ TEST_CASE("cli: montecl integrate --runs 4 prints every estimator" * doctest::te
   CHECK(runLines >= 2 * 4);  // four runs for each integrand (plus avg and spread lines)
 }
 
-TEST_CASE("cli: montecl integrate --json and bad options" * doctest::test_suite("cli")) {
+TEST_CASE("cli: montecl integrate --json and bad options" * doctest::test_suite("cli sanitize")) {
   montecl_test::CliResult r = montecl_test::runMontecl({"integrate", "--integrand", "sine", "--n", "1000", "--runs",
                                                         "3", "--json"});
   INFO("stderr: " << r.err);
@@ -210,3 +212,5 @@ TEST_CASE("cli: montecl integrate --json and bad options" * doctest::test_suite(
   CHECK(montecl_test::runMontecl({"integrate", "--n", "0"}).exitCode == 2);
   CHECK(montecl_test::runMontecl({"integrate", "--device", "no-such-device-xyz"}).exitCode == 2);
 }
+
+}  // namespace test_file_integrate

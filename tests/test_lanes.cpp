@@ -20,6 +20,8 @@
 #include "skip.h"
 #include "util/errors.h"
 
+namespace test_file_lanes {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -82,7 +84,9 @@ TEST_CASE("packet stages: adaptive sampling (active lists out of order, wrapping
   // (integrator, sampler): the Sobol points' lane form, with packets that wrap the active list.
   const std::pair<const char*, const char*> configs[] = {
       {"ao", "independent"}, {"direct", "independent"}, {"direct", "sobol"}};
-  for (const auto& [integrator, sampler] : configs) {
+  for (const auto& row : configs) {
+    const auto& integrator = std::get<0>(row);
+    const auto& sampler = std::get<1>(row);
     CAPTURE(integrator);
     CAPTURE(sampler);
     const std::vector<std::string> common = {"render", scene, "-q", "--width", "37", "--height", "23",
@@ -111,3 +115,5 @@ TEST_CASE("packet stages: every kind and light kind in one scene matches the hos
     }
   }
 }
+
+}  // namespace test_file_lanes

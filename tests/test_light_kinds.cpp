@@ -11,6 +11,8 @@
 #include "kernels/shared/rng.h"
 #include "kernels/stages/direct_light.h"
 
+namespace test_file_light_kinds {  // keeps this file's helpers apart in a unity batch
+
 namespace {
 
 struct OneEmitter {
@@ -99,3 +101,5 @@ TEST_CASE("light kinds: tags in table order; selection shares; sample pdf and Le
     CHECK(std::fabs(double(toEnv) / n - pEnv) <= 4.0 * se + 1e-9);
   }
 }
+
+}  // namespace test_file_light_kinds

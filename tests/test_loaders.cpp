@@ -14,6 +14,8 @@
 #include "scene/scene.h"
 #include "util/errors.h"
 
+namespace test_file_loaders {  // keeps this file's helpers apart in a unity batch
+
 using montecl::InputError;
 using montecl::Scene;
 using montecl_test::TempDir;
@@ -207,3 +209,5 @@ TEST_CASE("OBJ: statements montecl does not use are one warning per kind; used o
   loadObj(dir.file("n.obj"), &warnings);
   CHECK(warnings.empty());
 }
+
+}  // namespace test_file_loaders

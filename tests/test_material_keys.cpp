@@ -14,6 +14,8 @@
 #include "mesh_files.h"
 #include "scene/scene.h"
 
+namespace test_file_material_keys {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using montecl_test::CliResult;
 using montecl_test::runMontecl;
@@ -59,7 +61,7 @@ TEST_CASE("material keys: conductor metal / roughness, dielectric ior, metal_rou
   CHECK(s.materials.back().roughness == doctest::Approx(0.2f));
 }
 
-TEST_CASE("material keys: bad values exit 2 with one line naming the key, no output" * doctest::test_suite("cli")) {
+TEST_CASE("material keys: bad values exit 2 with one line naming the key, no output" * doctest::test_suite("cli sanitize")) {
   const std::vector<std::pair<std::string, std::string>> bad = {
       {R"({"type": "dielectric", "ior": 0})", "material.ior"},
       {R"({"type": "dielectric", "ior": -1.5})", "material.ior"},
@@ -72,7 +74,9 @@ TEST_CASE("material keys: bad values exit 2 with one line naming the key, no out
       {R"({"type": "conductor", "metal": "Pt"})", "material.metal"},
       {R"({"type": "conductor", "metal": "Au", "eta": [1, 1, 1]})", "material.eta"},
   };
-  for (const auto& [material, key] : bad) {
+  for (const auto& row : bad) {
+    const auto& material = std::get<0>(row);
+    const auto& key = std::get<1>(row);
     CAPTURE(material);
     TempDir dir;
     const CliResult r = runMontecl({"render", sceneWith(dir, material), "-q", "-o", dir.file("out.pfm")});
@@ -109,11 +113,13 @@ TEST_CASE("material keys: MTL illum 7 + Ni is a dielectric, Pm / Pr metal_rough;
   const std::string gltf = montecl_test::gltfText(tent, 0.5f, "t.bin");
   const std::string defaults = R"("metallicFactor":1,"roughnessFactor":1)";
   REQUIRE(gltf.find(defaults) != std::string::npos);
-  for (const auto& [factors, kind] : std::vector<std::pair<std::string, std::uint32_t>>{
+  for (const auto& row : std::vector<std::pair<std::string, std::uint32_t>>{
            {defaults, MCL_MATERIAL_diffuse},
            {R"("metallicFactor":0,"roughnessFactor":1)", MCL_MATERIAL_diffuse},
            {R"("metallicFactor":1,"roughnessFactor":0.4)", MCL_MATERIAL_metal_rough},
            {R"("metallicFactor":0,"roughnessFactor":0.5)", MCL_MATERIAL_metal_rough}}) {
+    const auto& factors = std::get<0>(row);
+    const auto& kind = std::get<1>(row);
     CAPTURE(factors);
     std::string text = gltf;
     text.replace(text.find(defaults), defaults.size(), factors);
@@ -124,3 +130,5 @@ TEST_CASE("material keys: MTL illum 7 + Ni is a dielectric, Pm / Pr metal_rough;
     CHECK(countContaining(warnings, "metallic") == 0);
   }
 }
+
+}  // namespace test_file_material_keys

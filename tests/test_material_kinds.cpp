@@ -20,6 +20,8 @@
 #include "render/device_materials.h"
 #include "stats.h"
 
+namespace test_file_material_kinds {  // keeps this file's helpers apart in a unity batch
+
 using montecl::MaterialDesc;
 using montecl_test::RunningStats;
 
@@ -260,3 +262,5 @@ TEST_CASE("diffuse kind: the direct integrator's split sample is the folded cosi
     REQUIRE(w.weight == lambert.kd * frame_cosine_weight(sf, wi));
   }
 }
+
+}  // namespace test_file_material_kinds

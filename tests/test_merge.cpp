@@ -18,6 +18,8 @@
 #include "stats.h"
 #include "util/errors.h"
 
+namespace test_file_merge {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using montecl_test::CliResult;
 using montecl_test::demoRenderArgs;
@@ -241,7 +243,7 @@ TEST_CASE("merge: combineStats equals the statistics of the combined sample set"
   CHECK(one.variance == 0.0);
 }
 
-TEST_CASE("merge: split sample sets merge to the statistics of the whole set" * doctest::test_suite("cli")) {
+TEST_CASE("merge: split sample sets merge to the statistics of the whole set" * doctest::test_suite("cli sanitize")) {
   PixelSets a, b, all;
   makeSplitSets(7, 5, a, b, all, 42);
   LayeredImage ia = statsImage(7, 5, a), ib = statsImage(7, 5, b), want = statsImage(7, 5, all);
@@ -282,7 +284,7 @@ TEST_CASE("merge: three renders merge like the whole set" * doctest::test_suite(
   checkPlanesClose(got, statsImage(4, 4, all));
 }
 
-TEST_CASE("merge: bad inputs exit 2 with one line naming the file" * doctest::test_suite("cli")) {
+TEST_CASE("merge: bad inputs exit 2 with one line naming the file" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   PixelSets a, b, all;
   makeSplitSets(4, 3, a, b, all, 5);
@@ -313,7 +315,7 @@ TEST_CASE("merge: bad inputs exit 2 with one line naming the file" * doctest::te
   CHECK(runMontecl({"merge", "-o", out}).exitCode == 2);  // no inputs
 }
 
-TEST_CASE("a render split with --first-sample and merged equals the single render" * doctest::test_suite("cli")) {
+TEST_CASE("a render split with --first-sample and merged equals the single render" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   REQUIRE(runMontecl(demoRenderArgs(dir.file("all.exr"), 16, 0)).exitCode == 0);
   REQUIRE(runMontecl(demoRenderArgs(dir.file("a.exr"), 6, 0)).exitCode == 0);
@@ -351,7 +353,7 @@ TEST_CASE("a render split with --first-sample and merged equals the single rende
   CHECK(ar != br);
 }
 
-TEST_CASE("merging renders with different seeds has the error of the combined sample count" * doctest::test_suite("cli")) {
+TEST_CASE("merging renders with different seeds has the error of the combined sample count" * doctest::test_suite("cli sanitize")) {
   // Two 8 spp renders (seeds 1, 2) merged, against an independent 512 spp render (seed 3): per
   // pixel, z = (merged - reference) / sqrt(var/16 + var_ref/512) from the files' own variances.
   TempDir dir;
@@ -391,3 +393,5 @@ TEST_CASE("merging renders with different seeds has the error of the combined sa
   CHECK(rmsZ > 0.7);  // an error far below the combined count's would mean the variance is wrong
   CHECK(rmsZ < 1.4);
 }
+
+}  // namespace test_file_merge

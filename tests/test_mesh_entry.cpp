@@ -18,6 +18,8 @@
 #include "scene/scene_digest.h"
 #include "util/errors.h"
 
+namespace test_file_mesh_entry {  // keeps this file's helpers apart in a unity batch
+
 using montecl::Scene;
 using montecl_test::TempDir;
 using nlohmann::json;
@@ -205,7 +207,7 @@ TEST_CASE("mesh transform/material: every bad value is an InputError naming its 
 }
 
 TEST_CASE("cli: a mesh transformed by the scene file renders the image of the mesh transformed in the file" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   writeModel(dir);
   dir.write("a.json", sceneWith(json{{"file", "model.obj"}, {"transform", {{"matrix", json::parse(kMatrix)}}}}).dump());
@@ -225,3 +227,5 @@ TEST_CASE("cli: a mesh transformed by the scene file renders the image of the me
   }
   CHECK(sum > 0.0);  // the model is in view
 }
+
+}  // namespace test_file_mesh_entry

@@ -20,6 +20,8 @@
 #include "texture/scene_textures.h"
 #include "util/errors.h"
 
+namespace test_file_metal_rough_texture {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -171,3 +173,5 @@ TEST_CASE("metallic_roughness_texture: the scene-file key equals the glTF textur
     CHECK(what.find("meshes[0].material.metallic_roughness_texture") != std::string::npos);
   }
 }
+
+}  // namespace test_file_metal_rough_texture

@@ -15,6 +15,8 @@
 #include "image/exr_layers.h"
 #include "mesh_files.h"
 
+namespace test_file_missing_textures {  // keeps this file's helpers apart in a unity batch
+
 using montecl_test::CliResult;
 using montecl_test::runMontecl;
 using montecl_test::TempDir;
@@ -57,7 +59,7 @@ std::size_t lines(const std::string& s) { return std::size_t(std::count(s.begin(
 }  // namespace
 
 TEST_CASE("missing textures: warn names all in one warning and renders the factors; error stops with one line" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   dir.write("quads.obj", kQuads);
   dir.write("quads.mtl", "newmtl a\nKd 0.25 0.5 0.75\nmap_Kd gone1.png\nnewmtl b\nmap_Kd maps/gone2.png\n");
@@ -124,3 +126,5 @@ TEST_CASE("missing textures: warn names all in one warning and renders the facto
   CHECK(bad.exitCode == 2);
   CHECK(bad.err.find("--missing-textures") != std::string::npos);
 }
+
+}  // namespace test_file_missing_textures

@@ -18,9 +18,12 @@
 
 #include "cli_runner.h"
 #include "image/exr_layers.h"
+#include "sanitizers.h"
 #include "skip.h"
 
-extern char** environ;
+extern char** environ;  // global: the process environment (unistd.h)
+
+namespace test_file_mpi {  // keeps this file's helpers apart in a unity batch
 
 using montecl::LayeredImage;
 using montecl::readLayeredImage;
@@ -35,7 +38,7 @@ namespace {
 const std::vector<std::string> kMpiEnv{"OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1",
                                        "OMPI_MCA_btl_vader_single_copy_mechanism=none", "OMPI_MCA_rmaps_base_oversubscribe=1"};
 
-#if defined(__SANITIZE_ADDRESS__)
+#if MCL_TEST_UNDER_ASAN
 // Under ASan (build-asan): Open MPI dlcloses its MCA components in MPI_Finalize, so what they keep
 // for the process lifetime is reported as leaks with unknown frames that no library-name
 // suppression can match. Leak checking is off for the ranks; ASan's memory-error checks stay on.
@@ -91,19 +94,19 @@ void checkMpiMatchesOneProcess(const std::vector<std::string>& extra) {
 
 }  // namespace
 
-TEST_CASE("mpi: mpirun -np 1|2|3 AO render is bit-identical to one process; a skipped pixel is caught" * doctest::test_suite("cli")) {
+TEST_CASE("mpi: mpirun -np 1|2|3 AO render is bit-identical to one process; a skipped pixel is caught" * doctest::test_suite("cli sanitize")) {
   checkMpiMatchesOneProcess({"--aov", "all"});
 }
 
-TEST_CASE("mpi: mpirun -np 1|2|3 direct render is bit-identical to one process" * doctest::test_suite("cli")) {
+TEST_CASE("mpi: mpirun -np 1|2|3 direct render is bit-identical to one process" * doctest::test_suite("cli sanitize")) {
   checkMpiMatchesOneProcess({"--integrator", "direct", "--device", "host"});
 }
 
-TEST_CASE("mpi: mpirun -np 1|2|3 adaptive render is bit-identical to one process" * doctest::test_suite("cli")) {
+TEST_CASE("mpi: mpirun -np 1|2|3 adaptive render is bit-identical to one process" * doctest::test_suite("cli sanitize")) {
   checkMpiMatchesOneProcess({"--target-error", "0.05", "--min-spp", "4", "--max-spp", "64"});
 }
 
-TEST_CASE("mpi: a rank with a bad --device or an unreadable scene ends the job fast, with its message, no file" * doctest::test_suite("cli")) {
+TEST_CASE("mpi: a rank with a bad --device or an unreadable scene ends the job fast, with its message, no file" * doctest::test_suite("cli sanitize")) {
   MCL_SKIP_UNLESS(haveMpirun(), "mpirun not found (scripts/setup.sh installs openmpi-bin)");
   TempDir dir;
   const std::string out = dir.file("out.exr");
@@ -128,7 +131,7 @@ TEST_CASE("mpi: a rank with a bad --device or an unreadable scene ends the job f
   }
 }
 
-TEST_CASE("checkpoint: a render killed by SIGKILL after its first checkpoint resumes bit-identically" * doctest::test_suite("cli")) {
+TEST_CASE("checkpoint: a render killed by SIGKILL after its first checkpoint resumes bit-identically" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const int kSpp = 160;  // long enough (~1 s with a checkpoint per wave) to be killed mid-render
   const std::vector<std::string> extra{"--device", "host", "--wave-size", "64", "--integrator", "direct"};
@@ -183,3 +186,5 @@ TEST_CASE("checkpoint: a render killed by SIGKILL after its first checkpoint res
     CHECK(!fs::exists(dir.file("refused.exr")));
   }
 }
+
+}  // namespace test_file_mpi

@@ -11,6 +11,8 @@
 #include "cli_runner.h"
 #include "test_images.h"
 
+namespace test_file_mtl_alpha {  // keeps this file's helpers apart in a unity batch
+
 using montecl_test::CliResult;
 using montecl_test::runMontecl;
 using montecl_test::TempDir;
@@ -37,7 +39,7 @@ std::size_t count(const std::string& s, const std::string& needle) {
 }  // namespace
 
 TEST_CASE("MTL: an RGBA map_Kd with alpha below 1 and no map_d gets one warning saying how to cut it out" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   dir.write("quads.obj", kQuads);
   // leaf.png: alpha 0 in the left half; opaque.png: RGBA, alpha 255 everywhere; rgb.png: no alpha.
@@ -64,3 +66,5 @@ TEST_CASE("MTL: an RGBA map_Kd with alpha below 1 and no map_d gets one warning 
     CHECK(quiet.err.empty());
   }
 }
+
+}  // namespace test_file_mtl_alpha

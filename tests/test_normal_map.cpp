@@ -21,6 +21,8 @@
 #include "test_scenes.h"
 #include "util/errors.h"
 
+namespace test_file_normal_map {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -170,7 +172,7 @@ TEST_CASE("normal map: glTF normalTexture (scale), MTL norm (-bm) and a scene fi
 }
 
 TEST_CASE("normal map: a missing normal texture or a scale that is not a number is one line, exit 2, nothing written" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   writeImage8(dir.file("n.png"), 4, 4, 3, [](int, int, int c) { return kTexel[c]; });
   nlohmann::json g = nlohmann::json::parse(gltfText(tentMesh(), 0.5f, ""));
@@ -203,3 +205,5 @@ TEST_CASE("normal map: a missing normal texture or a scale that is not a number 
     CHECK_FALSE(std::filesystem::exists(dir.file("out.png")));
   }
 }
+
+}  // namespace test_file_normal_map

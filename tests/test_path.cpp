@@ -22,6 +22,8 @@
 #include "render/wavefront.h"
 #include "test_scenes.h"
 
+namespace test_file_path {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 namespace fs = std::filesystem;
@@ -319,7 +321,7 @@ TEST_CASE("thin lens: aperture 0 is the pinhole bit for bit; in focus stays shar
   }
 }
 
-TEST_CASE("cli: bad --max-depth, --rr-depth, aperture_radius, focus_distance, max_depth, rr_depth: one line, exit 2" * doctest::test_suite("cli")) {
+TEST_CASE("cli: bad --max-depth, --rr-depth, aperture_radius, focus_distance, max_depth, rr_depth: one line, exit 2" * doctest::test_suite("cli sanitize")) {
   const std::string good = std::string(MONTECL_SOURCE_DIR) + "/scenes/test/good/scene.json";
   TempDir dir;
   const auto refused = [&](const std::vector<std::string>& args, const std::string& mention) {
@@ -396,3 +398,5 @@ TEST_CASE("cli: -v prints the live paths per bounce, falling from the camera ray
   CHECK(paths[0] == 32ull * 24ull * 2ull);  // every camera ray of the 32x24 image at 2 spp
   for (std::size_t b = 1; b < paths.size(); ++b) CHECK(paths[b] <= paths[b - 1]);
 }
+
+}  // namespace test_file_path

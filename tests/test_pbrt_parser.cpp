@@ -22,6 +22,8 @@
 #include "scene/scene.h"
 #include "util/errors.h"
 
+namespace test_file_pbrt_parser {  // keeps this file's helpers apart in a unity batch
+
 using montecl::Scene;
 using montecl_test::TempDir;
 
@@ -499,3 +501,4 @@ TEST_CASE("pbrt: a file of 100k inline triangles loads in under a second" * doct
   CHECK(seconds < 1.0);
 }
 
+}  // namespace test_file_pbrt_parser

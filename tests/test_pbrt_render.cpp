@@ -16,6 +16,8 @@
 #include "image/image_read.h"
 #include "skip.h"
 
+namespace test_file_pbrt_render {  // keeps this file's helpers apart in a unity batch
+
 using montecl_test::CliResult;
 using montecl_test::runMontecl;
 using montecl_test::TempDir;
@@ -278,3 +280,5 @@ TEST_CASE("pbrt cli: Bitterli's Cornell box agrees with Tungsten's reference per
   MESSAGE("direct light only: mean " << direct.meanRel * 100 << "%, max |z| " << direct.maxAbsZ);
   CHECK(direct.maxAbsZ > 4.0);
 }
+
+}  // namespace test_file_pbrt_render

@@ -13,6 +13,8 @@
 #include "scene/scene.h"
 #include "util/errors.h"
 
+namespace test_file_ply {  // keeps this file's helpers apart in a unity batch
+
 using montecl::Scene;
 using montecl_test::MeshData;
 using montecl_test::PlyEncoding;
@@ -163,3 +165,5 @@ TEST_CASE("PLY: malformed files are one InputError line naming the file and wher
     CHECK(message.find('\n') == std::string::npos);
   }
 }
+
+}  // namespace test_file_ply

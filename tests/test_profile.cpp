@@ -13,6 +13,8 @@
 
 #include "cli_runner.h"
 
+namespace test_file_profile {  // keeps this file's helpers apart in a unity batch
+
 using montecl_test::CliResult;
 using montecl_test::runMontecl;
 using montecl_test::TempDir;
@@ -110,3 +112,5 @@ TEST_CASE("render without --profile prints no profile" * doctest::test_suite("cl
   REQUIRE(r.exitCode == 0);
   CHECK(r.out.find("profile:") == std::string::npos);
 }
+
+}  // namespace test_file_profile

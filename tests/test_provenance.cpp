@@ -13,6 +13,8 @@
 #include "scene/scene_digest.h"
 #include "util/errors.h"
 
+namespace test_file_provenance {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using montecl_test::CliResult;
 using montecl_test::runMontecl;
@@ -163,7 +165,7 @@ TEST_CASE("provenance: string attributes survive an EXR write and read" * doctes
   CHECK(back.attributes.count("other") == 0);  // only montecl:* are read
 }
 
-TEST_CASE("cli: a render's EXR header holds its provenance" * doctest::test_suite("cli")) {
+TEST_CASE("cli: a render's EXR header holds its provenance" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   REQUIRE(runMontecl(renderArgs(montecl_test::demoScene(), dir.file("r.exr"), 3, 5, {"--seed", "7"})).exitCode == 0);
   LayeredImage im = readLayeredImage(dir.file("r.exr"));
@@ -183,7 +185,7 @@ TEST_CASE("cli: a render's EXR header holds its provenance" * doctest::test_suit
   CHECK(ad->adaptive.find("max_spp=8") != std::string::npos);
 }
 
-TEST_CASE("cli: merge refuses the same render twice, other scenes, other settings, renders without provenance; --force merges" * doctest::test_suite("cli")) {
+TEST_CASE("cli: merge refuses the same render twice, other scenes, other settings, renders without provenance; --force merges" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   const std::string demo = montecl_test::demoScene();
   REQUIRE(runMontecl(renderArgs(demo, dir.file("a.exr"), 4, 0)).exitCode == 0);
@@ -225,3 +227,5 @@ TEST_CASE("cli: merge refuses the same render twice, other scenes, other setting
   REQUIRE(m3);
   CHECK(formatSampleRanges(m3->samples) == "0:0-12");
 }
+
+}  // namespace test_file_provenance

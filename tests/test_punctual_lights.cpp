@@ -16,6 +16,8 @@
 #include "render/wavefront.h"
 #include "scene/builtin_scenes.h"
 
+namespace test_file_punctual_lights {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -161,3 +163,5 @@ TEST_CASE("punctual lights: with a point, a spot and a directional light, select
     CHECK(std::fabs(e.mean - sum[c]) <= 4.0 * e.standardError);
   }
 }
+
+}  // namespace test_file_punctual_lights

@@ -19,6 +19,8 @@
 #include "soups.h"
 #include "skip.h"
 
+namespace test_file_ray_tracer {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -220,3 +222,5 @@ TEST_CASE("OpenCL: rays with a NaN or infinite origin or direction are misses, c
     CHECK(finiteHits > 100);
   }
 }
+
+}  // namespace test_file_ray_tracer

@@ -16,6 +16,8 @@
 #include "nan_wave.h"
 #include "test_scenes.h"
 
+namespace test_file_render {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -186,3 +188,5 @@ TEST_CASE("NaN camera rays are misses and every one is counted, in both BVH layo
     checkNanCameraWave(*run, floorScene({0, 0, 0}, 1.0f, 60.0f, 16, 1));
   }
 }
+
+}  // namespace test_file_render

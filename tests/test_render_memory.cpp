@@ -12,6 +12,8 @@
 #include "render/wavefront.h"
 #include "test_scenes.h"
 
+namespace test_file_render_memory {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -113,3 +115,5 @@ TEST_CASE("render memory: finish() and prepared triangles on the host backend" *
   checkFinish(*makeHostStageRunner());
   checkPreparedTriangles(selectDevice("host"));
 }
+
+}  // namespace test_file_render_memory

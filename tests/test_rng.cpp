@@ -11,6 +11,8 @@
 #include "kernels/shared/rng.h"
 #include "stats.h"
 
+namespace test_file_rng {  // keeps this file's helpers apart in a unity batch
+
 TEST_CASE("rng is a pure function of (seed, pixel, sample, group)" * doctest::test_suite("cpu")) {
   for (uint i = 0; i < 1000; ++i) {
     float4 a = rng_uniform4(5u, i, i * 7u, 2u);
@@ -100,3 +102,5 @@ TEST_CASE("the dimension groups the stages use are uncorrelated with each other 
     }
   MESSAGE("largest |r| " << worst << " (limit " << 5.0 / std::sqrt(double(n)) << ")");
 }
+
+}  // namespace test_file_rng

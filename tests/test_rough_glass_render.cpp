@@ -17,6 +17,8 @@
 #include "scene/render_choices.h"
 #include "test_scenes.h"
 
+namespace test_file_rough_glass_render {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -86,3 +88,5 @@ TEST_CASE("rough glass: a light seen through a rough pane: light sampling, BSDF 
     }
   }
 }
+
+}  // namespace test_file_rough_glass_render

@@ -17,6 +17,8 @@
 #include "kernels/stages/stage_common.h"
 #include "skip.h"
 
+namespace test_file_sample_blocks {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl_test;
 
 TEST_CASE("sample blocks: the block shift divides the round, at most the lane width" * doctest::test_suite("cpu")) {
@@ -100,7 +102,10 @@ TEST_CASE("sample blocks: renders with blocks of 4, 8, 16 samples and cut waves 
   // 333 items cut the blocks (scalar accumulate); "" is the planned default.
   const std::tuple<const char*, const char*, const char*> configs[] = {
       {"ao", "16", ""}, {"direct", "24", "1000"}, {"path", "20", "333"}, {"direct", "16", ""}, {"path", "16", ""}};
-  for (const auto& [integrator, spp, wave] : configs) {
+  for (const auto& row : configs) {
+    const auto& integrator = std::get<0>(row);
+    const auto& spp = std::get<1>(row);
+    const auto& wave = std::get<2>(row);
     CAPTURE(integrator);
     CAPTURE(spp);
     CAPTURE(wave);
@@ -110,3 +115,5 @@ TEST_CASE("sample blocks: renders with blocks of 4, 8, 16 samples and cut waves 
     checkLanesMatchHost(common, dir, {"16", "4"});
   }
 }
+
+}  // namespace test_file_sample_blocks

@@ -9,6 +9,8 @@
 #include "kernels/shared/sampling.h"
 #include "stats.h"
 
+namespace test_file_sampling {  // keeps this file's helpers apart in a unity batch
+
 using montecl_test::chiSquareCritical;
 
 namespace {
@@ -142,3 +144,5 @@ TEST_CASE("portable cosine hemisphere (polynomial sin/cos) passes the chi-square
   }
   CHECK(worst < 5e-7);
 }
+
+}  // namespace test_file_sampling

@@ -22,6 +22,8 @@
 #include "util/errors.h"
 #include "skip.h"
 
+namespace test_file_scene {  // keeps this file's helpers apart in a unity batch
+
 using montecl::Camera;
 using montecl::InputError;
 using montecl::Scene;
@@ -383,8 +385,12 @@ TEST_CASE("defaultCamera frames boxes of any shape for any aspect ratio" * docte
       {{-1, -1, -1}, {1, 1, 1}},     {{0, 0, 0}, {100, 1, 1}},      {{0, 0, 0}, {1, 100, 1}},
       {{0, 0, 0}, {1, 1, 100}},      {{1000, 2000, -500}, {1001, 2000.5f, -499}}, {{0, 0, 0}, {1e-3f, 2e-3f, 0}}};
   const std::vector<std::pair<int, int>> sizes = {{512, 512}, {800, 200}, {200, 800}};
-  for (const auto& [lo, hi] : boxes) {
-    for (const auto& [w, h] : sizes) {
+  for (const auto& box : boxes) {
+    const glm::vec3& lo = box.first;
+    const glm::vec3& hi = box.second;
+    for (const auto& row : sizes) {
+      const auto& w = std::get<0>(row);
+      const auto& h = std::get<1>(row);
       INFO("box " << lo.x << "," << lo.y << "," << lo.z << " .. " << hi.x << "," << hi.y << "," << hi.z
                   << " image " << w << "x" << h);
       Camera cam = montecl::defaultCamera(lo, hi, w, h);
@@ -558,3 +564,5 @@ TEST_CASE("scene file: two_sided_emission true marks the mesh's emitters two-sid
   }
   for (const SceneTriangle& t : one.triangles) CHECK_FALSE(one.materials[t.material].twoSidedEmission);
 }
+
+}  // namespace test_file_scene

@@ -27,6 +27,8 @@
 #include "stats.h"
 #include "test_scenes.h"
 
+namespace test_file_shading {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -438,3 +440,5 @@ TEST_CASE("smooth shading: bit-identical across wave sizes and with the host bac
     CHECK(std::fabs(h.meanOf(p, 0) - reference.meanOf(p, 0)) <= 1e-5 * std::fabs(reference.meanOf(p, 0)) + 1e-7);
   }
 }
+
+}  // namespace test_file_shading

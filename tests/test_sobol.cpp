@@ -10,6 +10,8 @@
 
 #include "kernels/shared/sampler.h"
 
+namespace test_file_sobol {  // keeps this file's helpers apart in a unity batch
+
 namespace {
 
 // Joe-Kuo new-joe-kuo-6.21201, dimensions 2..4 (1-based): degree s, coefficients a, initial m.
@@ -224,3 +226,5 @@ TEST_CASE("sampler: independent is rng_uniform4 bit for bit; sobol couples the f
       REQUIRE(s.w == u32_to_unit(coupled ? own.y : own.w));
     }
 }
+
+}  // namespace test_file_sobol

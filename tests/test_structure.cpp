@@ -21,6 +21,8 @@
 #include "cli_runner.h"
 #include "render/wavefront.h"
 
+namespace test_file_structure {  // keeps this file's helpers apart in a unity batch
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -222,3 +224,5 @@ TEST_CASE("structure: every stage of the stage table runs in some conformance ca
     CHECK_MESSAGE(launched.count(name), "stage " << name << " runs in no conformance case (host/conformance/scenes.cpp)");
   }
 }
+
+}  // namespace test_file_structure

@@ -17,6 +17,8 @@
 #include "scene/builtin_scenes.h"
 #include "util/errors.h"
 
+namespace test_file_sun_light {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -129,3 +131,5 @@ TEST_CASE("sun light: bad input is one line naming the key" * doctest::test_suit
   CHECK_THROWS_WITH_AS(load(R"({"type": "sun", "direction": [0, -1, 0], "irradiance": [1, -1, 1]})"),
                        doctest::Contains("lights[0].irradiance"), InputError);
 }
+
+}  // namespace test_file_sun_light

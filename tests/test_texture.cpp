@@ -16,6 +16,8 @@
 #include "texture/texture_budget.h"
 #include "util/errors.h"
 
+namespace test_file_texture {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using montecl_test::TempDir;
 
@@ -228,3 +230,5 @@ TEST_CASE("texture: an unreadable texture is an input error naming the file and 
     CHECK(what.find('\n') == std::string::npos);
   }
 }
+
+}  // namespace test_file_texture

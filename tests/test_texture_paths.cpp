@@ -13,6 +13,8 @@
 #include "mesh_files.h"
 #include "test_images.h"
 
+namespace test_file_texture_paths {  // keeps this file's helpers apart in a unity batch
+
 using montecl_test::CliResult;
 using montecl_test::runMontecl;
 using montecl_test::TempDir;
@@ -35,7 +37,7 @@ std::size_t lines(const std::string& s) { return std::size_t(std::count(s.begin(
 }  // namespace
 
 TEST_CASE("textures: a name that differs in case is used with one warning; all missing ones in one line" *
-          doctest::test_suite("cli")) {
+          doctest::test_suite("cli sanitize")) {
   TempDir dir;
   std::filesystem::create_directory(dir.file("maps"));
   montecl_test::writeImage8(dir.file("maps/wood.png"), 4, 4, 3, [](int x, int y, int c) { return (x * 60 + y * 20 + c * 50) % 256; });
@@ -76,3 +78,5 @@ TEST_CASE("textures: a name that differs in case is used with one warning; all m
         std::string::npos);
   CHECK_FALSE(std::filesystem::exists(dir.file("missing.exr")));
 }
+
+}  // namespace test_file_texture_paths

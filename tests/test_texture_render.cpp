@@ -22,6 +22,8 @@
 #include "texture/mip_chain.h"
 #include "texture/scene_textures.h"
 
+namespace test_file_texture_render {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -250,7 +252,7 @@ TEST_CASE("textures: a tiny budget drops fine levels with a warning and the rend
   }
 }
 
-TEST_CASE("textures: montecl render warns once over --texture-budget; a bad texture file is exit 2, one line, where read" * doctest::test_suite("cli")) {
+TEST_CASE("textures: montecl render warns once over --texture-budget; a bad texture file is exit 2, one line, where read" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   dir.write("quad.obj",
             "mtllib quad.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
@@ -286,3 +288,5 @@ TEST_CASE("textures: montecl render warns once over --texture-budget; a bad text
   CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
   CHECK_FALSE(std::filesystem::exists(dir.file("out.png")));
 }
+
+}  // namespace test_file_texture_render

@@ -19,6 +19,8 @@
 #include "test_images.h"
 #include "texture/mip_chain.h"
 
+namespace test_file_texture_sampling {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 using nlohmann::json;
@@ -76,7 +78,7 @@ json quadGltf(const std::vector<float>& uv0, const std::vector<float>& uv1, cons
   g["meshes"] = {{{"primitives", {{{"attributes", attributes}, {"indices", 1}, {"material", 0}}}}}};
   g["nodes"] = {{{"mesh", 0}}};
   g["scenes"] = {{{"nodes", {0}}}};
-  g["materials"] = {material};
+  g["materials"] = json::array({material});  // not {material}: clang makes that a copy of the object
   return g;
 }
 
@@ -274,7 +276,7 @@ TEST_CASE("KHR_materials_unlit: the base colour is the radiance seen, with zero 
   }
   // With a base colour texture: factor x texel (interiors of the cells).
   m["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
-  g["materials"] = {m};
+  g["materials"] = json::array({m});
   g["images"] = {{{"uri", "cells.png"}}};
   g["textures"] = {{{"source", 0}}};
   dir.write("tex.gltf", g.dump());
@@ -294,7 +296,7 @@ TEST_CASE("KHR_materials_unlit: the base colour is the radiance seen, with zero 
   CHECK(checked == 16 * 10 * 10);
 }
 
-TEST_CASE("texture transform, texCoord and wrap: bad values are one line naming the key, exit 2" * doctest::test_suite("cli")) {
+TEST_CASE("texture transform, texCoord and wrap: bad values are one line naming the key, exit 2" * doctest::test_suite("cli sanitize")) {
   TempDir dir;
   writeCells(dir.file("cells.png"));
   struct Case {
@@ -384,3 +386,5 @@ TEST_CASE("COLOR_0: vertex colours multiply the base colour, interpolated over e
     CHECK(got.z == doctest::Approx(0.75).epsilon(1e-5));
   }
 }
+
+}  // namespace test_file_texture_sampling

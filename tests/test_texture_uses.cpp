@@ -17,6 +17,8 @@
 #include "skip.h"
 #include "test_images.h"
 
+namespace test_file_texture_uses {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -184,3 +186,5 @@ TEST_CASE("texture uses: one file as colour and as cut-out (no alpha channel): A
     CHECK(samePlanes(readLayeredImage(dir.file("loaded.exr")), readLayeredImage(dir.file("plain.exr")), kRenderPlanes));
   }
 }
+
+}  // namespace test_file_texture_uses

@@ -10,6 +10,8 @@
 #include "render/triangle_shading.h"
 #include "soups.h"
 
+namespace test_file_triangle_normals {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using montecl_test::seededSoup;
 
@@ -62,3 +64,5 @@ TEST_CASE("triangle normals: unit geometric normal and area per BVH triangle, at
   }
   CHECK(buildTriangleNormals({}).size() == 1);
 }
+
+}  // namespace test_file_triangle_normals

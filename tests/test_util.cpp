@@ -17,6 +17,8 @@
 #include "util/errors.h"
 #include "util/hash.h"
 
+namespace test_file_util {  // keeps this file's helpers apart in a unity batch
+
 namespace fs = std::filesystem;
 using namespace montecl;
 
@@ -168,3 +170,5 @@ TEST_CASE("util: temporary names fit NAME_MAX; checkWritableTarget refuses what 
   }
   CHECK(dir.entries() == std::vector<std::string>{longName});  // the probe leaves nothing
 }
+
+}  // namespace test_file_util

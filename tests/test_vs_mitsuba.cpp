@@ -16,6 +16,8 @@
 #include "cli_runner.h"
 #include "skip.h"
 
+namespace test_file_vs_mitsuba {  // keeps this file's helpers apart in a unity batch
+
 using montecl_test::CliResult;
 using montecl_test::runMontecl;
 using montecl_test::runProgram;
@@ -304,3 +306,5 @@ TEST_CASE("vs_mitsuba: FAIL (exit 1) when montecl's sun is half as wide and its 
   CHECK(r.exitCode == 1);
   CHECK(r.out.find("FAIL") != std::string::npos);
 }
+
+}  // namespace test_file_vs_mitsuba

@@ -18,6 +18,8 @@
 #include "scene/scene.h"
 #include "test_scenes.h"
 
+namespace test_file_wave_planner {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 
 namespace {
@@ -177,3 +179,5 @@ TEST_CASE("planned waves: progress after every wave of at most the cap, and the 
     }
   }
 }
+
+}  // namespace test_file_wave_planner

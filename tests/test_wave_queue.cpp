@@ -14,6 +14,8 @@
 #include "render/wavefront.h"
 #include "test_scenes.h"
 
+namespace test_file_wave_queue {  // keeps this file's helpers apart in a unity batch
+
 using namespace montecl;
 using namespace montecl_test;
 
@@ -122,3 +124,5 @@ TEST_CASE("wave queue: a render that throws with a wave queued leaves the render
   CHECK(again.mean == reference.mean);
   CHECK(again.count == reference.count);
 }
+
+}  // namespace test_file_wave_queue

@@ -13,5 +13,6 @@ void addBenchCommand(CLI::App& app, int& exitCode);     // cmd_bench.cpp
 void addGenerateCommand(CLI::App& app, int& exitCode);  // cmd_generate.cpp
 void addConformanceCommand(CLI::App& app, int& exitCode);  // cmd_conformance.cpp
 void addSettingsCommand(CLI::App& app, int& exitCode);     // cmd_settings.cpp
+void addKindsCommand(CLI::App& app, int& exitCode);        // cmd_kinds.cpp
 
 }  // namespace montecl

@@ -126,6 +126,24 @@ std::string exrOneLine(std::string message) {
 // clears an attribute's declared size first (a flipped byte made it take 2 GB and 2-3 s per
 // file; found by fuzzing, docs/fuzzing.md). in is at the start of a file of fileSize bytes that
 // has OpenEXR's magic number. "" when every attribute fits.
+// An attribute name as read from the file, fit for a one-line message: bytes outside printable
+// ASCII as \xNN (a corrupt name may hold a newline), at most 64 of them.
+std::string printableName(const std::string& name) {
+  static const char kHex[] = "0123456789abcdef";
+  std::string out;
+  for (std::size_t i = 0; i < name.size() && i < 64; ++i) {
+    const unsigned char c = static_cast<unsigned char>(name[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out.push_back(char(c));
+    } else {
+      out += "\\x";
+      out.push_back(kHex[c >> 4]);
+      out.push_back(kHex[c & 15]);
+    }
+  }
+  return name.size() > 64 ? out + "..." : out;
+}
+
 std::string exrHeaderProblem(std::istream& in, std::int64_t fileSize) {
   unsigned char start[8] = {0};
   if (!in.read(reinterpret_cast<char*>(start), 8)) return "corrupt EXR header: truncated";
@@ -157,7 +175,7 @@ std::string exrHeaderProblem(std::istream& in, std::int64_t fileSize) {
                                              std::uint32_t(sz[2]) << 16 | std::uint32_t(sz[3]) << 24);
       const std::int64_t pos = static_cast<std::int64_t>(in.tellg());
       if (size < 0 || pos < 0 || size > fileSize - pos)
-        return "corrupt EXR header: attribute '" + name + "' claims " + std::to_string(size) +
+        return "corrupt EXR header: attribute '" + printableName(name) + "' claims " + std::to_string(size) +
                " bytes, past the end of the file";
       in.seekg(size, std::ios::cur);
       ++attributes;

@@ -62,7 +62,7 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
   f.sunFirst = l.sunFirst;
   f.sunCount = l.sunCount;
   f.sampler = settings.sampler == Sampler::Sobol ? MCL_SAMPLER_SOBOL : MCL_SAMPLER_INDEPENDENT;
-  f.sobolSplits = settings.sampler == Sampler::Sobol ? std::uint32_t(std::max(1, settings.sobolSplits)) : 1u;
+  f.sobolSplits = std::uint32_t(sobolSplitsUsed(settings));
   return f;
 }
 

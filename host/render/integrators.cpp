@@ -71,8 +71,7 @@ WaveShape waveShapeFor(const Scene& scene, std::uint64_t items, bool aovs) {
   s.bounce = d.bounce;
   s.path = d.path;
   s.aovs = aovs;
-  if (scene.render.sampler == Sampler::Sobol && scene.render.sobolSplits > 1)
-    s.splits = std::uint64_t(scene.render.sobolSplits);
+  if (sobolSplitsUsed(scene.render) > 1) s.splits = std::uint64_t(sobolSplitsUsed(scene.render));
   return s;
 }
 

@@ -66,8 +66,9 @@ SettingRule backgroundRule() {
 // through its names).
 template <class T>
 RenderSetting row(const char* key, const char* option, const char* help, SettingRule rule, T RenderSettings::*m,
-                  unsigned integrators = kEveryIntegrator, bool provenance = true) {
-  RenderSetting s{key, option, help, std::move(rule), integrators, provenance, {}, {}};
+                  unsigned integrators = kEveryIntegrator, bool provenance = true,
+                  std::function<bool(const RenderSettings&)> applies = {}) {
+  RenderSetting s{key, option, help, std::move(rule), integrators, provenance, {}, {}, std::move(applies)};
   if constexpr (std::is_same_v<T, float>) {
     s.set = [m](RenderSettings& r, const SettingValue& v) { r.*m = std::get<float>(v); };
     s.get = [m](const RenderSettings& r) { return SettingValue(r.*m); };
@@ -87,7 +88,7 @@ RenderSetting row(const char* key, const char* option, const char* help, Setting
 template <class E>
 RenderSetting choiceRow(const char* key, const char* option, const char* help, const ChoiceNames<E>& names,
                         E RenderSettings::*m, unsigned integrators = kEveryIntegrator, bool provenance = true) {
-  RenderSetting s{key, option, help, choiceRule(names), integrators, provenance, {}, {}};
+  RenderSetting s{key, option, help, choiceRule(names), integrators, provenance, {}, {}, {}};
   s.set = [m, &names](RenderSettings& r, const SettingValue& v) { r.*m = names.at(std::get<std::string>(v)); };
   s.get = [m, &names](const RenderSettings& r) { return SettingValue(choiceName(names, r.*m)); };
   return s;
@@ -133,7 +134,8 @@ std::vector<RenderSetting> makeTable() {
           "With sobol: independently scrambled sub-sequences per pixel (sample s in s mod K); the error of the "
           "mean comes from the spread of their means (EXR layers split0.* ..., err.*); 1: one sequence, error "
           "figures from var.* (they overstate it)",
-          integerRule(1, 64, "an integer in [1, 64]"), &RenderSettings::sobolSplits),
+          integerRule(1, 64, "an integer in [1, 64]"), &RenderSettings::sobolSplits, kEveryIntegrator, true,
+          sobolSplitsApply),
       row("background", "", "Radiance of camera rays that hit nothing (without an environment)", backgroundRule(),
           &RenderSettings::background),
       // Denoising changes only the added denoised layers, never the estimate: not in the provenance,
@@ -287,8 +289,7 @@ std::string settingValueText(const SettingValue& v) { return valueText(v, 9); }
 std::string integratorSettings(const RenderSettings& r) {
   std::string out;
   for (const RenderSetting& s : renderSettings())
-    if (s.provenance && (s.integrators & integratorBit(r.integrator)) &&
-        (s.key != "sobol_splits" || r.sampler == Sampler::Sobol))  // used by sobol only
+    if (s.provenance && (s.integrators & integratorBit(r.integrator)) && (!s.applies || s.applies(r)))
       out += (out.empty() ? "" : " ") + s.key + "=" + settingValueText(s.get(r));
   return out;
 }

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <algorithm>
 #include <variant>
 #include <vector>
 
@@ -41,6 +42,12 @@ struct RenderSettings {
   MissingTextures missingTextures = MissingTextures::Error;  // what a texture file that cannot be opened does
 };
 
+// Whether render.sobol_splits applies (the sobol sampler only), and the sub-sequences a render
+// splits each pixel's samples into (sobol_splits under sobol, else 1): the one place of that rule,
+// asked by FrameParams, the wave shape and the provenance string.
+inline bool sobolSplitsApply(const RenderSettings& r) { return r.sampler == Sampler::Sobol; }
+inline int sobolSplitsUsed(const RenderSettings& r) { return sobolSplitsApply(r) ? std::max(1, r.sobolSplits) : 1; }
+
 // A setting's value: an integer, a number, a choice's name, a colour or a switch.
 using SettingValue = std::variant<long long, float, std::string, glm::vec3, bool>;
 
@@ -69,6 +76,9 @@ struct RenderSetting {
   bool provenance = true;
   std::function<void(RenderSettings&, const SettingValue&)> set;
   std::function<SettingValue(const RenderSettings&)> get;
+  // Whether the setting takes part in a render with these settings beyond its integrators (e.g.
+  // sobol_splits under the sobol sampler only); empty: always. The provenance string asks it.
+  std::function<bool(const RenderSettings&)> applies;
 };
 
 // Every setting, in the order the docs and the provenance string list them.

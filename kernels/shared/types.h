@@ -120,7 +120,7 @@ typedef struct MCL_ALIGN16 {
 
 // Constants of one render, read by every stage.
 typedef struct MCL_ALIGN16 {
-  float4 camOrigin;   // pinhole position
+  float4 camOrigin;   // camera position: the pinhole, or the centre of the thin lens
   float4 camTopLeft;  // direction (unnormalised) through the top-left corner of pixel (0, 0)
   float4 camDx;       // step of one pixel to the right
   float4 camDy;       // step of one pixel down
@@ -132,7 +132,7 @@ typedef struct MCL_ALIGN16 {
   uint shadowSlots;   // shadow contributions per sample (AO: 1; direct: lightSamples + 1)
   uint activeCount;   // entries of the active-pixel list the waves walk (all pixels unless adaptive)
   uint emitterCount;    // entries of the emitter table
-  uint lightSamples;    // direct lighting: light samples per camera sample
+  uint lightSamples;    // light samples per shading point (direct, and every path vertex's NEE)
   uint directSampling;  // MCL_DIRECT_LIGHT | MCL_DIRECT_BRDF | MCL_DIRECT_MIS
   float emitterPower;   // sum over emitters of area * luminance(Le): the light-selection normaliser
   int maxDepth;         // path integrator (Mitsuba's convention): -1 unlimited, 1 emitters seen, 2 direct
