@@ -54,7 +54,7 @@ double luminance(double r, double g, double b) { return 0.2126 * r + 0.7152 * g 
 
 }  // namespace
 
-TEST_CASE("pbrt cli: a malformed .pbrt file exits 2 with one line naming file:line:column" * doctest::test_suite("cli pbrt")) {
+TEST_CASE("pbrt cli: a malformed .pbrt file exits 2 with one line naming file:line:column" * doctest::test_suite("cli pbrt sanitize")) {
   TempDir dir;
   dir.write("bad.pbrt", "Camera \"perspective\"\nWorldBegin\n\nShape \"trianglemesh\" \"point3 P\" [ 0 0 0 1 0 ]\n");
   CliResult r = runMontecl({"render", dir.file("bad.pbrt"), "-q", "-o", dir.file("out.png")});
@@ -72,7 +72,7 @@ TEST_CASE("pbrt cli: a malformed .pbrt file exits 2 with one line naming file:li
   CHECK(r.err.find("noise.pbrt:1:") != std::string::npos);
 }
 
-TEST_CASE("cli: a file of a kind montecl does not read says which it reads, not 'malformed JSON'" * doctest::test_suite("cli pbrt")) {
+TEST_CASE("cli: a file of a kind montecl does not read says which it reads, not 'malformed JSON'" * doctest::test_suite("cli pbrt sanitize")) {
   TempDir dir;
   dir.write("x.stl", "solid x\nendsolid x\n");
   CliResult r = runMontecl({"render", dir.file("x.stl"), "-q", "-o", dir.file("out.png")});
@@ -90,7 +90,7 @@ TEST_CASE("cli: a file of a kind montecl does not read says which it reads, not 
   CHECK(r.err.find("missing required key") != std::string::npos);
 }
 
-TEST_CASE("pbrt cli: unsupported directives warn with file:line and the render goes on" * doctest::test_suite("cli pbrt")) {
+TEST_CASE("pbrt cli: unsupported directives warn with file:line and the render goes on" * doctest::test_suite("cli pbrt sanitize")) {
   TempDir dir;
   dir.write("s.pbrt",
             "Film \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 8 ]\n"
