@@ -10,7 +10,7 @@
 namespace montecl {
 namespace {
 
-constexpr char kMagic[8] = {'M', 'C', 'L', 'P', 'R', 'G', '0', '2'};
+constexpr char kCacheMagic[8] = {'M', 'C', 'L', 'P', 'R', 'G', '0', '2'};
 constexpr std::size_t kHeader = 32;
 
 std::uint64_t readU64(const std::vector<unsigned char>& data, std::size_t at) {
@@ -29,7 +29,7 @@ std::uint64_t checksum(const unsigned char* p, std::size_t n) {
 
 std::vector<unsigned char> encodeCacheEntry(std::uint64_t check, const std::vector<unsigned char>& bin) {
   std::vector<unsigned char> data(kHeader + bin.size());
-  std::memcpy(data.data(), kMagic, 8);
+  std::memcpy(data.data(), kCacheMagic, 8);
   putU64(data.data() + 8, check);
   putU64(data.data() + 16, bin.size());
   putU64(data.data() + 24, checksum(bin.data(), bin.size()));
@@ -39,7 +39,7 @@ std::vector<unsigned char> encodeCacheEntry(std::uint64_t check, const std::vect
 
 bool decodeCacheEntry(const std::vector<unsigned char>& data, std::uint64_t check,
                       std::vector<unsigned char>& bin) {
-  if (data.size() <= kHeader || std::memcmp(data.data(), kMagic, 8) != 0) return false;
+  if (data.size() <= kHeader || std::memcmp(data.data(), kCacheMagic, 8) != 0) return false;
   if (readU64(data, 8) != check || readU64(data, 16) != data.size() - kHeader) return false;
   if (readU64(data, 24) != checksum(data.data() + kHeader, data.size() - kHeader)) return false;
   bin.assign(data.begin() + kHeader, data.end());

@@ -17,7 +17,7 @@
 namespace montecl {
 namespace {
 
-constexpr char kMagic[8] = {'M', 'C', 'L', 'C', 'K', 'P', 'T', '1'};
+constexpr char kCheckpointMagic[8] = {'M', 'C', 'L', 'C', 'K', 'P', 'T', '1'};
 constexpr std::uint32_t kVersion = 1;
 
 struct Header {
@@ -77,7 +77,7 @@ CheckpointInfo checkpointInfo(const Scene& scene, const RenderOptions& options) 
 
 void writeCheckpoint(const std::string& path, const CheckpointInfo& info, const Film& film) {
   Header h{};
-  std::memcpy(h.magic, kMagic, 8);
+  std::memcpy(h.magic, kCheckpointMagic, 8);
   h.version = kVersion;
   h.headerBytes = sizeof(Header);
   h.key = info.key;
@@ -103,7 +103,7 @@ void writeCheckpoint(const std::string& path, const CheckpointInfo& info, const 
 bool isCheckpointFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   char magic[8] = {};
-  return in.read(magic, 8) && std::memcmp(magic, kMagic, 8) == 0;
+  return in.read(magic, 8) && std::memcmp(magic, kCheckpointMagic, 8) == 0;
 }
 
 Film readCheckpoint(const std::string& path, const CheckpointInfo& expected, int width, int height) {
@@ -119,7 +119,7 @@ Film readCheckpoint(const std::string& path, const CheckpointInfo& expected, int
   Header h{};
   if (std::uint64_t(st.st_size) < sizeof h || !in.read(reinterpret_cast<char*>(&h), sizeof h))
     throwInputError(path, "--resume", "not a montecl checkpoint (too short)");
-  if (std::memcmp(h.magic, kMagic, 8) != 0) throwInputError(path, "--resume", "not a montecl checkpoint");
+  if (std::memcmp(h.magic, kCheckpointMagic, 8) != 0) throwInputError(path, "--resume", "not a montecl checkpoint");
   if (h.version != kVersion || h.headerBytes != sizeof h)
     throwInputError(path, "--resume", "checkpoint version " + std::to_string(h.version) + ", expected " +
                                            std::to_string(kVersion));
