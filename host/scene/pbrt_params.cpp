@@ -128,7 +128,7 @@ double PbrtParams::getFloat(const std::string& name, double fallback) const {
 }
 int PbrtParams::getInt(const std::string& name, int fallback) const {
   const PbrtParam* p = paramOfType(*this, name, {"integer"});
-  if (p && std::abs(p->numbers[0]) > 2147483647.0) pbrtFail(p->loc, quoted(*p) + ": out of the integer range");
+  if (p && !(std::abs(p->numbers[0]) <= 2147483647.0)) pbrtFail(p->loc, quoted(*p) + ": out of the integer range");
   return p ? int(p->numbers[0]) : fallback;
 }
 bool PbrtParams::getBool(const std::string& name, bool fallback) const {

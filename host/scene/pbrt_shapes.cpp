@@ -47,7 +47,10 @@ std::vector<std::size_t> checkedIndices(const PbrtParams& p, const std::vector<d
   const PbrtParam* param = p.find("indices");
   for (double d : raw) {
     if (!(d >= 0.0 && d < double(nv)))
-      pbrtFail(param->loc, "'integer indices': index " + std::to_string(static_cast<long long>(d)) + " out of range (" + std::to_string(nv) + " points)");
+      // A huge or NaN index is printed as a double: converting it to an integer is undefined.
+      pbrtFail(param->loc, "'integer indices': index " +
+                               (std::fabs(d) < 1e15 ? std::to_string(static_cast<long long>(d)) : std::to_string(d)) +
+                               " out of range (" + std::to_string(nv) + " points)");
     idx.push_back(std::size_t(d));
   }
   if (idx.size() % std::size_t(group) != 0)
