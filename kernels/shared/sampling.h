@@ -30,7 +30,10 @@ MCL_INLINE float3 sample_cosine_hemisphere(float u1, float u2) {
   float z = sqrt(fmax(0.0f, 1.0f - u1));
   return make_float3(r * c, r * s, z);
 }
-MCL_INLINE float pdf_cosine_hemisphere(float cosTheta) { return fmax(cosTheta, 0.0f) * MCL_INV_PI; }
+// Written once for a float type F (float here; the packet stages' vfloat lanes, stage_lanes.h).
+#define MCL_DEFINE_PDF_COSINE_HEMISPHERE(name, F) \
+  MCL_INLINE F name(F cosTheta) { return fmax(cosTheta, (F)(0.0f)) * MCL_INV_PI; }
+MCL_DEFINE_PDF_COSINE_HEMISPHERE(pdf_cosine_hemisphere, float)
 
 // Uniform on the unit disk (Shirley and Chiu's concentric map): p = 1 / pi per unit area.
 MCL_INLINE float2 sample_concentric_disk(float u1, float u2) {

@@ -19,6 +19,7 @@
 // frame_* functions apply the rule, and reduce to the flat formulas exactly when smooth is 0, so
 // scenes without normals render bit-identically to before.
 #pragma once
+#include "lanes.h"  // vsel: a select for scalars and lanes alike
 #include "sampling.h"
 
 typedef struct {
@@ -46,24 +47,47 @@ MCL_INLINE float3 orient_to(float3 ns, float3 ng) { return dot(ns, ng) < 0.0f ? 
 // 1 when w leaves above the geometric surface (strictly).
 MCL_INLINE int above_surface(float3 ng, float3 w) { return dot(ng, w) > 0.0f; }
 
-// w mirrored across the plane of ng when it points below it; unchanged otherwise.
-MCL_INLINE float3 fold_above(float3 w, float3 ng) {
-  float d = dot(w, ng);
-  return d < 0.0f ? w - ng * (2.0f * d) : w;
-}
-
 // The Lambert cosine for direction wi: dot(ns, wi), zero below the geometric surface or below ns.
 MCL_INLINE float shading_cosine(float3 ns, float3 ng, float3 wi) {
   return above_surface(ng, wi) ? fmax(dot(ns, wi), 0.0f) : 0.0f;
 }
 
-// Solid-angle pdf of wi under cosine sampling around ns folded above ng: the lobe's density at wi
-// plus at wi's mirror image (which folding maps onto wi); zero below the geometric surface.
-MCL_INLINE float pdf_cosine_folded(float3 ns, float3 ng, float3 wi) {
-  if (!above_surface(ng, wi)) return 0.0f;
-  float3 mirror = wi - ng * (2.0f * dot(wi, ng));
-  return pdf_cosine_hemisphere(dot(ns, wi)) + pdf_cosine_hemisphere(dot(ns, mirror));
-}
+// The rule's folding and the Lambertian lobe around a frame, written once for a float type F, its
+// 3-vector F3 and mask M (float, float3, int here; the packet stages' vfloat, vfloat3, vmask in
+// stage_lanes.h) with that type's dot, difference, scaling, select and constructor, so each lane
+// does the scalar operations. For a flat frame ns is ng (surface_frame), so the smooth forms give
+// the flat ones.
+#define MCL_DEFINE_SHADING_RULE(P, F, F3, M, DOT, SUB, SCALE, SEL3, MAKE3, PDF)                        \
+  /* w mirrored across the plane of ng when it points below it; unchanged otherwise. */                \
+  MCL_INLINE F3 P##fold_above(F3 w, F3 ng) {                                                           \
+    F d = DOT(w, ng);                                                                                  \
+    return SEL3(d < 0.0f, SUB(w, SCALE(ng, 2.0f * d)), w);                                             \
+  }                                                                                                    \
+  /* Solid-angle pdf of wi under cosine sampling around ns folded above ng: the lobe's density at wi  \
+     plus at wi's mirror image (which folding maps onto wi); zero below the geometric surface. */      \
+  MCL_INLINE F P##pdf_cosine_folded(F3 ns, F3 ng, F3 wi) {                                             \
+    F3 mirror = SUB(wi, SCALE(ng, 2.0f * DOT(wi, ng)));                                                \
+    F r = PDF(DOT(ns, wi)) + PDF(DOT(ns, mirror));                                                     \
+    return vsel(DOT(ng, wi) > 0.0f, r, (F)(0.0f));                                                     \
+  }                                                                                                    \
+  /* A Lambertian lobe of albedo kd: f cos = kd cos(ns, wi) / pi, zero below ns and, where smooth,     \
+     below ng (diffuse_eval without a glossy lobe). */                                                 \
+  MCL_INLINE F3 P##lambert_eval(F3 kd, F3 ng, F3 ns, M smooth, F3 wi) {                                \
+    M above = (smooth == (M)(0)) | (DOT(ng, wi) > 0.0f);                                               \
+    F c = DOT(ns, wi);                                                                                 \
+    M lit = above & (c > 0.0f);                                                                        \
+    F cpi = c * MCL_INV_PI;                                                                            \
+    return MAKE3(vsel(lit, kd.x * cpi, (F)(0.0f)), vsel(lit, kd.y * cpi, (F)(0.0f)),                   \
+                 vsel(lit, kd.z * cpi, (F)(0.0f)));                                                    \
+  }                                                                                                    \
+  /* Its pdf (diffuse_pdf without a glossy lobe): folded where smooth. */                              \
+  MCL_INLINE F P##lambert_pdf(F3 ng, F3 ns, M smooth, F3 wi) {                                         \
+    return vsel(smooth, P##pdf_cosine_folded(ns, ng, wi), PDF(DOT(ns, wi)));                           \
+  }
+MCL_INLINE float3 mcl_sub3(float3 a, float3 b) { return a - b; }
+MCL_INLINE float3 mcl_scale3(float3 a, float s) { return a * s; }
+#define MCL_SEL3(m, t, f) ((m) ? (t) : (f))
+MCL_DEFINE_SHADING_RULE(, float, float3, int, dot, mcl_sub3, mcl_scale3, MCL_SEL3, make_float3, pdf_cosine_hemisphere)
 
 // --- the rule on a SurfaceFrame (smooth == 0: exactly the flat formulas) ---------------------
 

@@ -1,7 +1,7 @@
 // shade_direct_lanes.h: the packet form of shade_direct (shade_direct.h), the same bits per item:
 // W consecutive camera hits, one per lane. The packet takes the misses (the background, or the
 // environment through the scalar light_eval per lane) and every hit on the diffuse kind without a
-// glossy lobe, textured or not, flat or smooth (lambert_lanes.h: the frame and albedo per lane,
+// glossy lobe, textured or not, flat or smooth (stage_lanes.h: the frame and albedo per lane,
 // from the scalar surface_at where the hit is not flat and untextured): Le seen directly, the light
 // samples (the kind picked per lane; lanes that pick emitter triangles in lanes, the others
 // through the scalar sample_direct_light, v_sample_direct_light; one atomic per packet per light
@@ -12,7 +12,6 @@
 // of a partial last packet, runs the scalar body.
 #pragma once
 #include "shade_direct.h"
-#include "lambert_lanes.h"
 #include "light_area_lanes.h"
 #include "stage_lanes.h"
 
@@ -146,7 +145,7 @@ MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first)
       if (!v_any(push)) continue;
       vfloat weight = v_f(1.0f);
       if (useBrdf) {  // power_heuristic(nLight, pdf, 1, bsdf_pdf), none for a delta light
-        vfloat fw = nLight * pdf, gw = 1.0f * v_lambert_pdf(sf, wi);
+        vfloat fw = nLight * pdf, gw = 1.0f * v_lambert_pdf(sf.ng, sf.ns, sf.smooth, wi);
         weight = vsel(delta, weight, v_power_heuristic(fw, gw));
       }
       vmask lit = above & (cn > 0.0f);  // bsdf_f: Kd / pi above the surface

@@ -3,7 +3,7 @@
 // scattered by id), every lane in the packet. Misses: the background, or the environment through
 // the scalar path_miss per lane. Emission seen (MIS weighted after a BSDF bounce) for every hit.
 // Hits on the diffuse kind without a glossy lobe, textured or not, flat or smooth, in lanes
-// (lambert_lanes.h: the frame and albedo per lane, from the scalar surface_at where the hit is not
+// (stage_lanes.h: the frame and albedo per lane, from the scalar surface_at where the hit is not
 // flat and untextured): the next-event light samples (the kind picked per lane; lanes that pick
 // emitter triangles in lanes, the others through the scalar sample_direct_light, v_sample_direct_light;
 // one atomic per packet per light sample) and the cosine-lobe continuation with Russian roulette (one atomic per packet).
@@ -16,7 +16,6 @@
 // name their slot, path_gather adds slots in slot order, every random number comes from the
 // path's pixel and sample, and the path's state is indexed by its id).
 #pragma once
-#include "lambert_lanes.h"
 #include "light_area_lanes.h"
 #include "shade_path.h"
 #include "stage_lanes.h"
@@ -188,10 +187,10 @@ MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
       vfloat3 wi = ls.wi, lle = ls.le;
       vfloat pdf = ls.pdf, tmax = ls.tmax;
       vmask delta = ls.delta;
-      vfloat3 fcos = v_lambert_eval(sf, wi);  // bsdf_eval
+      vfloat3 fcos = v_lambert_eval(sf.kd, sf.ng, sf.ns, sf.smooth, wi);  // bsdf_eval
       vmask push = lamb & (pdf > 0.0f) & (v_max_component(fcos) > 0.0f);
       if (!v_any(push)) continue;
-      vfloat bsdfPdf = v_lambert_pdf(sf, wi);
+      vfloat bsdfPdf = v_lambert_pdf(sf.ng, sf.ns, sf.smooth, wi);
       vfloat fw = nLight * pdf, gw = 1.0f * bsdfPdf;
       vfloat weight = vsel(delta, v_f(1.0f), v_power_heuristic(fw, gw));
       vfloat3 contrib = v3_scale(v3_mul(v3_mul(beta, fcos), lle), weight / (pdf * nLight));
