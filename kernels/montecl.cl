@@ -1,7 +1,8 @@
 // montecl.cl: the one program holding every wavefront stage kernel, generated from the stage table
 // (shared/stage_table.h): kernel <stage>(frame, the table's arguments) packs its arguments into a
 // <stage>_args struct and runs the stage body (stages/<stage>.h) for work item get_global_id(0), or
-// a packet stage's body for the W items of its packet (-DMCL_LANES=W, shared/lanes.h).
+// a packet stage's body for the W items of its packet from item get_global_id(0) W (-DMCL_LANES=W,
+// shared/lanes.h).
 // Each body checks the item against its own count, so launches may round up to whole work-groups.
 #include "stages/stages.h"
 
@@ -47,7 +48,7 @@
 #define MCL_KERNEL_PARAM(type, name) , type name
 #define MCL_KERNEL_VALUE(type, name) , name
 #define MCL_STAGE_CALL_0(stage) stage_##stage(&a, (uint)get_global_id(0))
-#define MCL_STAGE_CALL_1(stage) stage_##stage##_lanes(&a, (uint)get_global_id(0) * MCL_LANES)
+#define MCL_STAGE_CALL_1(stage) stage_##stage(&a, (uint)get_global_id(0) * MCL_LANES)
 #define MCL_STAGE_KERNEL(stage)                                                                    \
   __kernel MCL_KERNEL_ATTRIBUTES MCL_KERNEL_ATTR_##stage void stage(                               \
       __constant FrameParams* frame MCL_ARGS_##stage(MCL_KERNEL_PARAM)) {                          \

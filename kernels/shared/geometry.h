@@ -1,6 +1,7 @@
 // geometry.h: pure ray-box and ray-triangle tests and the self-intersection offset, shared by the
 // kernels and the host (compiled as C++ by the tests and the reference traversal).
 #pragma once
+#include "lanes.h"  // vsel and the float3 operations under the lanes' names
 #include "types.h"
 
 // Min and max that ignore a NaN in their FIRST operand (the second is never NaN where they are
@@ -75,16 +76,22 @@ MCL_INLINE float3 safe_inverse(float3 d) {
 // and "small" are relative to `scale` (FrameParams::offsetScale: 1 for scenes of unit size or
 // larger, the power of two above the scene's largest coordinate for smaller ones), so a scene
 // scaled by a power of two gets offsets scaled by exactly that power: tiny scenes are valid scenes.
-MCL_INLINE float offset_coord(float p, float n, float scale) {
-  const float origin = 1.0f / 32.0f, floatScale = 1.0f / 65536.0f, intScale = 256.0f;
-  int of = (int)(intScale * n);
-  float pi = as_float((uint)((int)as_uint(p) + ((p < 0.0f) ? -of : of)));
-  return fabs(p) < origin * scale ? p + floatScale * scale * n : pi;
-}
-MCL_INLINE float3 offset_ray_origin(float3 p, float3 n, float scale) {
-  return make_float3(offset_coord(p.x, n.x, scale), offset_coord(p.y, n.y, scale),
-                     offset_coord(p.z, n.z, scale));
-}
+// Written once for a float type F, its int type I, 3-vector F3 and that vector's operations V
+// (float, int, float3, f3; the packet stages' lanes, stage_lanes.h), with C's float -> int
+// conversion CVT_I and the bit casts AS_F (uint -> F), AS_U (F -> uint), I_AS_U (I -> uint).
+#define MCL_DEFINE_OFFSET_RAY_ORIGIN(P, F, I, F3, V, CVT_I, AS_F, AS_U, I_AS_U)                 \
+  MCL_INLINE F P##offset_coord(F p, F n, float scale) {                                       \
+    const float origin = 1.0f / 32.0f, floatScale = 1.0f / 65536.0f, intScale = 256.0f;        \
+    I of = CVT_I(intScale * n);                                                                \
+    I step = vsel(p < 0.0f, -of, of);                                                          \
+    F pi = AS_F(AS_U(p) + I_AS_U(step));                                                       \
+    return vsel(fabs(p) < origin * scale, p + floatScale * scale * n, pi);                     \
+  }                                                                                            \
+  MCL_INLINE F3 P##offset_ray_origin(F3 p, F3 n, float scale) {                                \
+    return V##_make(P##offset_coord(p.x, n.x, scale), P##offset_coord(p.y, n.y, scale),        \
+                    P##offset_coord(p.z, n.z, scale));                                         \
+  }
+MCL_DEFINE_OFFSET_RAY_ORIGIN(, float, int, float3, f3, (int), as_float, as_uint, (uint))
 
 // cross(a, b) of a and b each divided by its largest absolute component: of order 1 for any
 // non-degenerate triangle's edges, however small (cross(e1, e2) of edges ~1e-15 underflows its

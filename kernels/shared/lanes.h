@@ -181,6 +181,16 @@ MCL_INLINE vfloat3 v3_normalize(vfloat3 v) { return v3_scale(v, 1.0f / sqrt(v3_d
 MCL_INLINE vfloat3 v3_select(vmask m, vfloat3 t, vfloat3 f) {
   return v3_make(vsel(m, t.x, f.x), vsel(m, t.y, f.y), vsel(m, t.z, f.z));
 }
+// The same operations on float3 under the same names with the prefix f3: a function written once
+// over a 3-vector prefix V (f3 for float3, v3 for the lanes' vfloat3) instantiates for both.
+MCL_INLINE float3 f3_make(float x, float y, float z) { return make_float3(x, y, z); }
+MCL_INLINE float3 f3_splat(float3 v) { return v; }
+MCL_INLINE float3 f3_add(float3 a, float3 b) { return a + b; }
+MCL_INLINE float3 f3_sub(float3 a, float3 b) { return a - b; }
+MCL_INLINE float3 f3_scale(float3 a, float s) { return a * s; }
+MCL_INLINE float f3_dot(float3 a, float3 b) { return dot(a, b); }
+MCL_INLINE float3 f3_neg(float3 a) { return -a; }
+MCL_INLINE float3 f3_select(int m, float3 t, float3 f) { return m ? t : f; }
 
 // --- loads and stores of W consecutive records -------------------------------------------------
 // v_load4(p, x, y, z, w): the float4s p[0 .. W) (p: floats, 4 per record, consecutive records),
@@ -393,6 +403,50 @@ MCL_INLINE void v_scatter4(MCL_GLOBAL float* p, vuint idx, uint stride, vfloat x
   v_store4_at(p, o, x, y, z, w);
 }
 #endif
+
+// The same for a packet of which only the first n lanes have records (n >= 1; the last packet of a
+// launch): v_load4_stride_n gives lane k record min(k, n - 1) (every read in bounds; the lanes
+// past n repeat the last record, and the caller masks them), v_store4_stride_n writes lanes k < n.
+// At W = 1, and for whole packets, v_load4_stride and v_store4_stride.
+MCL_INLINE void v_load4_stride_n(MCL_GLOBAL const float* p, uint stride, uint n, vfloat* x, vfloat* y, vfloat* z,
+                                 vfloat* w) {
+#if MCL_LANES > 1
+  if (n < MCL_LANES) {
+    v_gather4(p, min(v_lane_index(), v_u(n - 1u)), stride, x, y, z, w);
+    return;
+  }
+#endif
+  (void)n;
+  v_load4_stride(p, stride, x, y, z, w);
+}
+MCL_INLINE void v_store4_stride_n(MCL_GLOBAL float* p, uint stride, uint n, vfloat x, vfloat y, vfloat z, vfloat w) {
+#if MCL_LANES > 1
+  if (n < MCL_LANES) {
+    float ax[MCL_LANES] MCL_LANE_ALIGN, ay[MCL_LANES] MCL_LANE_ALIGN, az[MCL_LANES] MCL_LANE_ALIGN,
+        aw[MCL_LANES] MCL_LANE_ALIGN;
+    v_store_lanes(x, ax);
+    v_store_lanes(y, ay);
+    v_store_lanes(z, az);
+    v_store_lanes(w, aw);
+    for (uint k = 0; k < n; ++k) mcl_st4(((float4)(ax[k], ay[k], az[k], aw[k])), p + k * stride);
+    return;
+  }
+#endif
+  (void)n;
+  v_store4_stride(p, stride, x, y, z, w);
+}
+
+// v_load4 and v_store4 (consecutive float4 records) for a packet of n lanes, as above.
+MCL_INLINE void v_load4_n(MCL_GLOBAL const float* p, uint n, vfloat* x, vfloat* y, vfloat* z, vfloat* w) {
+  if (n < MCL_LANES) v_load4_stride_n(p, 4u, n, x, y, z, w);
+  else v_load4(p, x, y, z, w);
+}
+MCL_INLINE void v_store4_n(MCL_GLOBAL float* p, uint n, vfloat x, vfloat y, vfloat z, vfloat w) {
+  if (n < MCL_LANES) v_store4_stride_n(p, 4u, n, x, y, z, w);
+  else v_store4(p, x, y, z, w);
+}
+// The lanes of a packet from item `first` of `count` that have an item (at least one).
+MCL_INLINE uint v_packet_lanes(uint first, uint count) { return count - first < MCL_LANES ? count - first : MCL_LANES; }
 
 // Records of two float4s (a, b) at p[0 .. 2W) as float4s: the a parts into ax.., the b parts into
 // bx.. (whole vector loads, then even / odd lanes).

@@ -27,11 +27,11 @@
   STAGE(wave_direct)                                                                               \
   STAGE(wave_path)
 
-// Packet stages: MCL_PACKET_<stage> is 1 when the stage's OpenCL kernel runs MCL_LANES (W,
-// kernels/shared/lanes.h) consecutive items per work item through its packet body
-// stage_<stage>_lanes(a, first) (kernels/stages/<stage>_lanes.h; the host launches ceil(items / W)
-// work items), 0 when it runs one item per work item through stage_<stage>(a, item). The host
-// backend always runs the scalar bodies. Every stage of MCL_STAGES has its line.
+// Packet stages: MCL_PACKET_<stage> is 1 when the stage's body stage_<stage>(a, first) takes
+// MCL_LANES (W, kernels/shared/lanes.h) consecutive items from `first`, one per lane (the OpenCL
+// kernel passes first = get_global_id(0) W and the host launches ceil(items / W) work items; the
+// host backend, at W = 1, calls it per item), 0 when its body takes one item. Every stage of
+// MCL_STAGES has its line.
 #define MCL_PACKET_generate 1
 #define MCL_PACKET_intersect 1
 #define MCL_PACKET_shade_ao 1

@@ -47,7 +47,9 @@ MCL_INLINE SurfaceScene make_surface_scene(MCL_GLOBAL const Triangle* tris, MCL_
                      (a)->instances)
 
 // Unit normal n flipped to face the incoming direction.
-MCL_INLINE float3 orient_facing(float3 n, float3 incoming) { return dot(n, incoming) > 0.0f ? -n : n; }
+#define MCL_DEFINE_ORIENT_FACING(P, F3, V) \
+  MCL_INLINE F3 P##orient_facing(F3 n, F3 incoming) { return V##_select(V##_dot(n, incoming) > 0.0f, V##_neg(n), n); }
+MCL_DEFINE_ORIENT_FACING(, float3, f3)
 
 // Hit position from barycentrics (more accurate than org + t * dir).
 MCL_INLINE float3 hit_position(MCL_GLOBAL const Triangle* tri, Hit h) {

@@ -5,25 +5,28 @@
 // t is reduced to within 1/8 turn of the nearest quarter turn, then Taylor polynomials (error
 // < 3e-8 on [-pi/4, pi/4]). Pure; compiled by the kernels and by the host tests.
 #pragma once
-#include "compat.h"
+#include "lanes.h"  // vsel: a select for scalars and lanes alike
 
-// (sin x, cos x) for x in [-pi/4, pi/4] by Taylor polynomials, written out so that every device
-// rounds the same operations (error below 3e-8).
-MCL_INLINE float2 mcl_sincos_poly(float x) {
-  float x2 = x * x;
-  float sn = x * (1.0f + x2 * (-1.6666667e-1f + x2 * (8.3333333e-3f + x2 * (-1.9841270e-4f + x2 * 2.7557319e-6f))));
-  float cs = 1.0f + x2 * (-0.5f + x2 * (4.1666667e-2f + x2 * (-1.3888889e-3f + x2 * (2.4801587e-5f + x2 * -2.7557319e-7f))));
-  return make_float2(sn, cs);
-}
-
-MCL_INLINE void mcl_sincos_turns(float t, float* s, float* c) {
-  float q = floor(t * 4.0f + 0.5f);
-  float2 p = mcl_sincos_poly((t - q * 0.25f) * 6.28318530717958647692f);  // in [-pi/4, pi/4]
-  float sn = p.x, cs = p.y;
-  int k = ((int)q) & 3;
-  *s = k == 0 ? sn : k == 1 ? cs : k == 2 ? -sn : -cs;
-  *c = k == 0 ? cs : k == 1 ? -sn : k == 2 ? -cs : sn;
-}
+// Written once for a float type F, its int type I and C's float -> int conversion CVT_I (float, int
+// here; the packet stages' vfloat, vint, v_cvt_i_f in stage_lanes.h), so each lane rounds the
+// scalar function's operations (vsel: the select of shared/lanes.h).
+// sincos_poly: (sin x, cos x) for x in [-pi/4, pi/4] by Taylor polynomials, written out so that
+// every device rounds the same operations (error below 3e-8). sincos_turns: of 2 pi t.
+#define MCL_DEFINE_SINCOS(P, F, I, CVT_I)                                                                   \
+  MCL_INLINE void P##sincos_poly(F x, F* sn, F* cs) {                                                       \
+    F x2 = x * x;                                                                                           \
+    *sn = x * (1.0f + x2 * (-1.6666667e-1f + x2 * (8.3333333e-3f + x2 * (-1.9841270e-4f + x2 * 2.7557319e-6f)))); \
+    *cs = 1.0f + x2 * (-0.5f + x2 * (4.1666667e-2f + x2 * (-1.3888889e-3f + x2 * (2.4801587e-5f + x2 * -2.7557319e-7f)))); \
+  }                                                                                                         \
+  MCL_INLINE void P##sincos_turns(F t, F* s, F* c) {                                                        \
+    F q = floor(t * 4.0f + 0.5f);                                                                           \
+    F sn, cs;                                                                                               \
+    P##sincos_poly((t - q * 0.25f) * 6.28318530717958647692f, &sn, &cs); /* in [-pi/4, pi/4] */             \
+    I k = CVT_I(q) & 3;                                                                                     \
+    *s = vsel(k == 0, sn, vsel(k == 1, cs, vsel(k == 2, -sn, -cs)));                                        \
+    *c = vsel(k == 0, cs, vsel(k == 1, -sn, vsel(k == 2, -cs, sn)));                                        \
+  }
+MCL_DEFINE_SINCOS(mcl_, float, int, (int))
 
 // acos(x) for x in [-1, 1] from a polynomial and one sqrt (Abramowitz and Stegun 4.4.46, error
 // below 2e-8 rad on [0, 1]; acos(-x) = pi - acos(x)), so every device gets the same bits (the

@@ -17,7 +17,7 @@
 #include "../shared/ffloat.h"
 #include "stage_common.h"
 
-MCL_INLINE void stage_accumulate(const accumulate_args* a, uint j) {
+MCL_INLINE void accumulate_item(const accumulate_args* a, uint j) {
   MCL_CONSTANT const FrameParams* f = a->frame;
   const uint shift = f->sampleBlockShift, ac = f->activeCount;
   if (j >= wave_touched_pixels(a->waveStart, a->waveCount, shift, ac)) return;

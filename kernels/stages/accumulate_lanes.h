@@ -77,7 +77,7 @@ MCL_INLINE void v_item_values(const accumulate_args* a, uint slots, uint i0, uin
   }
 }
 
-MCL_INLINE void stage_accumulate_lanes(const accumulate_args* a, uint j0) {
+MCL_INLINE void stage_accumulate(const accumulate_args* a, uint j0) {
   MCL_CONSTANT const FrameParams* f = a->frame;
   const uint ac = f->activeCount, count = a->waveCount, shift = f->sampleBlockShift;
   const uint limit = wave_touched_pixels(a->waveStart, count, shift, ac);
@@ -94,7 +94,7 @@ MCL_INLINE void stage_accumulate_lanes(const accumulate_args* a, uint j0) {
   const uint splits = f->sampler == MCL_SAMPLER_SOBOL ? f->sobolSplits : 1u;
   if (v_packet_partial(j0, limit) || (splits > 1u && !(blocks && block % splits == 0u)) ||
       (shift != 0u && !blocks)) {
-    for (uint k = 0; k < MCL_LANES; ++k) stage_accumulate(a, j0 + k);
+    for (uint k = 0; k < MCL_LANES; ++k) accumulate_item(a, j0 + k);
     return;
   }
   vuint pixel;

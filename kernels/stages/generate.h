@@ -1,20 +1,28 @@
-// generate: reads the frame's camera and the active-pixel list; writes the camera ray of each wave
-// item to rays[0 .. waveCount) (pinhole, or thin lens with the aperture point from MCL_DIM_LENS).
+// generate: reads the frame's camera and the active-pixel list; writes the camera rays of wave items
+// first .. first + W - 1, one per lane (W = MCL_LANES: 1 on the host backend and GPUs), to rays[]
+// below waveCount: pinhole, or thin lens with the aperture point from MCL_DIM_LENS (camera.h's
+// operations per lane). Lanes past the wave compute some item's ray and store nothing.
 #pragma once
-#include "stage_common.h"
+#include "stage_lanes.h"
 
-MCL_INLINE void stage_generate(const generate_args* a, uint i) {
-  if (i >= a->waveCount) return;
+MCL_INLINE void stage_generate(const generate_args* a, uint first) {
+  if (first >= a->waveCount) return;
   MCL_CONSTANT const FrameParams* f = a->frame;
-  uint pixel = item_pixel(f, a->active, a->waveStart, i);
-  uint sample = item_sample(f, a->waveStart, i);
-  float4 u = sample_uniform4(f, pixel, sample, MCL_DIM_CAMERA);
-  float px = (float)(pixel % f->width) + u.x;
-  float py = (float)(pixel / f->width) + u.y;
+  vuint pixel, sample;
+  v_item_pixel_sample(f, a->active, a->waveStart, first, &pixel, &sample);
+  vfloat4 u = v_sample_uniform4(f, pixel, sample, MCL_DIM_CAMERA);
+  vuint row, column;
+  v_divmod(pixel, f->width, &row, &column);
+  vfloat px = v_cvt_f_u(column) + u.x;
+  vfloat py = v_cvt_f_u(row) + u.y;
+  vfloat3 origin = v3_splat(xyz(f->camOrigin)), d = v_camera_direction(f, px, py);
   if (f->lensRadius > 0.0f) {
-    float4 l = sample_uniform4(f, pixel, sample, MCL_DIM_LENS);
-    a->rays[i] = camera_ray_lens(f, px, py, l.x, l.y);
-  } else {
-    a->rays[i] = camera_ray(f, px, py);
+    vfloat4 l = v_sample_uniform4(f, pixel, sample, MCL_DIM_LENS);
+    v_camera_lens(f, l.x, l.y, &origin, &d);
   }
+  vfloat3 n = v3_normalize(d);
+  const uint lanes = v_packet_lanes(first, a->waveCount);
+  MCL_GLOBAL float* r = (MCL_GLOBAL float*)(a->rays + first);
+  v_store4_stride_n(r, 8, lanes, origin.x, origin.y, origin.z, v_f(0.0f));
+  v_store4_stride_n(r + 4, 8, lanes, n.x, n.y, n.z, v_f(INFINITY));
 }

@@ -7,7 +7,7 @@
 #pragma once
 #include "stage_common.h"
 
-MCL_INLINE void stage_intersect(const intersect_args* a, uint i) {
+MCL_INLINE void intersect_item(const intersect_args* a, uint i) {
   if (i >= *a->rayCount) return;
   Ray r = a->rays[i];
   if (!ray_is_finite(xyz(r.origin), xyz(r.dir))) MCL_ATOMIC_INC(a->nanRays);

@@ -12,7 +12,7 @@
 #if MCL_LANES > 1 && !defined(MCL_BVH_BINARY)
 // Items first .. first + n - 1 (all below *rayCount) through the single-ray traversal, two rays at
 // a time interleaved (wide_closest_hit2) where no instances are placed; the same hits as
-// stage_intersect per item.
+// intersect_item per item.
 MCL_INLINE void intersect_each(const intersect_args* a, uint first, uint n) {
   uint k = 0;
   if (a->frame->instanceCount == 0u) {
@@ -29,14 +29,14 @@ MCL_INLINE void intersect_each(const intersect_args* a, uint first, uint n) {
       a->hits[first + k + 1u] = h1;
     }
   }
-  for (; k < n; ++k) stage_intersect(a, first + k);
+  for (; k < n; ++k) intersect_item(a, first + k);
 }
 #endif
 
-MCL_INLINE void stage_intersect_lanes(const intersect_args* a, uint first) {
+MCL_INLINE void stage_intersect(const intersect_args* a, uint first) {
 #if MCL_LANES == 1 || defined(MCL_BVH_BINARY) || defined(MCL_INTERSECT_SCALAR)
   // MCL_INTERSECT_SCALAR: every item through the scalar traversal (for measurements).
-  for (uint k = 0; k < MCL_LANES; ++k) stage_intersect(a, first + k);
+  for (uint k = 0; k < MCL_LANES; ++k) intersect_item(a, first + k);
 #else
   uint count = *a->rayCount;
   if (first >= count) return;

@@ -6,7 +6,7 @@
 #pragma once
 #include "stage_common.h"
 
-MCL_INLINE void stage_intersect_shadow(const intersect_shadow_args* a, uint k) {
+MCL_INLINE void intersect_shadow_item(const intersect_shadow_args* a, uint k) {
   if (k >= *a->queueCount) return;
   ShadowWork w = a->queue[k];
   if (!ray_is_finite(xyz(w.ray.origin), xyz(w.ray.dir))) {

@@ -12,7 +12,7 @@
 #if MCL_LANES > 1 && !defined(MCL_BVH_BINARY)
 // Queries first .. first + n - 1 (all below *queueCount) through the single-ray any-hit, two at a
 // time interleaved (wide_any_hit2) where no instances are placed; the same contributions as
-// stage_intersect_shadow per query.
+// intersect_shadow_item per query.
 MCL_INLINE void intersect_shadow_each(const intersect_shadow_args* a, uint first, uint n) {
   uint k = 0;
   if (a->frame->instanceCount == 0u) {
@@ -27,18 +27,18 @@ MCL_INLINE void intersect_shadow_each(const intersect_shadow_args* a, uint first
       int blocked0, blocked1;
       wide_any_hit2(a->nodes, a->tris, alpha, xyz(w0.ray.origin), xyz(w0.ray.dir), w0.ray.dir.w,
                     xyz(w1.ray.origin), xyz(w1.ray.dir), w1.ray.dir.w, &blocked0, &blocked1);
-      // A non-finite query is blocked (stage_intersect_shadow), though no traversal finds a hit.
+      // A non-finite query is blocked (intersect_shadow_item), though no traversal finds a hit.
       if (finite0 && !blocked0) a->shadowContrib[w0.slot] = make_float4(w0.r, w0.g, w0.b, 0.0f);
       if (finite1 && !blocked1) a->shadowContrib[w1.slot] = make_float4(w1.r, w1.g, w1.b, 0.0f);
     }
   }
-  for (; k < n; ++k) stage_intersect_shadow(a, first + k);
+  for (; k < n; ++k) intersect_shadow_item(a, first + k);
 }
 #endif
 
-MCL_INLINE void stage_intersect_shadow_lanes(const intersect_shadow_args* a, uint first) {
+MCL_INLINE void stage_intersect_shadow(const intersect_shadow_args* a, uint first) {
 #if MCL_LANES == 1 || defined(MCL_BVH_BINARY)
-  for (uint k = 0; k < MCL_LANES; ++k) stage_intersect_shadow(a, first + k);
+  for (uint k = 0; k < MCL_LANES; ++k) intersect_shadow_item(a, first + k);
 #else
   uint count = *a->queueCount;
   if (first >= count) return;

@@ -10,7 +10,7 @@
 #pragma once
 #include "stage_common.h"
 
-MCL_INLINE void stage_record_aov(const record_aov_args* a, uint i) {
+MCL_INLINE void record_aov_item(const record_aov_args* a, uint i) {
   if (i >= a->waveCount) return;
   Hit h = a->hits[i];
   a->aov[MCL_AOV_VECTORS * i + 2] = with_w(xyz(a->radiance[i]), 0.0f);

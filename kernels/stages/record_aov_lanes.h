@@ -8,10 +8,10 @@
 #include "record_aov.h"
 #include "stage_lanes.h"
 
-MCL_INLINE void stage_record_aov_lanes(const record_aov_args* a, uint first) {
+MCL_INLINE void stage_record_aov(const record_aov_args* a, uint first) {
   if (first >= a->waveCount) return;
   if (v_packet_partial(first, a->waveCount) || a->frame->instanceCount > 0u) {
-    for (uint k = 0; k < MCL_LANES && first + k < a->waveCount; ++k) stage_record_aov(a, first + k);
+    for (uint k = 0; k < MCL_LANES && first + k < a->waveCount; ++k) record_aov_item(a, first + k);
     return;
   }
   vfloat ht, htri, hu, hv;
@@ -50,6 +50,6 @@ MCL_INLINE void stage_record_aov_lanes(const record_aov_args* a, uint first) {
     uint s[MCL_LANES] MCL_LANE_ALIGN;
     v_store_lanes(v_mask01(scalar), s);
     for (uint k = 0; k < MCL_LANES; ++k)
-      if (s[k]) stage_record_aov(a, first + k);
+      if (s[k]) record_aov_item(a, first + k);
   }
 }

@@ -62,7 +62,7 @@ MCL_INLINE int direct_takes_light_samples(MCL_CONSTANT const FrameParams* f, Sur
          !bsdf_is_delta(surf.bsdf);
 }
 
-MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint i) {
+MCL_INLINE void shade_direct_item(const shade_direct_args* a, uint i) {
   if (i >= a->waveCount) return;
   MCL_CONSTANT const FrameParams* f = a->frame;
   Hit h = a->hits[i];

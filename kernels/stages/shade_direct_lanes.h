@@ -15,11 +15,11 @@
 #include "light_area_lanes.h"
 #include "stage_lanes.h"
 
-MCL_INLINE void stage_shade_direct_lanes(const shade_direct_args* a, uint first) {
+MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
   if (first >= a->waveCount) return;
   MCL_CONSTANT const FrameParams* f = a->frame;
   if (v_packet_partial(first, a->waveCount) || f->emissionTextured) {
-    for (uint k = 0; k < MCL_LANES && first + k < a->waveCount; ++k) stage_shade_direct(a, first + k);
+    for (uint k = 0; k < MCL_LANES && first + k < a->waveCount; ++k) shade_direct_item(a, first + k);
     return;
   }
   vfloat ht, htri, hu, hv;

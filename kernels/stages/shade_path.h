@@ -93,7 +93,7 @@ MCL_INLINE int path_takes_light_samples(MCL_CONSTANT const FrameParams* f, Surfa
   return (f->emitterCount > 0 || env_present(f) || f->lightCount > 0) && !bsdf_is_delta(surf.bsdf);
 }
 
-MCL_INLINE void stage_shade_path(const shade_path_args* a, uint k) {
+MCL_INLINE void shade_path_item(const shade_path_args* a, uint k) {
   if (k >= *a->rayCount) return;
   MCL_CONSTANT const FrameParams* f = a->frame;
   uint bounce = a->pathBounce;

@@ -22,14 +22,14 @@
 
 MCL_INLINE vfloat v_max_component(vfloat3 c) { return fmax(c.x, fmax(c.y, c.z)); }
 
-MCL_INLINE void stage_shade_path_lanes(const shade_path_args* a, uint first) {
+MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
   const uint count = *a->rayCount;
   if (first >= count) return;
   MCL_CONSTANT const FrameParams* f = a->frame;
   const uint bounce = a->pathBounce;
   const uint slots = f->shadowSlots;
   if (v_packet_partial(first, count) || f->emissionTextured) {
-    for (uint k = 0; k < MCL_LANES && first + k < count; ++k) stage_shade_path(a, first + k);
+    for (uint k = 0; k < MCL_LANES && first + k < count; ++k) shade_path_item(a, first + k);
     return;
   }
   LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf,

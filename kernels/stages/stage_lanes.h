@@ -107,64 +107,13 @@ MCL_DEFINE_SOBOL_UNIFORM4(v_sobol_uniform4, vuint, vfloat4, vRngOut, v_sobol_owe
 MCL_DEFINE_SAMPLE_UNIFORM4(v_sample_uniform4, vuint, vfloat4, v_sobol_uniform4, v_rng_uniform4)
 
 // --- trig.h, sampling.h ------------------------------------------------------------------------
-MCL_INLINE void v_sincos_poly(vfloat x, vfloat* sn, vfloat* cs) {
-  vfloat x2 = x * x;
-  *sn = x * (1.0f + x2 * (-1.6666667e-1f + x2 * (8.3333333e-3f + x2 * (-1.9841270e-4f + x2 * 2.7557319e-6f))));
-  *cs = 1.0f + x2 * (-0.5f + x2 * (4.1666667e-2f + x2 * (-1.3888889e-3f + x2 * (2.4801587e-5f + x2 * -2.7557319e-7f))));
-}
+MCL_DEFINE_SINCOS(v_, vfloat, vint, v_cvt_i_f)
+MCL_DEFINE_WARPS(v_, v_, vfloat, vfloat3, v3)
+MCL_DEFINE_CAMERA(v_, vfloat, vfloat3, v3)
 
-MCL_INLINE void v_sincos_turns(vfloat t, vfloat* s, vfloat* c) {
-  vfloat q = floor(t * 4.0f + 0.5f);
-  vfloat sn, cs;
-  v_sincos_poly((t - q * 0.25f) * 6.28318530717958647692f, &sn, &cs);
-  vint k = v_cvt_i_f(q) & 3;
-  vmask k0 = k == 0, k1 = k == 1, k2 = k == 2;
-  *s = vsel(k0, sn, vsel(k1, cs, vsel(k2, -sn, -cs)));
-  *c = vsel(k0, cs, vsel(k1, -sn, vsel(k2, -cs, sn)));
-}
-
-MCL_INLINE vfloat3 v_sample_uniform_hemisphere(vfloat u1, vfloat u2) {
-  vfloat z = u1;
-  vfloat r = sqrt(fmax(v_f(0.0f), 1.0f - z * z));
-  vfloat s, c;
-  v_sincos_turns(u2, &s, &c);
-  return v3_make(r * c, r * s, z);
-}
-
-MCL_INLINE vfloat3 v_sample_cosine_hemisphere(vfloat u1, vfloat u2) {
-  vfloat r = sqrt(u1);
-  vfloat s, c;
-  v_sincos_turns(u2, &s, &c);
-  vfloat z = sqrt(fmax(v_f(0.0f), 1.0f - u1));
-  return v3_make(r * c, r * s, z);
-}
-
-// make_basis and to_world (Duff et al.), term by term as in sampling.h.
-MCL_INLINE vfloat3 v_to_world(vfloat3 d, vfloat3 n) {
-  vfloat s = copysign(v_f(1.0f), n.z);
-  vfloat a = -1.0f / (s + n.z);
-  vfloat c = n.x * n.y * a;
-  vfloat3 t = v3_make(1.0f + s * n.x * n.x * a, s * c, -s * n.x);
-  vfloat3 b = v3_make(c, s + n.y * n.y * a, -n.y);
-  return v3_add(v3_add(v3_scale(t, d.x), v3_scale(b, d.y)), v3_scale(n, d.z));
-}
-
-// --- geometry.h, stage_common.h ---------------------------------------------------------------
-MCL_INLINE vfloat v_offset_coord(vfloat p, vfloat n, float scale) {
-  const float origin = 1.0f / 32.0f, floatScale = 1.0f / 65536.0f, intScale = 256.0f;
-  vint of = v_cvt_i_f(intScale * n);
-  vint step = vsel(p < 0.0f, -of, of);
-  vfloat pi = v_as_float(v_as_uint(p) + v_int_as_uint(step));
-  return vsel(fabs(p) < origin * scale, p + floatScale * scale * n, pi);
-}
-MCL_INLINE vfloat3 v_offset_ray_origin(vfloat3 p, vfloat3 n, float scale) {
-  return v3_make(v_offset_coord(p.x, n.x, scale), v_offset_coord(p.y, n.y, scale), v_offset_coord(p.z, n.z, scale));
-}
-
-// orient_facing: n flipped to face the incoming direction.
-MCL_INLINE vfloat3 v_orient_facing(vfloat3 n, vfloat3 incoming) {
-  return v3_select(v3_dot(n, incoming) > 0.0f, v3_neg(n), n);
-}
+// --- geometry.h, surface.h -------------------------------------------------------------------
+MCL_DEFINE_OFFSET_RAY_ORIGIN(v_, vfloat, vint, vfloat3, v3, v_cvt_i_f, v_as_float, v_as_uint, v_int_as_uint)
+MCL_DEFINE_ORIENT_FACING(v_, vfloat3, v3)
 
 // Pushes the occlusion queries of the lanes set in m (push_shadow_query), with one atomic per
 // packet: the packet takes count(m) consecutive queue entries and its set lanes fill them in lane
@@ -208,7 +157,6 @@ MCL_INLINE void v_push_shadow_queries(MCL_GLOBAL ShadowWork* queue, MCL_GLOBAL v
 // Each lane's shading frame and albedo: from the triangle alone for flat untextured world-space
 // hits, else from the scalar surface_at (textures, vertex colours, shading normals, normal and bump
 // maps, instances are the scalar code's). The lobe itself is shading.h's, instantiated for lanes.
-MCL_DEFINE_PDF_COSINE_HEMISPHERE(v_pdf_cosine_hemisphere, vfloat)
 MCL_DEFINE_SHADING_RULE(v_, vfloat, vfloat3, vmask, v3_dot, v3_sub, v3_scale, v3_select, v3_make, v_pdf_cosine_hemisphere)
 
 // The shading frame of W hits (SurfaceFrame per lane) and their Lambertian albedo Kd.
@@ -289,6 +237,63 @@ MCL_INLINE void lane_surfaces(SurfaceScene sc, MCL_CONSTANT const FrameParams* f
                           sample_ref(px[j], sm[j], bounce));
     origins[j] = offset_ray_origin(surfs[j].frame.p, surfs[j].frame.ng, f->offsetScale);
   }
+}
+
+// The shading frames (surface_frame_in: no textures or maps) of W hits, `hit` the lanes with one:
+// flat world-space hits from their triangle in lanes (vertex v0, edges e1, e2 at barycentrics hu, hv,
+// unit normal, facing dir); hits on triangles with corner normals, and every hit of a scene with
+// instances, through the scalar surface_frame_in per lane. kd is left 0.
+MCL_INLINE LaneFrame lane_surface_frame(MCL_GLOBAL const Triangle* tris, MCL_GLOBAL const float4* normals,
+                                        MCL_GLOBAL const TriangleShading* shading,
+                                        MCL_GLOBAL const Instance* instances, MCL_CONSTANT const FrameParams* f,
+                                        MCL_GLOBAL const Hit* hits, MCL_GLOBAL const uint* hitInstances,
+                                        uint first, vmask hit, vuint tri, vfloat hu, vfloat hv, vfloat3 dir) {
+  vuint t = vsel(hit, tri, v_u(0u));  // misses read triangle 0 and are masked off
+  MCL_GLOBAL const float* tf = (MCL_GLOBAL const float*)tris;
+  vfloat v0x, v0y, v0z, v0w, e1x, e1y, e1z, e1w, e2x, e2y, e2z, e2w, nx, ny, nz, nw;
+  v_gather4(tf, t, 12, &v0x, &v0y, &v0z, &v0w);
+  v_gather4(tf + 4, t, 12, &e1x, &e1y, &e1z, &e1w);
+  v_gather4(tf + 8, t, 12, &e2x, &e2y, &e2z, &e2w);
+  v_gather4((MCL_GLOBAL const float*)normals, t, 4, &nx, &ny, &nz, &nw);
+  LaneFrame lf;
+  lf.p = v3_add(v3_add(v3_make(v0x, v0y, v0z), v3_scale(v3_make(e1x, e1y, e1z), hu)), v3_scale(v3_make(e2x, e2y, e2z), hv));
+  lf.ng = v_orient_facing(v3_make(nx, ny, nz), dir);
+  lf.ns = lf.ng;
+  lf.kd = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f));
+  lf.smooth = hit & v_not(hit);  // none
+  vmask rich = hit & (f->instanceCount > 0u ? hit : (v_as_uint(e2w) & MCL_ATTR_NORMALS) != 0u);
+  if (!v_any(rich)) return lf;
+  uint set[MCL_LANES] MCL_LANE_ALIGN, smo[MCL_LANES] MCL_LANE_ALIGN;
+  float pX[MCL_LANES] MCL_LANE_ALIGN, pY[MCL_LANES] MCL_LANE_ALIGN, pZ[MCL_LANES] MCL_LANE_ALIGN;
+  float gX[MCL_LANES] MCL_LANE_ALIGN, gY[MCL_LANES] MCL_LANE_ALIGN, gZ[MCL_LANES] MCL_LANE_ALIGN;
+  float sX[MCL_LANES] MCL_LANE_ALIGN, sY[MCL_LANES] MCL_LANE_ALIGN, sZ[MCL_LANES] MCL_LANE_ALIGN;
+  float dX[MCL_LANES] MCL_LANE_ALIGN, dY[MCL_LANES] MCL_LANE_ALIGN, dZ[MCL_LANES] MCL_LANE_ALIGN;
+  v_store_lanes(v_mask01(rich), set);
+  v_store_lanes(v_u(0u), smo);
+  v3_store_lanes(lf.p, pX, pY, pZ);
+  v3_store_lanes(lf.ng, gX, gY, gZ);
+  v3_store_lanes(lf.ns, sX, sY, sZ);
+  v3_store_lanes(dir, dX, dY, dZ);
+  for (uint j = 0; j < MCL_LANES; ++j) {
+    if (!set[j]) continue;
+    SurfaceFrame sf = surface_frame_in(tris, normals, shading, instances, hits[first + j],
+                                       hit_instance(f, hitInstances, first + j), make_float3(dX[j], dY[j], dZ[j]));
+    pX[j] = sf.p.x; pY[j] = sf.p.y; pZ[j] = sf.p.z;
+    gX[j] = sf.ng.x; gY[j] = sf.ng.y; gZ[j] = sf.ng.z;
+    sX[j] = sf.ns.x; sY[j] = sf.ns.y; sZ[j] = sf.ns.z;
+    smo[j] = sf.smooth != 0;
+  }
+  lf.p = v3_load_lanes(pX, pY, pZ);
+  lf.ng = v3_load_lanes(gX, gY, gZ);
+  lf.ns = v3_load_lanes(sX, sY, sZ);
+  lf.smooth = v_loadu_lanes(smo) != 0u;
+  return lf;
+}
+
+// frame_sample_direction (shading.h) per lane: dirLocal around ns, folded above ng where smooth.
+MCL_INLINE vfloat3 lane_frame_sample_direction(LaneFrame s, vfloat3 dirLocal) {
+  vfloat3 w = v_to_world(dirLocal, s.ns);
+  return v_any(s.smooth) ? v3_select(s.smooth, v_fold_above(w, s.ng), w) : w;
 }
 
 // diffuse_sample (specProb 0) from u1, u2: the direction (folded above ng where smooth), its pdf

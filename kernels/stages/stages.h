@@ -14,8 +14,6 @@
 #include "shade_path.h"
 #include "path_gather.h"
 // The packet bodies of the stages marked MCL_PACKET_<stage> 1 in the stage table.
-#include "generate_lanes.h"
-#include "shade_ao_lanes.h"
 #include "shade_direct_lanes.h"
 #include "accumulate_lanes.h"
 #include "shade_path_lanes.h"

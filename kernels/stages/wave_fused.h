@@ -19,15 +19,11 @@
 #define MCL_FUSED_FIELD_CAST(type, name) , (type)(a->name)
 #define MCL_FUSED_ARGS_CAST(stage) {a->frame MCL_ARGS_##stage(MCL_FUSED_FIELD_CAST)}
 
-// Runs a stage body over the W items of the packet at `first`: the packet body for a packet stage
-// in an OpenCL program built with lanes, else the scalar body per item (each bounds its items).
+// Runs a stage body over the W items of the packet at `first`: a packet stage's body takes them
+// all, the others' one item each.
 #define MCL_FUSED_RUN_0(stage, args, first) \
   for (uint fk = 0; fk < MCL_LANES; ++fk) stage_##stage(&(args), (first) + fk)
-#ifdef MCL_OPENCL
-#define MCL_FUSED_RUN_1(stage, args, first) stage_##stage##_lanes(&(args), (first))
-#else
-#define MCL_FUSED_RUN_1 MCL_FUSED_RUN_0
-#endif
+#define MCL_FUSED_RUN_1(stage, args, first) stage_##stage(&(args), (first))
 #define MCL_FUSED_RUN(stage, args, first) MCL_LANES_CAT(MCL_FUSED_RUN_, MCL_PACKET_##stage)(stage, args, first)
 
 // The shading stages' bodies as out-of-line functions with their whole call tree inlined, as their
