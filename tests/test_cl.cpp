@@ -28,8 +28,7 @@ namespace test_file_cl {  // keeps this file's helpers apart in a unity batch
 namespace fs = std::filesystem;
 using namespace montecl;
 
-using montecl_test::readAll;
-using montecl_test::TempDir;
+using namespace montecl_test;  // runMontecl, renderOnHost, oneLine, TempDir, ... (fixtures/cli_runner.h)
 
 namespace {
 

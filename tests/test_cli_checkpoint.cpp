@@ -7,7 +7,6 @@
 #include <doctest/doctest.h>
 #include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -22,19 +21,13 @@
 #include "cli_runner.h"
 #include "image/image_io.h"
 
-extern char** environ;  // global: the process environment (unistd.h)
 
 namespace test_file_cli_checkpoint {  // keeps this file's helpers apart in a unity batch
 
-using montecl_test::CliResult;
-using montecl_test::readAll;
-using montecl_test::runMontecl;
-using montecl_test::TempDir;
+using namespace montecl_test;  // runMontecl, renderOnHost, oneLine, TempDir, ... (fixtures/cli_runner.h)
 namespace fs = std::filesystem;
 
 namespace {
-
-bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
 
 // Scene parameters a checkpoint must notice.
 struct Params {
@@ -68,24 +61,6 @@ std::vector<std::string> renderArgs(const std::string& scene, const std::string&
   std::vector<std::string> args{"render", scene, "-o", out, "-q", "--device", "host", "--wave-size", "16"};
   args.insert(args.end(), extra.begin(), extra.end());
   return args;
-}
-
-// Starts montecl with args, stdout to /dev/null and stderr to errFile; returns its PID.
-pid_t spawnMontecl(const std::vector<std::string>& args, const std::string& errFile) {
-  std::vector<std::string> all = {MONTECL_EXE};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, MONTECL_EXE, &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  REQUIRE(rc == 0);
-  return pid;
 }
 
 }  // namespace

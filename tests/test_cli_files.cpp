@@ -5,9 +5,7 @@
 // overflows a float is refused at load (exit 2) or, where it still overflows, no NaN/inf image is
 // written (exit 1).
 #include <doctest/doctest.h>
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -21,45 +19,16 @@
 #include "cli_runner.h"
 #include "image/exr_layers.h"
 
-extern char** environ;  // global: the process environment (unistd.h)
 
 namespace test_file_cli_files {  // keeps this file's helpers apart in a unity batch
 
 using montecl::LayeredImage;
 using montecl::readLayeredImage;
-using montecl_test::CliResult;
-using montecl_test::runMontecl;
-using montecl_test::TempDir;
-using montecl_test::readAll;
+using namespace montecl_test;  // runMontecl, renderOnHost, oneLine, TempDir, ... (fixtures/cli_runner.h)
 const auto& entries = montecl_test::folderEntries;
 namespace fs = std::filesystem;
 
 namespace {
-
-// Starts montecl with args (stdout to /dev/null, stderr to errFile or /dev/null); returns its PID.
-pid_t spawnMontecl(const std::vector<std::string>& args, const std::string& errFile = "/dev/null") {
-  std::vector<std::string> all = {MONTECL_EXE};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = 0;
-  int rc = posix_spawn(&pid, MONTECL_EXE, &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  REQUIRE(rc == 0);
-  return pid;
-}
-
-// Exit status, or 128 + signal.
-int waitFor(pid_t pid) {
-  int status = 0;
-  REQUIRE(waitpid(pid, &status, 0) == pid);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
 
 std::vector<std::string> longRender(const std::string& out) {
   return {"render", montecl_test::demoScene(), "-o", out, "--width", "64", "--height", "48", "--spp", "1000000",
@@ -86,8 +55,6 @@ void writeLampScene(const TempDir& dir, const std::string& emission) {
             "\"emission\": [" + emission + ", " + emission + ", " + emission + "]}],\n"
             " \"render\": {\"integrator\": \"direct\", \"spp\": 16, \"direct_sampling\": \"mis\"}}\n");
 }
-
-bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
 
 }  // namespace
 

@@ -20,23 +20,10 @@
 
 namespace test_file_cli_guards {  // keeps this file's helpers apart in a unity batch
 
-using montecl_test::CliResult;
-using montecl_test::readAll;
-using montecl_test::runMontecl;
-using montecl_test::TempDir;
+using namespace montecl_test;  // runMontecl, renderOnHost, oneLine, TempDir, ... (fixtures/cli_runner.h)
 namespace fs = std::filesystem;
 
 namespace {
-
-bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
-
-// An 8x8 render on the host device, 1 sample per pixel unless extra gives --spp.
-CliResult render(const std::string& scene, const std::string& out, std::vector<std::string> extra = {}) {
-  std::vector<std::string> args{"render", scene, "-o", out, "--width", "8", "--height", "8", "-q", "--device", "host"};
-  if (std::find(extra.begin(), extra.end(), "--spp") == extra.end()) args.insert(args.end(), {"--spp", "1"});
-  args.insert(args.end(), extra.begin(), extra.end());
-  return runMontecl(args);
-}
 
 // A quad (with uvs) and a scene file whose mesh entry has the given "material" override JSON.
 std::string writeOverrideScene(const TempDir& dir, const std::string& material) {
@@ -76,7 +63,7 @@ TEST_CASE("cli: an output that is a mesh material override's texture is refused 
     montecl::writeRgbImage(dir.file("wood.png"), 2, 2, std::vector<float>(12, 0.25f));
     const std::string before = readAll(dir.file("wood.png"));
     const std::string scene = writeOverrideScene(dir, std::string("{\"") + key + "\": \"wood.png\"}");
-    CliResult r = render(scene, dir.file("wood.png"));
+    CliResult r = renderOnHost(scene, dir.file("wood.png"));
     INFO(key << ": " << r.err);
     CHECK(r.exitCode == 2);
     CHECK(oneLine(r.err));
@@ -92,9 +79,9 @@ TEST_CASE("cli: an output that is a glTF buffer named by a percent-encoded URI i
   dir.write("geo data.pfm", montecl_test::gltfBuffer(mesh));
   dir.write("model.gltf", montecl_test::gltfText(mesh, 0.5f, "geo%20data.pfm"));
   const std::string before = readAll(dir.file("geo data.pfm"));
-  CliResult ok = render(dir.file("model.gltf"), dir.file("out.png"));
+  CliResult ok = renderOnHost(dir.file("model.gltf"), dir.file("out.png"));
   REQUIRE_MESSAGE(ok.exitCode == 0, ok.err);  // the model loads: its buffer is that file
-  CliResult r = render(dir.file("model.gltf"), dir.file("geo data.pfm"));
+  CliResult r = renderOnHost(dir.file("model.gltf"), dir.file("geo data.pfm"));
   INFO(r.err);
   CHECK(r.exitCode == 2);
   CHECK(oneLine(r.err));
@@ -119,7 +106,7 @@ TEST_CASE("cli: a glTF or scene file nested 15000 arrays deep is refused with on
   dir.write("ok.gltf", montecl_test::gltfText(mesh, 0.5f, ""));
   // Just under the limit loads (the extras are ignored).
   dir.write("shallow.gltf", withDeepExtras(montecl_test::gltfText(mesh, 0.5f, ""), 500));
-  CliResult ok = render(dir.file("shallow.gltf"), dir.file("out.png"));
+  CliResult ok = renderOnHost(dir.file("shallow.gltf"), dir.file("out.png"));
   CHECK_MESSAGE(ok.exitCode == 0, ok.err);
   struct Case {
     std::string input, named;
@@ -127,7 +114,7 @@ TEST_CASE("cli: a glTF or scene file nested 15000 arrays deep is refused with on
   for (const Case& c : {Case{"deep.gltf", "deep.gltf"}, Case{"deep.glb", "deep.glb"}, Case{"scene.json", "deep.gltf"},
                         Case{"deepscene.json", "deepscene.json"}}) {
     fs::remove(dir.file("out.png"));
-    CliResult r = render(dir.file(c.input), dir.file("out.png"));
+    CliResult r = renderOnHost(dir.file(c.input), dir.file("out.png"));
     INFO(c.input << ": exit " << r.exitCode << ": " << r.err);
     CHECK(r.exitCode == 2);
     CHECK(oneLine(r.err));
@@ -143,7 +130,7 @@ TEST_CASE("cli: a sample range past 2^32 is refused (exit 2), not wrapped to sam
   for (const std::vector<std::string>& extra :
        {std::vector<std::string>{"--first-sample", "4294967295", "--spp", "2"},
         std::vector<std::string>{"--first-sample", "4294967200", "--target-error", "0.1", "--min-spp", "4", "--max-spp", "200"}}) {
-    CliResult r = render(scene, out, extra);
+    CliResult r = renderOnHost(scene, out, extra);
     INFO(extra[1] << ": " << r.err);
     CHECK(r.exitCode == 2);
     CHECK(oneLine(r.err));
@@ -151,7 +138,7 @@ TEST_CASE("cli: a sample range past 2^32 is refused (exit 2), not wrapped to sam
     CHECK(!fs::exists(out));
   }
   // The last samples of the sequence still render.
-  CliResult r = render(scene, out, {"--first-sample", "4294967294", "--spp", "2"});
+  CliResult r = renderOnHost(scene, out, {"--first-sample", "4294967294", "--spp", "2"});
   CHECK_MESSAGE(r.exitCode == 0, r.err);
 }
 
@@ -160,14 +147,14 @@ TEST_CASE("cli: a --texture-budget whose byte count overflows 64 bits is refused
   montecl::writeRgbImage(dir.file("wood.png"), 4, 4, std::vector<float>(48, 0.25f));
   const std::string scene = writeOverrideScene(dir, R"({"albedo_texture": "wood.png"})");
   for (const std::string budget : {"17592186044416", "1e30"}) {  // 2^44 MiB: 2^64 bytes, which wrapped to 0
-    CliResult r = render(scene, dir.file("out.png"), {"--texture-budget", budget});
+    CliResult r = renderOnHost(scene, dir.file("out.png"), {"--texture-budget", budget});
     INFO(budget << ": " << r.err);
     CHECK(r.exitCode == 2);
     CHECK(oneLine(r.err));
     CHECK(r.err.find("--texture-budget") != std::string::npos);
     CHECK(!fs::exists(dir.file("out.png")));
   }
-  CliResult r = render(scene, dir.file("out.png"), {"--texture-budget", "8796093022208"});  // 2^43 MiB fits
+  CliResult r = renderOnHost(scene, dir.file("out.png"), {"--texture-budget", "8796093022208"});  // 2^43 MiB fits
   CHECK_MESSAGE(r.exitCode == 0, r.err);
   CHECK(r.err.find("budget") == std::string::npos);  // no level dropped
 }
@@ -199,7 +186,7 @@ TEST_CASE("cli: a GLB whose BIN chunk claims more bytes than the file holds is r
   const std::uint32_t claimed = std::uint32_t(bad.size() - 20 - jsonLength);
   std::memcpy(bad.data() + 20 + jsonLength, &claimed, 4);
   dir.write("long.glb", bad);
-  CliResult r = render(dir.file("long.glb"), dir.file("out.png"));
+  CliResult r = renderOnHost(dir.file("long.glb"), dir.file("out.png"));
   INFO("exit " << r.exitCode << ": " << r.err);
   CHECK(r.exitCode == 2);
   CHECK(oneLine(r.err));
@@ -214,7 +201,7 @@ TEST_CASE("cli: a GLB buffer of byteLength 0 is refused with one line naming the
   nlohmann::json j = glbJson(glb);
   j["buffers"][0]["byteLength"] = 0;
   dir.write("empty.glb", glbWithJson(glb, j.dump()));
-  CliResult r = render(dir.file("empty.glb"), dir.file("out.png"));
+  CliResult r = renderOnHost(dir.file("empty.glb"), dir.file("out.png"));
   INFO("exit " << r.exitCode << ": " << r.err);
   CHECK(r.exitCode == 2);
   CHECK(oneLine(r.err));
@@ -230,7 +217,7 @@ TEST_CASE("cli: a mesh transform that leaves no triangle is refused naming the s
   // Scaled by 1e-30 every triangle's area underflows to 0: all of them are dropped as degenerate.
   dir.write("scene.json", R"({"camera": {"position": [0, 0, 3], "target": [0, 0, 0], "fov_y": 45, "width": 8, "height": 8},
     "meshes": [{"file": "quad.obj", "transform": {"scale": 1e-30}}]})");
-  CliResult r = render(dir.file("scene.json"), dir.file("out.png"));
+  CliResult r = renderOnHost(dir.file("scene.json"), dir.file("out.png"));
   INFO("exit " << r.exitCode << ": " << r.err);
   CHECK(r.exitCode == 2);
   CHECK(oneLine(r.err));
@@ -244,14 +231,14 @@ TEST_CASE("cli: --split-budget nan is refused with the option's rule (exit 2)" *
   TempDir dir;
   const std::string scene = montecl_test::demoScene();
   for (const std::string value : {"nan", "-nan", "5", "-1"}) {
-    CliResult r = render(scene, dir.file("out.png"), {"--split-budget", value});
+    CliResult r = renderOnHost(scene, dir.file("out.png"), {"--split-budget", value});
     INFO(value << ": exit " << r.exitCode << ": " << r.err);
     CHECK(r.exitCode == 2);
     CHECK(r.err.find("--split-budget") != std::string::npos);
     CHECK(r.err.find("must be a number from 0 to 4, got '" + value + "'") != std::string::npos);
     CHECK(!fs::exists(dir.file("out.png")));
   }
-  CliResult r = render(scene, dir.file("out.png"), {"--split-budget", "4"});
+  CliResult r = renderOnHost(scene, dir.file("out.png"), {"--split-budget", "4"});
   CHECK_MESSAGE(r.exitCode == 0, r.err);
 }
 

@@ -15,22 +15,15 @@
 
 namespace test_file_cli_limits {  // keeps this file's helpers apart in a unity batch
 
-using montecl_test::CliResult;
-using montecl_test::runMontecl;
-using montecl_test::TempDir;
+using namespace montecl_test;  // runMontecl, renderOnHost, oneLine, TempDir, ... (fixtures/cli_runner.h)
 namespace fs = std::filesystem;
 
 namespace {
 
-bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
-
 const char* kQuad = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n";
 
-CliResult render(const std::string& scene, const std::string& out) {
-  // direct: an integrator that reads colour textures (AO loads none).
-  return runMontecl({"render", scene, "-o", out, "--width", "8", "--height", "8", "--spp", "1", "-q", "--device",
-                     "host", "--integrator", "direct"});
-}
+// direct: an integrator that reads colour textures (AO loads none).
+CliResult render(const std::string& scene, const std::string& out) { return renderOnHost(scene, out, {"--integrator", "direct"}); }
 
 }  // namespace
 

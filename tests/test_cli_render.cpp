@@ -3,9 +3,7 @@
 // prints exactly one stderr line naming the file and key/line, and creates no output file; --time
 // and SIGINT stop a render and leave a valid image whose per-pixel sample counts are what was done.
 #include <doctest/doctest.h>
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -22,15 +20,12 @@
 #include "skip.h"
 #include "image/exr_layers.h"
 
-extern char** environ;  // global: the process environment (unistd.h)
 
 namespace test_file_cli_render {  // keeps this file's helpers apart in a unity batch
 
 using montecl::LayeredImage;
 using montecl::readLayeredImage;
-using montecl_test::CliResult;
-using montecl_test::runMontecl;
-using montecl_test::TempDir;
+using namespace montecl_test;  // runMontecl, renderOnHost, oneLine, TempDir, ... (fixtures/cli_runner.h)
 namespace fs = std::filesystem;
 
 namespace {
@@ -109,23 +104,11 @@ TEST_CASE("SIGINT finishes the wave, writes a valid image with its true sample c
   TempDir dir;
   std::string scene = std::string(MONTECL_SOURCE_DIR) + "/scenes/demo/scene.json";
   std::string out = dir.file("i.exr");
-  std::vector<std::string> args = {MONTECL_EXE, "render", scene, "-o", out, "--width", "64", "--height", "48",
-                                   "--spp", "1000000", "--wave-size", "20000", "-q"};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  REQUIRE(posix_spawn(&pid, MONTECL_EXE, &actions, nullptr, argv.data(), environ) == 0);
-  posix_spawn_file_actions_destroy(&actions);
+  const pid_t pid = spawnMontecl({"render", scene, "-o", out, "--width", "64", "--height", "48", "--spp", "1000000",
+                                  "--wave-size", "20000", "-q"});
   std::this_thread::sleep_for(std::chrono::milliseconds(2500));
   kill(pid, SIGINT);
-  int status = 0;
-  REQUIRE(waitpid(pid, &status, 0) == pid);
-  REQUIRE(WIFEXITED(status));
-  CHECK(WEXITSTATUS(status) == 130);
+  CHECK(waitFor(pid) == 130);
   LayeredImage img = readLayeredImage(out);
   CHECK(img.width == 64);
   const std::vector<float>& n = *img.find("samples");

@@ -29,14 +29,10 @@
 
 namespace test_file_cli_trust {  // keeps this file's helpers apart in a unity batch
 
-using montecl_test::CliResult;
-using montecl_test::runMontecl;
-using montecl_test::TempDir;
+using namespace montecl_test;  // runMontecl, renderOnHost, oneLine, TempDir, ... (fixtures/cli_runner.h)
 namespace fs = std::filesystem;
 
 namespace {
-
-bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
 
 void checkRefused(const CliResult& r, const std::string& out, const std::vector<std::string>& words) {
   INFO("stderr: " << r.err);
@@ -81,11 +77,8 @@ std::string writeTexturedQuad(const TempDir& dir, const std::string& texture) {
 
 CliResult render(const std::string& scene, const std::string& out, std::vector<std::string> extra = {},
                  const std::vector<std::string>& env = {}) {
-  // direct: an integrator that reads colour textures (AO loads none).
-  std::vector<std::string> args{"render", scene, "-o", out, "--width", "8", "--height", "8", "--spp", "1", "-q",
-                                "--device", "host", "--integrator", "direct"};
-  args.insert(args.end(), extra.begin(), extra.end());
-  return runMontecl(args, env);
+  extra.insert(extra.begin(), {"--integrator", "direct"});  // an integrator that reads colour textures (AO loads none)
+  return renderOnHost(scene, out, extra, env);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "bvh/bvh.h"
 #include "cl/devices.h"
 #include "kernels/stages/stages.h"
+#include "render/sample_schedule.h"
 #include "render/wavefront.h"
 #include "stats.h"
 #include "test_scenes.h"

@@ -26,9 +26,7 @@
 namespace test_file_instancing {  // keeps this file's helpers apart in a unity batch
 
 using montecl::Scene;
-using montecl_test::CliResult;
-using montecl_test::runMontecl;
-using montecl_test::TempDir;
+using namespace montecl_test;  // runMontecl, renderOnHost, oneLine, TempDir, ... (fixtures/cli_runner.h)
 using nlohmann::json;
 
 namespace {
@@ -120,12 +118,8 @@ void checkSameTriangles(const Scene& a, const Scene& b) {
 }
 
 CliResult render(const std::string& scene, const std::string& out, const std::vector<std::string>& env = {}) {
-  return runMontecl({"render", scene, "-o", out, "--width", "16", "--height", "12", "--spp", "2", "-q", "--device", "host",
-                     "--integrator", "path"},
-                    env);
+  return renderOnHost(scene, out, {"--spp", "2", "--integrator", "path"}, env, 16, 12);
 }
-
-bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
 
 }  // namespace
 

@@ -17,9 +17,7 @@
 namespace test_file_material_keys {  // keeps this file's helpers apart in a unity batch
 
 using namespace montecl;
-using montecl_test::CliResult;
-using montecl_test::runMontecl;
-using montecl_test::TempDir;
+using namespace montecl_test;  // runMontecl, renderOnHost, oneLine, TempDir, ... (fixtures/cli_runner.h)
 
 namespace {
 

@@ -21,11 +21,7 @@
 namespace test_file_merge {  // keeps this file's helpers apart in a unity batch
 
 using namespace montecl;
-using montecl_test::CliResult;
-using montecl_test::demoRenderArgs;
-using montecl_test::demoScene;
-using montecl_test::runMontecl;
-using montecl_test::TempDir;
+using namespace montecl_test;  // runMontecl, renderOnHost, oneLine, TempDir, ... (fixtures/cli_runner.h)
 namespace fs = std::filesystem;
 
 namespace {

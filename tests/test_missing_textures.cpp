@@ -17,9 +17,7 @@
 
 namespace test_file_missing_textures {  // keeps this file's helpers apart in a unity batch
 
-using montecl_test::CliResult;
-using montecl_test::runMontecl;
-using montecl_test::TempDir;
+using namespace montecl_test;  // runMontecl, renderOnHost, oneLine, TempDir, ... (fixtures/cli_runner.h)
 using nlohmann::json;
 
 namespace {
@@ -48,10 +46,9 @@ json sceneWith(const json& render) {
 }
 
 CliResult render(const std::string& scene, const std::string& out, const std::vector<std::string>& extra = {}) {
-  std::vector<std::string> args{"render", scene, "-o", out, "--width", "24", "--height", "16", "--spp", "1", "-q",
-                                "--device", "host", "--integrator", "ao", "--aov", "albedo"};
+  std::vector<std::string> args{"--integrator", "ao", "--aov", "albedo"};
   args.insert(args.end(), extra.begin(), extra.end());
-  return runMontecl(args);
+  return renderOnHost(scene, out, args, {}, 24, 16);
 }
 
 std::size_t lines(const std::string& s) { return std::size_t(std::count(s.begin(), s.end(), '\n')); }

@@ -27,10 +27,7 @@ namespace test_file_mpi {  // keeps this file's helpers apart in a unity batch
 
 using montecl::LayeredImage;
 using montecl::readLayeredImage;
-using montecl_test::CliResult;
-using montecl_test::runMontecl;
-using montecl_test::runProgram;
-using montecl_test::TempDir;
+using namespace montecl_test;  // runMontecl, renderOnHost, oneLine, TempDir, ... (fixtures/cli_runner.h)
 namespace fs = std::filesystem;
 
 namespace {

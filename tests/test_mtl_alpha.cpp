@@ -13,9 +13,7 @@
 
 namespace test_file_mtl_alpha {  // keeps this file's helpers apart in a unity batch
 
-using montecl_test::CliResult;
-using montecl_test::runMontecl;
-using montecl_test::TempDir;
+using namespace montecl_test;  // runMontecl, renderOnHost, oneLine, TempDir, ... (fixtures/cli_runner.h)
 
 namespace {
 
@@ -24,10 +22,9 @@ const char* kQuads =
     "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl a\nf 1/1 2/2 3/3 4/4\nusemtl b\nf 2/1 5/2 6/3 3/4\n";
 
 CliResult render(const TempDir& dir, const std::vector<std::string>& extra = {}) {
-  std::vector<std::string> args{"render", dir.file("quads.obj"), "-o", dir.file("out.pfm"), "--width", "8", "--height", "8",
-                                "--spp", "1", "-q", "--device", "host", "--overwrite"};
+  std::vector<std::string> args{"--overwrite"};
   args.insert(args.end(), extra.begin(), extra.end());
-  return runMontecl(args);
+  return renderOnHost(dir.file("quads.obj"), dir.file("out.pfm"), args);
 }
 
 std::size_t count(const std::string& s, const std::string& needle) {

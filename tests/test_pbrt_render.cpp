@@ -18,9 +18,7 @@
 
 namespace test_file_pbrt_render {  // keeps this file's helpers apart in a unity batch
 
-using montecl_test::CliResult;
-using montecl_test::runMontecl;
-using montecl_test::TempDir;
+using namespace montecl_test;  // runMontecl, renderOnHost, oneLine, TempDir, ... (fixtures/cli_runner.h)
 
 namespace {
 

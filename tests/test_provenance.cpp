@@ -16,9 +16,7 @@
 namespace test_file_provenance {  // keeps this file's helpers apart in a unity batch
 
 using namespace montecl;
-using montecl_test::CliResult;
-using montecl_test::runMontecl;
-using montecl_test::TempDir;
+using namespace montecl_test;  // runMontecl, renderOnHost, oneLine, TempDir, ... (fixtures/cli_runner.h)
 namespace fs = std::filesystem;
 
 namespace {
@@ -50,8 +48,6 @@ std::string mergeError(const std::vector<Provenance>& ps) {
   }
   return "";
 }
-
-bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
 
 std::vector<std::string> renderArgs(const std::string& scene, const std::string& out, int spp, int first,
                                     std::vector<std::string> extra = {}) {

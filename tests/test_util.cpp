@@ -22,8 +22,7 @@ namespace test_file_util {  // keeps this file's helpers apart in a unity batch
 namespace fs = std::filesystem;
 using namespace montecl;
 
-using montecl_test::readAll;
-using montecl_test::TempDir;
+using namespace montecl_test;  // runMontecl, renderOnHost, oneLine, TempDir, ... (fixtures/cli_runner.h)
 
 namespace {
 

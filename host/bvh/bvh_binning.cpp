@@ -60,35 +60,21 @@ Split Builder::findSahSplit(std::size_t begin, std::size_t end, const Box& bound
     b.hi = glm::max(b.hi, p.hi);
     ++b.count;
   }
-  float rightArea[kMaxBins];
-  std::size_t rightCount[kMaxBins];
-  std::size_t n = end - begin;
-  float ciOverArea = ci / area;
+  const float ciOverArea = ci / area;
   for (int a = 0; a < kSplitAxes; ++a) {
     if (!ok[a]) continue;
-    Box acc;
-    std::size_t cnt = 0;
-    for (int k = bins - 1; k > 0; --k) {  // rightArea[k]: bins k..bins-1
-      acc.grow(binArr[a][k].lo, binArr[a][k].hi);
-      cnt += binArr[a][k].count;
-      rightArea[k] = acc.halfArea();
-      rightCount[k] = cnt;
-    }
-    acc = Box();
-    cnt = 0;
-    for (int k = 0; k < bins - 1; ++k) {  // split between bin k and k+1
-      acc.grow(binArr[a][k].lo, binArr[a][k].hi);
-      cnt += binArr[a][k].count;
-      if (cnt == 0 || cnt == n) continue;
-      float cost = ct + ciOverArea * (acc.halfArea() * static_cast<float>(cnt) +
-                                      rightArea[k + 1] * static_cast<float>(rightCount[k + 1]));
-      if (best.axis < 0 || cost < best.cost) {
-        best.axis = a;
-        best.bin = k;
-        best.cost = cost;
-        best.nLeft = cnt;
-      }
-    }
+    const Bin* axisBins = binArr[a];
+    const auto count = [&](int k) { return std::size_t(axisBins[k].count); };
+    sweepSahPlanes(
+        bins, ct, ciOverArea, [&](int k) { return Box{axisBins[k].lo, axisBins[k].hi}; }, count, count,
+        [&](int k, float cost, std::size_t nLeft) {
+          if (best.axis < 0 || cost < best.cost) {
+            best.axis = a;
+            best.bin = k;
+            best.cost = cost;
+            best.nLeft = nLeft;
+          }
+        });
   }
   return best;
 }

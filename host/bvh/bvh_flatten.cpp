@@ -1,9 +1,9 @@
 // bvh_flatten.cpp: the builder's recursion. Each node picks its split (bvh_binning.cpp, or
 // bvh_sweep.cpp for small nodes), and the tree is written depth-first into one BvhNode array with
 // the two children of a node adjacent. Near the root, the right subtree of a large node is built
-// on another thread into its own vector and appended, giving the single-threaded layout.
+// on another thread into its own vector and appended, giving the single-threaded layout
+// (buildChildPair, bvh_builder.h).
 #include <algorithm>
-#include <future>
 
 #include "bvh/bvh_builder.h"
 
@@ -44,30 +44,12 @@ int Builder::build(std::vector<BvhNode>& out, std::size_t idx, std::size_t begin
   out[idx].triCount = 0;
   out.emplace_back();
   out.emplace_back();
-  if (parallelLevels > 0 && n >= kParallelMin) {
-    // The right subtree is built on another thread into its own vector while this thread builds
-    // the left one in place; the right one is then appended, giving the sequential layout:
-    // [left, right, left's descendants, right's descendants].
-    std::vector<BvhNode> vr;
-    auto right = std::async(std::launch::async, [&, depth, parallelLevels] {
-      vr.reserve(2 * (end - mid) - 1);
-      vr.emplace_back();
-      return build(vr, 0, mid, end, child[1], childC[1], depth + 1, parallelLevels - 1);
-    });
-    int dl = build(out, childBase, begin, mid, child[0], childC[0], depth + 1, parallelLevels - 1);
-    int dr = right.get();
-    std::size_t offset = out.size() - 1;  // vr[k] (k >= 1) lands at out[offset + k]
-    auto remap = [offset](BvhNode node) {
-      if (node.triCount == 0) node.leftFirst = static_cast<std::uint32_t>(node.leftFirst + offset);
-      return node;
-    };
-    out[childBase + 1] = remap(vr[0]);
-    for (std::size_t k = 1; k < vr.size(); ++k) out.push_back(remap(vr[k]));
-    return std::max(dl, dr);
-  }
-  int dl = build(out, childBase, begin, mid, child[0], childC[0], depth + 1, parallelLevels);
-  int dr = build(out, childBase + 1, mid, end, child[1], childC[1], depth + 1, parallelLevels);
-  return std::max(dl, dr);
+  return buildChildPair(
+      out, childBase, n, parallelLevels, 2 * (end - mid) - 1,
+      [&](std::vector<BvhNode>& nodes, std::size_t index, int side, int levels, bool) {
+        return build(nodes, index, side ? mid : begin, side ? end : mid, child[side], childC[side], depth + 1, levels);
+      },
+      [] { return std::size_t(0); });  // (leaves index prims in place)
 }
 
 }  // namespace bvhbuild

@@ -9,7 +9,6 @@
 // rest in proportion to their reference counts (the tree does not depend on thread timing).
 // Leaves list their input triangle ids in one array, in leaf order (Bvh::order).
 #include <algorithm>
-#include <future>
 #include <limits>
 
 #include "bvh/bvh_internal.h"
@@ -122,35 +121,21 @@ int SbvhBuilder::build(std::vector<BvhNode>& out, std::vector<std::uint32_t>& id
   out[idx].triCount = 0;
   out.emplace_back();
   out.emplace_back();
-  if (parallelLevels > 0 && n >= kParallelMin) {
-    // As in bvh_flatten.cpp: the right subtree on another thread, appended afterwards, giving the
-    // sequential layout; its leaves' triangle ranges move by the left part's id count.
-    std::vector<BvhNode> vr;
-    std::vector<std::uint32_t> idr;
-    auto right = std::async(std::launch::async, [&, depth, parallelLevels] {
-      vr.reserve(2 * side[1].size());
-      vr.emplace_back();
-      return build(vr, idr, 0, std::move(side[1]), child[1], childC[1], depth + 1, budgetR,
-                   parallelLevels - 1);
-    });
-    int dl = build(out, ids, childBase, std::move(side[0]), child[0], childC[0], depth + 1, budgetL,
-                   parallelLevels - 1);
-    int dr = right.get();
-    const std::size_t offset = out.size() - 1, idOffset = ids.size();
-    auto remap = [offset, idOffset](BvhNode node) {
-      node.leftFirst = static_cast<std::uint32_t>(node.leftFirst + (node.triCount == 0 ? offset : idOffset));
-      return node;
-    };
-    out[childBase + 1] = remap(vr[0]);
-    for (std::size_t k = 1; k < vr.size(); ++k) out.push_back(remap(vr[k]));
-    ids.insert(ids.end(), idr.begin(), idr.end());
-    return std::max(dl, dr);
-  }
-  int dl = build(out, ids, childBase, std::move(side[0]), child[0], childC[0], depth + 1, budgetL,
-                 parallelLevels);
-  int dr = build(out, ids, childBase + 1, std::move(side[1]), child[1], childC[1], depth + 1,
-                 budgetR, parallelLevels);
-  return std::max(dl, dr);
+  // The right subtree built apart (own) lists its leaves' ids apart too: appended afterwards,
+  // its leaves' triangle ranges moved by the left part's id count.
+  std::vector<std::uint32_t> idsRight;
+  const std::size_t budgets[2] = {budgetL, budgetR};
+  return buildChildPair(
+      out, childBase, n, parallelLevels, 2 * side[1].size(),
+      [&, depth](std::vector<BvhNode>& nodes, std::size_t index, int s, int levels, bool own) {
+        return build(nodes, own ? idsRight : ids, index, std::move(side[s]), child[s], childC[s], depth + 1,
+                     budgets[s], levels);
+      },
+      [&] {
+        const std::size_t idOffset = ids.size();
+        ids.insert(ids.end(), idsRight.begin(), idsRight.end());
+        return idOffset;
+      });
 }
 
 }  // namespace

@@ -79,8 +79,6 @@ SpatialSplit SpatialBinner::find(const PrimRef* refs, std::size_t n, const Box& 
   float planes[kMaxBins];
   Box box[kMaxBins];
   std::size_t enter[kMaxBins], exit[kMaxBins];
-  float rightArea[kMaxBins];
-  std::size_t rightCount[kMaxBins];
   for (int a = 0; a < 3; ++a) {
     if (!(bounds.hi[a] > bounds.lo[a])) continue;
     const int np = bins - 1;
@@ -105,28 +103,16 @@ SpatialSplit SpatialBinner::find(const PrimRef* refs, std::size_t n, const Box& 
       }
       if (validRef(cur)) box[s.last].grow(cur.lo, cur.hi);
     }
-    Box acc;
-    std::size_t cnt = 0;
-    for (int k = bins - 1; k > 0; --k) {  // right of plane k - 1: slabs k..bins-1
-      acc.grow(box[k]);
-      cnt += exit[k];
-      rightArea[k] = acc.halfArea();
-      rightCount[k] = cnt;
-    }
-    acc = Box();
-    cnt = 0;
-    for (int k = 0; k < np; ++k) {  // plane k: left slabs 0..k
-      acc.grow(box[k]);
-      cnt += enter[k];
-      if (cnt == 0 || rightCount[k + 1] == 0) continue;
-      float cost = ct + ciOverArea * (acc.halfArea() * static_cast<float>(cnt) +
-                                      rightArea[k + 1] * static_cast<float>(rightCount[k + 1]));
-      if (best.axis < 0 || cost < best.cost) {
-        best.axis = a;
-        best.plane = k;
-        best.cost = cost;
-      }
-    }
+    sweepSahPlanes(
+        bins, ct, ciOverArea, [&](int k) { return box[k]; }, [&](int k) { return enter[k]; },
+        [&](int k) { return exit[k]; },
+        [&](int k, float cost, std::size_t) {
+          if (best.axis < 0 || cost < best.cost) {
+            best.axis = a;
+            best.plane = k;
+            best.cost = cost;
+          }
+        });
   }
   return best;
 }

@@ -27,25 +27,20 @@ Split Builder::findSweepSplit(std::size_t begin, std::size_t end, const Box& bou
   std::size_t n = end - begin;
   float ciOverArea = ci / area;
   std::uint8_t idx[kSweepMax];
-  float rightArea[kSweepMax];
   for (int a = 0; a < 3; ++a) {
     sortSmall(begin, n, a, idx);
-    Box acc;
-    for (std::size_t k = n - 1; k > 0; --k) {  // rightArea[k]: sorted k..n-1
-      acc.grow(prims[begin + idx[k]].lo, prims[begin + idx[k]].hi);
-      rightArea[k] = acc.halfArea();
-    }
-    acc = Box();
-    for (std::size_t k = 1; k < n; ++k) {  // left: sorted 0..k-1
-      acc.grow(prims[begin + idx[k - 1]].lo, prims[begin + idx[k - 1]].hi);
-      float cost = ct + ciOverArea * (acc.halfArea() * static_cast<float>(k) +
-                                      rightArea[k] * static_cast<float>(n - k));
-      if (best.axis < 0 || cost < best.cost) {
-        best.axis = a;
-        best.cost = cost;
-        best.nLeft = k;
-      }
-    }
+    // The sorted triangles as n bins of one each: plane k has sorted 0..k on its left.
+    const auto one = [](int) { return std::size_t(1); };
+    sweepSahPlanes(
+        int(n), ct, ciOverArea,
+        [&](int k) { return Box{prims[begin + idx[k]].lo, prims[begin + idx[k]].hi}; }, one, one,
+        [&](int, float cost, std::size_t nLeft) {
+          if (best.axis < 0 || cost < best.cost) {
+            best.axis = a;
+            best.cost = cost;
+            best.nLeft = nLeft;
+          }
+        });
   }
   return best;
 }

@@ -11,6 +11,7 @@
 
 #include "cl/devices.h"
 #include "job/mpi.h"
+#include "render/sample_schedule.h"
 #include "util/errors.h"
 
 namespace montecl::jobs {

@@ -4,17 +4,17 @@
 // counters are reset on the device; the host never reads a queue count back to size a launch
 // (kernels return past the device-side count), only once per wave for the statistics. With a
 // profile (setProfile), each launch keeps its event and waitWave adds the events' times.
-// Memory: on CPU devices the large read-only arrays (BVH nodes and triangles, shading, texels) are
-// used in place (CL_MEM_USE_HOST_PTR: no second copy); finish() reads the film one part at a
+// Memory: on CPU devices the BVH nodes and the read-only scene tables (triangles, shading, texels,
+// ...: render/scene_tables.h) are used in place (CL_MEM_USE_HOST_PTR: no second copy); finish() reads the film one part at a
 // time, releasing each part's buffer, so the film is never whole on both sides.
 #include <algorithm>
 #include <array>
 #include <stdexcept>
 
 #include "cl/device_tuning.h"
+#include "render/scene_tables.h"
 #include "render/stage_program.h"
 #include "render/stage_runner.h"
-#include "render/triangle_shading.h"
 #include "util/errors.h"
 #include "util/heap_trim.h"
 
@@ -37,6 +37,7 @@ class ClStageRunner final : public StageRunner {
 
   void setup(const StageInputs& in) override {
     const WaveShape shape = setupShape(in);
+    shape_ = shape;
     pixels_ = shape.pixels;
     frame_ = in.frame;
     firstSubmitted_ = submittedCount_ = 0;
@@ -47,21 +48,10 @@ class ClStageRunner final : public StageRunner {
     const bool binary = program_.layout() == BvhLayout::Binary;
     b.nodes = {binary ? (in.bvh->nodes.empty() ? program_.uploadNodes(*in.bvh) : readOnly(in.bvh->nodes))
                       : readOnly(in.bvh->wideNodes())};
-    b.tris = {readOnly(in.triangles.empty() ? in.bvh->triangles : in.triangles)};
-    b.shading = {in.shading.empty() ? cl_.upload(std::vector<TriangleShading>(1)) : readOnly(in.shading)};
-    b.normals = {cl_.upload(buildTriangleNormals(in.bvh->triangles))};
-    b.vertexColors = {cl_.upload(in.vertexColors.empty() ? std::vector<float4>(1) : in.vertexColors)};
-    b.tangents = {cl_.upload(in.tangents.empty() ? std::vector<float4>(1) : in.tangents)};
-    b.materials = {cl_.upload(in.materials)};
-    b.emitters = {cl_.upload(in.emitters)};
-    const bool tex = in.textures && !in.textures->textures.empty();
-    b.textures = {cl_.upload(tex ? in.textures->textures : std::vector<TextureDesc>(1))};
-    b.textureLevels = {cl_.upload(tex ? in.textures->levels : std::vector<TextureLevel>(1))};
-    b.texels = {tex ? readOnly(in.textures->texels) : cl_.upload(std::vector<std::uint16_t>(4))};
-    b.envMap = {cl_.upload(in.envMap)};
-    b.envCdf = {cl_.upload(in.envCdf)};
-    b.lightRecords = {cl_.upload(in.lightRecords.empty() ? std::vector<LightRecord>(1) : in.lightRecords)};
-    b.instances = {cl_.upload(in.bvh->instances.empty() ? std::vector<Instance>(1) : in.bvh->instances)};
+    tables_.view(in);
+#define MCL_CL_TABLE(name, T, dummy) b.name = {readOnly(*tables_.name)};
+    MCL_SCENE_TABLES(MCL_CL_TABLE)
+#undef MCL_CL_TABLE
     std::vector<cl_uint> all(pixels_);
     for (std::uint64_t p = 0; p < pixels_; ++p) all[p] = cl_uint(p);
     b.active = {cl_.upload(all, CL_MEM_READ_WRITE)};
@@ -79,31 +69,31 @@ class ClStageRunner final : public StageRunner {
     // count a fill as initialising memory, and a write costs the same here. The zeros are written
     // from one block of at most 1 MiB (not a film-sized host array).
 #define MCL_CL_FILM_BUFFER(name, per, need) &b.name.buffer,
-#define MCL_CL_FILM_WORDS(name, per, need) needed(Need::need, shape) ? bufferCount(Per::per, Need::need, shape) : 0,
     const cl::Buffer* films[] = {MCL_FILM_BUFFERS(MCL_CL_FILM_BUFFER)};
-    const std::uint64_t words[] = {MCL_FILM_BUFFERS(MCL_CL_FILM_WORDS)};
 #undef MCL_CL_FILM_BUFFER
-#undef MCL_CL_FILM_WORDS
-    static_assert(sizeof(films) / sizeof(films[0]) == 6, "the film's parts: mean, meanLo, m2, m2Lo, aovSum, split");
-    bool loaded[6] = {false, false, false, false, false, false};
+    const std::array<std::uint64_t, kFilmBufferCount> words = filmWords();
+    bool loaded[kFilmBufferCount] = {};
     if (const Film* f = in.initialFilm) {
+      // A resumed film: its parts by name, mean and meanLo as the device words (count bits in w).
       std::vector<glm::vec4> meanWords, meanLoWords;
       f->packCounts(meanWords, meanLoWords);
-      const void* from[] = {meanWords.data(), meanLoWords.data(), f->m2.data(), f->m2Lo.data(), f->aovSum.data(),
-                            f->split.data()};
-      const std::size_t has[] = {meanWords.size(), meanLoWords.size(), f->m2.size(), f->m2Lo.size(), f->aovSum.size(),
-                                 f->split.size()};
-      for (int i = 0; i < 6; ++i)
-        if (words[i] && has[i] >= words[i]) {
-          cl_.queue().enqueueWriteBuffer(*films[i], CL_TRUE, 0, words[i] * sizeof(cl_float4), from[i]);
+      const auto from = [&](const std::vector<glm::vec4>& part) -> const std::vector<glm::vec4>& {
+        return &part == &f->mean ? meanWords : &part == &f->meanLo ? meanLoWords : part;
+      };
+#define MCL_CL_FILM_FROM(name, per, need) &from(f->name),
+      const std::vector<glm::vec4>* parts[] = {MCL_FILM_BUFFERS(MCL_CL_FILM_FROM)};
+#undef MCL_CL_FILM_FROM
+      for (int i = 0; i < kFilmBufferCount; ++i)
+        if (words[i] && parts[i]->size() >= words[i]) {
+          cl_.queue().enqueueWriteBuffer(*films[i], CL_TRUE, 0, words[i] * sizeof(cl_float4), parts[i]->data());
           loaded[i] = true;
         }
     }
     // One write per part where it fits the block: Oclgrind resets a buffer's definedness only on a
     // write at offset 0 (cl_session.h scratch), so the AOV sums (two per pixel) must not come in two.
-    const std::vector<cl_float4> zeros(std::min<std::uint64_t>(*std::max_element(std::begin(words), std::end(words)), 65536),
+    const std::vector<cl_float4> zeros(std::min<std::uint64_t>(*std::max_element(words.begin(), words.end()), 65536),
                                        cl_float4{{0.0f, 0.0f, 0.0f, 0.0f}});
-    for (int i = 0; i < 6; ++i)
+    for (int i = 0; i < kFilmBufferCount; ++i)
       for (std::uint64_t at = 0; !loaded[i] && at < words[i]; at += zeros.size())
         cl_.queue().enqueueWriteBuffer(*films[i], CL_FALSE, at * sizeof(cl_float4),
                                        std::min<std::uint64_t>(zeros.size(), words[i] - at) * sizeof(cl_float4),
@@ -228,18 +218,17 @@ class ClStageRunner final : public StageRunner {
   void finish(Film& film) override {
     cl_.queue().finish();
     ClBindings& b = bindings_;
-    std::pair<cl::Buffer, std::vector<glm::vec4>*> parts[] = {
-        {b.mean.buffer, &film.mean}, {b.meanLo.buffer, &film.meanLo}, {b.m2.buffer, &film.m2},
-        {b.m2Lo.buffer, &film.m2Lo}, {b.aovSum.buffer, &film.aovSum}, {b.split.buffer, &film.split}};
+#define MCL_CL_FILM_PART(name, per, need) {b.name.buffer, &film.name},
+    std::pair<cl::Buffer, std::vector<glm::vec4>*> parts[] = {MCL_FILM_BUFFERS(MCL_CL_FILM_PART)};
+#undef MCL_CL_FILM_PART
+    const std::array<std::uint64_t, kFilmBufferCount> words = filmWords();
     releaseBuffersAndWaves();
     trimHeap();
-    for (auto& [device, host] : parts) {
-      const std::uint64_t words = host == &film.aovSum ? (aovs_ ? MCL_AOV_VECTORS * pixels_ : 0)
-                                  : host == &film.split ? splits_ * pixels_
-                                                        : pixels_;
-      host->resize(words);
-      if (words)
-        cl_.queue().enqueueReadBuffer(device, CL_TRUE, 0, words * sizeof(cl_float4), host->data());
+    for (int i = 0; i < kFilmBufferCount; ++i) {
+      auto& [device, host] = parts[i];
+      host->resize(words[i]);
+      if (words[i])
+        cl_.queue().enqueueReadBuffer(device, CL_TRUE, 0, words[i] * sizeof(cl_float4), host->data());
       device = cl::Buffer();
       trimHeap();
     }
@@ -251,9 +240,21 @@ class ClStageRunner final : public StageRunner {
   // after the queue has finished, by finish() and abandon().
   void releaseBuffersAndWaves() {
     bindings_ = ClBindings{};
+    tables_.release();
     launched_.clear();
     for (Submitted& w : submitted_) w.launched.clear();
     firstSubmitted_ = submittedCount_ = 0;
+  }
+
+  // The words of each film part this render holds (MCL_FILM_BUFFERS order; 0: a dummy).
+  std::array<std::uint64_t, kFilmBufferCount> filmWords() const {
+    std::array<std::uint64_t, kFilmBufferCount> words{};
+    int i = 0;
+#define MCL_CL_FILM_WORDS(name, per, need) \
+  words[i++] = needed(Need::need, shape_) ? bufferCount(Per::per, Need::need, shape_) : 0;
+    MCL_FILM_BUFFERS(MCL_CL_FILM_WORDS)
+#undef MCL_CL_FILM_WORDS
+    return words;
   }
 
   // A read-only array the kernels read: used in place on CPU devices (the array must outlive the
@@ -270,6 +271,8 @@ class ClStageRunner final : public StageRunner {
   bool inPlace_;
   std::array<cl::Kernel, kStageCount> kernels_;
   ClBindings bindings_;
+  SceneTables tables_;  // what the scene tables' buffers use in place (CPU devices)
+  WaveShape shape_;     // the render's buffer shape (setup)
   bool aovs_ = false;
   std::uint64_t splits_ = 0;  // sobol sub-sequences with film accumulators (Film::split)
   static constexpr cl_uint kZero = 0;  // what the counter resets write

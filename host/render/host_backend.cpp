@@ -10,8 +10,8 @@
 #include <limits>
 #include <thread>
 
+#include "render/scene_tables.h"
 #include "render/stage_runner.h"
-#include "render/triangle_shading.h"
 #include "util/parallel_for.h"
 
 namespace montecl {
@@ -30,29 +30,7 @@ class HostStageRunner final : public StageRunner {
   void setup(const StageInputs& in) override {
     frame_ = in.frame;
     nodes_ = in.bvh->wideNodes();
-    tris_ = in.triangles.empty() ? in.bvh->triangles : in.triangles;
-    shading_ = in.shading;
-    if (shading_.empty()) shading_.resize(1);
-    normals_ = buildTriangleNormals(in.bvh->triangles);
-    vertexColors_ = in.vertexColors;
-    if (vertexColors_.empty()) vertexColors_.resize(1);
-    tangents_ = in.tangents;
-    if (tangents_.empty()) tangents_.resize(1);
-    materials_ = in.materials;
-    emitters_ = in.emitters;
-    envMap_ = in.envMap;
-    envCdf_ = in.envCdf;
-    lightRecords_ = in.lightRecords;
-    instances_ = in.bvh->instances;
-    if (instances_.empty()) instances_.resize(1);
-    if (lightRecords_.empty()) lightRecords_.resize(1);
-    if (materials_.empty()) materials_.resize(1);
-    if (emitters_.empty()) emitters_.resize(1);
-    const bool tex = in.textures && !in.textures->textures.empty();
-    textures_ = tex ? &in.textures->textures : &noTextures_;
-    textureLevels_ = tex ? &in.textures->levels : &noTextureLevels_;
-    texels_ = tex ? &in.textures->texels : &noTexels_;
-    if (tris_.empty()) tris_.resize(1);
+    tables_.view(in);  // (not copied: the tables are read only, and texels can be large)
     const WaveShape shape = setupShape(in);
 #define MCL_HOST_ALLOC(name, T, per, need) name##_.assign(bufferCount(Per::per, Need::need, shape), T{});
 #define MCL_HOST_FILM_ALLOC(name, per, need) name##_.assign(bufferCount(Per::per, Need::need, shape), float4(0.0f));
@@ -68,16 +46,15 @@ class HostStageRunner final : public StageRunner {
     if (const Film* f = in.initialFilm) {  // a resumed film: its words, count bits in the w lanes
       std::vector<glm::vec4> meanWords, meanLoWords;
       f->packCounts(meanWords, meanLoWords);
-      const auto load = [](std::vector<float4>& to, const std::vector<glm::vec4>& from) {
+      const auto load = [&](std::vector<float4>& to, const std::vector<glm::vec4>& part) {
+        const std::vector<glm::vec4>& from = &part == &f->mean ? meanWords : &part == &f->meanLo ? meanLoWords : part;
         for (std::size_t i = 0; i < to.size() && i < from.size(); ++i)
           to[i] = float4(from[i].x, from[i].y, from[i].z, from[i].w);
       };
-      load(mean_, meanWords);
-      load(meanLo_, meanLoWords);
-      load(m2_, f->m2);
-      load(m2Lo_, f->m2Lo);
-      if (aovs_) load(aovSum_, f->aovSum);
-      if (splits_) load(split_, f->split);
+#define MCL_HOST_FILM_LOAD(name, per, need) \
+  if (needed(Need::need, shape)) load(name##_, f->name);
+      MCL_FILM_BUFFERS(MCL_HOST_FILM_LOAD)
+#undef MCL_HOST_FILM_LOAD
     }
     bind();
   }
@@ -156,7 +133,8 @@ class HostStageRunner final : public StageRunner {
     MCL_WAVE_BUFFERS(MCL_HOST_RELEASE)
     MCL_FILM_BUFFERS(MCL_HOST_RELEASE)
 #undef MCL_HOST_RELEASE
-    active_ = {}, nodes_ = {}, tris_ = {}, shading_ = {};
+    active_ = {}, nodes_ = {};
+    tables_.release();
     bind();
   }
 
@@ -171,21 +149,9 @@ class HostStageRunner final : public StageRunner {
     HostBindings& b = bindings_;
     b.frame = &frame_;
     b.nodes = nodes_.data();
-    b.tris = tris_.data();
-    b.shading = shading_.data();
-    b.normals = normals_.data();
-    b.vertexColors = vertexColors_.data();
-    b.tangents = tangents_.data();
-    b.materials = materials_.data();
-    b.emitters = emitters_.data();
-    // Read-only to every stage (const in the stage table); not copied: texels can be large.
-    b.textures = const_cast<TextureDesc*>(textures_->data());
-    b.textureLevels = const_cast<TextureLevel*>(textureLevels_->data());
-    b.texels = const_cast<std::uint16_t*>(texels_->data());
-    b.envMap = envMap_.data();
-    b.envCdf = envCdf_.data();
-    b.lightRecords = lightRecords_.data();
-    b.instances = instances_.data();
+#define MCL_HOST_BIND_TABLE(name, T, dummy) b.name = tables_.name ? tables_.name->data() : nullptr;
+    MCL_SCENE_TABLES(MCL_HOST_BIND_TABLE)
+#undef MCL_HOST_BIND_TABLE
     b.active = active_.data();
 #define MCL_HOST_BIND(name, ...) b.name = name##_.data();
 #define MCL_HOST_BIND_COUNTER(name) b.name = &name##_;
@@ -203,24 +169,7 @@ class HostStageRunner final : public StageRunner {
   std::uint64_t splits_ = 0;  // sobol sub-sequences with film accumulators (Film::split)
   std::vector<uint> active_;
   std::vector<WideNode> nodes_;
-  std::vector<Instance> instances_;
-  std::vector<Triangle> tris_;
-  std::vector<TriangleShading> shading_;
-  std::vector<float4> normals_;
-  std::vector<float4> vertexColors_;
-  std::vector<float4> tangents_;
-  std::vector<Material> materials_;
-  std::vector<Emitter> emitters_;
-  // The scene's texture tables (the caller's, alive during the render) or 1-entry dummies.
-  const std::vector<TextureDesc>* textures_ = nullptr;
-  const std::vector<TextureLevel>* textureLevels_ = nullptr;
-  const std::vector<std::uint16_t>* texels_ = nullptr;
-  std::vector<TextureDesc> noTextures_ = std::vector<TextureDesc>(1);
-  std::vector<TextureLevel> noTextureLevels_ = std::vector<TextureLevel>(1);
-  std::vector<std::uint16_t> noTexels_ = std::vector<std::uint16_t>(4);
-  std::vector<float4> envMap_;
-  std::vector<float> envCdf_;
-  std::vector<LightRecord> lightRecords_;
+  SceneTables tables_;  // the read-only scene tables, viewed in the caller's StageInputs
   // The wave buffers, counters and film (render/wave_buffers.h); queueCount_ and nanRays_ are
   // incremented atomically by the stages.
 #define MCL_HOST_VECTOR(name, T, per, need) std::vector<T> name##_;

@@ -2,9 +2,10 @@
 #include "render/sample_schedule.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
-#include "render/wavefront.h"
+#include "render/render_options.h"
 
 namespace montecl {
 
@@ -56,6 +57,21 @@ void SampleSchedule::done(const std::vector<std::uint32_t>& active, std::uint64_
 bool SampleSchedule::unfinished(const Film& film) {
   for (std::uint32_t p : mine_) counts_[p] = film.count[p];
   return std::any_of(mine_.begin(), mine_.end(), [&](std::uint32_t p) { return nextTarget(film, p) != 0; });
+}
+
+double relativeStandardError(const Film& film, std::size_t p, double errorFloor) {
+  const double n = double(film.count[p]);
+  if (n < 2.0) return INFINITY;
+  const glm::dvec3 w(0.2126, 0.7152, 0.0722);
+  // Luminance of each sample is a linear combination of its channels; its variance needs the
+  // cross terms, which are not accumulated, so the channels' standard errors are combined as if
+  // fully correlated (an upper bound): se(L) <= sum_c w_c se_c.
+  double mean = 0.0, se = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    mean += w[c] * film.mean[p][c];
+    se += w[c] * std::sqrt(film.meanVariance(p, c));
+  }
+  return se / std::max(mean, errorFloor);
 }
 
 }  // namespace montecl

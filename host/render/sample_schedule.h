@@ -2,8 +2,9 @@
 // its own count and state: without adaptive sampling it needs samples up to spp; with it, rounds
 // end at minSpp, 2 minSpp, 4 minSpp ... maxSpp, and at each round's end the pixel goes on while
 // its relative error exceeds the target. A fresh render is one round (or the adaptive rounds); a
-// resumed film (pixels at different counts) first brings the lowest counts up. Reads the film it is
-// given; writes nothing else.
+// resumed film (pixels at different counts) first brings the lowest counts up; the relative error
+// the adaptive rule compares (relativeStandardError). Reads the film it is given; writes nothing
+// else.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -14,6 +15,9 @@ namespace montecl {
 
 struct RenderOptions;
 struct RenderPart;
+
+// Relative standard error of pixel p's mean luminance (infinite below 2 samples).
+double relativeStandardError(const Film& film, std::size_t p, double errorFloor);
 
 class SampleSchedule {
  public:

@@ -53,23 +53,12 @@ enum class RayInput { Camera, Bounce };
 template <template <class> class Array>
 struct StageBindings {
   Array<FrameParams> frame;
-  // Scene, uploaded once.
+  // Scene, uploaded once: the BVH nodes (their type follows the layout) and the read-only tables
+  // (render/wave_buffers.h MCL_SCENE_TABLES, where each is described).
   Array<BvhTraversalNode> nodes;
-  Array<Triangle> tris;
-  Array<TriangleShading> shading;  // per triangle, BVH order (1-entry dummy when none has attributes)
-  Array<float4> normals;           // per triangle, BVH order: unit geometric normal, w area (buildTriangleNormals)
-  Array<Material> materials;
-  Array<Emitter> emitters;
-  // Texture tables (host/texture/scene_textures.h); 1-entry dummies in a scene without textures.
-  Array<TextureDesc> textures;
-  Array<TextureLevel> textureLevels;
-  Array<ushort> texels;
-  Array<float4> vertexColors;  // 3 per triangle, BVH order (1-entry dummy when none has COLOR_0)
-  Array<float4> tangents;      // 3 per triangle, BVH order (1-entry dummy when none has TANGENT)
-  Array<float4> envMap;  // environment texels (kernels/shared/environment.h)
-  Array<float> envCdf;   // its marginal and conditional CDFs
-  Array<LightRecord> lightRecords;  // point, spot, directional lights (render/light_table.h; 1-entry dummy when none)
-  Array<Instance> instances;  // the two-level BVH's placements (Bvh::instances; 1-entry dummy without)
+#define MCL_BINDING_TABLE(name, T, dummy) Array<const T> name;
+  MCL_SCENE_TABLES(MCL_BINDING_TABLE)
+#undef MCL_BINDING_TABLE
   Array<uint> active;  // the active-pixel list
   // Per wave item, the counters and the film (render/wave_buffers.h, where each is described).
 #define MCL_BINDING_BUFFER(name, T, per, need) Array<T> name;

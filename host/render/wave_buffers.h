@@ -3,8 +3,8 @@
 // (per wave item, per occlusion slot, per pixel) and which renders need it. StageBindings declares
 // its members from these lists, both backends allocate, bind and release them by iterating them,
 // and the wave sizing and the memory check add their bytes from them (waveBytesPerItem,
-// filmBytesPerPixel), so a new buffer is one row here plus the stages that use it. Reads and
-// writes nothing.
+// filmBytesPerPixel), so a new buffer is one row here plus the stages that use it. The read-only
+// scene tables are listed here too (MCL_SCENE_TABLES). Reads and writes nothing.
 #pragma once
 #include <cstdint>
 
@@ -60,6 +60,33 @@ enum class Need { Always, Bounce, Path, Aovs, Splits, Instances, BounceInstances
   F(m2Lo, Pixel, Always)         \
   F(aovSum, AovsPerPixel, Aovs)  \
   F(split, SplitsPerPixel, Splits)
+
+// The film's parts, counted from the list (the backends load, clear and read them part by part).
+#define MCL_FILM_COUNT_ONE(name, per, need) +1
+constexpr int kFilmBufferCount = 0 MCL_FILM_BUFFERS(MCL_FILM_COUNT_ONE);
+#undef MCL_FILM_COUNT_ONE
+
+// SCENE_TABLE(name, element type, dummy elements): the read-only scene tables, uploaded once per
+// render and bound by name like the buffers above (render/scene_tables.h says where each comes
+// from). A render without one (no textures, instances, vertex colours, ...) binds a dummy of that
+// many elements instead: OpenCL has no empty buffers, and a stage binds every table it names
+// whether or not it reads it (texels: one RGBA half texel). The BVH nodes are not a row: their
+// type and upload follow the BVH layout.
+#define MCL_SCENE_TABLES(S)          \
+  S(tris, Triangle, 1)               \
+  S(shading, TriangleShading, 1)     \
+  S(normals, float4, 1)              \
+  S(vertexColors, float4, 1)         \
+  S(tangents, float4, 1)             \
+  S(materials, Material, 1)          \
+  S(emitters, Emitter, 1)            \
+  S(textures, TextureDesc, 1)        \
+  S(textureLevels, TextureLevel, 1)  \
+  S(texels, ushort, 4)               \
+  S(envMap, float4, 1)               \
+  S(envCdf, float, 1)                \
+  S(lightRecords, LightRecord, 1)    \
+  S(instances, Instance, 1)
 
 // What a render needs of these lists: the wave's size and what its integrator and options ask for.
 struct WaveShape {

@@ -394,19 +394,4 @@ std::uint64_t defaultMaxWaveItems(const DeviceInfo& device, bool path) {
   return path ? 4 * cap : cap;
 }
 
-double relativeStandardError(const Film& film, std::size_t p, double errorFloor) {
-  const double n = double(film.count[p]);
-  if (n < 2.0) return INFINITY;
-  const glm::dvec3 w(0.2126, 0.7152, 0.0722);
-  // Luminance of each sample is a linear combination of its channels; its variance needs the
-  // cross terms, which are not accumulated, so the channels' standard errors are combined as if
-  // fully correlated (an upper bound): se(L) <= sum_c w_c se_c.
-  double mean = 0.0, se = 0.0;
-  for (int c = 0; c < 3; ++c) {
-    mean += w[c] * film.mean[p][c];
-    se += w[c] * std::sqrt(film.meanVariance(p, c));
-  }
-  return se / std::max(mean, errorFloor);
-}
-
 }  // namespace montecl
