@@ -17,8 +17,5 @@
 #include "shade_direct_lanes.h"
 #include "accumulate_lanes.h"
 #include "shade_path_lanes.h"
-#include "intersect_lanes.h"
-#include "intersect_shadow_lanes.h"
-#include "record_aov_lanes.h"
 // The fused stages, which run the others.
 #include "wave_fused.h"
