@@ -10,6 +10,28 @@
 // luminance (lights.h) per lane.
 MCL_INLINE vfloat v_luminance(vfloat3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
+// Le seen at W hits (light_eval: an emission texture looked up) and, where pdf is not null, its
+// light_pdf, lane by lane for the lanes set in m (0 elsewhere): hit first + j along ray first + j.
+MCL_INLINE vfloat3 lane_emission(MCL_CONSTANT const FrameParams* f, LightScene lights, MCL_GLOBAL const Hit* hits,
+                                 MCL_GLOBAL const Ray* rays, uint first, vmask m, vfloat* pdf) {
+  uint set[MCL_LANES] MCL_LANE_ALIGN;
+  float lx[MCL_LANES] MCL_LANE_ALIGN, ly[MCL_LANES] MCL_LANE_ALIGN, lz[MCL_LANES] MCL_LANE_ALIGN,
+      lp[MCL_LANES] MCL_LANE_ALIGN;
+  v_store_lanes(v_mask01(m), set);
+  for (uint j = 0; j < MCL_LANES; ++j) {
+    lx[j] = ly[j] = lz[j] = lp[j] = 0.0f;
+    if (!set[j]) continue;
+    LightHit lh = light_hit(hits[first + j], xyz(rays[first + j].dir));
+    float3 le = light_eval(f, lights, lh);
+    lx[j] = le.x;
+    ly[j] = le.y;
+    lz[j] = le.z;
+    if (pdf) lp[j] = light_pdf(f, lights, lh);
+  }
+  if (pdf) *pdf = v_loadf_lanes(lp);
+  return v3_load_lanes(lx, ly, lz);
+}
+
 // pick_emitter per lane: the first emitter whose cdf exceeds u (binary search inside the guide
 // table's range for u's bucket, lanes masked as they finish); count > 0.
 MCL_INLINE vuint v_pick_emitter(MCL_GLOBAL const Emitter* emitters, uint count, vfloat u) {
@@ -126,7 +148,8 @@ MCL_INLINE VLightSample v_sample_direct_light(MCL_CONSTANT const FrameParams* f,
   r.pdf = v_f(0.0f);
   r.tmax = v_f(INFINITY);
   r.delta = v_not(m | v_not(m));  // none
-  vmask area = m & (kind == (uint)MCL_LIGHT_area);
+  // Textured emission (its Le a texture lookup) through the scalar code with the other kinds.
+  vmask area = m & (kind == (uint)MCL_LIGHT_area) & (f->emissionTextured ? v_not(m) : m);
   if (v_any(area)) {
     VEmitterSample es = v_sample_emitter(f, lights.emitters, lights.tris, lights.normals, lights.materials,
                                          (u.x - start) / share, u.y, u.z, origin);

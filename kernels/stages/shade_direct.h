@@ -8,7 +8,19 @@
 // transmitting lobe, their shadow rays leaving from the far side).
 // Shadow slots per sample: [0, K) light samples, K the BSDF sample (shade_direct_hit); each
 // strategy leaves the slots it does not use at 0.
+// The body takes W consecutive camera hits, one per lane (W = MCL_LANES: 1 on the host backend
+// and GPUs; lanes past the wave masked): misses (the background, or the environment through
+// light_eval per lane) and hits on the diffuse kind without a glossy lobe, textured or not, flat or
+// smooth, in lanes (stage_lanes.h: the frame and albedo per lane, from surface_at where the hit is
+// not flat and untextured): Le seen, the light samples (the kind picked per lane, emitter triangles
+// in lanes and the other kinds through sample_direct_light per lane, light_area_lanes.h; one atomic
+// per packet per light sample) and the BSDF ray (the cosine lobe, folded where smooth). Hits on
+// other kinds: their surface, light samples and BSDF ray lane by lane through the functions below
+// (direct_light_sample, direct_bsdf_ray), with the packet's random numbers. Textured emission: Le
+// and the emitter samples lane by lane (light_eval, sample_direct_light).
 #pragma once
+#include "stage_lanes.h"
+#include "light_area_lanes.h"
 #include "direct_light.h"
 
 // Light sample k (random numbers u) at item i's surface surf (wo toward the camera, origin the
@@ -62,31 +74,163 @@ MCL_INLINE int direct_takes_light_samples(MCL_CONSTANT const FrameParams* f, Sur
          !bsdf_is_delta(surf.bsdf);
 }
 
-MCL_INLINE void shade_direct_item(const shade_direct_args* a, uint i) {
-  if (i >= a->waveCount) return;
+MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
+  if (first >= a->waveCount) return;
   MCL_CONSTANT const FrameParams* f = a->frame;
-  Hit h = a->hits[i];
-  float3 dir = xyz(a->rays[i].dir);
-  LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf, a->lightRecords,
-                                       a->shading, make_texture_tables(a->textures, a->textureLevels, a->texels));
-  Ray bounce;  // no BRDF ray unless set below; stored once on every way out
-  bounce.origin = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
-  bounce.dir = make_float4(0.0f, 0.0f, 1.0f, -1.0f);
-  if (!shade_begin(f, h, i, a->radiance, a->shadowContrib)) {
-    a->bounce[i] = bounce;
-    if (env_present(f)) a->radiance[i] = with_w(light_eval(f, lights, light_hit(h, dir)), 0.0f);
+  const uint lanes = v_packet_lanes(first, a->waveCount);
+  const vmask own = v_lane_index() < lanes;  // the lanes with an item
+  vfloat ht, htri, hu, hv;
+  v_load4_n((MCL_GLOBAL const float*)(a->hits + first), lanes, &ht, &htri, &hu, &hv);
+  vuint tri = v_as_uint(htri);
+  vmask hit = own & (tri != MCL_NO_HIT);
+  const uint slots = f->shadowSlots;
+  for (uint k = 0; k < lanes * slots; ++k)  // shade_begin
+    a->shadowContrib[first * slots + k] = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
+  float4 bg = f->background;
+  MCL_GLOBAL float* rad = (MCL_GLOBAL float*)(a->radiance + first);
+  MCL_GLOBAL float* bounce = (MCL_GLOBAL float*)(a->bounce + first);
+  const int env = env_present(f);
+  if (!v_any(hit) && !env) {
+    v_store4_n(rad, lanes, v_f(bg.x), v_f(bg.y), v_f(bg.z), v_f(bg.w));
+    v_store4_stride_n(bounce, 8, lanes, v_f(0.0f), v_f(0.0f), v_f(0.0f), v_f(0.0f));
+    v_store4_stride_n(bounce + 4, 8, lanes, v_f(0.0f), v_f(0.0f), v_f(1.0f), v_f(-1.0f));
     return;
   }
-  float3 le = light_eval(f, lights, light_hit(h, dir));  // Le of the hit triangle seen directly
-  float3 wo = -dir;
-  uint pixel = item_pixel(f, a->active, a->waveStart, i), sample = item_sample(f, a->waveStart, i);
-  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, hit_instance(f, a->hitInstances, i), dir,
-                            sample_ref(pixel, sample, 0u));
-  a->radiance[i] = with_w(le, 0.0f);
-  float3 origin = offset_ray_origin(surf.frame.p, surf.frame.ng, f->offsetScale);
-  int useBrdf = f->directSampling != MCL_DIRECT_LIGHT;
-  for (uint k = 0; direct_takes_light_samples(f, surf) && k < f->lightSamples; ++k)
-    direct_light_sample(a, lights, surf, wo, origin, useBrdf, i, k, sample_uniform4(f, pixel, sample, MCL_DIM_LIGHT + k));
-  if (useBrdf) bounce = direct_bsdf_ray(f, surf, wo, origin, sample_uniform4(f, pixel, sample, MCL_DIM_BRDF));
-  a->bounce[i] = bounce;
+  // The hit triangles, their normals and materials (misses read entry 0 and are masked off).
+  vuint t = vsel(hit, tri, v_u(0u));
+  MCL_GLOBAL const float* tf = (MCL_GLOBAL const float*)a->tris;
+  MCL_GLOBAL const float* mf = (MCL_GLOBAL const float*)a->materials;
+  vfloat v0x, v0y, v0z, v0w, e1x, e1y, e1z, e1w, e2x, e2y, e2z, e2w, nx, ny, nz, nw;
+  v_gather4(tf, t, 12, &v0x, &v0y, &v0z, &v0w);
+  v_gather4(tf + 4, t, 12, &e1x, &e1y, &e1z, &e1w);
+  v_gather4(tf + 8, t, 12, &e2x, &e2y, &e2z, &e2w);
+  v_gather4((MCL_GLOBAL const float*)a->normals, t, 4, &nx, &ny, &nz, &nw);
+  vuint mat = v_as_uint(v0w);  // triangle_material
+  vfloat kdx, kdy, kdz, kdw, kex, key, kez, kew, ksx, ksy, ksz, ksw;
+  v_gather4(mf, mat, MCL_MATERIAL_FLOATS, &kdx, &kdy, &kdz, &kdw);      // albedo: Kd, texture index
+  v_gather4(mf + 4, mat, MCL_MATERIAL_FLOATS, &kex, &key, &kez, &kew);  // emission: Ke, two-sided
+  v_gather4(mf + 8, mat, MCL_MATERIAL_FLOATS, &ksx, &ksy, &ksz, &ksw);  // specular: Ks, alpha
+  vfloat kax, kay, kaz, kaw;
+  v_gather4(mf + 12, mat, MCL_MATERIAL_FLOATS, &kax, &kay, &kaz, &kaw);  // alpha test; w: the material kind (uint bits)
+  vfloat kmx, kmy, kmz, kmw;
+  v_gather4(mf + 24, mat, MCL_MATERIAL_FLOATS, &kmx, &kmy, &kmz, &kmw);  // maps: z the normal map, w the bump map (+1)
+  // bsdf_make's specProb, as the scalar body computes it: the packet takes the lanes where it is 0.
+  vfloat ls = v_luminance(v3_make(ksx, ksy, ksz)), ld = v_luminance(v3_make(kdx, kdy, kdz));
+  vfloat specProb = vsel(ls > 0.0f, ls / (ls + ld), v_f(0.0f));
+  vmask packet = hit & (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse);
+  vmask flat = packet & ((v_as_uint(e2w) & (MCL_ATTR_NORMALS | MCL_ATTR_COLOR)) == 0u) &
+               (v_as_uint(kdw) == MCL_NO_TEXTURE) & (v_as_uint(kmz) == 0u) &
+               (v_as_uint(kmw) == 0u);  // no normal or bump map (Material::maps.z, w)
+  if (f->instanceCount > 0u) {  // instanced hits: their frame from surface_at, in object space
+    uint inst[MCL_LANES] MCL_LANE_ALIGN;
+    for (uint j = 0; j < MCL_LANES; ++j) inst[j] = j < lanes ? hit_instance(f, a->hitInstances, first + j) : 0u;
+    flat = flat & (v_loadu_lanes(inst) == MCL_NO_INSTANCE);
+  }
+  vmask other = hit & v_not(packet);  // other kinds: their surface and BSDF lane by lane
+  vfloat dx, dy, dz, dw;
+  v_load4_stride_n((MCL_GLOBAL const float*)(a->rays + first) + 4, 8, lanes, &dx, &dy, &dz, &dw);
+  vfloat3 dir = v3_make(dx, dy, dz);
+  vfloat3 n = v3_make(nx, ny, nz);
+  // emitted_toward(n, material, dir)
+  vmask front = v3_dot(n, dir) < 0.0f;
+  vmask emits = front | (kew != 0.0f);
+  vfloat3 le = v3_make(vsel(emits, kex, v_f(0.0f)), vsel(emits, key, v_f(0.0f)), vsel(emits, kez, v_f(0.0f)));
+  LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf,
+                                       a->lightRecords, a->shading,
+                                       make_texture_tables(a->textures, a->textureLevels, a->texels));
+  vfloat3 miss = v3_make(v_f(bg.x), v_f(bg.y), v_f(bg.z));
+  vfloat missW = v_f(bg.w);
+  if (env) {  // the environment seen, lane by lane (light_eval)
+    float mx[MCL_LANES] MCL_LANE_ALIGN, my[MCL_LANES] MCL_LANE_ALIGN, mz[MCL_LANES] MCL_LANE_ALIGN;
+    uint gone[MCL_LANES] MCL_LANE_ALIGN;
+    v_store_lanes(v_mask01(own & v_not(hit)), gone);
+    for (uint j = 0; j < MCL_LANES; ++j) {
+      float3 m = make_float3(0.0f, 0.0f, 0.0f);
+      if (gone[j]) m = light_eval(f, lights, light_hit(a->hits[first + j], xyz(a->rays[first + j].dir)));
+      mx[j] = m.x;
+      my[j] = m.y;
+      mz[j] = m.z;
+    }
+    miss = v3_load_lanes(mx, my, mz);
+    missW = v_f(0.0f);
+  }
+  if (f->emissionTextured) le = lane_emission(f, lights, a->hits, a->rays, first, hit, 0);
+  v_store4_n(rad, lanes, vsel(hit, le.x, miss.x), vsel(hit, le.y, miss.y), vsel(hit, le.z, miss.z), vsel(hit, v_f(0.0f), missW));
+  vfloat3 bo = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f)), bd = v3_make(v_f(0.0f), v_f(0.0f), v_f(1.0f));
+  vfloat btmax = v_f(-1.0f);
+  Ray otherRays[MCL_LANES];
+  uint others[MCL_LANES] MCL_LANE_ALIGN;
+  v_store_lanes(v_mask01(other), others);
+  if (v_any(hit)) {
+    vuint pixel, sample;
+    v_item_pixel_sample(f, a->active, a->waveStart, first, &pixel, &sample);
+    LaneFrame sf = lane_frame(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first,
+                              packet & v_not(flat), pixel, sample, 0u, v3_make(v0x, v0y, v0z),
+                              v3_make(e1x, e1y, e1z), v3_make(e2x, e2y, e2z), hu, hv, n, dir, v3_make(kdx, kdy, kdz));
+    vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
+    const float nLight = (float)f->lightSamples;
+    const int useLight = f->directSampling != MCL_DIRECT_BRDF && (f->emitterCount > 0 || env || f->lightCount > 0u);
+    const int useBrdf = f->directSampling != MCL_DIRECT_LIGHT;
+    vuint slot0 = (first + v_lane_index()) * slots;
+    // The lanes of other kinds: surface_at and the offset origin, lane by lane.
+    Surface surfs[MCL_LANES];
+    float3 origins[MCL_LANES];
+    if (v_any(other)) {
+      lane_surfaces(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first, others, pixel, sample, 0u,
+                    surfs, origins);
+      for (uint j = 0; j < MCL_LANES; ++j)
+        if (others[j]) others[j] = direct_takes_light_samples(f, surfs[j]) ? 2u : 1u;  // 2: light samples too
+    }
+    for (uint k = 0; useLight && k < f->lightSamples; ++k) {
+      vfloat4 u = v_sample_uniform4(f, pixel, sample, MCL_DIM_LIGHT + k);
+      if (v_any(other)) {
+        Float4Lanes ul = float4_lanes(u);
+        for (uint j = 0; j < MCL_LANES; ++j)
+          if (others[j] == 2u)
+            direct_light_sample(a, lights, surfs[j], -xyz(a->rays[first + j].dir), origins[j], useBrdf, first + j, k,
+                                float4_lane(&ul, j));
+      }
+      if (!v_any(packet)) continue;
+      VLightSample ls = v_sample_direct_light(f, lights, packet, origin, u);
+      vfloat3 wi = ls.wi, lle = ls.le;
+      vfloat pdf = ls.pdf, tmax = ls.tmax;
+      vmask delta = ls.delta;
+      // frame_cosine; a Lambertian surface sees nothing below the geometric surface.
+      vmask above = v3_dot(sf.ng, wi) > 0.0f;
+      vfloat cn = v3_dot(sf.ns, wi);
+      vfloat cosSurf = vsel(sf.smooth, vsel(above, fmax(cn, v_f(0.0f)), v_f(0.0f)), cn);
+      vmask push = packet & (pdf > 0.0f) & above & (cosSurf > 0.0f);
+      if (!v_any(push)) continue;
+      vfloat weight = v_f(1.0f);
+      if (useBrdf) {  // power_heuristic(nLight, pdf, 1, bsdf_pdf), none for a delta light
+        vfloat fw = nLight * pdf, gw = 1.0f * v_lambert_pdf(sf.ng, sf.ns, sf.smooth, wi);
+        weight = vsel(delta, weight, v_power_heuristic(fw, gw));
+      }
+      vmask lit = above & (cn > 0.0f);  // bsdf_f: Kd / pi above the surface
+      vfloat3 fr = v3_make(vsel(lit, sf.kd.x * MCL_INV_PI, v_f(0.0f)), vsel(lit, sf.kd.y * MCL_INV_PI, v_f(0.0f)),
+                           vsel(lit, sf.kd.z * MCL_INV_PI, v_f(0.0f)));
+      vfloat s = cosSurf * weight / (pdf * nLight);
+      vfloat3 contrib = v3_scale(v3_mul(fr, lle), s);
+      v_push_shadow_queries(a->queue, a->queueCount, push, origin, wi, tmax, contrib, slot0 + k);
+    }
+    if (useBrdf) {  // Lambertian: the cosine lobe around ns, folded above ng where smooth
+      vfloat4 u = v_sample_uniform4(f, pixel, sample, MCL_DIM_BRDF);
+      if (v_any(other)) {  // other kinds: direct_bsdf_ray, stored after the packet's rays
+        Float4Lanes ul = float4_lanes(u);
+        for (uint j = 0; j < MCL_LANES; ++j)
+          if (others[j]) otherRays[j] = direct_bsdf_ray(f, surfs[j], -xyz(a->rays[first + j].dir), origins[j], float4_lane(&ul, j));
+      }
+      vfloat3 w = v_to_world(v_sample_cosine_hemisphere(u.x, u.y), sf.ns);
+      vfloat d = v3_dot(w, sf.ng);  // fold_above
+      vfloat3 wi = v3_select(sf.smooth & (d < 0.0f), v3_sub(w, v3_scale(sf.ng, 2.0f * d)), w);
+      bo = v3_select(packet, origin, bo);
+      bd = v3_select(packet, wi, bd);
+      btmax = vsel(packet, v_f(INFINITY), btmax);
+    }
+  }
+  v_store4_stride_n(bounce, 8, lanes, bo.x, bo.y, bo.z, v_f(0.0f));
+  v_store4_stride_n(bounce + 4, 8, lanes, bd.x, bd.y, bd.z, btmax);
+  if (v_any(other) && f->directSampling != MCL_DIRECT_LIGHT)
+    for (uint j = 0; j < MCL_LANES; ++j)
+      if (others[j]) a->bounce[first + j] = otherRays[j];
 }

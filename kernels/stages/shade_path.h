@@ -13,7 +13,23 @@
 // Depth (Mitsuba's convention, FrameParams::maxDepth D): hit b adds emission when b < D, next-event
 // estimation and a continuation when b + 1 < D; D = -1 is unlimited. Random numbers: bounce b
 // owns dimension groups MCL_DIM_PATH + b * MCL_DIM_PATH_STRIDE + j (rng.h).
+// The body takes W consecutive queue entries, one per lane (W = MCL_LANES: 1 on the host backend
+// and GPUs; lanes past the queue masked; per-path state gathered and scattered by id). Misses: the
+// background, or path_miss per lane. Emission seen (MIS weighted after a BSDF bounce) for every
+// hit in lanes (textured emission: light_eval and light_pdf per lane). Hits on the diffuse kind
+// without a glossy lobe, textured or not, flat or smooth, in lanes (stage_lanes.h): the next-event
+// light samples (the kind picked per lane: emitter triangles in lanes, the others through
+// sample_direct_light per lane, light_area_lanes.h; one atomic per packet per light sample) and
+// the cosine-lobe continuation with Russian roulette (one atomic per packet). Hits on other kinds:
+// their surface, light samples and continuation lane by lane through the functions below
+// (path_light_sample, path_continue), with the packet's random numbers.
+// Queue order: the packet's shadow queries and continuations fill their entries in lane order, so
+// the next queue's order depends on W; nothing depends on it (shadow queries name their slot,
+// path_gather adds slots in slot order, every random number comes from the path's pixel and
+// sample, and the path's state is indexed by its id).
 #pragma once
+#include "stage_lanes.h"
+#include "light_area_lanes.h"
 #include "direct_light.h"
 
 // Radiance a path ray escaping the scene along dir brings back, before the path weight: the
@@ -93,42 +109,229 @@ MCL_INLINE int path_takes_light_samples(MCL_CONSTANT const FrameParams* f, Surfa
   return (f->emitterCount > 0 || env_present(f) || f->lightCount > 0) && !bsdf_is_delta(surf.bsdf);
 }
 
-MCL_INLINE void shade_path_item(const shade_path_args* a, uint k) {
-  if (k >= *a->rayCount) return;
-  MCL_CONSTANT const FrameParams* f = a->frame;
-  uint bounce = a->pathBounce;
-  uint id = bounce == 0 ? k : a->pathIds[k];
-  for (uint s = 0; s < f->shadowSlots; ++s)
-    a->shadowContrib[id * f->shadowSlots + s] = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
-  float4 beta4 = bounce == 0 ? make_float4(1.0f, 1.0f, 1.0f, 0.0f) : a->throughput[id];
-  float3 beta = xyz(beta4);
-  float3 L = bounce == 0 ? make_float3(0.0f, 0.0f, 0.0f) : xyz(a->radiance[id]);
-  Hit h = a->hits[k];
-  float3 dir = xyz(a->rays[k].dir);
-  LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf, a->lightRecords,
-                                       a->shading, make_texture_tables(a->textures, a->textureLevels, a->texels));
-  LightHit lh = light_hit(h, dir);  // the environment on a miss, else the hit triangle
-  if (h.tri == MCL_NO_HIT) {
-    a->radiance[id] = with_w(L + beta * path_miss(f, lights, lh, bounce, beta4.w), 0.0f);
-    return;
-  }
-  float nLight = (float)f->lightSamples;
-  float3 le = light_eval(f, lights, lh);
-  if (le.x > 0.0f || le.y > 0.0f || le.z > 0.0f) {
-    float weight = 1.0f;
-    if (bounce > 0 && beta4.w > 0.0f && f->emitterCount > 0)  // a BSDF sample found an emitter
-      weight = power_heuristic(1.0f, beta4.w, nLight, light_pdf(f, lights, lh));
-    L += beta * le * weight;
-  }
-  a->radiance[id] = with_w(L, 0.0f);
-  if (!(f->maxDepth < 0 || (int)bounce + 1 < f->maxDepth)) return;
+MCL_INLINE vfloat v_max_component(vfloat3 c) { return fmax(c.x, fmax(c.y, c.z)); }
 
-  uint pixel = item_pixel(f, a->active, a->waveStart, id), sample = item_sample(f, a->waveStart, id);
-  Surface surf = surface_at(MCL_STAGE_SURFACE_SCENE(a), f, h, hit_instance(f, a->hitInstances, k), dir,
-                            sample_ref(pixel, sample, bounce));
-  float3 wo = dir * -1.0f;
-  float3 origin = offset_ray_origin(surf.frame.p, surf.frame.ng, f->offsetScale);
-  for (uint s = 0; path_takes_light_samples(f, surf) && s < f->lightSamples; ++s)
-    path_light_sample(a, lights, surf, wo, origin, beta, id, s, sample_uniform4(f, pixel, sample, path_dim(bounce, 1u + s)));
-  path_continue(a, surf, wo, origin, beta, id, sample_uniform4(f, pixel, sample, path_dim(bounce, 0u)));  // z: roulette, w: lobe
+MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
+  const uint count = *a->rayCount;
+  if (first >= count) return;
+  MCL_CONSTANT const FrameParams* f = a->frame;
+  const uint bounce = a->pathBounce;
+  const uint slots = f->shadowSlots;
+  LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf,
+                                       a->lightRecords, a->shading,
+                                       make_texture_tables(a->textures, a->textureLevels, a->texels));
+  const uint lanes = v_packet_lanes(first, count);
+  const vmask own = v_lane_index() < lanes;  // the lanes with an entry
+  // Lanes past the queue repeat its last entry (masked).
+  vuint at = vsel(own, v_lane_index(), v_u(lanes - 1u));
+  vuint id = bounce == 0 ? first + at
+                         : (lanes == MCL_LANES ? v_load_uints(a->pathIds + first) : v_gather_uint(a->pathIds + first, at));
+  vfloat ht, htri, hu, hv;
+  v_load4_n((MCL_GLOBAL const float*)(a->hits + first), lanes, &ht, &htri, &hu, &hv);
+  vuint tri = v_as_uint(htri);
+  vmask hit = own & (tri != MCL_NO_HIT);
+  // The hit triangles, their normals and materials (misses read entry 0 and are masked off).
+  vuint t = vsel(hit, tri, v_u(0u));
+  MCL_GLOBAL const float* tf = (MCL_GLOBAL const float*)a->tris;
+  MCL_GLOBAL const float* mf = (MCL_GLOBAL const float*)a->materials;
+  vfloat v0x, v0y, v0z, v0w, e1x, e1y, e1z, e1w, e2x, e2y, e2z, e2w, nx, ny, nz, nw;
+  v_gather4(tf, t, 12, &v0x, &v0y, &v0z, &v0w);
+  v_gather4(tf + 4, t, 12, &e1x, &e1y, &e1z, &e1w);
+  v_gather4(tf + 8, t, 12, &e2x, &e2y, &e2z, &e2w);
+  v_gather4((MCL_GLOBAL const float*)a->normals, t, 4, &nx, &ny, &nz, &nw);
+  vuint mat = v_as_uint(v0w);  // triangle_material
+  vfloat kdx, kdy, kdz, kdw, kex, key, kez, kew, ksx, ksy, ksz, ksw, kax, kay, kaz, kaw;
+  v_gather4(mf, mat, MCL_MATERIAL_FLOATS, &kdx, &kdy, &kdz, &kdw);       // albedo: Kd, texture index
+  v_gather4(mf + 4, mat, MCL_MATERIAL_FLOATS, &kex, &key, &kez, &kew);   // emission: Ke, two-sided
+  v_gather4(mf + 8, mat, MCL_MATERIAL_FLOATS, &ksx, &ksy, &ksz, &ksw);   // specular: Ks, alpha
+  v_gather4(mf + 12, mat, MCL_MATERIAL_FLOATS, &kax, &kay, &kaz, &kaw);  // alpha test; w: the material kind (uint bits)
+  vfloat kmx, kmy, kmz, kmw;
+  v_gather4(mf + 24, mat, MCL_MATERIAL_FLOATS, &kmx, &kmy, &kmz, &kmw);  // maps: z the normal map, w the bump map (+1)
+  vfloat lks = v_luminance(v3_make(ksx, ksy, ksz)), lkd = v_luminance(v3_make(kdx, kdy, kdz));
+  vfloat specProb = vsel(lks > 0.0f, lks / (lks + lkd), v_f(0.0f));  // bsdf_make's
+  // The packet's hits: the diffuse kind without a glossy lobe; flat ones (no shading normals, vertex
+  // colours, albedo texture, normal or bump map) have their frame from the triangle alone.
+  vmask lamb = hit & (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse);
+  vmask flat = lamb & ((v_as_uint(e2w) & (MCL_ATTR_NORMALS | MCL_ATTR_COLOR)) == 0u) &
+               (v_as_uint(kdw) == MCL_NO_TEXTURE) & (v_as_uint(kmz) == 0u) & (v_as_uint(kmw) == 0u);
+  if (f->instanceCount > 0u) {  // instanced hits: their frame from surface_at, in object space
+    uint inst[MCL_LANES] MCL_LANE_ALIGN;
+    for (uint j = 0; j < MCL_LANES; ++j) inst[j] = j < lanes ? hit_instance(f, a->hitInstances, first + j) : 0u;
+    flat = flat & (v_loadu_lanes(inst) == MCL_NO_INSTANCE);
+  }
+  vmask other = hit & v_not(lamb);  // other kinds: their surface and BSDF lane by lane (path_light_sample, path_continue)
+
+  uint ids[MCL_LANES] MCL_LANE_ALIGN, owned[MCL_LANES] MCL_LANE_ALIGN;
+  v_store_lanes(id, ids);
+  v_store_lanes(v_mask01(own), owned);
+  for (uint j = 0; j < MCL_LANES; ++j)
+    if (owned[j])
+      for (uint s = 0; s < slots; ++s) a->shadowContrib[ids[j] * slots + s] = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
+
+  vfloat3 beta = v3_make(v_f(1.0f), v_f(1.0f), v_f(1.0f)), L = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f));
+  vfloat lastPdf = v_f(0.0f);
+  if (bounce > 0) {
+    vfloat lw;
+    v_gather4((MCL_GLOBAL const float*)a->throughput, id, 4, &beta.x, &beta.y, &beta.z, &lastPdf);
+    v_gather4((MCL_GLOBAL const float*)a->radiance, id, 4, &L.x, &L.y, &L.z, &lw);
+  }
+  vfloat dx, dy, dz, dw;
+  v_load4_stride_n((MCL_GLOBAL const float*)(a->rays + first) + 4, 8, lanes, &dx, &dy, &dz, &dw);
+  vfloat3 dir = v3_make(dx, dy, dz);
+  vfloat3 n = v3_make(nx, ny, nz);
+  const float nLight = (float)f->lightSamples;
+
+  // Misses: path_miss; without an environment the background at bounce 0, else nothing.
+  vfloat3 miss;
+  if (!env_present(f)) {
+    float4 bg = bounce == 0 ? f->background : make_float4(0.0f, 0.0f, 0.0f, 0.0f);
+    miss = v3_make(v_f(bg.x), v_f(bg.y), v_f(bg.z));
+  } else {
+    float mx[MCL_LANES] MCL_LANE_ALIGN, my[MCL_LANES] MCL_LANE_ALIGN, mz[MCL_LANES] MCL_LANE_ALIGN;
+    float lp[MCL_LANES] MCL_LANE_ALIGN;
+    uint gone[MCL_LANES] MCL_LANE_ALIGN;
+    v_store_lanes(lastPdf, lp);
+    v_store_lanes(v_mask01(own & v_not(hit)), gone);
+    for (uint j = 0; j < MCL_LANES; ++j) {
+      float3 m = make_float3(0.0f, 0.0f, 0.0f);
+      if (gone[j]) m = path_miss(f, lights, light_hit(a->hits[first + j], xyz(a->rays[first + j].dir)), bounce, lp[j]);
+      mx[j] = m.x;
+      my[j] = m.y;
+      mz[j] = m.z;
+    }
+    miss = v3_load_lanes(mx, my, mz);
+  }
+  vfloat3 Lmiss = v3_add(L, v3_mul(beta, miss));
+  // Hits: Le seen (area_light_eval: emitted_toward), MIS weighted against light sampling after a
+  // BSDF bounce (area_light_pdf).
+  vmask front = v3_dot(n, dir) < 0.0f;
+  vmask emits = front | (kew != 0.0f);
+  vfloat3 le = v3_make(vsel(emits, kex, v_f(0.0f)), vsel(emits, key, v_f(0.0f)), vsel(emits, kez, v_f(0.0f)));
+  vfloat texturedPdf = v_f(0.0f);
+  if (f->emissionTextured) le = lane_emission(f, lights, a->hits, a->rays, first, hit, &texturedPdf);
+  vmask glows = hit & ((le.x > 0.0f) | (le.y > 0.0f) | (le.z > 0.0f));
+  if (v_any(glows)) {
+    vfloat weight = v_f(1.0f);
+    if (bounce > 0 && f->emitterCount > 0u) {
+      vfloat c = -v3_dot(n, dir);  // emitter_cosine
+      vfloat cosLight = vsel(kew != 0.0f, fabs(c), c);
+      vfloat pick = nw * v_luminance(v3_make(kex, key, kez)) / f->emitterPower;  // emitter_pick_probability
+      vfloat lpdf = area_light_probability(f) * (pick / nw * (ht * ht) / cosLight);
+      if (f->emissionTextured) lpdf = texturedPdf;
+      vfloat fw = 1.0f * lastPdf, gw = nLight * lpdf;
+      weight = vsel(lastPdf > 0.0f, v_power_heuristic(fw, gw), weight);
+    }
+    L = v3_select(glows, v3_add(L, v3_scale(v3_mul(beta, le), weight)), L);
+  }
+  L = v3_select(hit, L, Lmiss);
+  {
+    float lx[MCL_LANES] MCL_LANE_ALIGN, ly[MCL_LANES] MCL_LANE_ALIGN, lz[MCL_LANES] MCL_LANE_ALIGN;
+    v3_store_lanes(L, lx, ly, lz);
+    for (uint j = 0; j < MCL_LANES; ++j)
+      if (owned[j]) a->radiance[ids[j]] = make_float4(lx[j], ly[j], lz[j], 0.0f);
+  }
+
+  if ((f->maxDepth < 0 || (int)bounce + 1 < f->maxDepth) && v_any(hit)) {
+    vuint pixel, sample;
+    if (!v_items_pixel_sample(f, a->active, a->waveStart, id, &pixel, &sample)) {
+      uint px[MCL_LANES] MCL_LANE_ALIGN, sm[MCL_LANES] MCL_LANE_ALIGN;
+      for (uint j = 0; j < MCL_LANES; ++j) {
+        px[j] = item_pixel(f, a->active, a->waveStart, ids[j]);
+        sm[j] = item_sample(f, a->waveStart, ids[j]);
+      }
+      pixel = v_loadu_lanes(px);
+      sample = v_loadu_lanes(sm);
+    }
+    LaneFrame sf = lane_frame(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first,
+                              lamb & v_not(flat), pixel, sample, bounce, v3_make(v0x, v0y, v0z),
+                              v3_make(e1x, e1y, e1z), v3_make(e2x, e2y, e2z), hu, hv, n, dir, v3_make(kdx, kdy, kdz));
+    vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
+    // The lanes of other kinds: surface_at, the offset origin and the path weight, lane by lane.
+    Surface surfs[MCL_LANES];
+    float3 origins[MCL_LANES], betas[MCL_LANES];
+    uint others[MCL_LANES] MCL_LANE_ALIGN;
+    v_store_lanes(v_mask01(other), others);
+    if (v_any(other)) {
+      lane_surfaces(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first, others, pixel, sample,
+                    bounce, surfs, origins);
+      float bx[MCL_LANES] MCL_LANE_ALIGN, by[MCL_LANES] MCL_LANE_ALIGN, bz[MCL_LANES] MCL_LANE_ALIGN;
+      v3_store_lanes(beta, bx, by, bz);
+      for (uint j = 0; j < MCL_LANES; ++j) {
+        if (!others[j]) continue;
+        betas[j] = make_float3(bx[j], by[j], bz[j]);
+        others[j] = path_takes_light_samples(f, surfs[j]) ? 2u : 1u;  // 2: light samples too
+      }
+    }
+    // Some light exists (a Lambertian lobe is never a delta lobe).
+    const int nee = f->emitterCount > 0u || env_present(f) || f->lightCount > 0u;
+    vuint slot0 = id * slots;
+    for (uint s = 0; nee && s < f->lightSamples; ++s) {
+      vfloat4 u = v_sample_uniform4(f, pixel, sample, path_dim(bounce, 1u + s));
+      if (v_any(other)) {
+        Float4Lanes ul = float4_lanes(u);
+        for (uint j = 0; j < MCL_LANES; ++j)
+          if (others[j] == 2u)
+            path_light_sample(a, lights, surfs[j], xyz(a->rays[first + j].dir) * -1.0f, origins[j], betas[j], ids[j], s,
+                              float4_lane(&ul, j));
+      }
+      if (!v_any(lamb)) continue;
+      VLightSample ls = v_sample_direct_light(f, lights, lamb, origin, u);
+      vfloat3 wi = ls.wi, lle = ls.le;
+      vfloat pdf = ls.pdf, tmax = ls.tmax;
+      vmask delta = ls.delta;
+      vfloat3 fcos = v_lambert_eval(sf.kd, sf.ng, sf.ns, sf.smooth, wi);  // bsdf_eval
+      vmask push = lamb & (pdf > 0.0f) & (v_max_component(fcos) > 0.0f);
+      if (!v_any(push)) continue;
+      vfloat bsdfPdf = v_lambert_pdf(sf.ng, sf.ns, sf.smooth, wi);
+      vfloat fw = nLight * pdf, gw = 1.0f * bsdfPdf;
+      vfloat weight = vsel(delta, v_f(1.0f), v_power_heuristic(fw, gw));
+      vfloat3 contrib = v3_scale(v3_mul(v3_mul(beta, fcos), lle), weight / (pdf * nLight));
+      // Lambertian lights are above the geometric surface: the query leaves from origin along wi.
+      v_push_shadow_queries(a->queue, a->queueCount, push, origin, wi, tmax, contrib, slot0 + s);
+    }
+
+    // bsdf_sample: the cosine lobe around the frame; other kinds lane by lane.
+    vfloat4 u = v_sample_uniform4(f, pixel, sample, path_dim(bounce, 0u));  // z: roulette, w: lobe
+    if (v_any(other)) {
+      Float4Lanes ul = float4_lanes(u);
+      for (uint j = 0; j < MCL_LANES; ++j)
+        if (others[j])
+          path_continue(a, surfs[j], xyz(a->rays[first + j].dir) * -1.0f, origins[j], betas[j], ids[j],
+                        float4_lane(&ul, j));
+    }
+    vfloat pdf;
+    vfloat3 bw;
+    vfloat3 wi = v_lambert_sample(sf, u.x, u.y, &pdf, &bw);
+    vmask live = lamb & (pdf > 0.0f);
+    vfloat3 next = v3_mul(beta, bw);
+    if (bounce + 1u >= f->rrDepth) {  // Russian roulette (depth after this bounce: bounce + 1)
+      vfloat q = fmin(v_f(0.95f), v_max_component(next));
+      live = live & (u.z < q);
+      next = v3_make(next.x / q, next.y / q, next.z / q);
+    }
+    live = live & (v_max_component(next) > 0.0f);
+    if (v_any(live)) {
+      uint set[MCL_LANES] MCL_LANE_ALIGN;
+      float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN;
+      float wx[MCL_LANES] MCL_LANE_ALIGN, wy[MCL_LANES] MCL_LANE_ALIGN, wz[MCL_LANES] MCL_LANE_ALIGN;
+      float bx[MCL_LANES] MCL_LANE_ALIGN, by[MCL_LANES] MCL_LANE_ALIGN, bz[MCL_LANES] MCL_LANE_ALIGN;
+      float pp[MCL_LANES] MCL_LANE_ALIGN;
+      v_store_lanes(v_mask01(live), set);
+      v3_store_lanes(origin, ox, oy, oz);
+      v3_store_lanes(wi, wx, wy, wz);
+      v3_store_lanes(next, bx, by, bz);
+      v_store_lanes(pdf, pp);
+      uint at = MCL_ATOMIC_ADD(a->nextCount, v_count(live));
+      for (uint j = 0; j < MCL_LANES; ++j) {
+        if (!set[j]) continue;
+        a->throughput[ids[j]] = make_float4(bx[j], by[j], bz[j], pp[j]);
+        Ray r;
+        r.origin = make_float4(ox[j], oy[j], oz[j], 0.0f);
+        r.dir = make_float4(wx[j], wy[j], wz[j], INFINITY);
+        a->nextRays[at] = r;
+        a->nextPathIds[at] = ids[j];
+        ++at;
+      }
+    }
+  }
 }

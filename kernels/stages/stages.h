@@ -13,9 +13,6 @@
 #include "accumulate_aov.h"
 #include "shade_path.h"
 #include "path_gather.h"
-// The packet bodies of the stages marked MCL_PACKET_<stage> 1 in the stage table.
-#include "shade_direct_lanes.h"
 #include "accumulate_lanes.h"
-#include "shade_path_lanes.h"
 // The fused stages, which run the others.
 #include "wave_fused.h"
