@@ -5,22 +5,31 @@ renderer), then reports per-pixel agreement (z-scores) and both wall times.
     scripts/vs_mitsuba.py SCENE.json [--spp N] [--width W --height H] [--seed S]
         [--integrator direct|path] [--max-depth D] [--rr-depth R] [--direct-sampling light|brdf|mis]
         [--repeat N] [--ref-factor F] [--ref-seeds K] [--montecl build/montecl] [--variant auto|llvm|scalar]
-        [--montecl-arg ARG]... [--montecl-scene SCENE] [--block B] [--mean-z-limit L] [--keep DIR] [--json FILE] [--no-agreement]
+        [--montecl-arg ARG]... [--montecl-scene SCENE] [--block B] [--lum-blocks B [--lum-limits M,MED,P95]]
+        [--mean-z-limit L] [--keep DIR] [--json FILE] [--no-agreement]
         [--no-timing]
 
 Mitsuba's scene is built from ours as Python dicts: the pinhole camera from the camera keys
 (look_at, fov_axis 'y', the same width and height), a box pixel filter (a sample counts for its own
-pixel only, as in montecl), an `independent` sampler, one PLY mesh per (mesh, material) with a
-two-sided Lambertian BSDF of albedo Kd (montecl's surfaces are two-sided) and, where Ke (or the
-mesh's "emission") is non-zero, a one-sided `area` emitter (front face = cross(v1-v0, v2-v0), as
-montecl's), textured by the MTL's `map_Ke` (x Ke, per-corner UVs, bilinear, repeat: keep the
-camera from minifying it, montecl mip-maps and Mitsuba does not); the scene's "lights" as Mitsuba's
+pixel only, as in montecl), an `independent` sampler, one PLY mesh per (mesh, material) (with the
+OBJ's per-corner vn normals, as montecl shades) with a two-sided Lambertian BSDF of albedo Kd
+(montecl's surfaces are two-sided), times the MTL's `map_Kd` (decoded as montecl decodes it: 8-bit
+sRGB to linear, half floats; bilinear, repeat) and cut out by its `map_d` (a `mask` whose 0/1
+opacity is montecl's own test, bilinear alpha >= 0.5, sampled at 4x the texture's resolution; then
+Mitsuba's `volpath`, whose shadow rays pass the cut-outs as montecl's do, stands for `path`), and,
+where Ke (or the mesh's "emission") is non-zero, a one-sided `area` emitter (front face =
+cross(v1-v0, v2-v0), as montecl's), textured by the MTL's `map_Ke` (x Ke, per-corner UVs, bilinear,
+repeat). montecl mip-maps textures (trilinear, ray-cone footprints) and Mitsuba does not: pixels of
+minified textures differ, blocks of pixels agree (--lum-blocks); the scene's "lights" as Mitsuba's
 `point`, `spot` and `directional` emitters, and a `sun` as a black disk SUN_DISTANCE away whose
 area emitter has the sun's radiance and cone. A mesh
 entry's "material" of type dielectric / thin_dielectric / conductor becomes Mitsuba's dielectric or
 roughdielectric / thindielectric / conductor or roughconductor (the rough ones GGX, visible normals,
 for alpha > 0) with the same ior or RGB eta, k.
---block B compares B x B block means (heavy-tailed caustic pixels). Integrators: montecl `--integrator direct --direct-sampling mis` with K light samples
+--block B compares B x B block means (heavy-tailed caustic pixels). --lum-blocks B decides PASS by
+B x B blocks of luminance instead: the image mean's relative difference, the median and 95th
+percentile of the blocks' absolute relative differences, within --lum-limits (percent), with the
+blocks' z-scores printed beside them (textured scenes). Integrators: montecl `--integrator direct --direct-sampling mis` with K light samples
 = Mitsuba `direct` (emitter_samples K, bsdf_samples 1); `light` = (K, 0); `brdf` = (0, 1);
 montecl `--integrator path --max-depth D --rr-depth R` = Mitsuba `path` (max_depth D, rr_depth R):
 the same depth convention.
@@ -176,8 +185,10 @@ def corner_array(rows, fallback):
 
 def load_scene(path):
     import numpy as np
+    if path.endswith(".xml"):  # Mitsuba's own scene: both renderers read the file
+        return load_xml_scene(path)
     if not path.endswith(".json"):
-        raise BadInput(f"{path}: a scene file (.json) is needed (a bare .obj has no camera to share)")
+        raise BadInput(f"{path}: a scene file (.json or Mitsuba .xml) is needed (a bare .obj has no camera to share)")
     with open(path) as f:
         s = json.load(f)
     for key in s:
@@ -319,7 +330,7 @@ def mitsuba_integrator(spec):
     if spec["integrator"] == "path":
         # Cut-outs: Mitsuba's `path` blocks shadow rays at a mask's transparent part; `volpath`
         # (no media here: otherwise the same estimator) lets them through, as montecl's traversal does.
-        cutouts = any(sh.get("map_d") for sh in spec["shapes"])
+        cutouts = spec.get("cutouts") or any(sh.get("map_d") for sh in spec["shapes"])
         return {"type": "volpath" if cutouts else "path", "max_depth": spec["max_depth"], "rr_depth": spec["rr_depth"]}
     k = spec["light_samples"]
     em, bs = {"mis": (k, 1), "light": (k, 0), "brdf": (0, 1)}[spec["direct_sampling"]]
@@ -419,20 +430,9 @@ def opacity_bitmap(mi, path):
     return {"type": "bitmap", "bitmap": mi.Bitmap(keep), "raw": True, "filter_type": "nearest", "wrap_mode": "repeat"}
 
 
-def worker(spec_path):
+def dict_scene(mi, spec):
+    """The scene translated from montecl's JSON (load_scene) as Mitsuba's dict."""
     import numpy as np
-    with open(spec_path) as f:
-        spec = json.load(f)
-    import mitsuba as mi
-    variant = spec["variant"]
-    try:
-        mi.set_variant(variant)
-    except Exception as e:  # llvm without a usable LLVM: fall back
-        if variant == "scalar_rgb":
-            raise
-        print(f"vs_mitsuba: {variant} unavailable ({e}); using scalar_rgb", file=sys.stderr)
-        variant = "scalar_rgb"
-        mi.set_variant(variant)
     cam = spec["camera"]
     d = {"type": "scene", "integrator": mitsuba_integrator(spec)}
     lens = {}
@@ -471,7 +471,115 @@ def worker(spec_path):
         d[f"light{li}"] = mitsuba_light(mi, light)
     if spec["environment"] is not None:
         d["environment"] = {"type": "constant", "radiance": {"type": "rgb", "value": spec["environment"]["radiance"]}}
-    msc = mi.load_dict(d)
+    return mi.load_dict(d)
+
+
+def xml_scene(mi, spec):
+    """A Mitsuba XML scene as given, but for what the comparison sets: the film's size and a box
+    filter, an independent sampler at the pass's sample count, the integrator (xml_override)."""
+    import xml.etree.ElementTree as ET
+    tree = ET.parse(spec["xml"])
+    xml_override(tree.getroot(), spec)
+    path = os.path.join(os.path.dirname(spec["out"]), "scene.xml")
+    tree.write(path)
+    # The copy's relative names (meshes, textures, includes) resolve against the original's folder.
+    mi.Thread.thread().file_resolver().prepend(os.path.dirname(os.path.abspath(spec["xml"])))
+    return mi.load_file(path)
+
+
+def xml_override(root, spec):
+    import xml.etree.ElementTree as ET
+
+    def prop(parent, tag, name, value):
+        for e in parent.findall(tag):
+            if e.get("name") == name:
+                parent.remove(e)
+        ET.SubElement(parent, tag, name=name, value=str(value))
+    sensors = root.findall("sensor") or [ET.SubElement(root, "sensor", type="perspective")]
+    for sensor in sensors:
+        prop(sensor, "float", "fov", spec["camera"]["fov_y"])
+        prop(sensor, "string", "fov_axis", "y")
+        film = sensor.find("film")
+        if film is None:
+            film = ET.SubElement(sensor, "film", type="hdrfilm")
+        prop(film, "integer", "width", spec["width"])
+        prop(film, "integer", "height", spec["height"])
+        for rf in film.findall("rfilter"):
+            film.remove(rf)
+        ET.SubElement(film, "rfilter", type="box")
+        for sm in sensor.findall("sampler"):
+            sensor.remove(sm)
+        sampler = ET.SubElement(sensor, "sampler", type=spec.get("sampler", "independent"))
+        prop(sampler, "integer", "sample_count", max(1, min(spec["spp"], MAX_LANES // max(1, spec["width"] * spec["height"]))))
+    for e in root.findall("integrator"):
+        root.remove(e)
+    integ = ET.Element("integrator")
+    desc = mitsuba_integrator(spec)
+    integ.set("type", desc.pop("type"))
+    for k, v in desc.items():
+        ET.SubElement(integ, "integer", name=k, value=str(v))
+    root.insert(0, integ)
+
+
+def load_xml_scene(path):
+    """What the driver needs of a Mitsuba XML scene (montecl and Mitsuba both read the file
+    itself): the film's size, the sample count, the integrator and its depths, whether it has
+    cut-outs (masks), with $name replaced by the file's <default> values."""
+    import xml.etree.ElementTree as ET
+    try:
+        root = ET.parse(path).getroot()
+    except ET.ParseError as e:
+        raise BadInput(f"{path}: {e}")
+    defaults = {d.get("name"): d.get("value") for d in root.findall("default")}
+
+    def value(parent, tag, name, fallback):
+        for e in (parent.findall(tag) if parent is not None else []):
+            if e.get("name") == name:
+                v = e.get("value", "")
+                for k, dv in defaults.items():
+                    v = v.replace("$" + k, dv)
+                return v
+        return fallback
+    sensor = root.find("sensor")
+    film = sensor.find("film") if sensor is not None else None
+    sampler = sensor.find("sampler") if sensor is not None else None
+    integ = root.find("integrator")
+    render = {"spp": int(value(sampler, "integer", "sample_count", 4))}
+    if integ is not None:
+        render["integrator"] = "direct" if integ.get("type") == "direct" else "path"
+        render["max_depth"] = int(value(integ, "integer", "max_depth", -1))
+        render["rr_depth"] = int(value(integ, "integer", "rr_depth", 5))
+    else:
+        render.update(integrator="path", max_depth=-1, rr_depth=5)
+    w, h = int(value(film, "integer", "width", 768)), int(value(film, "integer", "height", 576))
+    # montecl keeps the vertical field of view of the file's own film when --width / --height change
+    # it (its camera has fov_y): Mitsuba gets that fov on its y axis.
+    fov = float(value(sensor, "float", "fov", 39.3077))
+    axis = value(sensor, "string", "fov_axis", "x")
+    t = math.tan(math.radians(fov) / 2)
+    scale = {"y": 1.0, "diagonal": h / math.hypot(w, h)}.get(axis, h / w)
+    if (axis == "smaller" and h < w) or (axis == "larger" and h > w):
+        scale = 1.0
+    return {"xml": os.path.abspath(path), "shapes": [], "environment": None, "lights": [], "render": render,
+            "camera": {"width": w, "height": h, "fov_y": math.degrees(2 * math.atan(t * scale))},
+            "cutouts": any(b.get("type") == "mask" for b in root.iter("bsdf"))}
+
+
+def worker(spec_path):
+    import numpy as np
+    with open(spec_path) as f:
+        spec = json.load(f)
+    import mitsuba as mi
+    variant = spec["variant"]
+    try:
+        mi.set_variant(variant)
+    except Exception as e:  # llvm without a usable LLVM: fall back
+        if variant == "scalar_rgb":
+            raise
+        print(f"vs_mitsuba: {variant} unavailable ({e}); using scalar_rgb", file=sys.stderr)
+        variant = "scalar_rgb"
+        mi.set_variant(variant)
+    msc = xml_scene(mi, spec) if spec.get("xml") else dict_scene(mi, spec)
     pixels = spec["width"] * spec["height"]
     images = []
     t_render = time.perf_counter()
@@ -617,7 +725,8 @@ def worker_base(sc, work, width, height, variant, integ, sampling, max_depth, rr
                        "normals": sh["N"] is not None})
     return {"camera": sc["camera"], "shapes": shapes, "environment": sc["environment"], "lights": sc["lights"],
             "width": width, "height": height, "variant": variant, "integrator": integ, "direct_sampling": sampling,
-            "light_samples": sc["render"]["light_samples"], "max_depth": max_depth, "rr_depth": rr_depth}
+            "light_samples": sc["render"]["light_samples"], "max_depth": max_depth, "rr_depth": rr_depth,
+            "xml": sc.get("xml"), "cutouts": sc.get("cutouts", False)}
 
 
 def parse_args(argv):
