@@ -56,7 +56,7 @@ bool anyWarning(const std::vector<std::string>& w, const std::string& part) {
 
 }  // namespace
 
-TEST_CASE("mitsuba: $name defaults, <include>, the sensor's fov axis, film and sampler" * doctest::test_suite("cpu mitsuba")) {
+TEST_CASE("mitsuba: $name defaults, include, the sensor's fov axis, film and sampler" * doctest::test_suite("cpu mitsuba")) {
   TempDir dir;
   dir.write("part.xml", "<scene version=\"3.0.0\"><shape type=\"disk\"/></scene>\n");
   const Scene s = load(dir, "<default name=\"w\" value=\"40\"/><default name=\"spp\" value=\"12\"/>\n"

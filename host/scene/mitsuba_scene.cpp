@@ -14,6 +14,7 @@
 #include "scene/mitsuba_emitters.h"
 #include "scene/mitsuba_sensor.h"
 #include "scene/mitsuba_shapes.h"
+#include "scene/scene_readers.h"
 #include "util/errors.h"
 
 namespace montecl {
@@ -146,12 +147,7 @@ class Reader {
 Scene loadMitsubaScene(const std::string& path, std::vector<std::string>& warnings, std::optional<MissingTextures> missing) {
   Reader reader(path, warnings);
   Scene scene = reader.read();
-  if (missing) scene.render.missingTextures = *missing;
-  if (!scene.missingTextures.empty()) {
-    if (scene.render.missingTextures == MissingTextures::Error)
-      throw InputError(oneLine(missingTexturesText(scene, 0), 4096));
-    warnings.push_back(missingTexturesText(scene, 0) + "; rendered without them (each material's factor alone: missing_textures warn)");
-  }
+  settleMissingTextures(scene, missing, warnings);
   return scene;
 }
 

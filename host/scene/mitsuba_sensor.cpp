@@ -118,12 +118,7 @@ MiCamera miSensor(MiContext& c, const MiElem* sensorElem) {
   const glm::dvec3 right = glm::normalize(-glm::dvec3(m[0]));
   const glm::dvec3 monteclRight = glm::normalize(glm::cross(forward, up));
   if (glm::dot(right, monteclRight) < 0.0) {
-    const glm::dvec3 n = monteclRight;
-    glm::dmat4 s(1.0);
-    for (int col = 0; col < 3; ++col)
-      for (int row = 0; row < 3; ++row) s[col][row] = (row == col ? 1.0 : 0.0) - 2.0 * n[row] * n[col];
-    s[3] = glm::dvec4(2.0 * n * glm::dot(n, pos), 1.0);
-    out.worldMirror = s;
+    out.worldMirror = reflectionThroughPlane(monteclRight, pos);
     out.mirrored = true;
   }
   p.reportUnused("sensor \"" + p.type + "\"", c.warnings);

@@ -4,6 +4,7 @@
 #include <cstddef>
 
 #include "scene/load_util.h"
+#include "util/errors.h"
 
 namespace montecl {
 namespace {
@@ -33,6 +34,13 @@ std::string readableExtensions() {
   std::string out;
   for (const SceneReaderRow& row : kRows) out += (out.empty() ? "" : ", ") + std::string(row.extension);
   return out;
+}
+
+void settleMissingTextures(Scene& scene, std::optional<MissingTextures> missing, std::vector<std::string>& warnings) {
+  if (missing) scene.render.missingTextures = *missing;
+  if (scene.missingTextures.empty()) return;
+  if (scene.render.missingTextures == MissingTextures::Error) throw InputError(oneLine(missingTexturesText(scene, 0), 4096));
+  warnings.push_back(missingTexturesText(scene, 0) + "; rendered without them (each material's factor alone: missing_textures warn)");
 }
 
 }  // namespace montecl

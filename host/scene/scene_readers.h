@@ -2,7 +2,11 @@
 // which loadScene's dispatch and the message for any other file ("x.stl: montecl reads ...") come.
 #pragma once
 #include <cstddef>
+#include <optional>
 #include <string>
+#include <vector>
+
+#include "scene/scene.h"
 
 namespace montecl {
 
@@ -21,5 +25,10 @@ SceneReader sceneReaderOf(const std::string& path);
 
 // ".json, .obj, .ply, .gltf, .glb, .pbrt, .xml": every row's extension, in table order.
 std::string readableExtensions();
+
+// What a scene-file reader (pbrt, Mitsuba) does with the textures it could not open: `missing`
+// (the command line's) replaces the file's rule; error throws one line listing them all, warn
+// appends one warning listing them all (each material renders without its texture).
+void settleMissingTextures(Scene& scene, std::optional<MissingTextures> missing, std::vector<std::string>& warnings);
 
 }  // namespace montecl
