@@ -2,7 +2,7 @@
 """vs_mitsuba.py: renders one montecl scene with montecl and with Mitsuba 3 (an independent
 renderer), then reports per-pixel agreement (z-scores) and both wall times.
 
-    scripts/vs_mitsuba.py SCENE.json [--spp N] [--width W --height H] [--seed S]
+    scripts/vs_mitsuba.py SCENE.json|SCENE.xml [--spp N] [--width W --height H] [--seed S]
         [--integrator direct|path] [--max-depth D] [--rr-depth R] [--direct-sampling light|brdf|mis]
         [--repeat N] [--ref-factor F] [--ref-seeds K] [--montecl build/montecl] [--variant auto|llvm|scalar]
         [--montecl-arg ARG]... [--montecl-scene SCENE] [--block B] [--lum-blocks B [--lum-limits M,MED,P95]]
@@ -33,6 +33,12 @@ blocks' z-scores printed beside them (textured scenes). Integrators: montecl `--
 = Mitsuba `direct` (emitter_samples K, bsdf_samples 1); `light` = (K, 0); `brdf` = (0, 1);
 montecl `--integrator path --max-depth D --rr-depth R` = Mitsuba `path` (max_depth D, rr_depth R):
 the same depth convention.
+
+A Mitsuba 3 scene (.xml, which montecl reads too: docs/mitsuba-format.md) goes to Mitsuba as it
+is, in a copy that sets what the comparison decides: the film's size with a box filter, the
+independent sampler, the integrator, and montecl's vertical field of view for the file's own film
+(montecl keeps it when --width / --height change the size); relative names resolve against the
+original's folder.
 
 Agreement: montecl's EXR carries each pixel's mean, sample count and sample variance, so its
 standard error is sqrt(var/n); that holds for i.i.d. samples, so montecl runs `--sampler
