@@ -326,6 +326,7 @@ const char* loaderName(Loader l) {
     case Loader::Ply: return "ply";
     case Loader::Gltf: return "gltf";
     case Loader::Pbrt: return "pbrt";
+    case Loader::Mitsuba: return "mitsuba";
   }
   return "?";
 }
@@ -427,6 +428,7 @@ Outcome runEntry(Loader l, const std::uint8_t* data, std::size_t size) {
     case Loader::Ply: return fuzzPly(data, size);
     case Loader::Gltf: return fuzzGltf(data, size);
     case Loader::Pbrt: return fuzzPbrt(data, size);
+    case Loader::Mitsuba: return fuzzMitsuba(data, size);
   }
   throw std::logic_error("unknown loader");
 }
@@ -440,6 +442,7 @@ std::vector<std::string> seedInputs(Loader l) {
     case Loader::Ply: return plySeeds();
     case Loader::Gltf: return gltfSeeds();
     case Loader::Pbrt: return pbrtSeeds();
+    case Loader::Mitsuba: return mitsubaSeeds();
   }
   return {};
 }

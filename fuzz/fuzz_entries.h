@@ -17,10 +17,10 @@ namespace montecl_fuzz {
 
 enum class Outcome { Loaded, Rejected };
 
-enum class Loader { Scene, Obj, Exr, Cache, Ply, Gltf, Pbrt };
-constexpr Loader kLoaders[] = {Loader::Scene, Loader::Obj,  Loader::Exr, Loader::Cache,
-                               Loader::Ply,   Loader::Gltf, Loader::Pbrt};
-const char* loaderName(Loader l);  // "scene", "obj", "exr", "cache", "ply", "gltf", "pbrt"
+enum class Loader { Scene, Obj, Exr, Cache, Ply, Gltf, Pbrt, Mitsuba };
+constexpr Loader kLoaders[] = {Loader::Scene, Loader::Obj,  Loader::Exr,  Loader::Cache,
+                               Loader::Ply,   Loader::Gltf, Loader::Pbrt, Loader::Mitsuba};
+const char* loaderName(Loader l);  // "scene", "obj", "exr", "cache", "ply", "gltf", "pbrt", "mitsuba"
 
 // Scene JSON: the bytes are <sandbox>/scene.json, loaded by loadScene(). The sandbox folder also
 // holds quad.obj/quad.mtl (scenes/test/good) and demo.obj/demo.mtl (scenes/demo), so that mesh
@@ -52,6 +52,11 @@ Outcome fuzzGltf(const std::uint8_t* data, std::size_t size);
 // pbrt-v4: the bytes are <sandbox>/fuzz.pbrt, loaded by loadScene(). The sandbox also holds
 // tent.ply (a plymesh the seeds name) and part.pbrt (an Include).
 Outcome fuzzPbrt(const std::uint8_t* data, std::size_t size);
+
+// Mitsuba 3 XML (fuzz/fuzz_mitsuba.cpp): the bytes are <sandbox>/fuzz.xml, loaded by loadScene().
+// The sandbox also holds tent.ply and part.xml (an <include>); the seeds go through every tag family.
+Outcome fuzzMitsuba(const std::uint8_t* data, std::size_t size);
+std::vector<std::string> mitsubaSeeds();
 
 Outcome runEntry(Loader l, const std::uint8_t* data, std::size_t size);
 

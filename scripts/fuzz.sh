@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-300}
 shift || true
 loaders=("$@")
-[ ${#loaders[@]} -gt 0 ] || loaders=(scene obj exr cache ply gltf pbrt)
+[ ${#loaders[@]} -gt 0 ] || loaders=(scene obj exr cache ply gltf pbrt mitsuba)
 bash scripts/sanitize.sh build
 build-asan/fuzz_seeds build-asan/seeds
 for l in "${loaders[@]}"; do

@@ -15,7 +15,7 @@ built=$(date +%s)
 rm -rf build-asan/seeds build-asan/smoke
 build-asan/fuzz_seeds build-asan/seeds
 failed=0
-for l in scene obj exr cache ply gltf pbrt; do
+for l in scene obj exr cache ply gltf pbrt mitsuba; do
   mkdir -p "build-asan/smoke/$l"
   # A fresh corpus copy per run: libFuzzer adds new inputs to its first corpus directory.
   cp -r "build-asan/seeds/$l/." "build-asan/smoke/$l/"

@@ -7,7 +7,7 @@ packages=(
   cmake g++ make ninja-build pkg-config
   clang-14 libclang-rt-14-dev
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo oclgrind
-  libglm-dev libtinyobjloader-dev libtinygltf-dev libdraco-dev libopenimageio-dev libopenexr-dev openimageio-tools libpng-dev
+  libglm-dev libtinyobjloader-dev libtinygltf-dev libdraco-dev libpugixml-dev libopenimageio-dev libopenexr-dev openimageio-tools libpng-dev
   libjpeg62-turbo-dev libstb-dev
   doctest-dev nlohmann-json3-dev libcli11-dev
   libembree-dev jq bc

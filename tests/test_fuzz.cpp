@@ -180,5 +180,8 @@ TEST_CASE("fuzz: 10k mutated glTF files (.gltf and .glb) load or fail with Input
 TEST_CASE("fuzz: 10k mutated pbrt-v4 files load or fail with InputError" * doctest::test_suite("cpu slow")) {
   fuzzLoop(Loader::Pbrt);
 }
+TEST_CASE("fuzz: 10k mutated Mitsuba XML files load or fail with InputError" * doctest::test_suite("cpu slow")) {
+  fuzzLoop(Loader::Mitsuba);
+}
 
 }  // namespace test_file_fuzz

@@ -307,4 +307,40 @@ TEST_CASE("vs_mitsuba: FAIL (exit 1) when montecl's sun is half as wide and its 
   CHECK(r.out.find("FAIL") != std::string::npos);
 }
 
+namespace {
+// A Mitsuba scene of built-in shapes montecl builds exactly (rectangles, a cube: flat faces): a
+// floor, a block, and a light facing down, seen from the front; `light` its radiance.
+std::string builtinXml(const std::string& light) {
+  return "<scene version=\"3.0.0\">\n"
+         "<sensor type=\"perspective\"><float name=\"fov\" value=\"45\"/><transform name=\"to_world\">"
+         "<lookat origin=\"0 2 5\" target=\"0 0.5 0\" up=\"0 1 0\"/></transform></sensor>\n"
+         "<bsdf type=\"twosided\" id=\"grey\"><bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.6 0.5 0.4\"/></bsdf></bsdf>\n"
+         "<shape type=\"rectangle\"><transform name=\"to_world\"><scale value=\"3\"/><rotate x=\"1\" angle=\"-90\"/></transform>"
+         "<ref id=\"grey\"/></shape>\n"
+         "<shape type=\"cube\"><transform name=\"to_world\"><scale value=\"0.5\"/><rotate y=\"1\" angle=\"30\"/>"
+         "<translate y=\"0.5\"/></transform><ref id=\"grey\"/></shape>\n"
+         "<shape type=\"rectangle\"><transform name=\"to_world\"><scale value=\"0.5\"/><rotate x=\"1\" angle=\"90\"/>"
+         "<translate y=\"2.5\"/></transform><emitter type=\"area\"><rgb name=\"radiance\" value=\"" + light + "\"/></emitter></shape>\n"
+         "</scene>\n";
+}
+}  // namespace
+
+TEST_CASE("vs_mitsuba: a Mitsuba XML scene goes to Mitsuba as it is and agrees per pixel; a brighter light in montecl's copy fails" *
+          doctest::test_suite("cli slow uninstrumented")) {
+  MCL_SKIP_UNLESS(exists(mitsubaVenvPython()), "no Mitsuba venv at " << mitsubaVenvPython() << " (run scripts/setup.sh --mitsuba)");
+  montecl_test::TempDir dir;
+  dir.write("scene.xml", builtinXml("8 8 8"));
+  dir.write("brighter.xml", builtinXml("8.8 8.8 8.8"));
+  const std::vector<std::string> args = {"--spp", "256", "--integrator", "path", "--max-depth", "3"};
+  CliResult r = runVsMitsuba(args, dir.file("scene.xml"));
+  INFO(r.out << r.err);
+  CHECK(r.exitCode == 0);
+  CHECK(r.out.find("PASS") != std::string::npos);
+  std::vector<std::string> wrong = args;
+  wrong.insert(wrong.end(), {"--montecl-scene", dir.file("brighter.xml")});
+  r = runVsMitsuba(wrong, dir.file("scene.xml"));
+  CHECK(r.exitCode == 1);
+  CHECK(r.out.find("FAIL") != std::string::npos);
+}
+
 }  // namespace test_file_vs_mitsuba

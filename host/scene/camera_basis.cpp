@@ -61,4 +61,12 @@ CameraProblem cameraBasisProblem(const Camera& camera) {
   return {};
 }
 
+glm::dmat4 reflectionThroughPlane(const glm::dvec3& n, const glm::dvec3& p) {
+  glm::dmat4 s(1.0);
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) s[c][r] = (r == c ? 1.0 : 0.0) - 2.0 * n[r] * n[c];
+  s[3] = glm::dvec4(2.0 * n * glm::dot(n, p), 1.0);
+  return s;
+}
+
 }  // namespace montecl

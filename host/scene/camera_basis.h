@@ -30,4 +30,8 @@ struct CameraProblem {
 };
 CameraProblem cameraBasisProblem(const Camera& camera);
 
+// The reflection through the plane of unit normal n through point p: x -> x - 2 n (n . (x - p)).
+// The scene readers reflect the world with it where a file's camera mirrors montecl's.
+glm::dmat4 reflectionThroughPlane(const glm::dvec3& n, const glm::dvec3& p);
+
 }  // namespace montecl

@@ -45,14 +45,7 @@ PbrtCamera pbrtCamera(const std::string& type, const PbrtParams& params, const g
   if (!problem.empty()) pbrtFail(params.loc, "Camera: the camera transformation gives an unusable camera (" + problem.key + " " + problem.problem + ")");
   const glm::dvec3 monteclRight = glm::normalize(glm::cross(forward, up));
   if (glm::dot(monteclRight, right) < 0.0) {
-    // Reflection through the plane spanned by forward and up at pos: p -> p - 2 m (m . (p - pos)).
-    const glm::dvec3 m = monteclRight;
-    glm::dmat4 s(1.0);
-    for (int c = 0; c < 3; ++c)
-      for (int r = 0; r < 3; ++r) s[c][r] = (r == c ? 1.0 : 0.0) - 2.0 * m[r] * m[c];
-    const glm::dvec3 t = 2.0 * m * glm::dot(m, pos);
-    s[3] = glm::dvec4(t, 1.0);
-    out.worldMirror = s;
+    out.worldMirror = reflectionThroughPlane(monteclRight, pos);  // the plane of forward and up at pos
     out.mirrored = true;
   }
   return out;

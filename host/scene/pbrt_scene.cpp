@@ -26,6 +26,7 @@
 #include "scene/pbrt_tokenizer.h"
 #include "scene/pbrt_transforms.h"
 #include "scene/scene_instances.h"
+#include "scene/scene_readers.h"
 #include "util/errors.h"
 
 namespace montecl {
@@ -433,12 +434,7 @@ bool isPbrtScenePath(const std::string& path) { return lowerExtension(path) == "
 Scene loadPbrtScene(const std::string& path, std::vector<std::string>& warnings, std::optional<MissingTextures> missing) {
   Reader reader(path, warnings);
   Scene scene = reader.read();
-  if (missing) scene.render.missingTextures = *missing;
-  if (!scene.missingTextures.empty()) {
-    if (scene.render.missingTextures == MissingTextures::Error)
-      throw InputError(oneLine(missingTexturesText(scene, 0), 4096));
-    warnings.push_back(missingTexturesText(scene, 0) + "; rendered without them (each material's factor alone: missing_textures warn)");
-  }
+  settleMissingTextures(scene, missing, warnings);
   return scene;
 }
 

@@ -9,16 +9,10 @@
 #include <vector>
 
 #include "scene/pbrt_params.h"
+#include "scene/tessellate.h"
 #include "scene/scene.h"
 
 namespace montecl {
-
-// Sphere and disk tessellation: a sphere gets kSphereSegments steps in longitude and half as
-// many in latitude, a disk kSphereSegments steps around. A facet spans at most 2 pi / 128 in
-// both directions, so it lies within r (1 - cos(sqrt(2) pi / 128)) = 6.0e-4 r of the exact
-// surface (the sphere's area comes out 5.0e-4 short: tests/test_pbrt_parser.cpp), and every
-// corner carries the exact normal, so shading is round.
-constexpr int kSphereSegments = 128;
 
 // Builds the object-space triangles of shape `type` (material index 0, to be set by the caller).
 // False, with a warning, for a shape montecl does not read (curve, cylinder, ...): the render

@@ -24,7 +24,9 @@
 #include "scene/mesh_loaders.h"
 #include "scene/environment_key.h"
 #include "scene/lights_key.h"
+#include "scene/mitsuba_scene.h"
 #include "scene/pbrt_scene.h"
+#include "scene/scene_readers.h"
 #include "scene/scene.h"
 #include "util/errors.h"
 
@@ -333,9 +335,11 @@ void applyBareModelDefaults(Scene& scene) {
 }
 
 Scene loadScene(const std::string& path, std::vector<std::string>& warnings, std::optional<MissingTextures> missing) {
-  if (meshFormatOf(path) != MeshFormat::Unknown) return loadBareMesh(path, warnings, missing);
-  if (isPbrtScenePath(path)) {  // pbrt-v4 (scene/pbrt_scene.h)
-    Scene scene = loadPbrtScene(path, warnings, missing);
+  const SceneReader reader = sceneReaderOf(path);  // the table of formats (scene/scene_readers.h)
+  if (reader == SceneReader::Mesh) return loadBareMesh(path, warnings, missing);
+  if (reader == SceneReader::Pbrt || reader == SceneReader::Mitsuba) {
+    Scene scene = reader == SceneReader::Pbrt ? loadPbrtScene(path, warnings, missing)     // scene/pbrt_scene.h
+                                              : loadMitsubaScene(path, warnings, missing);  // scene/mitsuba_scene.h
     checkEmissionPower(scene);
     return scene;
   }
@@ -343,11 +347,9 @@ Scene loadScene(const std::string& path, std::vector<std::string>& warnings, std
   const std::string text = readSceneText(ctx);
   // A file of another kind (x.stl, a pbrt-v3 .lxs) is not reported as malformed JSON: JSON is
   // tried under another extension only when the text starts like a scene file, with '{'.
-  const std::string ext = lowerExtension(path);
   const std::size_t first = text.find_first_not_of(" \t\r\n");
-  if (!ext.empty() && ext != ".json" && (first == std::string::npos || text[first] != '{'))
-    throwInputError(oneLine(path), "", "not a file montecl reads: scene files .json and .pbrt (pbrt-v4), meshes .obj, "
-                                       ".ply, .gltf and .glb");
+  if (reader == SceneReader::None && !lowerExtension(path).empty() && (first == std::string::npos || text[first] != '{'))
+    throwInputError(oneLine(path), "", "montecl reads " + readableExtensions());
   json root = parseJson(ctx, text);
   requireObject(ctx, root, "(top level)");
   warnUnknownKeys(ctx, root, "", {"camera", "meshes", "render", "environment", "lights"});
