@@ -445,6 +445,26 @@ MCL_INLINE void v_store4_n(MCL_GLOBAL float* p, uint n, vfloat x, vfloat y, vflo
   if (n < MCL_LANES) v_store4_stride_n(p, 4u, n, x, y, z, w);
   else v_store4(p, x, y, z, w);
 }
+// v_scatter4 of the first n lanes only (n >= 1).
+MCL_INLINE void v_scatter4_n(MCL_GLOBAL float* p, vuint idx, uint stride, uint n, vfloat x, vfloat y, vfloat z,
+                             vfloat w) {
+#if MCL_LANES > 1
+  if (n < MCL_LANES) {
+    uint ai[MCL_LANES] MCL_LANE_ALIGN;
+    float ax[MCL_LANES] MCL_LANE_ALIGN, ay[MCL_LANES] MCL_LANE_ALIGN, az[MCL_LANES] MCL_LANE_ALIGN,
+        aw[MCL_LANES] MCL_LANE_ALIGN;
+    v_store_lanes(idx, ai);
+    v_store_lanes(x, ax);
+    v_store_lanes(y, ay);
+    v_store_lanes(z, az);
+    v_store_lanes(w, aw);
+    for (uint k = 0; k < n; ++k) mcl_st4(((float4)(ax[k], ay[k], az[k], aw[k])), p + (ulong)ai[k] * stride);
+    return;
+  }
+#endif
+  (void)n;
+  v_scatter4(p, idx, stride, x, y, z, w);
+}
 // The lanes of a packet from item `first` of `count` that have an item (at least one).
 MCL_INLINE uint v_packet_lanes(uint first, uint count) { return count - first < MCL_LANES ? count - first : MCL_LANES; }
 

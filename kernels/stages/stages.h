@@ -13,6 +13,5 @@
 #include "accumulate_aov.h"
 #include "shade_path.h"
 #include "path_gather.h"
-#include "accumulate_lanes.h"
 // The fused stages, which run the others.
 #include "wave_fused.h"
