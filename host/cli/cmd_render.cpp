@@ -172,7 +172,8 @@ int runRender(const RenderArgs& a) {
   checkOutputIsNoInput(output, scene);
   checkWritableTarget(output);
   checkJobFiles(a.job.checkpoint, a.job.resume, output, scene);
-  // The denoiser is loaded now, so a missing library is one line before any work, not after it.
+  // The denoiser is loaded and its device committed now, so a missing or broken library is one line
+  // before any work, not after it.
   if (scene.render.denoise)
     if (const std::string problem = oidnProblem(); !problem.empty()) throw InputError(problem);
   // Sample indices are 32-bit: a range past 2^32 would wrap to sample 0 while the provenance says otherwise.
@@ -284,9 +285,14 @@ int runRender(const RenderArgs& a) {
   const bool interrupted = gInterrupted && stats.stoppedEarly;  // a signal after the last wave changes nothing
   // Only the final image is denoised (an MPI job's rank 0, after the merge of the ranks' films).
   double denoiseSeconds = 0.0;
-  const std::vector<float> denoised =
-      scene.render.denoise ? denoiseFilm(film, scene.render.denoiseQuality, a.quiet, denoiseSeconds)
-                           : std::vector<float>();
+  std::vector<float> denoised;
+  // The render is done: a denoiser that fails now (memory, a device lost) costs the denoised planes,
+  // not the image.
+  if (scene.render.denoise) try {
+      denoised = denoiseFilm(film, scene.render.denoiseQuality, a.quiet, denoiseSeconds);
+    } catch (const RuntimeError& e) {
+      std::cerr << "montecl: warning: " << e.what() << "; " << output << " holds the image without denoising\n";
+    }
   // The image as written: every EXR plane (the noisy estimate exactly, plus denoised.R/G/B), or the
   // mean (denoised with --denoise) for PNG/PFM; refused if a value overflowed.
   LayeredImage img;
