@@ -36,6 +36,7 @@
 #include "scene/environment_key.h"
 #include "scene/scene.h"
 #include "texture/scene_textures.h"
+#include "texture/texture_identity.h"
 #include "scene/scene_digest.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
@@ -126,11 +127,11 @@ struct InterruptGuard {
 };
 
 // What `montecl merge` checks before combining this render with others (image/provenance.h).
-Provenance provenanceOf(const RenderArgs& a, const Scene& scene) {
+Provenance provenanceOf(const RenderArgs& a, const Scene& scene, const std::string& identityExtra) {
   Provenance p;
   p.version = MONTECL_VERSION;
   p.scene = sceneDigest(scene);
-  p.settings = integratorSettings(scene.render);
+  p.settings = integratorSettings(scene.render) + (identityExtra.empty() ? "" : " " + identityExtra);
   const bool adaptive = a.targetError > 0.0;
   if (adaptive) {
     std::ostringstream s;
@@ -253,10 +254,11 @@ int runRender(const RenderArgs& a) {
   options.bvhLayout = layout;
   options.verbose = a.verbose;
   options.profile = a.profile;
+  options.identityExtra = textureBudgetIdentity(textures);
   // Everything that reads the scene's triangles runs now: the provenance digest, the job's
   // checkpoint key and the renderer's per-triangle table; then they are freed (only the BVH's
   // arrays and that table are uploaded), which lowers the peak by their size.
-  const Provenance provenance = isExr(output) ? provenanceOf(a, scene) : Provenance{};
+  const Provenance provenance = isExr(output) ? provenanceOf(a, scene, options.identityExtra) : Provenance{};
   jobs::Job job(a.job, scene, options);
   RenderPart part;
   part.textures = &textures;
