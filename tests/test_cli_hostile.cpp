@@ -89,4 +89,36 @@ TEST_CASE("hostile: a 9-line OBJ 2e-38 thick renders (the spatial-split builder 
   CHECK(fs::exists(out));
 }
 
+// The glTF names Wood.PNG, the disk holds Wood.png, which the texture loader opens (any case of the
+// name). -o Wood.PNG would replace the texture on a case-insensitive file system, and on Linux the
+// model would read the render as Wood.PNG from then on: refused, as for the exact name.
+TEST_CASE("hostile: -o naming a texture in another case of its letters is refused before any work" *
+          doctest::test_suite("cli sanitize")) {
+  TempDir dir;
+  std::string gltf = montecl_test::gltfText(montecl_test::tentMesh(), 0.5f, "");
+  const std::string pbr = R"("pbrMetallicRoughness":{)";
+  gltf.replace(gltf.find(pbr), pbr.size(), pbr + R"("baseColorTexture":{"index":0},)");
+  gltf.insert(gltf.rfind('}'), R"(,"textures":[{"source":0}],"images":[{"uri":"Wood.PNG"}])");
+  dir.write("model.gltf", gltf);
+  montecl::writeRgbImage(dir.file("Wood.png"), 2, 2, std::vector<float>(12, 0.5f));
+  const std::string texture = montecl_test::readAll(dir.file("Wood.png"));
+  // The model renders with its texture found in another case.
+  CliResult ok = runMontecl(renderArgs(dir.file("model.gltf"), dir.file("render.png")));
+  REQUIRE_MESSAGE(ok.exitCode == 0, ok.err);
+  for (const char* name : {"Wood.PNG", "wood.png", "Wood.png"}) {
+    CliResult r = runMontecl(renderArgs(dir.file("model.gltf"), dir.file(name)));
+    INFO(name);
+    INFO("exit " << r.exitCode << ", stderr: " << r.err);
+    CHECK(r.exitCode == 2);
+    // The loader's warning that it used Wood.png for Wood.PNG, then the one error line.
+    const std::size_t error = r.err.find("montecl: error: ");
+    REQUIRE(error != std::string::npos);
+    CHECK(oneLine(r.err.substr(error)));
+    CHECK(r.err.find("the output is an input of the render", error) != std::string::npos);
+    CHECK(montecl_test::readAll(dir.file("Wood.png")) == texture);
+  }
+  CHECK_FALSE(fs::exists(dir.file("Wood.PNG")));
+  CHECK_FALSE(fs::exists(dir.file("wood.png")));
+}
+
 }  // namespace test_file_cli_hostile
