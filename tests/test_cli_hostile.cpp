@@ -121,4 +121,55 @@ TEST_CASE("hostile: -o naming a texture in another case of its letters is refuse
   CHECK_FALSE(fs::exists(dir.file("wood.png")));
 }
 
+// Values the kernels cannot represent, each once an all-black image with exit 0, or a render that
+// finished and then failed with exit 1 ("check emission and camera") with nothing written.
+TEST_CASE("hostile: light, sun, conductor and texture-transform values past float range are one line at load" *
+          doctest::test_suite("cli sanitize")) {
+  TempDir dir;
+  const std::string out = dir.file("out.exr");
+  struct Case {
+    const char* name;
+    std::string file, text;
+    std::vector<std::string> words;
+  };
+  const std::string quadLight = R"([{"type": "point", "position": [0, 0, 2], "intensity": [1, 1, 1]}])";
+  const std::vector<Case> cases = {
+      {"glTF colour x intensity overflows float", "a.gltf",
+       gltfWith(punctual(R"({"type":"point","color":[1e30,1e30,1e30],"intensity":1e30})"), true),
+       {"a.gltf", "KHR_lights_punctual.lights[0].intensity"}},
+      {"glTF intensity 1e25", "b.gltf", gltfWith(punctual(R"({"type":"point","intensity":1e25})"), true),
+       {"b.gltf", "KHR_lights_punctual.lights[0].intensity", "1e+25"}},
+      {"glTF texture transform 1e300", "c.gltf", "", {"c.gltf", "KHR_texture_transform.scale"}},
+  };
+  for (const Case& c : cases) {
+    std::string text = c.text;
+    if (text.empty()) {  // the tent with a texture whose transform scales by 1e300
+      montecl::writeRgbImage(dir.file("t.png"), 2, 2, std::vector<float>(12, 0.5f));
+      text = gltfWith(R"("textures":[{"source":0}],"images":[{"uri":"t.png"}])", false);
+      const std::string pbr = R"("pbrMetallicRoughness":{)";
+      text.replace(text.find(pbr), pbr.size(),
+                   pbr + R"("baseColorTexture":{"index":0,"extensions":{"KHR_texture_transform":{"scale":[1e300,1]}}},)");
+    }
+    dir.write(c.file, text);
+    INFO(c.name);
+    checkRefused(runMontecl(renderArgs(dir.file(c.file), out)), out, c.words);
+  }
+  // The scene file's sun and conductor.
+  const std::string sun = sceneWith(
+      dir, R"({"albedo": [0.5, 0.5, 0.5]})",
+      R"([{"type": "sun", "direction": [0, 0, -1], "irradiance": [1, 1, 1], "angle": 1e-20}])");
+  checkRefused(runMontecl(renderArgs(sun, out)), out, {"scene.json", "lights[0].angle"});
+  const std::string metal = sceneWith(dir, R"({"type": "conductor", "eta": [3.4e38, 1, 1]})", quadLight);
+  checkRefused(runMontecl(renderArgs(metal, out)), out, {"scene.json", "eta", "3.4e+38"});
+  const std::string bright = sceneWith(
+      dir, R"({"albedo": [0.5, 0.5, 0.5]})", R"([{"type": "point", "position": [0, 0, 2], "intensity": [1e25, 1, 1]}])");
+  checkRefused(runMontecl(renderArgs(bright, out)), out, {"scene.json", "lights[0].intensity"});
+  // The limits leave ordinary values alone: a 0.53-degree sun and gold render.
+  const std::string fine = sceneWith(
+      dir, R"({"type": "conductor", "metal": "Au"})",
+      R"([{"type": "sun", "direction": [0, 0, -1], "irradiance": [3, 3, 3], "angle": 0.53}])");
+  CliResult r = runMontecl(renderArgs(fine, out));
+  CHECK_MESSAGE(r.exitCode == 0, r.err);
+}
+
 }  // namespace test_file_cli_hostile

@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "scene/value_limits.h"
+
 namespace montecl {
 
 int gltfNodeLight(const tinygltf::Node& node) {
@@ -31,6 +33,9 @@ void addGltfLight(const std::string& file, const tinygltf::Model& m, int index, 
   for (int c = 0; c < 3; ++c)
     if (!(std::isfinite(colour[c]) && colour[c] >= 0.0)) loadFail(file, where + ".color", "components must be finite and >= 0");
   if (!(std::isfinite(g.intensity) && g.intensity >= 0.0)) loadFail(file, where + ".intensity", "must be finite and >= 0");
+  // In double: colour x intensity past float range was an infinite light, a black image.
+  if (const ValueProblem v = lightValueProblem(l.kind, colour * g.intensity, 0.0, "intensity"))
+    loadFail(file, where + "." + v.key, "colour x intensity " + v.what);
   l.color = glm::vec3(colour * g.intensity);
   l.position = glm::vec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
   const glm::dvec3 axis = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);

@@ -1,0 +1,40 @@
+// value_limits.cpp: the load-time rules of light and material values (value_limits.h). Pure.
+#include "scene/value_limits.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace montecl {
+namespace {
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+}  // namespace
+
+std::string magnitudeProblem(const glm::dvec3& v, double limit, const std::string& reason) {
+  for (int c = 0; c < 3; ++c)
+    if (!(std::fabs(v[c]) <= limit))
+      return num(v[c]) + " is past " + num(limit) + ": " + reason;
+  return "";
+}
+
+ValueProblem lightValueProblem(PunctualKind kind, const glm::dvec3& colour, double angleDegrees,
+                               const std::string& colourKey) {
+  const std::string range = "more than the film can hold (its square must fit a float)";
+  if (std::string p = magnitudeProblem(colour, kMaxLightValue, range); !p.empty()) return {colourKey, p};
+  if (kind != PunctualKind::Sun) return {};
+  if (!(angleDegrees >= kMinSunDegrees))
+    return {"angle", num(angleDegrees) + " degrees is below " + num(kMinSunDegrees) +
+                         " (a narrower disk's solid angle leaves float range)"};
+  const double pi = 3.14159265358979323846, s = std::sin(0.5 * angleDegrees * pi / 180.0);
+  if (std::string p = magnitudeProblem(colour / (pi * s * s), kMaxLightValue, "the sun's radiance, " + range);
+      !p.empty())
+    return {"angle", num(angleDegrees) + " degrees with this irradiance: " + p};
+  return {};
+}
+
+}  // namespace montecl
