@@ -172,4 +172,20 @@ TEST_CASE("hostile: light, sun, conductor and texture-transform values past floa
   CHECK_MESSAGE(r.exitCode == 0, r.err);
 }
 
+// Instances placed past the BVH's float range, or whose inverse leaves float range, exited 1 with
+// buildBvh's or buildTwoLevelBvh's internal message naming no file or key.
+TEST_CASE("hostile: an instance placed past float range or with an overflowing inverse names the file and key" *
+          doctest::test_suite("cli sanitize")) {
+  TempDir dir;
+  dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string out = dir.file("out.png");
+  for (const char* placement : {R"({"translate": [2e19, 0, 0]})", R"({"scale": [1e-30, 1e-30, 1e-30]})"}) {
+    dir.write("scene.json", std::string(R"({"camera": {"position": [0, 0, 3], "target": [0, 0, 0], "fov_y": 45, "width": 16, "height": 16},
+      "meshes": [{"file": "tri.obj", "transform": {"scale": 1e-12}, "instances": [{"translate": [0, 0, 0]}, )") + placement +
+                                R"(]}], "render": {"integrator": "ao", "spp": 1}})");
+    INFO(placement);
+    checkRefused(runMontecl(renderArgs(dir.file("scene.json"), out)), out, {"scene.json", "meshes[0].instances[1]"});
+  }
+}
+
 }  // namespace test_file_cli_hostile

@@ -424,7 +424,8 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
     }
     if (rangeOf[p.mesh] >= 0) {
       const std::uint32_t r = std::uint32_t(rangeOf[p.mesh]);
-      if (!addPlacements(scene, r, p.at)) loadFail(path, meshWhere, "a node transform moves vertices out of float range");
+      if (const std::string bad = addPlacements(scene, r, p.at); !bad.empty())
+        loadFail(path, meshWhere, "a node transform " + bad);
       continue;
     }
     const std::uint64_t copies = std::min<std::uint64_t>(p.at.size(), cap);

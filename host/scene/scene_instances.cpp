@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "kernels/shared/types.h"
+#include "scene/value_limits.h"
 #include "util/host_memory.h"
 
 namespace montecl {
@@ -38,20 +39,17 @@ std::vector<glm::vec3> rangeBoxCorners(const Scene& scene, const MeshRange& rang
   return corners;
 }
 
-bool addPlacements(Scene& scene, std::uint32_t range, const std::vector<glm::dmat4>& at) {
+std::string addPlacements(Scene& scene, std::uint32_t range, const std::vector<glm::dmat4>& at) {
   const std::vector<glm::vec3> box = rangeBoxCorners(scene, scene.meshRanges[range]);
   for (const glm::dmat4& m : at) {
     if (!(glm::determinant(glm::dmat3(m)) != 0.0)) {
       scene.degenerateDropped += scene.meshRanges[range].count;
       continue;
     }
-    for (const glm::vec3& c : box) {
-      const glm::vec3 w(m * glm::dvec4(glm::dvec3(c), 1.0));
-      if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z)) return false;
-    }
+    if (std::string problem = placementProblem(m, box); !problem.empty()) return problem;
     scene.instances.push_back({range, m});
   }
-  return true;
+  return "";
 }
 
 std::vector<glm::vec3> instanceBoxCorners(const Scene& scene) {

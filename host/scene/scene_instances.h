@@ -24,9 +24,10 @@ bool trianglesEmit(const Scene& scene, std::size_t first);
 std::vector<glm::vec3> rangeBoxCorners(const Scene& scene, const MeshRange& range);
 
 // Appends an instance of mesh range `range` at each matrix of `at`: a singular one (it would
-// flatten every copy) is left out and its triangles counted in degenerateDropped. False (nothing
-// more appended) when one moves the range's box out of float range.
-bool addPlacements(Scene& scene, std::uint32_t range, const std::vector<glm::dmat4>& at);
+// flatten every copy) is left out and its triangles counted in degenerateDropped. Returns what is
+// wrong (nothing more appended) when one moves the range's box past the world's float range or
+// its inverse out of float range (scene/value_limits.h placementProblem), else "".
+std::string addPlacements(Scene& scene, std::uint32_t range, const std::vector<glm::dmat4>& at);
 
 // The triangles of mesh ranges [firstRange, end), moved out of a scene with their corner colours
 // and tangents (detachRanges; the other triangles keep their order, the ranges' firstTri then index

@@ -22,6 +22,21 @@ std::string magnitudeProblem(const glm::dvec3& v, double limit, const std::strin
   return "";
 }
 
+std::string placementProblem(const glm::dmat4& m, const std::vector<glm::vec3>& corners) {
+  for (const glm::vec3& c : corners) {
+    const glm::dvec3 w(m * glm::dvec4(glm::dvec3(c), 1.0));
+    if (std::string p = magnitudeProblem(w, kMaxWorldCoordinate, "the BVH's float box sizes would overflow");
+        !p.empty())
+      return "moves vertices to " + p;
+  }
+  const glm::dmat4 inv = glm::inverse(m);
+  for (int c = 0; c < 4; ++c)
+    if (std::string p = magnitudeProblem(glm::dvec3(inv[c]), 3.4e38, "its inverse (world to object) leaves float range");
+        !p.empty())
+      return "has an inverse entry " + p;
+  return "";
+}
+
 ValueProblem lightValueProblem(PunctualKind kind, const glm::dvec3& colour, double angleDegrees,
                                const std::string& colourKey) {
   const std::string range = "more than the film can hold (its square must fit a float)";

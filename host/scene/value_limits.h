@@ -24,6 +24,10 @@ constexpr const char* kConductorIndexReason = "the exact Fresnel squares its squ
 // position (1e6 keeps 1/16 of a unit).
 constexpr double kMaxTextureTransform = 1e6;
 
+// World coordinates of placed instances: the BVH takes lengths of world boxes in float, whose
+// squares pass float range (3.4e38) at about 1.8e19.
+constexpr double kMaxWorldCoordinate = 1e18;
+
 // A value past its limit: the key it concerns (relative to the light: "intensity", "angle") and
 // what is wrong; `what` is empty when there is none.
 struct ValueProblem {
@@ -36,6 +40,11 @@ struct ValueProblem {
 // names the colour's key ("intensity", "irradiance", "color").
 ValueProblem lightValueProblem(PunctualKind kind, const glm::dvec3& colour, double angleDegrees,
                                const std::string& colourKey);
+
+// "" when the placement m (object to world) keeps the corners of an object-space box within
+// kMaxWorldCoordinate and its inverse (world to object, stored as float rows) within float range;
+// else what is wrong ("moves vertices to 2e+19, past 1e+18 ...").
+std::string placementProblem(const glm::dmat4& m, const std::vector<glm::vec3>& corners);
 
 // "" when each component of v is finite and at most limit in magnitude, else "<v> is past <limit>:
 // <reason>".
