@@ -188,4 +188,54 @@ TEST_CASE("hostile: an instance placed past float range or with an overflowing i
   }
 }
 
+// A hand-edited sample count of -1, 2.5 or 1e30 weighted its pixel by nonsense (a negative one
+// was taken as 0), with exit 0.
+TEST_CASE("hostile: merge refuses negative, fractional and huge sample counts" * doctest::test_suite("cli sanitize")) {
+  TempDir dir;
+  auto image = [](float count) {
+    montecl::LayeredImage im;
+    im.width = 2;
+    im.height = 2;
+    for (const char* c : {"R", "G", "B"}) im.set(c, std::vector<float>(4, 0.5f));
+    im.set("samples", {4.0f, 4.0f, 4.0f, count});
+    return im;
+  };
+  montecl::writeLayeredExr(dir.file("a.exr"), image(4.0f));
+  const std::string out = dir.file("m.exr");
+  for (float bad : {-1.0f, 2.5f, 1e30f}) {
+    montecl::writeLayeredExr(dir.file("bad.exr"), image(bad));
+    INFO(bad);
+    checkRefused(runMontecl({"merge", dir.file("a.exr"), dir.file("bad.exr"), "-o", out, "--force", "-q"}), out,
+                 {"bad.exr", "pixel (1, 1) channel 'samples'", "whole number"});
+  }
+  montecl::writeLayeredExr(dir.file("b.exr"), image(7.0f));
+  CliResult ok = runMontecl({"merge", dir.file("a.exr"), dir.file("b.exr"), "-o", out, "--force", "-q"});
+  CHECK_MESSAGE(ok.exitCode == 0, ok.err);
+}
+
+// tinygltf leaves a value of the wrong JSON type at its default ("intensity": "x" rendered at 1),
+// and a node's camera index past the cameras was ignored (the model framed itself, unasked).
+TEST_CASE("hostile: glTF light values of the wrong type and a camera index out of range name the key" *
+          doctest::test_suite("cli sanitize")) {
+  TempDir dir;
+  const std::string out = dir.file("out.png");
+  const std::vector<std::pair<std::string, std::string>> lights = {
+      {R"({"type":"point","intensity":"x"})", "KHR_lights_punctual.lights[0].intensity"},
+      {R"({"type":"point","color":[1,"1",1]})", "KHR_lights_punctual.lights[0].color"},
+      {R"({"type":"spot","spot":{"outerConeAngle":"wide"}})", "KHR_lights_punctual.lights[0].spot.outerConeAngle"},
+      {R"({"type":"point","range":[1]})", "KHR_lights_punctual.lights[0].range"},
+  };
+  for (const auto& [light, key] : lights) {
+    dir.write("a.gltf", gltfWith(punctual(light), true));
+    INFO(light);
+    checkRefused(runMontecl(renderArgs(dir.file("a.gltf"), out)), out, {"a.gltf", key});
+  }
+  std::string g = montecl_test::gltfText(montecl_test::tentMesh(), 0.5f, "");
+  const std::string node = R"("nodes":[{"mesh":0,)";
+  g.replace(g.find(node), node.size(), R"("nodes":[{"mesh":0,"camera":3,)");
+  g.insert(g.rfind('}'), R"(,"cameras":[{"type":"perspective","perspective":{"yfov":0.8,"znear":0.1}}])");
+  dir.write("b.gltf", g);
+  checkRefused(runMontecl(renderArgs(dir.file("b.gltf"), out)), out, {"b.gltf", "nodes[0].camera", "out of range"});
+}
+
 }  // namespace test_file_cli_hostile

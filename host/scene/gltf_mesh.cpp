@@ -58,7 +58,7 @@ struct Loader {
 
   std::uint32_t material(int index);
   void primitive(const tinygltf::Primitive& p, const glm::dmat4& world, const std::string& where);
-  void takeCamera(int index, const glm::dmat4& world);
+  void takeCamera(int index, const glm::dmat4& world, const std::string& where);
 };
 
 std::string itemWhere(const char* kind, std::size_t i) { return std::string(kind) + "[" + std::to_string(i) + "]"; }
@@ -303,8 +303,10 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
   }
 }
 
-void Loader::takeCamera(int index, const glm::dmat4& world) {
-  if (index < 0 || static_cast<std::size_t>(index) >= m.cameras.size()) return;
+void Loader::takeCamera(int index, const glm::dmat4& world, const std::string& where) {
+  // An index past the cameras was ignored: the render then framed the model itself, unasked.
+  if (index < 0 || static_cast<std::size_t>(index) >= m.cameras.size())
+    loadFail(file, where, "camera index " + std::to_string(index) + " out of range (" + std::to_string(m.cameras.size()) + " cameras)");
   const tinygltf::Camera& c = m.cameras[static_cast<std::size_t>(index)];
   if (c.type != "perspective") {
     unused.add("camera " + c.type, itemWhere("cameras", std::size_t(index)), "camera type '" + oneLine(c.type, 20) + "' not used by montecl");
@@ -366,7 +368,7 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
     visited[i] = true;
     const tinygltf::Node& node = m.nodes[i];
     const glm::dmat4 world = parent * gltfLocalTransform(path, node, itemWhere("nodes", i));
-    if (node.camera >= 0) l.takeCamera(node.camera, world);
+    if (node.camera != -1) l.takeCamera(node.camera, world, itemWhere("nodes", i) + ".camera");
     if (const int light = gltfNodeLight(node); light != -1) addGltfLight(path, m, light, world, scene, l.unused);
     if (node.mesh >= 0) {
       if (static_cast<std::size_t>(node.mesh) >= m.meshes.size()) loadFail(path, itemWhere("nodes", i), "mesh index out of range");
