@@ -238,4 +238,67 @@ TEST_CASE("hostile: glTF light values of the wrong type and a camera index out o
   checkRefused(runMontecl(renderArgs(dir.file("b.gltf"), out)), out, {"b.gltf", "nodes[0].camera", "out of range"});
 }
 
+// A mesh placed by 10000 nodes loads as one mesh and 10000 instances; an emission override in the
+// scene file makes it copies (the emitter table is world space): 40000 triangles that were made
+// with no memory check on a machine declared to have 8 MB. Now refused before one is made.
+TEST_CASE("hostile: an emission override flattening an instanced glTF counts the copies against the memory check" *
+          doctest::test_suite("cli sanitize")) {
+  TempDir dir;
+  nlohmann::json j = nlohmann::json::parse(montecl_test::gltfText(montecl_test::tentMesh(), 0.5f, ""));
+  j["nodes"] = nlohmann::json::array();
+  j["scenes"][0]["nodes"] = nlohmann::json::array();
+  for (int i = 0; i < 10000; ++i) {
+    j["nodes"].push_back({{"mesh", 0}, {"translation", {0, 0, -0.001 * i}}});
+    j["scenes"][0]["nodes"].push_back(i);
+  }
+  dir.write("many.gltf", j.dump());
+  const std::string out = dir.file("out.png");
+  const std::vector<std::string> limit = {"MONTECL_MEMORY_LIMIT=8000000"};
+  dir.write("plain.json", R"({"camera": "auto", "meshes": [{"file": "many.gltf"}], "render": {"integrator": "direct", "spp": 1}})");
+  CliResult plain = runMontecl(renderArgs(dir.file("plain.json"), out), limit);
+  REQUIRE_MESSAGE(plain.exitCode == 0, plain.err);  // as instances it fits
+  fs::remove(out);
+  dir.write("lit.json", R"({"camera": "auto", "meshes": [{"file": "many.gltf", "emission": [1, 1, 1]}], "render": {"integrator": "direct", "spp": 1}})");
+  checkRefused(runMontecl(renderArgs(dir.file("lit.json"), out), limit), out,
+               {"lit.json", "meshes[0]", "flattening its instances", "this machine has"});
+}
+
+// EXT_mesh_gpu_instancing declaring a million placements on a machine declared to have 200 MB: the
+// loader made all their matrices (128 MB) before the memory check refused the instances (480 MB).
+// Counted first, the refusal comes before they exist. The peak is measured with the child's
+// rusage (python3), so the case skips without python3, and under AddressSanitizer, whose shadow
+// memory is in the peak.
+TEST_CASE("hostile: glTF instancing placements are counted against the memory check before any is made" *
+          doctest::test_suite("cli")) {
+  MCL_SKIP_UNLESS(!MCL_TEST_UNDER_ASAN, "under AddressSanitizer the peak holds its shadow memory");
+  MCL_SKIP_UNLESS(montecl_test::runProgram({"python3", "-c", "pass"}).exitCode == 0, "no python3 to measure the peak");
+  TempDir dir;
+  const std::size_t count = 1000000;
+  dir.write("t.bin", std::string(count * 12, '\0'));
+  nlohmann::json j = nlohmann::json::parse(montecl_test::gltfText(montecl_test::tentMesh(), 0.5f, ""));
+  j["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
+  j["buffers"].push_back({{"uri", "t.bin"}, {"byteLength", count * 12}});
+  j["bufferViews"].push_back({{"buffer", 1}, {"byteOffset", 0}, {"byteLength", count * 12}});
+  j["accessors"].push_back({{"bufferView", j["bufferViews"].size() - 1}, {"componentType", 5126}, {"count", count}, {"type", "VEC3"}});
+  j["nodes"][0]["extensions"] = {{"EXT_mesh_gpu_instancing", {{"attributes", {{"TRANSLATION", j["accessors"].size() - 1}}}}}};
+  dir.write("placed.gltf", j.dump());
+  const std::string out = dir.file("out.png");
+  const char* script =
+      "import resource, subprocess, sys\n"
+      "r = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)\n"
+      "sys.stderr.write(r.stderr.decode())\n"
+      "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)\n"
+      "sys.exit(r.returncode)\n";
+  std::vector<std::string> args = {"python3", "-c", script, MONTECL_EXE};
+  for (const std::string& a : renderArgs(dir.file("placed.gltf"), out)) args.push_back(a);
+  CliResult r = montecl_test::runProgram(args, {"MONTECL_MEMORY_LIMIT=200000000"});
+  INFO(r.err);
+  CHECK(r.exitCode == 2);
+  CHECK(r.err.find("1000000 instances") != std::string::npos);
+  const long peakKiB = std::atol(r.out.c_str());
+  INFO("peak " << peakKiB << " KiB");
+  CHECK(peakKiB > 0);
+  CHECK(peakKiB < 100 * 1024);  // the buffer and its floats (24 MB) and the process, not 128 MB of matrices
+}
+
 }  // namespace test_file_cli_hostile

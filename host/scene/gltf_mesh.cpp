@@ -377,14 +377,15 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
         l.unused.add("instance attribute " + a, itemWhere("nodes", i),
                      "instance attribute " + oneLine(a, 40) + " not used by montecl, ignored");
       Placed p{i, std::size_t(node.mesh), {}};
-      // (at most 2^40 placements are counted: the memory check below refuses far fewer)
-      for (std::size_t k = 0; k < inst.count && k < (std::size_t(1) << 40); ++k)
-        p.at.push_back(inst.present ? world * inst.local(k) : world);
+      // Counted before any matrix is made (at most 2^40: the sum cannot wrap); each ends as an
+      // instance at least (a copy costs more: pass 2), so their memory check comes first.
+      const std::uint64_t count = std::min<std::uint64_t>(inst.count, std::uint64_t(1) << 40);
+      placedCount += count;
+      if (const std::string many = instanceMemoryRefusal(placedCount); !many.empty())
+        loadFail(path, itemWhere("nodes", i), "instancing its meshes " + many);
+      p.at.reserve(count);
+      for (std::uint64_t k = 0; k < count; ++k) p.at.push_back(inst.present ? world * inst.local(k) : world);
       uses[p.mesh] += p.at.size();
-      placedCount += p.at.size();  // the matrices held until pass 2: refused before they pile up
-      if (placedCount * sizeof(glm::dmat4) > hostMemoryBytes())
-        loadFail(path, itemWhere("nodes", i), "instancing its meshes gives " + std::to_string(placedCount) +
-                                                  " placements: more than this machine's memory holds");
       placements.push_back(std::move(p));
     }
     for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.emplace_back(*it, world);

@@ -314,7 +314,9 @@ void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, std:
   // instances, the transform composed after their placements, unless the override makes them emit.
   std::size_t firstRange = scene.meshRanges.size();
   while (firstRange > 0 && scene.meshRanges[firstRange - 1].firstTri >= firstTri) --firstRange;
-  if (firstRange < scene.meshRanges.size() && !mesh.instances.empty()) flattenInstances(scene, firstRange);
+  if (firstRange < scene.meshRanges.size() && !mesh.instances.empty())
+    if (const std::string tooMany = flattenInstances(scene, firstRange); !tooMany.empty())
+      jsonFail(ctx, mesh.prefix + ".instances", tooMany);
   if (firstRange < scene.meshRanges.size()) {
     DetachedRanges ranges = detachRanges(scene, firstRange);
     if (mesh.hasTransform) transformTriangles(ctx, scene, firstTri, mesh.transform, mesh.prefix + ".transform");
@@ -334,7 +336,9 @@ void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, std:
         if (const std::string bad = addPlacements(scene, in.range, {mesh.transform * in.objectToWorld}); !bad.empty())
           jsonFail(ctx, mesh.prefix + ".transform", bad);
     }
-    if (trianglesEmit(scene, rangeTri)) flattenInstances(scene, firstRange);
+    if (trianglesEmit(scene, rangeTri))  // emitters are world space: copies
+      if (const std::string tooMany = flattenInstances(scene, firstRange); !tooMany.empty())
+        jsonFail(ctx, mesh.prefix, "emitting, " + tooMany);
     addInputFiles(scene, mesh);
     return;
   }

@@ -215,8 +215,15 @@ void attachRanges(Scene& scene, std::size_t firstRange, DetachedRanges d) {
   scene.triangles.insert(scene.triangles.end(), d.triangles.begin(), d.triangles.end());
 }
 
-void flattenInstances(Scene& scene, std::size_t firstRange) {
-  if (firstRange >= scene.meshRanges.size()) return;
+std::string flattenInstances(Scene& scene, std::size_t firstRange) {
+  if (firstRange >= scene.meshRanges.size()) return "";
+  // Every copy is counted against the memory check before one is made.
+  std::uint64_t copies = scene.triangles.size();
+  for (std::size_t r = firstRange; r < scene.meshRanges.size(); ++r) copies -= scene.meshRanges[r].count;
+  for (const SceneInstance& in : scene.instances)
+    if (in.range >= firstRange) copies += scene.meshRanges[in.range].count;
+  if (std::string tooMany = sceneMemoryRefusal(copies, sizeof(SceneTriangle)); !tooMany.empty())
+    return "flattening its instances into copies " + tooMany;
   std::vector<std::uint8_t> flattened(scene.triangles.size(), 0);  // in a range being flattened
   for (std::size_t r = firstRange; r < scene.meshRanges.size(); ++r)
     for (std::uint32_t i = 0; i < scene.meshRanges[r].count; ++i) flattened[scene.meshRanges[r].firstTri + i] = 1;
@@ -254,6 +261,7 @@ void flattenInstances(Scene& scene, std::size_t firstRange) {
   scene.vertexTangents = std::move(tangentsOut);
   scene.meshRanges.resize(firstRange);  // the ranges before firstRange lie before every flattened one
   scene.instances = std::move(kept);
+  return "";
 }
 
 }  // namespace montecl

@@ -87,6 +87,8 @@ Placed placeTriangle(SceneTriangle& t, TriangleCorners& corners, const Placement
 // Replaces the ranges from firstRange on by one placed copy per instance of them, appended after
 // the other triangles in instance order (degenerate copies dropped): with firstRange 0, the scene
 // the loaders gave before instancing. The ranges before firstRange must lie before the others.
-void flattenInstances(Scene& scene, std::size_t firstRange = 0);
+// Returns why not ("flattening its instances into copies gives N triangles: ...", nothing
+// changed) when the copies would not fit the memory check (util/host_memory.h), else "".
+std::string flattenInstances(Scene& scene, std::size_t firstRange = 0);
 
 }  // namespace montecl
