@@ -301,4 +301,37 @@ TEST_CASE("hostile: glTF instancing placements are counted against the memory ch
   CHECK(peakKiB < 100 * 1024);  // the buffer and its floats (24 MB) and the process, not 128 MB of matrices
 }
 
+// 20,000 primitives over one shared POSITION accessor of 150,000 vertices: each primitive decoded
+// the whole accessor again (9e9 floats, about 15 s on two cores; a real file cost 41 s of CPU).
+// Decoded once, the render takes under a second; 6 s leaves room for a loaded or sanitized run.
+TEST_CASE("hostile: primitives sharing one accessor decode it once" * doctest::test_suite("cli sanitize")) {
+  TempDir dir;
+  const int vertices = 150000, primitives = 20000;
+  std::string buffer(std::size_t(vertices) * 12 + 12, '\0');
+  for (int v = 0; v < vertices; ++v) {
+    const float p[3] = {float(v % 3 == 1), float(v % 3 == 2), 0.0f};
+    std::memcpy(&buffer[std::size_t(v) * 12], p, 12);
+  }
+  const std::uint32_t tri[3] = {0, 1, 2};
+  std::memcpy(&buffer[std::size_t(vertices) * 12], tri, 12);
+  dir.write("shared.bin", buffer);
+  std::string prims;
+  for (int k = 0; k < primitives; ++k) prims += std::string(k ? "," : "") + R"({"attributes":{"POSITION":0},"indices":1})";
+  dir.write("shared.gltf",
+            R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],"meshes":[{"primitives":[)" +
+                prims + R"(]}],"buffers":[{"uri":"shared.bin","byteLength":)" + std::to_string(buffer.size()) +
+                R"(}],"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":)" + std::to_string(vertices * 12) +
+                R"(},{"buffer":0,"byteOffset":)" + std::to_string(vertices * 12) +
+                R"(,"byteLength":12}],"accessors":[{"bufferView":0,"componentType":5126,"count":)" +
+                std::to_string(vertices) + R"(,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},)"
+                R"({"bufferView":1,"componentType":5125,"count":3,"type":"SCALAR"}]})");
+  const auto start = std::chrono::steady_clock::now();
+  CliResult r = runMontecl({"render", dir.file("shared.gltf"), "-o", dir.file("out.png"), "-q", "--device", "host",
+                            "--width", "8", "--height", "8", "--spp", "1", "--integrator", "ao"});
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  INFO(r.err);
+  CHECK(r.exitCode == 0);
+  CHECK(seconds < 6.0);
+}
+
 }  // namespace test_file_cli_hostile

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "util/host_memory.h"
+#include "scene/gltf_accessor_cache.h"
 #include "scene/gltf_draco.h"
 #include "scene/gltf_instancing.h"
 #include "scene/gltf_lights.h"
@@ -55,6 +56,7 @@ struct Loader {
   std::vector<int> uvSet = std::vector<int>(m.materials.size(), 0);
   std::vector<std::string> uvSetKey = std::vector<std::string>(m.materials.size());
   std::map<const tinygltf::Primitive*, GltfDracoMesh> draco{};  // decoded Draco primitives
+  GltfAccessorCache accessors{};  // primitives sharing an accessor decode it once
 
   std::uint32_t material(int index);
   void primitive(const tinygltf::Primitive& p, const glm::dmat4& world, const std::string& where);
@@ -213,45 +215,41 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
   }
   // An attribute's values: decoded from the Draco buffer when it holds it (the accessor, checked
   // alike, gives only its type), else read from its accessor.
-  const auto values = [&](const std::string& name, int components, AccessorUse use) {
+  const auto values = [&](const std::string& name, int components, AccessorUse use) -> const std::vector<float>& {
     const std::string key = where + "." + name;
     if (dm && dm->attributes.count(name)) {
       checkFloatAccessor(file, m, attr(name.c_str()), components, key, use);
       return dm->attributes.at(name);
     }
-    return readFloatAccessor(file, m, attr(name.c_str()), components, key, use);
+    return accessors.floats(name, file, m, attr(name.c_str()), components, key, use);
   };
-  const std::vector<float> pos = values("POSITION", 3, AccessorUse::Position);
+  static const std::vector<float> kNone;
+  const std::vector<float>& pos = values("POSITION", 3, AccessorUse::Position);
   const std::size_t n = pos.size() / 3;
-  std::vector<float> nor, uv;
-  if (attr("NORMAL") >= 0) nor = values("NORMAL", 3, AccessorUse::Normal);
+  const std::vector<float>& nor = attr("NORMAL") >= 0 ? values("NORMAL", 3, AccessorUse::Normal) : kNone;
   const std::uint32_t mat = material(p.material);
   const bool hasMaterial = p.material >= 0 && static_cast<std::size_t>(p.material) < m.materials.size();
   const int set = hasMaterial ? uvSet[std::size_t(p.material)] : 0;
   const std::string uvName = "TEXCOORD_" + std::to_string(set);
   if (set > 0 && attr(uvName.c_str()) < 0)  // TEXCOORD_0 missing: no UVs, as always
     loadFail(file, uvSetKey[std::size_t(p.material)], "names " + uvName + ", which " + where + " does not have");
-  if (attr(uvName.c_str()) >= 0) uv = values(uvName, 2, AccessorUse::TexCoord);
+  const std::vector<float>& uv = attr(uvName.c_str()) >= 0 ? values(uvName, 2, AccessorUse::TexCoord) : kNone;
   // COLOR_0 (VEC3 or VEC4: alpha not read) multiplies the base colour.
-  std::vector<float> col;
-  int colN = 3;
-  if (const int a = attr("COLOR_0"); a >= 0) {
-    colN = static_cast<std::size_t>(a) < m.accessors.size() && m.accessors[std::size_t(a)].type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
-    col = values("COLOR_0", colN, AccessorUse::Any);
-    if (col.size() / std::size_t(colN) != n) loadFail(file, where, "attributes have different counts");
-  }
+  const int colA = attr("COLOR_0");
+  const int colN = colA >= 0 && std::size_t(colA) < m.accessors.size() && m.accessors[std::size_t(colA)].type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+  const std::vector<float>& col = colA >= 0 ? values("COLOR_0", colN, AccessorUse::Any) : kNone;
+  if (colA >= 0 && col.size() / std::size_t(colN) != n) loadFail(file, where, "attributes have different counts");
   if ((!nor.empty() && nor.size() / 3 != n) || (!uv.empty() && uv.size() / 2 != n))
     loadFail(file, where, "attributes have different counts");
   // TANGENT (VEC4: xyz the tangent, w the handedness; FLOAT or, quantized, as NORMAL) gives normal
   // maps the file's tangent frame (normal_map.h); without it the frame comes from the UVs.
-  std::vector<float> tan;
-  if (attr("TANGENT") >= 0) tan = values("TANGENT", 4, AccessorUse::Normal);
+  const std::vector<float>& tan = attr("TANGENT") >= 0 ? values("TANGENT", 4, AccessorUse::Normal) : kNone;
   if (!tan.empty() && tan.size() / 4 != n)
     loadFail(file, where + ".TANGENT", std::to_string(tan.size() / 4) + " elements, POSITION has " + std::to_string(n));
-  std::vector<std::uint32_t> idx;
   const bool indexed = p.indices >= 0 || dm;  // a Draco mesh's faces index its points
-  if (dm) idx = dm->indices;
-  else if (p.indices >= 0) idx = readIndexAccessor(file, m, p.indices, where + ".indices");
+  static const std::vector<std::uint32_t> kNoIndices;
+  const std::vector<std::uint32_t>& idx =
+      dm ? dm->indices : p.indices >= 0 ? accessors.indices(file, m, p.indices, where + ".indices") : kNoIndices;
   const std::size_t count = indexed ? idx.size() : n;  // the primitive's vertices, in order
   if (mode == TINYGLTF_MODE_TRIANGLES && count % 3 != 0)
     loadFail(file, where, std::to_string(count) + " vertices do not make whole triangles");
