@@ -334,4 +334,23 @@ TEST_CASE("hostile: primitives sharing one accessor decode it once" * doctest::t
   CHECK(seconds < 6.0);
 }
 
+// A lit floor and a light facing it, scaled by 2^-30 and 2^-40, render as lit as at scale 1, but
+// warned "no emitter's front face faces any surface" and "nothing emits: the image is black" (the
+// tests ran in float with an absolute tolerance).
+TEST_CASE("hostile: a lit scene scaled by 2^-30 or 2^-40 is not warned black" * doctest::test_suite("cli sanitize")) {
+  TempDir dir;
+  dir.write("floor.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
+  dir.write("light.obj", "v -0.2 -0.2 1\nv -0.2 0.2 1\nv 0.2 0.2 1\nv 0.2 -0.2 1\nf 1 2 3 4\n");
+  for (const char* scale : {"1", "9.313225746154785e-10", "9.094947017729282e-13"}) {
+    dir.write("scene.json", std::string(R"({"camera": "auto", "meshes": [{"file": "floor.obj", "transform": {"scale": )") +
+                                scale + R"(}}, {"file": "light.obj", "emission": [10, 10, 10], "transform": {"scale": )" +
+                                scale + R"(}}], "render": {"integrator": "direct", "spp": 2}})");
+    CliResult r = runMontecl(renderArgs(dir.file("scene.json"), dir.file("out.png")));
+    INFO(scale << ": " << r.err);
+    CHECK(r.exitCode == 0);
+    CHECK(r.err.find("warning") == std::string::npos);
+    fs::remove(dir.file("out.png"));
+  }
+}
+
 }  // namespace test_file_cli_hostile
