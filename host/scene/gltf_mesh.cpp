@@ -30,6 +30,7 @@
 #include "scene/gltf_instancing.h"
 #include "scene/gltf_lights.h"
 #include "scene/gltf_model.h"
+#include "scene/gltf_placement_budget.h"
 #include "scene/gltf_transmission.h"
 #include "scene/gltf_texture_info.h"
 #include "scene/load_util.h"
@@ -346,14 +347,19 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
   std::uint64_t instanced = 0;  // triangles the meshes of the nodes so far declare
   // Pass 1: every node's placements of its mesh (EXT_mesh_gpu_instancing: world x instance
   // matrix, in instance order), in traversal order; cameras and lights as met.
-  struct Placed {
-    std::size_t node;
-    std::size_t mesh;
-    std::vector<glm::dmat4> at;
+  struct Placed {  // the matrices are made in pass 2, after the memory check of them all
+    std::size_t node, mesh;
+    glm::dmat4 world;
+    GltfInstances inst;
+    std::vector<glm::dmat4> at() const {
+      std::vector<glm::dmat4> out(inst.count, world);
+      if (inst.present) for (std::size_t k = 0; k < inst.count; ++k) out[k] = world * inst.local(k);
+      return out;
+    }
   };
   std::vector<Placed> placements;
   std::vector<std::uint64_t> uses(m.meshes.size(), 0);
-  std::uint64_t placedCount = 0;
+  GltfPlacementBudget budget(m, before);
   std::vector<bool> visited(m.nodes.size(), false);
   std::vector<std::pair<int, glm::dmat4>> stack;
   for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, glm::dmat4(1.0));
@@ -370,24 +376,19 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
     if (const int light = gltfNodeLight(node); light != -1) addGltfLight(path, m, light, world, scene, l.unused);
     if (node.mesh >= 0) {
       if (static_cast<std::size_t>(node.mesh) >= m.meshes.size()) loadFail(path, itemWhere("nodes", i), "mesh index out of range");
-      const GltfInstances inst = gltfNodeInstances(path, m, node, itemWhere("nodes", i));
-      for (const std::string& a : inst.ignored)
+      Placed p{i, std::size_t(node.mesh), world, gltfNodeInstances(path, m, node, itemWhere("nodes", i))};
+      for (const std::string& a : p.inst.ignored)
         l.unused.add("instance attribute " + a, itemWhere("nodes", i),
                      "instance attribute " + oneLine(a, 40) + " not used by montecl, ignored");
-      Placed p{i, std::size_t(node.mesh), {}};
-      // Counted before any matrix is made (at most 2^40: the sum cannot wrap); each ends as an
-      // instance at least (a copy costs more: pass 2), so their memory check comes first.
-      const std::uint64_t count = std::min<std::uint64_t>(inst.count, std::uint64_t(1) << 40);
-      placedCount += count;
-      if (const std::string many = instanceMemoryRefusal(placedCount); !many.empty())
-        loadFail(path, itemWhere("nodes", i), "instancing its meshes " + many);
-      p.at.reserve(count);
-      for (std::uint64_t k = 0; k < count; ++k) p.at.push_back(inst.present ? world * inst.local(k) : world);
-      uses[p.mesh] += p.at.size();
+      uses[p.mesh] += p.inst.count;
+      budget.add(i, p.mesh, p.inst.count);
       placements.push_back(std::move(p));
     }
     for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.emplace_back(*it, world);
   }
+  std::size_t overNode = 0;  // every placement counted before one matrix is made
+  if (const std::string many = budget.refusal(overNode); !many.empty())
+    loadFail(path, itemWhere("nodes", overNode), "instancing its meshes " + many);
   // Pass 2: a mesh placed more than once is read once, in its own space, as a mesh range placed
   // by each placement (Scene::instances, a two-level BVH: memory grows with the unique meshes),
   // unless it emits (the emitter table is world space): then, as a mesh placed once, a copy per
@@ -425,13 +426,13 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
     }
     if (rangeOf[p.mesh] >= 0) {
       const std::uint32_t r = std::uint32_t(rangeOf[p.mesh]);
-      if (const std::string bad = addPlacements(scene, r, p.at); !bad.empty())
+      if (const std::string bad = addPlacements(scene, r, p.at()); !bad.empty())
         loadFail(path, meshWhere, "a node transform " + bad);
       continue;
     }
-    const std::uint64_t copies = std::min<std::uint64_t>(p.at.size(), cap);
+    const std::uint64_t copies = std::min<std::uint64_t>(p.inst.count, cap);
     refuseBeyond(copies != 0 && tris > cap / copies ? cap : tris * copies, p.node);
-    for (const glm::dmat4& at : p.at)
+    for (const glm::dmat4& at : p.at())
       for (std::size_t q = 0; q < mesh.primitives.size(); ++q)
         l.primitive(mesh.primitives[q], at, meshWhere + ".primitives[" + std::to_string(q) + "]");
   }

@@ -73,9 +73,10 @@ std::vector<glm::vec3> instanceBoxCorners(const Scene& scene) {
   return corners;
 }
 
+std::uint64_t instanceBytes() { return sizeof(SceneInstance) + sizeof(Instance) + sizeof(SceneTriangle) + 125; }
+
 std::string instanceMemoryRefusal(std::uint64_t instances) {
-  const std::uint64_t each = sizeof(SceneInstance) + sizeof(Instance) + sizeof(SceneTriangle) + 125;
-  const std::uint64_t need = instances * each, has = hostMemoryBytes();
+  const std::uint64_t need = instances * instanceBytes(), has = hostMemoryBytes();
   if (need <= has) return "";
   return "gives " + std::to_string(instances) + " instances: needs about " + gibText(need) +
          " of memory (placements and their BVH), this machine has " + gibText(has);

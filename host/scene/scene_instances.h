@@ -56,9 +56,10 @@ void truncateCorners(Scene& scene, std::size_t count);
 DetachedRanges detachRanges(Scene& scene, std::size_t firstRange);
 void attachRanges(Scene& scene, std::size_t firstRange, DetachedRanges detached);
 
-// Why a scene must not hold `instances` placements: each costs its SceneInstance, its device
-// Instance and, in the top level's build, about what a triangle costs (buildBvh over the boxes);
-// "" when that fits hostMemoryBytes(). Otherwise "gives N instances: needs about X GiB ...".
+// Why a scene must not hold `instances` placements: each costs instanceBytes(), its SceneInstance,
+// its device Instance and, in the top level's build, about what a triangle costs (buildBvh over
+// the boxes); "" when that fits hostMemoryBytes(). Otherwise "gives N instances: needs about X GiB ...".
+std::uint64_t instanceBytes();
 std::string instanceMemoryRefusal(std::uint64_t instances);
 
 // Triangles a flattened scene would hold: the world ones plus every instance's copy.
