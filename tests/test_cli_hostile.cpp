@@ -353,4 +353,27 @@ TEST_CASE("hostile: a lit scene scaled by 2^-30 or 2^-40 is not warned black" * 
   }
 }
 
+// An 8 x 4096 EXR whose header is patched to declare 4096 x 4096: its chunks and offset table are
+// all there, but its few kilobytes cannot hold 200 MB of pixels (no compression reaches that),
+// yet the environment map and merge readers allocated the whole declared image before the decoder
+// found the chunks short (a 9.8 KB file cost 7.2 GB and 17-47 s). Now refused from the header.
+TEST_CASE("hostile: an EXR declaring more pixels than its file can hold is refused before decoding" *
+          doctest::test_suite("cli sanitize")) {
+  TempDir dir;
+  montecl::writeRgbImage(dir.file("small.exr"), 8, 4096, std::vector<float>(8 * 4096 * 3, 0.5f));
+  std::string bytes = montecl_test::readAll(dir.file("small.exr"));
+  const std::string key = std::string("dataWindow\0box2i\0", 17);
+  const std::size_t at = bytes.find(key);
+  REQUIRE(at != std::string::npos);
+  const std::int32_t window[4] = {0, 0, 4095, 4095};
+  std::memcpy(&bytes[at + key.size() + 4], window, sizeof window);  // after the attribute's size
+  dir.write("huge.exr", bytes);
+  const std::string out = dir.file("out.exr");
+  checkRefused(runMontecl({"render", montecl_test::demoScene(), "-o", out, "-q", "--device", "host", "--width", "8",
+                           "--height", "8", "--spp", "1", "--env", dir.file("huge.exr")}),
+               out, {"huge.exr", "declares", "bytes of pixels in a file of"});
+  checkRefused(runMontecl({"merge", dir.file("small.exr"), dir.file("huge.exr"), "-o", out, "--force", "-q"}), out,
+               {"huge.exr", "declares", "bytes of pixels in a file of"});
+}
+
 }  // namespace test_file_cli_hostile
