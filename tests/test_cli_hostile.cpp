@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_checks.h"
 #include "cli_runner.h"
 #include "image/exr_layers.h"
 #include "image/image_io.h"
@@ -25,22 +26,10 @@
 
 namespace test_file_cli_hostile {  // keeps this file's helpers apart in a unity batch
 
-using montecl_test::CliResult;
-using montecl_test::runMontecl;
-using montecl_test::TempDir;
+using namespace montecl_test;  // runMontecl, TempDir, checkRefused and the fixture's mesh files
 namespace fs = std::filesystem;
 
 namespace {
-
-bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
-
-void checkRefused(const CliResult& r, const std::string& out, const std::vector<std::string>& words) {
-  INFO("exit " << r.exitCode << ", stderr: " << r.err);
-  CHECK(r.exitCode == 2);
-  CHECK(oneLine(r.err));
-  for (const std::string& w : words) CHECK(r.err.find(w) != std::string::npos);
-  CHECK_FALSE(fs::exists(out));
-}
 
 std::vector<std::string> renderArgs(const std::string& scene, const std::string& out) {
   return {"render", scene, "-o", out, "-q", "--device", "host", "--width", "16", "--height", "16", "--spp", "2"};

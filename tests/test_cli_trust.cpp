@@ -21,6 +21,7 @@
 #include <functional>
 #include <limits>
 
+#include "cli_checks.h"
 #include "cli_runner.h"
 #include "image/exr_layers.h"
 #include "image/image_io.h"
@@ -29,22 +30,14 @@
 
 namespace test_file_cli_trust {  // keeps this file's helpers apart in a unity batch
 
+using montecl_test::checkRefused;
 using montecl_test::CliResult;
+using montecl_test::oneLine;
 using montecl_test::runMontecl;
 using montecl_test::TempDir;
 namespace fs = std::filesystem;
 
 namespace {
-
-bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
-
-void checkRefused(const CliResult& r, const std::string& out, const std::vector<std::string>& words) {
-  INFO("stderr: " << r.err);
-  CHECK(r.exitCode == 2);
-  CHECK(oneLine(r.err));
-  for (const std::string& w : words) CHECK(r.err.find(w) != std::string::npos);
-  CHECK_FALSE(fs::exists(out));
-}
 
 std::uint32_t crc32(const std::string& bytes) {
   std::uint32_t c = 0xffffffffu;

@@ -20,9 +20,7 @@
 namespace test_file_render_identity {  // keeps this file's helpers apart in a unity batch
 
 using namespace montecl;
-using montecl_test::CliResult;
-using montecl_test::runMontecl;
-using montecl_test::TempDir;
+using namespace montecl_test;  // runMontecl, TempDir
 namespace fs = std::filesystem;
 
 namespace {
