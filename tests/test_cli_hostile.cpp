@@ -177,6 +177,29 @@ TEST_CASE("hostile: an instance placed past float range or with an overflowing i
   }
 }
 
+// A tent instanced with a scale of 1e-20 along z rendered 16 of 256 pixels differently from the
+// same tent flattened with that scale (the ray entering the instance is the world direction
+// times 1e20 along z, and the traversal squares its length in float); 1e-19 still agreed. Past
+// 1e18 the inverse scale is refused, naming the instance.
+TEST_CASE("hostile: an instance scaled by 1e-20 along one axis is refused, naming the instance" *
+          doctest::test_suite("cli sanitize")) {
+  TempDir dir;
+  dir.write("tent.obj", "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 1 -1\nv 0 1 1\nf 1 2 3 4\nf 1 5 2\nf 4 3 6\n");
+  const std::string out = dir.file("out.png");
+  for (const char* scale : {"1e-20", "1e-5"}) {
+    dir.write("scene.json", std::string(R"({"camera": {"position": [0.5, 3, 2], "target": [0, 0, 0], "fov_y": 50, "width": 16, "height": 16},
+      "meshes": [{"file": "tent.obj", "instances": [{"translate": [9, 0, 0]}, {"scale": [1, 1, )") + scale +
+                                R"(]}]}], "render": {"integrator": "ao", "spp": 4}})");
+    CliResult r = runMontecl(renderArgs(dir.file("scene.json"), out));
+    INFO(scale << ": exit " << r.exitCode << ": " << r.err);
+    if (std::string(scale) == "1e-5") {
+      CHECK(r.exitCode == 0);  // an ordinary flattening scale stays an instance
+    } else {
+      checkRefused(r, out, {"scene.json", "meshes[0].instances[1]", "inverse"});
+    }
+  }
+}
+
 // A hand-edited sample count of -1, 2.5 or 1e30 weighted its pixel by nonsense (a negative one
 // was taken as 0), with exit 0.
 TEST_CASE("hostile: merge refuses negative, fractional and huge sample counts" * doctest::test_suite("cli sanitize")) {

@@ -30,10 +30,16 @@ std::string placementProblem(const glm::dmat4& m, const std::vector<glm::vec3>& 
       return "moves vertices to " + p;
   }
   const glm::dmat4 inv = glm::inverse(m);
-  for (int c = 0; c < 4; ++c)
-    if (std::string p = magnitudeProblem(glm::dvec3(inv[c]), 3.4e38, "its inverse (world to object) leaves float range");
+  // The linear part against kMaxInverseScale; the translation (stored as a float) against float range.
+  if (std::string p = magnitudeProblem(glm::dvec3(inv[3]), 3.4e38, "its inverse (world to object) leaves float range");
+      !p.empty())
+    return "has an inverse (world to object) entry " + p;
+  for (int c = 0; c < 3; ++c)
+    if (std::string p = magnitudeProblem(glm::dvec3(inv[c]), kMaxInverseScale,
+                                         "rays entering the instance (world direction x inverse) pass float range "
+                                         "when squared; scale the mesh by its \"transform\" instead");
         !p.empty())
-      return "has an inverse entry " + p;
+      return "has an inverse (world to object) entry " + p;
   return "";
 }
 

@@ -27,6 +27,10 @@ constexpr double kMaxTextureTransform = 1e6;
 // World coordinates of placed instances: the BVH takes lengths of world boxes in float, whose
 // squares pass float range (3.4e38) at about 1.8e19.
 constexpr double kMaxWorldCoordinate = 1e18;
+// The inverse of an instance's placement (world to object): a ray enters an instance as its world
+// direction times it, and the traversal squares that direction's length in float. Scaled by 1e-20
+// along one axis, an instance lost 16 of 256 pixels its flattened copy kept.
+constexpr double kMaxInverseScale = 1e18;
 
 // A value past its limit: the key it concerns (relative to the light: "intensity", "angle") and
 // what is wrong; `what` is empty when there is none.
@@ -42,8 +46,8 @@ ValueProblem lightValueProblem(PunctualKind kind, const glm::dvec3& colour, doub
                                const std::string& colourKey);
 
 // "" when the placement m (object to world) keeps the corners of an object-space box within
-// kMaxWorldCoordinate and its inverse (world to object, stored as float rows) within float range;
-// else what is wrong ("moves vertices to 2e+19, past 1e+18 ...").
+// kMaxWorldCoordinate and its inverse's entries (world to object) within kMaxInverseScale; else
+// what is wrong ("moves vertices to 2e+19, past 1e+18 ...").
 std::string placementProblem(const glm::dmat4& m, const std::vector<glm::vec3>& corners);
 
 // "" when each component of v is finite and at most limit in magnitude, else "<v> is past <limit>:
