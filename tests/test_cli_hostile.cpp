@@ -388,4 +388,25 @@ TEST_CASE("hostile: an EXR declaring more pixels than its file can hold is refus
                {"huge.exr", "declares", "bytes of pixels in a file of"});
 }
 
+// A command-line mistake printed CLI11's message and "Run with --help for more information." on a
+// second line, without montecl's prefix: now one line, exit 2.
+TEST_CASE("hostile: command-line mistakes are one error line" * doctest::test_suite("cli sanitize")) {
+  TempDir dir;
+  const std::string out = dir.file("out.png");
+  const std::vector<std::vector<std::string>> mistakes = {
+      {"render", demoScene(), "-o", out, "--spp", "x"},
+      {"render", demoScene(), "-o", out, "--bogus"},
+      {"render"},
+      {"render", demoScene(), "-o", out, "-o", dir.file("b.png")},
+  };
+  for (const std::vector<std::string>& args : mistakes) {
+    CliResult r = runMontecl(args);
+    INFO(args.back() << ": " << r.err);
+    checkRefused(r, out, {"montecl: error: ", "--help"});
+  }
+  CliResult help = runMontecl({"render", "--help"});
+  CHECK(help.exitCode == 0);
+  CHECK(help.out.find("--spp") != std::string::npos);
+}
+
 }  // namespace test_file_cli_hostile
