@@ -7,7 +7,7 @@
 namespace montecl {
 namespace {
 
-std::string num(double v) {
+std::string limitNumber(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
@@ -18,7 +18,7 @@ std::string num(double v) {
 std::string magnitudeProblem(const glm::dvec3& v, double limit, const std::string& reason) {
   for (int c = 0; c < 3; ++c)
     if (!(std::fabs(v[c]) <= limit))
-      return num(v[c]) + " is past " + num(limit) + ": " + reason;
+      return limitNumber(v[c]) + " is past " + limitNumber(limit) + ": " + reason;
   return "";
 }
 
@@ -49,12 +49,12 @@ ValueProblem lightValueProblem(PunctualKind kind, const glm::dvec3& colour, doub
   if (std::string p = magnitudeProblem(colour, kMaxLightValue, range); !p.empty()) return {colourKey, p};
   if (kind != PunctualKind::Sun) return {};
   if (!(angleDegrees >= kMinSunDegrees))
-    return {"angle", num(angleDegrees) + " degrees is below " + num(kMinSunDegrees) +
+    return {"angle", limitNumber(angleDegrees) + " degrees is below " + limitNumber(kMinSunDegrees) +
                          " (a narrower disk's solid angle leaves float range)"};
   const double pi = 3.14159265358979323846, s = std::sin(0.5 * angleDegrees * pi / 180.0);
   if (std::string p = magnitudeProblem(colour / (pi * s * s), kMaxLightValue, "the sun's radiance, " + range);
       !p.empty())
-    return {"angle", num(angleDegrees) + " degrees with this irradiance: " + p};
+    return {"angle", limitNumber(angleDegrees) + " degrees with this irradiance: " + p};
   return {};
 }
 
