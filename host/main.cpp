@@ -3,12 +3,25 @@
 #include <csignal>
 #include <iostream>
 #include <new>
+#include <string>
 
 #include "cl/cl_errors.h"
 #include "cli/commands.h"
 #include "job/mpi.h"
 #include "util/errors.h"
 #include "util/heap_trim.h"
+
+namespace {
+
+// An error is one line: a library's message with newlines in it (CLI11's "Run with --help ..."
+// line, a decoder's report) has them joined.
+std::string oneLineError(std::string s) {
+  while (!s.empty() && (s.back() == '\n' || s.back() == '\r')) s.pop_back();
+  for (std::size_t at = s.find('\n'); at != std::string::npos; at = s.find('\n', at)) s.replace(at, 1, "; ");
+  return s;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace montecl;
@@ -32,10 +45,11 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    int code = app.exit(e);
-    return code == 0 ? kExitOk : jobs::failed(kExitBadInput);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    std::cerr << "montecl: error: " << oneLineError(e.what()) << " (see --help)\n";
+    return jobs::failed(kExitBadInput);
   } catch (const InputError& e) {
-    std::cerr << "montecl: error: " << e.what() << "\n";
+    std::cerr << "montecl: error: " << oneLineError(e.what()) << "\n";
     return jobs::failed(kExitBadInput);  // under MPI: MPI_Abort, the whole job ends
   } catch (const cl::Error& e) {
     std::cerr << "montecl: error: " << describeClError(e) << "\n";
@@ -44,7 +58,7 @@ int main(int argc, char** argv) {
     std::cerr << "montecl: error: out of memory: the scene or image is too large for this machine\n";
     return jobs::failed(kExitRuntime);
   } catch (const std::exception& e) {
-    std::cerr << "montecl: error: " << e.what() << "\n";
+    std::cerr << "montecl: error: " << oneLineError(e.what()) << "\n";
     return jobs::failed(kExitRuntime);
   }
   return exitCode;

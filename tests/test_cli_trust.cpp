@@ -21,6 +21,7 @@
 #include <functional>
 #include <limits>
 
+#include "cli_checks.h"
 #include "cli_runner.h"
 #include "image/exr_layers.h"
 #include "image/image_io.h"
@@ -29,18 +30,10 @@
 
 namespace test_file_cli_trust {  // keeps this file's helpers apart in a unity batch
 
-using namespace montecl_test;  // runMontecl, renderOnHost, oneLine, TempDir, ... (fixtures/cli_runner.h)
+using namespace montecl_test;  // runMontecl, renderOnHost, oneLine, TempDir, checkRefused, ... (fixtures/cli_runner.h, cli_checks.h)
 namespace fs = std::filesystem;
 
 namespace {
-
-void checkRefused(const CliResult& r, const std::string& out, const std::vector<std::string>& words) {
-  INFO("stderr: " << r.err);
-  CHECK(r.exitCode == 2);
-  CHECK(oneLine(r.err));
-  for (const std::string& w : words) CHECK(r.err.find(w) != std::string::npos);
-  CHECK_FALSE(fs::exists(out));
-}
 
 std::uint32_t crc32(const std::string& bytes) {
   std::uint32_t c = 0xffffffffu;

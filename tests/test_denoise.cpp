@@ -1,12 +1,23 @@
 // test_denoise.cpp: `montecl render --denoise` (Open Image Denoise, image/oidn_denoiser.h) end to
-// end: without the library it is one line and exit 2 with nothing written; the EXR keeps the noisy
-// layers bit for bit; the denoised Cornell box is closer to a converged reference than the noisy
-// one. The cases that run the filter skip (with the reason) where the library is not installed.
+// end: without the library, with one whose CPU device cannot be created, or with a FIFO named as
+// the library it is one line and exit 2 with nothing written, before any work; a filter failing
+// after the render leaves the noisy image written with a warning; the EXR keeps the noisy layers
+// bit for bit; the denoised Cornell box is closer to a converged reference than the noisy one. The
+// cases that run the real filter skip (with the reason) where the library is not installed; the
+// failure cases load a stand-in library (tests/fixtures/fake_oidn).
 #include <doctest/doctest.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli_runner.h"
@@ -19,6 +30,7 @@ namespace test_file_denoise {  // keeps this file's helpers apart in a unity bat
 
 using namespace montecl;
 using namespace montecl_test;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -66,6 +78,79 @@ TEST_CASE("denoise: without the library --denoise is one line naming the set-up 
     CHECK(r.err.find('\n') == r.err.size() - 1);  // one line
   }
   CHECK(dir.entries().empty());
+}
+
+// A library that loads and exports every symbol but cannot create its CPU device (the core copied
+// without libOpenImageDenoise_device_cpu) is refused before any work, like a missing one.
+TEST_CASE("denoise: a library whose CPU device cannot be committed is one line, exit 2, before any work" *
+          doctest::test_suite("cli sanitize")) {
+  TempDir dir;
+  CliResult r = runMontecl({"render", demoScene(), "-o", dir.file("a.exr"), "--width", "8", "--height", "8", "--spp",
+                            "1", "--denoise"},
+                           {std::string("MONTECL_OIDN_LIBRARY=") + MONTECL_FAKE_OIDN, "MONTECL_FAKE_OIDN_FAIL=device"});
+  INFO(r.err);
+  CHECK(r.exitCode == 2);
+  CHECK(r.out.empty());
+  CHECK(r.err.find("CPU device") != std::string::npos);
+  CHECK(r.err.find("no supported devices found") != std::string::npos);
+  CHECK(r.err.find('\n') == r.err.size() - 1);  // one line: no progress bar, nothing rendered
+  CHECK(dir.entries().empty());
+}
+
+// A filter that fails after the render leaves the noisy image written, with a warning.
+TEST_CASE("denoise: a filter failing after the render writes the noisy image with a warning" *
+          doctest::test_suite("cli sanitize")) {
+  TempDir dir;
+  const std::vector<std::string> env = {std::string("MONTECL_OIDN_LIBRARY=") + MONTECL_FAKE_OIDN,
+                                        "MONTECL_FAKE_OIDN_FAIL=execute"};
+  CliResult plain = runMontecl(demoRenderArgs(dir.file("plain.exr"), 2, 0));
+  REQUIRE(plain.exitCode == 0);
+  for (const char* out : {"a.exr", "a.png"}) {
+    std::vector<std::string> args = demoRenderArgs(dir.file(out), 2, 0);
+    args.push_back("--denoise");
+    CliResult r = runMontecl(args, env);
+    INFO(out << ": " << r.err);
+    CHECK(r.exitCode == 0);
+    CHECK(r.err.find("warning") != std::string::npos);
+    CHECK(r.err.find("out of memory while filtering") != std::string::npos);
+    REQUIRE(std::ifstream(dir.file(out)).good());
+  }
+  // The EXR holds the noisy estimate exactly and no denoised planes.
+  const LayeredImage a = readLayeredImage(dir.file("plain.exr")), b = readLayeredImage(dir.file("a.exr"));
+  CHECK(b.channels == a.channels);
+  for (const std::string& ch : a.channels) CHECK(*b.find(ch) == *a.find(ch));
+}
+
+// dlopen of a FIFO blocks until a writer opens it: forever. A helper opens it for writing after
+// 20 s (then dlopen fails on the empty file), so without the rule the case fails on its time
+// instead of hanging; with it the refusal comes at once.
+TEST_CASE("denoise: MONTECL_OIDN_LIBRARY naming a FIFO or a folder is one line, exit 2, at once" *
+          doctest::test_suite("cli sanitize")) {
+  TempDir dir;
+  REQUIRE(mkfifo(dir.file("fifo.so").c_str(), 0600) == 0);
+  fs::create_directory(dir.file("folder.so"));
+  std::atomic<bool> done{false};
+  std::thread unblock([&] {
+    for (int i = 0; i < 200 && !done; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (done) return;
+    const int fd = open(dir.file("fifo.so").c_str(), O_WRONLY | O_NONBLOCK);
+    if (fd >= 0) close(fd);
+  });
+  for (const char* lib : {"fifo.so", "folder.so"}) {
+    const auto start = std::chrono::steady_clock::now();
+    CliResult r = runMontecl({"render", demoScene(), "-o", dir.file("a.png"), "--width", "8", "--height", "8",
+                              "--spp", "1", "--denoise", "-q"},
+                             {"MONTECL_OIDN_LIBRARY=" + dir.file(lib)});
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    INFO(lib << ": " << r.err);
+    CHECK(r.exitCode == 2);
+    CHECK(r.err.find("is not a regular file") != std::string::npos);
+    CHECK(r.err.find('\n') == r.err.size() - 1);
+    CHECK(seconds < 10.0);
+  }
+  done = true;
+  unblock.join();
+  CHECK_FALSE(fs::exists(dir.file("a.png")));
 }
 
 TEST_CASE("denoise: the EXR keeps R, G, B, samples and var bit for bit and adds denoised.R/G/B" *

@@ -58,7 +58,9 @@ SlabRange slabsOf(const PrimRef& r, int axis, const float* planes, int nPlanes, 
   const float lo = r.lo[axis], hi = r.hi[axis];
   auto guess = [&](float x) {
     float g = (x - origin) * invWidth;
-    return g <= 0.0f ? 0 : (g >= float(nPlanes) ? nPlanes : static_cast<int>(g));
+    // NaN (never expected: find() skips axes without a finite invWidth) falls to slab 0 and is
+    // corrected below, never converted to an integer.
+    return !(g > 0.0f) ? 0 : (g >= float(nPlanes) ? nPlanes : static_cast<int>(g));
   };
   int first = guess(lo), last = guess(hi);
   while (first > 0 && planes[first - 1] > lo) --first;
@@ -81,9 +83,12 @@ SpatialSplit SpatialBinner::find(const PrimRef* refs, std::size_t n, const Box& 
   std::size_t enter[kMaxBins], exit[kMaxBins];
   for (int a = 0; a < 3; ++a) {
     if (!(bounds.hi[a] > bounds.lo[a])) continue;
+    // An extent so thin (below bins / FLT_MAX, e.g. 2e-38) that its slabs' inverse width overflows
+    // has no usable slab planes: 0 * inf made a NaN slab index and a read far outside the planes.
+    const float invWidth = static_cast<float>(bins) / (bounds.hi[a] - bounds.lo[a]);
+    if (!std::isfinite(invWidth)) continue;
     const int np = bins - 1;
     for (int k = 0; k < np; ++k) planes[k] = planePos(bounds, a, k);
-    const float invWidth = static_cast<float>(bins) / (bounds.hi[a] - bounds.lo[a]);
     for (int k = 0; k < bins; ++k) {
       box[k] = Box();
       enter[k] = exit[k] = 0;

@@ -6,6 +6,7 @@
 // Merge does not denoise: the inputs' denoised.R/G/B layers (render --denoise) are dropped.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -52,6 +53,24 @@ void checkFinite(const LayeredImage& image, const std::string& path) {
                             "' is not finite");
 }
 
+// A pixel's sample count is a whole number a render can reach: a hand-edited -1, 2.5 or 1e30
+// weighted its pixel's mean and variance by nonsense (a negative count was taken as 0).
+void checkSampleCounts(const LayeredImage& image, const std::string& path) {
+  const std::vector<float>* samples = image.find(channel::kSamples);
+  if (!samples) return;
+  constexpr double kMax = 9007199254740992.0;  // 2^53: past it a double no longer counts each sample
+  for (std::size_t p = 0; p < samples->size(); ++p) {
+    const double n = (*samples)[p];
+    if (n >= 0.0 && n <= kMax && n == std::floor(n)) continue;
+    char value[32];
+    std::snprintf(value, sizeof value, "%g", n);
+    throwInputError(path, "",
+                    "pixel (" + std::to_string(p % std::size_t(image.width)) + ", " +
+                        std::to_string(p / std::size_t(image.width)) + ") channel 'samples' is " + value +
+                        ": a sample count is a whole number in [0, 2^53]");
+  }
+}
+
 int runMerge(const MergeArgs& a) {
   checkOutputPath(a.output);
   std::string ext = std::filesystem::path(a.output).extension().string();
@@ -68,6 +87,7 @@ int runMerge(const MergeArgs& a) {
   for (const std::string& path : a.inputs) {
     images.push_back(readLayeredImage(path, fits));
     checkFinite(images.back(), path);
+    checkSampleCounts(images.back(), path);
     dropped = dropDenoised(images.back()) || dropped;
   }
   if (dropped && !a.quiet)

@@ -36,6 +36,7 @@
 #include "scene/environment_key.h"
 #include "scene/scene.h"
 #include "texture/scene_textures.h"
+#include "texture/texture_identity.h"
 #include "scene/scene_digest.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
@@ -126,11 +127,11 @@ struct InterruptGuard {
 };
 
 // What `montecl merge` checks before combining this render with others (image/provenance.h).
-Provenance provenanceOf(const RenderArgs& a, const Scene& scene) {
+Provenance provenanceOf(const RenderArgs& a, const Scene& scene, const std::string& identityExtra) {
   Provenance p;
   p.version = MONTECL_VERSION;
   p.scene = sceneDigest(scene);
-  p.settings = integratorSettings(scene.render);
+  p.settings = integratorSettings(scene.render) + (identityExtra.empty() ? "" : " " + identityExtra);
   const bool adaptive = a.targetError > 0.0;
   if (adaptive) {
     std::ostringstream s;
@@ -172,7 +173,8 @@ int runRender(const RenderArgs& a) {
   checkOutputIsNoInput(output, scene);
   checkWritableTarget(output);
   checkJobFiles(a.job.checkpoint, a.job.resume, output, scene);
-  // The denoiser is loaded now, so a missing library is one line before any work, not after it.
+  // The denoiser is loaded and its device committed now, so a missing or broken library is one line
+  // before any work, not after it.
   if (scene.render.denoise)
     if (const std::string problem = oidnProblem(); !problem.empty()) throw InputError(problem);
   // Sample indices are 32-bit: a range past 2^32 would wrap to sample 0 while the provenance says otherwise.
@@ -252,10 +254,11 @@ int runRender(const RenderArgs& a) {
   options.bvhLayout = layout;
   options.verbose = a.verbose;
   options.profile = a.profile;
+  options.identityExtra = textureBudgetIdentity(textures);
   // Everything that reads the scene's triangles runs now: the provenance digest, the job's
   // checkpoint key and the renderer's per-triangle table; then they are freed (only the BVH's
   // arrays and that table are uploaded), which lowers the peak by their size.
-  const Provenance provenance = isExr(output) ? provenanceOf(a, scene) : Provenance{};
+  const Provenance provenance = isExr(output) ? provenanceOf(a, scene, options.identityExtra) : Provenance{};
   jobs::Job job(a.job, scene, options);
   RenderPart part;
   part.textures = &textures;
@@ -284,9 +287,14 @@ int runRender(const RenderArgs& a) {
   const bool interrupted = gInterrupted && stats.stoppedEarly;  // a signal after the last wave changes nothing
   // Only the final image is denoised (an MPI job's rank 0, after the merge of the ranks' films).
   double denoiseSeconds = 0.0;
-  const std::vector<float> denoised =
-      scene.render.denoise ? denoiseFilm(film, scene.render.denoiseQuality, a.quiet, denoiseSeconds)
-                           : std::vector<float>();
+  std::vector<float> denoised;
+  // The render is done: a denoiser that fails now (memory, a device lost) costs the denoised planes,
+  // not the image.
+  if (scene.render.denoise) try {
+      denoised = denoiseFilm(film, scene.render.denoiseQuality, a.quiet, denoiseSeconds);
+    } catch (const RuntimeError& e) {
+      std::cerr << "montecl: warning: " << e.what() << "; " << output << " holds the image without denoising\n";
+    }
   // The image as written: every EXR plane (the noisy estimate exactly, plus denoised.R/G/B), or the
   // mean (denoised with --denoise) for PNG/PFM; refused if a value overflowed.
   LayeredImage img;

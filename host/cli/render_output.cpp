@@ -45,11 +45,28 @@ bool sameFile(const std::string& a, const std::string& b) {
   return !ec && pa == pb;
 }
 
-// Refuses an output that is one of the files the render reads (the scene, an OBJ, an MTL).
+namespace {
+
+// The absolute, normal path in lower case: two paths equal so name one file for the loaders, which
+// open a file named in another case of its letters (load_util.h findIgnoringCase).
+std::string caseFolded(const std::string& path) {
+  std::error_code ec;
+  std::string p = std::filesystem::weakly_canonical(std::filesystem::absolute(path), ec).string();
+  if (ec) p = std::filesystem::absolute(path).lexically_normal().string();
+  for (char& c : p) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return p;
+}
+
+}  // namespace
+
+// Refuses an output that is one of the files the render reads (the scene, an OBJ, an MTL, a
+// texture), in any case of its letters: on a case-insensitive file system `-o Wood.PNG` replaces
+// Wood.png, and on Linux the model would then read the render as its texture Wood.PNG.
 void checkOutputIsNoInput(const std::string& output, const Scene& scene) {
+  const std::string folded = caseFolded(output);
   for (const std::string& in : scene.inputFiles) {
     std::error_code ec;
-    if (std::filesystem::equivalent(output, in, ec) && !ec)
+    if ((std::filesystem::equivalent(output, in, ec) && !ec) || caseFolded(in) == folded)
       throwInputError(output, "", "the output is an input of the render ('" + in + "'): refusing to overwrite it");
   }
 }

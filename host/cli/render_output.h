@@ -18,7 +18,8 @@ namespace montecl {
 // Whether a and b name one file: the same file when both exist (hard links too), else the same
 // path once made absolute and normal (a file not yet written).
 bool sameFile(const std::string& a, const std::string& b);
-// Refuses (InputError) an output that is one of the files the render reads (scene, OBJ, MTL).
+// Refuses (InputError) an output that is one of the files the render reads (scene, OBJ, MTL,
+// textures), in any case of its letters (the loaders open a name in another case).
 void checkOutputIsNoInput(const std::string& output, const Scene& scene);
 // The files of --checkpoint and --resume, checked before any work: the output is not the resume
 // checkpoint; the checkpoint is neither the output nor an input, is a montecl checkpoint when it

@@ -203,8 +203,23 @@ struct ExrByteBuffer : std::streambuf {
   }
 };
 
+// The most decoded float bytes one byte of a part can give, by its compression's best case on
+// half data (decoded to 4-byte floats, twice the stored bytes): raw 2; RLE 2 bytes per 128-byte
+// run; zlib (ZIP, ZIPS, PXR24) about 1032:1; PIZ's run-length Huffman codes, B44's flat blocks;
+// DWA's DCT blocks then zlib, and any other, 2^17.
+std::uint64_t exrMaxRatio(Imf::Compression c, std::string& name) {
+  switch (c) {
+    case Imf::NO_COMPRESSION: name = "no"; return 2;
+    case Imf::RLE_COMPRESSION: name = "RLE"; return 256;
+    case Imf::ZIPS_COMPRESSION: case Imf::ZIP_COMPRESSION: case Imf::PXR24_COMPRESSION: name = "zlib"; return 4096;
+    case Imf::PIZ_COMPRESSION: name = "PIZ"; return 4096;
+    case Imf::B44_COMPRESSION: case Imf::B44A_COMPRESSION: name = "B44"; return 64;
+    default: name = "DWA or other"; return std::uint64_t(1) << 17;
+  }
+}
+
 std::string decodeExrPart(Imf::MultiPartInputFile& file, LayeredImage& out, const ImageSizeCheck& check,
-                          bool& unsupported) {
+                          bool& unsupported, std::int64_t fileSize) {
   const Imf::Header& header = file.header(0);
   if (header.hasType() && Imf::isDeepData(header.type())) return "deep images are not supported";
   std::vector<ExrChannelKey> keys;
@@ -226,6 +241,12 @@ std::string decodeExrPart(Imf::MultiPartInputFile& file, LayeredImage& out, cons
   const Imath::Box2i& window = header.dataWindow();
   const long w = long(window.max.x) - window.min.x + 1, h = long(window.max.y) - window.min.y + 1;
   std::string refused = imageSizeProblem(w, h, int(keys.size()), window.min.x, window.min.y);
+  if (refused.empty()) {
+    std::string compression;
+    const std::uint64_t ratio = exrMaxRatio(header.compression(), compression);
+    refused = fileSizeProblem(std::uint64_t(w) * std::uint64_t(h) * keys.size() * 4u, std::uint64_t(fileSize), ratio,
+                              compression);
+  }
   if (refused.empty() && check) refused = check(int(w), int(h), int(keys.size()));
   if (!refused.empty()) return refused;
   LayeredImage image;
@@ -268,7 +289,7 @@ std::string decodeExr(const std::string& path, const unsigned char* data, std::s
       if (std::string why = exrHeaderProblem(header, std::int64_t(size)); !why.empty()) return why;
       ExrMemoryStream stream(data, size);
       Imf::MultiPartInputFile file(stream);
-      return decodeExrPart(file, out, check, unsupported);
+      return decodeExrPart(file, out, check, unsupported, std::int64_t(size));
     }
     unsigned char head[4] = {0};
     std::ifstream in(path, std::ios::binary);
@@ -281,7 +302,7 @@ std::string decodeExr(const std::string& path, const unsigned char* data, std::s
     if (std::string why = exrHeaderProblem(in, fileSize); !why.empty()) return why;
     in.close();
     Imf::MultiPartInputFile file(path.c_str());
-    return decodeExrPart(file, out, check, unsupported);
+    return decodeExrPart(file, out, check, unsupported, fileSize);
   } catch (const std::exception& e) {  // OpenEXR reports a corrupt or truncated file by throwing
     out = LayeredImage{};
     return exrOneLine(e.what());

@@ -20,4 +20,15 @@ inline std::string imageSizeProblem(long width, long height, int channels, long 
   return "";
 }
 
+// A file of fileBytes cannot hold more than maxRatio decoded bytes per byte (its compression's
+// best case): a header declaring more describes pixels the file does not have, and decoding would
+// allocate them all before finding out (a 9.8 KB EXR cost 7.2 GB and 17-47 s). "" when it can.
+inline std::string fileSizeProblem(unsigned long long decodedBytes, unsigned long long fileBytes,
+                                   unsigned long long maxRatio, const std::string& compression) {
+  if (fileBytes == 0 || decodedBytes / fileBytes < maxRatio) return "";
+  return "declares " + std::to_string(decodedBytes) + " bytes of pixels in a file of " + std::to_string(fileBytes) +
+         " bytes, more than " + compression + " compression reaches (" + std::to_string(maxRatio) +
+         ":1): the file is truncated or its header is wrong";
+}
+
 }  // namespace montecl

@@ -30,7 +30,8 @@ std::string findInVenv(const fs::path& venv) {
 
 struct Loaded {
   oidn::Api api;
-  std::string problem;  // "" when api is complete
+  oidn::Device device = nullptr;  // created and committed once: the filter runs on it
+  std::string problem;            // "" when api is complete and the device works
 };
 
 template <class Fn>
@@ -49,6 +50,13 @@ Loaded load() {
     l.problem = "--denoise needs Open Image Denoise, not found (" +
                 (env && *env ? "MONTECL_OIDN_LIBRARY=" + path : std::string("no libOpenImageDenoise.so.2 in the oidn venv")) +
                 ")" + fix;
+    return l;
+  }
+  // dlopen of a FIFO blocks until a writer comes (forever), of a folder or device fails obscurely:
+  // regular files only, as for --resume.
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) {
+    l.problem = "--denoise: " + path + " is not a regular file" + fix;
     return l;
   }
   // The handle stays open for the process: the filter may run more than once.
@@ -71,7 +79,26 @@ Loaded load() {
   bind(h, "oidnCommitFilter", a.commitFilter, bad);
   bind(h, "oidnExecuteFilter", a.executeFilter, bad);
   bind(h, "oidnReleaseFilter", a.releaseFilter, bad);
-  if (!bad.empty()) l.problem = "--denoise: " + path + " " + bad + fix;
+  if (!bad.empty()) {
+    l.problem = "--denoise: " + path + " " + bad + fix;
+    return l;
+  }
+  // The CPU device is created and committed now, before any work: a core library without its
+  // device module loads and exports every symbol, and only fails here.
+  std::string error;
+  l.device = a.newDevice(oidn::kDeviceTypeCpu);
+  const char* msg = nullptr;
+  if (a.getDeviceError(l.device, &msg) != oidn::kErrorNone || !l.device) {
+    error = msg && *msg ? msg : "no CPU device";
+  } else {
+    a.commitDevice(l.device);
+    if (a.getDeviceError(l.device, &msg) != oidn::kErrorNone) error = msg && *msg ? msg : "unknown error";
+  }
+  if (!error.empty()) {
+    if (l.device) a.releaseDevice(l.device);
+    l.device = nullptr;
+    l.problem = "--denoise: " + path + " cannot create its CPU device (" + error + ")" + fix;
+  }
   return l;
 }
 
@@ -104,35 +131,30 @@ std::vector<float> oidnDenoise(int width, int height, const std::vector<float>& 
   std::vector<float> out(3 * w * h, 0.0f);
   // The filter reads the inputs in place; it never writes them (the API takes void*).
   std::vector<float> in = color, alb = albedo, nrm = normal;
-  oidn::Device dev = a.newDevice(oidn::kDeviceTypeCpu);
+  oidn::Device dev = l.device;
   std::string error;
   auto check = [&]() {
     const char* msg = nullptr;
     if (error.empty() && a.getDeviceError(dev, &msg) != oidn::kErrorNone)
       error = msg && *msg ? msg : "unknown error";
   };
+  oidn::Filter f = a.newFilter(dev, "RT");
   check();
-  if (dev) {
-    a.commitDevice(dev);
+  if (f) {
+    a.setSharedFilterImage(f, "color", in.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
+    a.setSharedFilterImage(f, "albedo", alb.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
+    a.setSharedFilterImage(f, "normal", nrm.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
+    a.setSharedFilterImage(f, "output", out.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
+    a.setFilterBool(f, "hdr", true);  // radiance, not display values
+    a.setFilterInt(f, "quality", quality);
+    a.commitFilter(f);
     check();
-    oidn::Filter f = error.empty() ? a.newFilter(dev, "RT") : nullptr;
+    if (error.empty()) a.executeFilter(f);
     check();
-    if (f) {
-      a.setSharedFilterImage(f, "color", in.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
-      a.setSharedFilterImage(f, "albedo", alb.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
-      a.setSharedFilterImage(f, "normal", nrm.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
-      a.setSharedFilterImage(f, "output", out.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
-      a.setFilterBool(f, "hdr", true);  // radiance, not display values
-      a.setFilterInt(f, "quality", quality);
-      a.commitFilter(f);
-      check();
-      if (error.empty()) a.executeFilter(f);
-      check();
-      a.releaseFilter(f);
-    }
-    a.releaseDevice(dev);
+    a.releaseFilter(f);
+  } else if (error.empty()) {
+    error = "no RT filter";
   }
-  if (!dev && error.empty()) error = "no CPU device";
   if (!error.empty()) throw RuntimeError("Open Image Denoise: " + error);
   return out;
 }

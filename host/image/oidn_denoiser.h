@@ -10,8 +10,9 @@ namespace montecl {
 
 // The library file montecl would load ("" when no candidate exists).
 std::string oidnLibraryPath();
-// Loads the library (once per process) and resolves its symbols. Returns "" when it is usable, else
-// one line saying why not and how to install it (`bash scripts/setup.sh --oidn`).
+// Loads the library (once per process), resolves its symbols and creates and commits its CPU device.
+// Returns "" when it is usable, else one line saying why not and how to install it
+// (`bash scripts/setup.sh --oidn`).
 std::string oidnProblem();
 
 // Denoises `color` (width * height RGB floats, linear HDR radiance, row 0 at the top) with the

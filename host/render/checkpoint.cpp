@@ -55,7 +55,7 @@ std::uint64_t renderKey(const Scene& scene, const RenderOptions& o) {
   // (geometry, every material field, texture and environment contents, camera) and the settings
   // string, then what only a checkpoint needs (the frame as uploaded, sampling, AOVs).
   Fnv1a64 h;
-  h.add(sceneDigest(scene) + '\0' + integratorSettings(scene.render) + '\0');
+  h.add(sceneDigest(scene) + '\0' + integratorSettings(scene.render) + '\0' + o.identityExtra + '\0');
   h.add(&f, sizeof f);
   const std::uint32_t ints[] = {std::uint32_t(scene.render.integrator), std::uint32_t(scene.render.spp),
                                 o.firstSample, std::uint32_t(o.minSpp), std::uint32_t(o.maxSpp), o.aovs};

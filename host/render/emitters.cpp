@@ -148,8 +148,10 @@ EmitterTable buildEmitterTable(const Bvh& bvh, const std::vector<MaterialDesc>& 
 
 bool hasEmitter(const Scene& scene) {
   for (const SceneTriangle& t : scene.triangles) {
-    const glm::vec3 e1 = t.v[1] - t.v[0], e2 = t.v[2] - t.v[0];  // as Bvh::triangles holds them
-    if (emitterWeight(0.5f * glm::length(glm::cross(e1, e2)), scene.materials[t.material].emission) > 0.0)
+    // The edges as Bvh::triangles holds them; their cross product in double, since its squared
+    // length in float underflows at a scale of 2^-40 (the kernels' triangle_area rescales).
+    const glm::dvec3 e1(t.v[1] - t.v[0]), e2(t.v[2] - t.v[0]);
+    if (emitterWeight(float(0.5 * glm::length(glm::cross(e1, e2))), scene.materials[t.material].emission) > 0.0)
       return true;
   }
   return false;

@@ -6,6 +6,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <functional>
 #include <vector>
 
@@ -45,6 +46,9 @@ struct RenderOptions {
   double errorFloor = 0.01;
   bool profile = false;  // time every stage launch into RenderStats::profile (--profile)
   bool aovs = false;  // also accumulate first-hit albedo, normal and depth (Film::aovSum)
+  // What else changes a pixel beside the settings table and the scene (the texture budget's dropped
+  // levels: texture/texture_identity.h); part of the checkpoint key, as of the provenance.
+  std::string identityExtra;
   // Run a wave as one fused launch where the integrator has a fused stage and the device runs
   // packets (kernels/stages/wave_fused.h); false: every stage its own launch (--no-fuse).
   bool fuseWaves = true;

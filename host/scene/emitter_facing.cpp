@@ -45,12 +45,16 @@ bool emittersFaceAnything(const Scene& scene) {
   std::vector<glm::vec3> corners;
   for (int c = 0; c < 8; ++c) corners.push_back({c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z});
   const std::vector<glm::vec3>& test = exact ? points : corners;
+  // In double and relative to the scene's own size: at a scale of 2^-30 the float cross product's
+  // length and an absolute floor on the tolerance said "faces nothing" of a lit box.
+  const double extent = glm::length(glm::dvec3(hi) - glm::dvec3(lo));
   for (const SceneTriangle* t : lights) {
-    const glm::vec3 n = glm::cross(t->v[1] - t->v[0], t->v[2] - t->v[0]);
+    const glm::dvec3 v0(t->v[0]);
+    const glm::dvec3 n = glm::cross(glm::dvec3(t->v[1]) - v0, glm::dvec3(t->v[2]) - v0);
     const bool twoSided = scene.materials[t->material].twoSidedEmission;
-    const float eps = 1e-6f * glm::length(n) * std::max(1.0f, glm::length(hi - lo));
+    const double eps = 1e-6 * glm::length(n) * extent;
     for (const glm::vec3& p : test) {
-      const float side = glm::dot(n, p - t->v[0]);
+      const double side = glm::dot(n, glm::dvec3(p) - v0);
       if (side > eps || (twoSided && side < -eps)) return true;
     }
   }

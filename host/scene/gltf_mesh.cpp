@@ -25,10 +25,12 @@
 #include <vector>
 
 #include "util/host_memory.h"
+#include "scene/gltf_accessor_cache.h"
 #include "scene/gltf_draco.h"
 #include "scene/gltf_instancing.h"
 #include "scene/gltf_lights.h"
 #include "scene/gltf_model.h"
+#include "scene/gltf_placement_budget.h"
 #include "scene/gltf_transmission.h"
 #include "scene/gltf_texture_info.h"
 #include "scene/load_util.h"
@@ -55,10 +57,11 @@ struct Loader {
   std::vector<int> uvSet = std::vector<int>(m.materials.size(), 0);
   std::vector<std::string> uvSetKey = std::vector<std::string>(m.materials.size());
   std::map<const tinygltf::Primitive*, GltfDracoMesh> draco{};  // decoded Draco primitives
+  GltfAccessorCache accessors{};  // primitives sharing an accessor decode it once
 
   std::uint32_t material(int index);
   void primitive(const tinygltf::Primitive& p, const glm::dmat4& world, const std::string& where);
-  void takeCamera(int index, const glm::dmat4& world);
+  void takeCamera(int index, const glm::dmat4& world, const std::string& where);
 };
 
 std::string itemWhere(const char* kind, std::size_t i) { return std::string(kind) + "[" + std::to_string(i) + "]"; }
@@ -213,45 +216,41 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
   }
   // An attribute's values: decoded from the Draco buffer when it holds it (the accessor, checked
   // alike, gives only its type), else read from its accessor.
-  const auto values = [&](const std::string& name, int components, AccessorUse use) {
+  const auto values = [&](const std::string& name, int components, AccessorUse use) -> const std::vector<float>& {
     const std::string key = where + "." + name;
     if (dm && dm->attributes.count(name)) {
       checkFloatAccessor(file, m, attr(name.c_str()), components, key, use);
       return dm->attributes.at(name);
     }
-    return readFloatAccessor(file, m, attr(name.c_str()), components, key, use);
+    return accessors.floats(name, file, m, attr(name.c_str()), components, key, use);
   };
-  const std::vector<float> pos = values("POSITION", 3, AccessorUse::Position);
+  static const std::vector<float> kNone;
+  const std::vector<float>& pos = values("POSITION", 3, AccessorUse::Position);
   const std::size_t n = pos.size() / 3;
-  std::vector<float> nor, uv;
-  if (attr("NORMAL") >= 0) nor = values("NORMAL", 3, AccessorUse::Normal);
+  const std::vector<float>& nor = attr("NORMAL") >= 0 ? values("NORMAL", 3, AccessorUse::Normal) : kNone;
   const std::uint32_t mat = material(p.material);
   const bool hasMaterial = p.material >= 0 && static_cast<std::size_t>(p.material) < m.materials.size();
   const int set = hasMaterial ? uvSet[std::size_t(p.material)] : 0;
   const std::string uvName = "TEXCOORD_" + std::to_string(set);
   if (set > 0 && attr(uvName.c_str()) < 0)  // TEXCOORD_0 missing: no UVs, as always
     loadFail(file, uvSetKey[std::size_t(p.material)], "names " + uvName + ", which " + where + " does not have");
-  if (attr(uvName.c_str()) >= 0) uv = values(uvName, 2, AccessorUse::TexCoord);
+  const std::vector<float>& uv = attr(uvName.c_str()) >= 0 ? values(uvName, 2, AccessorUse::TexCoord) : kNone;
   // COLOR_0 (VEC3 or VEC4: alpha not read) multiplies the base colour.
-  std::vector<float> col;
-  int colN = 3;
-  if (const int a = attr("COLOR_0"); a >= 0) {
-    colN = static_cast<std::size_t>(a) < m.accessors.size() && m.accessors[std::size_t(a)].type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
-    col = values("COLOR_0", colN, AccessorUse::Any);
-    if (col.size() / std::size_t(colN) != n) loadFail(file, where, "attributes have different counts");
-  }
+  const int colA = attr("COLOR_0");
+  const int colN = colA >= 0 && std::size_t(colA) < m.accessors.size() && m.accessors[std::size_t(colA)].type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+  const std::vector<float>& col = colA >= 0 ? values("COLOR_0", colN, AccessorUse::Any) : kNone;
+  if (colA >= 0 && col.size() / std::size_t(colN) != n) loadFail(file, where, "attributes have different counts");
   if ((!nor.empty() && nor.size() / 3 != n) || (!uv.empty() && uv.size() / 2 != n))
     loadFail(file, where, "attributes have different counts");
   // TANGENT (VEC4: xyz the tangent, w the handedness; FLOAT or, quantized, as NORMAL) gives normal
   // maps the file's tangent frame (normal_map.h); without it the frame comes from the UVs.
-  std::vector<float> tan;
-  if (attr("TANGENT") >= 0) tan = values("TANGENT", 4, AccessorUse::Normal);
+  const std::vector<float>& tan = attr("TANGENT") >= 0 ? values("TANGENT", 4, AccessorUse::Normal) : kNone;
   if (!tan.empty() && tan.size() / 4 != n)
     loadFail(file, where + ".TANGENT", std::to_string(tan.size() / 4) + " elements, POSITION has " + std::to_string(n));
-  std::vector<std::uint32_t> idx;
   const bool indexed = p.indices >= 0 || dm;  // a Draco mesh's faces index its points
-  if (dm) idx = dm->indices;
-  else if (p.indices >= 0) idx = readIndexAccessor(file, m, p.indices, where + ".indices");
+  static const std::vector<std::uint32_t> kNoIndices;
+  const std::vector<std::uint32_t>& idx =
+      dm ? dm->indices : p.indices >= 0 ? accessors.indices(file, m, p.indices, where + ".indices") : kNoIndices;
   const std::size_t count = indexed ? idx.size() : n;  // the primitive's vertices, in order
   if (mode == TINYGLTF_MODE_TRIANGLES && count % 3 != 0)
     loadFail(file, where, std::to_string(count) + " vertices do not make whole triangles");
@@ -303,8 +302,10 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
   }
 }
 
-void Loader::takeCamera(int index, const glm::dmat4& world) {
-  if (index < 0 || static_cast<std::size_t>(index) >= m.cameras.size()) return;
+void Loader::takeCamera(int index, const glm::dmat4& world, const std::string& where) {
+  // An index past the cameras was ignored: the render then framed the model itself, unasked.
+  if (index < 0 || static_cast<std::size_t>(index) >= m.cameras.size())
+    loadFail(file, where, "camera index " + std::to_string(index) + " out of range (" + std::to_string(m.cameras.size()) + " cameras)");
   const tinygltf::Camera& c = m.cameras[static_cast<std::size_t>(index)];
   if (c.type != "perspective") {
     unused.add("camera " + c.type, itemWhere("cameras", std::size_t(index)), "camera type '" + oneLine(c.type, 20) + "' not used by montecl");
@@ -346,14 +347,19 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
   std::uint64_t instanced = 0;  // triangles the meshes of the nodes so far declare
   // Pass 1: every node's placements of its mesh (EXT_mesh_gpu_instancing: world x instance
   // matrix, in instance order), in traversal order; cameras and lights as met.
-  struct Placed {
-    std::size_t node;
-    std::size_t mesh;
-    std::vector<glm::dmat4> at;
+  struct Placed {  // the matrices are made in pass 2, after the memory check of them all
+    std::size_t node, mesh;
+    glm::dmat4 world;
+    GltfInstances inst;
+    std::vector<glm::dmat4> at() const {
+      std::vector<glm::dmat4> out(inst.count, world);
+      if (inst.present) for (std::size_t k = 0; k < inst.count; ++k) out[k] = world * inst.local(k);
+      return out;
+    }
   };
   std::vector<Placed> placements;
   std::vector<std::uint64_t> uses(m.meshes.size(), 0);
-  std::uint64_t placedCount = 0;
+  GltfPlacementBudget budget(m, before);
   std::vector<bool> visited(m.nodes.size(), false);
   std::vector<std::pair<int, glm::dmat4>> stack;
   for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, glm::dmat4(1.0));
@@ -366,27 +372,23 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
     visited[i] = true;
     const tinygltf::Node& node = m.nodes[i];
     const glm::dmat4 world = parent * gltfLocalTransform(path, node, itemWhere("nodes", i));
-    if (node.camera >= 0) l.takeCamera(node.camera, world);
+    if (node.camera != -1) l.takeCamera(node.camera, world, itemWhere("nodes", i) + ".camera");
     if (const int light = gltfNodeLight(node); light != -1) addGltfLight(path, m, light, world, scene, l.unused);
     if (node.mesh >= 0) {
       if (static_cast<std::size_t>(node.mesh) >= m.meshes.size()) loadFail(path, itemWhere("nodes", i), "mesh index out of range");
-      const GltfInstances inst = gltfNodeInstances(path, m, node, itemWhere("nodes", i));
-      for (const std::string& a : inst.ignored)
+      Placed p{i, std::size_t(node.mesh), world, gltfNodeInstances(path, m, node, itemWhere("nodes", i))};
+      for (const std::string& a : p.inst.ignored)
         l.unused.add("instance attribute " + a, itemWhere("nodes", i),
                      "instance attribute " + oneLine(a, 40) + " not used by montecl, ignored");
-      Placed p{i, std::size_t(node.mesh), {}};
-      // (at most 2^40 placements are counted: the memory check below refuses far fewer)
-      for (std::size_t k = 0; k < inst.count && k < (std::size_t(1) << 40); ++k)
-        p.at.push_back(inst.present ? world * inst.local(k) : world);
-      uses[p.mesh] += p.at.size();
-      placedCount += p.at.size();  // the matrices held until pass 2: refused before they pile up
-      if (placedCount * sizeof(glm::dmat4) > hostMemoryBytes())
-        loadFail(path, itemWhere("nodes", i), "instancing its meshes gives " + std::to_string(placedCount) +
-                                                  " placements: more than this machine's memory holds");
+      uses[p.mesh] += p.inst.count;
+      budget.add(i, p.mesh, p.inst.count);
       placements.push_back(std::move(p));
     }
     for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.emplace_back(*it, world);
   }
+  std::size_t overNode = 0;  // every placement counted before one matrix is made
+  if (const std::string many = budget.refusal(overNode); !many.empty())
+    loadFail(path, itemWhere("nodes", overNode), "instancing its meshes " + many);
   // Pass 2: a mesh placed more than once is read once, in its own space, as a mesh range placed
   // by each placement (Scene::instances, a two-level BVH: memory grows with the unique meshes),
   // unless it emits (the emitter table is world space): then, as a mesh placed once, a copy per
@@ -424,12 +426,13 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
     }
     if (rangeOf[p.mesh] >= 0) {
       const std::uint32_t r = std::uint32_t(rangeOf[p.mesh]);
-      if (!addPlacements(scene, r, p.at)) loadFail(path, meshWhere, "a node transform moves vertices out of float range");
+      if (const std::string bad = addPlacements(scene, r, p.at()); !bad.empty())
+        loadFail(path, meshWhere, "a node transform " + bad);
       continue;
     }
-    const std::uint64_t copies = std::min<std::uint64_t>(p.at.size(), cap);
+    const std::uint64_t copies = std::min<std::uint64_t>(p.inst.count, cap);
     refuseBeyond(copies != 0 && tris > cap / copies ? cap : tris * copies, p.node);
-    for (const glm::dmat4& at : p.at)
+    for (const glm::dmat4& at : p.at())
       for (std::size_t q = 0; q < mesh.primitives.size(); ++q)
         l.primitive(mesh.primitives[q], at, meshWhere + ".primitives[" + std::to_string(q) + "]");
   }

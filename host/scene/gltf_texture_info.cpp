@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "scene/load_util.h"
+#include "scene/value_limits.h"
 
 namespace montecl {
 namespace {
@@ -29,6 +30,10 @@ void pair(const std::string& file, const tinygltf::Value& o, const char* name, c
   const std::string key = where + "." + name;
   if (!v.IsArray() || v.ArrayLen() != 2) loadFail(file, key, "must be an array of 2 numbers");
   for (int i = 0; i < 2; ++i) out[i] = number(file, v.Get(i), key);
+  // 1e300 became an infinite float UV: a black texture, and albedo AOVs that failed the render.
+  const std::string bad = magnitudeProblem(glm::dvec3(out[0], out[1], 0.0), kMaxTextureTransform,
+                                           "a float UV past it keeps no texel position");
+  if (!bad.empty()) loadFail(file, key, bad);
 }
 
 }  // namespace

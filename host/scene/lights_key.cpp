@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "scene/value_limits.h"
+
 namespace montecl {
 namespace {
 
@@ -57,6 +59,9 @@ LightDesc parseLight(const JsonCtx& ctx, const json& obj, const std::string& pre
     if (l.beamDegrees > l.cutoffDegrees)
       jsonFail(ctx, childKey(prefix, "beam_width"), "must not exceed cutoff_angle");
   }
+  const std::string colourKey = l.kind == PunctualKind::Point || l.kind == PunctualKind::Spot ? "intensity" : "irradiance";
+  if (const ValueProblem v = lightValueProblem(l.kind, glm::dvec3(l.color), l.angleDegrees, colourKey))
+    jsonFail(ctx, childKey(prefix, v.key), v.what);
   switch (l.kind) {
     case PunctualKind::Point: warnUnknownKeys(ctx, obj, prefix, {"type", "position", "intensity"}); break;
     case PunctualKind::Spot:

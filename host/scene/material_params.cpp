@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "scene/value_limits.h"
+
 namespace montecl {
 namespace {
 
@@ -38,6 +40,14 @@ glm::vec3 finiteColor(const JsonCtx& ctx, const json& v, const std::string& wher
   return c;
 }
 
+// A conductor's eta or k: finite and within what its Fresnel terms can square in float.
+glm::vec3 conductorIndex(const JsonCtx& ctx, const json& v, const std::string& where) {
+  const glm::vec3 c = finiteColor(ctx, v, where);
+  if (const std::string p = magnitudeProblem(glm::dvec3(c), kMaxConductorIndex, kConductorIndexReason); !p.empty())
+    jsonFail(ctx, where, p);
+  return c;
+}
+
 }  // namespace
 
 bool metalEtaK(const std::string& name, glm::vec3& eta, glm::vec3& k) {
@@ -60,8 +70,8 @@ bool parseKindParams(const JsonCtx& ctx, const json& j, const std::string& prefi
     const std::string name = getString(ctx, *metal, prefix + ".metal", "a metal name");
     if (!metalEtaK(name, d.eta, d.k)) jsonFail(ctx, prefix + ".metal", "unknown metal '" + name + "' (known: Au, Ag, Cu, Al, Cr)");
   }
-  if (const json* v = optionalKey(j, "eta")) any = true, d.eta = finiteColor(ctx, *v, prefix + ".eta");
-  if (const json* v = optionalKey(j, "k")) any = true, d.k = finiteColor(ctx, *v, prefix + ".k");
+  if (const json* v = optionalKey(j, "eta")) any = true, d.eta = conductorIndex(ctx, *v, prefix + ".eta");
+  if (const json* v = optionalKey(j, "k")) any = true, d.k = conductorIndex(ctx, *v, prefix + ".k");
   if (const json* v = optionalKey(j, "ior")) {
     any = true;
     d.ior = getFloat(ctx, *v, prefix + ".ior");

@@ -11,6 +11,7 @@
 #include "scene/load_util.h"
 #include "scene/material_params.h"
 #include "scene/scene_instances.h"
+#include "scene/value_limits.h"
 #include "util/host_memory.h"
 
 namespace montecl {
@@ -292,19 +293,11 @@ void recordInstances(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, con
   if (!tooMany.empty()) jsonFail(ctx, mesh.prefix + ".instances", "placing the mesh " + tooMany);
   const std::uint32_t range = static_cast<std::uint32_t>(scene.meshRanges.size());
   scene.meshRanges.push_back({static_cast<std::uint32_t>(firstTri), static_cast<std::uint32_t>(scene.triangles.size() - firstTri)});
-  glm::dvec3 lo(INFINITY), hi(-INFINITY);
-  for (std::size_t t = firstTri; t < scene.triangles.size(); ++t)
-    for (const glm::vec3& v : scene.triangles[t].v) {
-      lo = glm::min(lo, glm::dvec3(v));
-      hi = glm::max(hi, glm::dvec3(v));
-    }
+  const std::vector<glm::vec3> corners = rangeBoxCorners(scene, scene.meshRanges[range]);
   for (std::size_t k = 0; k < mesh.instances.size(); ++k) {
     const glm::dmat4 m = mesh.placement(k);
-    for (int c = 0; c < 8; ++c) {
-      const glm::dvec3 p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
-      if (!finite(glm::vec3(m * glm::dvec4(p, 1.0))))
-        jsonFail(ctx, mesh.prefix + ".instances[" + std::to_string(k) + "]", "moves vertices out of float range");
-    }
+    if (const std::string bad = placementProblem(m, corners); !bad.empty())
+      jsonFail(ctx, mesh.prefix + ".instances[" + std::to_string(k) + "]", bad);
     scene.instances.push_back({range, m});
   }
 }
@@ -321,7 +314,9 @@ void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, std:
   // instances, the transform composed after their placements, unless the override makes them emit.
   std::size_t firstRange = scene.meshRanges.size();
   while (firstRange > 0 && scene.meshRanges[firstRange - 1].firstTri >= firstTri) --firstRange;
-  if (firstRange < scene.meshRanges.size() && !mesh.instances.empty()) flattenInstances(scene, firstRange);
+  if (firstRange < scene.meshRanges.size() && !mesh.instances.empty())
+    if (const std::string tooMany = flattenInstances(scene, firstRange); !tooMany.empty())
+      jsonFail(ctx, mesh.prefix + ".instances", tooMany);
   if (firstRange < scene.meshRanges.size()) {
     DetachedRanges ranges = detachRanges(scene, firstRange);
     if (mesh.hasTransform) transformTriangles(ctx, scene, firstTri, mesh.transform, mesh.prefix + ".transform");
@@ -338,10 +333,12 @@ void applyMeshEntry(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, std:
                                            [&](const SceneInstance& in) { return in.range >= firstRange; }),
                             scene.instances.end());
       for (const SceneInstance& in : placed)
-        if (!addPlacements(scene, in.range, {mesh.transform * in.objectToWorld}))
-          jsonFail(ctx, mesh.prefix + ".transform", "moves vertices out of float range");
+        if (const std::string bad = addPlacements(scene, in.range, {mesh.transform * in.objectToWorld}); !bad.empty())
+          jsonFail(ctx, mesh.prefix + ".transform", bad);
     }
-    if (trianglesEmit(scene, rangeTri)) flattenInstances(scene, firstRange);
+    if (trianglesEmit(scene, rangeTri))  // emitters are world space: copies
+      if (const std::string tooMany = flattenInstances(scene, firstRange); !tooMany.empty())
+        jsonFail(ctx, mesh.prefix, "emitting, " + tooMany);
     addInputFiles(scene, mesh);
     return;
   }

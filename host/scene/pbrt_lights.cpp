@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "scene/load_util.h"
+#include "scene/value_limits.h"
 
 namespace montecl {
 namespace {
@@ -29,11 +30,13 @@ glm::vec3 placeDirection(const PbrtParams& p, const glm::dmat4& m, glm::vec3 d) 
 glm::vec3 lightEmission(const PbrtParams& p, const std::string& name, std::vector<std::string>& warnings) {
   glm::vec3 c(1.0f);
   pbrtLightSpectrum(p, name, c, warnings);
-  const float scale = float(p.getFloat("scale", 1.0));
-  c *= scale;
-  if (!(c.x >= 0.0f && c.y >= 0.0f && c.z >= 0.0f && std::isfinite(c.x + c.y + c.z)))
+  const double scale = p.getFloat("scale", 1.0);
+  const glm::dvec3 scaled = glm::dvec3(c) * scale;  // in double: the product may pass float range
+  if (!(scaled.x >= 0.0 && scaled.y >= 0.0 && scaled.z >= 0.0 && std::isfinite(scaled.x + scaled.y + scaled.z)))
     pbrtFail(p.loc, "the light's '" + name + "' x scale must be finite and >= 0");
-  return c;
+  if (const ValueProblem v = lightValueProblem(PunctualKind::Point, scaled, 0.0, name))
+    pbrtFail(p.loc, "the light's '" + name + "' x scale: " + v.what);
+  return glm::vec3(scaled);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "scene/load_util.h"
+#include "scene/value_limits.h"
 
 namespace montecl {
 namespace {
@@ -82,6 +83,9 @@ void conductor(const PbrtParams& p, const PbrtTextures& textures, const std::str
     if (!colourOrTexture(p, prefix + "eta", textures, eta, nullptr, nullptr, warnings)) eta = glm::vec3(0.201005f, 0.92375f, 1.10222f);  // metal-Cu-eta
     if (!colourOrTexture(p, prefix + "k", textures, k, nullptr, nullptr, warnings)) k = glm::vec3(3.91326f, 2.45305f, 2.14209f);  // metal-Cu-k
     d.eta = eta, d.k = k;
+    for (const auto& [key, v] : {std::make_pair("eta", eta), std::make_pair("k", k)})
+      if (const std::string bad = magnitudeProblem(glm::dvec3(v), kMaxConductorIndex, kConductorIndexReason); !bad.empty())
+        pbrtFail(p.find(prefix + key) ? p.find(prefix + key)->loc : p.loc, "conductor '" + prefix + key + "': " + bad);
   }
   d.kindAlpha = alphaOf(p, textures, prefix, warnings);
   d.roughness = std::sqrt(d.kindAlpha);

@@ -397,7 +397,9 @@ class Reader {
       r.count = std::uint32_t(scene_.triangles.size()) - r.firstTri;
       if (r.count == 0) continue;
       scene_.meshRanges.push_back(r);
-      addPlacements(scene_, std::uint32_t(scene_.meshRanges.size() - 1), o.placements);
+      if (const std::string bad = addPlacements(scene_, std::uint32_t(scene_.meshRanges.size() - 1), o.placements);
+          !bad.empty())
+        pbrtFail(PbrtLoc{main_, 1, 1}, "ObjectInstance \"" + oneLine(objName, 40) + "\": a placement " + bad);
     }
     if (scene_.triangles.empty()) pbrtFail(PbrtLoc{main_, 1, 1}, "the scene has no triangles montecl can render");
     recomputeBounds(scene_);

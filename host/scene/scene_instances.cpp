@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "kernels/shared/types.h"
+#include "scene/value_limits.h"
 #include "util/host_memory.h"
 
 namespace montecl {
@@ -38,20 +39,17 @@ std::vector<glm::vec3> rangeBoxCorners(const Scene& scene, const MeshRange& rang
   return corners;
 }
 
-bool addPlacements(Scene& scene, std::uint32_t range, const std::vector<glm::dmat4>& at) {
+std::string addPlacements(Scene& scene, std::uint32_t range, const std::vector<glm::dmat4>& at) {
   const std::vector<glm::vec3> box = rangeBoxCorners(scene, scene.meshRanges[range]);
   for (const glm::dmat4& m : at) {
     if (!(glm::determinant(glm::dmat3(m)) != 0.0)) {
       scene.degenerateDropped += scene.meshRanges[range].count;
       continue;
     }
-    for (const glm::vec3& c : box) {
-      const glm::vec3 w(m * glm::dvec4(glm::dvec3(c), 1.0));
-      if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z)) return false;
-    }
+    if (std::string problem = placementProblem(m, box); !problem.empty()) return problem;
     scene.instances.push_back({range, m});
   }
-  return true;
+  return "";
 }
 
 std::vector<glm::vec3> instanceBoxCorners(const Scene& scene) {
@@ -75,9 +73,10 @@ std::vector<glm::vec3> instanceBoxCorners(const Scene& scene) {
   return corners;
 }
 
+std::uint64_t instanceBytes() { return sizeof(SceneInstance) + sizeof(Instance) + sizeof(SceneTriangle) + 125; }
+
 std::string instanceMemoryRefusal(std::uint64_t instances) {
-  const std::uint64_t each = sizeof(SceneInstance) + sizeof(Instance) + sizeof(SceneTriangle) + 125;
-  const std::uint64_t need = instances * each, has = hostMemoryBytes();
+  const std::uint64_t need = instances * instanceBytes(), has = hostMemoryBytes();
   if (need <= has) return "";
   return "gives " + std::to_string(instances) + " instances: needs about " + gibText(need) +
          " of memory (placements and their BVH), this machine has " + gibText(has);
@@ -217,8 +216,15 @@ void attachRanges(Scene& scene, std::size_t firstRange, DetachedRanges d) {
   scene.triangles.insert(scene.triangles.end(), d.triangles.begin(), d.triangles.end());
 }
 
-void flattenInstances(Scene& scene, std::size_t firstRange) {
-  if (firstRange >= scene.meshRanges.size()) return;
+std::string flattenInstances(Scene& scene, std::size_t firstRange) {
+  if (firstRange >= scene.meshRanges.size()) return "";
+  // Every copy is counted against the memory check before one is made.
+  std::uint64_t copies = scene.triangles.size();
+  for (std::size_t r = firstRange; r < scene.meshRanges.size(); ++r) copies -= scene.meshRanges[r].count;
+  for (const SceneInstance& in : scene.instances)
+    if (in.range >= firstRange) copies += scene.meshRanges[in.range].count;
+  if (std::string tooMany = sceneMemoryRefusal(copies, sizeof(SceneTriangle)); !tooMany.empty())
+    return "flattening its instances into copies " + tooMany;
   std::vector<std::uint8_t> flattened(scene.triangles.size(), 0);  // in a range being flattened
   for (std::size_t r = firstRange; r < scene.meshRanges.size(); ++r)
     for (std::uint32_t i = 0; i < scene.meshRanges[r].count; ++i) flattened[scene.meshRanges[r].firstTri + i] = 1;
@@ -256,6 +262,7 @@ void flattenInstances(Scene& scene, std::size_t firstRange) {
   scene.vertexTangents = std::move(tangentsOut);
   scene.meshRanges.resize(firstRange);  // the ranges before firstRange lie before every flattened one
   scene.instances = std::move(kept);
+  return "";
 }
 
 }  // namespace montecl

@@ -24,9 +24,10 @@ bool trianglesEmit(const Scene& scene, std::size_t first);
 std::vector<glm::vec3> rangeBoxCorners(const Scene& scene, const MeshRange& range);
 
 // Appends an instance of mesh range `range` at each matrix of `at`: a singular one (it would
-// flatten every copy) is left out and its triangles counted in degenerateDropped. False (nothing
-// more appended) when one moves the range's box out of float range.
-bool addPlacements(Scene& scene, std::uint32_t range, const std::vector<glm::dmat4>& at);
+// flatten every copy) is left out and its triangles counted in degenerateDropped. Returns what is
+// wrong (nothing more appended) when one moves the range's box past the world's float range or
+// its inverse out of float range (scene/value_limits.h placementProblem), else "".
+std::string addPlacements(Scene& scene, std::uint32_t range, const std::vector<glm::dmat4>& at);
 
 // The triangles of mesh ranges [firstRange, end), moved out of a scene with their corner colours
 // and tangents (detachRanges; the other triangles keep their order, the ranges' firstTri then index
@@ -55,9 +56,10 @@ void truncateCorners(Scene& scene, std::size_t count);
 DetachedRanges detachRanges(Scene& scene, std::size_t firstRange);
 void attachRanges(Scene& scene, std::size_t firstRange, DetachedRanges detached);
 
-// Why a scene must not hold `instances` placements: each costs its SceneInstance, its device
-// Instance and, in the top level's build, about what a triangle costs (buildBvh over the boxes);
-// "" when that fits hostMemoryBytes(). Otherwise "gives N instances: needs about X GiB ...".
+// Why a scene must not hold `instances` placements: each costs instanceBytes(), its SceneInstance,
+// its device Instance and, in the top level's build, about what a triangle costs (buildBvh over
+// the boxes); "" when that fits hostMemoryBytes(). Otherwise "gives N instances: needs about X GiB ...".
+std::uint64_t instanceBytes();
 std::string instanceMemoryRefusal(std::uint64_t instances);
 
 // Triangles a flattened scene would hold: the world ones plus every instance's copy.
@@ -86,6 +88,8 @@ Placed placeTriangle(SceneTriangle& t, TriangleCorners& corners, const Placement
 // Replaces the ranges from firstRange on by one placed copy per instance of them, appended after
 // the other triangles in instance order (degenerate copies dropped): with firstRange 0, the scene
 // the loaders gave before instancing. The ranges before firstRange must lie before the others.
-void flattenInstances(Scene& scene, std::size_t firstRange = 0);
+// Returns why not ("flattening its instances into copies gives N triangles: ...", nothing
+// changed) when the copies would not fit the memory check (util/host_memory.h), else "".
+std::string flattenInstances(Scene& scene, std::size_t firstRange = 0);
 
 }  // namespace montecl
