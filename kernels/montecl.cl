@@ -43,16 +43,14 @@
 #define MCL_KERNEL_ATTRIBUTES
 #endif
 
-// A packet stage (MCL_PACKET_<stage> 1 in the stage table) runs wave items
-// get_global_id(0) * MCL_LANES onwards, one per lane (kernels/shared/lanes.h); the others one item.
+// A work item runs wave items get_global_id(0) * MCL_LANES onwards, one per lane
+// (kernels/shared/lanes.h; the fused stages: group get_global_id(0)).
 #define MCL_KERNEL_PARAM(type, name) , type name
 #define MCL_KERNEL_VALUE(type, name) , name
-#define MCL_STAGE_CALL_0(stage) stage_##stage(&a, (uint)get_global_id(0))
-#define MCL_STAGE_CALL_1(stage) stage_##stage(&a, (uint)get_global_id(0) * MCL_LANES)
 #define MCL_STAGE_KERNEL(stage)                                                                    \
   __kernel MCL_KERNEL_ATTRIBUTES MCL_KERNEL_ATTR_##stage void stage(                               \
       __constant FrameParams* frame MCL_ARGS_##stage(MCL_KERNEL_PARAM)) {                          \
     stage##_args a = {frame MCL_ARGS_##stage(MCL_KERNEL_VALUE)};                                   \
-    MCL_LANES_CAT(MCL_STAGE_CALL_, MCL_PACKET_##stage)(stage);                                     \
+    stage_##stage(&a, (uint)get_global_id(0) * MCL_LANES);                                          \
   }
 MCL_STAGES(MCL_STAGE_KERNEL)

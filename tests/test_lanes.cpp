@@ -1,5 +1,5 @@
-// test_lanes.cpp: the packet stages (kernels/shared/lanes.h, MCL_PACKET_<stage> in the stage
-// table). On the default OpenCL device, the conformance set rendered with every packet width
+// test_lanes.cpp: the packet stages (kernels/shared/lanes.h; every stage of the stage table but
+// the fused ones). On the default OpenCL device, the conformance set rendered with every packet width
 // W = 1, 4, 8, 16 is bit for bit the host backend's (film mean and M2, hi and lo parts); the sizes
 // leave a partial last packet in some waves (10 x 10 pixels: 100 items per sample). Adaptive
 // renders (active-pixel lists out of order; independent and sobol samplers) at W = 1, 4, 16 are byte
@@ -57,11 +57,10 @@ TEST_CASE("packet stages: W per device, --lanes values, and the stage table's pa
   CHECK(resolveLanes(0, hostDeviceInfo()) == 1);
   CHECK(resolveLanes(16, hostDeviceInfo()) == 1);  // the host backend runs the scalar bodies
   CHECK_THROWS_AS(resolveLanes(3, hostDeviceInfo()), InputError);
-  CHECK(stageRunsPackets(Stage::generate));
-  CHECK(stageRunsPackets(Stage::shade_ao));
-  CHECK(stageRunsPackets(Stage::accumulate));
-  CHECK(stageRunsPackets(Stage::intersect));
-  CHECK(stageRunsPackets(Stage::intersect_shadow));
+  for (int s = 0; s < kStageCount; ++s) CHECK(stageRunsPackets(Stage(s)) == !stageIsFused(Stage(s)));
+  CHECK(stageRunsPackets(Stage::shade_direct_hit));
+  CHECK(stageRunsPackets(Stage::path_gather));
+  CHECK(!stageRunsPackets(Stage::wave_path));
   CHECK(stageBuildOptions(BvhLayout::Wide, 1) == "");
   CHECK(stageBuildOptions(BvhLayout::Wide, 16) == "-DMCL_LANES=16");
   CHECK(stageBuildOptions(BvhLayout::Binary, 8) == "-DMCL_BVH_BINARY=1 -DMCL_LANES=8");

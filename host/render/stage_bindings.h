@@ -29,19 +29,12 @@ inline const char* stageName(Stage s) {
   };
   return names[int(s)];
 }
-// True for a packet stage (MCL_PACKET_<stage> in the stage table): its OpenCL kernel runs W
-// consecutive items per work item (launched over ceil(items / W) work items).
-inline bool stageRunsPackets(Stage s) {
-  static const bool packets[] = {
-#define MCL_STAGE_PACKET(stage) MCL_PACKET_##stage != 0,
-      MCL_STAGES(MCL_STAGE_PACKET)
-#undef MCL_STAGE_PACKET
-  };
-  return packets[int(s)];
-}
 // True for a fused stage (kernels/stages/wave_fused.h): a work item runs a group of W C items through
 // every stage of a wave.
 inline bool stageIsFused(Stage s) { return s == Stage::wave_ao || s == Stage::wave_direct || s == Stage::wave_path; }
+// True for a stage whose OpenCL kernel runs W consecutive items per work item (launched over
+// ceil(items / W) work items): every stage but the fused ones (kernels/shared/stage_table.h).
+inline bool stageRunsPackets(Stage s) { return !stageIsFused(s); }
 #define MCL_STAGE_COUNT_ONE(stage) +1
 constexpr int kStageCount = 0 MCL_STAGES(MCL_STAGE_COUNT_ONE);
 #undef MCL_STAGE_COUNT_ONE

@@ -6,8 +6,8 @@
 // - the OpenCL argument binding and the host backend's call (host/render/stage_bindings.h), both
 //   by name from StageBindings, so a table name that no binding has does not compile.
 // Every stage also receives `frame` (the render's FrameParams) as its first argument.
-// Adding a stage: write kernels/stages/<stage>.h, add STAGE(<stage>) to MCL_STAGES, its
-// MCL_PACKET_<stage> flag and its MCL_ARGS_<stage> list here, and launch it from the wave loop (host/render/wavefront.cpp).
+// Adding a stage: write kernels/stages/<stage>.h, add STAGE(<stage>) to MCL_STAGES and
+// its MCL_ARGS_<stage> list here, and launch it from the wave loop (host/render/wavefront.cpp).
 #pragma once
 #include "traverse.h"  // BvhTraversalNode: the node type of the layout the program is built for
 
@@ -27,26 +27,11 @@
   STAGE(wave_direct)                                                                               \
   STAGE(wave_path)
 
-// Packet stages: MCL_PACKET_<stage> is 1 when the stage's body stage_<stage>(a, first) takes
-// MCL_LANES (W, kernels/shared/lanes.h) consecutive items from `first`, one per lane (the OpenCL
-// kernel passes first = get_global_id(0) W and the host launches ceil(items / W) work items; the
-// host backend, at W = 1, calls it per item), 0 when its body takes one item. Every stage of
-// MCL_STAGES has its line.
-#define MCL_PACKET_generate 1
-#define MCL_PACKET_intersect 1
-#define MCL_PACKET_shade_ao 1
-#define MCL_PACKET_shade_direct 1
-#define MCL_PACKET_shade_direct_hit 0
-#define MCL_PACKET_intersect_shadow 1
-#define MCL_PACKET_accumulate 1
-#define MCL_PACKET_record_aov 1
-#define MCL_PACKET_accumulate_aov 0
-#define MCL_PACKET_shade_path 1
-#define MCL_PACKET_path_gather 0
-// The fused stages run a group of W C items per work item themselves (kernels/stages/wave_fused.h).
-#define MCL_PACKET_wave_ao 0
-#define MCL_PACKET_wave_direct 0
-#define MCL_PACKET_wave_path 0
+// Every stage's body stage_<stage>(a, first) takes MCL_LANES (W, kernels/shared/lanes.h)
+// consecutive items from `first`, one per lane (lanes past the stage's count masked): the OpenCL
+// kernel passes first = get_global_id(0) W and the host launches ceil(items / W) work items; the host
+// backend, at W = 1, calls it per item. The fused stages (kernels/stages/wave_fused.h) take group
+// first / W of W C items.
 
 // The texture tables (kernels/shared/texture.h): what albedo lookups read.
 #define MCL_TEXTURE_ARGS(ARG)                                                                      \

@@ -60,23 +60,15 @@ MCL_INLINE void v_item_values(const accumulate_args* a, uint slots, uint i0, uin
   }
 }
 
-// The general walk (any block shift, any sub-sequence count, a partial packet of `lanes` lanes):
-// lane k walks the runs q0 + j0 + k + m ac of the wave (q0 = waveStart >> shift), each run's items
-// in order, the lanes stepping together (a lane without an item at a step is masked; the lanes
-// move to their next runs together once all have finished the current one); the sub-sequence
-// accumulators are updated lane by lane.
+// The general walk (run_walk: any block shift, any sub-sequence count, a partial packet of
+// `lanes` lanes); the sub-sequence accumulators are updated lane by lane.
 MCL_INLINE void accumulate_runs(const accumulate_args* a, uint j0, uint lanes) {
   MCL_CONSTANT const FrameParams* f = a->frame;
-  const uint ac = f->activeCount, count = a->waveCount, shift = f->sampleBlockShift, slots = f->shadowSlots;
+  const uint slots = f->shadowSlots;
   const uint splits = f->sampler == MCL_SAMPLER_SOBOL ? f->sobolSplits : 1u;
   const ulong g0 = a->waveStart;
-  const uint o0 = (uint)g0 & ((1u << shift) - 1u);  // the wave's first item's place in its run
-  const vmask own = v_lane_index() < lanes;
-  // Lane k: touched pixel j (lanes past the packet repeat its last pixel, masked), run t = j + m ac
-  // after run q0, i.e. items [(t << shift) - o0, ((t + 1) << shift) - o0) of the wave, clipped.
-  vuint t = j0 + vsel(own, v_lane_index(), v_u(lanes - 1u));
-  vuint r = (uint)((g0 >> shift) % ac) + t;  // j < ac: at most one wrap
-  vuint pixel = v_gather_uint(a->active, vsel(r >= ac, r - ac, r));
+  RunWalk walk;
+  vuint pixel = run_walk_begin(&walk, f, a->active, g0, a->waveCount, j0, lanes);
   MCL_GLOBAL float* film[4] = {(MCL_GLOBAL float*)a->mean, (MCL_GLOBAL float*)a->meanLo, (MCL_GLOBAL float*)a->m2,
                                (MCL_GLOBAL float*)a->m2Lo};
   vfloat mhx, mhy, mhz, mhw, mlx, mly, mlz, mlw, shx, shy, shz, shw, slx, sly, slz, slw;
@@ -89,22 +81,8 @@ MCL_INLINE void accumulate_runs(const accumulate_args* a, uint j0, uint lanes) {
   vffloat m2X = ff_make(shx, slx), m2Y = ff_make(shy, sly), m2Z = ff_make(shz, slz), m2W = ff_make(shw, slw);
   MCL_GLOBAL const float* rad = (MCL_GLOBAL const float*)a->radiance;
   MCL_GLOBAL const float* sc = (MCL_GLOBAL const float*)a->shadowContrib;
-  vmask live = own;
-  vuint i = vsel(t == 0u, v_u(0u), (t << shift) - o0);
-  vuint e = ((t + 1u) << shift) - o0;
-  vuint end = vsel(e < count, e, v_u(count));
-  for (;;) {
-    vmask step = live & (i < end);
-    if (!v_any(step)) {  // every lane's run is done: the next runs
-      t = t + ac;
-      vuint start = (t << shift) - o0;
-      live = live & (start < count);
-      if (!v_any(live)) break;
-      i = start;
-      e = ((t + 1u) << shift) - o0;
-      end = vsel(e < count, e, v_u(count));
-      continue;
-    }
+  for (vmask step = run_walk_step(&walk); v_any(step); step = run_walk_step(&walk)) {
+    vuint i = walk.i;
     vuint at = vsel(step, i, v_u(0u));  // masked lanes read item 0
     vfloat vx, vy, vz, vw, sx, sy, sz, sw;
     v_gather4(rad, at, 4, &vx, &vy, &vz, &vw);
@@ -141,7 +119,7 @@ MCL_INLINE void accumulate_runs(const accumulate_args* a, uint j0, uint lanes) {
     v_welford(step, vz, nf, &meanZ, &m2Z);
     // The w lanes compute like the others from value.w = 0 and mean.w = 0 (stage_accumulate).
     m2W = ff_select(step, ff_add_float(m2W, v_f(0.0f) * (v_f(0.0f) - v_f(0.0f) - v_f(0.0f))), m2W);
-    i = i + v_mask01(step);
+    walk.i = i + v_mask01(step);
   }
   vfloat countLo = v_as_float(v_cvt_u_ul(n & 0xfffffffful)), countHi = v_as_float(v_cvt_u_ul(n >> 32));
   v_scatter4_n(film[0], pixel, 4, lanes, meanX.hi, meanY.hi, meanZ.hi, countLo);

@@ -3,11 +3,14 @@
 // reached an emitter's front face, or escaped to the environment, writes (f cos / p) * Le * w_brdf
 // (f cos / p: bsdf_direction_weight of the surface's BSDF, shared/bsdf.h; w_brdf the MIS weight
 // under mis; 1 at a delta surface, docs/estimators.md) to the item's BSDF shadow slot, K.
+// The body takes W consecutive items and weighs their BSDF rays lane by lane: the few rays that
+// reach a light make this stage a small share of a direct-lighting wave.
 #pragma once
+#include "stage_lanes.h"
 #include "direct_light.h"
 
-MCL_INLINE void stage_shade_direct_hit(const shade_direct_hit_args* a, uint i) {
-  if (i >= a->waveCount) return;
+// Item i's BSDF-ray contribution.
+MCL_INLINE void direct_hit_weigh(const shade_direct_hit_args* a, uint i) {
   MCL_CONSTANT const FrameParams* f = a->frame;
   Hit bh = a->bounceHits[i];
   if (!(a->bounce[i].dir.w > 0.0f)) return;
@@ -33,4 +36,10 @@ MCL_INLINE void stage_shade_direct_hit(const shade_direct_hit_args* a, uint i) {
   BsdfWeight fw = bsdf_direction_weight(surf.bsdf, surf.frame, wo, wi, pdfBsdf);
   if (!fw.counts) return;
   a->shadowContrib[i * f->shadowSlots + f->lightSamples] = with_w(fw.weight * le * weight, 0.0f);
+}
+
+MCL_INLINE void stage_shade_direct_hit(const shade_direct_hit_args* a, uint first) {
+  if (first >= a->waveCount) return;
+  const uint lanes = v_packet_lanes(first, a->waveCount);
+  for (uint j = 0; j < lanes; ++j) direct_hit_weigh(a, first + j);
 }

@@ -68,6 +68,50 @@ MCL_INLINE int v_items_pixel_sample(MCL_CONSTANT const FrameParams* f, MCL_GLOBA
   return 1;
 }
 
+// The walk of the accumulate stages over a packet's touched pixels' samples in a wave, in sample
+// order (any block shift, a partial packet of `lanes` lanes): lane k takes touched pixel j0 + k
+// (lanes past the packet repeat its last pixel, masked) and walks its runs t = j0 + k + m ac after
+// run q0 = waveStart >> shift, i.e. items [(t << shift) - o0, ((t + 1) << shift) - o0) of the wave,
+// clipped, each run's items in order; the lanes step together (a lane without an item at a step is
+// masked) and move to their next runs together once all have finished the current one.
+typedef struct {
+  vuint t, i, end;  // the lane's run, item and the run's end
+  vmask live;
+  uint ac, count, shift, o0;
+} RunWalk;
+
+// Starts the walk; returns the lanes' pixels.
+MCL_INLINE vuint run_walk_begin(RunWalk* w, MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const uint* active,
+                                ulong waveStart, uint waveCount, uint j0, uint lanes) {
+  w->ac = f->activeCount;
+  w->count = waveCount;
+  w->shift = f->sampleBlockShift;
+  w->o0 = (uint)waveStart & ((1u << w->shift) - 1u);  // the wave's first item's place in its run
+  w->live = v_lane_index() < lanes;
+  w->t = j0 + vsel(w->live, v_lane_index(), v_u(lanes - 1u));
+  vuint r = (uint)((waveStart >> w->shift) % w->ac) + w->t;  // j < ac: at most one wrap
+  w->i = vsel(w->t == 0u, v_u(0u), (w->t << w->shift) - w->o0);
+  vuint e = ((w->t + 1u) << w->shift) - w->o0;
+  w->end = vsel(e < waveCount, e, v_u(waveCount));
+  return v_gather_uint(active, vsel(r >= w->ac, r - w->ac, r));
+}
+
+// The lanes with an item (w->i) at this step; none when the walk is over. The caller then moves
+// them on: w->i = w->i + v_mask01(step).
+MCL_INLINE vmask run_walk_step(RunWalk* w) {
+  for (;;) {
+    vmask step = w->live & (w->i < w->end);
+    if (v_any(step)) return step;
+    w->t = w->t + w->ac;  // every lane's run is done: the next runs
+    vuint start = (w->t << w->shift) - w->o0;
+    w->live = w->live & (start < w->count);
+    if (!v_any(w->live)) return w->live;
+    w->i = start;
+    vuint e = ((w->t + 1u) << w->shift) - w->o0;
+    w->end = vsel(e < w->count, e, v_u(w->count));
+  }
+}
+
 // --- RNG (shared/rng.h, shared/sampler.h) ----------------------------------------------------
 typedef struct {
   vfloat x, y, z, w;

@@ -19,12 +19,8 @@
 #define MCL_FUSED_FIELD_CAST(type, name) , (type)(a->name)
 #define MCL_FUSED_ARGS_CAST(stage) {a->frame MCL_ARGS_##stage(MCL_FUSED_FIELD_CAST)}
 
-// Runs a stage body over the W items of the packet at `first`: a packet stage's body takes them
-// all, the others' one item each.
-#define MCL_FUSED_RUN_0(stage, args, first) \
-  for (uint fk = 0; fk < MCL_LANES; ++fk) stage_##stage(&(args), (first) + fk)
-#define MCL_FUSED_RUN_1(stage, args, first) stage_##stage(&(args), (first))
-#define MCL_FUSED_RUN(stage, args, first) MCL_LANES_CAT(MCL_FUSED_RUN_, MCL_PACKET_##stage)(stage, args, first)
+// Runs a stage body over the W items of the packet at `first`.
+#define MCL_FUSED_RUN(stage, args, first) stage_##stage(&(args), (first))
 
 // The shading stages' bodies as out-of-line functions with their whole call tree inlined, as their
 // own kernels are built (montecl.cl MCL_FLATTEN: PoCL otherwise passes their structs through the
@@ -112,7 +108,8 @@ MCL_INLINE uint fused_group_first(MCL_CONSTANT const FrameParams* f, uint waveCo
     }                                                           \
   } while (0)
 
-MCL_INLINE void stage_wave_ao(const wave_ao_args* a, uint g) {
+MCL_INLINE void stage_wave_ao(const wave_ao_args* a, uint at0) {
+  const uint g = at0 / MCL_LANES;  // the group (its work item)
   MCL_CONSTANT const FrameParams* f = a->frame;
   const uint first = fused_group_first(f, a->waveCount, g), block = 1u << f->sampleBlockShift;
   if (first >= a->waveCount) return;
@@ -127,7 +124,8 @@ MCL_INLINE void stage_wave_ao(const wave_ao_args* a, uint g) {
   MCL_FUSED_SHADOW_AND_ACCUMULATE(a, g);
 }
 
-MCL_INLINE void stage_wave_direct(const wave_direct_args* a, uint g) {
+MCL_INLINE void stage_wave_direct(const wave_direct_args* a, uint at0) {
+  const uint g = at0 / MCL_LANES;  // the group (its work item)
   MCL_CONSTANT const FrameParams* f = a->frame;
   const uint first = fused_group_first(f, a->waveCount, g), block = 1u << f->sampleBlockShift;
   if (first >= a->waveCount) return;
@@ -156,7 +154,8 @@ MCL_INLINE void stage_wave_direct(const wave_direct_args* a, uint g) {
 // queries and path_gather.
 #define MCL_FUSED_PATH_PACKETS 16u
 
-MCL_INLINE void stage_wave_path(const wave_path_args* a, uint g) {
+MCL_INLINE void stage_wave_path(const wave_path_args* a, uint at0) {
+  const uint g = at0 / MCL_LANES;  // the group (its work item)
   const uint count = *a->rayCount, group = MCL_LANES * MCL_FUSED_PATH_PACKETS;
   if ((ulong)g * group >= count) return;
   const uint first = g * group;
