@@ -102,6 +102,19 @@ std::vector<KindCase> kindCases_metal_rough() {
           {"metal glossy", metalRough(float3(0.9f, 0.7f, 0.3f), 1.0f, 0.3f), float3(0.9f, 0.7f, 0.3f), false},
           {"half metallic", metalRough(float3(0.5f), 0.5f, 0.8f), float3(0.5f), false}};
 }
+MaterialDesc coatedDiffuse(float3 kd, float alpha, float thickness) {
+  MaterialDesc d;
+  d.kind = MCL_MATERIAL_coated_diffuse;
+  d.albedo = kd;
+  d.kindAlpha = alpha;
+  d.thickness = thickness;
+  return d;
+}
+std::vector<KindCase> kindCases_coated_diffuse() {
+  return {{"smooth coat over red", coatedDiffuse(float3(0.8f, 0.3f, 0.2f), 0.0f, 0.01f), float3(0.8f, 0.3f, 0.2f), false},
+          {"rough coat alpha 0.3", coatedDiffuse(float3(0.5f), 0.3f, 0.01f), float3(0.5f), false},
+          {"white base, thin coat", coatedDiffuse(float3(1.0f), 0.0f, 1e-4f), float3(1.0f), false}};
+}
 
 struct KindRow {
   const char* name;

@@ -72,13 +72,27 @@ void pbrtIntegrator(const std::string& type, const PbrtParams& p, RenderSettings
   p.reportUnused("Integrator \"" + oneLine(type, 40) + "\"", warnings);
 }
 
-void pbrtPixelFilter(const std::string& type, const PbrtParams& p, std::vector<std::string>& warnings) {
-  const double xr = p.getFloat("xradius", 0.5), yr = p.getFloat("yradius", 0.5);
-  if (type != "box" || xr != 0.5 || yr != 0.5)
-    warnAt(p, warnings, "PixelFilter \"" + oneLine(type, 40) +
-                          "\": montecl has no pixel reconstruction filters; each pixel is the plain mean of its "
-                          "samples (a box of radius 0.5)");
-  for (const PbrtParam& q : p.list) q.used = true;  // one warning for the filter, none per parameter
+// pbrt-v4's filters by their names ("sinc" is its windowed Lanczos), their radius and parameters;
+// montecl's filter has one radius: different x and y radii take the larger, warned.
+void pbrtPixelFilter(const std::string& type, const PbrtParams& p, RenderSettings& r, std::vector<std::string>& warnings) {
+  const std::string name = type == "sinc" ? "lanczos" : type;
+  PixelFilter f;
+  if (!defaultFilter(name, f)) {
+    warnAt(p, warnings, "PixelFilter \"" + oneLine(type, 40) + "\": unknown to montecl; a box of radius 0.5 is used");
+    for (const PbrtParam& q : p.list) q.used = true;
+    return;
+  }
+  const double xr = p.getFloat("xradius", f.radius), yr = p.getFloat("yradius", f.radius);
+  if (xr != yr) warnAt(p, warnings, "PixelFilter: montecl's filters have one radius; the larger of xradius and yradius is used");
+  std::string text = name + ",radius=" + std::to_string(std::max(xr, yr));
+  if (f.type == FilterType::Gaussian) text += ",sigma=" + std::to_string(p.getFloat("sigma", f.sigma));
+  if (f.type == FilterType::Mitchell)
+    text += ",b=" + std::to_string(p.getFloat("B", f.b)) + ",c=" + std::to_string(p.getFloat("C", f.c));
+  if (f.type == FilterType::Lanczos) text += ",tau=" + std::to_string(p.getFloat("tau", f.tau));
+  std::string problem;
+  if (!parseFilterText(text, f, &problem)) pbrtFail(p.loc, "PixelFilter \"" + oneLine(type, 40) + "\": " + problem);
+  r.filter = f;
+  p.reportUnused("PixelFilter \"" + oneLine(type, 40) + "\"", warnings);
 }
 
 }  // namespace montecl
