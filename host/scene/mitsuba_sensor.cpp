@@ -17,28 +17,34 @@ namespace {
 // Its parameters: gaussian stddev (radius 4 stddev), tent radius, mitchell / catmullrom B and C
 // (radius 2), lanczos lobes (the radius and the window).
 void rfilter(MiContext& c, const MiProps& rf, RenderSettings& r) {
-  std::string text;
+  PixelFilter f;
+  std::vector<std::pair<const char*, double>> params;
   if (rf.type == "box") {
-    text = "box,radius=" + std::to_string(rf.getFloat("radius", 0.5));
+    defaultFilter("box", f);
+    params = {{"radius", rf.getFloat("radius", 0.5)}};
   } else if (rf.type == "tent") {
-    text = "triangle,radius=" + std::to_string(rf.getFloat("radius", 1.0));
+    defaultFilter("triangle", f);
+    params = {{"radius", rf.getFloat("radius", 1.0)}};
   } else if (rf.type == "gaussian") {
+    defaultFilter("gaussian", f);
     const double sd = rf.getFloat("stddev", 0.5);
-    text = "gaussian,radius=" + std::to_string(4.0 * sd) + ",sigma=" + std::to_string(sd);
+    params = {{"radius", 4.0 * sd}, {"sigma", sd}};
   } else if (rf.type == "mitchell" || rf.type == "catmullrom") {
+    defaultFilter("mitchell", f);
     const bool cr = rf.type == "catmullrom";
-    text = "mitchell,radius=2,b=" + std::to_string(rf.getFloat("B", cr ? 0.0 : 1.0 / 3.0)) +
-           ",c=" + std::to_string(rf.getFloat("C", cr ? 0.5 : 1.0 / 3.0));
+    params = {{"radius", 2.0}, {"b", rf.getFloat("B", cr ? 0.0 : 1.0 / 3.0)}, {"c", rf.getFloat("C", cr ? 0.5 : 1.0 / 3.0)}};
   } else if (rf.type == "lanczos") {
+    defaultFilter("lanczos", f);
     const int lobes = rf.getInt("lobes", 3);
-    text = "lanczos,radius=" + std::to_string(lobes) + ",tau=" + std::to_string(lobes);
+    params = {{"radius", double(lobes)}, {"tau", double(lobes)}};
   } else {
     c.warn(rf.loc, "rfilter \"" + oneLine(rf.type, 40) + "\": unknown to montecl; a box of radius 0.5 is used");
     return;
   }
-  PixelFilter f;
   std::string problem;
-  if (!parseFilterText(text, f, &problem)) mitsubaFail(rf.loc, "rfilter \"" + oneLine(rf.type, 40) + "\": " + problem);
+  for (const auto& q : params)
+    if (!setFilterParam(f, q.first, float(q.second), &problem))
+      mitsubaFail(rf.loc, "rfilter \"" + oneLine(rf.type, 40) + "\": " + problem);
   r.filter = f;
   rf.reportUnused("rfilter \"" + rf.type + "\"", c.warnings);
 }

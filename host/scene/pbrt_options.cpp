@@ -84,13 +84,14 @@ void pbrtPixelFilter(const std::string& type, const PbrtParams& p, RenderSetting
   }
   const double xr = p.getFloat("xradius", f.radius), yr = p.getFloat("yradius", f.radius);
   if (xr != yr) warnAt(p, warnings, "PixelFilter: montecl's filters have one radius; the larger of xradius and yradius is used");
-  std::string text = name + ",radius=" + std::to_string(std::max(xr, yr));
-  if (f.type == FilterType::Gaussian) text += ",sigma=" + std::to_string(p.getFloat("sigma", f.sigma));
-  if (f.type == FilterType::Mitchell)
-    text += ",b=" + std::to_string(p.getFloat("B", f.b)) + ",c=" + std::to_string(p.getFloat("C", f.c));
-  if (f.type == FilterType::Lanczos) text += ",tau=" + std::to_string(p.getFloat("tau", f.tau));
+  std::vector<std::pair<const char*, double>> params = {{"radius", std::max(xr, yr)}};
+  if (f.type == FilterType::Gaussian) params.push_back({"sigma", p.getFloat("sigma", f.sigma)});
+  if (f.type == FilterType::Mitchell) params.push_back({"b", p.getFloat("B", f.b)}), params.push_back({"c", p.getFloat("C", f.c)});
+  if (f.type == FilterType::Lanczos) params.push_back({"tau", p.getFloat("tau", f.tau)});
   std::string problem;
-  if (!parseFilterText(text, f, &problem)) pbrtFail(p.loc, "PixelFilter \"" + oneLine(type, 40) + "\": " + problem);
+  for (const auto& q : params)
+    if (!setFilterParam(f, q.first, float(q.second), &problem))
+      pbrtFail(p.loc, "PixelFilter \"" + oneLine(type, 40) + "\": " + problem);
   r.filter = f;
   p.reportUnused("PixelFilter \"" + oneLine(type, 40) + "\"", warnings);
 }

@@ -10,28 +10,28 @@
 namespace montecl {
 namespace {
 
-struct TypeInfo {
+struct FilterTypeInfo {
   const char* name;
   FilterType type;
   float radius;  // pbrt-v4's default radius
 };
-const TypeInfo kTypes[] = {{"box", FilterType::Box, 0.5f},
+const FilterTypeInfo kFilterTypes[] = {{"box", FilterType::Box, 0.5f},
                            {"triangle", FilterType::Triangle, 2.0f},
                            {"gaussian", FilterType::Gaussian, 1.5f},
                            {"mitchell", FilterType::Mitchell, 2.0f},
                            {"lanczos", FilterType::Lanczos, 4.0f}};
 
 // Radii above this would let one sample land far outside its pixel for no purpose.
-constexpr float kMaxRadius = 16.0f;
+constexpr float kMaxFilterRadius = 16.0f;
 
-const char* typeName(FilterType t) {
-  for (const TypeInfo& i : kTypes)
+const char* filterTypeName(FilterType t) {
+  for (const FilterTypeInfo& i : kFilterTypes)
     if (i.type == t) return i.name;
   return "box";
 }
 
 // The parameters (besides radius) a type reads, by key.
-std::vector<std::pair<const char*, float PixelFilter::*>> paramsOf(FilterType t) {
+std::vector<std::pair<const char*, float PixelFilter::*>> filterParamsOf(FilterType t) {
   switch (t) {
     case FilterType::Gaussian: return {{"sigma", &PixelFilter::sigma}};
     case FilterType::Mitchell: return {{"b", &PixelFilter::b}, {"c", &PixelFilter::c}};
@@ -40,47 +40,51 @@ std::vector<std::pair<const char*, float PixelFilter::*>> paramsOf(FilterType t)
   }
 }
 
-std::string number(float v) {
+std::string filterNumber(float v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.9g", double(v));
   return buf;
 }
 
 // "" when `value` suits parameter `key`, else the rule in words.
-std::string valueProblem(const std::string& key, float value) {
-  if (key == "radius") return std::isfinite(value) && value > 0.0f && value <= kMaxRadius ? "" : "a number in (0, 16]";
+std::string filterValueProblem(const std::string& key, float value) {
+  if (key == "radius") return std::isfinite(value) && value > 0.0f && value <= kMaxFilterRadius ? "" : "a number in (0, 16]";
   if (key == "b" || key == "c") return std::isfinite(value) ? "" : "a finite number";
   return std::isfinite(value) && value > 0.0f ? "" : "a positive number";
 }
 
-bool setParam(PixelFilter& f, const std::string& key, float value, std::string* problem) {
-  const std::string rule = valueProblem(key, value);
+}  // namespace
+
+bool setFilterParam(PixelFilter& f, const std::string& key, float value, std::string* problem) {
+  const std::string rule = filterValueProblem(key, value);
   if (!rule.empty()) {
-    *problem = typeName(f.type) + std::string(" ") + key + " must be " + rule + ", got " + number(value);
+    *problem = filterTypeName(f.type) + std::string(" ") + key + " must be " + rule + ", got " + filterNumber(value);
     return false;
   }
   if (key == "radius") {
     f.radius = value;
     return true;
   }
-  for (const auto& p : paramsOf(f.type))
+  for (const auto& p : filterParamsOf(f.type))
     if (key == p.first) {
       f.*(p.second) = value;
       return true;
     }
   std::string known = "radius";
-  for (const auto& p : paramsOf(f.type)) known += std::string(", ") + p.first;
-  *problem = std::string("filter ") + typeName(f.type) + " has no parameter '" + key + "' (known: " + known + ")";
+  for (const auto& p : filterParamsOf(f.type)) known += std::string(", ") + p.first;
+  *problem = std::string("filter ") + filterTypeName(f.type) + " has no parameter '" + key + "' (known: " + known + ")";
   return false;
 }
 
-double sinc(double x) {
+namespace {
+
+double filterSinc(double x) {
   const double px = 3.14159265358979323846 * x;
   return std::fabs(x) < 1e-6 ? 1.0 : std::sin(px) / px;
 }
 
 // Mitchell-Netravali's cubic at |x| in [0, 2].
-double mitchell(double x, double b, double c) {
+double filterMitchell(double x, double b, double c) {
   x = std::fabs(x);
   if (x < 1.0)
     return ((12 - 9 * b - 6 * c) * x * x * x + (-18 + 12 * b + 6 * c) * x * x + (6 - 2 * b)) / 6.0;
@@ -96,7 +100,7 @@ bool PixelFilter::operator==(const PixelFilter& o) const { return filterText(*th
 const char* filterTypeNames() { return "box, triangle, gaussian, mitchell, lanczos"; }
 
 bool defaultFilter(const std::string& name, PixelFilter& out) {
-  for (const TypeInfo& i : kTypes)
+  for (const FilterTypeInfo& i : kFilterTypes)
     if (name == i.name) {
       out = PixelFilter{};
       out.type = i.type;
@@ -108,11 +112,11 @@ bool defaultFilter(const std::string& name, PixelFilter& out) {
 
 std::string filterText(const PixelFilter& f) {
   PixelFilter d;
-  defaultFilter(typeName(f.type), d);
-  std::string s = typeName(f.type);
-  if (f.radius != d.radius) s += ",radius=" + number(f.radius);
-  for (const auto& p : paramsOf(f.type))
-    if (f.*(p.second) != d.*(p.second)) s += std::string(",") + p.first + "=" + number(f.*(p.second));
+  defaultFilter(filterTypeName(f.type), d);
+  std::string s = filterTypeName(f.type);
+  if (f.radius != d.radius) s += ",radius=" + filterNumber(f.radius);
+  for (const auto& p : filterParamsOf(f.type))
+    if (f.*(p.second) != d.*(p.second)) s += std::string(",") + p.first + "=" + filterNumber(f.*(p.second));
   return s;
 }
 
@@ -135,7 +139,7 @@ bool parseFilterText(const std::string& text, PixelFilter& out, std::string* pro
       *problem = "expected key=number after the filter name, got '" + item + "'";
       return false;
     }
-    if (!setParam(out, key, float(v), problem)) return false;
+    if (!setFilterParam(out, key, float(v), problem)) return false;
     at = next;
   }
   return true;
@@ -159,7 +163,7 @@ PixelFilter filterFromJson(const JsonCtx& ctx, const nlohmann::json& j, const st
   for (auto it = j.begin(); it != j.end(); ++it) {
     if (it.key() == "type") continue;
     if (!it.value().is_number()) jsonFail(ctx, where + "." + it.key(), "expected a number, got " + it.value().dump());
-    if (!setParam(f, it.key(), it.value().get<float>(), &problem)) jsonFail(ctx, where + "." + it.key(), problem);
+    if (!setFilterParam(f, it.key(), it.value().get<float>(), &problem)) jsonFail(ctx, where + "." + it.key(), problem);
   }
   return f;
 }
@@ -178,8 +182,8 @@ double filterValue(const PixelFilter& f, double x) {
       const double s2 = double(f.sigma) * f.sigma;
       return std::max(0.0, std::exp(-x * x / (2 * s2)) - std::exp(-r * r / (2 * s2)));
     }
-    case FilterType::Mitchell: return mitchell(2.0 * x / r, f.b, f.c);
-    case FilterType::Lanczos: return sinc(x) * sinc(x / f.tau);
+    case FilterType::Mitchell: return filterMitchell(2.0 * x / r, f.b, f.c);
+    case FilterType::Lanczos: return filterSinc(x) * filterSinc(x / f.tau);
   }
   return 0.0;
 }

@@ -35,6 +35,9 @@ std::string filterText(const PixelFilter& f);
 // Parses a text form ("gaussian", "gaussian,radius=2"); on bad input returns false and sets
 // *problem to one line ("unknown filter 'x' (known: ...)", "radius must be a positive number ...").
 bool parseFilterText(const std::string& text, PixelFilter& out, std::string* problem);
+// Sets one parameter of f's type by its key ("radius", "sigma", "b", "c", "tau"); on a key f's type
+// does not read or a value out of range returns false and sets *problem to one line.
+bool setFilterParam(PixelFilter& f, const std::string& key, float value, std::string* problem);
 // render.filter in a scene file: a type name or {"type": ..., "radius": ..., ...}; throws one line.
 PixelFilter filterFromJson(const JsonCtx& ctx, const nlohmann::json& j, const std::string& where);
 // Mitchell and Lanczos have negative lobes, which importance sampling cannot give: clamped to 0.
