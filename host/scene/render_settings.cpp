@@ -57,9 +57,8 @@ SettingRule filterRule() {
 RenderSetting filterRow() {
   RenderSetting s{"filter", "--filter",
                   "Pixel filter, importance sampled (each camera ray's offset drawn from it, weight 1): box (radius "
-                  "0.5: the pixel), triangle, gaussian (sigma), mitchell (b, c), lanczos (tau); mitchell and "
-                  "lanczos lose their negative lobes (clamped to 0). Scene file: a name or {\"type\": "
-                  "\"gaussian\", \"radius\": 1.5, \"sigma\": 0.5}; option: gaussian,radius=1.5,sigma=0.5",
+                  "0.5: the pixel), triangle, gaussian (sigma), mitchell (b, c), lanczos (tau), their negative lobes "
+                  "clamped to 0; e.g. gaussian,radius=1.5,sigma=0.5",
                   filterRule(), kEveryIntegrator, true, {}, {},
                   [](const RenderSettings& r) { return !(r.filter == PixelFilter{}); }};
   s.set = [](RenderSettings& r, const SettingValue& v) {
