@@ -504,4 +504,30 @@ TEST_CASE("pbrt: a file of 100k inline triangles loads in under a second" * doct
   CHECK(seconds < 1.0);
 }
 
+TEST_CASE("pbrt: PixelFilter becomes render.filter with pbrt's defaults and parameters" * doctest::test_suite("cpu pbrt")) {
+  TempDir dir;
+  std::vector<std::string> warnings;
+  const auto withFilter = [&](const std::string& filter) {
+    return load(dir, filter + "\n" + std::string(kCamera) + "WorldBegin\n" + kTriangle, &warnings).render.filter;
+  };
+  // No PixelFilter: montecl's box (pbrt's own default is a gaussian; the default keeps montecl's images).
+  CHECK(load(dir, std::string(kCamera) + "WorldBegin\n" + kTriangle).render.filter == montecl::PixelFilter{});
+  montecl::PixelFilter f = withFilter("PixelFilter \"gaussian\"");
+  CHECK(montecl::filterText(f) == "gaussian");  // radius 1.5, sigma 0.5: pbrt-v4's
+  CHECK(warnings.empty());
+  f = withFilter("PixelFilter \"mitchell\" \"float xradius\" 1.5 \"float yradius\" 1.5 \"float B\" 0.5 \"float C\" 0.25");
+  CHECK(f.type == montecl::FilterType::Mitchell);
+  CHECK(f.radius == 1.5f);
+  CHECK(f.b == 0.5f);
+  CHECK(f.c == 0.25f);
+  f = withFilter("PixelFilter \"sinc\" \"float tau\" 2");
+  CHECK(montecl::filterText(f) == "lanczos,tau=2");
+  f = withFilter("PixelFilter \"triangle\" \"float xradius\" 1 \"float yradius\" 2");
+  CHECK(montecl::filterText(f) == "triangle");  // the larger radius, 2: the triangle's default
+  CHECK(anyContains(warnings, "s.pbrt:1:1", "one radius"));
+  f = withFilter("PixelFilter \"box\" \"float xradius\" 0.5 \"float yradius\" 0.5");
+  CHECK(f == montecl::PixelFilter{});
+  CHECK(warnings.empty());
+}
+
 }  // namespace test_file_pbrt_parser
