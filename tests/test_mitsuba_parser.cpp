@@ -310,4 +310,28 @@ TEST_CASE("mitsuba: bad input is one InputError naming file:line:column" * docte
   CHECK(loadError(dir, head + "</scene>\n").find("/e.xml:1:1: the scene has no shape") != std::string::npos);
 }
 
+TEST_CASE("mitsuba: the film's rfilter becomes render.filter" * doctest::test_suite("cpu mitsuba")) {
+  TempDir dir;
+  const auto withFilter = [&](const std::string& rfilter) {
+    return load(dir, "<sensor type=\"perspective\"><film type=\"hdrfilm\">" + rfilter + "</film></sensor>\n" + kRect)
+        .render.filter;
+  };
+  CHECK(withFilter("") == montecl::PixelFilter{});  // no rfilter: montecl's box
+  CHECK(withFilter("<rfilter type=\"box\"/>") == montecl::PixelFilter{});
+  CHECK(montecl::filterText(withFilter("<rfilter type=\"tent\"/>")) == "triangle,radius=1");
+  CHECK(montecl::filterText(withFilter("<rfilter type=\"gaussian\"><float name=\"stddev\" value=\"0.25\"/></rfilter>")) ==
+        "gaussian,radius=1,sigma=0.25");  // Mitsuba's radius: 4 standard deviations
+  const montecl::PixelFilter cr = withFilter("<rfilter type=\"catmullrom\"/>");
+  CHECK(cr.type == montecl::FilterType::Mitchell);
+  CHECK(cr.b == 0.0f);
+  CHECK(cr.c == 0.5f);
+  CHECK(montecl::filterText(withFilter("<rfilter type=\"lanczos\"><integer name=\"lobes\" value=\"2\"/></rfilter>")) ==
+        "lanczos,radius=2,tau=2");
+  std::vector<std::string> warnings;
+  load(dir, "<sensor type=\"perspective\"><film type=\"hdrfilm\"><rfilter type=\"frob\"/></film></sensor>\n" + std::string(kRect),
+       &warnings);
+  CHECK(std::any_of(warnings.begin(), warnings.end(),
+                    [](const std::string& w) { return w.find("rfilter \"frob\"") != std::string::npos; }));
+}
+
 }  // namespace test_file_mitsuba_parser

@@ -272,25 +272,28 @@ TEST_CASE("pbrt: materials map to montecl's kinds with pbrt's parameters" * doct
   CHECK(mat(3).ior == doctest::Approx(1.5185).epsilon(1e-3));
   CHECK(mat(4).kind == MCL_MATERIAL_thin_dielectric);
   CHECK(mat(4).ior == doctest::Approx(1.33));
-  // coateddiffuse: metal_rough (metallic 0, smooth), its base darkened by the coat's internal
-  // reflections: rho (1 - r_i) T^2 / (1 - rho r_i T^2), r_i = 0.5968 at index 1.5, T^2 = exp(-0.04).
-  CHECK(mat(5).kind == MCL_MATERIAL_metal_rough);
-  CHECK(mat(5).metallic == 0.0f);
-  CHECK(mat(5).roughness == 0.0f);
-  const double ri = -1.440 / 2.25 + 0.710 / 1.5 + 0.668 + 0.0636 * 1.5, t2 = std::exp(-0.04);
-  for (int c = 0; c < 3; ++c) {
-    const double rho = 0.2 + 0.1 * c;
-    CHECK(mat(5).albedo[c] == doctest::Approx(rho * (1 - ri) * t2 / (1 - rho * ri * t2)).epsilon(1e-5));
-  }
-  CHECK(warnings.size() == 1);
-  CHECK(anyContains(warnings, "s.pbrt:", "coateddiffuse"));
-  // A white base under a clear coat without absorption keeps all of its light; grey 0.5 becomes 0.29.
+  // coateddiffuse: the coated_diffuse kind with pbrt's defaults (smooth, eta 1.5, thickness 0.01,
+  // maxdepth 10, nsamples 1), the base its reflectance, no warning.
+  CHECK(mat(5).kind == MCL_MATERIAL_coated_diffuse);
+  CHECK(mat(5).albedo == glm::vec3(0.2f, 0.3f, 0.4f));
+  CHECK(mat(5).kindAlpha == 0.0f);
+  CHECK(mat(5).ior == doctest::Approx(1.5));
+  CHECK(mat(5).thickness == doctest::Approx(0.01));
+  CHECK(mat(5).layerMaxDepth == 10);
+  CHECK(mat(5).layerSamples == 1);
+  CHECK(warnings.empty());
+  // Every parameter read; a scattering layer is warned; bad values are one line.
+  warnings.clear();
   s = load(dir, std::string(kCamera) + "WorldBegin\nMaterial \"coateddiffuse\" \"rgb reflectance\" [ 1 0.5 0 ]"
-                " \"float thickness\" 0 \"float roughness\" 0.04\n" + kTriangle);
-  CHECK(mat(0).albedo.x == doctest::Approx(1.0));
-  CHECK(mat(0).albedo.y == doctest::Approx(0.2877).epsilon(1e-3));
-  CHECK(mat(0).albedo.z == 0.0f);
-  CHECK(mat(0).roughness == doctest::Approx(std::sqrt(0.2)));  // alpha sqrt(0.04); metal_rough squares
+                " \"float thickness\" 0.1 \"float roughness\" 0.04 \"float eta\" 1.33 \"integer maxdepth\" 20"
+                " \"integer nsamples\" 4 \"rgb albedo\" [ 0.5 0.5 0.5 ] \"float g\" 0.3\n" + kTriangle, &warnings);
+  CHECK(mat(0).albedo == glm::vec3(1.0f, 0.5f, 0.0f));
+  CHECK(mat(0).kindAlpha == doctest::Approx(0.2));  // remapped: sqrt(0.04)
+  CHECK(mat(0).ior == doctest::Approx(1.33));
+  CHECK(mat(0).thickness == doctest::Approx(0.1));
+  CHECK(mat(0).layerMaxDepth == 20);
+  CHECK(mat(0).layerSamples == 4);
+  CHECK(anyContains(warnings, "s.pbrt:", "scattering layer"));
 }
 
 TEST_CASE("pbrt: image textures become the material's texture; a missing one is an error at its line" * doctest::test_suite("cpu pbrt")) {
@@ -401,7 +404,7 @@ TEST_CASE("pbrt: malformed input is one error naming file:line:column" * doctest
 TEST_CASE("pbrt: unsupported but valid input warns with file:line and the scene loads" * doctest::test_suite("cpu pbrt")) {
   TempDir dir;
   std::vector<std::string> warnings;
-  Scene s = load(dir, std::string(kCamera) + "PixelFilter \"gaussian\"\nWorldBegin\n"
+  Scene s = load(dir, std::string(kCamera) + "PixelFilter \"frobnicate\"\nWorldBegin\n"
                       "MakeNamedMedium \"fog\" \"string type\" [ \"homogeneous\" ]\n"
                       "Shape \"curve\" \"point3 P\" [ 0 0 0 1 0 0 2 0 0 3 0 0 ]\n"
                       "Shape \"sphere\" \"float radius\" 1 \"float zmin\" -0.5 \"float frobnicity\" 3\n", &warnings);
@@ -499,6 +502,32 @@ TEST_CASE("pbrt: a file of 100k inline triangles loads in under a second" * doct
   MESSAGE(megabytes << " MB, " << s.triangles.size() << " triangles loaded in " << seconds << " s");
   CHECK(s.triangles.size() > std::size_t(n) * 99 / 100);  // random triangles: a few may be degenerate
   CHECK(seconds < 1.0);
+}
+
+TEST_CASE("pbrt: PixelFilter becomes render.filter with pbrt's defaults and parameters" * doctest::test_suite("cpu pbrt")) {
+  TempDir dir;
+  std::vector<std::string> warnings;
+  const auto withFilter = [&](const std::string& filter) {
+    return load(dir, filter + "\n" + std::string(kCamera) + "WorldBegin\n" + kTriangle, &warnings).render.filter;
+  };
+  // No PixelFilter: montecl's box (pbrt's own default is a gaussian; the default keeps montecl's images).
+  CHECK(load(dir, std::string(kCamera) + "WorldBegin\n" + kTriangle).render.filter == montecl::PixelFilter{});
+  montecl::PixelFilter f = withFilter("PixelFilter \"gaussian\"");
+  CHECK(montecl::filterText(f) == "gaussian");  // radius 1.5, sigma 0.5: pbrt-v4's
+  CHECK(warnings.empty());
+  f = withFilter("PixelFilter \"mitchell\" \"float xradius\" 1.5 \"float yradius\" 1.5 \"float B\" 0.5 \"float C\" 0.25");
+  CHECK(f.type == montecl::FilterType::Mitchell);
+  CHECK(f.radius == 1.5f);
+  CHECK(f.b == 0.5f);
+  CHECK(f.c == 0.25f);
+  f = withFilter("PixelFilter \"sinc\" \"float tau\" 2");
+  CHECK(montecl::filterText(f) == "lanczos,tau=2");
+  f = withFilter("PixelFilter \"triangle\" \"float xradius\" 1 \"float yradius\" 2");
+  CHECK(montecl::filterText(f) == "triangle");  // the larger radius, 2: the triangle's default
+  CHECK(anyContains(warnings, "s.pbrt:1:1", "one radius"));
+  f = withFilter("PixelFilter \"box\" \"float xradius\" 0.5 \"float yradius\" 0.5");
+  CHECK(f == montecl::PixelFilter{});
+  CHECK(warnings.empty());
 }
 
 }  // namespace test_file_pbrt_parser

@@ -230,7 +230,8 @@ std::vector<double> downsampledLuminance(const montecl::LayeredImage& ref, int w
 }
 
 // montecl's render of a shared pbrt scene at width x height (the reference box-filtered down to
-// it), spp samples, unlimited depth (Tungsten's references use up to 64 bounces) and independent
+// it, so the render's filter is the box of its pixels, not the file's PixelFilter, whose radius is
+// in pixels of the reference's size), spp samples, unlimited depth (Tungsten's references use up to 64 bounces) and independent
 // samples (so that var / n is each pixel's error), compared per 8x8 block.
 BlockStats renderAgainstTungsten(const TempDir& dir, const std::string& name, int width, int height, int spp,
                                  int maxDepth, double floor) {
@@ -238,7 +239,7 @@ BlockStats renderAgainstTungsten(const TempDir& dir, const std::string& name, in
   const std::string out = dir.file(name + std::to_string(maxDepth) + ".exr");
   CliResult r = runMontecl({"render", scene, "-q", "--width", std::to_string(width), "--height", std::to_string(height),
                             "--sampler", "independent", "--seed", "7", "--spp", std::to_string(spp), "--max-depth",
-                            std::to_string(maxDepth), "-o", out});
+                            std::to_string(maxDepth), "--filter", "box", "-o", out});
   INFO("stderr: " << r.err);
   REQUIRE(r.exitCode == 0);
   const montecl::LayeredImage ref = montecl::readImageFile(pbrtScenes() + "/" + name + "/TungstenRender.exr");

@@ -164,6 +164,9 @@ int runRender(const RenderArgs& a) {
   Scene scene = loadScene(a.scene, warnings, missing);
   for (const std::string& w : warnings) std::cerr << "montecl: warning: " << w << "\n";
   applyOverrides(a, scene);
+  if (filterHasNegativeLobes(scene.render.filter))
+    std::cerr << "montecl: warning: filter " << filterText(scene.render.filter)
+              << ": its negative lobes are clamped to 0 (importance sampling draws offsets from max(0, filter))\n";
   std::string output = a.output;
   std::string outputNote;
   if (output.empty()) output = defaultOutput(a.scene, a.overwrite, outputNote);
@@ -361,7 +364,8 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
            setting.help + " (scene file: render." + key + ", default " + settingValueText(setting.get(RenderSettings{})) + ")")
         ->check(CLI::Validator([&setting](std::string& text) { return settingTextProblem(setting, text); },
                                setting.rule.text))
-        ->type_name(setting.rule.kind == SettingRule::Choice ? "NAME"
+        ->type_name(setting.rule.kind == SettingRule::Choice   ? "NAME"
+                    : setting.rule.kind == SettingRule::Filter ? "FILTER"
                     : setting.rule.kind == SettingRule::Integer ? "INT" : "FLOAT");
   }
   cmd->add_option("--width", args->width, "Image width in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));

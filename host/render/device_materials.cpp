@@ -27,6 +27,11 @@ Material deviceMaterial(const MaterialDesc& m) {
       // transmission_mix.h: x the factor, y the ior, z 1 for a solid dielectric (all 0 without)
       if (m.transmission > 0.0f) d.params1 = glm::vec4(m.transmission, m.ior, m.transmissionSolid ? 1.0f : 0.0f, 0.0f);
       break;
+    case MCL_MATERIAL_coated_diffuse:
+      d.params0 = glm::vec4(m.kindAlpha, m.ior, m.thickness, 0.0f);
+      d.params1 = glm::vec4(glm::uintBitsToFloat(std::uint32_t(m.layerMaxDepth)),
+                            glm::uintBitsToFloat(std::uint32_t(m.layerSamples)), 0.0f, 0.0f);
+      break;
     default: break;
   }
   return d;

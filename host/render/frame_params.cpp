@@ -33,6 +33,12 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
   f.maxDepth = settings.maxDepth;
   f.rrDepth = uint(settings.rrDepth);
   f.lensRadius = camera.apertureRadius;
+  f.filterKind = filterKernelKind(settings.filter);
+  f.filterRadius = settings.filter.radius;
+  if (f.filterKind == MCL_FILTER_TABLE) {
+    const std::array<float, MCL_FILTER_BINS> cdf = filterCdf(settings.filter);
+    std::copy(cdf.begin(), cdf.end(), f.filterCdf);
+  }
   f.focusDistance = camera.focusDistance > 0.0f ? camera.focusDistance : glm::length(camera.target - camera.position);
   f.emitterCount = extras.emitterCount;
   f.emitterPower = extras.emitterPower;

@@ -93,6 +93,16 @@ bool parseKindParams(const JsonCtx& ctx, const json& j, const std::string& prefi
     d.kindAlpha = d.roughness * d.roughness;
   }
   if (const json* v = optionalKey(j, "metallic")) any = true, d.metallic = unitKey(ctx, *v, prefix + ".metallic");
+  // coated_diffuse's layer: thickness > 0; the walk's bounce limit and walks per evaluation.
+  if (const json* v = optionalKey(j, "thickness")) {
+    any = true;
+    d.thickness = getFloat(ctx, *v, prefix + ".thickness");
+    if (!(d.thickness > 0.0f && std::isfinite(d.thickness))) jsonFail(ctx, prefix + ".thickness", "must be a finite number > 0");
+  }
+  if (const json* v = optionalKey(j, "max_depth"))
+    any = true, d.layerMaxDepth = getPositiveInt(ctx, *v, prefix + ".max_depth", 1000, "a positive integer up to 1000");
+  if (const json* v = optionalKey(j, "samples"))
+    any = true, d.layerSamples = getPositiveInt(ctx, *v, prefix + ".samples", 64, "a positive integer up to 64");
   return any;
 }
 

@@ -54,7 +54,7 @@ void parseMaterial(const JsonCtx& ctx, const json& j, const std::string& prefix,
                   {"type", "albedo", "albedo_texture", "alpha_texture", "alpha_cutoff", "emission",
                    "two_sided_emission", "specular", "specular_exponent", "eta", "k", "metal", "alpha",
                    "roughness", "ior", "metallic", "emission_texture", "normal_texture", "normal_scale",
-                   "metallic_roughness_texture"});
+                   "metallic_roughness_texture", "thickness", "max_depth", "samples"});
   MaterialDesc& d = o.value;
   if (const json* v = optionalKey(j, "type")) {  // the material kind (kernels/shared/material_kinds.h)
     const std::string name = getString(ctx, *v, prefix + ".type", "a material type");

@@ -12,6 +12,43 @@
 namespace montecl {
 namespace {
 
+// Mitsuba's reconstruction filters as montecl's pixel filter (importance sampled, so each sample
+// keeps weight 1 where Mitsuba splats weighted samples: the same expected pixel for filters >= 0).
+// Its parameters: gaussian stddev (radius 4 stddev), tent radius, mitchell / catmullrom B and C
+// (radius 2), lanczos lobes (the radius and the window).
+void rfilter(MiContext& c, const MiProps& rf, RenderSettings& r) {
+  PixelFilter f;
+  std::vector<std::pair<const char*, double>> params;
+  if (rf.type == "box") {
+    defaultFilter("box", f);
+    params = {{"radius", rf.getFloat("radius", 0.5)}};
+  } else if (rf.type == "tent") {
+    defaultFilter("triangle", f);
+    params = {{"radius", rf.getFloat("radius", 1.0)}};
+  } else if (rf.type == "gaussian") {
+    defaultFilter("gaussian", f);
+    const double sd = rf.getFloat("stddev", 0.5);
+    params = {{"radius", 4.0 * sd}, {"sigma", sd}};
+  } else if (rf.type == "mitchell" || rf.type == "catmullrom") {
+    defaultFilter("mitchell", f);
+    const bool cr = rf.type == "catmullrom";
+    params = {{"radius", 2.0}, {"b", rf.getFloat("B", cr ? 0.0 : 1.0 / 3.0)}, {"c", rf.getFloat("C", cr ? 0.5 : 1.0 / 3.0)}};
+  } else if (rf.type == "lanczos") {
+    defaultFilter("lanczos", f);
+    const int lobes = rf.getInt("lobes", 3);
+    params = {{"radius", double(lobes)}, {"tau", double(lobes)}};
+  } else {
+    c.warn(rf.loc, "rfilter \"" + oneLine(rf.type, 40) + "\": unknown to montecl; a box of radius 0.5 is used");
+    return;
+  }
+  std::string problem;
+  for (const auto& q : params)
+    if (!setFilterParam(f, q.first, float(q.second), &problem))
+      mitsubaFail(rf.loc, "rfilter \"" + oneLine(rf.type, 40) + "\": " + problem);
+  r.filter = f;
+  rf.reportUnused("rfilter \"" + rf.type + "\"", c.warnings);
+}
+
 void film(MiContext& c, const MiProps& sensor, Camera& cam) {
   const std::vector<MiElem> films = sensor.objects("film");
   if (films.empty()) return;
@@ -26,12 +63,7 @@ void film(MiContext& c, const MiProps& sensor, Camera& cam) {
     p.find(quiet);  // how Mitsuba stores its image: montecl's output is the command line's -o
   if (p.find("crop_width") || p.find("crop_height") || p.find("crop_offset_x") || p.find("crop_offset_y"))
     c.warn(p.loc, "film: a crop window is not read by montecl; the whole image is rendered");
-  for (const MiElem& f : p.objects("rfilter")) {
-    const MiProps rf(c.doc, f);
-    if (rf.type != "box")
-      c.warn(rf.loc, "rfilter \"" + oneLine(rf.type, 40) + "\": montecl's pixels are the plain mean of their samples (a box filter)");
-    rf.find("radius");
-  }
+  for (const MiElem& f : p.objects("rfilter")) rfilter(c, MiProps(c.doc, f), c.scene.render);
   p.reportUnused("film \"" + p.type + "\"", c.warnings);
 }
 

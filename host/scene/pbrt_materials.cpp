@@ -100,44 +100,26 @@ float etaOf(const PbrtParams& p, const std::string& name, std::vector<std::strin
   return eta.y;
 }
 
-// pbrt-v4's coateddiffuse (a clear dielectric coat of index eta over a Lambertian base) as
-// montecl's metal_rough with metallic 0: a GGX lobe weighted by Schlick's Fresnel (F0 0.04, index
-// 1.5) over a Lambertian lobe weighted by 1 - F, the coat. Light that enters the coat bounces
-// between base and coat: a fraction r_i of the diffuse light inside reflects back down at each
-// try (the internal diffuse reflectance of the interface), and the coat's medium lets through
-// T = exp(-2 thickness) a pass (its mean over diffuse directions, for albedo 0). The base's
-// albedo is then rho (1 - r_i) T^2 / (1 - rho r_i T^2): 1 stays 1 without absorption, 0.5 becomes
-// 0.29 at index 1.5, as the layered model darkens and saturates a coated colour.
-float coatedAlbedo(float rho, double ri, double t2) {
-  return float(double(rho) * (1.0 - ri) * t2 / (1.0 - double(rho) * ri * t2));
-}
-
+// pbrt-v4's coateddiffuse: montecl's coated_diffuse, the same layered model (a dielectric coat of
+// index eta and GGX roughness over a Lambertian base, a layer of some thickness, a random walk of
+// at most maxdepth events, nsamples walks). Left out: a scattering layer (albedo, g), warned.
 void coatedDiffuse(const PbrtParams& p, const PbrtTextures& textures, MaterialDesc& d, std::vector<std::string>& warnings) {
-  d.kind = MCL_MATERIAL_metal_rough;
-  d.metallic = 0.0f;
+  d.kind = MCL_MATERIAL_coated_diffuse;
   d.albedo = glm::vec3(0.5f);
   colourOrTexture(p, "reflectance", textures, d.albedo, &d.albedoTexture, &d.albedoSampling, warnings);
-  d.roughness = std::sqrt(alphaOf(p, textures, "", warnings));  // metal_rough squares it
-  const float eta = etaOf(p, "eta", warnings);
+  d.kindAlpha = alphaOf(p, textures, "", warnings);
+  d.ior = etaOf(p, "eta", warnings);
   const double thickness = floatOrTexture(p, "thickness", 0.01, textures, warnings);
-  if (!(thickness >= 0.0)) pbrtFail(p.loc, "coateddiffuse: 'thickness' must be >= 0");
+  if (!(thickness >= 0.0) || !std::isfinite(thickness)) pbrtFail(p.loc, "coateddiffuse: 'thickness' must be >= 0");
+  d.thickness = float(std::max(thickness, 1e-6));  // pbrt keeps it above a small epsilon too
+  const int maxDepth = p.getInt("maxdepth", 10), samples = p.getInt("nsamples", 1);
+  if (maxDepth < 1 || maxDepth > 1000) pbrtFail(p.loc, "coateddiffuse: 'maxdepth' must be in [1, 1000]");
+  if (samples < 1 || samples > 64) pbrtFail(p.loc, "coateddiffuse: 'nsamples' must be in [1, 64]");
+  d.layerMaxDepth = maxDepth, d.layerSamples = samples;
   glm::vec3 coatAlbedo(0.0f);
   if (colourOrTexture(p, "albedo", textures, coatAlbedo, nullptr, nullptr, warnings) && coatAlbedo != glm::vec3(0.0f))
-    warnings.push_back(whereOf(p) + "Material \"coateddiffuse\": a scattering coat ('albedo') is not read by montecl; a clear coat is used");
-  for (const char* quiet : {"g", "maxdepth", "nsamples"}) p.ignore(quiet);  // pbrt's stochastic evaluation
-  // Internal diffuse reflectance of an interface of relative index eta > 1 (Egan and Hilgeman's fit).
-  const double e = eta;
-  const double ri = e > 1.0 ? std::min(0.99, -1.440 / (e * e) + 0.710 / e + 0.668 + 0.0636 * e) : 0.0;
-  const double t2 = std::exp(-4.0 * thickness);
-  if (d.albedoTexture.empty()) {
-    for (int c = 0; c < 3; ++c) d.albedo[c] = coatedAlbedo(d.albedo[c], ri, t2);
-  } else {  // the reduction is not linear: the texture is scaled as a mid-grey (0.5) would be
-    d.albedo *= coatedAlbedo(0.5f, ri, t2) / 0.5f;
-  }
-  warnings.push_back(whereOf(p) + "Material \"coateddiffuse\": montecl has no layered material; approximated by "
-                     "metal_rough (a Fresnel-weighted GGX coat of index 1.5 over a Lambertian base whose albedo "
-                     "the coat's internal reflections reduce" + std::string(eta != 1.5f ? "; the coat's Fresnel uses index 1.5, not " + std::to_string(eta) : "") +
-                     (d.albedoTexture.empty() ? "" : "; a textured base is scaled as a mid-grey") + ")");
+    warnings.push_back(whereOf(p) + "Material \"coateddiffuse\": a scattering layer ('albedo', 'g') is not read by montecl; a clear layer is used");
+  p.ignore("g");
 }
 
 }  // namespace

@@ -72,13 +72,28 @@ void pbrtIntegrator(const std::string& type, const PbrtParams& p, RenderSettings
   p.reportUnused("Integrator \"" + oneLine(type, 40) + "\"", warnings);
 }
 
-void pbrtPixelFilter(const std::string& type, const PbrtParams& p, std::vector<std::string>& warnings) {
-  const double xr = p.getFloat("xradius", 0.5), yr = p.getFloat("yradius", 0.5);
-  if (type != "box" || xr != 0.5 || yr != 0.5)
-    warnAt(p, warnings, "PixelFilter \"" + oneLine(type, 40) +
-                          "\": montecl has no pixel reconstruction filters; each pixel is the plain mean of its "
-                          "samples (a box of radius 0.5)");
-  for (const PbrtParam& q : p.list) q.used = true;  // one warning for the filter, none per parameter
+// pbrt-v4's filters by their names ("sinc" is its windowed Lanczos), their radius and parameters;
+// montecl's filter has one radius: different x and y radii take the larger, warned.
+void pbrtPixelFilter(const std::string& type, const PbrtParams& p, RenderSettings& r, std::vector<std::string>& warnings) {
+  const std::string name = type == "sinc" ? "lanczos" : type;
+  PixelFilter f;
+  if (!defaultFilter(name, f)) {
+    warnAt(p, warnings, "PixelFilter \"" + oneLine(type, 40) + "\": unknown to montecl; a box of radius 0.5 is used");
+    for (const PbrtParam& q : p.list) q.used = true;
+    return;
+  }
+  const double xr = p.getFloat("xradius", f.radius), yr = p.getFloat("yradius", f.radius);
+  if (xr != yr) warnAt(p, warnings, "PixelFilter: montecl's filters have one radius; the larger of xradius and yradius is used");
+  std::vector<std::pair<const char*, double>> params = {{"radius", std::max(xr, yr)}};
+  if (f.type == FilterType::Gaussian) params.push_back({"sigma", p.getFloat("sigma", f.sigma)});
+  if (f.type == FilterType::Mitchell) params.push_back({"b", p.getFloat("B", f.b)}), params.push_back({"c", p.getFloat("C", f.c)});
+  if (f.type == FilterType::Lanczos) params.push_back({"tau", p.getFloat("tau", f.tau)});
+  std::string problem;
+  for (const auto& q : params)
+    if (!setFilterParam(f, q.first, float(q.second), &problem))
+      pbrtFail(p.loc, "PixelFilter \"" + oneLine(type, 40) + "\": " + problem);
+  r.filter = f;
+  p.reportUnused("PixelFilter \"" + oneLine(type, 40) + "\"", warnings);
 }
 
 }  // namespace montecl

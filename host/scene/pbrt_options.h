@@ -19,7 +19,8 @@ void pbrtSampler(const std::string& type, const PbrtParams& params, RenderSettin
 // Integrator: path / volpath (others warned) with maxdepth converted, or ambientocclusion.
 void pbrtIntegrator(const std::string& type, const PbrtParams& params, RenderSettings& render,
                     std::vector<std::string>& warnings);
-// PixelFilter: warned unless a box of radius 0.5, what montecl's pixels are.
-void pbrtPixelFilter(const std::string& type, const PbrtParams& params, std::vector<std::string>& warnings);
+// PixelFilter: box, triangle, gaussian, mitchell, sinc (lanczos) into render.filter; others warned.
+void pbrtPixelFilter(const std::string& type, const PbrtParams& params, RenderSettings& r,
+                     std::vector<std::string>& warnings);
 
 }  // namespace montecl

@@ -168,7 +168,7 @@ class Reader {
     } else if (w == "PixelFilter") {
       optionsOnly(d);
       const std::string type = in_.name(d);  // before the parameters (argument order is unspecified)
-      pbrtPixelFilter(type, in_.params(d), warnings_);
+      pbrtPixelFilter(type, in_.params(d), scene_.render, warnings_);
     } else if (w == "Accelerator") {
       optionsOnly(d);
       in_.name(d);

@@ -45,6 +45,30 @@ SettingRule boolRule() {  // a JSON true/false; on the command line a flag
   return r;
 }
 
+SettingRule filterRule() {
+  SettingRule r;
+  r.kind = SettingRule::Filter;
+  r.text = std::string("a filter: ") + filterTypeNames() + ", optionally with ,radius=R and its parameters";
+  return r;
+}
+
+// The pixel filter, as its text form (pixel_filter.h); recorded in the provenance only when it is
+// not the default box, so renders from before filters existed still merge with today's.
+RenderSetting filterRow() {
+  RenderSetting s{"filter", "--filter",
+                  "Pixel filter, importance sampled (each camera ray's offset drawn from it, weight 1): box (radius "
+                  "0.5: the pixel), triangle, gaussian (sigma), mitchell (b, c), lanczos (tau), their negative lobes "
+                  "clamped to 0; e.g. gaussian,radius=1.5,sigma=0.5",
+                  filterRule(), kEveryIntegrator, true, {}, {},
+                  [](const RenderSettings& r) { return !(r.filter == PixelFilter{}); }};
+  s.set = [](RenderSettings& r, const SettingValue& v) {
+    std::string problem;
+    parseFilterText(std::get<std::string>(v), r.filter, &problem);
+  };
+  s.get = [](const RenderSettings& r) { return SettingValue(filterText(r.filter)); };
+  return s;
+}
+
 SettingRule colourRule() {
   SettingRule r;
   r.kind = SettingRule::Colour;
@@ -153,6 +177,7 @@ std::vector<RenderSetting> makeTable() {
                 "Texture files that cannot be opened (in any case of their name): error lists them all and stops; "
                 "warn lists them all in one warning and renders each as its material's factor (the texture left out)",
                 missingTexturesNames(), &RenderSettings::missingTextures, kEveryIntegrator, false),
+      filterRow(),
   };
 }
 
@@ -227,6 +252,7 @@ RenderSettings parseRenderSettings(const JsonCtx& ctx, const nlohmann::json& j) 
         if (!v->is_boolean()) jsonFail(ctx, where, "expected true or false, got " + v->dump());
         s.set(r, v->get<bool>());
         break;
+      case SettingRule::Filter: s.set(r, filterText(filterFromJson(ctx, *v, where))); break;
     }
   }
   return r;
@@ -265,6 +291,11 @@ std::string settingTextProblem(const RenderSetting& s, const std::string& text) 
     }
     case SettingRule::Bool:
       return text == "true" || text == "false" ? std::string() : "must be " + rule.text + got;
+    case SettingRule::Filter: {
+      PixelFilter f;
+      std::string problem;
+      return parseFilterText(text, f, &problem) ? std::string() : problem;
+    }
   }
   return "unknown setting kind";
 }
@@ -281,6 +312,7 @@ void setFromText(const RenderSetting& s, const std::string& text, RenderSettings
       break;
     }
     case SettingRule::Bool: s.set(r, text == "true"); break;
+    case SettingRule::Filter: s.set(r, text); break;
   }
 }
 
@@ -295,7 +327,7 @@ std::string integratorSettings(const RenderSettings& r) {
 }
 
 std::string renderSettingsMarkdown() {
-  static const char* const types[] = {"integer", "number", "name", "[r, g, b]", "boolean"};
+  static const char* const types[] = {"integer", "number", "name", "[r, g, b]", "boolean", "filter"};
   std::ostringstream md;
   md << "| key | type | default | valid | meaning |\n|---|---|---|---|---|\n";
   const RenderSettings defaults;

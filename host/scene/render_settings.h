@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "scene/json_fields.h"
+#include "scene/pixel_filter.h"
 #include "scene/render_choices.h"
 
 namespace montecl {
@@ -40,6 +41,7 @@ struct RenderSettings {
   bool denoise = false;  // Open Image Denoise on the final image (image/oidn_denoiser.h)
   DenoiseQuality denoiseQuality = DenoiseQuality::High;  // OIDN's own default
   MissingTextures missingTextures = MissingTextures::Error;  // what a texture file that cannot be opened does
+  PixelFilter filter;  // the pixel filter the camera rays' offsets are drawn from (box 0.5: the pixel)
 };
 
 // Whether render.sobol_splits applies (the sobol sampler only), and the sub-sequences a render
@@ -53,7 +55,8 @@ using SettingValue = std::variant<long long, float, std::string, glm::vec3, bool
 
 // What values a setting takes.
 struct SettingRule {
-  enum Kind { Integer, Number, Choice, Colour, Bool } kind = Integer;  // Bool: a flag on the command line
+  enum Kind { Integer, Number, Choice, Colour, Bool, Filter } kind = Integer;  // Bool: a flag on the command line;
+                                                                     // Filter: pixel_filter.h's text
   long long lo = 0, hi = 0;         // Integer: within [lo, hi] ...
   bool zeroAllowed = true;          // ... and not 0 unless this
   std::vector<std::string> names;   // Choice: the accepted names

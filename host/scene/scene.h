@@ -70,6 +70,12 @@ struct MaterialDesc {
   float ior = 1.5f;               // dielectric, thin_dielectric: inside / outside
   float kindAlpha = 0.0f;         // conductor, dielectric: GGX alpha (0: smooth)
   float metallic = 0.0f, roughness = 1.0f;  // metal_rough (glTF factors)
+  // coated_diffuse (pbrt-v4's layered coat over a Lambertian base of reflectance `albedo`; the coat
+  // is a dielectric of index `ior`, GGX `kindAlpha`): the thickness of the clear layer between the
+  // interface and the base (it attenuates as exp(-thickness / |cos|), as pbrt's), and the random
+  // walk's bounce limit and its walks per evaluation.
+  float thickness = 0.01f;
+  int layerMaxDepth = 10, layerSamples = 1;
   std::string metallicRoughnessTexture;  // glTF metallicRoughnessTexture (linear; B x metallic, G x roughness)
   // metal_rough: glTF KHR_materials_transmission's factor (0: none) through a dielectric of index
   // `ior`, solid (KHR_materials_volume) or a thin sheet (kernels/shared/transmission_mix.h).

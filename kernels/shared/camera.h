@@ -1,5 +1,5 @@
-// camera.h: the camera ray through a point of the image plane. Pixel (px, py) is sampled at
-// (px + u, py + v), u, v in [0, 1) (box filter); row 0 is the top of the image. A pinhole, or a
+// camera.h: the camera ray through a point of the image plane, and the pixel filter's warp of a
+// sample's offset within its pixel (filter_offset); row 0 is the top of the image. A pinhole, or a
 // thin lens (FrameParams::lensRadius > 0): the ray starts at a point of the aperture disk
 // (lens_u, lens_v in [0, 1), concentric map) and passes through the pinhole ray's point on the
 // plane in focus, FrameParams::focusDistance along the view direction. A lens radius of 0 is
@@ -15,7 +15,33 @@
 // *d (camera_direction's) to pass through d's point on the plane in focus: d's component along the
 // view direction is 1 (camDx, camDy are perpendicular to it), so origin + d * focusDistance lies
 // on that plane.
+// filter_offset: a uniform u in [0, 1) warped to an offset from the pixel's left (top) edge, drawn
+// from the pixel filter (FrameParams::filterKind, filterRadius; x and y each their own u): the
+// filter is importance sampled, so every sample keeps weight 1 and the film stays a plain mean.
+// Box: (0.5 - r) + 2 r u, which for the default r = 0.5 is exactly u (the image before filters).
+// Triangle: the tent's inverse CDF, 0.5 + r (sqrt(2u) - 1) below u = 1/2, mirrored above.
+// Table: the bin k whose CDF range holds u (a scan of every bin with selects, the same steps in
+// every lane), then linearly within it: piecewise-constant density.
 #define MCL_DEFINE_CAMERA(P, F, F3, V)                                                                   \
+  MCL_INLINE F P##filter_offset(MCL_CONSTANT const FrameParams* f, F u) {                               \
+    const float r = f->filterRadius;                                                                    \
+    if (f->filterKind == MCL_FILTER_TRIANGLE) {                                                         \
+      F t = vsel(u < 0.5f, sqrt(2.0f * u) - 1.0f, 1.0f - sqrt(2.0f - 2.0f * u));                        \
+      return 0.5f + t * r;                                                                              \
+    }                                                                                                   \
+    if (f->filterKind == MCL_FILTER_TABLE) {                                                            \
+      F lo = (F)(0.0f), hi = (F)(f->filterCdf[0]), k = (F)(0.0f);                                       \
+      for (int i = 0; i < MCL_FILTER_BINS - 1; ++i) {                                                   \
+        const float c = f->filterCdf[i];                                                                \
+        lo = vsel(u >= c, (F)(c), lo);                                                                  \
+        hi = vsel(u >= c, (F)(f->filterCdf[i + 1]), hi);                                                \
+        k = vsel(u >= c, (F)((float)(i + 1)), k);                                                       \
+      }                                                                                                 \
+      F t = vsel(hi > lo, (u - lo) / (hi - lo), (F)(0.5f));                                             \
+      return 0.5f + ((k + fmin(t, (F)(1.0f))) * (2.0f * r / (float)MCL_FILTER_BINS) - r);              \
+    }                                                                                                   \
+    return (0.5f - r) + u * (2.0f * r);                                                                 \
+  }                                                                                                     \
   MCL_INLINE F3 P##camera_direction(MCL_CONSTANT const FrameParams* f, F x, F y) {                      \
     return V##_add(V##_add(V##_splat(xyz(f->camTopLeft)), V##_scale(V##_splat(xyz(f->camDx)), x)),      \
                    V##_scale(V##_splat(xyz(f->camDy)), y));                                             \

@@ -11,6 +11,11 @@
 #define MCL_DIRECT_LIGHT 0u
 #define MCL_DIRECT_BRDF 1u
 #define MCL_DIRECT_MIS 2u
+// FrameParams::filterKind (camera.h's filter_offset): the pixel filter, drawn from by its inverse CDF.
+#define MCL_FILTER_BOX 0u       // uniform over [-radius, radius]
+#define MCL_FILTER_TRIANGLE 1u  // tent of half-width radius, closed-form inverse
+#define MCL_FILTER_TABLE 2u     // tabulated (gaussian, mitchell, lanczos): FrameParams::filterCdf
+#define MCL_FILTER_BINS 64
 // FrameParams::sampler (shared/sampler.h): where the stages' uniform numbers come from.
 #define MCL_SAMPLER_INDEPENDENT 0u  // pcg4d hash per (seed, pixel, sample, group): i.i.d.
 #define MCL_SAMPLER_SOBOL 1u        // Owen-scrambled Sobol, one 4D set per group (shared/sobol.h)
@@ -159,7 +164,12 @@ typedef struct MCL_ALIGN16 {
                              // (kernels/stages/stage_common.h; set per round of samples)
   uint instanceCount;        // placements of the two-level BVH (traverse_instances.h); 0: one level
   uint recordAovs;           // 1: the fused wave stages record each item's first-hit AOVs (record_aov.h)
-  uint framePad1, framePad2;
+  uint filterKind;           // MCL_FILTER_*: how the camera stage draws a sample's offset within its pixel
+  float filterRadius;        // the pixel filter's radius in pixels (box 0.5: the pixel itself)
+  // MCL_FILTER_TABLE: the filter's one-dimensional distribution over [-radius, radius] in
+  // MCL_FILTER_BINS equal bins, entry i its CDF at bin i's right edge (the last is 1): x and y are
+  // drawn from it independently, the filters being products of one function of x and one of y.
+  float filterCdf[MCL_FILTER_BINS];
 } FrameParams;
 
 // One emitting triangle. It is picked with probability area * luminance(Le) / emitterPower;
@@ -255,7 +265,7 @@ static_assert(offsetof(Material, params0) == 64, "Material layout");
 static_assert(sizeof(Ray) == 32, "Ray layout");
 static_assert(sizeof(Hit) == 16, "Hit layout");
 static_assert(sizeof(ShadowWork) == 48, "ShadowWork layout");
-static_assert(sizeof(FrameParams) == 272 && offsetof(FrameParams, instanceCount) == 256, "FrameParams layout");
+static_assert(sizeof(FrameParams) == 272 + 4 * MCL_FILTER_BINS && offsetof(FrameParams, instanceCount) == 256, "FrameParams layout");
 static_assert(offsetof(FrameParams, shareEnvironment) == 176, "FrameParams layout");
 static_assert(offsetof(FrameParams, sampler) == 240, "FrameParams layout");
 static_assert(sizeof(LightRecord) == 64, "LightRecord layout");

@@ -1,7 +1,7 @@
 // generate: reads the frame's camera and the active-pixel list; writes the camera rays of wave items
 // first .. first + W - 1, one per lane (W = MCL_LANES: 1 on the host backend and GPUs), to rays[]
 // below waveCount: pinhole, or thin lens with the aperture point from MCL_DIM_LENS (camera.h's
-// operations per lane). Lanes past the wave compute some item's ray and store nothing.
+// operations per lane); the offset within the pixel drawn from the pixel filter (filter_offset). Lanes past the wave compute some item's ray and store nothing.
 #pragma once
 #include "stage_lanes.h"
 
@@ -13,8 +13,8 @@ MCL_INLINE void stage_generate(const generate_args* a, uint first) {
   vfloat4 u = v_sample_uniform4(f, pixel, sample, MCL_DIM_CAMERA);
   vuint row, column;
   v_divmod(pixel, f->width, &row, &column);
-  vfloat px = v_cvt_f_u(column) + u.x;
-  vfloat py = v_cvt_f_u(row) + u.y;
+  vfloat px = v_cvt_f_u(column) + v_filter_offset(f, u.x);
+  vfloat py = v_cvt_f_u(row) + v_filter_offset(f, u.y);
   vfloat3 origin = v3_splat(xyz(f->camOrigin)), d = v_camera_direction(f, px, py);
   if (f->lensRadius > 0.0f) {
     vfloat4 l = v_sample_uniform4(f, pixel, sample, MCL_DIM_LENS);
