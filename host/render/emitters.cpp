@@ -5,7 +5,10 @@
 #include "render/emitters.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <tuple>
 
 #include "kernels/shared/lights.h"
 #include "render/emitter_guide.h"
@@ -35,7 +38,23 @@ bool boxMeetsTriangle(double x0, double x1, double y0, double y1, const double p
 // tri: some texel with Ke x texel > 0 in a channel has a bilinear footprint (one texel around its
 // centre) that meets the triangle's UV image (any repeat of it). Writes the largest luminance of
 // those texels to maxLum.
-bool mayEmit(TextureTables tt, const Material& m, const Triangle& tri, const TriangleShading& sh, float& maxLum) {
+// Whole-texture answers of mayEmit, by (texture, Ke): where a triangle needs every texel (a
+// transform, a wrap mode other than repeat, many repeats) the answer does not depend on the
+// triangle, so one read of the texture serves every triangle of the material; reading it per
+// triangle made the table quadratic (thousands of triangles x millions of texels).
+struct WholeTextureKey {
+  std::uint32_t texture;
+  std::array<std::uint32_t, 3> ke;
+  bool operator<(const WholeTextureKey& o) const { return std::tie(texture, ke) < std::tie(o.texture, o.ke); }
+};
+struct WholeTextureAnswer {
+  bool any;
+  float maxLum;
+};
+using WholeTextureCache = std::map<WholeTextureKey, WholeTextureAnswer>;
+
+bool mayEmit(TextureTables tt, const Material& m, const Triangle& tri, const TriangleShading& sh, float& maxLum,
+             WholeTextureCache& cache) {
   const TextureDesc d = tt.textures[as_uint(m.maps.x)];
   const TextureLevel l = tt.levels[d.firstLevel];
   const bool uv = (as_uint(tri.e2.w) & MCL_ATTR_UV) != 0;
@@ -52,6 +71,12 @@ bool mayEmit(TextureTables tt, const Material& m, const Triangle& tri, const Tri
   const bool plain = d.uvRow0 == float4(1.0f, 0.0f, 0.0f, 0.0f) && d.uvRow1 == float4(0.0f, 1.0f, 0.0f, 0.0f);
   const bool all = !plain || (xb - xa + 1.0) * (yb - ya + 1.0) > 4.0 * double(l.width) * double(l.height);
   const float3 ke = xyz(m.emission);
+  const WholeTextureKey key{as_uint(m.maps.x), {as_uint(ke.x), as_uint(ke.y), as_uint(ke.z)}};
+  if (all)
+    if (const auto it = cache.find(key); it != cache.end()) {
+      maxLum = it->second.maxLum;
+      return it->second.any;
+    }
   bool any = false;
   maxLum = 0.0f;
   for (double y = all ? 0.0 : ya; y <= (all ? double(l.height) - 1.0 : yb); y += 1.0)
@@ -62,6 +87,7 @@ bool mayEmit(TextureTables tt, const Material& m, const Triangle& tri, const Tri
       any = true;
       maxLum = std::max(maxLum, luminance(e));
     }
+  if (all) cache[key] = WholeTextureAnswer{any, maxLum};
   return any;
 }
 
@@ -69,7 +95,8 @@ bool mayEmit(TextureTables tt, const Material& m, const Triangle& tri, const Tri
 // grid folded onto the triangle (uniform in area), n from the triangle's size in texels (1 to 16).
 // Exactly 0 only when Le is 0 everywhere on it (mayEmit); a triangle that emits somewhere between
 // the grid's points gets a small positive weight (any positive weight keeps light sampling unbiased).
-float texturedEmitterLuminance(TextureTables tt, const Material& m, const Triangle& tri, const TriangleShading& sh) {
+float texturedEmitterLuminance(TextureTables tt, const Material& m, const Triangle& tri, const TriangleShading& sh,
+                               WholeTextureCache& cache) {
   if (!(as_uint(tri.e2.w) & MCL_ATTR_UV)) return emitter_luminance(tt, &m, &tri, &sh);  // one colour
   const TextureDesc d = tt.textures[as_uint(m.maps.x)];
   const TextureLevel l = tt.levels[d.firstLevel];
@@ -86,7 +113,7 @@ float texturedEmitterLuminance(TextureTables tt, const Material& m, const Triang
   const float mean = float(sum / double(n * n));
   if (mean > 0.0f) return mean;
   float maxLum = 0.0f;
-  if (!mayEmit(tt, m, tri, sh, maxLum)) return 0.0f;
+  if (!mayEmit(tt, m, tri, sh, maxLum, cache)) return 0.0f;
   return std::max(maxLum * (1.0f / 1024.0f), 1e-30f);
 }
 
@@ -113,6 +140,7 @@ EmitterTable buildEmitterTable(const Bvh& bvh, const std::vector<MaterialDesc>& 
     for (std::size_t i = 0; i < m; ++i) slots.push_back(std::uint32_t(i));
   }
   const TriangleShading none{};
+  WholeTextureCache wholeTexture;
   for (std::uint32_t i : slots) {
     if (i == MCL_NO_HIT) continue;
     const Triangle& t = bvh.triangles[i];
@@ -123,7 +151,8 @@ EmitterTable buildEmitterTable(const Bvh& bvh, const std::vector<MaterialDesc>& 
     if (textured && as_uint((*textured->materials)[mi].maps.x) != MCL_NO_TEXTURE && p > 0.0) {
       std::vector<TriangleShading>& sh = *textured->shading;
       const bool uv = (as_uint(t.e2.w) & MCL_ATTR_UV) != 0 && i < sh.size();
-      const float lum = texturedEmitterLuminance(textured->tables, (*textured->materials)[mi], t, uv ? sh[i] : none);
+      const float lum = texturedEmitterLuminance(textured->tables, (*textured->materials)[mi], t, uv ? sh[i] : none,
+                                                wholeTexture);
       if (uv) sh[i].tv.w = lum;
       p = double(area) * double(lum);
     }
