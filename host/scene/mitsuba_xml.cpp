@@ -12,7 +12,7 @@ namespace montecl {
 namespace {
 
 // Nested <include>s deeper than this are a cycle (or a file nobody writes by hand).
-constexpr int kMaxIncludeDepth = 32;
+constexpr int kMaxXmlIncludeDepth = 32;
 
 }  // namespace
 
@@ -87,7 +87,7 @@ void MiDocument::collect(const MiElem& scene, int depth, std::vector<std::string
       if (name.empty() || !c.node.attribute("value")) mitsubaFail(loc(c), "<default> needs 'name' and 'value'");
       defaults_.emplace(name, c.node.attribute("value").value());  // the first definition holds
     } else if (c.tag() == "include") {
-      if (depth >= kMaxIncludeDepth) mitsubaFail(loc(c), "<include> nested more than 32 deep (does a file include itself?)");
+      if (depth >= kMaxXmlIncludeDepth) mitsubaFail(loc(c), "<include> nested more than 32 deep (does a file include itself?)");
       const std::string name = attr(c, "filename");
       if (name.empty()) mitsubaFail(loc(c), "<include> needs a 'filename'");
       const int f = load(resolve(name), loc(c), inputFiles);

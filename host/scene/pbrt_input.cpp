@@ -8,11 +8,11 @@
 namespace montecl {
 
 namespace {
-constexpr int kMaxIncludeDepth = 32;
+constexpr int kMaxPbrtIncludeDepth = 32;
 }
 
 void PbrtInput::open(const std::string& path, const PbrtLoc& from, std::vector<std::string>& inputFiles) {
-  if (int(files_.size()) >= kMaxIncludeDepth) pbrtFail(from, "Includes nested deeper than " + std::to_string(kMaxIncludeDepth) + " (an Include cycle?)");
+  if (int(files_.size()) >= kMaxPbrtIncludeDepth) pbrtFail(from, "Includes nested deeper than " + std::to_string(kMaxPbrtIncludeDepth) + " (an Include cycle?)");
   const std::string problem = fileProblem(path);
   if (!problem.empty()) {
     if (from.line == 0) throwInputError(path, "", "cannot open: " + problem);

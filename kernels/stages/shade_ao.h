@@ -16,7 +16,7 @@ MCL_INLINE void stage_shade_ao(const shade_ao_args* a, uint first) {
   v_load4_n((MCL_GLOBAL const float*)(a->hits + first), lanes, &ht, &htri, &hu, &hv);
   vuint tri = v_as_uint(htri);
   vmask hit = (tri != MCL_NO_HIT) & (v_lane_index() < lanes);
-  // shade_begin for every lane: shadow slots cleared; radiance the background on a miss, else 0.
+  // Every lane with an item: shadow slots cleared; radiance the background on a miss, else 0.
   const uint slots = f->shadowSlots;
   for (uint k = 0; k < lanes * slots; ++k)
     a->shadowContrib[first * slots + k] = make_float4(0.0f, 0.0f, 0.0f, 0.0f);

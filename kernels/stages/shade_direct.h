@@ -84,7 +84,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
   vuint tri = v_as_uint(htri);
   vmask hit = own & (tri != MCL_NO_HIT);
   const uint slots = f->shadowSlots;
-  for (uint k = 0; k < lanes * slots; ++k)  // shade_begin
+  for (uint k = 0; k < lanes * slots; ++k)  // the strategies leave the slots they do not use at 0
     a->shadowContrib[first * slots + k] = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
   float4 bg = f->background;
   MCL_GLOBAL float* rad = (MCL_GLOBAL float*)(a->radiance + first);

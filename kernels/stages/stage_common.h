@@ -79,15 +79,3 @@ MCL_INLINE void push_shadow_query(MCL_GLOBAL ShadowWork* queue, MCL_GLOBAL volat
   w.slot = slot;
   queue[MCL_ATOMIC_INC(queueCount)] = w;
 }
-
-// The start of every shade stage: clears item i's shadow slots (a strategy leaves the slots it does
-// not use at 0) and, when the camera ray missed, writes the background to radiance[i] and returns
-// 0; otherwise returns 1 and leaves radiance[i] to the caller.
-MCL_INLINE int shade_begin(MCL_CONSTANT const FrameParams* f, Hit h, uint i, MCL_GLOBAL float4* radiance,
-                           MCL_GLOBAL float4* shadowContrib) {
-  for (uint k = 0; k < f->shadowSlots; ++k)
-    shadowContrib[i * f->shadowSlots + k] = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
-  if (h.tri != MCL_NO_HIT) return 1;
-  radiance[i] = f->background;
-  return 0;
-}
