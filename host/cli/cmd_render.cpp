@@ -14,6 +14,7 @@
 #include <map>
 #include <limits>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include "bvh/bvh.h"
@@ -183,7 +184,8 @@ int runRender(const RenderArgs& a) {
   steps.finish();
   const bool lit = integratorDesc(scene.render.integrator).lit &&
                    !scene.environment.enabled && scene.lights.empty();  // these light the scene by themselves
-  if (lit && !hasEmitter(scene))
+  const bool saidBlack = lit && !hasEmitter(scene);  // the dark-image warning would repeat this one
+  if (saidBlack)
     std::cerr << "montecl: warning: " << scene.path << ": integrator " << choiceName(scene.render.integrator)
               << " but nothing emits (no Ke, no mesh "
               << "\"emission\"): the image is black\n";
@@ -219,6 +221,10 @@ int runRender(const RenderArgs& a) {
   options.maxSpp = a.maxSpp;
   options.timeLimit = a.timeLimit;
   options.interrupt = renderInterruptFlag();
+  options.wavesStart = [&steps] {  // loading is over: a signal now stops after a wave
+    endLoading();
+    steps.finish();
+  };
   options.aovs = filmAovs;
   options.workGroupSize = a.workGroupSize;
   options.lanes = a.lanes;
@@ -252,7 +258,6 @@ int runRender(const RenderArgs& a) {
   // The lights' and the device's tables are built inside the render, before its first wave.
   steps.begin("preparing lights and device tables");
   Film film = job.render(renderer, scene, bvh, stats, [&](std::uint64_t done, std::uint64_t total, const RenderStats& s) {
-    if (done > 0 || total == 0) endLoading(), steps.finish();
     bar.update(done, total, s);
   }, part);
   endLoading();
@@ -291,7 +296,7 @@ int runRender(const RenderArgs& a) {
     throw RuntimeError(std::to_string(bad) + " of " + std::to_string(img.pixelCount()) +
                        " pixels hold NaN or infinite values (radiance overflows a float: check emission and camera); " +
                        output + " was not written");
-  if (!interrupted)
+  if (!interrupted && !saidBlack)
     if (const std::string dark = darkImageWarning(denoised.empty() ? film.meanRgb() : denoised, scene); !dark.empty())
       std::cerr << "montecl: warning: " << dark << "\n";
   if (isExr(output))
@@ -320,8 +325,14 @@ int runRender(const RenderArgs& a) {
 
 }  // namespace
 
-// The options that change speed or memory, never the image: listed after the ones users set.
-const char* const kTuning = "Tuning (the image is the same for any value)";
+// `render --help` in groups, the options most renders set first: the common ones (output, size,
+// device, integrator, samples, environment, view), then the integrators' settings, then adaptive
+// sampling, time limits and split or resumable renders, then the knobs that change speed or memory.
+const char* const kSettingsGroup = "Integrator and sampling settings (a scene file's render keys)";
+const char* const kRunsGroup = "Adaptive sampling, time limits, split and resumable renders";
+const char* const kTuning = "Tuning (speed and memory; the image is the same for any value unless noted)";
+// The render settings listed with the common options.
+const std::set<std::string> kCommonSettings = {"integrator", "spp", "seed", "denoise", "missing_textures"};
 
 void addRenderCommand(CLI::App& app, int& exitCode) {
   auto args = std::make_shared<RenderArgs>();
@@ -332,10 +343,14 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                   "samples, var.R, var.G, var.B); default: <scene name>.png in the current folder (<folder "
                   "name>.png for a scene.json), never replacing a file: <name>-1.png, ... unless --overwrite");
   cmd->add_flag("--overwrite", args->overwrite, "Let the default output name replace an existing file");
+  cmd->add_option("--width", args->width, "Image width in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
+  cmd->add_option("--height", args->height, "Image height in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
+  cmd->add_option("--device", args->device, "OpenCL device: P:D, part of the device or platform name, or host (CPU, no OpenCL)");
   // Every render setting with an option (scene/render_settings.h): the scene file's rule and help.
   for (const RenderSetting& setting : renderSettings()) {
     if (setting.option.empty()) continue;
     const std::string key = setting.key;
+    cmd->option_defaults()->group(kCommonSettings.count(key) ? "Options" : kSettingsGroup);
     if (setting.rule.kind == SettingRule::Bool) {  // a flag: present means true
       cmd->add_flag_function(
           setting.option, [args, key](std::int64_t) { args->settings[key] = "true"; },
@@ -353,9 +368,40 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
         ->type_name(setting.rule.kind == SettingRule::Choice ? "NAME"
                     : setting.rule.kind == SettingRule::Integer ? "INT" : "FLOAT");
   }
-  cmd->add_option("--width", args->width, "Image width in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
-  cmd->add_option("--height", args->height, "Image height in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
-  cmd->add_option("--device", args->device, "OpenCL device: P:D, part of the device or platform name, or host (CPU, no OpenCL)");
+  cmd->option_defaults()->group("Options");
+  cmd->add_option("--aov", args->aovs,
+                  "Extra EXR channels, comma-separated: albedo (albedo.R/G/B), normal (N.X/Y/Z), depth (Z), "
+                  "emission (emission.R/G/B: emitted radiance seen directly), or all; averaged over each "
+                  "pixel's samples")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"albedo", "normal", "depth", "emission", "all"}));
+  cmd->add_option("--env", args->env,
+                  "Environment light replacing the scene's: R,G,B (constant radiance), a latitude-longitude "
+                  "map file (.exr, .hdr, ...), or none (a bare model gets a white sky: radiance 1, or 0.25 when "
+                  "it brings its own lights)");
+  cmd->add_option("--env-scale", args->envScale, "Multiplies --env's radiance (default 1)");
+  cmd->add_option("--env-rotate", args->envRotate, "Rotates --env's map about +y, degrees (default 0)");
+  cmd->add_option("--view", args->view,
+                  "Frame the whole model from a side, replacing the scene's camera: front (+z, a bare mesh's "
+                  "default) | back | left | right | top | bottom | iso");
+  cmd->add_flag("-q,--quiet", args->quiet, "No progress bar");
+  cmd->add_flag("-v,--verbose", args->verbose, "Scene, BVH, device and wave details on stderr");
+  cmd->option_defaults()->group(kRunsGroup);
+  cmd->add_option("--target-error", args->targetError,
+                  "Adaptive sampling: sample until each pixel's relative standard error (stderr / max(mean "
+                  "luminance, 0.01)) is at most this, between --min-spp and --max-spp; ignores --spp")
+      ->check(positiveNumber());
+  cmd->add_option("--min-spp", args->minSpp, "Adaptive sampling: samples every pixel gets first (default 16)")
+      ->check(integerIn(2, 1 << 24, "an integer from 2 to 16777216"));
+  cmd->add_option("--max-spp", args->maxSpp, "Adaptive sampling: most samples a pixel gets (default 1024)")
+      ->check(integerIn(2, 1 << 24, "an integer from 2 to 16777216"));
+  cmd->add_option("--time", args->timeLimit,
+                  "Stop after the wave that crosses this many seconds and write the image so far")
+      ->check(positiveNumber());
+  cmd->add_option("--first-sample", args->firstSample,
+                  "Render sample indices K .. K+spp-1 of the deterministic sequence (split renders, then merge)");
+  jobs::addJobOptions(cmd, args->job);
+  cmd->option_defaults()->group(kTuning);
   cmd->add_option("--wave-size", args->waveSize, "Pixel samples per wave (default: sized from the measured rate, at most 8192 per CPU compute unit, 2^20 on GPUs)")
       ->check(integerIn(1, std::numeric_limits<long long>::max(), "a positive integer"))
       ->group(kTuning);
@@ -384,37 +430,6 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                   "BVH the kernels traverse: auto (binary on GPUs, wide otherwise) | wide | binary")
       ->check(CLI::IsMember({"auto", "wide", "binary"}))
       ->group(kTuning);
-  cmd->add_option("--target-error", args->targetError,
-                  "Adaptive sampling: sample until each pixel's relative standard error (stderr / max(mean "
-                  "luminance, 0.01)) is at most this, between --min-spp and --max-spp; ignores --spp")
-      ->check(positiveNumber());
-  cmd->add_option("--min-spp", args->minSpp, "Adaptive sampling: samples every pixel gets first (default 16)")
-      ->check(integerIn(2, 1 << 24, "an integer from 2 to 16777216"));
-  cmd->add_option("--max-spp", args->maxSpp, "Adaptive sampling: most samples a pixel gets (default 1024)")
-      ->check(integerIn(2, 1 << 24, "an integer from 2 to 16777216"));
-  cmd->add_option("--time", args->timeLimit,
-                  "Stop after the wave that crosses this many seconds and write the image so far")
-      ->check(positiveNumber());
-  cmd->add_option("--aov", args->aovs,
-                  "Extra EXR channels, comma-separated: albedo (albedo.R/G/B), normal (N.X/Y/Z), depth (Z), "
-                  "emission (emission.R/G/B: emitted radiance seen directly), or all; averaged over each "
-                  "pixel's samples")
-      ->delimiter(',')
-      ->check(CLI::IsMember({"albedo", "normal", "depth", "emission", "all"}));
-  cmd->add_option("--env", args->env,
-                  "Environment light replacing the scene's: R,G,B (constant radiance), a latitude-longitude "
-                  "map file (.exr, .hdr, ...), or none (a bare model gets a white sky: radiance 1, or 0.25 when "
-                  "it brings its own lights)");
-  cmd->add_option("--env-scale", args->envScale, "Multiplies --env's radiance (default 1)");
-  cmd->add_option("--env-rotate", args->envRotate, "Rotates --env's map about +y, degrees (default 0)");
-  cmd->add_option("--view", args->view,
-                  "Frame the whole model from a side, replacing the scene's camera: front (+z, a bare mesh's "
-                  "default) | back | left | right | top | bottom | iso");
-  cmd->add_option("--first-sample", args->firstSample,
-                  "Render sample indices K .. K+spp-1 of the deterministic sequence (split renders, then merge)");
-  jobs::addJobOptions(cmd, args->job);
-  cmd->add_flag("-q,--quiet", args->quiet, "No progress bar");
-  cmd->add_flag("-v,--verbose", args->verbose, "Scene, BVH, device and wave details on stderr");
   cmd->add_flag("--profile", args->profile,
                 "Print each stage's share of the render time (OpenCL profiling events; host timers on --device host)")
       ->group(kTuning);

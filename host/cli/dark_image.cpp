@@ -20,10 +20,7 @@ std::string darkImageWarning(const std::vector<float>& rgb, const Scene& scene) 
   std::nth_element(lum.begin(), lum.begin() + std::ptrdiff_t(k), lum.end());
   const float p99 = lum[k];
   if (!(p99 < 0.01f)) return "";
-  char level[64];
-  std::snprintf(level, sizeof level, "%.2g", double(p99));
-  std::string text = scene.path + ": the image is nearly black (99% of its pixels darker than " + level +
-                     " of white): ";
+  std::string text = scene.path + ": the image is nearly black (99% of its pixels below 1% of white): ";
   const EnvironmentDesc& env = scene.environment;
   if (scene.render.integrator == Integrator::Ao)
     return text + "ambient occlusion sees little of the model; --view or --camera frames it";
