@@ -179,6 +179,8 @@ TEST_CASE("cli: messages name the option or value that changes the outcome" * do
   const CliResult e = runMontecl(env);
   checkRefused(e, out, {"--env", "'1,1'", "R,G,B", "1,1,1"});
   CHECK_FALSE(has(e.err, "cannot open"));
+  env.back() = "1,x,1";
+  checkRefused(runMontecl(env), out, {"--env", "'1,x,1'", "R,G,B"});
   // A mistyped option or command gets the nearest name.
   std::vector<std::string> typo = small(dir, "plain.obj", "out.png");
   typo.insert(typo.end(), {"--integrater", "path"});

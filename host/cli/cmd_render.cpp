@@ -268,8 +268,8 @@ int runRender(const RenderArgs& a) {
     std::cerr << "montecl: warning: " << stats.nanRays
               << " rays with NaN/inf origin or direction were treated as misses\n";
   if (!job.writesImage()) return kExitOk;
-  const volatile int& gInterrupted = *renderInterruptFlag();
-  const bool interrupted = gInterrupted && stats.stoppedEarly;  // a signal after the last wave changes nothing
+  const int signalled = *renderInterruptFlag();
+  const bool interrupted = signalled && stats.stoppedEarly;  // a signal after the last wave changes nothing
   // Only the final image is denoised (an MPI job's rank 0, after the merge of the ranks' films).
   double denoiseSeconds = 0.0;
   std::vector<float> denoised;
@@ -320,7 +320,7 @@ int runRender(const RenderArgs& a) {
     std::cout << (interrupted ? "interrupted" : "time limit reached") << ": " << stats.samples
               << " pixel samples done; the image holds each pixel's own sample count\n";
   if (!interrupted) return kExitOk;
-  return gInterrupted == SIGTERM ? kExitTerminated : kExitInterrupted;
+  return signalled == SIGTERM ? kExitTerminated : kExitInterrupted;
 }
 
 }  // namespace

@@ -26,16 +26,16 @@ void onInterrupt(int sig) {
   std::signal(sig, SIG_DFL);
 }
 
-bool ignored(int sig) {
+bool signalInheritedIgnored(int sig) {
   struct sigaction sa {};
   return sigaction(sig, nullptr, &sa) == 0 && !(sa.sa_flags & SA_SIGINFO) && sa.sa_handler == SIG_IGN;
 }
 
 // The dispositions montecl inherited, read before main(): OpenCL implementations (PoCL's LLVM)
 // install their own SIGINT/SIGTERM handlers when they load, replacing an inherited SIG_IGN.
-const bool kInheritedIgnore[2] = {ignored(SIGINT), ignored(SIGTERM)};
+const bool kInheritedIgnore[2] = {signalInheritedIgnored(SIGINT), signalInheritedIgnored(SIGTERM)};
 
-void install(int i) {
+void installHandler(int i) {
   struct sigaction sa {};
   sa.sa_handler = kInheritedIgnore[i] ? SIG_IGN : onInterrupt;
   sigemptyset(&sa.sa_mask);
@@ -52,7 +52,7 @@ void endLoading() { gLoading = 0; }
 InterruptGuard::InterruptGuard() {
   for (int i = 0; i < 2; ++i) {
     if (sigaction(kSignals[i], nullptr, &previous_[i]) != 0) continue;
-    install(i);
+    installHandler(i);
     installed_[i] = true;
   }
 }
@@ -67,7 +67,7 @@ void InterruptGuard::reinstall() {
   // second signal kills), which a reinstall must not undo.
   if (!gLoading) return;
   for (int i = 0; i < 2; ++i)
-    if (installed_[i]) install(i);
+    if (installed_[i]) installHandler(i);
 }
 
 }  // namespace montecl

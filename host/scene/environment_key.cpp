@@ -53,8 +53,10 @@ EnvironmentDesc environmentFromOption(const std::string& text, float scale, floa
     env.radiance = glm::vec3(rgb[0], rgb[1], rgb[2]);
   } else {
     if (text.empty()) throwInputError("--env", "", "expected R,G,B or an environment map file");
-    // Numbers that are not three (1,1 or 0.5) are a constant mistyped, not a file name: say the forms.
-    if (text.find_first_not_of("0123456789.,+-eE ") == std::string::npos && !std::filesystem::exists(text))
+    // Numbers that are not three (1,1 or 0.5), or a list with a comma (1,x,1), are a constant
+    // mistyped rather than a file name (unless such a file exists): say the forms.
+    const bool numeric = text.find_first_not_of("0123456789.,+-eE ") == std::string::npos;
+    if ((numeric || text.find(',') != std::string::npos) && !std::filesystem::exists(text))
       throwInputError("--env", "", "'" + text + "' is neither R,G,B (three radiances, e.g. 1,1,1) nor an "
                                   "environment map file (.exr, .hdr, ...); none turns the environment off");
     env.file = std::filesystem::path(text).lexically_normal().string();
