@@ -22,6 +22,7 @@
 #include "cl/device_tuning.h"
 #include "cl/devices.h"
 #include "cli/commands.h"
+#include "cli/render_args.h"
 #include "cli/render_output.h"
 #include "cli/dark_image.h"
 #include "cli/load_steps.h"
@@ -37,6 +38,7 @@
 #include "render/progress.h"
 #include "render/stage_program.h"
 #include "render/wavefront.h"
+#include "scene/camera_basis.h"
 #include "scene/environment_key.h"
 #include "scene/load_util.h"
 #include "scene/scene.h"
@@ -49,44 +51,6 @@
 
 namespace montecl {
 namespace {
-
-struct RenderArgs {
-  std::string scene, output, device;
-  std::map<std::string, std::string> settings;  // render setting key -> its option's text (scene/render_settings.h)
-  std::string bvhLayout = "auto";
-  float splitBudget = BvhBuildOptions{}.splitBudget;  // --split-budget
-  std::optional<int> width, height;
-  std::optional<double> textureBudgetMiB;  // --texture-budget; unset: automatic
-  std::uint64_t waveSize = 0;
-  std::uint32_t firstSample = 0;
-  double targetError = 0.0, timeLimit = 0.0;
-  int minSpp = 16, maxSpp = 1024;
-  std::vector<std::string> aovs;
-  std::string env, view;            // --env R,G,B | FILE; --view SIDE
-  float envScale = 1.0f, envRotate = 0.0f;
-  std::size_t workGroupSize = 0;
-  unsigned lanes = 0;  // packet stages' width W (0: the device's)
-  bool quiet = false, verbose = false, overwrite = false, profile = false, noFuse = false;
-  jobs::JobArgs job;  // MPI split, --checkpoint, --resume (job/job.h)
-};
-
-void applyOverrides(const RenderArgs& a, Scene& scene) {
-  for (const RenderSetting& s : renderSettings()) {
-    const auto it = a.settings.find(s.key);
-    if (it != a.settings.end()) setFromText(s, it->second, scene.render);
-  }
-  if (a.width) scene.camera.width = *a.width;
-  if (a.height) scene.camera.height = *a.height;
-  // The command line's environment replaces the scene's; --view frames the model from that side.
-  if (!a.env.empty()) {
-    scene.environment = environmentFromOption(a.env, a.envScale, a.envRotate);
-    if (!scene.environment.file.empty()) scene.inputFiles.push_back(scene.environment.file);
-  }
-  if (!a.view.empty()) {
-    if (!isViewName(a.view)) throwInputError("--view", "", "unknown side '" + a.view + "' (known: " + viewNames() + ")");
-    scene.camera = defaultCamera(scene.boundsMin, scene.boundsMax, scene.camera.width, scene.camera.height, a.view);
-  }
-}
 
 // What `montecl merge` checks before combining this render with others (image/provenance.h).
 Provenance provenanceOf(const RenderArgs& a, const Scene& scene, const std::string& identityExtra) {
@@ -132,6 +96,9 @@ int runRender(const RenderArgs& a) {
   steps.finish();
   for (const std::string& w : warnings) std::cerr << "montecl: warning: " << w << "\n";
   applyOverrides(a, scene);
+  if (scene.fileCameras.size() > 1 && !a.camera && a.view.empty())
+    std::cerr << "montecl: warning: " << scene.path << ": " << scene.fileCameras.size()
+              << " cameras; camera 0 is used (--camera N picks camera N, from 0)\n";
   std::string output = a.output;
   std::string outputNote;
   if (output.empty()) output = defaultOutput(a.scene, a.overwrite, outputNote);
@@ -384,6 +351,14 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--view", args->view,
                   "Frame the whole model from a side, replacing the scene's camera: front (+z, a bare mesh's "
                   "default) | back | left | right | top | bottom | iso");
+  cmd->add_option("--camera", args->camera,
+                  "Render through the model file's camera N (a glTF file's perspective cameras, from 0, in "
+                  "the order its nodes meet them; default: the first, else the automatic framing)")
+      ->excludes("--view");
+  cmd->add_option("--look-from", args->lookFrom, "Camera position X,Y,Z, replacing the chosen camera's (scene units)");
+  cmd->add_option("--look-at", args->lookAt, "Point the camera looks at, X,Y,Z, replacing the chosen camera's");
+  cmd->add_option("--fov", args->fov, "Vertical field of view in degrees, replacing the camera's (up to 179.9)")
+      ->check(positiveNumber(179.9));
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar");
   cmd->add_flag("-v,--verbose", args->verbose, "Scene, BVH, device and wave details on stderr");
   cmd->option_defaults()->group(kRunsGroup);

@@ -171,6 +171,9 @@ struct Scene {
   bool deferMissingTextures = false;
   std::size_t degenerateDropped = 0;     // zero-area triangles removed while loading
   std::string defaultsNote;              // a bare model's environment and why (applyBareModelDefaults), for -v
+  // A bare model's own cameras (glTF perspective cameras, in the order the node walk meets them;
+  // the first is `camera`): what `render --camera N` picks from.
+  std::vector<Camera> fileCameras;
   glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world bounds (instances by their placed boxes)
   // Instanced geometry, kept unflattened (scene_instances.h): meshRanges[r] is a run of
   // `triangles` in the mesh's own (object) space, placed once per entry of `instances` naming it;
