@@ -312,7 +312,8 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_flag("--overwrite", args->overwrite, "Let the default output name replace an existing file");
   cmd->add_option("--width", args->width, "Image width in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
   cmd->add_option("--height", args->height, "Image height in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
-  cmd->add_option("--device", args->device, "OpenCL device: P:D, part of the device or platform name, or host (CPU, no OpenCL)");
+  cmd->add_option("--device", args->device, "OpenCL device: P:D, part of the device or platform name, or host (CPU, no OpenCL); default: "
+                  "the first GPU, else the first CPU device (`montecl devices` lists them)");
   // Every render setting with an option (scene/render_settings.h): the scene file's rule and help.
   for (const RenderSetting& setting : renderSettings()) {
     if (setting.option.empty()) continue;
