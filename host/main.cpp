@@ -7,6 +7,7 @@
 
 #include "cl/cl_errors.h"
 #include "cli/commands.h"
+#include "cli/suggest.h"
 #include "job/mpi.h"
 #include "util/errors.h"
 #include "util/heap_trim.h"
@@ -46,7 +47,9 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-    std::cerr << "montecl: error: " << oneLineError(e.what()) << " (see --help)\n";
+    // A mistyped command or option gets the nearest known name instead of CLI11's listing.
+    const std::string hint = unknownNameHint(app, argc, argv);
+    std::cerr << "montecl: error: " << (hint.empty() ? oneLineError(e.what()) : hint) << " (see --help)\n";
     return jobs::failed(kExitBadInput);
   } catch (const InputError& e) {
     std::cerr << "montecl: error: " << oneLineError(e.what()) << "\n";

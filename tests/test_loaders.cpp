@@ -91,7 +91,7 @@ TEST_CASE("OBJ: vt and vn go to uv/n per corner, normals normalised, flags only 
   REQUIRE(r.triangles.size() == 2);
   CHECK(r.triangles[0].attributes == 0);
   CHECK(r.triangles[1].attributes == 0);
-  CHECK(countContaining(warnings, "range.obj: line 6: face vn index -2 out of range (0 vn before it): those faces get no vt/vn (2 more)") == 1);
+  CHECK(countContaining(warnings, "range.obj: line 6: face vn index -2 out of range (0 vn before it): those faces get no vt/vn (2 more faces like it)") == 1);
   CHECK(warnings.size() == 1);
 }
 
@@ -172,7 +172,7 @@ TEST_CASE("MTL: one warning per kind of unused statement, naming the MTL and the
   std::vector<std::string> warnings;
   loadObj(dir.file("q.obj"), &warnings);
   INFO([&] { std::string all; for (auto& w : warnings) all += w + "\n"; return all; }());
-  CHECK(countContaining(warnings, "m.mtl: line 2: 'Ka' (ambient colour) not used by montecl, ignored (1 more)") == 1);
+  CHECK(countContaining(warnings, "m.mtl: line 2: 'Ka' (ambient colour) not used by montecl, ignored (1 more like it; -v lists them)") == 1);
   CHECK(countContaining(warnings, "m.mtl: line 3: 'illum' (illumination model) not used") == 1);
   CHECK(countContaining(warnings, "'Ni'") == 1);
   CHECK(countContaining(warnings, "m.mtl: line 5: 'd' (constant opacity) not used") == 1);
@@ -198,9 +198,9 @@ TEST_CASE("OBJ: statements montecl does not use are one warning per kind; used o
   loadObj(dir.file("u.obj"), &warnings);
   INFO([&] { std::string all; for (auto& w : warnings) all += w + "\n"; return all; }());
   CHECK(warnings.size() == 5);
-  CHECK(countContaining(warnings, "u.obj: line 8: 'l' (lines) not rendered by montecl, ignored (1 more)") == 1);
+  CHECK(countContaining(warnings, "u.obj: line 8: 'l' (lines) not rendered by montecl, ignored (1 more like it; -v lists them)") == 1);
   CHECK(countContaining(warnings, "u.obj: line 10: 'p' (points)") == 1);
-  CHECK(countContaining(warnings, "u.obj: line 11: free-form geometry ('cstype') not rendered by montecl, ignored (1 more)") == 1);
+  CHECK(countContaining(warnings, "u.obj: line 11: free-form geometry ('cstype') not rendered by montecl, ignored (1 more like it; -v lists them)") == 1);
   CHECK(countContaining(warnings, "u.obj: line 13: 'usemap' not used") == 1);
   CHECK(countContaining(warnings, "u.obj: line 3: smoothing groups ('s') without vn") == 1);
   // With vn, smoothing groups say nothing; nor do o, g, s off.

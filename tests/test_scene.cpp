@@ -332,14 +332,18 @@ TEST_CASE("bare OBJ: default camera and render settings, camera frames the bound
   CHECK(scene.environment.radiance * scene.environment.scale == glm::vec3(montecl::kDefaultSkyRadiance));
 }
 
-TEST_CASE("bare OBJ with an emitter: path-traced by its own light, no default sky" * doctest::test_suite("cpu")) {
+TEST_CASE("bare OBJ with an emitter: path-traced by its own light under a dimmer default sky" * doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("lamp.mtl", "newmtl lamp\nKe 4 4 4\n");
   dir.write("lamp.obj", "mtllib lamp.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 -1\nv 1 0 -1\nv 0 1 -1\n"
                         "f 1 2 3\nusemtl lamp\nf 4 5 6\n");
   Scene scene = load(dir.file("lamp.obj"));
   CHECK(scene.render.integrator == montecl::Integrator::Path);
-  CHECK_FALSE(scene.environment.enabled);
+  // The model's lights keep a sky, dimmer than a model without lights gets, so they still read.
+  CHECK(scene.environment.enabled);
+  CHECK(scene.environment.file.empty());
+  CHECK(scene.environment.radiance * scene.environment.scale == glm::vec3(montecl::kLitModelSkyRadiance));
+  CHECK(scene.defaultsNote.find("--env none") != std::string::npos);
 }
 
 TEST_CASE("scene file camera: \"auto\" and missing keys come from the automatic framing" * doctest::test_suite("cpu")) {

@@ -14,6 +14,7 @@
 #include <map>
 #include <limits>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include "bvh/bvh.h"
@@ -21,7 +22,11 @@
 #include "cl/device_tuning.h"
 #include "cl/devices.h"
 #include "cli/commands.h"
+#include "cli/render_args.h"
 #include "cli/render_output.h"
+#include "cli/dark_image.h"
+#include "cli/load_steps.h"
+#include "cli/render_signals.h"
 #include "job/job.h"
 #include "cli/validators.h"
 #include "image/exr_layers.h"
@@ -33,7 +38,9 @@
 #include "render/progress.h"
 #include "render/stage_program.h"
 #include "render/wavefront.h"
+#include "scene/camera_basis.h"
 #include "scene/environment_key.h"
+#include "scene/load_util.h"
 #include "scene/scene.h"
 #include "texture/scene_textures.h"
 #include "texture/texture_identity.h"
@@ -44,87 +51,6 @@
 
 namespace montecl {
 namespace {
-
-struct RenderArgs {
-  std::string scene, output, device;
-  std::map<std::string, std::string> settings;  // render setting key -> its option's text (scene/render_settings.h)
-  std::string bvhLayout = "auto";
-  float splitBudget = BvhBuildOptions{}.splitBudget;  // --split-budget
-  std::optional<int> width, height;
-  std::optional<double> textureBudgetMiB;  // --texture-budget; unset: automatic
-  std::uint64_t waveSize = 0;
-  std::uint32_t firstSample = 0;
-  double targetError = 0.0, timeLimit = 0.0;
-  int minSpp = 16, maxSpp = 1024;
-  std::vector<std::string> aovs;
-  std::string env, view;            // --env R,G,B | FILE; --view SIDE
-  float envScale = 1.0f, envRotate = 0.0f;
-  std::size_t workGroupSize = 0;
-  unsigned lanes = 0;  // packet stages' width W (0: the device's)
-  bool quiet = false, verbose = false, overwrite = false, profile = false, noFuse = false;
-  jobs::JobArgs job;  // MPI split, --checkpoint, --resume (job/job.h)
-};
-
-void applyOverrides(const RenderArgs& a, Scene& scene) {
-  for (const RenderSetting& s : renderSettings()) {
-    const auto it = a.settings.find(s.key);
-    if (it != a.settings.end()) setFromText(s, it->second, scene.render);
-  }
-  if (a.width) scene.camera.width = *a.width;
-  if (a.height) scene.camera.height = *a.height;
-  // The command line's environment replaces the scene's; --view frames the model from that side.
-  if (!a.env.empty()) {
-    scene.environment = environmentFromOption(a.env, a.envScale, a.envRotate);
-    if (!scene.environment.file.empty()) scene.inputFiles.push_back(scene.environment.file);
-  }
-  if (!a.view.empty()) {
-    if (!isViewName(a.view)) throwInputError("--view", "", "unknown side '" + a.view + "' (known: " + viewNames() + ")");
-    scene.camera = defaultCamera(scene.boundsMin, scene.boundsMax, scene.camera.width, scene.camera.height, a.view);
-  }
-}
-
-// Set by SIGINT or SIGTERM while rendering (to the signal number): the wave loop stops after the
-// current wave and the image so far is written; the exit status is then 128 + signal (130 for
-// SIGINT, 143 for SIGTERM) if the render stopped early, 0 if every wave had already completed. A
-// second signal of the same kind kills the process as usual (during the image write it is deferred
-// until the file is complete: util/atomic_file.h). A signal the parent ignored (SIG_IGN, e.g. a
-// background job of a script) stays ignored.
-volatile int gInterrupted = 0;
-
-void onInterrupt(int sig) {
-  if (!gInterrupted) gInterrupted = sig;
-  std::signal(sig, SIG_DFL);
-}
-
-bool ignored(int sig) {
-  struct sigaction sa {};
-  return sigaction(sig, nullptr, &sa) == 0 && !(sa.sa_flags & SA_SIGINFO) && sa.sa_handler == SIG_IGN;
-}
-
-// The dispositions montecl inherited, read before main(): OpenCL implementations (PoCL's LLVM)
-// install their own SIGINT/SIGTERM handlers when they load, replacing an inherited SIG_IGN.
-const bool kInheritedIgnore[2] = {ignored(SIGINT), ignored(SIGTERM)};
-
-struct InterruptGuard {
-  static constexpr int kSignals[2] = {SIGINT, SIGTERM};
-  InterruptGuard() {
-    for (int i = 0; i < 2; ++i) {
-      installed[i] = false;
-      if (sigaction(kSignals[i], nullptr, &previous[i]) != 0) continue;
-      struct sigaction sa {};
-      sa.sa_handler = kInheritedIgnore[i] ? SIG_IGN : onInterrupt;
-      sigemptyset(&sa.sa_mask);
-      sa.sa_flags = SA_RESTART;
-      installed[i] = sigaction(kSignals[i], &sa, nullptr) == 0;
-    }
-  }
-  ~InterruptGuard() {
-    for (int i = 0; i < 2; ++i)
-      if (installed[i]) sigaction(kSignals[i], &previous[i], nullptr);
-  }
-  struct sigaction previous[2];
-  bool installed[2];
-};
 
 // What `montecl merge` checks before combining this render with others (image/provenance.h).
 Provenance provenanceOf(const RenderArgs& a, const Scene& scene, const std::string& identityExtra) {
@@ -161,12 +87,21 @@ int runRender(const RenderArgs& a) {
       if (s.key == "missing_textures") setFromText(s, it->second, chosen);
     missing = chosen.missingTextures;
   }
+  // From here a signal ends the load at once (cli/render_signals.h); slow steps say so on stderr.
+  InterruptGuard guard;
+  LoadSteps steps(!a.quiet);
+  listEveryWarning(a.verbose);  // -v: every warning of a kind, not the first and a count
+  steps.begin("reading " + a.scene);
   Scene scene = loadScene(a.scene, warnings, missing);
+  steps.finish();
   for (const std::string& w : warnings) std::cerr << "montecl: warning: " << w << "\n";
   applyOverrides(a, scene);
   if (filterHasNegativeLobes(scene.render.filter))
     std::cerr << "montecl: warning: filter " << filterText(scene.render.filter)
               << ": its negative lobes are clamped to 0 (importance sampling draws offsets from max(0, filter))\n";
+  if (scene.fileCameras.size() > 1 && !a.camera && a.view.empty())
+    std::cerr << "montecl: warning: " << scene.path << ": " << scene.fileCameras.size()
+              << " cameras; camera 0 is used (--camera N picks camera N, from 0)\n";
   std::string output = a.output;
   std::string outputNote;
   if (output.empty()) output = defaultOutput(a.scene, a.overwrite, outputNote);
@@ -187,6 +122,7 @@ int runRender(const RenderArgs& a) {
                                               (a.targetError > 0.0 ? " (--max-spp)" : " (spp)") +
                                               " samples run past sample index 4294967295");
   DeviceInfo device = selectDevice(jobs::deviceSpec(a.device));
+  guard.reinstall();
   // Instances render through the two-level BVH, which only the wide layout traverses.
   const BvhLayout askedLayout = parseBvhLayout(a.bvhLayout);
   const bool instanced = !scene.instances.empty();
@@ -205,6 +141,7 @@ int runRender(const RenderArgs& a) {
   // reads the reflectance textures, the normal AOV the normal maps, so a film with AOVs
   // reads both; the denoiser's albedo and normal guides are these AOVs.
   const bool filmAovs = !a.aovs.empty() || scene.render.denoise;
+  steps.begin("loading textures");
   const SceneTextures textures = loadSceneTextures(
       scene, textureBudget, textureWarnings, textureUsesOf(integratorDesc(scene.render.integrator), filmAovs));
   const double textureMs =
@@ -212,10 +149,13 @@ int runRender(const RenderArgs& a) {
   for (const std::string& w : textureWarnings) std::cerr << "montecl: warning: " << scene.path << ": " << w << "\n";
   BvhBuildOptions buildOptions;
   buildOptions.splitBudget = a.splitBudget;
+  steps.begin("building the BVH");
   Bvh bvh = buildSceneBvh(scene, buildOptions);
+  steps.finish();
   const bool lit = integratorDesc(scene.render.integrator).lit &&
                    !scene.environment.enabled && scene.lights.empty();  // these light the scene by themselves
-  if (lit && !hasEmitter(scene))
+  const bool saidBlack = lit && !hasEmitter(scene);  // the dark-image warning would repeat this one
+  if (saidBlack)
     std::cerr << "montecl: warning: " << scene.path << ": integrator " << choiceName(scene.render.integrator)
               << " but nothing emits (no Ke, no mesh "
               << "\"emission\"): the image is black\n";
@@ -237,6 +177,7 @@ int runRender(const RenderArgs& a) {
               << ", " << bvhLayoutName(layout) << " BVH layout, " << resolveLanes(a.lanes, device)
               << " lanes\n"
               << "montecl: " << cameraJson(scene.camera) << "\n";
+    if (!scene.defaultsNote.empty() && a.env.empty()) std::cerr << "montecl: environment: " << scene.defaultsNote << "\n";
     if (!textures.textures.empty())
       std::cerr << "montecl: " << textures.textures.size() << " textures, " << textures.levels.size()
                 << " mip levels, " << (textures.bytes() >> 20) << " MiB of texels (budget " << (textureBudget >> 20)
@@ -249,7 +190,11 @@ int runRender(const RenderArgs& a) {
   options.minSpp = a.minSpp;
   options.maxSpp = a.maxSpp;
   options.timeLimit = a.timeLimit;
-  options.interrupt = &gInterrupted;
+  options.interrupt = renderInterruptFlag();
+  options.wavesStart = [&steps] {  // loading is over: a signal now stops after a wave
+    endLoading();
+    steps.finish();
+  };
   options.aovs = filmAovs;
   options.workGroupSize = a.workGroupSize;
   options.lanes = a.lanes;
@@ -265,29 +210,36 @@ int runRender(const RenderArgs& a) {
   jobs::Job job(a.job, scene, options);
   RenderPart part;
   part.textures = &textures;
+  steps.begin("preparing the triangles");
   PreparedTriangles triangles = prepareTriangles(scene, bvh);
   part.triangles = &triangles;
   std::vector<SceneTriangle>().swap(scene.triangles);
   std::vector<glm::vec4>().swap(scene.vertexTangents);  // in the table too (prepareTriangles)
   trimHeap();
+  steps.begin("building the kernels");
   WavefrontRenderer renderer(device, options);
+  guard.reinstall();
   if (a.verbose)
     std::cerr << "montecl: kernels " << (renderer.programFromCache() ? "loaded from cache" : "compiled") << " in "
               << renderer.programBuildMs() << " ms\n";
 
   RenderStats stats;
   ProgressBar bar(!a.quiet);
-  InterruptGuard guard;
+  // The lights' and the device's tables are built inside the render, before its first wave.
+  steps.begin("preparing lights and device tables");
   Film film = job.render(renderer, scene, bvh, stats, [&](std::uint64_t done, std::uint64_t total, const RenderStats& s) {
     bar.update(done, total, s);
   }, part);
+  endLoading();
+  steps.finish();
   bar.finish();
   if (a.profile) std::cout << formatProfile(stats.profile, stats.seconds);
   if (stats.nanRays > 0)  // each rank of an MPI job warns about its own pixels
     std::cerr << "montecl: warning: " << stats.nanRays
               << " rays with NaN/inf origin or direction were treated as misses\n";
   if (!job.writesImage()) return kExitOk;
-  const bool interrupted = gInterrupted && stats.stoppedEarly;  // a signal after the last wave changes nothing
+  const int signalled = *renderInterruptFlag();
+  const bool interrupted = signalled && stats.stoppedEarly;  // a signal after the last wave changes nothing
   // Only the final image is denoised (an MPI job's rank 0, after the merge of the ranks' films).
   double denoiseSeconds = 0.0;
   std::vector<float> denoised;
@@ -314,6 +266,9 @@ int runRender(const RenderArgs& a) {
     throw RuntimeError(std::to_string(bad) + " of " + std::to_string(img.pixelCount()) +
                        " pixels hold NaN or infinite values (radiance overflows a float: check emission and camera); " +
                        output + " was not written");
+  if (!interrupted && !saidBlack)
+    if (const std::string dark = darkImageWarning(denoised.empty() ? film.meanRgb() : denoised, scene); !dark.empty())
+      std::cerr << "montecl: warning: " << dark << "\n";
   if (isExr(output))
     writeLayeredExr(output, img);
   else
@@ -335,10 +290,19 @@ int runRender(const RenderArgs& a) {
     std::cout << (interrupted ? "interrupted" : "time limit reached") << ": " << stats.samples
               << " pixel samples done; the image holds each pixel's own sample count\n";
   if (!interrupted) return kExitOk;
-  return gInterrupted == SIGTERM ? kExitTerminated : kExitInterrupted;
+  return signalled == SIGTERM ? kExitTerminated : kExitInterrupted;
 }
 
 }  // namespace
+
+// `render --help` in groups, the options most renders set first: the common ones (output, size,
+// device, integrator, samples, environment, view), then the integrators' settings, then adaptive
+// sampling, time limits and split or resumable renders, then the knobs that change speed or memory.
+const char* const kSettingsGroup = "Integrator and sampling settings (a scene file's render keys)";
+const char* const kRunsGroup = "Adaptive sampling, time limits, split and resumable renders";
+const char* const kTuning = "Tuning (speed and memory; the image is the same for any value unless noted)";
+// The render settings listed with the common options.
+const std::set<std::string> kCommonSettings = {"integrator", "spp", "seed", "denoise", "missing_textures"};
 
 void addRenderCommand(CLI::App& app, int& exitCode) {
   auto args = std::make_shared<RenderArgs>();
@@ -349,49 +313,60 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                   "samples, var.R, var.G, var.B); default: <scene name>.png in the current folder (<folder "
                   "name>.png for a scene.json), never replacing a file: <name>-1.png, ... unless --overwrite");
   cmd->add_flag("--overwrite", args->overwrite, "Let the default output name replace an existing file");
+  cmd->add_option("--width", args->width, "Image width in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
+  cmd->add_option("--height", args->height, "Image height in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
+  cmd->add_option("--device", args->device, "OpenCL device: P:D, part of the device or platform name, or host (CPU, no OpenCL); default: "
+                  "the first GPU, else the first CPU device (`montecl devices` lists them)");
   // Every render setting with an option (scene/render_settings.h): the scene file's rule and help.
   for (const RenderSetting& setting : renderSettings()) {
     if (setting.option.empty()) continue;
     const std::string key = setting.key;
+    cmd->option_defaults()->group(kCommonSettings.count(key) ? "Options" : kSettingsGroup);
     if (setting.rule.kind == SettingRule::Bool) {  // a flag: present means true
       cmd->add_flag_function(
           setting.option, [args, key](std::int64_t) { args->settings[key] = "true"; },
           setting.help + " (scene file: render." + key + ", default " + settingValueText(setting.get(RenderSettings{})) + ")");
       continue;
     }
+    // A bare model is path traced (applyBareModelDefaults): the help says so beside the table's default.
+    const std::string bare = key == "integrator" ? "; path for a bare model" : "";
     cmd->add_option_function<std::string>(
            setting.option, [args, key](const std::string& v) { args->settings[key] = v; },
-           setting.help + " (scene file: render." + key + ", default " + settingValueText(setting.get(RenderSettings{})) + ")")
+           setting.help + " (scene file: render." + key + ", default " + settingValueText(setting.get(RenderSettings{})) +
+               bare + ")")
         ->check(CLI::Validator([&setting](std::string& text) { return settingTextProblem(setting, text); },
                                setting.rule.text))
         ->type_name(setting.rule.kind == SettingRule::Choice   ? "NAME"
                     : setting.rule.kind == SettingRule::Filter ? "FILTER"
                     : setting.rule.kind == SettingRule::Integer ? "INT" : "FLOAT");
   }
-  cmd->add_option("--width", args->width, "Image width in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
-  cmd->add_option("--height", args->height, "Image height in pixels (up to 16384)")->check(positiveInteger(kMaxImageSide));
-  cmd->add_option("--device", args->device, "OpenCL device: P:D, part of the device or platform name, or host (CPU, no OpenCL)");
-  cmd->add_option("--wave-size", args->waveSize, "Pixel samples per wave (default: sized from the measured rate, at most 8192 per CPU compute unit, 2^20 on GPUs)")
-      ->check(integerIn(1, std::numeric_limits<long long>::max(), "a positive integer"));
-  cmd->add_option("--texture-budget", args->textureBudgetMiB,
-                  "Device memory for textures in MiB (default: 1024, at most the device's largest allocation); "
-                  "over it, the finest mip levels are dropped with a warning")
-      ->check(positiveNumber());
-  cmd->add_option("--work-group-size", args->workGroupSize, "Work-group size (default: min(64, kernel max))")
-      ->check(positiveInteger());
-  cmd->add_option("--lanes", args->lanes,
-                  "Items per work item of the packet stages, in vector lanes: 1 | 4 | 8 | 16 (default: the "
-                  "device's, `montecl devices`; the host backend runs 1); images are the same for every value")
-      ->check(CLI::IsMember({1u, 4u, 8u, 16u}));
-  cmd->add_flag("--no-fuse", args->noFuse,
-                "Launch every stage of a wave as its own kernel (default: AO and direct waves run as one fused "
-                "kernel on devices with packet stages); images are the same either way");
-  cmd->add_option("--split-budget", args->splitBudget,
-                  "BVH spatial splits: at most this many extra triangle references per triangle (0: none)")
-      ->check(finiteIn(0.0, 4.0));
-  cmd->add_option("--bvh-layout", args->bvhLayout,
-                  "BVH the kernels traverse: auto (binary on GPUs, wide otherwise) | wide | binary")
-      ->check(CLI::IsMember({"auto", "wide", "binary"}));
+  cmd->option_defaults()->group("Options");
+  cmd->add_option("--aov", args->aovs,
+                  "Extra EXR channels, comma-separated: albedo (albedo.R/G/B), normal (N.X/Y/Z), depth (Z), "
+                  "emission (emission.R/G/B: emitted radiance seen directly), or all; averaged over each "
+                  "pixel's samples")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"albedo", "normal", "depth", "emission", "all"}));
+  cmd->add_option("--env", args->env,
+                  "Environment light replacing the scene's: R,G,B (constant radiance), a latitude-longitude "
+                  "map file (.exr, .hdr, ...), or none (a bare model gets a white sky: radiance 1, or 0.25 when "
+                  "it brings its own lights)");
+  cmd->add_option("--env-scale", args->envScale, "Multiplies --env's radiance (default 1)");
+  cmd->add_option("--env-rotate", args->envRotate, "Rotates --env's map about +y, degrees (default 0)");
+  cmd->add_option("--view", args->view,
+                  "Frame the whole model from a side, replacing the scene's camera: front (+z, a bare mesh's "
+                  "default) | back | left | right | top | bottom | iso");
+  cmd->add_option("--camera", args->camera,
+                  "Render through the model file's camera N (a glTF file's perspective cameras, from 0, in "
+                  "the order its nodes meet them; default: the first, else the automatic framing)")
+      ->excludes("--view");
+  cmd->add_option("--look-from", args->lookFrom, "Camera position X,Y,Z, replacing the chosen camera's (scene units)");
+  cmd->add_option("--look-at", args->lookAt, "Point the camera looks at, X,Y,Z, replacing the chosen camera's");
+  cmd->add_option("--fov", args->fov, "Vertical field of view in degrees, replacing the camera's (up to 179.9)")
+      ->check(positiveNumber(179.9));
+  cmd->add_flag("-q,--quiet", args->quiet, "No progress bar");
+  cmd->add_flag("-v,--verbose", args->verbose, "Scene, BVH, device and wave details on stderr");
+  cmd->option_defaults()->group(kRunsGroup);
   cmd->add_option("--target-error", args->targetError,
                   "Adaptive sampling: sample until each pixel's relative standard error (stderr / max(mean "
                   "luminance, 0.01)) is at most this, between --min-spp and --max-spp; ignores --spp")
@@ -403,27 +378,41 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--time", args->timeLimit,
                   "Stop after the wave that crosses this many seconds and write the image so far")
       ->check(positiveNumber());
-  cmd->add_option("--aov", args->aovs,
-                  "Extra EXR channels, comma-separated: albedo (albedo.R/G/B), normal (N.X/Y/Z), depth (Z), "
-                  "emission (emission.R/G/B: emitted radiance seen directly), or all; averaged over each "
-                  "pixel's samples")
-      ->delimiter(',')
-      ->check(CLI::IsMember({"albedo", "normal", "depth", "emission", "all"}));
-  cmd->add_option("--env", args->env,
-                  "Environment light replacing the scene's: R,G,B (constant radiance) or a latitude-longitude "
-                  "map file (.exr, .hdr, ...)");
-  cmd->add_option("--env-scale", args->envScale, "Multiplies --env's radiance (default 1)");
-  cmd->add_option("--env-rotate", args->envRotate, "Rotates --env's map about +y, degrees (default 0)");
-  cmd->add_option("--view", args->view,
-                  "Frame the whole model from a side, replacing the scene's camera: front (+z, a bare mesh's "
-                  "default) | back | left | right | top | bottom | iso");
   cmd->add_option("--first-sample", args->firstSample,
                   "Render sample indices K .. K+spp-1 of the deterministic sequence (split renders, then merge)");
   jobs::addJobOptions(cmd, args->job);
-  cmd->add_flag("-q,--quiet", args->quiet, "No progress bar");
-  cmd->add_flag("-v,--verbose", args->verbose, "Scene, BVH, device and wave details on stderr");
+  cmd->option_defaults()->group(kTuning);
+  cmd->add_option("--wave-size", args->waveSize, "Pixel samples per wave (default: sized from the measured rate, at most 8192 per CPU compute unit, 2^20 on GPUs)")
+      ->check(integerIn(1, std::numeric_limits<long long>::max(), "a positive integer"))
+      ->group(kTuning);
+  cmd->add_option("--texture-budget", args->textureBudgetMiB,
+                  "Device memory for textures in MiB (default: 1024, at most the device's largest allocation); "
+                  "over it, the finest mip levels are dropped with a warning")
+      ->check(positiveNumber())
+      ->group(kTuning);
+  cmd->add_option("--work-group-size", args->workGroupSize, "Work-group size (default: min(64, kernel max))")
+      ->check(positiveInteger())
+      ->group(kTuning);
+  cmd->add_option("--lanes", args->lanes,
+                  "Items per work item of the packet stages, in vector lanes: 1 | 4 | 8 | 16 (default: the "
+                  "device's, `montecl devices`; the host backend runs 1); images are the same for every value")
+      ->check(CLI::IsMember({1u, 4u, 8u, 16u}))
+      ->group(kTuning);
+  cmd->add_flag("--no-fuse", args->noFuse,
+                "Launch every stage of a wave as its own kernel (default: AO and direct waves run as one fused "
+                "kernel on devices with packet stages); images are the same either way")
+      ->group(kTuning);
+  cmd->add_option("--split-budget", args->splitBudget,
+                  "BVH spatial splits: at most this many extra triangle references per triangle (0: none)")
+      ->check(finiteIn(0.0, 4.0))
+      ->group(kTuning);
+  cmd->add_option("--bvh-layout", args->bvhLayout,
+                  "BVH the kernels traverse: auto (binary on GPUs, wide otherwise) | wide | binary")
+      ->check(CLI::IsMember({"auto", "wide", "binary"}))
+      ->group(kTuning);
   cmd->add_flag("--profile", args->profile,
-                "Print each stage's share of the render time (OpenCL profiling events; host timers on --device host)");
+                "Print each stage's share of the render time (OpenCL profiling events; host timers on --device host)")
+      ->group(kTuning);
   cmd->callback([args, &exitCode]() { exitCode = runRender(*args); });
 }
 

@@ -5,7 +5,12 @@
 #include "render/emitters.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include "kernels/shared/lights.h"
 #include "render/emitter_guide.h"
@@ -31,11 +36,115 @@ bool boxMeetsTriangle(double x0, double x1, double y0, double y1, const double p
   return true;
 }
 
+// The emitting texels of one texture under one Ke (the finest level kept): level 0 holds, per
+// texel, max(0, luminance(Ke x texel)) where some channel of Ke x texel is > 0 and -1 where none
+// is; each coarser level the largest of the (up to) 2 x 2 entries below it, up to one entry. Built
+// once per (texture, Ke) in time linear in the texels; mayEmit then asks it about a triangle's
+// footprint without reading every texel of it (reading the whole texture per triangle made the
+// table quadratic: thousands of triangles x millions of texels took minutes).
+struct EmissionPyramid {
+  std::vector<std::vector<float>> level;
+  std::vector<std::uint32_t> width, height;
+};
+
+EmissionPyramid buildEmissionPyramid(TextureTables tt, const TextureLevel& l, float3 ke) {
+  EmissionPyramid p;
+  std::vector<float> base(std::size_t(l.width) * l.height);
+  for (std::uint32_t y = 0; y < l.height; ++y)
+    for (std::uint32_t x = 0; x < l.width; ++x) {
+      const float3 e = ke * xyz(texel_at(tt, l, x, y));
+      // std::max keeps 0 for a NaN luminance, as the running maximum of the texel loop did.
+      base[std::size_t(y) * l.width + x] = (e.x > 0.0f || e.y > 0.0f || e.z > 0.0f) ? std::max(0.0f, luminance(e)) : -1.0f;
+    }
+  p.level.push_back(std::move(base));
+  p.width.push_back(l.width);
+  p.height.push_back(l.height);
+  while (p.width.back() > 1 || p.height.back() > 1) {
+    const std::uint32_t w = p.width.back(), h = p.height.back(), w2 = (w + 1) / 2, h2 = (h + 1) / 2;
+    const std::vector<float>& below = p.level.back();
+    std::vector<float> up(std::size_t(w2) * h2);
+    for (std::uint32_t y = 0; y < h2; ++y)
+      for (std::uint32_t x = 0; x < w2; ++x) {
+        float v = -1.0f;
+        for (std::uint32_t dy = 0; dy < 2; ++dy)
+          for (std::uint32_t dx = 0; dx < 2; ++dx)
+            if (2 * x + dx < w && 2 * y + dy < h) v = std::max(v, below[std::size_t(2 * y + dy) * w + 2 * x + dx]);
+        up[std::size_t(y) * w2 + x] = v;
+      }
+    p.level.push_back(std::move(up));
+    p.width.push_back(w2);
+    p.height.push_back(h2);
+  }
+  return p;
+}
+
+// Pyramids by (texture, Ke), built on first use. At most kPyramidBytes are kept: past that the
+// cache starts over (many materials sharing one large emissive map under different Ke).
+struct PyramidKey {
+  std::uint32_t texture;
+  std::array<std::uint32_t, 3> ke;
+  bool operator<(const PyramidKey& o) const { return std::tie(texture, ke) < std::tie(o.texture, o.ke); }
+};
+struct EmissionPyramids {
+  static constexpr std::size_t kPyramidBytes = std::size_t(512) << 20;
+  std::map<PyramidKey, EmissionPyramid> byKey;
+  std::size_t bytes = 0;
+  const EmissionPyramid& get(TextureTables tt, std::uint32_t texture, const TextureLevel& l, float3 ke) {
+    const PyramidKey key{texture, {as_uint(ke.x), as_uint(ke.y), as_uint(ke.z)}};
+    if (const auto it = byKey.find(key); it != byKey.end()) return it->second;
+    const std::size_t need = std::size_t(l.width) * l.height * sizeof(float) * 4 / 3;
+    if (bytes + need > kPyramidBytes) byKey.clear(), bytes = 0;
+    bytes += need;
+    return byKey.emplace(key, buildEmissionPyramid(tt, l, ke)).first->second;
+  }
+};
+
+// What mayEmit looks for: some emitting texel, in texels [x0, x1] x [y0, y1] of level 0 (shifted
+// by (ox, oy) whole repeats into the triangle's texel coordinates), whose bilinear footprint (one
+// texel around its centre) meets the triangle (px, py); the largest of their entries. Branch and
+// bound over the pyramid: a block with no emitting texel, one whose footprints all miss the
+// triangle, or one that cannot raise the largest entry found, is not opened. The answer is the
+// texel-by-texel loop's.
+struct FootprintSearch {
+  const EmissionPyramid& p;
+  const double *px, *py;
+  long long x0, x1, y0, y1, ox, oy;
+  bool any = false;
+  float maxLum = 0.0f;
+
+  void visit(std::size_t k, long long bx, long long by) {
+    const float v = p.level[k][std::size_t(by) * p.width[k] + std::size_t(bx)];
+    if (v < 0.0f || (any && v <= maxLum)) return;
+    const long long xa = std::max(x0, bx << k), xb = std::min(x1, ((bx + 1) << k) - 1);
+    const long long ya = std::max(y0, by << k), yb = std::min(y1, ((by + 1) << k) - 1);
+    if (xa > xb || ya > yb) return;
+    if (!boxMeetsTriangle(double(xa + ox) - 0.5, double(xb + ox) + 1.5, double(ya + oy) - 0.5, double(yb + oy) + 1.5, px,
+                          py))
+      return;
+    if (k == 0) {
+      any = true;
+      maxLum = std::max(maxLum, v);
+      return;
+    }
+    // The larger child first: the bound then cuts more.
+    std::array<std::pair<float, int>, 4> order;
+    int n = 0;
+    for (int c = 0; c < 4; ++c) {
+      const long long cx = 2 * bx + (c & 1), cy = 2 * by + (c >> 1);
+      if (cx >= p.width[k - 1] || cy >= p.height[k - 1]) continue;
+      order[std::size_t(n++)] = {p.level[k - 1][std::size_t(cy) * p.width[k - 1] + std::size_t(cx)], c};
+    }
+    std::sort(order.begin(), order.begin() + n, [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (int i = 0; i < n; ++i) visit(k - 1, 2 * bx + (order[std::size_t(i)].second & 1), 2 * by + (order[std::size_t(i)].second >> 1));
+  }
+};
+
 // Whether Le = Ke x the texture (bilinear, finest level kept) can be non-zero anywhere on triangle
 // tri: some texel with Ke x texel > 0 in a channel has a bilinear footprint (one texel around its
 // centre) that meets the triangle's UV image (any repeat of it). Writes the largest luminance of
 // those texels to maxLum.
-bool mayEmit(TextureTables tt, const Material& m, const Triangle& tri, const TriangleShading& sh, float& maxLum) {
+bool mayEmit(TextureTables tt, const Material& m, const Triangle& tri, const TriangleShading& sh, float& maxLum,
+             EmissionPyramids& pyramids) {
   const TextureDesc d = tt.textures[as_uint(m.maps.x)];
   const TextureLevel l = tt.levels[d.firstLevel];
   const bool uv = (as_uint(tri.e2.w) & MCL_ATTR_UV) != 0;
@@ -51,25 +160,33 @@ bool mayEmit(TextureTables tt, const Material& m, const Triangle& tri, const Tri
   // triangle's image above is in the surface's UVs, not the texture's).
   const bool plain = d.uvRow0 == float4(1.0f, 0.0f, 0.0f, 0.0f) && d.uvRow1 == float4(0.0f, 1.0f, 0.0f, 0.0f);
   const bool all = !plain || (xb - xa + 1.0) * (yb - ya + 1.0) > 4.0 * double(l.width) * double(l.height);
-  const float3 ke = xyz(m.emission);
-  bool any = false;
-  maxLum = 0.0f;
-  for (double y = all ? 0.0 : ya; y <= (all ? double(l.height) - 1.0 : yb); y += 1.0)
-    for (double x = all ? 0.0 : xa; x <= (all ? double(l.width) - 1.0 : xb); x += 1.0) {
-      const float3 e = ke * xyz(texel_at(tt, l, texture_wrap(int(x), l.width), texture_wrap(int(y), l.height)));
-      if (!(e.x > 0.0f || e.y > 0.0f || e.z > 0.0f)) continue;
-      if (!all && !boxMeetsTriangle(x - 0.5, x + 1.5, y - 0.5, y + 1.5, px, py)) continue;
-      any = true;
-      maxLum = std::max(maxLum, luminance(e));
+  const EmissionPyramid& p = pyramids.get(tt, as_uint(m.maps.x), l, xyz(m.emission));
+  if (all) {
+    const float top = p.level.back()[0];
+    maxLum = std::max(0.0f, top);
+    return top >= 0.0f;
+  }
+  // The texels [xa, xb] x [ya, yb] wrap (repeat) into the texture: one search per repeat they span.
+  const long long w = l.width, h = l.height;
+  const auto floorDiv = [](long long a, long long b) { return a >= 0 ? a / b : -((-a + b - 1) / b); };
+  FootprintSearch s{p, px, py, 0, 0, 0, 0, 0, 0};
+  for (long long ty = floorDiv((long long)ya, h); ty <= floorDiv((long long)yb, h); ++ty)
+    for (long long tx = floorDiv((long long)xa, w); tx <= floorDiv((long long)xb, w); ++tx) {
+      s.ox = tx * w, s.oy = ty * h;
+      s.x0 = std::max((long long)xa, s.ox) - s.ox, s.x1 = std::min((long long)xb, s.ox + w - 1) - s.ox;
+      s.y0 = std::max((long long)ya, s.oy) - s.oy, s.y1 = std::min((long long)yb, s.oy + h - 1) - s.oy;
+      s.visit(p.level.size() - 1, 0, 0);
     }
-  return any;
+  maxLum = s.maxLum;
+  return s.any;
 }
 
 // Mean luminance of a textured emitter's Le over triangle slot i: material_emission at an n x n
 // grid folded onto the triangle (uniform in area), n from the triangle's size in texels (1 to 16).
 // Exactly 0 only when Le is 0 everywhere on it (mayEmit); a triangle that emits somewhere between
 // the grid's points gets a small positive weight (any positive weight keeps light sampling unbiased).
-float texturedEmitterLuminance(TextureTables tt, const Material& m, const Triangle& tri, const TriangleShading& sh) {
+float texturedEmitterLuminance(TextureTables tt, const Material& m, const Triangle& tri, const TriangleShading& sh,
+                               EmissionPyramids& pyramids) {
   if (!(as_uint(tri.e2.w) & MCL_ATTR_UV)) return emitter_luminance(tt, &m, &tri, &sh);  // one colour
   const TextureDesc d = tt.textures[as_uint(m.maps.x)];
   const TextureLevel l = tt.levels[d.firstLevel];
@@ -86,7 +203,7 @@ float texturedEmitterLuminance(TextureTables tt, const Material& m, const Triang
   const float mean = float(sum / double(n * n));
   if (mean > 0.0f) return mean;
   float maxLum = 0.0f;
-  if (!mayEmit(tt, m, tri, sh, maxLum)) return 0.0f;
+  if (!mayEmit(tt, m, tri, sh, maxLum, pyramids)) return 0.0f;
   return std::max(maxLum * (1.0f / 1024.0f), 1e-30f);
 }
 
@@ -113,6 +230,7 @@ EmitterTable buildEmitterTable(const Bvh& bvh, const std::vector<MaterialDesc>& 
     for (std::size_t i = 0; i < m; ++i) slots.push_back(std::uint32_t(i));
   }
   const TriangleShading none{};
+  EmissionPyramids pyramids;
   for (std::uint32_t i : slots) {
     if (i == MCL_NO_HIT) continue;
     const Triangle& t = bvh.triangles[i];
@@ -123,7 +241,8 @@ EmitterTable buildEmitterTable(const Bvh& bvh, const std::vector<MaterialDesc>& 
     if (textured && as_uint((*textured->materials)[mi].maps.x) != MCL_NO_TEXTURE && p > 0.0) {
       std::vector<TriangleShading>& sh = *textured->shading;
       const bool uv = (as_uint(t.e2.w) & MCL_ATTR_UV) != 0 && i < sh.size();
-      const float lum = texturedEmitterLuminance(textured->tables, (*textured->materials)[mi], t, uv ? sh[i] : none);
+      const float lum = texturedEmitterLuminance(textured->tables, (*textured->materials)[mi], t, uv ? sh[i] : none,
+                                                pyramids);
       if (uv) sh[i].tv.w = lum;
       p = double(area) * double(lum);
     }

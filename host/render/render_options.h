@@ -6,8 +6,8 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
-#include <string>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "bvh/bvh_layout.h"
@@ -37,6 +37,9 @@ struct RenderOptions {
   double timeLimit = 0.0;
   // Stops after the current wave once *interrupt is non-zero (e.g. set by a SIGINT handler).
   const volatile int* interrupt = nullptr;
+  // Called once the scene's device tables are built, before the first wave (the command line ends
+  // its loading phase there: a signal then stops after a wave instead of ending the process).
+  std::function<void()> wavesStart;
   // Adaptive sampling when targetError > 0: every pixel gets minSpp samples, then rounds double
   // the samples of the pixels whose relative standard error exceeds targetError, up to maxSpp
   // (the scene's spp is ignored). Relative error: stderr / max(mean luminance, errorFloor).

@@ -325,6 +325,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   } settle{run};
 
   WaveLoop loop(m.options, part, run, scene, inputs, stats, progress);
+  if (m.options.wavesStart) m.options.wavesStart();
   if (m.options.verbose)
     std::cerr << "montecl: waves of up to " << wave << " pixel samples (" << (wave * itemBytes >> 20)
               << " MiB), " << (loop.planned() ? "sized from the measured rate" : std::to_string((total + wave - 1) / wave) + " waves")

@@ -37,6 +37,8 @@ void checkMapFile(const std::string& file, const std::string& from, const std::s
 
 EnvironmentDesc environmentFromOption(const std::string& text, float scale, float rotateYDegrees) {
   EnvironmentDesc env;
+  // "none": no environment at all (a bare model's default sky off; the scene's own lights only).
+  if (text == "none") return env;
   env.enabled = true;
   if (!(std::isfinite(scale) && scale >= 0.0f)) throwInputError("--env-scale", "", "must be finite and >= 0");
   if (!std::isfinite(rotateYDegrees)) throwInputError("--env-rotate", "", "must be finite");
@@ -51,6 +53,12 @@ EnvironmentDesc environmentFromOption(const std::string& text, float scale, floa
     env.radiance = glm::vec3(rgb[0], rgb[1], rgb[2]);
   } else {
     if (text.empty()) throwInputError("--env", "", "expected R,G,B or an environment map file");
+    // Numbers that are not three (1,1 or 0.5), or a list with a comma (1,x,1), are a constant
+    // mistyped rather than a file name (unless such a file exists): say the forms.
+    const bool numeric = text.find_first_not_of("0123456789.,+-eE ") == std::string::npos;
+    if ((numeric || text.find(',') != std::string::npos) && !std::filesystem::exists(text))
+      throwInputError("--env", "", "'" + text + "' is neither R,G,B (three radiances, e.g. 1,1,1) nor an "
+                                  "environment map file (.exr, .hdr, ...); none turns the environment off");
     env.file = std::filesystem::path(text).lexically_normal().string();
     checkMapFile(env.file, "--env", "");
   }

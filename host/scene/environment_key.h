@@ -16,8 +16,8 @@ namespace montecl {
 EnvironmentDesc parseEnvironmentKey(const std::string& sceneFile, const nlohmann::json& value,
                                     std::vector<std::string>& warnings);
 
-// The environment of the command line: --env "R,G,B" (a constant radiance) or a map file (resolved
-// against the working folder), times --env-scale, rotated by --env-rotate degrees about +y.
+// The environment of the command line: --env "R,G,B" (a constant radiance), "none" (disabled) or a
+// map file (resolved against the working folder), times --env-scale, rotated by --env-rotate degrees about +y.
 // Throws InputError "--env: <problem>" (or "--env-scale: ...").
 EnvironmentDesc environmentFromOption(const std::string& env, float scale, float rotateYDegrees);
 

@@ -49,8 +49,7 @@ struct Loader {
   Scene& scene;
   KindWarnings unused;
   std::vector<std::int64_t> materialIndex;  // glTF material -> scene material (-1: not yet)
-  bool hasCamera = false;
-  Camera camera;
+  std::vector<Camera> cameras{};  // every perspective camera, in the order met (the first is the camera)
   std::size_t skippedPrimitives = 0;  // points and lines: named when nothing else is left
   std::set<int> missingImages{};  // images whose file cannot be opened
   // glTF material -> the TEXCOORD_n set its textures read, and the key that named it.
@@ -311,10 +310,6 @@ void Loader::takeCamera(int index, const glm::dmat4& world, const std::string& w
     unused.add("camera " + c.type, itemWhere("cameras", std::size_t(index)), "camera type '" + oneLine(c.type, 20) + "' not used by montecl");
     return;
   }
-  if (hasCamera) {
-    unused.add("more cameras", itemWhere("cameras", std::size_t(index)), "only the first perspective camera is used");
-    return;
-  }
   Camera cam;
   cam.position = glm::vec3(world * glm::dvec4(0, 0, 0, 1));
   cam.target = cam.position + glm::vec3(glm::normalize(glm::dmat3(world) * glm::dvec3(0, 0, -1)));
@@ -323,8 +318,7 @@ void Loader::takeCamera(int index, const glm::dmat4& world, const std::string& w
   const double aspect = c.perspective.aspectRatio;
   cam.height = 512;
   cam.width = aspect > 0.0 && aspect < 32.0 ? std::max(1, static_cast<int>(std::lround(512.0 * aspect))) : 512;
-  hasCamera = true;
-  camera = cam;
+  cameras.push_back(cam);  // the first is the camera; `render --camera N` picks another (and says so)
 }
 
 }  // namespace
@@ -334,7 +328,7 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
   const Model m = readGltfModel(path, warnings, &opened);
   scene.inputFiles.push_back(path);
   scene.inputFiles.insert(scene.inputFiles.end(), opened.begin(), opened.end());
-  Loader l{path, m, scene, KindWarnings(path), std::vector<std::int64_t>(m.materials.size(), -1), false, Camera{}, 0};
+  Loader l{path, m, scene, KindWarnings(path), std::vector<std::int64_t>(m.materials.size(), -1), {}, 0};
   checkGltfSamplers(path, m);
   for (const std::string& e : m.extensionsUsed)
     if (!gltfExtensionSupported(e))
@@ -442,8 +436,9 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
   if (scene.triangles.size() == before)
     loadFail(path, "", "no triangles (" + (l.skippedPrimitives ? std::to_string(l.skippedPrimitives) + " point or line primitives skipped, " : "") +
                            std::to_string(scene.degenerateDropped - droppedBefore) + " degenerate triangles dropped)");
-  if (camera && l.hasCamera) *camera = l.camera;
-  return l.hasCamera;
+  if (camera && !l.cameras.empty()) *camera = l.cameras[0];
+  if (camera) scene.fileCameras = l.cameras;  // a bare model: `render --camera N` picks among them
+  return !l.cameras.empty();
 }
 
 }  // namespace montecl

@@ -57,7 +57,11 @@ void failOnMissingTextures(const Scene& scene, std::size_t from) {
   if (scene.deferMissingTextures || scene.render.missingTextures != MissingTextures::Error ||
       from >= scene.missingTextures.size())
     return;
-  throw InputError(oneLine(missingTexturesText(scene, from), 4096));
+  throw InputError(missingTexturesError(scene, from));
+}
+
+std::string missingTexturesError(const Scene& scene, std::size_t from) {
+  return oneLine(missingTexturesText(scene, from), 4096) + "; --missing-textures warn renders without them";
 }
 
 std::string lineWhere(std::size_t line) { return "line " + std::to_string(line); }
@@ -185,10 +189,20 @@ bool appendTriangle(Scene& scene, const SceneTriangle& t) {
   return true;
 }
 
+namespace {
+bool gListEveryWarning = false;
+// A file with millions of faulty faces keeps the listing bounded.
+constexpr std::size_t kOthersKept = 10000;
+}  // namespace
+
+void listEveryWarning(bool all) { gListEveryWarning = all; }
+
 void KindWarnings::add(const std::string& kind, const std::string& where, const std::string& text) {
   auto it = kinds_.find(kind);
   if (it != kinds_.end()) {
     ++it->second.more;
+    if (gListEveryWarning && it->second.others.size() < kOthersKept)
+      it->second.others.push_back((where.empty() ? "" : oneLine(where) + ": ") + oneLine(text, 400));
     return;
   }
   Entry e;
@@ -202,10 +216,19 @@ void KindWarnings::flush(std::vector<std::string>* out) const {
   std::vector<const Entry*> order;
   for (const auto& k : kinds_) order.push_back(&k.second);
   std::sort(order.begin(), order.end(), [](const Entry* a, const Entry* b) { return a->order < b->order; });
-  if (out)
-    for (const Entry* e : order)
-      out->push_back(oneLine(file_, 4096) + ": " + (e->where.empty() ? "" : oneLine(e->where) + ": ") +
-                     oneLine(e->text, 400) + (e->more ? " (" + std::to_string(e->more) + " more)" : ""));
+  if (!out) return;
+  for (const Entry* e : order) {
+    const std::string first = oneLine(file_, 4096) + ": " + (e->where.empty() ? "" : oneLine(e->where) + ": ") +
+                              oneLine(e->text, 400);
+    if (!gListEveryWarning) {
+      out->push_back(first + (e->more ? " (" + std::to_string(e->more) + " more like it; -v lists them)" : ""));
+      continue;
+    }
+    out->push_back(first);
+    for (const std::string& o : e->others) out->push_back(oneLine(file_, 4096) + ": " + o);
+    if (e->more > e->others.size())
+      out->push_back(oneLine(file_, 4096) + ": (" + std::to_string(e->more - e->others.size()) + " more like it)");
+  }
 }
 
 }  // namespace montecl

@@ -65,9 +65,14 @@ void noteMissingTexture(std::vector<MissingTexture>& list, MissingTexture m);
 // render.missing_textures error (the default) that throws the listing of the file's ones as one
 // InputError, unless scene.deferMissingTextures (loadScene then reports the whole scene's).
 void failOnMissingTextures(const Scene& scene, std::size_t from);
+// The error for the missing textures from `from` on: their listing and the option that renders
+// without them (--missing-textures warn).
+std::string missingTexturesError(const Scene& scene, std::size_t from);
 
 // Warnings collected by kind: the first occurrence of each kind is reported, with the number of
-// further ones, when flushed: "<file>: <where>: <text> (N more)".
+// further ones, when flushed: "<file>: <where>: <text> (N more like it; -v lists them)"; after
+// listEveryWarning(true) (render -v) every occurrence is its own line.
+void listEveryWarning(bool all);
 class KindWarnings {
  public:
   explicit KindWarnings(std::string file) : file_(std::move(file)) {}
@@ -79,6 +84,7 @@ class KindWarnings {
   struct Entry {
     std::string where, text;
     std::size_t more = 0, order = 0;
+    std::vector<std::string> others;  // "<where>: <text>" of the further ones (the first kOthersKept)
   };
   std::string file_;
   std::map<std::string, Entry> kinds_;

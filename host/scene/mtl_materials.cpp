@@ -219,6 +219,55 @@ void checkMultiplier(const MaterialSource& src, const std::string& key, float va
     src.fail(key, key + " -bm " + (text.empty() ? "" : "'" + oneLine(text, 40) + "' ") + "must be a finite number");
 }
 
+// The MTL text with one blank between `newmtl` and the name: tinyobjloader keeps any further blanks
+// in the name ("newmtl  RearLights" names " RearLights"), while `usemtl` skips them, so the OBJ's
+// `usemtl RearLights` found no material. Lines (and their numbers) stay as they are.
+std::string singleSpacedNewmtl(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t p = 0; p < text.size();) {
+    std::size_t eol = text.find_first_of("\r\n", p);
+    if (eol == std::string::npos) eol = text.size();
+    std::size_t b = p;
+    while (b < eol && isBlank(text[b])) ++b;
+    if (text.compare(b, 6, "newmtl") == 0 && b + 7 < eol && isBlank(text[b + 6]) && isBlank(text[b + 7])) {
+      std::size_t name = b + 6;
+      while (name < eol && isBlank(text[name])) ++name;
+      out.append(text, p, b + 7 - p);  // up to and with the first blank
+      p = name;
+    }
+    const std::size_t next = std::min(text.size(), eol + (text.compare(eol, 2, "\r\n") == 0 ? 2 : 1));
+    out.append(text, p, next - p);
+    p = next;
+  }
+  return out;
+}
+
+// tinyobjloader's warnings while reading one MTL, as warnings of that MTL: "Both `d` and `Tr`
+// parameters defined for "NAME". Use the value of `d` for dissolve (line N in .mtl.)" becomes
+// "<mtl>: line N: material 'NAME' gives both d and Tr (opacity, written twice): Tr ignored".
+void addMtlParserWarnings(const std::string& text, MtlFile& f) {
+  std::istringstream lines(text);
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (line.empty()) continue;
+    if (line.find("Both `d` and `Tr`") == std::string::npos) {
+      f.unused.add("parser: " + line.substr(0, 24), "", line);
+      continue;
+    }
+    const std::size_t q0 = line.find('"'), q1 = q0 == std::string::npos ? q0 : line.find('"', q0 + 1);
+    const std::string name = q1 == std::string::npos ? std::string() : line.substr(q0 + 1, q1 - q0 - 1);
+    const std::size_t at = line.find("(line ");
+    std::string where;
+    if (at != std::string::npos) {
+      const std::size_t end = line.find_first_not_of("0123456789", at + 6);
+      where = "line " + line.substr(at + 6, end == std::string::npos ? std::string::npos : end - at - 6);
+    }
+    f.unused.add("both d and Tr", where,
+                 "material '" + name + "' gives both d and Tr (opacity, written twice): Tr ignored");
+  }
+}
+
 }  // namespace
 
 bool MtlReader::operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
@@ -237,8 +286,12 @@ bool MtlReader::operator()(const std::string& name, std::vector<tinyobj::materia
   MtlFile f{path, materials->size(), 0, {}, KindWarnings(path)};
   const std::string text = readWholeFile(path);
   scanMtl(text, f);
-  std::istringstream in(text);
-  tinyobj::LoadMtl(matMap, materials, &in, warn, err);
+  std::istringstream in(singleSpacedNewmtl(text));
+  // tinyobj's own warnings about the MTL (both d and Tr, ...) are the MTL's, not the OBJ's.
+  std::string mtlWarn;
+  tinyobj::LoadMtl(matMap, materials, &in, &mtlWarn, err);
+  addMtlParserWarnings(mtlWarn, f);
+  (void)warn;
   f.count = materials->size() - f.firstMaterial;
   files.push_back(std::move(f));
   return true;

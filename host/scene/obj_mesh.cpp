@@ -178,7 +178,7 @@ void loadObjInto(const std::string& objPath, Scene& scene, std::vector<std::stri
   if (warnings && scan.badAttributeIndices > 0)
     warnings->push_back(oneLine(objPath) + ": " + scan.firstBadAttribute + ": those faces get no vt/vn" +
                         (scan.badAttributeIndices > 1
-                             ? " (" + std::to_string(scan.badAttributeIndices - 1) + " more)"
+                             ? " (" + std::to_string(scan.badAttributeIndices - 1) + " more faces like it)"
                              : std::string()));
   ObjData data = parseWithTinyObj(objPath, text, warnings);
   scene.inputFiles.push_back(objPath);

@@ -176,6 +176,10 @@ struct Scene {
   // the scene at the end (one error or one warning); else a loader fails on its file's ones (error).
   bool deferMissingTextures = false;
   std::size_t degenerateDropped = 0;     // zero-area triangles removed while loading
+  std::string defaultsNote;              // a bare model's environment and why (applyBareModelDefaults), for -v
+  // A bare model's own cameras (glTF perspective cameras, in the order the node walk meets them;
+  // the first is `camera`): what `render --camera N` picks from.
+  std::vector<Camera> fileCameras;
   glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world bounds (instances by their placed boxes)
   // Instanced geometry, kept unflattened (scene_instances.h): meshRanges[r] is a run of
   // `triangles` in the mesh's own (object) space, placed once per entry of `instances` naming it;
@@ -194,11 +198,16 @@ Scene loadScene(const std::string& path, std::vector<std::string>& warnings,
                 std::optional<MissingTextures> missing = std::nullopt);
 
 // What a bare mesh (a model file given without a scene file) renders with, the one rule for it:
-// integrator path, and, when the model has no light of its own (no untextured emitting material,
-// no glTF punctual light), a constant white sky of radiance kDefaultSkyRadiance (a diffuse surface
-// open to all of it shows its albedo). Textured emission (a helmet's lamps, a screen) is a detail
-// of the model, as in glTF viewers, which show such models under an environment: it keeps the sky. The command line's --integrator and --env replace these.
+// integrator path, and a constant white sky: radiance kDefaultSkyRadiance (a diffuse surface open
+// to all of it shows its albedo) when the model has no light of its own, kLitModelSkyRadiance when
+// it has (an untextured emitting material or a glTF punctual light). Lights a model brings are
+// mostly decorative (a lamp's bulb, a car's headlights): without any sky such a model rendered
+// black but for them; a dimmer sky shows the model and leaves its lights reading as lights, as
+// Blender keeps its world and glTF viewers their room environment. Textured emission (a helmet's
+// lamps, a screen) keeps the full sky. The command line's --integrator and --env (none: no sky)
+// replace these; Scene::defaultsNote says which was chosen (printed with -v).
 constexpr float kDefaultSkyRadiance = 1.0f;
+constexpr float kLitModelSkyRadiance = 0.25f;
 void applyBareModelDefaults(Scene& scene);
 
 // Appends the triangles and materials of one OBJ (+ its MTL) to scene, drops degenerate triangles

@@ -287,7 +287,7 @@ void checkEmissionPower(const Scene& scene) {
 void reportMissingTextures(const Scene& scene, std::vector<std::string>& warnings) {
   if (scene.missingTextures.empty()) return;
   if (scene.render.missingTextures == MissingTextures::Error)
-    throw InputError(oneLine(missingTexturesText(scene, 0), 4096));
+    throw InputError(missingTexturesError(scene, 0));
   warnings.push_back(missingTexturesText(scene, 0) +
                      "; rendered without them (each material's factor alone: missing_textures warn)");
 }
@@ -328,10 +328,12 @@ void applyBareModelDefaults(Scene& scene) {
     const MaterialDesc& m = scene.materials[t.material];
     lit = lit || (m.emission != glm::vec3(0.0f) && m.emissionTexture.empty());
   }
-  if (lit) return;
   scene.environment = EnvironmentDesc{};
   scene.environment.enabled = true;
-  scene.environment.radiance = glm::vec3(kDefaultSkyRadiance);
+  scene.environment.radiance = glm::vec3(lit ? kLitModelSkyRadiance : kDefaultSkyRadiance);
+  scene.defaultsNote = lit ? "a white sky of radiance 0.25 (the model brings its own lights; --env none for those "
+                             "alone, --env R,G,B or a map file for another)"
+                           : "a white sky of radiance 1 (--env none, R,G,B or a map file for another)";
 }
 
 Scene loadScene(const std::string& path, std::vector<std::string>& warnings, std::optional<MissingTextures> missing) {

@@ -39,7 +39,7 @@ std::string readableExtensions() {
 void settleMissingTextures(Scene& scene, std::optional<MissingTextures> missing, std::vector<std::string>& warnings) {
   if (missing) scene.render.missingTextures = *missing;
   if (scene.missingTextures.empty()) return;
-  if (scene.render.missingTextures == MissingTextures::Error) throw InputError(oneLine(missingTexturesText(scene, 0), 4096));
+  if (scene.render.missingTextures == MissingTextures::Error) throw InputError(missingTexturesError(scene, 0));
   warnings.push_back(missingTexturesText(scene, 0) + "; rendered without them (each material's factor alone: missing_textures warn)");
 }
 

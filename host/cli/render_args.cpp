@@ -1,0 +1,67 @@
+// render_args.cpp: applyOverrides (render_args.h): the command line's settings, environment and
+// camera applied to the loaded scene.
+#include "cli/render_args.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "scene/camera_basis.h"
+#include "scene/environment_key.h"
+#include "scene/load_util.h"
+#include "scene/render_settings.h"
+#include "util/errors.h"
+
+namespace montecl {
+
+namespace {
+
+// X,Y,Z of --look-from or --look-at: three finite numbers.
+glm::vec3 cameraPointOption(const char* option, const std::string& text) {
+  float v[3];
+  char end = 0;
+  if (std::sscanf(text.c_str(), "%f,%f,%f%c", &v[0], &v[1], &v[2], &end) != 3 || !std::isfinite(v[0]) ||
+      !std::isfinite(v[1]) || !std::isfinite(v[2]))
+    throwInputError(option, "", "'" + oneLine(text, 60) + "' is not a point X,Y,Z (three finite numbers, e.g. 0,1,5)");
+  return glm::vec3(v[0], v[1], v[2]);
+}
+
+}  // namespace
+
+void applyOverrides(const RenderArgs& a, Scene& scene) {
+  for (const RenderSetting& s : renderSettings()) {
+    const auto it = a.settings.find(s.key);
+    if (it != a.settings.end()) setFromText(s, it->second, scene.render);
+  }
+  if (a.camera) {  // before the size: --width and --height still set it
+    const std::size_t n = scene.fileCameras.size();
+    if (*a.camera >= n)
+      throwInputError("--camera", "",
+                      "camera " + std::to_string(*a.camera) + " out of range: " + oneLine(scene.path) + " has " +
+                          std::to_string(n) + (n == 1 ? " camera" : " cameras") +
+                          " (a glTF file's perspective cameras, from 0; --view or --look-from frame other models)");
+    scene.camera = scene.fileCameras[*a.camera];
+  }
+  if (a.width) scene.camera.width = *a.width;
+  if (a.height) scene.camera.height = *a.height;
+  // The command line's environment replaces the scene's; --view frames the model from that side.
+  if (!a.env.empty()) {
+    scene.environment = environmentFromOption(a.env, a.envScale, a.envRotate);
+    if (!scene.environment.file.empty()) scene.inputFiles.push_back(scene.environment.file);
+  }
+  if (!a.view.empty()) {
+    if (!isViewName(a.view)) throwInputError("--view", "", "unknown side '" + a.view + "' (known: " + viewNames() + ")");
+    scene.camera = defaultCamera(scene.boundsMin, scene.boundsMax, scene.camera.width, scene.camera.height, a.view);
+  }
+  // Then the camera chosen above moved, turned or zoomed.
+  if (!a.lookFrom.empty()) scene.camera.position = cameraPointOption("--look-from", a.lookFrom);
+  if (!a.lookAt.empty()) scene.camera.target = cameraPointOption("--look-at", a.lookAt);
+  if (a.fov) scene.camera.fovY = *a.fov;
+  if (!a.lookFrom.empty() || !a.lookAt.empty() || a.fov) {
+    const CameraProblem p = cameraBasisProblem(scene.camera);
+    if (!p.empty())
+      throwInputError(a.lookFrom.empty() && a.lookAt.empty() ? "--fov" : "--look-from/--look-at", "",
+                      "the camera is unusable: " + p.key + " " + p.problem);
+  }
+}
+
+}  // namespace montecl

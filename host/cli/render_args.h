@@ -1,0 +1,45 @@
+// render_args.h: the options of `montecl render` as parsed (RenderArgs), and how they change the
+// loaded scene (applyOverrides: settings, size, environment, camera). Reads no files but --env's map.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bvh/bvh.h"
+#include "job/job.h"
+#include "scene/scene.h"
+
+namespace montecl {
+
+struct RenderArgs {
+  std::string scene, output, device;
+  std::map<std::string, std::string> settings;  // render setting key -> its option's text (scene/render_settings.h)
+  std::string bvhLayout = "auto";
+  float splitBudget = BvhBuildOptions{}.splitBudget;  // --split-budget
+  std::optional<int> width, height;
+  std::optional<double> textureBudgetMiB;  // --texture-budget; unset: automatic
+  std::uint64_t waveSize = 0;
+  std::uint32_t firstSample = 0;
+  double targetError = 0.0, timeLimit = 0.0;
+  int minSpp = 16, maxSpp = 1024;
+  std::vector<std::string> aovs;
+  std::string env, view;            // --env R,G,B | FILE; --view SIDE
+  std::optional<unsigned> camera;   // --camera N: the file's camera N
+  std::optional<float> fov;         // --fov DEG
+  std::string lookFrom, lookAt;     // --look-from X,Y,Z; --look-at X,Y,Z
+  float envScale = 1.0f, envRotate = 0.0f;
+  std::size_t workGroupSize = 0;
+  unsigned lanes = 0;  // packet stages' width W (0: the device's)
+  bool quiet = false, verbose = false, overwrite = false, profile = false, noFuse = false;
+  jobs::JobArgs job;  // MPI split, --checkpoint, --resume (job/job.h)
+};
+
+// The command line's changes to the scene: render settings, the environment, then the camera
+// (--camera N, --width / --height, --view, --look-from / --look-at, --fov). Throws InputError
+// "--option: <problem>" for a value that cannot apply (a camera out of range, an unusable camera).
+void applyOverrides(const RenderArgs& a, Scene& scene);
+
+}  // namespace montecl
