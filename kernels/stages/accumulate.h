@@ -140,7 +140,7 @@ MCL_INLINE void stage_accumulate(const accumulate_args* a, uint j0) {
                      ((ulong)j0 + MCL_LANES) * block <= count && ((ulong)j0 + ac) * block >= count;
   // The sobol sampler's K sub-sequence accumulators (accumulate.h): with blocks whose C samples
   // per lane start at a multiple of C, and K dividing C, step t of every lane updates
-  // sub-sequence t % K, held in registers for the packet; otherwise the scalar body (per lane, the
+  // sub-sequence t % K, held in registers for the packet; otherwise the general walk (per lane, the
   // same bits).
   const uint splits = f->sampler == MCL_SAMPLER_SOBOL ? f->sobolSplits : 1u;
   if (v_packet_partial(j0, limit) || (splits > 1u && !(blocks && block % splits == 0u)) ||

@@ -25,7 +25,7 @@
 
 // Light sample k (random numbers u) at item i's surface surf (wo toward the camera, origin the
 // offset hit point; useBrdf: MIS against the BSDF ray): pushes its occlusion query to slot
-// i * shadowSlots + k, or nothing. The scalar body and the packet body's lanes of other kinds take
+// i * shadowSlots + k, or nothing. The body's lanes of other kinds take
 // their light samples here.
 MCL_INLINE void direct_light_sample(const shade_direct_args* a, LightScene lights, Surface surf, float3 wo,
                                     float3 origin, int useBrdf, uint i, uint k, float4 u) {

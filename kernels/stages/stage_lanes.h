@@ -1,10 +1,10 @@
-// stage_lanes.h: what the packet stage bodies (kernels/stages/*_lanes.h) share: the lane forms of
-// stage_common.h's wave-item pixel and sample, the counter-based RNG, the hemisphere warps and the
+// stage_lanes.h: what the stage bodies (kernels/stages/<stage>.h) share in lane types: the lane
+// forms of stage_common.h's wave-item pixel and sample, the counter-based RNG, the warps and the
 // ray-origin offset, each the scalar function's operations in the same order per lane (so a lane
-// gives the scalar function's bits; see kernels/shared/lanes.h). A packet stage's body is
-// stage_<stage>_lanes(a, first): wave items first .. first + W - 1, one per lane; the generated
-// kernel passes first = get_global_id(0) * W (kernels/montecl.cl). A packet that is not whole
-// (the last of a launch) runs the scalar body per item: v_packet_partial.
+// gives the scalar function's bits; see kernels/shared/lanes.h), the lane frame of W hits and the
+// accumulate stages' run walk. A stage's body is stage_<stage>(a, first): wave items first ..
+// first + W - 1, one per lane; the generated kernel passes first = get_global_id(0) * W
+// (kernels/montecl.cl). A packet that is not whole (the last of a launch) masks its missing lanes.
 #pragma once
 #include "../shared/lanes.h"
 #include "stage_common.h"
