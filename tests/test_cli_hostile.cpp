@@ -237,10 +237,11 @@ TEST_CASE("hostile: glTF light values of the wrong type and a camera index out o
       {R"({"type":"spot","spot":{"outerConeAngle":"wide"}})", "KHR_lights_punctual.lights[0].spot.outerConeAngle"},
       {R"({"type":"point","range":[1]})", "KHR_lights_punctual.lights[0].range"},
   };
-  for (const auto& [light, key] : lights) {
+  for (const auto& entry : lights) {  // not a structured binding: INFO captures it in a lambda (clang 14)
+    const std::string light = entry.first;
     dir.write("a.gltf", gltfWith(punctual(light), true));
     INFO(light);
-    checkRefused(runMontecl(renderArgs(dir.file("a.gltf"), out)), out, {"a.gltf", key});
+    checkRefused(runMontecl(renderArgs(dir.file("a.gltf"), out)), out, {"a.gltf", entry.second});
   }
   std::string g = montecl_test::gltfText(montecl_test::tentMesh(), 0.5f, "");
   const std::string node = R"("nodes":[{"mesh":0,)";

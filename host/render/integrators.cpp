@@ -11,23 +11,23 @@ namespace {
 // Path tracing's random-number layout gives each bounce 1 + the most light samples groups.
 static_assert(MCL_DIM_PATH_STRIDE == 1u + kMaxLightSamples, "rng.h's path stride must cover every light sample");
 
-// generate -> intersect -> shade_ao -> intersect_shadow (one query per item).
-void aoWave(StageRunner& run, std::uint32_t n, std::uint32_t slots, bool aovs, bool, PathWaveCounts&) {
-  run.launch(Stage::intersect, n);
-  run.launch(Stage::shade_ao, n);
-  run.launch(Stage::intersect_shadow, std::uint64_t(n) * slots);
+// An AO or direct wave after generate: the stage table's schedule (MCL_SCHEDULE_<integrator>),
+// the first-hit AOVs, the occlusion queries (slots per item).
+#define MCL_HOST_STEP(stage, rays, queries) run.launch(Stage::stage, n, RayInput::rays);
+void waveTail(StageRunner& run, std::uint32_t n, std::uint32_t slots, bool aovs) {
   if (aovs) run.launch(Stage::record_aov, n);
+  run.launch(Stage::intersect_shadow, std::uint64_t(n) * slots);
 }
-
+void aoWave(StageRunner& run, std::uint32_t n, std::uint32_t slots, bool aovs, bool, PathWaveCounts&) {
+  MCL_SCHEDULE_ao(MCL_HOST_STEP)
+  waveTail(run, n, slots, aovs);
+}
 // shade_direct queues the light samples and a BRDF ray, whose hit shade_direct_hit weighs.
 void directWave(StageRunner& run, std::uint32_t n, std::uint32_t slots, bool aovs, bool, PathWaveCounts&) {
-  run.launch(Stage::intersect, n);
-  run.launch(Stage::shade_direct, n);
-  run.launch(Stage::intersect, n, RayInput::Bounce);
-  run.launch(Stage::shade_direct_hit, n);
-  run.launch(Stage::intersect_shadow, std::uint64_t(n) * slots);
-  if (aovs) run.launch(Stage::record_aov, n);
+  MCL_SCHEDULE_direct(MCL_HOST_STEP)
+  waveTail(run, n, slots, aovs);
 }
+#undef MCL_HOST_STEP
 
 // The bounce loop (render/path_waves.cpp), on the live paths only.
 void pathWave(StageRunner& run, std::uint32_t n, std::uint32_t slots, bool aovs, bool fused, PathWaveCounts& counts) {

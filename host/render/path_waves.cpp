@@ -31,8 +31,9 @@ void runPathWave(StageRunner& run, std::uint32_t n, std::uint32_t lightSamples, 
     if (fused) {
       run.launch(Stage::wave_path, (live + group - 1) / group);
     } else {
-      run.launch(Stage::intersect, live);
-      run.launch(Stage::shade_path, live);
+#define MCL_HOST_STEP(stage, rays, queries) run.launch(Stage::stage, live, RayInput::rays);
+      MCL_SCHEDULE_path(MCL_HOST_STEP)
+#undef MCL_HOST_STEP
       // Camera rays and hits (identity ids), and radiance holding only the camera ray's own term:
       // after shade_path, before path_gather adds the light samples (record_aov.h).
       if (bounce == 0 && aovs) run.launch(Stage::record_aov, n);

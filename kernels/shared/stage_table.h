@@ -33,6 +33,19 @@
 // backend, at W = 1, calls it per item. The fused stages (kernels/stages/wave_fused.h) take group
 // first / W of W C items.
 
+// Each integrator's wave, written once: its stages from the intersection of the wave's rays to its
+// occlusion queries, in launch order. STEP(stage, rays, queries): rays Camera (the wave's own rays
+// and hits) or Bounce (direct lighting's BSDF rays); queries Push where the stage pushes occlusion
+// queries, else None. Expanded into the host's launches (host/render/integrators.cpp,
+// path_waves.cpp) and the fused stages' bodies (kernels/stages/wave_fused.h). Around it every wave
+// runs generate first (a path: at bounce 0), then record_aov (AOVs on; a path: at bounce 0),
+// intersect_shadow, and accumulate (a path: path_gather each bounce, accumulate at its end).
+#define MCL_SCHEDULE_ao(STEP) STEP(intersect, Camera, None) STEP(shade_ao, Camera, Push)
+#define MCL_SCHEDULE_direct(STEP)                                                                  \
+  STEP(intersect, Camera, None) STEP(shade_direct, Camera, Push) STEP(intersect, Bounce, None)     \
+  STEP(shade_direct_hit, Camera, None)
+#define MCL_SCHEDULE_path(STEP) STEP(intersect, Camera, None) STEP(shade_path, Camera, Push)
+
 // The texture tables (kernels/shared/texture.h): what albedo lookups read.
 #define MCL_TEXTURE_ARGS(ARG)                                                                      \
   ARG(MCL_GLOBAL const TextureDesc*, textures) ARG(MCL_GLOBAL const TextureLevel*, textureLevels)  \

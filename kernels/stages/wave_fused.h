@@ -1,7 +1,7 @@
-// wave_fused.h: the fused wave stages wave_ao and wave_direct: one work item takes a group of a
-// wave's items through every stage of its integrator in launch order (generate, intersect, shade,
-// the BRDF ray's intersect and shade_direct_hit, record_aov when AOVs are on, intersect_shadow,
-// accumulate and accumulate_aov), reading and writing what those stages do, plus groupCounts[g], the group's count
+// wave_fused.h: the fused wave stages wave_ao, wave_direct and wave_path: one work item takes a
+// group of a wave's items through every stage of its integrator in launch order (generate, the
+// stage table's schedule MCL_SCHEDULE_<integrator>, record_aov when AOVs are on, intersect_shadow,
+// accumulate and accumulate_aov, or a path bounce's path_gather), reading and writing what those stages do, plus groupCounts[g], the group's count
 // of occlusion queries in its own part of the queue. Group g is W pixels' runs of C samples (W = MCL_LANES, C = 2^sampleBlockShift,
 // stage_common.h): items [g W C, (g + 1) W C), which are touched pixels [g W, (g + 1) W) when the
 // wave starts a block and holds at most one run per pixel (the host launches these stages only
@@ -32,6 +32,8 @@
 #endif
 #define MCL_FUSED_WRAP(stage)                                                               \
   MCL_FUSED_FLAT void fused_##stage(const stage##_args* a, uint first) { MCL_FUSED_RUN(stage, (*a), first); }
+// The traversal keeps the compiler's own inlining.
+MCL_INLINE void fused_intersect(const intersect_args* a, uint first) { stage_intersect(a, first); }
 MCL_FUSED_WRAP(generate)
 MCL_FUSED_WRAP(shade_ao)
 MCL_FUSED_WRAP(shade_direct)
@@ -65,12 +67,6 @@ MCL_INLINE uint fused_group_first(MCL_CONSTANT const FrameParams* f, uint waveCo
   MCL_GLOBAL volatile uint* localCount = (a)->groupCounts + (g);                            \
   *localCount = 0u
 
-// A shade stage's arguments `name`, pushing its occlusion queries onto the group's part of the queue.
-#define MCL_FUSED_SHADE_ARGS(stage, name)            \
-  stage##_args name = MCL_FUSED_ARGS(stage);         \
-  name.queue = queueBase;                            \
-  name.queueCount = localCount
-
 // The group's occlusion queries (intersect_shadow over its part of the queue), their count added
 // to the wave's.
 #define MCL_FUSED_SHADOWS(a)                                               \
@@ -83,6 +79,25 @@ MCL_INLINE uint fused_group_first(MCL_CONSTANT const FrameParams* f, uint waveCo
       MCL_FUSED_RUN(intersect_shadow, sh, k);                              \
     if (queries > 0u) MCL_ATOMIC_ADD((a)->queueCount, queries);            \
   } while (0)
+
+// One row of the stage table's schedule (MCL_SCHEDULE_<integrator>) over the group's `packets`
+// packets below `count`: the stage's arguments from the fused stage's, the BSDF rays bound where
+// the row reads them, the group's part of the shadow queue where the stage pushes queries.
+#define MCL_FUSED_RAYS_Camera(s)
+#define MCL_FUSED_RAYS_Bounce(s) \
+  (s).rays = a->bounce;          \
+  (s).hits = a->bounceHits;      \
+  (s).hitInstances = a->bounceHitInstances;
+#define MCL_FUSED_QUERIES_None(s)
+#define MCL_FUSED_QUERIES_Push(s) \
+  (s).queue = queueBase;          \
+  (s).queueCount = localCount;
+#define MCL_FUSED_STEP(stage, rays, queries)                              \
+  {                                                                       \
+    stage##_args s = MCL_FUSED_ARGS(stage);                               \
+    MCL_FUSED_RAYS_##rays(s) MCL_FUSED_QUERIES_##queries(s)               \
+    MCL_FUSED_PACKETS(packets, count, fused_##stage(&s, at));             \
+  }
 
 // When the frame records AOVs: the group's items' first-hit AOVs (record_aov.h), after the shade
 // stages and before the occlusion queries, where the unfused launches record them too (radiance
@@ -111,39 +126,26 @@ MCL_INLINE uint fused_group_first(MCL_CONSTANT const FrameParams* f, uint waveCo
 MCL_INLINE void stage_wave_ao(const wave_ao_args* a, uint at0) {
   const uint g = at0 / MCL_LANES;  // the group (its work item)
   MCL_CONSTANT const FrameParams* f = a->frame;
-  const uint first = fused_group_first(f, a->waveCount, g), block = 1u << f->sampleBlockShift;
-  if (first >= a->waveCount) return;
+  const uint first = fused_group_first(f, a->waveCount, g), packets = 1u << f->sampleBlockShift, count = a->waveCount;
+  if (first >= count) return;
   MCL_FUSED_GROUP_QUEUE(a, g, first);
   generate_args gen = MCL_FUSED_ARGS(generate);
-  intersect_args isect = MCL_FUSED_ARGS(intersect);
-  MCL_FUSED_SHADE_ARGS(shade_ao, shade);
-  MCL_FUSED_PACKETS(block, a->waveCount, fused_generate(&gen, at));
-  MCL_FUSED_PACKETS(block, a->waveCount, MCL_FUSED_RUN(intersect, isect, at));
-  MCL_FUSED_PACKETS(block, a->waveCount, fused_shade_ao(&shade, at));
-  MCL_FUSED_RECORD_AOV(a, block, a->waveCount);
+  MCL_FUSED_PACKETS(packets, count, fused_generate(&gen, at));
+  MCL_SCHEDULE_ao(MCL_FUSED_STEP)
+  MCL_FUSED_RECORD_AOV(a, packets, count);
   MCL_FUSED_SHADOW_AND_ACCUMULATE(a, g);
 }
 
 MCL_INLINE void stage_wave_direct(const wave_direct_args* a, uint at0) {
   const uint g = at0 / MCL_LANES;  // the group (its work item)
   MCL_CONSTANT const FrameParams* f = a->frame;
-  const uint first = fused_group_first(f, a->waveCount, g), block = 1u << f->sampleBlockShift;
-  if (first >= a->waveCount) return;
+  const uint first = fused_group_first(f, a->waveCount, g), packets = 1u << f->sampleBlockShift, count = a->waveCount;
+  if (first >= count) return;
   MCL_FUSED_GROUP_QUEUE(a, g, first);
   generate_args gen = MCL_FUSED_ARGS(generate);
-  intersect_args isect = MCL_FUSED_ARGS(intersect);
-  intersect_args bounceIsect = isect;  // the BRDF rays, as the unfused loop binds them (RayInput::Bounce)
-  bounceIsect.rays = a->bounce;
-  bounceIsect.hits = a->bounceHits;
-  bounceIsect.hitInstances = a->bounceHitInstances;
-  MCL_FUSED_SHADE_ARGS(shade_direct, shade);
-  shade_direct_hit_args hit = MCL_FUSED_ARGS(shade_direct_hit);
-  MCL_FUSED_PACKETS(block, a->waveCount, fused_generate(&gen, at));
-  MCL_FUSED_PACKETS(block, a->waveCount, MCL_FUSED_RUN(intersect, isect, at));
-  MCL_FUSED_PACKETS(block, a->waveCount, fused_shade_direct(&shade, at));
-  MCL_FUSED_PACKETS(block, a->waveCount, MCL_FUSED_RUN(intersect, bounceIsect, at));
-  MCL_FUSED_PACKETS(block, a->waveCount, fused_shade_direct_hit(&hit, at));
-  MCL_FUSED_RECORD_AOV(a, block, a->waveCount);
+  MCL_FUSED_PACKETS(packets, count, fused_generate(&gen, at));
+  MCL_SCHEDULE_direct(MCL_FUSED_STEP)
+  MCL_FUSED_RECORD_AOV(a, packets, count);
   MCL_FUSED_SHADOW_AND_ACCUMULATE(a, g);
 }
 
@@ -156,18 +158,15 @@ MCL_INLINE void stage_wave_direct(const wave_direct_args* a, uint at0) {
 
 MCL_INLINE void stage_wave_path(const wave_path_args* a, uint at0) {
   const uint g = at0 / MCL_LANES;  // the group (its work item)
-  const uint count = *a->rayCount, group = MCL_LANES * MCL_FUSED_PATH_PACKETS;
+  const uint count = *a->rayCount, packets = MCL_FUSED_PATH_PACKETS, group = MCL_LANES * packets;
   if ((ulong)g * group >= count) return;
   const uint first = g * group;
   MCL_FUSED_GROUP_QUEUE(a, g, first);
   generate_args gen = MCL_FUSED_ARGS(generate);
-  intersect_args isect = MCL_FUSED_ARGS(intersect);
-  MCL_FUSED_SHADE_ARGS(shade_path, shade);
   path_gather_args gather = MCL_FUSED_ARGS(path_gather);
-  if (a->pathBounce == 0u) MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, fused_generate(&gen, at));
-  MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, MCL_FUSED_RUN(intersect, isect, at));
-  MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, fused_shade_path(&shade, at));
-  if (a->pathBounce == 0u) MCL_FUSED_RECORD_AOV(a, MCL_FUSED_PATH_PACKETS, count);
+  if (a->pathBounce == 0u) MCL_FUSED_PACKETS(packets, count, fused_generate(&gen, at));
+  MCL_SCHEDULE_path(MCL_FUSED_STEP)
+  if (a->pathBounce == 0u) MCL_FUSED_RECORD_AOV(a, packets, count);
   MCL_FUSED_SHADOWS(a);
-  MCL_FUSED_PACKETS(MCL_FUSED_PATH_PACKETS, count, fused_path_gather(&gather, at));
+  MCL_FUSED_PACKETS(packets, count, fused_path_gather(&gather, at));
 }
