@@ -60,6 +60,49 @@ MCL_INLINE void v_item_values(const accumulate_args* a, uint slots, uint i0, uin
   }
 }
 
+// A packet's pixels' film state (accumulate.h's four float4 per pixel) in lanes: the 64-bit sample
+// count, mean and M2 as float-float pairs. run: the lanes' pixels are p0, p0 + 1, ... (whole vector
+// loads and stores); otherwise per-lane gathers and scatters, of the first `lanes` lanes.
+typedef struct {
+  vulong n;
+  vffloat meanX, meanY, meanZ, m2X, m2Y, m2Z, m2W;
+} FilmLanes;
+
+MCL_INLINE FilmLanes film_lanes_load(const accumulate_args* a, vuint pixel, int run, uint p0) {
+  MCL_GLOBAL const float* film[4] = {(MCL_GLOBAL const float*)a->mean, (MCL_GLOBAL const float*)a->meanLo,
+                                     (MCL_GLOBAL const float*)a->m2, (MCL_GLOBAL const float*)a->m2Lo};
+  vfloat x[4], y[4], z[4], w[4];
+  for (uint k = 0; k < 4u; ++k) {
+    if (run) v_load4(film[k] + (ulong)p0 * 4, &x[k], &y[k], &z[k], &w[k]);
+    else v_gather4(film[k], pixel, 4, &x[k], &y[k], &z[k], &w[k]);
+  }
+  FilmLanes fl;
+  fl.n = v_cvt_ul_u(v_as_uint(w[0])) | (v_cvt_ul_u(v_as_uint(w[1])) << 32);
+  fl.meanX = ff_make(x[0], x[1]);
+  fl.meanY = ff_make(y[0], y[1]);
+  fl.meanZ = ff_make(z[0], z[1]);
+  fl.m2X = ff_make(x[2], x[3]);
+  fl.m2Y = ff_make(y[2], y[3]);
+  fl.m2Z = ff_make(z[2], z[3]);
+  fl.m2W = ff_make(w[2], w[3]);
+  return fl;
+}
+
+MCL_INLINE void film_lanes_store(const accumulate_args* a, vuint pixel, int run, uint p0, uint lanes,
+                                 const FilmLanes* fl) {
+  MCL_GLOBAL float* film[4] = {(MCL_GLOBAL float*)a->mean, (MCL_GLOBAL float*)a->meanLo, (MCL_GLOBAL float*)a->m2,
+                               (MCL_GLOBAL float*)a->m2Lo};
+  vfloat countLo = v_as_float(v_cvt_u_ul(fl->n & 0xfffffffful)), countHi = v_as_float(v_cvt_u_ul(fl->n >> 32));
+  vfloat x[4] = {fl->meanX.hi, fl->meanX.lo, fl->m2X.hi, fl->m2X.lo};
+  vfloat y[4] = {fl->meanY.hi, fl->meanY.lo, fl->m2Y.hi, fl->m2Y.lo};
+  vfloat z[4] = {fl->meanZ.hi, fl->meanZ.lo, fl->m2Z.hi, fl->m2Z.lo};
+  vfloat w[4] = {countLo, countHi, fl->m2W.hi, fl->m2W.lo};
+  for (uint k = 0; k < 4u; ++k) {
+    if (run) v_store4(film[k] + (ulong)p0 * 4, x[k], y[k], z[k], w[k]);
+    else v_scatter4_n(film[k], pixel, 4, lanes, x[k], y[k], z[k], w[k]);
+  }
+}
+
 // The general walk (run_walk: any block shift, any sub-sequence count, a partial packet of
 // `lanes` lanes); the sub-sequence accumulators are updated lane by lane.
 MCL_INLINE void accumulate_runs(const accumulate_args* a, uint j0, uint lanes) {
@@ -69,16 +112,7 @@ MCL_INLINE void accumulate_runs(const accumulate_args* a, uint j0, uint lanes) {
   const ulong g0 = a->waveStart;
   RunWalk walk;
   vuint pixel = run_walk_begin(&walk, f, a->active, g0, a->waveCount, j0, lanes);
-  MCL_GLOBAL float* film[4] = {(MCL_GLOBAL float*)a->mean, (MCL_GLOBAL float*)a->meanLo, (MCL_GLOBAL float*)a->m2,
-                               (MCL_GLOBAL float*)a->m2Lo};
-  vfloat mhx, mhy, mhz, mhw, mlx, mly, mlz, mlw, shx, shy, shz, shw, slx, sly, slz, slw;
-  v_gather4(film[0], pixel, 4, &mhx, &mhy, &mhz, &mhw);
-  v_gather4(film[1], pixel, 4, &mlx, &mly, &mlz, &mlw);
-  v_gather4(film[2], pixel, 4, &shx, &shy, &shz, &shw);
-  v_gather4(film[3], pixel, 4, &slx, &sly, &slz, &slw);
-  vulong n = v_cvt_ul_u(v_as_uint(mhw)) | (v_cvt_ul_u(v_as_uint(mlw)) << 32);
-  vffloat meanX = ff_make(mhx, mlx), meanY = ff_make(mhy, mly), meanZ = ff_make(mhz, mlz);
-  vffloat m2X = ff_make(shx, slx), m2Y = ff_make(shy, sly), m2Z = ff_make(shz, slz), m2W = ff_make(shw, slw);
+  FilmLanes fl = film_lanes_load(a, pixel, 0, 0u);
   MCL_GLOBAL const float* rad = (MCL_GLOBAL const float*)a->radiance;
   MCL_GLOBAL const float* sc = (MCL_GLOBAL const float*)a->shadowContrib;
   for (vmask step = run_walk_step(&walk); v_any(step); step = run_walk_step(&walk)) {
@@ -112,20 +146,16 @@ MCL_INLINE void accumulate_runs(const accumulate_args* a, uint j0, uint lanes) {
         a->split[s] = sub;
       }
     }
-    n += v_cvt_ul_u(v_mask01(step));
-    vfloat nf = v_cvt_f_ul(n);
-    v_welford(step, vx, nf, &meanX, &m2X);
-    v_welford(step, vy, nf, &meanY, &m2Y);
-    v_welford(step, vz, nf, &meanZ, &m2Z);
+    fl.n += v_cvt_ul_u(v_mask01(step));
+    vfloat nf = v_cvt_f_ul(fl.n);
+    v_welford(step, vx, nf, &fl.meanX, &fl.m2X);
+    v_welford(step, vy, nf, &fl.meanY, &fl.m2Y);
+    v_welford(step, vz, nf, &fl.meanZ, &fl.m2Z);
     // The w lanes compute like the others from value.w = 0 and mean.w = 0 (stage_accumulate).
-    m2W = ff_select(step, ff_add_float(m2W, v_f(0.0f) * (v_f(0.0f) - v_f(0.0f) - v_f(0.0f))), m2W);
+    fl.m2W = ff_select(step, ff_add_float(fl.m2W, v_f(0.0f) * (v_f(0.0f) - v_f(0.0f) - v_f(0.0f))), fl.m2W);
     walk.i = i + v_mask01(step);
   }
-  vfloat countLo = v_as_float(v_cvt_u_ul(n & 0xfffffffful)), countHi = v_as_float(v_cvt_u_ul(n >> 32));
-  v_scatter4_n(film[0], pixel, 4, lanes, meanX.hi, meanY.hi, meanZ.hi, countLo);
-  v_scatter4_n(film[1], pixel, 4, lanes, meanX.lo, meanY.lo, meanZ.lo, countHi);
-  v_scatter4_n(film[2], pixel, 4, lanes, m2X.hi, m2Y.hi, m2Z.hi, m2W.hi);
-  v_scatter4_n(film[3], pixel, 4, lanes, m2X.lo, m2Y.lo, m2Z.lo, m2W.lo);
+  film_lanes_store(a, pixel, 0, 0u, lanes, &fl);
 }
 
 MCL_INLINE void stage_accumulate(const accumulate_args* a, uint j0) {
@@ -160,23 +190,7 @@ MCL_INLINE void stage_accumulate(const accumulate_args* a, uint j0) {
   // loads and stores of the film; otherwise per-lane gathers and scatters.
   const uint p0 = v_first_lane(pixel);
   const int run = v_all(pixel == p0 + v_lane_index());
-  MCL_GLOBAL float* film[4] = {(MCL_GLOBAL float*)a->mean, (MCL_GLOBAL float*)a->meanLo, (MCL_GLOBAL float*)a->m2,
-                               (MCL_GLOBAL float*)a->m2Lo};
-  vfloat mhx, mhy, mhz, mhw, mlx, mly, mlz, mlw, shx, shy, shz, shw, slx, sly, slz, slw;
-  if (run) {
-    v_load4(film[0] + (ulong)p0 * 4, &mhx, &mhy, &mhz, &mhw);
-    v_load4(film[1] + (ulong)p0 * 4, &mlx, &mly, &mlz, &mlw);
-    v_load4(film[2] + (ulong)p0 * 4, &shx, &shy, &shz, &shw);
-    v_load4(film[3] + (ulong)p0 * 4, &slx, &sly, &slz, &slw);
-  } else {
-    v_gather4(film[0], pixel, 4, &mhx, &mhy, &mhz, &mhw);
-    v_gather4(film[1], pixel, 4, &mlx, &mly, &mlz, &mlw);
-    v_gather4(film[2], pixel, 4, &shx, &shy, &shz, &shw);
-    v_gather4(film[3], pixel, 4, &slx, &sly, &slz, &slw);
-  }
-  vulong n = v_cvt_ul_u(v_as_uint(mhw)) | (v_cvt_ul_u(v_as_uint(mlw)) << 32);
-  vffloat meanX = ff_make(mhx, mlx), meanY = ff_make(mhy, mly), meanZ = ff_make(mhz, mlz);
-  vffloat m2X = ff_make(shx, slx), m2Y = ff_make(shy, sly), m2Z = ff_make(shz, slz), m2W = ff_make(shw, slw);
+  FilmLanes fl = film_lanes_load(a, pixel, run, p0);
   const uint slots = f->shadowSlots;
   // Sub-sequence k of lane l: split[pixel_l K + k] (K <= C <= W here).
   vfloat subX[MCL_LANES], subY[MCL_LANES], subZ[MCL_LANES];
@@ -199,12 +213,12 @@ MCL_INLINE void stage_accumulate(const accumulate_args* a, uint j0) {
       subY[k] = subY[k] + (vy - subY[k]) / cf;
       subZ[k] = subZ[k] + (vz - subZ[k]) / cf;
     }
-    n += 1u;
-    vfloat nf = v_cvt_f_ul(n);
-    v_welford(live, vx, nf, &meanX, &m2X);
-    v_welford(live, vy, nf, &meanY, &m2Y);
-    v_welford(live, vz, nf, &meanZ, &m2Z);
-    m2W = ff_add_float(m2W, v_f(0.0f) * (v_f(0.0f) - v_f(0.0f) - v_f(0.0f)));  // as below
+    fl.n += 1u;
+    vfloat nf = v_cvt_f_ul(fl.n);
+    v_welford(live, vx, nf, &fl.meanX, &fl.m2X);
+    v_welford(live, vy, nf, &fl.meanY, &fl.m2Y);
+    v_welford(live, vz, nf, &fl.meanZ, &fl.m2Z);
+    fl.m2W = ff_add_float(fl.m2W, v_f(0.0f) * (v_f(0.0f) - v_f(0.0f) - v_f(0.0f)));  // as below
   }
   for (uint k = 0; splits > 1u && k < splits; ++k)
     v_scatter4(split + k * 4u, pixel, splits * 4u, subX[k], subY[k], subZ[k], v_as_float(subN[k]));
@@ -226,26 +240,15 @@ MCL_INLINE void stage_accumulate(const accumulate_args* a, uint j0) {
         vz = vz + sz;
       }
     }
-    n += v_cvt_ul_u(v_mask01(live));
-    vfloat nf = v_cvt_f_ul(n);
-    v_welford(live, vx, nf, &meanX, &m2X);
-    v_welford(live, vy, nf, &meanY, &m2Y);
-    v_welford(live, vz, nf, &meanZ, &m2Z);
+    fl.n += v_cvt_ul_u(v_mask01(live));
+    vfloat nf = v_cvt_f_ul(fl.n);
+    v_welford(live, vx, nf, &fl.meanX, &fl.m2X);
+    v_welford(live, vy, nf, &fl.meanY, &fl.m2Y);
+    v_welford(live, vz, nf, &fl.meanZ, &fl.m2Z);
     // The w lanes compute like the others from value.w = 0 and mean.w = 0: the mean's stay 0 (then
     // hold the count), M2's add 0 * 0.
-    vffloat m2WNew = ff_add_float(m2W, v_f(0.0f) * (v_f(0.0f) - v_f(0.0f) - v_f(0.0f)));
-    m2W = ff_select(live, m2WNew, m2W);
+    vffloat m2WNew = ff_add_float(fl.m2W, v_f(0.0f) * (v_f(0.0f) - v_f(0.0f) - v_f(0.0f)));
+    fl.m2W = ff_select(live, m2WNew, fl.m2W);
   }
-  vfloat countLo = v_as_float(v_cvt_u_ul(n & 0xfffffffful)), countHi = v_as_float(v_cvt_u_ul(n >> 32));
-  if (run) {
-    v_store4(film[0] + (ulong)p0 * 4, meanX.hi, meanY.hi, meanZ.hi, countLo);
-    v_store4(film[1] + (ulong)p0 * 4, meanX.lo, meanY.lo, meanZ.lo, countHi);
-    v_store4(film[2] + (ulong)p0 * 4, m2X.hi, m2Y.hi, m2Z.hi, m2W.hi);
-    v_store4(film[3] + (ulong)p0 * 4, m2X.lo, m2Y.lo, m2Z.lo, m2W.lo);
-  } else {
-    v_scatter4(film[0], pixel, 4, meanX.hi, meanY.hi, meanZ.hi, countLo);
-    v_scatter4(film[1], pixel, 4, meanX.lo, meanY.lo, meanZ.lo, countHi);
-    v_scatter4(film[2], pixel, 4, m2X.hi, m2Y.hi, m2Z.hi, m2W.hi);
-    v_scatter4(film[3], pixel, 4, m2X.lo, m2Y.lo, m2Z.lo, m2W.lo);
-  }
+  film_lanes_store(a, pixel, run, p0, MCL_LANES, &fl);
 }

@@ -7,8 +7,6 @@
 #include "direct_light.h"
 #include "stage_lanes.h"
 
-// luminance (lights.h) per lane.
-MCL_INLINE vfloat v_luminance(vfloat3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 // Le seen at W hits (light_eval: an emission texture looked up) and, where pdf is not null, its
 // light_pdf, lane by lane for the lanes set in m (0 elsewhere): hit first + j along ray first + j.

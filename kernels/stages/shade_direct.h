@@ -96,45 +96,19 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
     v_store4_stride_n(bounce + 4, 8, lanes, v_f(0.0f), v_f(0.0f), v_f(1.0f), v_f(-1.0f));
     return;
   }
-  // The hit triangles, their normals and materials (misses read entry 0 and are masked off).
-  vuint t = vsel(hit, tri, v_u(0u));
-  MCL_GLOBAL const float* tf = (MCL_GLOBAL const float*)a->tris;
-  MCL_GLOBAL const float* mf = (MCL_GLOBAL const float*)a->materials;
-  vfloat v0x, v0y, v0z, v0w, e1x, e1y, e1z, e1w, e2x, e2y, e2z, e2w, nx, ny, nz, nw;
-  v_gather4(tf, t, 12, &v0x, &v0y, &v0z, &v0w);
-  v_gather4(tf + 4, t, 12, &e1x, &e1y, &e1z, &e1w);
-  v_gather4(tf + 8, t, 12, &e2x, &e2y, &e2z, &e2w);
-  v_gather4((MCL_GLOBAL const float*)a->normals, t, 4, &nx, &ny, &nz, &nw);
-  vuint mat = v_as_uint(v0w);  // triangle_material
-  vfloat kdx, kdy, kdz, kdw, kex, key, kez, kew, ksx, ksy, ksz, ksw;
-  v_gather4(mf, mat, MCL_MATERIAL_FLOATS, &kdx, &kdy, &kdz, &kdw);      // albedo: Kd, texture index
-  v_gather4(mf + 4, mat, MCL_MATERIAL_FLOATS, &kex, &key, &kez, &kew);  // emission: Ke, two-sided
-  v_gather4(mf + 8, mat, MCL_MATERIAL_FLOATS, &ksx, &ksy, &ksz, &ksw);  // specular: Ks, alpha
-  vfloat kax, kay, kaz, kaw;
-  v_gather4(mf + 12, mat, MCL_MATERIAL_FLOATS, &kax, &kay, &kaz, &kaw);  // alpha test; w: the material kind (uint bits)
-  vfloat kmx, kmy, kmz, kmw;
-  v_gather4(mf + 24, mat, MCL_MATERIAL_FLOATS, &kmx, &kmy, &kmz, &kmw);  // maps: z the normal map, w the bump map (+1)
-  // bsdf_make's specProb, as the scalar body computes it: the packet takes the lanes where it is 0.
-  vfloat ls = v_luminance(v3_make(ksx, ksy, ksz)), ld = v_luminance(v3_make(kdx, kdy, kdz));
-  vfloat specProb = vsel(ls > 0.0f, ls / (ls + ld), v_f(0.0f));
-  vmask packet = hit & (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse);
-  vmask flat = packet & ((v_as_uint(e2w) & (MCL_ATTR_NORMALS | MCL_ATTR_COLOR)) == 0u) &
-               (v_as_uint(kdw) == MCL_NO_TEXTURE) & (v_as_uint(kmz) == 0u) &
-               (v_as_uint(kmw) == 0u);  // no normal or bump map (Material::maps.z, w)
-  if (f->instanceCount > 0u) {  // instanced hits: their frame from surface_at, in object space
-    uint inst[MCL_LANES] MCL_LANE_ALIGN;
-    for (uint j = 0; j < MCL_LANES; ++j) inst[j] = j < lanes ? hit_instance(f, a->hitInstances, first + j) : 0u;
-    flat = flat & (v_loadu_lanes(inst) == MCL_NO_INSTANCE);
-  }
+  // The hit triangles, their materials, and the lanes taken in lane types (packet) and from the
+  // triangle alone (flat).
+  LaneHits lh = lane_hits(f, a->tris, a->normals, a->materials, a->hitInstances, first, lanes, hit, tri);
+  const vmask packet = lh.lamb, flat = lh.flat;
   vmask other = hit & v_not(packet);  // other kinds: their surface and BSDF lane by lane
   vfloat dx, dy, dz, dw;
   v_load4_stride_n((MCL_GLOBAL const float*)(a->rays + first) + 4, 8, lanes, &dx, &dy, &dz, &dw);
   vfloat3 dir = v3_make(dx, dy, dz);
-  vfloat3 n = v3_make(nx, ny, nz);
+  vfloat3 n = lh.n;
   // emitted_toward(n, material, dir)
   vmask front = v3_dot(n, dir) < 0.0f;
-  vmask emits = front | (kew != 0.0f);
-  vfloat3 le = v3_make(vsel(emits, kex, v_f(0.0f)), vsel(emits, key, v_f(0.0f)), vsel(emits, kez, v_f(0.0f)));
+  vmask emits = front | (lh.twoSided != 0.0f);
+  vfloat3 le = v3_make(vsel(emits, lh.ke.x, v_f(0.0f)), vsel(emits, lh.ke.y, v_f(0.0f)), vsel(emits, lh.ke.z, v_f(0.0f)));
   LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf,
                                        a->lightRecords, a->shading,
                                        make_texture_tables(a->textures, a->textureLevels, a->texels));
@@ -165,8 +139,8 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
     vuint pixel, sample;
     v_item_pixel_sample(f, a->active, a->waveStart, first, &pixel, &sample);
     LaneFrame sf = lane_frame(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first,
-                              packet & v_not(flat), pixel, sample, 0u, v3_make(v0x, v0y, v0z),
-                              v3_make(e1x, e1y, e1z), v3_make(e2x, e2y, e2z), hu, hv, n, dir, v3_make(kdx, kdy, kdz));
+                              packet & v_not(flat), pixel, sample, 0u, lh.v0,
+                              lh.e1, lh.e2, hu, hv, n, dir, lh.kd);
     vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
     const float nLight = (float)f->lightSamples;
     const int useLight = f->directSampling != MCL_DIRECT_BRDF && (f->emitterCount > 0 || env || f->lightCount > 0u);

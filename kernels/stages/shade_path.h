@@ -130,35 +130,10 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
   v_load4_n((MCL_GLOBAL const float*)(a->hits + first), lanes, &ht, &htri, &hu, &hv);
   vuint tri = v_as_uint(htri);
   vmask hit = own & (tri != MCL_NO_HIT);
-  // The hit triangles, their normals and materials (misses read entry 0 and are masked off).
-  vuint t = vsel(hit, tri, v_u(0u));
-  MCL_GLOBAL const float* tf = (MCL_GLOBAL const float*)a->tris;
-  MCL_GLOBAL const float* mf = (MCL_GLOBAL const float*)a->materials;
-  vfloat v0x, v0y, v0z, v0w, e1x, e1y, e1z, e1w, e2x, e2y, e2z, e2w, nx, ny, nz, nw;
-  v_gather4(tf, t, 12, &v0x, &v0y, &v0z, &v0w);
-  v_gather4(tf + 4, t, 12, &e1x, &e1y, &e1z, &e1w);
-  v_gather4(tf + 8, t, 12, &e2x, &e2y, &e2z, &e2w);
-  v_gather4((MCL_GLOBAL const float*)a->normals, t, 4, &nx, &ny, &nz, &nw);
-  vuint mat = v_as_uint(v0w);  // triangle_material
-  vfloat kdx, kdy, kdz, kdw, kex, key, kez, kew, ksx, ksy, ksz, ksw, kax, kay, kaz, kaw;
-  v_gather4(mf, mat, MCL_MATERIAL_FLOATS, &kdx, &kdy, &kdz, &kdw);       // albedo: Kd, texture index
-  v_gather4(mf + 4, mat, MCL_MATERIAL_FLOATS, &kex, &key, &kez, &kew);   // emission: Ke, two-sided
-  v_gather4(mf + 8, mat, MCL_MATERIAL_FLOATS, &ksx, &ksy, &ksz, &ksw);   // specular: Ks, alpha
-  v_gather4(mf + 12, mat, MCL_MATERIAL_FLOATS, &kax, &kay, &kaz, &kaw);  // alpha test; w: the material kind (uint bits)
-  vfloat kmx, kmy, kmz, kmw;
-  v_gather4(mf + 24, mat, MCL_MATERIAL_FLOATS, &kmx, &kmy, &kmz, &kmw);  // maps: z the normal map, w the bump map (+1)
-  vfloat lks = v_luminance(v3_make(ksx, ksy, ksz)), lkd = v_luminance(v3_make(kdx, kdy, kdz));
-  vfloat specProb = vsel(lks > 0.0f, lks / (lks + lkd), v_f(0.0f));  // bsdf_make's
-  // The packet's hits: the diffuse kind without a glossy lobe; flat ones (no shading normals, vertex
-  // colours, albedo texture, normal or bump map) have their frame from the triangle alone.
-  vmask lamb = hit & (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse);
-  vmask flat = lamb & ((v_as_uint(e2w) & (MCL_ATTR_NORMALS | MCL_ATTR_COLOR)) == 0u) &
-               (v_as_uint(kdw) == MCL_NO_TEXTURE) & (v_as_uint(kmz) == 0u) & (v_as_uint(kmw) == 0u);
-  if (f->instanceCount > 0u) {  // instanced hits: their frame from surface_at, in object space
-    uint inst[MCL_LANES] MCL_LANE_ALIGN;
-    for (uint j = 0; j < MCL_LANES; ++j) inst[j] = j < lanes ? hit_instance(f, a->hitInstances, first + j) : 0u;
-    flat = flat & (v_loadu_lanes(inst) == MCL_NO_INSTANCE);
-  }
+  // The hit triangles, their materials, and the lanes taken in lane types (lamb) and from the
+  // triangle alone (flat).
+  LaneHits lh = lane_hits(f, a->tris, a->normals, a->materials, a->hitInstances, first, lanes, hit, tri);
+  const vmask lamb = lh.lamb, flat = lh.flat;
   vmask other = hit & v_not(lamb);  // other kinds: their surface and BSDF lane by lane (path_light_sample, path_continue)
 
   uint ids[MCL_LANES] MCL_LANE_ALIGN, owned[MCL_LANES] MCL_LANE_ALIGN;
@@ -178,7 +153,7 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
   vfloat dx, dy, dz, dw;
   v_load4_stride_n((MCL_GLOBAL const float*)(a->rays + first) + 4, 8, lanes, &dx, &dy, &dz, &dw);
   vfloat3 dir = v3_make(dx, dy, dz);
-  vfloat3 n = v3_make(nx, ny, nz);
+  vfloat3 n = lh.n;
   const float nLight = (float)f->lightSamples;
 
   // Misses: path_miss; without an environment the background at bounce 0, else nothing.
@@ -205,8 +180,8 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
   // Hits: Le seen (area_light_eval: emitted_toward), MIS weighted against light sampling after a
   // BSDF bounce (area_light_pdf).
   vmask front = v3_dot(n, dir) < 0.0f;
-  vmask emits = front | (kew != 0.0f);
-  vfloat3 le = v3_make(vsel(emits, kex, v_f(0.0f)), vsel(emits, key, v_f(0.0f)), vsel(emits, kez, v_f(0.0f)));
+  vmask emits = front | (lh.twoSided != 0.0f);
+  vfloat3 le = v3_make(vsel(emits, lh.ke.x, v_f(0.0f)), vsel(emits, lh.ke.y, v_f(0.0f)), vsel(emits, lh.ke.z, v_f(0.0f)));
   vfloat texturedPdf = v_f(0.0f);
   if (f->emissionTextured) le = lane_emission(f, lights, a->hits, a->rays, first, hit, &texturedPdf);
   vmask glows = hit & ((le.x > 0.0f) | (le.y > 0.0f) | (le.z > 0.0f));
@@ -214,9 +189,9 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
     vfloat weight = v_f(1.0f);
     if (bounce > 0 && f->emitterCount > 0u) {
       vfloat c = -v3_dot(n, dir);  // emitter_cosine
-      vfloat cosLight = vsel(kew != 0.0f, fabs(c), c);
-      vfloat pick = nw * v_luminance(v3_make(kex, key, kez)) / f->emitterPower;  // emitter_pick_probability
-      vfloat lpdf = area_light_probability(f) * (pick / nw * (ht * ht) / cosLight);
+      vfloat cosLight = vsel(lh.twoSided != 0.0f, fabs(c), c);
+      vfloat pick = lh.area * v_luminance(lh.ke) / f->emitterPower;  // emitter_pick_probability
+      vfloat lpdf = area_light_probability(f) * (pick / lh.area * (ht * ht) / cosLight);
       if (f->emissionTextured) lpdf = texturedPdf;
       vfloat fw = 1.0f * lastPdf, gw = nLight * lpdf;
       weight = vsel(lastPdf > 0.0f, v_power_heuristic(fw, gw), weight);
@@ -243,8 +218,8 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
       sample = v_loadu_lanes(sm);
     }
     LaneFrame sf = lane_frame(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first,
-                              lamb & v_not(flat), pixel, sample, bounce, v3_make(v0x, v0y, v0z),
-                              v3_make(e1x, e1y, e1z), v3_make(e2x, e2y, e2z), hu, hv, n, dir, v3_make(kdx, kdy, kdz));
+                              lamb & v_not(flat), pixel, sample, bounce, lh.v0,
+                              lh.e1, lh.e2, hu, hv, n, dir, lh.kd);
     vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
     // The lanes of other kinds: surface_at, the offset origin and the path weight, lane by lane.
     Surface surfs[MCL_LANES];

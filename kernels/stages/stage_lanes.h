@@ -209,6 +209,53 @@ typedef struct {
   vmask smooth;  // set where ns came from normals or a map (shading.h's folding rule applies)
 } LaneFrame;
 
+// luminance (lights.h) per lane.
+MCL_INLINE vfloat v_luminance(vfloat3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+// The hit triangles of a packet (lanes not in `hit` read entry 0, masked off by the caller), their
+// normals and the materials' fields the stage bodies read, and which lanes the lane-type
+// Lambertian code takes: lamb, the diffuse kind without a glossy lobe (bsdf_make's specular
+// probability 0, computed as it does), and of those flat, whose frame comes from the triangle
+// alone (no shading normals, vertex colours, albedo texture, normal or bump map, nor an instance:
+// the others' frame comes from surface_at).
+typedef struct {
+  vfloat3 v0, e1, e2, n, kd, ke;
+  vfloat area, twoSided;  // normals[].w; Material::emission.w
+  vmask lamb, flat;
+} LaneHits;
+
+MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const Triangle* tris,
+                              MCL_GLOBAL const float4* normals, MCL_GLOBAL const Material* materials,
+                              MCL_GLOBAL const uint* hitInstances, uint first, uint lanes, vmask hit, vuint tri) {
+  vuint t = vsel(hit, tri, v_u(0u));
+  MCL_GLOBAL const float* tf = (MCL_GLOBAL const float*)tris;
+  MCL_GLOBAL const float* mf = (MCL_GLOBAL const float*)materials;
+  LaneHits h;
+  vfloat v0w, e1w, e2w;
+  v_gather4(tf, t, 12, &h.v0.x, &h.v0.y, &h.v0.z, &v0w);
+  v_gather4(tf + 4, t, 12, &h.e1.x, &h.e1.y, &h.e1.z, &e1w);
+  v_gather4(tf + 8, t, 12, &h.e2.x, &h.e2.y, &h.e2.z, &e2w);
+  v_gather4((MCL_GLOBAL const float*)normals, t, 4, &h.n.x, &h.n.y, &h.n.z, &h.area);
+  vuint mat = v_as_uint(v0w);  // triangle_material
+  vfloat kdw, ksx, ksy, ksz, ksw, kax, kay, kaz, kaw, kmx, kmy, kmz, kmw;
+  v_gather4(mf, mat, MCL_MATERIAL_FLOATS, &h.kd.x, &h.kd.y, &h.kd.z, &kdw);         // albedo: Kd, texture index
+  v_gather4(mf + 4, mat, MCL_MATERIAL_FLOATS, &h.ke.x, &h.ke.y, &h.ke.z, &h.twoSided);  // emission: Ke, two-sided
+  v_gather4(mf + 8, mat, MCL_MATERIAL_FLOATS, &ksx, &ksy, &ksz, &ksw);              // specular: Ks, alpha
+  v_gather4(mf + 12, mat, MCL_MATERIAL_FLOATS, &kax, &kay, &kaz, &kaw);  // alpha test; w: the material kind (uint bits)
+  v_gather4(mf + 24, mat, MCL_MATERIAL_FLOATS, &kmx, &kmy, &kmz, &kmw);  // maps: z the normal map, w the bump map (+1)
+  vfloat ls = v_luminance(v3_make(ksx, ksy, ksz)), ld = v_luminance(h.kd);
+  vfloat specProb = vsel(ls > 0.0f, ls / (ls + ld), v_f(0.0f));
+  h.lamb = hit & (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse);
+  h.flat = h.lamb & ((v_as_uint(e2w) & (MCL_ATTR_NORMALS | MCL_ATTR_COLOR)) == 0u) &
+           (v_as_uint(kdw) == MCL_NO_TEXTURE) & (v_as_uint(kmz) == 0u) & (v_as_uint(kmw) == 0u);
+  if (f->instanceCount > 0u) {  // instanced hits: their frame from surface_at, in object space
+    uint inst[MCL_LANES] MCL_LANE_ALIGN;
+    for (uint j = 0; j < MCL_LANES; ++j) inst[j] = j < lanes ? hit_instance(f, hitInstances, first + j) : 0u;
+    h.flat = h.flat & (v_loadu_lanes(inst) == MCL_NO_INSTANCE);
+  }
+  return h;
+}
+
 // The lanes set in `rich` of a frame whose other lanes are already set: each through the scalar
 // surface_at (in its hit's instance, hit_instance), for sample ref (pixel, sample, bounce) of the
 // lane; their BSDF is the diffuse kind without a glossy lobe (the caller's mask says so from the
