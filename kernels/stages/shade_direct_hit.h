@@ -3,8 +3,8 @@
 // reached an emitter's front face, or escaped to the environment, writes (f cos / p) * Le * w_brdf
 // (f cos / p: bsdf_direction_weight of the surface's BSDF, shared/bsdf.h; w_brdf the MIS weight
 // under mis; 1 at a delta surface, docs/estimators.md) to the item's BSDF shadow slot, K.
-// The body takes W consecutive items and weighs their BSDF rays lane by lane: the few rays that
-// reach a light make this stage a small share of a direct-lighting wave.
+// The body takes W consecutive items, finds in lanes the few whose BSDF ray can have met light,
+// and weighs those lane by lane.
 #pragma once
 #include "stage_lanes.h"
 #include "direct_light.h"
@@ -40,6 +40,24 @@ MCL_INLINE void direct_hit_weigh(const shade_direct_hit_args* a, uint i) {
 
 MCL_INLINE void stage_shade_direct_hit(const shade_direct_hit_args* a, uint first) {
   if (first >= a->waveCount) return;
+  MCL_CONSTANT const FrameParams* f = a->frame;
   const uint lanes = v_packet_lanes(first, a->waveCount);
-  for (uint j = 0; j < lanes; ++j) direct_hit_weigh(a, first + j);
+  // The lanes whose BSDF ray can have met light, found in lanes: traced, and reaching a material
+  // with some positive Ke (material_emission is Ke there, or Ke times a texel) or escaping to an
+  // environment. Only those are weighed, one by one; the others write nothing, as the weighing
+  // would not (its Le is 0).
+  vfloat dx, dy, dz, dw, ht, htri, hu, hv;
+  v_load4_stride_n((MCL_GLOBAL const float*)(a->bounce + first) + 4, 8, lanes, &dx, &dy, &dz, &dw);
+  v_load4_n((MCL_GLOBAL const float*)(a->bounceHits + first), lanes, &ht, &htri, &hu, &hv);
+  vuint tri = v_as_uint(htri);
+  vmask miss = tri == MCL_NO_HIT;
+  vfloat v0x, v0y, v0z, v0w, kex, key, kez, kew;
+  v_gather4((MCL_GLOBAL const float*)a->tris, vsel(miss, v_u(0u), tri), 12, &v0x, &v0y, &v0z, &v0w);
+  v_gather4((MCL_GLOBAL const float*)a->materials + 4, v_as_uint(v0w), MCL_MATERIAL_FLOATS, &kex, &key, &kez, &kew);
+  vmask reach = v_not(miss) & ((kex > 0.0f) | (key > 0.0f) | (kez > 0.0f));
+  if (env_present(f)) reach = reach | miss;
+  uint set[MCL_LANES] MCL_LANE_ALIGN;
+  v_store_lanes(v_mask01((v_lane_index() < lanes) & (dw > 0.0f) & reach), set);
+  for (uint j = 0; j < lanes; ++j)
+    if (set[j]) direct_hit_weigh(a, first + j);
 }
