@@ -145,19 +145,14 @@ MCL_INLINE float coated_diffuse_coat_prob(CoatedDiffuseBsdf b, float cosO) {
 
 MCL_INLINE float coated_diffuse_pdf(CoatedDiffuseBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
   float3 woL = to_local(wo, s.ns), wiL = to_local(wi, s.ns);
-  int ok = above_surface(s.ng, wi) && woL.z > 0.0f && wiL.z > 0.0f;
-  float ps = coated_diffuse_coat_prob(b, woL.z);
-  float p = (1.0f - ps) * pdf_cosine_hemisphere(wiL.z) + ps * (ok ? ggx_pdf(woL, wiL, b.alpha) : 0.0f);
-  return ok ? p : 0.0f;
+  return ggx_cosine_mix_pdf(woL, wiL, above_surface(s.ng, wi), coated_diffuse_coat_prob(b, woL.z), b.alpha);
 }
 
 MCL_INLINE BsdfSample coated_diffuse_sample(CoatedDiffuseBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,
                                             float uLobe) {
   float3 woL = to_local(wo, s.ns);
   int up = woL.z > 0.0f;
-  int coat = uLobe < coated_diffuse_coat_prob(b, woL.z);
-  float3 hL = up ? ggx_sample_visible_normal(woL, b.alpha, u1, u2) : make_float3(0.0f, 0.0f, 1.0f);
-  float3 wiL = coat ? reflect_about(woL, hL) : sample_cosine_hemisphere(u1, u2);
+  float3 wiL = ggx_cosine_mix_sample(woL, uLobe < coated_diffuse_coat_prob(b, woL.z), b.alpha, u1, u2);
   BsdfSample r;
   r.wi = to_world(wiL, s.ns);
   float pdf = coated_diffuse_pdf(b, s, wo, r.wi);

@@ -67,3 +67,17 @@ MCL_INLINE float ggx_pdf(float3 wo, float3 wi, float alpha) {
 
 // Mirror of w about the unit normal h.
 MCL_INLINE float3 reflect_about(float3 w, float3 h) { return h * (2.0f * dot(w, h)) - w; }
+
+// A cosine lobe mixed with a GGX reflection lobe picked with probability ps (the kinds with a
+// diffuse base under a glossy lobe: metal_rough, coated_diffuse), in the shading frame (woL, wiL;
+// above: wi lies above the geometric surface). The mixture's solid-angle pdf, and the direction
+// drawn from the lobe `glossy` names.
+MCL_INLINE float ggx_cosine_mix_pdf(float3 woL, float3 wiL, int above, float ps, float alpha) {
+  int ok = above && woL.z > 0.0f && wiL.z > 0.0f;
+  float p = (1.0f - ps) * pdf_cosine_hemisphere(wiL.z) + ps * (ok ? ggx_pdf(woL, wiL, alpha) : 0.0f);
+  return ok ? p : 0.0f;
+}
+MCL_INLINE float3 ggx_cosine_mix_sample(float3 woL, int glossy, float alpha, float u1, float u2) {
+  float3 hL = woL.z > 0.0f ? ggx_sample_visible_normal(woL, alpha, u1, u2) : make_float3(0.0f, 0.0f, 1.0f);
+  return glossy ? reflect_about(woL, hL) : sample_cosine_hemisphere(u1, u2);
+}
