@@ -88,6 +88,33 @@ ConformanceCase texturedCase(const Scene& light, const std::string& name) {
   return c;
 }
 
+// texturedCase with the floor's checker read through a UV transform, clamped in u and mirrored in
+// v, times vertex colours, under tilted corner normals: each attribute the packet stages read in
+// lanes for the diffuse kind (shading normal, vertex colour, trilinear texture, wrap modes).
+ConformanceCase texturedAttributesCase(const Scene& light, const std::string& name) {
+  ConformanceCase c = texturedCase(light, name);
+  c.scene.path = "<textured, coloured, smooth polygon light scene>";
+  for (std::size_t i = 0; i < c.scene.triangles.size(); ++i) {
+    SceneTriangle& t = c.scene.triangles[i];
+    if (t.material != 0) continue;
+    c.scene.vertexColors.resize(3 * c.scene.triangles.size(), glm::vec3(1.0f));
+    for (int k = 0; k < 3; ++k) {
+      t.n[k] = glm::normalize(glm::vec3(0.3f * std::sin(3.0f * t.v[k].x), 1.0f, 0.25f * std::cos(2.0f * t.v[k].z)));
+      c.scene.vertexColors[3 * i + k] = glm::vec3(0.5f + 0.4f * std::sin(t.v[k].x), 0.7f, 0.4f + 0.5f * std::cos(t.v[k].z));
+    }
+    t.attributes |= kHasNormals | kHasColor;
+  }
+  auto t = std::make_shared<SceneTextures>(*c.textures);
+  TextureDesc d = t->textures[0];
+  d.uvRow0 = glm::vec4(0.8f, 0.3f, 0.1f, glm::uintBitsToFloat(MCL_WRAP_CLAMP));
+  d.uvRow1 = glm::vec4(-0.2f, 1.1f, 0.05f, glm::uintBitsToFloat(MCL_WRAP_MIRROR));
+  t->textures.push_back(d);
+  t->files.push_back("<checker, transformed>");
+  t->materials[0].albedo = static_cast<std::uint32_t>(t->textures.size() - 1);
+  c.textures = t;
+  return c;
+}
+
 // The polygon-light scene with an emission texture on the light (black but for a bright cross,
 // so some of the light's triangles emit only in part) and/or a tangent-space normal map on the
 // floor (decoded vectors, as scene_textures.cpp stores them) or a height map (its gradient, as
@@ -284,6 +311,8 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   cases.push_back(texturedCase(withDirect(light, DirectSampling::Mis, 2), "textured-cutout/direct-mis"));
   cases.push_back(texturedCase(withAo(light, AoSampling::Cosine), "textured-cutout/ao-cosine"));
   cases.push_back(texturedCase(withPath(light, 1), "textured-cutout/path"));
+  cases.push_back(texturedAttributesCase(withDirect(light, DirectSampling::Mis, 2), "textured-attributes/direct-mis"));
+  cases.push_back(texturedAttributesCase(withPath(light, 1), "textured-attributes/path"));
   // First-hit AOVs (albedo through the texture, shading normal, depth, emission seen directly: the
   // background on the horizon's misses), recorded by both kinds of wave.
   for (ConformanceCase c : {texturedCase(withDirect(light, DirectSampling::Mis, 1), "textured-cutout/direct-mis-aov"),

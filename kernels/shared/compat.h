@@ -99,6 +99,10 @@ inline float4 mcl_load_half4(const ushort* p, uint i) {
 }
 #endif
 
+// The select and "any lane" of the functions written once for floats and lanes (MCL_DEFINE_*), at
+// one lane: the conditional operator and the condition itself.
+#define MCL_SEL1(m, t, f) ((m) ? (t) : (f))
+#define MCL_ANY1(m) (m)
 // Vector helpers that read the same in both languages (no swizzles, which GLM lacks by default).
 MCL_INLINE float3 xyz(float4 v) { return make_float3(v.x, v.y, v.z); }
 MCL_INLINE float4 with_w(float3 v, float w) { return make_float4(v.x, v.y, v.z, w); }

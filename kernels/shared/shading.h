@@ -33,16 +33,17 @@ typedef struct {
 } SurfaceFrame;
 
 // Corner normals n0, n1, n2 at barycentrics (1 - u - v, u, v), normalised; the zero vector when the
-// blend is no usable direction (zero, e.g. opposite corners, or non-finite).
-MCL_INLINE float3 interpolate_normal(float3 n0, float3 n1, float3 n2, float u, float v) {
-  float3 n = n0 * (1.0f - u - v) + n1 * u + n2 * v;
-  float len2 = dot(n, n);
-  if (!(len2 > 1e-20f && len2 < INFINITY)) return make_float3(0.0f, 0.0f, 0.0f);
-  return n * (1.0f / sqrt(len2));
-}
-
-// ns flipped onto the side of ng.
-MCL_INLINE float3 orient_to(float3 ns, float3 ng) { return dot(ns, ng) < 0.0f ? -ns : ns; }
+// blend is no usable direction (zero, e.g. opposite corners, or non-finite). orient_to: ns flipped
+// onto the side of ng. Written once for floats and lanes (V: f3 or v3).
+#define MCL_DEFINE_INTERPOLATE_NORMAL(P, F, F3, V)                                                     \
+  MCL_INLINE F3 P##interpolate_normal(F3 n0, F3 n1, F3 n2, F u, F v) {                                 \
+    F3 n = V##_add(V##_add(V##_scale(n0, 1.0f - u - v), V##_scale(n1, u)), V##_scale(n2, v));          \
+    F len2 = V##_dot(n, n);                                                                            \
+    F3 unit = V##_scale(n, 1.0f / sqrt(len2));                                                         \
+    return V##_select((len2 > 1e-20f) & (len2 < INFINITY), unit, V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f))); \
+  }                                                                                                    \
+  MCL_INLINE F3 P##orient_to(F3 ns, F3 ng) { return V##_select(V##_dot(ns, ng) < 0.0f, V##_neg(ns), ns); }
+MCL_DEFINE_INTERPOLATE_NORMAL(, float, float3, f3)
 
 // 1 when w leaves above the geometric surface (strictly).
 MCL_INLINE int above_surface(float3 ng, float3 w) { return dot(ng, w) > 0.0f; }

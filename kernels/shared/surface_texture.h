@@ -8,18 +8,31 @@
 #include "lights.h"
 #include "texture.h"
 
+// A triangle's texture coordinates at barycentrics (bu, bv) of corners 1 and 2 from its corners'
+// (uk, vk), and the area of its UV image; written once for floats and lanes (stage_lanes.h).
+#define MCL_DEFINE_SURFACE_UV(P, F)                                                                 \
+  MCL_INLINE void P##uv_blend(F u0, F u1, F u2, F v0, F v1, F v2, F bu, F bv, F* u, F* v) {          \
+    F w = 1.0f - bu - bv;                                                                           \
+    *u = u0 * w + u1 * bu + u2 * bv;                                                                \
+    *v = v0 * w + v1 * bu + v2 * bv;                                                                \
+  }                                                                                                 \
+  MCL_INLINE F P##uv_triangle_area(F u0, F u1, F u2, F v0, F v1, F v2) {                            \
+    return 0.5f * fabs((u1 - u0) * (v2 - v0) - (u2 - u0) * (v1 - v0));                              \
+  }
+MCL_DEFINE_SURFACE_UV(, float)
+
 // Texture coordinates of triangle tri (attributes sh) at barycentrics (u, v) of v1 and v2.
 MCL_INLINE float2 surface_uv(MCL_GLOBAL const Triangle* tri, MCL_GLOBAL const TriangleShading* sh, float u, float v) {
   if (!(as_uint(tri->e2.w) & MCL_ATTR_UV)) return make_float2(0.0f, 0.0f);
-  float w = 1.0f - u - v;
-  return make_float2(sh->n0.w * w + sh->n1.w * u + sh->n2.w * v, sh->tv.x * w + sh->tv.y * u + sh->tv.z * v);
+  float x, y;
+  uv_blend(sh->n0.w, sh->n1.w, sh->n2.w, sh->tv.x, sh->tv.y, sh->tv.z, u, v, &x, &y);
+  return make_float2(x, y);
 }
 
 // Area of the triangle's UV image (0 without UVs).
 MCL_INLINE float uv_area(MCL_GLOBAL const Triangle* tri, MCL_GLOBAL const TriangleShading* sh) {
   if (!(as_uint(tri->e2.w) & MCL_ATTR_UV)) return 0.0f;
-  float a = (sh->n1.w - sh->n0.w) * (sh->tv.z - sh->tv.x) - (sh->n2.w - sh->n0.w) * (sh->tv.y - sh->tv.x);
-  return 0.5f * fabs(a);
+  return uv_triangle_area(sh->n0.w, sh->n1.w, sh->n2.w, sh->tv.x, sh->tv.y, sh->tv.z);
 }
 
 // Albedo at a hit h of a camera ray along unit direction dir: Kd x the albedo texture's colour

@@ -139,8 +139,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
     vuint pixel, sample;
     v_item_pixel_sample(f, a->active, a->waveStart, first, &pixel, &sample);
     LaneFrame sf = lane_frame(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first,
-                              packet & v_not(flat), pixel, sample, 0u, lh.v0,
-                              lh.e1, lh.e2, hu, hv, n, dir, lh.kd);
+                              packet & v_not(flat), pixel, sample, 0u, &lh, hu, hv, ht, dir);
     vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
     const float nLight = (float)f->lightSamples;
     const int useLight = f->directSampling != MCL_DIRECT_BRDF && (f->emitterCount > 0 || env || f->lightCount > 0u);

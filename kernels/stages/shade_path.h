@@ -218,8 +218,7 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
       sample = v_loadu_lanes(sm);
     }
     LaneFrame sf = lane_frame(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first,
-                              lamb & v_not(flat), pixel, sample, bounce, lh.v0,
-                              lh.e1, lh.e2, hu, hv, n, dir, lh.kd);
+                              lamb & v_not(flat), pixel, sample, bounce, &lh, hu, hv, ht, dir);
     vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
     // The lanes of other kinds: surface_at, the offset origin and the path weight, lane by lane.
     Surface surfs[MCL_LANES];

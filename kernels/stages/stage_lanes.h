@@ -155,9 +155,81 @@ MCL_DEFINE_SINCOS(v_, vfloat, vint, v_cvt_i_f)
 MCL_DEFINE_WARPS(v_, v_, vfloat, vfloat3, v3)
 MCL_DEFINE_CAMERA(v_, vfloat, vfloat3, v3)
 
+// --- texture.h, surface_texture.h: a packet's texture lookups -----------------------------------
+// The description of each lane's texture and the size of each lane's level (TextureDesc,
+// TextureLevel, gathered; the field names of the float forms), and each lane's texel.
+typedef struct {
+  vuint firstLevel, levelCount, dropped;
+  vfloat lodBias;
+  vfloat4 uvRow0, uvRow1;
+} vTextureDesc;
+typedef struct {
+  vuint offset, width, height;
+} vTextureLevel;
+
+MCL_INLINE vfloat4 v4_make(vfloat x, vfloat y, vfloat z, vfloat w) {
+  vfloat4 r;
+  r.x = x;
+  r.y = y;
+  r.z = z;
+  r.w = w;
+  return r;
+}
+
+MCL_INLINE vTextureDesc v_texture_desc(TextureTables tt, vuint tex) {
+  MCL_GLOBAL const float* p = (MCL_GLOBAL const float*)tt.textures;
+  const uint stride = (uint)(sizeof(TextureDesc) / sizeof(float));
+  vTextureDesc d;
+  vfloat first, count, dropped;
+  v_gather4(p, tex, stride, &first, &count, &dropped, &d.lodBias);
+  d.firstLevel = v_as_uint(first);
+  d.levelCount = v_as_uint(count);
+  d.dropped = v_as_uint(dropped);
+  v_gather4(p + 4, tex, stride, &d.uvRow0.x, &d.uvRow0.y, &d.uvRow0.z, &d.uvRow0.w);
+  v_gather4(p + 8, tex, stride, &d.uvRow1.x, &d.uvRow1.y, &d.uvRow1.z, &d.uvRow1.w);
+  return d;
+}
+
+MCL_INLINE vTextureLevel v_texture_level(TextureTables tt, vuint level) {
+  vfloat o, w, h, pad;
+  v_gather4((MCL_GLOBAL const float*)tt.levels, level, (uint)(sizeof(TextureLevel) / sizeof(float)), &o, &w, &h, &pad);
+  vTextureLevel l;
+  l.offset = v_as_uint(o);
+  l.width = v_as_uint(w);
+  l.height = v_as_uint(h);
+  return l;
+}
+
+// Texel (x, y) of each lane's level: the lanes' reads issued one after another, none waiting for
+// another's (a scattered packet's texels are mostly cache misses).
+MCL_INLINE vfloat4 v_texel_at(TextureTables tt, vTextureLevel l, vuint x, vuint y) {
+#if MCL_LANES == 1
+  float4 t = mcl_load_half4(tt.texels, l.offset + y * l.width + x);
+  return v4_make(t.x, t.y, t.z, t.w);
+#else
+  uint at[MCL_LANES] MCL_LANE_ALIGN;
+  float r[MCL_LANES] MCL_LANE_ALIGN, g[MCL_LANES] MCL_LANE_ALIGN, b[MCL_LANES] MCL_LANE_ALIGN, a[MCL_LANES] MCL_LANE_ALIGN;
+  v_store_lanes(l.offset + y * l.width + x, at);
+  for (uint k = 0; k < MCL_LANES; ++k) {
+    float4 t = mcl_load_half4(tt.texels, at[k]);
+    r[k] = t.x;
+    g[k] = t.y;
+    b[k] = t.z;
+    a[k] = t.w;
+  }
+  return v4_make(v_loadf_lanes(r), v_loadf_lanes(g), v_loadf_lanes(b), v_loadf_lanes(a));
+#endif
+}
+
+MCL_DEFINE_TEXTURE_LOOKUP(v_, vfloat, vuint, vint, vfloat4, v4_make, vsel, v_any, v_int_as_uint, v_as_int, v_cvt_i_f,
+                          v_cvt_u_f, v_cvt_f_u, v_as_uint, v_as_float, vTextureDesc, v_texture_desc, vTextureLevel,
+                          v_texture_level, v_texel_at)
+MCL_DEFINE_SURFACE_UV(v_, vfloat)
+
 // --- geometry.h, surface.h -------------------------------------------------------------------
 MCL_DEFINE_OFFSET_RAY_ORIGIN(v_, vfloat, vint, vfloat3, v3, v_cvt_i_f, v_as_float, v_as_uint, v_int_as_uint)
 MCL_DEFINE_ORIENT_FACING(v_, vfloat3, v3)
+MCL_DEFINE_INTERPOLATE_NORMAL(v_, vfloat, vfloat3, v3)
 
 // Pushes the occlusion queries of the lanes set in m (push_shadow_query), with one atomic per
 // packet: the packet takes count(m) consecutive queue entries and its set lanes fill them in lane
@@ -221,7 +293,9 @@ MCL_INLINE vfloat v_luminance(vfloat3 c) { return 0.2126f * c.x + 0.7152f * c.y 
 typedef struct {
   vfloat3 v0, e1, e2, n, kd, ke;
   vfloat area, twoSided;  // normals[].w; Material::emission.w
+  vuint tri, attrs, albedoTex;  // the triangle (0 where no hit), its MCL_ATTR_* flags, Kd's texture
   vmask lamb, flat;
+  vmask placed;  // a normal or bump map, or an instance: the frame only through surface_at
 } LaneHits;
 
 MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const Triangle* tris,
@@ -246,13 +320,17 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
   vfloat ls = v_luminance(v3_make(ksx, ksy, ksz)), ld = v_luminance(h.kd);
   vfloat specProb = vsel(ls > 0.0f, ls / (ls + ld), v_f(0.0f));
   h.lamb = hit & (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse);
-  h.flat = h.lamb & ((v_as_uint(e2w) & (MCL_ATTR_NORMALS | MCL_ATTR_COLOR)) == 0u) &
-           (v_as_uint(kdw) == MCL_NO_TEXTURE) & (v_as_uint(kmz) == 0u) & (v_as_uint(kmw) == 0u);
+  h.tri = t;
+  h.attrs = v_as_uint(e2w);
+  h.albedoTex = v_as_uint(kdw);
+  h.placed = (v_as_uint(kmz) != 0u) | (v_as_uint(kmw) != 0u);
   if (f->instanceCount > 0u) {  // instanced hits: their frame from surface_at, in object space
     uint inst[MCL_LANES] MCL_LANE_ALIGN;
     for (uint j = 0; j < MCL_LANES; ++j) inst[j] = j < lanes ? hit_instance(f, hitInstances, first + j) : 0u;
-    h.flat = h.flat & (v_loadu_lanes(inst) == MCL_NO_INSTANCE);
+    h.placed = h.placed | (v_loadu_lanes(inst) != MCL_NO_INSTANCE);
   }
+  h.flat = h.lamb & ((h.attrs & (MCL_ATTR_NORMALS | MCL_ATTR_COLOR)) == 0u) & (h.albedoTex == MCL_NO_TEXTURE) &
+           v_not(h.placed);
   return h;
 }
 
@@ -296,21 +374,84 @@ MCL_INLINE LaneFrame lane_frame_rich(SurfaceScene sc, MCL_CONSTANT const FramePa
   return r;
 }
 
-// The frame of W hits: flat world-space hits from their triangle (vertex v0, edges e1, e2 at
-// barycentrics hu, hv; unit normal n; Kd), surface_frame's operations; the lanes in `rich` from
-// surface_at (lane_frame_rich).
+// The lanes set in m (hits on world-space triangles without a normal or bump map) of a frame whose
+// flat part is set: surface_frame's shading normal and hit_albedo's vertex colour and albedo
+// texture (trilinear, ray-cone footprint, hit_texture), in lanes, barycentrics hu, hv, distance ht.
+MCL_INLINE LaneFrame lane_frame_attributes(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, vmask m,
+                                           const LaneHits* lh, vfloat hu, vfloat hv, vfloat ht, vfloat3 dir,
+                                           LaneFrame lf) {
+  vmask hasN = m & ((lh->attrs & MCL_ATTR_NORMALS) != 0u), hasUV = m & ((lh->attrs & MCL_ATTR_UV) != 0u);
+  vmask coloured = m & ((lh->attrs & MCL_ATTR_COLOR) != 0u), textured = m & (lh->albedoTex != MCL_NO_TEXTURE);
+  vfloat3 n0 = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f)), n1 = n0, n2 = n0;
+  vfloat u0 = v_f(0.0f), u1 = u0, u2 = u0, t0 = u0, t1 = u0, t2 = u0, tw;
+  if (v_any(hasN | hasUV)) {  // TriangleShading: corner normals, u in w; v of the corners in tv
+    MCL_GLOBAL const float* sh = (MCL_GLOBAL const float*)sc.shading;
+    const uint stride = (uint)(sizeof(TriangleShading) / sizeof(float));
+    vuint ts = vsel(hasN | hasUV, lh->tri, v_u(0u));
+    v_gather4(sh, ts, stride, &n0.x, &n0.y, &n0.z, &u0);
+    v_gather4(sh + 4, ts, stride, &n1.x, &n1.y, &n1.z, &u1);
+    v_gather4(sh + 8, ts, stride, &n2.x, &n2.y, &n2.z, &u2);
+    v_gather4(sh + 12, ts, stride, &t0, &t1, &t2, &tw);
+  }
+  if (v_any(hasN)) {
+    vfloat3 n = v_interpolate_normal(n0, n1, n2, hu, hv);
+    vmask usable = hasN & (v3_dot(n, n) > 0.0f);
+    lf.ns = v3_select(usable, v_orient_to(n, lf.ng), lf.ns);
+    lf.smooth = lf.smooth | usable;
+  }
+  vfloat3 kd = lf.kd;
+  if (v_any(coloured)) {  // times the vertex colour interpolated at the hit
+    MCL_GLOBAL const float* c = (MCL_GLOBAL const float*)sc.tex.colors;
+    vuint at = vsel(coloured, lh->tri, v_u(0u)) * 3u;
+    vfloat3 c0, c1, c2;
+    vfloat cw;
+    v_gather4(c, at, 4, &c0.x, &c0.y, &c0.z, &cw);
+    v_gather4(c, at + 1u, 4, &c1.x, &c1.y, &c1.z, &cw);
+    v_gather4(c, at + 2u, 4, &c2.x, &c2.y, &c2.z, &cw);
+    vfloat w = 1.0f - hu - hv;
+    vfloat3 blend = v3_add(v3_add(v3_scale(c0, w), v3_scale(c1, hu)), v3_scale(c2, hv));
+    kd = v3_select(coloured, v3_mul(kd, blend), kd);
+  }
+  if (v_any(textured)) {  // hit_texture: the camera's ray cone at distance ht
+    uint texs[MCL_LANES] MCL_LANE_ALIGN, on[MCL_LANES] MCL_LANE_ALIGN;
+    vuint tex = lh->albedoTex;
+    v_store_lanes(tex, texs);
+    v_store_lanes(v_mask01(textured), on);
+    uint some = 0u;  // a texture the other lanes read (masked): some textured lane's
+    for (uint j = 0; j < MCL_LANES; ++j)
+      if (on[j]) some = texs[j];
+    vfloat u, v;
+    v_uv_blend(u0, u1, u2, t0, t1, t2, hu, hv, &u, &v);
+    vfloat area = vsel(hasUV, v_uv_triangle_area(u0, u1, u2, t0, t1, t2), v_f(0.0f));
+    vfloat fp = v_texture_footprint(camera_spread_angle(f) * ht, area, lh->area, v3_dot(lh->n, dir));
+    vfloat4 c = v_texture_sample(sc.tex, vsel(textured, tex, v_u(some)), vsel(hasUV, u, v_f(0.0f)),
+                                 vsel(hasUV, v, v_f(0.0f)), fp);
+    kd = v3_select(textured, v3_mul(kd, v3_make(c.x, c.y, c.z)), kd);
+  }
+  lf.kd = kd;
+  return lf;
+}
+
+// The frame of W hits (lh, at barycentrics hu, hv and distance ht along dir): flat world-space hits
+// from their triangle, surface_frame's operations; of the lanes in `rich`, those without a normal or
+// bump map nor an instance in lanes (lane_frame_attributes), the others from surface_at
+// (lane_frame_rich).
 MCL_INLINE LaneFrame lane_frame(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const Hit* hits,
                                 MCL_GLOBAL const uint* hitInstances, MCL_GLOBAL const Ray* rays, uint first, vmask rich,
-                                vuint pixel, vuint sample, uint bounce, vfloat3 v0, vfloat3 e1, vfloat3 e2, vfloat hu,
-                                vfloat hv, vfloat3 n, vfloat3 dir, vfloat3 kd) {
+                                vuint pixel, vuint sample, uint bounce, const LaneHits* lh, vfloat hu, vfloat hv,
+                                vfloat ht, vfloat3 dir) {
   LaneFrame lf;
-  lf.p = v3_add(v3_add(v0, v3_scale(e1, hu)), v3_scale(e2, hv));
-  lf.ng = v_orient_facing(n, dir);
+  lf.p = v3_add(v3_add(lh->v0, v3_scale(lh->e1, hu)), v3_scale(lh->e2, hv));
+  lf.ng = v_orient_facing(lh->n, dir);
   lf.ns = lf.ng;
-  lf.kd = kd;
+  lf.kd = lh->kd;
   lf.smooth = v_not(rich | v_not(rich));  // none
   if (!v_any(rich)) return lf;
-  return lane_frame_rich(sc, f, hits, hitInstances, rays, first, rich, pixel, sample, bounce, lf);
+  vmask inLanes = rich & v_not(lh->placed);
+  if (v_any(inLanes)) lf = lane_frame_attributes(sc, f, inLanes, lh, hu, hv, ht, dir, lf);
+  vmask placed = rich & lh->placed;
+  if (!v_any(placed)) return lf;
+  return lane_frame_rich(sc, f, hits, hitInstances, rays, first, placed, pixel, sample, bounce, lf);
 }
 
 // The surfaces (surface_at) and offset ray origins of the lanes set in which[] (nonzero), the
