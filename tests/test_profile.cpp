@@ -112,3 +112,63 @@ TEST_CASE("render without --profile prints no profile" * doctest::test_suite("cl
 }
 
 }  // namespace test_file_profile
+
+namespace test_file_profile {
+
+// The "shading: P% of N hits in lane types" line's P and N; N = -1 when absent.
+std::pair<double, long> laneTally(const std::string& out) {
+  const std::size_t at = out.find("\nshading: ");
+  if (at == std::string::npos) return {0.0, -1};
+  std::istringstream in(out.substr(at + 10));
+  double pct = 0.0;
+  std::string percent, of;
+  long hits = -1;
+  in >> pct >> percent >> of >> hits;
+  return {pct, hits};
+}
+
+// The tally counts hits, not work items: the host backend (one lane) and the OpenCL device (W
+// lanes, fused stages) count the same hits the same way; a scene of flat diffuse walls is shaded
+// wholly in lane types, the materials box (glass, metals) in part.
+TEST_CASE("render --profile: the shading lane tally is the hits' own (host backend = OpenCL), 100% for diffuse walls" *
+          doctest::test_suite("cli")) {
+  TempDir dir;
+  const std::string box = std::string(MONTECL_SOURCE_DIR) + "/scenes/materials/scene.json";
+  std::pair<double, long> tallies[2];
+  int k = 0;
+  for (const char* device : {"host", "default"}) {
+    CAPTURE(device);
+    std::vector<std::string> args = {"render", box, "--width", "24", "--height", "16", "--spp", "2", "--integrator",
+                                     "path", "--max-depth", "4", "--profile", "-q", "-o", dir.file("m.pfm"),
+                                     "--overwrite"};
+    if (std::string(device) == "host") args.insert(args.end(), {"--device", "host"});
+    CliResult r = runMontecl(args);
+    INFO(r.out << r.err);
+    REQUIRE(r.exitCode == 0);
+    tallies[k] = laneTally(r.out);
+    CHECK(tallies[k].second > 24 * 16);  // camera hits and bounces
+    CHECK(tallies[k].first > 0.0);
+    CHECK(tallies[k].first < 100.0);  // glass and metals are shaded one by one
+    ++k;
+  }
+  CHECK(tallies[0].second == tallies[1].second);
+  CHECK(tallies[0].first == tallies[1].first);
+  // Flat diffuse walls only: every hit in lane types; direct: one shading hit per camera ray that hits.
+  dir.write("walls.json", R"({"camera": {"position": [0, 1, 3.6], "target": [0, 0.9, 0], "fov_y": 38},
+    "meshes": [{"file": ")" + std::string(MONTECL_SOURCE_DIR) + R"(/scenes/materials/box.obj"},
+               {"file": ")" + std::string(MONTECL_SOURCE_DIR) + R"(/scenes/materials/light.obj", "emission": [17, 12, 4]}]})");
+  CliResult r = runMontecl({"render", dir.file("walls.json"), "--width", "24", "--height", "16", "--spp", "2",
+                            "--integrator", "direct", "--profile", "-q", "-o", dir.file("w.pfm"), "--overwrite"});
+  INFO(r.out << r.err);
+  REQUIRE(r.exitCode == 0);
+  const std::pair<double, long> walls = laneTally(r.out);
+  CHECK(walls.first == 100.0);
+  CHECK(walls.second > 0);
+  CHECK(walls.second <= 24 * 16 * 2);
+  // Without --profile nothing is counted or printed.
+  CliResult quiet = runMontecl({"render", dir.file("walls.json"), "--width", "8", "--height", "8", "--spp", "1", "-q",
+                                "-o", dir.file("q.pfm"), "--overwrite"});
+  CHECK(laneTally(quiet.out).second == -1);
+}
+
+}  // namespace test_file_profile

@@ -122,6 +122,10 @@ class ClStageRunner final : public StageRunner {
     cl_.queue().enqueueWriteBuffer(bindings_.rayCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &w.rayCount);
     cl_.queue().enqueueWriteBuffer(bindings_.queueCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &kZero);
     cl_.queue().enqueueWriteBuffer(bindings_.nanRays.buffer, CL_FALSE, 0, sizeof(cl_uint), &kZero);
+    if (profile_) {
+      cl_.queue().enqueueWriteBuffer(bindings_.packedLanes.buffer, CL_FALSE, 0, sizeof(cl_uint), &kZero);
+      cl_.queue().enqueueWriteBuffer(bindings_.aloneLanes.buffer, CL_FALSE, 0, sizeof(cl_uint), &kZero);
+    }
   }
 
   // Arguments are set at every launch (a handful of clSetKernelArg calls per stage and wave): the
@@ -173,6 +177,11 @@ class ClStageRunner final : public StageRunner {
     w.launched = std::move(launched_);
     launched_.clear();
     cl_.queue().enqueueReadBuffer(bindings_.nanRays.buffer, CL_FALSE, 0, sizeof(cl_uint), &w.counts[1]);
+    w.lanes[0] = w.lanes[1] = 0;
+    if (profile_) {
+      cl_.queue().enqueueReadBuffer(bindings_.packedLanes.buffer, CL_FALSE, 0, sizeof(cl_uint), &w.lanes[0]);
+      cl_.queue().enqueueReadBuffer(bindings_.aloneLanes.buffer, CL_FALSE, 0, sizeof(cl_uint), &w.lanes[1]);
+    }
     cl_.queue().enqueueReadBuffer(bindings_.queueCount.buffer, CL_FALSE, 0, sizeof(cl_uint), &w.counts[0], nullptr,
                                   &w.read);
   }
@@ -185,6 +194,10 @@ class ClStageRunner final : public StageRunner {
         profile_->add(name, double(event.getProfilingInfo<CL_PROFILING_COMMAND_END>() -
                                    event.getProfilingInfo<CL_PROFILING_COMMAND_START>()) * 1e-6);
     w.launched.clear();
+    if (profile_) {
+      profile_->packedLanes += w.lanes[0];
+      profile_->aloneLanes += w.lanes[1];
+    }
     firstSubmitted_ = (firstSubmitted_ + 1) % 2;
     --submittedCount_;
     return WaveCounts{w.counts[0], w.counts[1]};
@@ -282,6 +295,7 @@ class ClStageRunner final : public StageRunner {
   struct Submitted {
     cl_uint rayCount = 0;
     cl_uint counts[2] = {0, 0};  // occlusion queries, non-finite rays
+    cl_uint lanes[2] = {0, 0};   // --profile: hits shaded in lane types, one by one
     cl::Event read;
     std::vector<std::pair<std::string, cl::Event>> launched;
   };

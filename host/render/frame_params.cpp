@@ -51,6 +51,7 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
   f.packetAllRays = extras.packetAllRays ? 1u : 0u;
   f.instanceCount = extras.instanceCount;
   f.recordAovs = extras.recordAovs ? 1u : 0u;
+  f.countLanes = extras.countLanes ? 1u : 0u;
   const LightSelection& l = extras.lights;
   f.shareEnvironment = l.shareEnvironment;
   f.shareArea = l.shareArea;

@@ -31,6 +31,7 @@ struct FrameExtras {
   bool packetAllRays = false;  // packetTraversalForAllRays(the BVH's wide node count)
   uint instanceCount = 0;      // Bvh::instances (a two-level BVH), 0: one level
   bool recordAovs = false;     // first-hit AOVs are recorded (FrameParams::recordAovs)
+  bool countLanes = false;     // --profile: the shading stages count lanes (FrameParams::countLanes)
   LightSelection lights;
 };
 

@@ -73,6 +73,7 @@ class HostStageRunner final : public StageRunner {
     *bindings_.rayCount = count;  // (the current ray count: path bounces swap it)
     queueCount_ = 0;
     nanRays_ = 0;
+    packedLanes_ = aloneLanes_ = 0;
   }
 
   void launch(Stage s, std::uint64_t items, RayInput rays) override {
@@ -102,7 +103,13 @@ class HostStageRunner final : public StageRunner {
   BounceCounts readBounceCounts() override { return BounceCounts{*bindings_.rayCount, queueCount_}; }
 
   // (The stages ran in launch(): a wave's counts are final when it is submitted.)
-  void submitWave() override { submitted_[(firstSubmitted_ + submittedCount_++) % 2] = {queueCount_, nanRays_}; }
+  void submitWave() override {
+    submitted_[(firstSubmitted_ + submittedCount_++) % 2] = {queueCount_, nanRays_};
+    if (profile_) {
+      profile_->packedLanes += packedLanes_;
+      profile_->aloneLanes += aloneLanes_;
+    }
+  }
   WaveCounts waitWave() override {
     const WaveCounts c = submitted_[firstSubmitted_];
     firstSubmitted_ = (firstSubmitted_ + 1) % 2;

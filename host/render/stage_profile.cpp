@@ -43,6 +43,13 @@ std::string formatProfile(const StageProfile& profile, double wallSeconds) {
   std::snprintf(line, sizeof line, "  %-28s %10.3f %6.1f%%\n", "total", wallMs, share(wallMs));
   out += line;
   out += "  host (device idle): host code, buffer transfers, waits and launch latency between stages\n";
+  const std::uint64_t hits = profile.packedLanes + profile.aloneLanes;
+  if (hits > 0) {
+    std::snprintf(line, sizeof line, "shading: %.1f%% of %llu hits in lane types", 100.0 * double(profile.packedLanes) / double(hits),
+                  static_cast<unsigned long long>(hits));
+    out += line;
+    out += " (the rest one by one: other material kinds, normal and bump maps, instanced hits)\n";
+  }
   return out;
 }
 

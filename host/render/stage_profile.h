@@ -21,6 +21,8 @@ struct StageTime {
 
 struct StageProfile {
   std::vector<StageTime> stages;  // in the order of their first launch
+  // The shading stages' hits shaded in lane types and one by one (FrameParams::countLanes).
+  std::uint64_t packedLanes = 0, aloneLanes = 0;
   void add(const std::string& name, double ms);
   double stageMs() const;  // the sum over stages
 };
@@ -29,7 +31,8 @@ struct StageProfile {
 std::string stageProfileName(Stage s, RayInput rays);
 
 // The table `--profile` prints: one row per stage (ms, share of wallSeconds, launches), one row
-// "host (device idle)" with the rest of the wall time, and the total (100%).
+// "host (device idle)" with the rest of the wall time, and the total (100%); then the share of
+// the shading stages' hits shaded in lane types.
 std::string formatProfile(const StageProfile& profile, double wallSeconds);
 
 }  // namespace montecl

@@ -45,8 +45,10 @@ enum class Need { Always, Bounce, Path, Aovs, Splits, Instances, BounceInstances
 
 // WAVE_COUNTER(name): one uint the stages count into (atomically) and the host resets and reads:
 // rayCount the current ray queue's size, nextCount the next bounce's, queueCount the occlusion
-// queries queued, nanRays rays met with a NaN/inf origin or direction.
-#define MCL_WAVE_COUNTERS(C) C(rayCount) C(nextCount) C(queueCount) C(nanRays)
+// queries queued, nanRays rays met with a NaN/inf origin or direction; with --profile
+// (FrameParams::countLanes) the shading stages' hits shaded in lane types (packedLanes) and one by
+// one through the scalar functions (aloneLanes: other kinds, normal and bump maps, instances).
+#define MCL_WAVE_COUNTERS(C) C(rayCount) C(nextCount) C(queueCount) C(nanRays) C(packedLanes) C(aloneLanes)
 
 // FILM_BUFFER(name, Per, Need): the film, per pixel, float4 (kernels/stages/accumulate.h:
 // float-float mean and M2 with the 64-bit count in the w lanes, AOV sums), cleared or loaded from

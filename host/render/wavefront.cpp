@@ -147,6 +147,7 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
   extras.textureCount = textures ? std::uint32_t(textures->textures.size()) : 0u;
   extras.instanceCount = std::uint32_t(bvh.instances.size());
   extras.recordAovs = o.aovs;
+  extras.countLanes = o.profile;
   // Incoherent rays in packets too (BRDF and path rays, AO and shadow queries) in a small tree.
   extras.packetAllRays = run.bvhLayout() == BvhLayout::Wide && packetTraversalForAllRays(bvh.wideNodes().size());
   LightTable lights = buildLightTable(scene, emitters.totalPower, environment, integrator.lit);

@@ -64,6 +64,9 @@
 // frame->instanceCount > 0, stage_common.h hit_instance).
 #define MCL_INSTANCE_ARGS(ARG) ARG(MCL_GLOBAL const Instance*, instances)
 #define MCL_HIT_INSTANCE_ARGS(ARG) MCL_INSTANCE_ARGS(ARG) ARG(MCL_GLOBAL const uint*, hitInstances)
+// The shading stages' lane tally (--profile; FrameParams::countLanes): hits shaded in lane types
+// and hits shaded one by one.
+#define MCL_LANE_TALLY_ARGS(ARG) ARG(MCL_GLOBAL volatile uint*, packedLanes) ARG(MCL_GLOBAL volatile uint*, aloneLanes)
 
 // ARG(type, name): the names are StageBindings' members (host/render/stage_bindings.h).
 // normals: per BVH-ordered triangle, xyz its unit geometric normal and w its area, computed once
@@ -96,7 +99,7 @@
   ARG(MCL_GLOBAL volatile uint*, queueCount) ARG(MCL_GLOBAL Ray*, bounce)                        \
   ARG(MCL_GLOBAL const float4*, envMap) ARG(MCL_GLOBAL const float*, envCdf) \
   ARG(MCL_GLOBAL const LightRecord*, lightRecords) \
-  MCL_SHADE_TEXTURE_ARGS(ARG) MCL_HIT_INSTANCE_ARGS(ARG)
+  MCL_SHADE_TEXTURE_ARGS(ARG) MCL_HIT_INSTANCE_ARGS(ARG) MCL_LANE_TALLY_ARGS(ARG)
 
 #define MCL_ARGS_shade_direct_hit(ARG)                                                             \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(MCL_GLOBAL const uint*, active)                   \
@@ -146,7 +149,7 @@
   ARG(MCL_GLOBAL Ray*, nextRays) ARG(MCL_GLOBAL uint*, nextPathIds)                                \
   ARG(MCL_GLOBAL volatile uint*, nextCount) ARG(MCL_GLOBAL const float4*, envMap)                   \
   ARG(MCL_GLOBAL const float*, envCdf) ARG(MCL_GLOBAL const LightRecord*, lightRecords) \
-  MCL_SHADE_TEXTURE_ARGS(ARG) MCL_HIT_INSTANCE_ARGS(ARG)
+  MCL_SHADE_TEXTURE_ARGS(ARG) MCL_HIT_INSTANCE_ARGS(ARG) MCL_LANE_TALLY_ARGS(ARG)
 
 #define MCL_ARGS_path_gather(ARG)                                                                  \
   ARG(uint, pathBounce) ARG(MCL_GLOBAL const uint*, rayCount) ARG(MCL_GLOBAL const uint*, pathIds) \
@@ -171,7 +174,7 @@
   MCL_ARGS_wave_ao(ARG) ARG(MCL_GLOBAL const Emitter*, emitters) ARG(MCL_GLOBAL Ray*, bounce)      \
   ARG(MCL_GLOBAL Hit*, bounceHits) ARG(MCL_GLOBAL const float4*, envMap)                           \
   ARG(MCL_GLOBAL const float*, envCdf) ARG(MCL_GLOBAL const LightRecord*, lightRecords)            \
-  ARG(MCL_GLOBAL uint*, bounceHitInstances)
+  ARG(MCL_GLOBAL uint*, bounceHitInstances) MCL_LANE_TALLY_ARGS(ARG)
 
 #define MCL_ARGS_wave_path(ARG)                                                                    \
   ARG(ulong, waveStart) ARG(uint, waveCount) ARG(uint, pathBounce) ARG(MCL_GLOBAL const uint*, active) \
@@ -186,7 +189,7 @@
   ARG(MCL_GLOBAL uint*, nextPathIds) ARG(MCL_GLOBAL volatile uint*, nextCount)                     \
   ARG(MCL_GLOBAL const float4*, envMap) ARG(MCL_GLOBAL const float*, envCdf)                       \
   ARG(MCL_GLOBAL const LightRecord*, lightRecords) MCL_INSTANCE_ARGS(ARG) ARG(MCL_GLOBAL uint*, hitInstances) \
-  ARG(MCL_GLOBAL const float4*, tangents) ARG(MCL_GLOBAL float4*, aov)
+  ARG(MCL_GLOBAL const float4*, tangents) ARG(MCL_GLOBAL float4*, aov) MCL_LANE_TALLY_ARGS(ARG)
 
 // <stage>_args: frame, then the table's arguments, as fields of the same names.
 #define MCL_ARG_FIELD(type, name) type name;

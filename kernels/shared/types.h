@@ -170,6 +170,7 @@ typedef struct MCL_ALIGN16 {
   // MCL_FILTER_BINS equal bins, entry i its CDF at bin i's right edge (the last is 1): x and y are
   // drawn from it independently, the filters being products of one function of x and one of y.
   float filterCdf[MCL_FILTER_BINS];
+  uint countLanes;  // 1 (--profile): the shading stages count their hits shaded in lanes and one by one
 } FrameParams;
 
 // One emitting triangle. It is picked with probability area * luminance(Le) / emitterPower;
@@ -265,7 +266,7 @@ static_assert(offsetof(Material, params0) == 64, "Material layout");
 static_assert(sizeof(Ray) == 32, "Ray layout");
 static_assert(sizeof(Hit) == 16, "Hit layout");
 static_assert(sizeof(ShadowWork) == 48, "ShadowWork layout");
-static_assert(sizeof(FrameParams) == 272 + 4 * MCL_FILTER_BINS && offsetof(FrameParams, instanceCount) == 256, "FrameParams layout");
+static_assert(sizeof(FrameParams) == 288 + 4 * MCL_FILTER_BINS && offsetof(FrameParams, instanceCount) == 256, "FrameParams layout");
 static_assert(offsetof(FrameParams, shareEnvironment) == 176, "FrameParams layout");
 static_assert(offsetof(FrameParams, sampler) == 240, "FrameParams layout");
 static_assert(sizeof(LightRecord) == 64, "LightRecord layout");

@@ -135,6 +135,7 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
   LaneHits lh = lane_hits(f, a->tris, a->normals, a->materials, a->hitInstances, first, lanes, hit, tri);
   const vmask lamb = lh.lamb, flat = lh.flat;
   vmask other = hit & v_not(lamb);  // other kinds: their surface and BSDF lane by lane (path_light_sample, path_continue)
+  lane_tally(f, a->packedLanes, a->aloneLanes, &lh, hit);
 
   uint ids[MCL_LANES] MCL_LANE_ALIGN, owned[MCL_LANES] MCL_LANE_ALIGN;
   v_store_lanes(id, ids);

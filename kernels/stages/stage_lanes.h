@@ -334,6 +334,17 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
   return h;
 }
 
+// --profile's tally (FrameParams::countLanes): a packet's hits shaded in lane types (packed: the
+// diffuse kind without a glossy lobe, framed in lanes) and one by one (the rest), one atomic each.
+MCL_INLINE void lane_tally(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL volatile uint* packedLanes,
+                           MCL_GLOBAL volatile uint* aloneLanes, const LaneHits* lh, vmask hit) {
+  if (!f->countLanes) return;
+  vmask packed = lh->lamb & v_not(lh->placed);
+  uint p = v_count(packed), q = v_count(hit & v_not(packed));
+  if (p) MCL_ATOMIC_ADD(packedLanes, p);
+  if (q) MCL_ATOMIC_ADD(aloneLanes, q);
+}
+
 // The lanes set in `rich` of a frame whose other lanes are already set: each through the scalar
 // surface_at (in its hit's instance, hit_instance), for sample ref (pixel, sample, bounce) of the
 // lane; their BSDF is the diffuse kind without a glossy lobe (the caller's mask says so from the
