@@ -104,14 +104,17 @@ TEST_CASE("packet stages: adaptive sampling (active lists out of order, wrapping
 TEST_CASE("packet stages: every kind and light kind in one scene matches the host backend" * doctest::test_suite("cli")) {
   TempDir dir;
   // The materials box with its rough glass as coated_diffuse (a rough coat over the box's white,
-  // several walks per evaluation) and its gold as a smooth coat over red: the kinds it lacks. The
+  // several walks per evaluation), its gold as a smooth coat over red and its mirror as a coated
+  // rough gold (coated_conductor): the kinds it lacks. The
   // pixel filters' offsets in lanes: a tabulated filter (gaussian) there, the triangle on envgloss.
   const std::string box = std::string(MONTECL_SOURCE_DIR) + "/scenes/materials/";
   dir.write("coated.json", R"({"camera": {"position": [0, 1, 3.6], "target": [0, 0.9, 0], "fov_y": 38},
     "meshes": [{"file": ")" + box + R"(box.obj"}, {"file": ")" + box + R"(light.obj", "emission": [17, 12, 4]},
       {"file": ")" + box + R"(rough_glass.obj", "material": {"type": "coated_diffuse", "albedo": [0.8, 0.8, 0.8],
         "roughness": 0.3, "thickness": 0.05, "samples": 2}},
-      {"file": ")" + box + R"(gold.obj", "material": {"type": "coated_diffuse", "albedo": [0.7, 0.1, 0.1], "ior": 1.6}}],
+      {"file": ")" + box + R"(gold.obj", "material": {"type": "coated_diffuse", "albedo": [0.7, 0.1, 0.1], "ior": 1.6}},
+      {"file": ")" + box + R"(mirror.obj", "material": {"type": "coated_conductor", "metal": "Au", "base_alpha": 0.1,
+        "roughness": 0.2}}],
     "render": {"filter": {"type": "gaussian", "radius": 1.5, "sigma": 0.5}}})");
   for (const std::string name : {"materials", "envgloss", "coated"}) {
     const std::string scene = name == "coated" ? dir.file("coated.json")

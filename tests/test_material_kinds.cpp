@@ -127,6 +127,28 @@ std::vector<KindCase> kindCases_coated_diffuse() {
            false}};
 }
 
+MaterialDesc coatedConductor(float3 eta, float3 k, float baseAlpha, float coatAlpha, float thickness, int maxDepth = 10) {
+  MaterialDesc d;
+  d.kind = MCL_MATERIAL_coated_conductor;
+  d.eta = eta;
+  d.k = k;
+  d.baseAlpha = baseAlpha;
+  d.kindAlpha = coatAlpha;
+  d.thickness = thickness;
+  d.layerMaxDepth = maxDepth;
+  return d;
+}
+// Gold under coats; the white furnace: a perfect mirror (eta 0: F = 1 at every angle) under a
+// smooth coat with no absorption reflects everything, albedo() (the metal's F(1)) = 1.
+std::vector<KindCase> kindCases_coated_conductor() {
+  const float3 eta(0.143f, 0.375f, 1.442f), k(3.983f, 2.386f, 1.603f);
+  return {{"smooth coat over smooth gold", coatedConductor(eta, k, 0.0f, 0.0f, 0.01f), float3(1.0f), false, false},
+          {"rough coat 0.3 over gold 0.2", coatedConductor(eta, k, 0.2f, 0.3f, 0.01f), float3(1.0f), false},
+          {"rough coat 0.1 over gold 0.5, thick", coatedConductor(eta, k, 0.5f, 0.1f, 0.3f, 30), float3(1.0f), false},
+          {"white furnace: perfect mirror, smooth coat", coatedConductor(float3(0.0f), float3(1.0f), 0.0f, 0.0f, 1e-6f, 1000),
+           float3(1.0f), true, false}};
+}
+
 struct KindRow {
   const char* name;
   std::uint32_t tag;

@@ -294,6 +294,30 @@ TEST_CASE("pbrt: materials map to montecl's kinds with pbrt's parameters" * doct
   CHECK(mat(0).layerMaxDepth == 20);
   CHECK(mat(0).layerSamples == 4);
   CHECK(anyContains(warnings, "s.pbrt:", "scattering layer"));
+  // coatedconductor: the coated_conductor kind, conductor.* as the base (the metal's own index,
+  // its roughness remapped), interface.* as the coat, the same layer; no warning.
+  warnings.clear();
+  s = load(dir, std::string(kCamera) + "WorldBegin\nMaterial \"coatedconductor\" \"spectrum conductor.eta\" \"metal-Ag-eta\""
+                " \"spectrum conductor.k\" \"metal-Ag-k\" \"float conductor.roughness\" 0.09"
+                " \"float interface.roughness\" 0.04 \"float interface.eta\" 1.4 \"float thickness\" 0.2"
+                " \"integer maxdepth\" 30 \"integer nsamples\" 2\n" + kTriangle +
+                "Material \"coatedconductor\"\n" + kTriangle, &warnings);
+  CHECK(mat(0).kind == MCL_MATERIAL_coated_conductor);
+  CHECK(mat(0).k.x == doctest::Approx(4.82835));
+  CHECK(mat(0).baseAlpha == doctest::Approx(0.3));  // sqrt(0.09)
+  CHECK(mat(0).kindAlpha == doctest::Approx(0.2));  // the coat's: sqrt(0.04)
+  CHECK(mat(0).ior == doctest::Approx(1.4));
+  CHECK(mat(0).thickness == doctest::Approx(0.2));
+  CHECK(mat(0).layerMaxDepth == 30);
+  CHECK(mat(0).layerSamples == 2);
+  // pbrt's defaults: copper, smooth base and coat, eta 1.5, thickness 0.01.
+  CHECK(mat(1).kind == MCL_MATERIAL_coated_conductor);
+  CHECK(mat(1).eta.x == doctest::Approx(0.201005));
+  CHECK(mat(1).baseAlpha == 0.0f);
+  CHECK(mat(1).kindAlpha == 0.0f);
+  CHECK(mat(1).ior == doctest::Approx(1.5));
+  CHECK(mat(1).thickness == doctest::Approx(0.01));
+  CHECK(warnings.empty());
 }
 
 TEST_CASE("pbrt: image textures become the material's texture; a missing one is an error at its line" * doctest::test_suite("cpu pbrt")) {

@@ -32,6 +32,12 @@ Material deviceMaterial(const MaterialDesc& m) {
       d.params1 = glm::vec4(glm::uintBitsToFloat(std::uint32_t(m.layerMaxDepth)),
                             glm::uintBitsToFloat(std::uint32_t(m.layerSamples)), 0.0f, 0.0f);
       break;
+    case MCL_MATERIAL_coated_conductor:  // bsdf_coated_conductor.h: the coat and layer in specular
+      d.params0 = glm::vec4(m.eta, m.baseAlpha);
+      d.params1 = glm::vec4(m.k, m.kindAlpha);
+      d.specular = glm::vec4(m.ior, m.thickness, glm::uintBitsToFloat(std::uint32_t(m.layerMaxDepth)),
+                             glm::uintBitsToFloat(std::uint32_t(m.layerSamples)));
+      break;
     default: break;
   }
   return d;

@@ -99,6 +99,7 @@ bool parseKindParams(const JsonCtx& ctx, const json& j, const std::string& prefi
     d.thickness = getFloat(ctx, *v, prefix + ".thickness");
     if (!(d.thickness > 0.0f && std::isfinite(d.thickness))) jsonFail(ctx, prefix + ".thickness", "must be a finite number > 0");
   }
+  if (const json* v = optionalKey(j, "base_alpha")) any = true, d.baseAlpha = unitKey(ctx, *v, prefix + ".base_alpha");
   if (const json* v = optionalKey(j, "max_depth"))
     any = true, d.layerMaxDepth = getPositiveInt(ctx, *v, prefix + ".max_depth", 1000, "a positive integer up to 1000");
   if (const json* v = optionalKey(j, "samples"))

@@ -100,26 +100,46 @@ float etaOf(const PbrtParams& p, const std::string& name, std::vector<std::strin
   return eta.y;
 }
 
+// The layer of pbrt-v4's coated materials (coateddiffuse, coatedconductor): thickness, the walk's
+// maxdepth and nsamples; a scattering layer (albedo, g) is warned and left out.
+void coatLayer(const PbrtParams& p, const PbrtTextures& textures, const std::string& type, MaterialDesc& d,
+               std::vector<std::string>& warnings) {
+  const double thickness = floatOrTexture(p, "thickness", 0.01, textures, warnings);
+  if (!(thickness >= 0.0) || !std::isfinite(thickness)) pbrtFail(p.loc, type + ": 'thickness' must be >= 0");
+  d.thickness = float(std::max(thickness, 1e-6));  // pbrt keeps it above a small epsilon too
+  const int maxDepth = p.getInt("maxdepth", 10), samples = p.getInt("nsamples", 1);
+  if (maxDepth < 1 || maxDepth > 1000) pbrtFail(p.loc, type + ": 'maxdepth' must be in [1, 1000]");
+  if (samples < 1 || samples > 64) pbrtFail(p.loc, type + ": 'nsamples' must be in [1, 64]");
+  d.layerMaxDepth = maxDepth, d.layerSamples = samples;
+  glm::vec3 coatAlbedo(0.0f);
+  if (colourOrTexture(p, "albedo", textures, coatAlbedo, nullptr, nullptr, warnings) && coatAlbedo != glm::vec3(0.0f))
+    warnings.push_back(whereOf(p) + "Material \"" + type + "\": a scattering layer ('albedo', 'g') is not read by montecl; a clear layer is used");
+  p.ignore("g");
+}
+
 // pbrt-v4's coateddiffuse: montecl's coated_diffuse, the same layered model (a dielectric coat of
 // index eta and GGX roughness over a Lambertian base, a layer of some thickness, a random walk of
-// at most maxdepth events, nsamples walks). Left out: a scattering layer (albedo, g), warned.
+// at most maxdepth events, nsamples walks).
 void coatedDiffuse(const PbrtParams& p, const PbrtTextures& textures, MaterialDesc& d, std::vector<std::string>& warnings) {
   d.kind = MCL_MATERIAL_coated_diffuse;
   d.albedo = glm::vec3(0.5f);
   colourOrTexture(p, "reflectance", textures, d.albedo, &d.albedoTexture, &d.albedoSampling, warnings);
   d.kindAlpha = alphaOf(p, textures, "", warnings);
   d.ior = etaOf(p, "eta", warnings);
-  const double thickness = floatOrTexture(p, "thickness", 0.01, textures, warnings);
-  if (!(thickness >= 0.0) || !std::isfinite(thickness)) pbrtFail(p.loc, "coateddiffuse: 'thickness' must be >= 0");
-  d.thickness = float(std::max(thickness, 1e-6));  // pbrt keeps it above a small epsilon too
-  const int maxDepth = p.getInt("maxdepth", 10), samples = p.getInt("nsamples", 1);
-  if (maxDepth < 1 || maxDepth > 1000) pbrtFail(p.loc, "coateddiffuse: 'maxdepth' must be in [1, 1000]");
-  if (samples < 1 || samples > 64) pbrtFail(p.loc, "coateddiffuse: 'nsamples' must be in [1, 64]");
-  d.layerMaxDepth = maxDepth, d.layerSamples = samples;
-  glm::vec3 coatAlbedo(0.0f);
-  if (colourOrTexture(p, "albedo", textures, coatAlbedo, nullptr, nullptr, warnings) && coatAlbedo != glm::vec3(0.0f))
-    warnings.push_back(whereOf(p) + "Material \"coateddiffuse\": a scattering layer ('albedo', 'g') is not read by montecl; a clear layer is used");
-  p.ignore("g");
+  coatLayer(p, textures, "coateddiffuse", d, warnings);
+}
+
+// pbrt-v4's coatedconductor: montecl's coated_conductor: the conductor.* parameters as pbrt's
+// conductor (the metal's own eta, k or reflectance; the BSDF divides them by the coat's index, as
+// pbrt-v4 does), the interface.* ones as the coat (index, GGX roughness), the same layer.
+void coatedConductor(const PbrtParams& p, const PbrtTextures& textures, MaterialDesc& d,
+                     std::vector<std::string>& warnings) {
+  conductor(p, textures, "conductor.", d, warnings);
+  d.kind = MCL_MATERIAL_coated_conductor;
+  d.baseAlpha = d.kindAlpha;
+  d.kindAlpha = alphaOf(p, textures, "interface.", warnings);
+  d.ior = etaOf(p, "interface.eta", warnings);
+  coatLayer(p, textures, "coatedconductor", d, warnings);
 }
 
 }  // namespace
@@ -217,11 +237,7 @@ MaterialDesc pbrtMaterial(const std::string& type, const PbrtParams& p, const Pb
   } else if (type == "coateddiffuse") {
     coatedDiffuse(p, textures, d, warnings);
   } else if (type == "coatedconductor") {
-    conductor(p, textures, "conductor.", d, warnings);
-    warnings.push_back(whereOf(p) + "Material \"coatedconductor\": montecl has no layered material; rendered as its conductor base (no coating)");
-    for (const char* coat : {"interface.roughness", "interface.uroughness", "interface.vroughness", "interface.eta",
-                             "thickness", "albedo", "g", "maxdepth", "nsamples"})
-      p.ignore(coat);
+    coatedConductor(p, textures, d, warnings);
   } else if (type == "diffusetransmission") {
     diffuse("reflectance", glm::vec3(0.25f));
     p.ignore("transmittance");

@@ -76,6 +76,9 @@ struct MaterialDesc {
   // walk's bounce limit and its walks per evaluation.
   float thickness = 0.01f;
   int layerMaxDepth = 10, layerSamples = 1;
+  // coated_conductor: the same coat and layer over a conductor of index eta + i k (the metal's own,
+  // relative to vacuum: the BSDF divides it by ior) and GGX alpha baseAlpha (0: smooth).
+  float baseAlpha = 0.0f;
   std::string metallicRoughnessTexture;  // glTF metallicRoughnessTexture (linear; B x metallic, G x roughness)
   // metal_rough: glTF KHR_materials_transmission's factor (0: none) through a dielectric of index
   // `ior`, solid (KHR_materials_volume) or a thin sheet (kernels/shared/transmission_mix.h).

@@ -118,10 +118,11 @@ std::string sceneDigest(const Scene& scene) {
         bytes.add(m.transmissionSolid ? "transmission solid" : "transmission thin");
         append(bytes, &m.transmission, sizeof m.transmission);
       }
-      if (m.kind == MCL_MATERIAL_coated_diffuse) {  // the layer (no other kind reads it)
+      if (m.kind == MCL_MATERIAL_coated_diffuse || m.kind == MCL_MATERIAL_coated_conductor) {  // the layer (no other kind reads it)
         const float layer[3] = {m.thickness, float(m.layerMaxDepth), float(m.layerSamples)};
         append(bytes, layer, sizeof layer);
       }
+      if (m.kind == MCL_MATERIAL_coated_conductor) append(bytes, &m.baseAlpha, sizeof m.baseAlpha);
     }
   }
   if (scene.environment.enabled) {  // the map by its content

@@ -22,6 +22,7 @@
 #include "bsdf_thin_dielectric.h"
 #include "bsdf_metal_rough.h"
 #include "bsdf_coated_diffuse.h"
+#include "bsdf_coated_conductor.h"
 
 // A material kind's tag as the device Material holds it (alpha.w, as uint bits).
 MCL_INLINE uint material_kind(Material m) { return as_uint(m.alpha.w); }

@@ -21,7 +21,8 @@
   KIND(dielectric, DielectricBsdf) /* smooth glass of index ior: delta reflection + refraction */   \
   KIND(thin_dielectric, ThinDielectricBsdf) /* thin sheet: delta reflection + straight through */   \
   KIND(metal_rough, MetalRoughBsdf) /* glTF metallic-roughness: Lambert + Schlick GGX */          \
-  KIND(coated_diffuse, CoatedDiffuseBsdf) /* dielectric coat over Lambert, random walk between */
+  KIND(coated_diffuse, CoatedDiffuseBsdf) /* dielectric coat over Lambert, random walk between */ \
+  KIND(coated_conductor, CoatedConductorBsdf) /* dielectric coat over a GGX metal, random walk */
 
 #define MCL_MATERIAL_KIND_TAG(kind, Params) MCL_MATERIAL_##kind,
 enum { MCL_MATERIAL_KINDS(MCL_MATERIAL_KIND_TAG) MCL_MATERIAL_KIND_COUNT };
