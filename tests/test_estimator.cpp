@@ -12,6 +12,7 @@
 #include "kernels/stages/stages.h"
 #include "render/sample_schedule.h"
 #include "render/wavefront.h"
+#include "film_stats.h"
 #include "stats.h"
 #include "test_scenes.h"
 
@@ -275,6 +276,13 @@ TEST_CASE("sobol: the default image's MSE at equal spp is within 10% of one sequ
   CHECK(defaultMse / oneSequence > 0.9);
   CHECK(defaultMse / oneSequence < 1.1);
   CHECK(fourSplits / oneSequence > 1.5);
+  // Without sub-sequences the default film still says its samples are correlated, so the test
+  // fixtures refuse var/n on it as they do on a film with them.
+  RenderStats stats;
+  const Film f = render(wallScene(8, 4), {}, stats);
+  CHECK(f.splits() == 0u);
+  CHECK(f.correlated);
+  CHECK_THROWS_AS(requireIndependentSamples(f), std::logic_error);
 }
 
 // Adaptive sampling with sobol stops each pixel on the sub-sequence estimate: 99% of the pixels
