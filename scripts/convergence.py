@@ -7,11 +7,14 @@ the slopes. Needs build/montecl and ../shared/scenes (skips with a message when 
 
 Usage: /usr/bin/python3 scripts/convergence.py [--size 48] [--max-spp 256] [--ref-spp 4096]
 
---vs-time: RMSE against wall time instead, montecl (independent, sobol, sobol + --denoise) and
-Mitsuba 3 (its samplers) on the Cornell box, direct MIS, 128x128 (scripts/convergence_time.py):
-writes docs/images/convergence-time.png and prints RMSE at Mitsuba independent's 64-spp time.
-  /usr/bin/python3 scripts/convergence.py --vs-time [--size 128] [--ref-spp 4096] [--json FILE]
-      [--replot] [--mitsuba-samplers independent,multijitter,ldsampler]
+--vs-time: relMSE, mean FLIP and RMSE against process CPU time instead (median of --seeds runs per
+point), montecl (independent, sobol with sub-sequences, the default, the default + --denoise) and
+Mitsuba 3 (its samplers) on the Cornell box, 128x128 (scripts/convergence_time.py): writes
+docs/images/convergence-time.png and prints the errors at the CPU time Mitsuba's best sampler
+needs for 64 spp.
+  /usr/bin/python3 scripts/convergence.py --vs-time [--integrator direct|path] [--size 128]
+      [--ref-spp 4096] [--seeds 5] [--exposure 0] [--json FILE] [--replot] [--montecl EXE]
+      [--mitsuba-samplers independent,multijitter,ldsampler]
 """
 import argparse
 import math
@@ -65,6 +68,10 @@ def main():
     ap.add_argument("--json", help="--vs-time: keep the measurements in this file")
     ap.add_argument("--replot", action="store_true", help="--vs-time: plot --json's measurements again, no renders")
     ap.add_argument("--mitsuba-samplers", default="independent,multijitter,ldsampler")
+    ap.add_argument("--integrator", choices=["direct", "path"], default="direct", help="--vs-time: direct MIS or path")
+    ap.add_argument("--seeds", type=int, default=5, help="--vs-time: runs per point (the median is plotted)")
+    ap.add_argument("--exposure", type=float, default=0.0, help="--vs-time: stops before FLIP's LDR clamp")
+    ap.add_argument("--montecl", default=os.path.join(ROOT, "build", "montecl"), help="--vs-time: the binary")
     args = ap.parse_args()
     scene = os.path.join(ROOT, "..", "shared", "scenes", "cornell-box", "scene.json")
     if args.vs_time and args.scene:
@@ -73,7 +80,9 @@ def main():
     if args.vs_time:
         import convergence_time
         args.out = args.out or os.path.join(ROOT, "docs", "images", "convergence-time.png")
-        args.scene, args.montecl = os.path.abspath(scene), os.path.join(ROOT, "build", "montecl")
+        args.scene, args.montecl = os.path.abspath(scene), os.path.abspath(args.montecl)
+        if args.seeds < 1:
+            ap.error("--seeds must be >= 1")
         args.size = args.size or 128
         args.height = args.height or args.size
         if args.replot and not args.json:

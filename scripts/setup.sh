@@ -20,7 +20,8 @@ packages=(
 # Only scripts/vs_mitsuba.py (and its test) needs Mitsuba 3: `setup.sh --mitsuba` adds python3-venv
 # and libllvm19 (Mitsuba's llvm_ad_rgb variant needs an LLVM newer than Debian's default) and
 # installs PyPI's mitsuba + numpy into a cached venv, $MONTECL_MITSUBA_VENV or
-# ~/.cache/montecl/mitsuba-venv (about 100 MB; skipped when it already imports mitsuba).
+# ~/.cache/montecl/mitsuba-venv (about 100 MB; skipped when it already imports mitsuba), with
+# NVlabs' FLIP metric (PyPI flip-evaluator, BSD-3) for scripts/convergence.py --vs-time.
 # `setup.sh --intel-opencl` adds Intel's CPU OpenCL runtime (PyPI intel-opencl-rt +
 # intel-cmplr-lib-rt, about 270 MB to download, 0.5 GB installed) into a cached venv,
 # $MONTECL_INTEL_OPENCL_VENV or ~/.cache/montecl/intel-opencl-venv (skipped when its libintelocl.so
@@ -44,13 +45,13 @@ done
 mitsuba_venv() {
   [ "$mitsuba" = 1 ] || return 0
   local venv=${MONTECL_MITSUBA_VENV:-$HOME/.cache/montecl/mitsuba-venv}
-  if [ -x "$venv/bin/python" ] && "$venv/bin/python" -c 'import mitsuba, numpy' 2>/dev/null; then
+  if [ -x "$venv/bin/python" ] && "$venv/bin/python" -c 'import mitsuba, numpy, flip_evaluator' 2>/dev/null; then
     return 0
   fi
-  echo "setup: installing Mitsuba 3 (PyPI mitsuba, numpy) into $venv" >&2
+  echo "setup: installing Mitsuba 3 and FLIP (PyPI mitsuba, numpy, flip-evaluator) into $venv" >&2
   mkdir -p "$(dirname "$venv")"
-  python3 -m venv "$venv"
-  "$venv/bin/pip" install -q --disable-pip-version-check mitsuba numpy >&2
+  [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
+  "$venv/bin/pip" install -q --disable-pip-version-check mitsuba numpy flip-evaluator >&2
 }
 
 intel_opencl_venv() {

@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <fstream>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "bvh/bvh.h"
@@ -138,6 +140,30 @@ TEST_CASE("--aov all writes named albedo, normal and depth channels; --aov with 
   CliResult bad = runMontecl({"render", scene, "-o", dir.file("a.png"), "--aov", "albedo", "-q"});
   CHECK(bad.exitCode == 2);
   CHECK(bad.err.find("--aov") != std::string::npos);
+}
+
+// The sub-sequence error estimate costs only the renders that use it: a default sobol EXR has no
+// err.* or split layers (one sequence per pixel), --error-estimate and --target-error write them.
+TEST_CASE("sobol EXR: err.* and split layers only with --error-estimate or --target-error" * doctest::test_suite("cli")) {
+  TempDir dir;
+  const std::string scene = std::string(MONTECL_SOURCE_DIR) + "/scenes/demo/scene.json";
+  auto layers = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {"render", scene, "-o", dir.file("e.exr"), "--width", "8", "--height", "6",
+                                     "--spp", "4", "--overwrite", "-q"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const CliResult r = runMontecl(args);
+    REQUIRE(r.exitCode == 0);
+    const LayeredImage img = readLayeredImage(dir.file("e.exr"));
+    return std::pair<bool, bool>{img.find("err.R") != nullptr, img.find("split3.R") != nullptr};
+  };
+  const std::pair<bool, bool> plain = layers({}), asked = layers({"--error-estimate"}),
+                              adaptive = layers({"--target-error", "0.5", "--min-spp", "4", "--max-spp", "8"});
+  CHECK_FALSE(plain.first);
+  CHECK_FALSE(plain.second);
+  CHECK(asked.first);
+  CHECK(asked.second);
+  CHECK(adaptive.first);
+  CHECK(adaptive.second);
 }
 
 }  // namespace test_file_aov

@@ -12,6 +12,7 @@
 #include "kernels/stages/stages.h"
 #include "render/sample_schedule.h"
 #include "render/wavefront.h"
+#include "film_stats.h"
 #include "stats.h"
 #include "test_scenes.h"
 
@@ -216,6 +217,7 @@ TEST_CASE("sobol: the sub-sequence error estimate matches the spread over 40 see
     Scene s = wallScene(8, spp);
     s.render.aoSampling = montecl::AoSampling::Uniform;
     s.render.sampler = montecl::Sampler::Sobol;
+    s.render.errorEstimate = true;  // the sub-sequences whose estimate is checked
     const int seeds = 40;
     const std::size_t pixels = 64;
     std::vector<RunningStats> spread(pixels);
@@ -242,6 +244,47 @@ TEST_CASE("sobol: the sub-sequence error estimate matches the spread over 40 see
   }
 }
 
+// The default render (no error estimate asked for) is one Owen-scrambled sequence per pixel, the
+// lowest error: its MSE at equal spp, measured as the spread of the pixel means over 24 seeds, is
+// within 10% of one sequence's (sobol_splits 1), while the 4 sub-sequences of the estimate cost
+// about 3x (measured here: checked > 1.5x, so the comparison can tell them apart).
+TEST_CASE("sobol: the default image's MSE at equal spp is within 10% of one sequence's" * doctest::test_suite("opencl slow")) {
+  const int seeds = 24;
+  const std::size_t pixels = 64;
+  auto mse = [&](bool estimate, int splits) {
+    Scene s = wallScene(8, 64);
+    s.render.aoSampling = montecl::AoSampling::Uniform;
+    if (estimate) {
+      s.render.errorEstimate = true;
+      s.render.sobolSplits = splits;
+    }
+    std::vector<RunningStats> spread(pixels);
+    for (int seed = 0; seed < seeds; ++seed) {
+      s.render.seed = std::uint32_t(seed);
+      RenderStats stats;
+      Film f = render(s, {}, stats);
+      for (std::size_t p = 0; p < pixels; ++p) spread[p].add(f.meanOf(p, 0));
+    }
+    double sum = 0.0;
+    for (std::size_t p = 0; p < pixels; ++p) sum += spread[p].variance();
+    return sum / double(pixels);
+  };
+  const double defaultMse = mse(false, 0), oneSequence = mse(true, 1), fourSplits = mse(true, 4);
+  INFO("MSE: default " << defaultMse << ", one sequence " << oneSequence << ", 4 sub-sequences " << fourSplits);
+  CHECK(RenderSettings().sampler == montecl::Sampler::Sobol);
+  CHECK(oneSequence > 0.0);
+  CHECK(defaultMse / oneSequence > 0.9);
+  CHECK(defaultMse / oneSequence < 1.1);
+  CHECK(fourSplits / oneSequence > 1.5);
+  // Without sub-sequences the default film still says its samples are correlated, so the test
+  // fixtures refuse var/n on it as they do on a film with them.
+  RenderStats stats;
+  const Film f = render(wallScene(8, 4), {}, stats);
+  CHECK(f.splits() == 0u);
+  CHECK(f.correlated);
+  CHECK_THROWS_AS(requireIndependentSamples(f), std::logic_error);
+}
+
 // Adaptive sampling with sobol stops each pixel on the sub-sequence estimate: 99% of the pixels
 // meet the target by it, and the error they really have (against the mean of 8 renders with other
 // seeds at the maximum count) is within the target over the pixels that are not exact with K = 8
@@ -254,6 +297,7 @@ TEST_CASE("adaptive sampling with sobol meets its target on 99% of pixels, and t
     Scene s = easyAndHardScene(24);
     s.render.sampler = montecl::Sampler::Sobol;
     s.render.sobolSplits = splits;
+    s.render.errorEstimate = true;  // as the CLI's --target-error asks
     RenderOptions o;
     o.targetError = 0.02;
     o.minSpp = 16;

@@ -32,6 +32,9 @@ void applyOverrides(const RenderArgs& a, Scene& scene) {
     const auto it = a.settings.find(s.key);
     if (it != a.settings.end()) setFromText(s, it->second, scene.render);
   }
+  // Adaptive sampling stops each pixel on its estimated error: under sobol that needs the
+  // sub-sequences (var/n overstates it 30-100x there), so --target-error asks for them.
+  if (a.targetError > 0.0) scene.render.errorEstimate = true;
   if (a.camera) {  // before the size: --width and --height still set it
     const std::size_t n = scene.fileCameras.size();
     if (*a.camera >= n)

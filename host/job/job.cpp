@@ -205,6 +205,7 @@ Film Job::render(WavefrontRenderer& renderer, const Scene& scene, const Bvh& bvh
               << " s slowest: imbalance (slowest / mean) " << (sum > 0.0 ? most * w.size / sum : 1.0) << "\n";
   }
   Film full = gather(mine);
+  full.correlated = mine.correlated;
   stats = local_;
   stats.samples = global_.samples;
   stats.cameraRays = global_.cameraRays;

@@ -363,6 +363,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   std::vector<std::uint32_t>().swap(active);
   schedule.releaseTargets();
   run.finish(film);  // the film, and every buffer released (the film's part by part)
+  film.correlated = scene.render.sampler == Sampler::Sobol;
   settle.done = true;
   if (!going) stats.stoppedEarly = schedule.unfinished(film);
   if (m.options.targetError > 0.0)

@@ -151,15 +151,20 @@ std::vector<RenderSetting> makeTable() {
           integerRule(1, intMax, "a positive integer"), &RenderSettings::rrDepth, path),
       choiceRow("sampler", "--sampler",
                 "Where the uniform numbers come from: independent (a hash per sample and dimension) or "
-                "sobol (Owen-scrambled Sobol points, stratified; the error figures then come from the spread "
-                "of sobol_splits sub-sequences)",
+                "sobol (Owen-scrambled Sobol points, stratified; with error_estimate the error figures come "
+                "from the spread of sobol_splits sub-sequences)",
                 samplerNames(), &RenderSettings::sampler),
       row("sobol_splits", "--sobol-splits",
-          "With sobol: independently scrambled sub-sequences per pixel (sample s in s mod K); the error of the "
-          "mean comes from the spread of their means (EXR layers split0.* ..., err.*); 1: one sequence, error "
-          "figures from var.* (they overstate it)",
+          "With sobol and error_estimate: independently scrambled sub-sequences per pixel (sample s in s mod K); "
+          "the error of the mean comes from the spread of their means (EXR layers split0.* ..., err.*); 1: one "
+          "sequence, error figures from var.* (they overstate it)",
           integerRule(1, 64, "an integer in [1, 64]"), &RenderSettings::sobolSplits, kEveryIntegrator, true,
           sobolSplitsApply),
+      row("error_estimate", "--error-estimate",
+          "With sobol: split each pixel's samples into sobol_splits sub-sequences whose spread gives an honest "
+          "error of the mean (EXR err.*, the adaptive stop, the converged count); on with --target-error. Off: one "
+          "Owen-scrambled sequence per pixel (about 3x lower MSE), error figures from var.* (they overstate it)",
+          boolRule(), &RenderSettings::errorEstimate, kEveryIntegrator, true, errorEstimateApplies),
       row("background", "", "Radiance of camera rays that hit nothing (without an environment)", backgroundRule(),
           &RenderSettings::background),
       // Denoising changes only the added denoised layers, never the estimate: not in the provenance,
