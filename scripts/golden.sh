@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # Renders a fixed set of scenes x integrators with one montecl binary into a folder of PFMs, or
 # compares two such folders byte for byte: refactors that must not change an image are checked
-# with it (golden.sh render BIN DIR; golden.sh compare DIR_A DIR_B).
+# with it (golden.sh render BIN DIR; golden.sh compare DIR_A DIR_B). MONTECL_GOLDEN_ARGS: options
+# added to every render (e.g. --error-estimate, to compare with a set made before the default
+# sobol render dropped its sub-sequences).
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 shared="$here/../shared/scenes"
 case "$1" in
   render)
     bin="$2"; out="$3"; mkdir -p "$out"
+    read -r -a extra <<<"${MONTECL_GOLDEN_ARGS:-}"
     scenes=("$here/scenes/demo/scene.json" "$here/scenes/envgloss/scene.json")
     for s in cornell-box/scene.json sponza-textured/scene.json; do
       [ -f "$shared/$s" ] && scenes+=("$shared/$s")
@@ -22,10 +25,10 @@ case "$1" in
           tag="${cfg%%:*}"; opts="${cfg#*:}"
           # shellcheck disable=SC2086
           "$bin" render "$s" -q --device "$dev" --width 48 --height 32 --spp 4 --seed 7 $opts \
-            -o "$out/$dev-$name-$tag.pfm" --overwrite
+            "${extra[@]}" -o "$out/$dev-$name-$tag.pfm" --overwrite
         done
         "$bin" render "$s" -q --device "$dev" --width 40 --height 24 --spp 3 --integrator path --aov all \
-          -o "$out/$dev-$name-aov.exr" --overwrite
+          "${extra[@]}" -o "$out/$dev-$name-aov.exr" --overwrite
       done
     done ;;
   compare)
