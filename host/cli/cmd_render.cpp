@@ -92,7 +92,7 @@ int runRender(const RenderArgs& a) {
   LoadSteps steps(!a.quiet);
   listEveryWarning(a.verbose);  // -v: every warning of a kind, not the first and a count
   steps.begin("reading " + a.scene);
-  Scene scene = loadScene(a.scene, warnings, missing);
+  Scene scene = loadScene(a.scene, warnings, missing, a.gltfScene);
   steps.finish();
   for (const std::string& w : warnings) std::cerr << "montecl: warning: " << w << "\n";
   applyOverrides(a, scene);
@@ -360,6 +360,8 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                   "Render through the model file's camera N (a glTF file's perspective cameras, from 0, in "
                   "the order its nodes meet them; default: the first, else the automatic framing)")
       ->excludes("--view");
+  cmd->add_option("--scene", args->gltfScene,
+                  "Load the glTF model's scene N (its scenes[], from 0; default: the file's \"scene\", else 0)");
   cmd->add_option("--look-from", args->lookFrom, "Camera position X,Y,Z, replacing the chosen camera's (scene units)");
   cmd->add_option("--look-at", args->lookAt, "Point the camera looks at, X,Y,Z, replacing the chosen camera's");
   cmd->add_option("--fov", args->fov, "Vertical field of view in degrees, replacing the camera's (up to 179.9)")

@@ -28,6 +28,7 @@ struct RenderArgs {
   std::vector<std::string> aovs;
   std::string env, view;            // --env R,G,B | FILE; --view SIDE
   std::optional<unsigned> camera;   // --camera N: the file's camera N
+  std::optional<unsigned> gltfScene;  // --scene N: a glTF model's scene N (loadScene)
   std::optional<float> fov;         // --fov DEG
   std::string lookFrom, lookAt;     // --look-from X,Y,Z; --look-at X,Y,Z
   float envScale = 1.0f, envRotate = 0.0f;

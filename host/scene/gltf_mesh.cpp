@@ -1,5 +1,5 @@
-// gltf_mesh.cpp: loadGltfInto(): a glTF 2.0 scene (gltf_model.h) into a Scene. Walks the default
-// scene's node hierarchy (TRS or matrix transforms); TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN
+// gltf_mesh.cpp: loadGltfInto(): a glTF 2.0 scene (gltf_model.h) into a Scene. Walks the chosen
+// scene's node hierarchy (--scene N, else the file's default) (TRS or matrix transforms); TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN
 // primitives (indexed or not) give triangles with POSITION, NORMAL (kHasNormals), TANGENT (kHasTangents,
 // Scene::vertexTangents, placed by Placement::tangent) and the TEXCOORD_n set the
 // material's textures read (kHasUv, v flipped to OBJ's convention: v = 1 - v_gltf); each texture's
@@ -323,7 +323,8 @@ void Loader::takeCamera(int index, const glm::dmat4& world, const std::string& w
 
 }  // namespace
 
-bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string>* warnings, Camera* camera) {
+bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string>* warnings, Camera* camera,
+                  std::optional<unsigned> sceneIndex) {
   std::vector<std::string> opened;  // external buffers and images, as opened (decoded URIs)
   const Model m = readGltfModel(path, warnings, &opened);
   scene.inputFiles.push_back(path);
@@ -335,7 +336,8 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
       l.unused.add("extension " + e, "extensionsUsed", "extension '" + oneLine(e, 60) + "' not used by montecl, ignored");
   if (!m.animations.empty()) l.unused.add("animations", "animations", "animations not used by montecl (the rest pose is rendered)");
   if (!m.skins.empty()) l.unused.add("skins", "skins", "skins not used by montecl (the rest pose is rendered)");
-  const std::vector<int> roots = gltfRootNodes(m);
+  const std::size_t sceneChosen = gltfSceneIndex(path, m, sceneIndex);
+  const std::vector<int> roots = gltfRootNodes(m, sceneChosen);
   const std::size_t before = scene.triangles.size(), droppedBefore = scene.degenerateDropped;
   const std::size_t missingBefore = scene.missingTextures.size();
   std::uint64_t instanced = 0;  // triangles the meshes of the nodes so far declare
@@ -438,6 +440,7 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
                            std::to_string(scene.degenerateDropped - droppedBefore) + " degenerate triangles dropped)");
   if (camera && !l.cameras.empty()) *camera = l.cameras[0];
   if (camera) scene.fileCameras = l.cameras;  // a bare model: `render --camera N` picks among them
+  scene.fileScenes = m.scenes.size(), scene.fileScene = sceneChosen;
   return !l.cameras.empty();
 }
 
