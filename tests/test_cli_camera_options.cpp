@@ -63,7 +63,7 @@ TEST_CASE("cli: --camera N picks the file's camera N; --look-from, --look-at and
   REQUIRE(first.exitCode == 0);
   CHECK(has(cameraLine(first), "\"position\": [0, 1, 5]"));
   CHECK(has(cameraLine(first), "\"fov_y\": 30"));
-  CHECK(has(first.err, "cams.gltf: 2 cameras; camera 0 is used (--camera N picks camera N, from 0)"));
+  CHECK(has(first.err, "cams.gltf: 2 cameras; camera 0 is used (--camera N picks camera N, from 0; --camera all renders each)"));
   // --camera 1: the second camera, its own field of view; --width and --height still apply.
   std::vector<std::string> c1 = args(dir, "b.png");
   c1.insert(c1.end(), {"--camera", "1"});
