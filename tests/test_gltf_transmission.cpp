@@ -121,30 +121,31 @@ TEST_CASE("glTF transmission 1: the thin_dielectric and dielectric kinds, bit fo
   CHECK_FALSE(sameFilm(thin, renderFile(dir.file("plain.json"))));
 }
 
-// The loader draws the default factors (1, 1) as Lambert (no metal); transmission on such a material
-// reads the same way: metallic 0, so a tiny factor stays close to the Lambertian material instead of
-// turning it into a rough metal, and factor 1 is the thin sheet. Explicit metal keeps its weight.
-TEST_CASE("glTF transmission on the default factors reads them as the loader does: no metal" * doctest::test_suite("cpu")) {
+// glTF's default factors (1, 1) are a rough metal, and a metal transmits nothing (glTF's BSDF is
+// metallic x metal + (1 - metallic) x the dielectric that transmits): transmission on them renders
+// the metal itself, bit for bit. The (0, 1) pair, which the loader draws as Lambert, counts as
+// metallic 0: a tiny factor stays close to that material, and factor 1 is the thin sheet.
+TEST_CASE("glTF transmission on the default factors (1, 1): the rough metal, which transmits nothing" *
+          doctest::test_suite("cpu")) {
   TempDir dir;
   auto transmissive = [](float t) { return nlohmann::json{{"KHR_materials_transmission", {{"transmissionFactor", t}}}}; };
-  dir.write("tiny.gltf", tentGltf(1.0f, 1.0f, transmissive(1e-6f)));
-  dir.write("half.gltf", tentGltf(1.0f, 1.0f, transmissive(0.5f)));
+  dir.write("metal.gltf", tentGltf(1.0f, 1.0f, nullptr));
   dir.write("full.gltf", tentGltf(1.0f, 1.0f, transmissive(1.0f)));
-  dir.write("metal.gltf", tentGltf(0.999f, 1.0f, transmissive(0.5f)));
+  dir.write("tiny.gltf", tentGltf(0.0f, 1.0f, transmissive(1e-6f)));
+  dir.write("sheet.gltf", tentGltf(0.0f, 1.0f, transmissive(1.0f)));
   std::vector<std::string> warnings;
-  for (const char* name : {"tiny", "half"}) {
+  for (const char* name : {"metal", "full", "tiny", "sheet"})
     dir.write(std::string(name) + ".json", sceneText(std::string(name) + ".gltf", nullptr, 8));
-    const Scene s = loadScene(dir.file(std::string(name) + ".json"), warnings);
-    CAPTURE(name);
-    CHECK(s.materials[0].kind == MCL_MATERIAL_metal_rough);
-    CHECK(s.materials[0].metallic == 0.0f);
-  }
-  dir.write("full.json", sceneText("full.gltf", nullptr, 8));
-  CHECK(loadScene(dir.file("full.json"), warnings).materials[0].kind == MCL_MATERIAL_thin_dielectric);
-  dir.write("metal.json", sceneText("metal.gltf", nullptr, 8));
-  const Scene metal = loadScene(dir.file("metal.json"), warnings);
+  const Scene metal = loadScene(dir.file("metal.json"), warnings), full = loadScene(dir.file("full.json"), warnings);
   CHECK(metal.materials[0].kind == MCL_MATERIAL_metal_rough);
-  CHECK(metal.materials[0].metallic == 0.999f);
+  CHECK(metal.materials[0].metallic == 1.0f);
+  CHECK(full.materials[0].kind == MCL_MATERIAL_metal_rough);
+  CHECK(full.materials[0].metallic == 1.0f);
+  CHECK(sameFilm(renderFile(dir.file("metal.json")), renderFile(dir.file("full.json"))));
+  const Scene tiny = loadScene(dir.file("tiny.json"), warnings);
+  CHECK(tiny.materials[0].kind == MCL_MATERIAL_metal_rough);
+  CHECK(tiny.materials[0].metallic == 0.0f);
+  CHECK(loadScene(dir.file("sheet.json"), warnings).materials[0].kind == MCL_MATERIAL_thin_dielectric);
 }
 
 TEST_CASE("glTF transmission 0: the plain metal_rough, bit for bit" * doctest::test_suite("cpu")) {

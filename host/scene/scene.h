@@ -77,6 +77,14 @@ struct MaterialDesc {
   float thickness = 0.01f;
   int layerMaxDepth = 10, layerSamples = 1;
   std::string metallicRoughnessTexture;  // glTF metallicRoughnessTexture (linear; B x metallic, G x roughness)
+  // When specGlossMap, metallicRoughnessTexture is a glTF specular-glossiness map
+  // (KHR_materials_pbrSpecularGlossiness's specularGlossinessTexture: sRGB specular colour, linear
+  // glossiness in alpha), which the texture loader converts texel by texel to (0, roughness,
+  // metallic) through metalRoughFromSpecGloss (scene/gltf_spec_gloss.h) with specular = texel x
+  // specGloss.rgb, glossiness = alpha x specGloss.w and the diffuse colour specGlossDiffuse.
+  bool specGlossMap = false;
+  glm::vec4 specGloss{1.0f};
+  glm::vec3 specGlossDiffuse{1.0f};
   // metal_rough: glTF KHR_materials_transmission's factor (0: none) through a dielectric of index
   // `ior`, solid (KHR_materials_volume) or a thin sheet (kernels/shared/transmission_mix.h).
   float transmission = 0.0f;
