@@ -16,6 +16,7 @@
 #include "kernels/shared/transmission_mix.h"
 #include "mesh_files.h"
 #include "render/wavefront.h"
+#include "test_images.h"
 #include "util/errors.h"
 
 namespace test_file_gltf_transmission {  // keeps this file's helpers apart in a unity batch
@@ -255,6 +256,29 @@ TEST_CASE("glTF transmission between 0 and 1 under sobol: the mixture over 16 se
     const double wrongExpect = t * g.mean + (1.0 - t) * r.mean;  // glass picked with probability t
     CHECK(std::fabs(mean - wrongExpect) / se > 4.0);
   }
+}
+
+// Glass whose metallicRoughnessTexture says smooth (G 0) renders smooth whatever roughnessFactor
+// (1, the default) says: the texture makes the per-hit choice of transmission_mix.h, whose glass
+// takes the roughness after the texture: the scene file's smooth dielectric, bit for bit, and not
+// the factor's rough one.
+TEST_CASE("glTF transmission: the glass's roughness comes from the metallicRoughnessTexture's G" *
+          doctest::test_suite("cpu")) {
+  TempDir dir;
+  writeImage8(dir.file("smooth.png"), 4, 4, 3, [](int, int, int) { return 0; });  // G 0, B 0
+  nlohmann::json g = nlohmann::json::parse(tentGltf(0.0f, 1.0f, {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                                                                   {"KHR_materials_volume", {{"thicknessFactor", 0.1}}}}));
+  g["images"] = {{{"uri", "smooth.png"}}};
+  g["textures"] = {{{"source", 0}}};
+  g["materials"][0]["pbrMetallicRoughness"]["metallicRoughnessTexture"] = {{"index", 0}};
+  dir.write("textured.gltf", g.dump());
+  dir.write("plain.gltf", tentGltf(0.0f, 0.5f, nullptr));
+  dir.write("textured.json", sceneText("textured.gltf", nullptr, 8));
+  dir.write("smooth.json", sceneText("plain.gltf", {{"type", "dielectric"}, {"ior", 1.5}}, 8));
+  dir.write("rough.json", sceneText("plain.gltf", {{"type", "dielectric"}, {"ior", 1.5}, {"roughness", 1.0}}, 8));
+  const Film textured = renderFile(dir.file("textured.json"));
+  CHECK(sameFilm(textured, renderFile(dir.file("smooth.json"))));
+  CHECK_FALSE(sameFilm(textured, renderFile(dir.file("rough.json"))));
 }
 
 TEST_CASE("glTF transmission: bad values are one line naming the key" * doctest::test_suite("cpu")) {
