@@ -42,13 +42,6 @@ std::vector<std::string> args(const TempDir& dir, const std::string& out) {
           "--device", "host", "-q", "-v"};
 }
 
-// The "camera" line -v prints.
-std::string cameraLine(const CliResult& r) {
-  const std::size_t at = r.err.find("montecl: \"camera\": ");
-  if (at == std::string::npos) return "";
-  return r.err.substr(at, r.err.find('\n', at) - at);
-}
-
 bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 }  // namespace

@@ -47,13 +47,6 @@ std::vector<std::string> refused(const TempDir& dir, const std::string& file, st
   return a;
 }
 
-// The "camera" line -v prints.
-std::string cameraLine(const CliResult& r) {
-  const std::size_t at = r.err.find("montecl: \"camera\": ");
-  if (at == std::string::npos) return "";
-  return r.err.substr(at, r.err.find('\n', at) - at);
-}
-
 bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 }  // namespace

@@ -9,14 +9,11 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
-#include <cstring>
 #include <nlohmann/json.hpp>
 
-#include "bvh/bvh.h"
-#include "cl/devices.h"
 #include "cli_runner.h"
 #include "mesh_files.h"
-#include "render/wavefront.h"
+#include "scene_renders.h"
 #include "scene/gltf_spec_gloss.h"
 #include "test_images.h"
 #include "texture/scene_textures.h"
@@ -56,30 +53,10 @@ std::string sceneText(const std::string& gltf, const nlohmann::json& material) {
   return s.dump();
 }
 
-Film renderFile(const std::string& path) {
-  std::vector<std::string> warnings;
-  const Scene s = loadScene(path, warnings);
-  Bvh bvh = buildBvh(s.triangles);
-  WavefrontRenderer r(hostDeviceInfo(), {});
-  RenderStats stats;
-  return r.render(s, bvh, stats);
-}
-
-bool sameFilm(const Film& a, const Film& b) {
-  return !a.mean.empty() && a.mean.size() == b.mean.size() &&
-         std::memcmp(a.mean.data(), b.mean.data(), a.mean.size() * sizeof a.mean[0]) == 0;
-}
-
 Scene load(const TempDir& dir, const std::string& name, const std::string& text, std::vector<std::string>& warnings) {
   dir.write(name, text);
   warnings.clear();
   return loadScene(dir.file(name), warnings);
-}
-
-std::size_t countContaining(const std::vector<std::string>& lines, const std::string& part) {
-  std::size_t n = 0;
-  for (const std::string& l : lines) n += l.find(part) != std::string::npos;
-  return n;
 }
 
 }  // namespace
@@ -108,10 +85,10 @@ TEST_CASE("glTF default factors (1, 1) and no material: glTF's rough metal, as t
   dir.write("red-lambert.json", sceneText("red.gltf", {{"type", "diffuse"}, {"albedo", {0.8, 0.1, 0.1}}}));
   dir.write("bare.json", sceneText("bare.gltf", nullptr));
   dir.write("bare-ref.json", sceneText("bare.gltf", {{"type", "metal_rough"}, {"albedo", {1, 1, 1}}, {"metallic", 1}, {"roughness", 1}}));
-  const Film redFilm = renderFile(dir.file("red.json"));
-  CHECK(sameFilm(redFilm, renderFile(dir.file("red-ref.json"))));
-  CHECK_FALSE(sameFilm(redFilm, renderFile(dir.file("red-lambert.json"))));
-  CHECK(sameFilm(renderFile(dir.file("bare.json")), renderFile(dir.file("bare-ref.json"))));
+  const Film redFilm = renderSceneFile(dir.file("red.json"));
+  CHECK(sameMeanBits(redFilm, renderSceneFile(dir.file("red-ref.json"))));
+  CHECK_FALSE(sameMeanBits(redFilm, renderSceneFile(dir.file("red-lambert.json"))));
+  CHECK(sameMeanBits(renderSceneFile(dir.file("bare.json")), renderSceneFile(dir.file("bare-ref.json"))));
 }
 
 // The conversion's closed forms: metal/rough (grey base b, metallic m) as specular-glossiness is
@@ -235,7 +212,7 @@ TEST_CASE("glTF KHR_materials_specular: factor 0 on a dielectric is Lambert, bit
   load(dir, "lambert.gltf", tentWith(material(0.0, 1.0, nullptr)), warnings);
   dir.write("none.json", sceneText("none.gltf", nullptr));
   dir.write("lambert.json", sceneText("lambert.gltf", nullptr));
-  CHECK(sameFilm(renderFile(dir.file("none.json")), renderFile(dir.file("lambert.json"))));
+  CHECK(sameMeanBits(renderSceneFile(dir.file("none.json")), renderSceneFile(dir.file("lambert.json"))));
   // The defaults change nothing; a metal, or another factor, keeps metal_rough and says so.
   const Scene defaults = load(dir, "d.gltf", tentWith(material(0.0, 0.4, {{"specularFactor", 1}})), warnings);
   CHECK(defaults.materials[0].kind == MCL_MATERIAL_metal_rough);

@@ -30,12 +30,6 @@ std::string sceneWith(const TempDir& dir, const std::string& material) {
   return dir.file("scene.json");
 }
 
-int countContaining(const std::vector<std::string>& w, const std::string& s) {
-  int n = 0;
-  for (const std::string& x : w) n += x.find(s) != std::string::npos;
-  return n;
-}
-
 }  // namespace
 
 TEST_CASE("material keys: conductor metal / roughness, dielectric ior, metal_rough factors reach MaterialDesc" *
