@@ -42,13 +42,6 @@ std::vector<std::string> args(const TempDir& dir, const std::string& out) {
           "--device", "host", "-q", "-v"};
 }
 
-// The "camera" line -v prints.
-std::string cameraLine(const CliResult& r) {
-  const std::size_t at = r.err.find("montecl: \"camera\": ");
-  if (at == std::string::npos) return "";
-  return r.err.substr(at, r.err.find('\n', at) - at);
-}
-
 bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 }  // namespace
@@ -63,7 +56,7 @@ TEST_CASE("cli: --camera N picks the file's camera N; --look-from, --look-at and
   REQUIRE(first.exitCode == 0);
   CHECK(has(cameraLine(first), "\"position\": [0, 1, 5]"));
   CHECK(has(cameraLine(first), "\"fov_y\": 30"));
-  CHECK(has(first.err, "cams.gltf: 2 cameras; camera 0 is used (--camera N picks camera N, from 0)"));
+  CHECK(has(first.err, "cams.gltf: 2 cameras; camera 0 is used (--camera N picks camera N, from 0; --camera all renders each)"));
   // --camera 1: the second camera, its own field of view; --width and --height still apply.
   std::vector<std::string> c1 = args(dir, "b.png");
   c1.insert(c1.end(), {"--camera", "1"});

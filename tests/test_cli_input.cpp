@@ -215,14 +215,6 @@ TEST_CASE("cli: direct render of emitters facing away from everything warns; two
 
 namespace {
 
-// `cd folder && montecl args...`
-CliResult runIn(const std::string& folder, std::vector<std::string> args) {
-  std::vector<std::string> argv{"sh", "-c", "cd \"$0\" && exec \"$@\"", folder, MONTECL_EXE};
-  argv.insert(argv.end(), args.begin(), args.end());
-  // sh -c CMD $0 $1...: $0 is the folder, "$@" montecl and its arguments.
-  return montecl_test::runProgram(argv);
-}
-
 std::string fileText(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -238,7 +230,7 @@ TEST_CASE("cli: the default output of a scene.json is named after its folder and
   dir.write("cornell-box/scene.json", R"({"camera": {"position": [0, 0, 2], "target": [0, 0, 0], "fov_y": 45, "width": 8, "height": 8},
     "meshes": [{"file": ")" + quad + R"("}], "render": {"spp": 1}})");
   const std::string scene = dir.file("cornell-box/scene.json"), work = dir.file("work");
-  CliResult first = runIn(work, {"render", scene, "-q"});
+  CliResult first = montecl_test::runMonteclIn(work, {"render", scene, "-q"});
   INFO("stderr: " << first.err << " stdout: " << first.out);
   REQUIRE(first.exitCode == 0);
   CHECK(first.out.rfind("wrote cornell-box.png: ", 0) == 0);
@@ -246,21 +238,21 @@ TEST_CASE("cli: the default output of a scene.json is named after its folder and
   CHECK(!fs::exists(dir.file("work/scene.png")));
 
   dir.write("work/cornell-box.png", "keep me");
-  CliResult second = runIn(work, {"render", scene, "-q"});
+  CliResult second = montecl_test::runMonteclIn(work, {"render", scene, "-q"});
   INFO("second: " << second.err << " " << second.out);
   CHECK(second.exitCode == 0);
   CHECK(fileText(dir.file("work/cornell-box.png")) == "keep me");
   CHECK(fs::exists(dir.file("work/cornell-box-1.png")));
   CHECK(second.out.rfind("wrote cornell-box-1.png: ", 0) == 0);
   CHECK(second.out.find("cornell-box.png exists and was kept; --overwrite replaces it") != std::string::npos);
-  CHECK(runIn(work, {"render", scene, "-q"}).out.rfind("wrote cornell-box-2.png: ", 0) == 0);
+  CHECK(montecl_test::runMonteclIn(work, {"render", scene, "-q"}).out.rfind("wrote cornell-box-2.png: ", 0) == 0);
 
-  CliResult over = runIn(work, {"render", scene, "-q", "--overwrite"});
+  CliResult over = montecl_test::runMonteclIn(work, {"render", scene, "-q", "--overwrite"});
   CHECK(over.exitCode == 0);
   CHECK(over.out.rfind("wrote cornell-box.png: ", 0) == 0);
   CHECK(fileText(dir.file("work/cornell-box.png")) != "keep me");
   // An explicit -o replaces as before.
-  CHECK(runIn(work, {"render", scene, "-q", "-o", "cornell-box-1.png"}).out.rfind("wrote cornell-box-1.png: ", 0) == 0);
+  CHECK(montecl_test::runMonteclIn(work, {"render", scene, "-q", "-o", "cornell-box-1.png"}).out.rfind("wrote cornell-box-1.png: ", 0) == 0);
   CHECK(!fs::exists(dir.file("work/cornell-box-3.png")));
 }
 

@@ -20,6 +20,7 @@
 namespace test_file_gltf {  // keeps this file's helpers apart in a unity batch
 
 using montecl::Scene;
+using montecl_test::countContaining;
 using montecl_test::TempDir;
 using nlohmann::json;
 
@@ -50,12 +51,6 @@ std::string allLines(const std::vector<std::string>& lines) {
   std::string all;
   for (const auto& l : lines) all += l + "\n";
   return all;
-}
-
-std::size_t countContaining(const std::vector<std::string>& lines, const std::string& needle) {
-  std::size_t n = 0;
-  for (const auto& l : lines) n += l.find(needle) != std::string::npos;
-  return n;
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "kernels/shared/transmission_mix.h"
 #include "mesh_files.h"
 #include "render/wavefront.h"
+#include "test_images.h"
 #include "util/errors.h"
 
 namespace test_file_gltf_transmission {  // keeps this file's helpers apart in a unity batch
@@ -121,30 +122,31 @@ TEST_CASE("glTF transmission 1: the thin_dielectric and dielectric kinds, bit fo
   CHECK_FALSE(sameFilm(thin, renderFile(dir.file("plain.json"))));
 }
 
-// The loader draws the default factors (1, 1) as Lambert (no metal); transmission on such a material
-// reads the same way: metallic 0, so a tiny factor stays close to the Lambertian material instead of
-// turning it into a rough metal, and factor 1 is the thin sheet. Explicit metal keeps its weight.
-TEST_CASE("glTF transmission on the default factors reads them as the loader does: no metal" * doctest::test_suite("cpu")) {
+// glTF's default factors (1, 1) are a rough metal, and a metal transmits nothing (glTF's BSDF is
+// metallic x metal + (1 - metallic) x the dielectric that transmits): transmission on them renders
+// the metal itself, bit for bit. The (0, 1) pair, which the loader draws as Lambert, counts as
+// metallic 0: a tiny factor stays close to that material, and factor 1 is the thin sheet.
+TEST_CASE("glTF transmission on the default factors (1, 1): the rough metal, which transmits nothing" *
+          doctest::test_suite("cpu")) {
   TempDir dir;
   auto transmissive = [](float t) { return nlohmann::json{{"KHR_materials_transmission", {{"transmissionFactor", t}}}}; };
-  dir.write("tiny.gltf", tentGltf(1.0f, 1.0f, transmissive(1e-6f)));
-  dir.write("half.gltf", tentGltf(1.0f, 1.0f, transmissive(0.5f)));
+  dir.write("metal.gltf", tentGltf(1.0f, 1.0f, nullptr));
   dir.write("full.gltf", tentGltf(1.0f, 1.0f, transmissive(1.0f)));
-  dir.write("metal.gltf", tentGltf(0.999f, 1.0f, transmissive(0.5f)));
+  dir.write("tiny.gltf", tentGltf(0.0f, 1.0f, transmissive(1e-6f)));
+  dir.write("sheet.gltf", tentGltf(0.0f, 1.0f, transmissive(1.0f)));
   std::vector<std::string> warnings;
-  for (const char* name : {"tiny", "half"}) {
+  for (const char* name : {"metal", "full", "tiny", "sheet"})
     dir.write(std::string(name) + ".json", sceneText(std::string(name) + ".gltf", nullptr, 8));
-    const Scene s = loadScene(dir.file(std::string(name) + ".json"), warnings);
-    CAPTURE(name);
-    CHECK(s.materials[0].kind == MCL_MATERIAL_metal_rough);
-    CHECK(s.materials[0].metallic == 0.0f);
-  }
-  dir.write("full.json", sceneText("full.gltf", nullptr, 8));
-  CHECK(loadScene(dir.file("full.json"), warnings).materials[0].kind == MCL_MATERIAL_thin_dielectric);
-  dir.write("metal.json", sceneText("metal.gltf", nullptr, 8));
-  const Scene metal = loadScene(dir.file("metal.json"), warnings);
+  const Scene metal = loadScene(dir.file("metal.json"), warnings), full = loadScene(dir.file("full.json"), warnings);
   CHECK(metal.materials[0].kind == MCL_MATERIAL_metal_rough);
-  CHECK(metal.materials[0].metallic == 0.999f);
+  CHECK(metal.materials[0].metallic == 1.0f);
+  CHECK(full.materials[0].kind == MCL_MATERIAL_metal_rough);
+  CHECK(full.materials[0].metallic == 1.0f);
+  CHECK(sameFilm(renderFile(dir.file("metal.json")), renderFile(dir.file("full.json"))));
+  const Scene tiny = loadScene(dir.file("tiny.json"), warnings);
+  CHECK(tiny.materials[0].kind == MCL_MATERIAL_metal_rough);
+  CHECK(tiny.materials[0].metallic == 0.0f);
+  CHECK(loadScene(dir.file("sheet.json"), warnings).materials[0].kind == MCL_MATERIAL_thin_dielectric);
 }
 
 TEST_CASE("glTF transmission 0: the plain metal_rough, bit for bit" * doctest::test_suite("cpu")) {
@@ -254,6 +256,29 @@ TEST_CASE("glTF transmission between 0 and 1 under sobol: the mixture over 16 se
     const double wrongExpect = t * g.mean + (1.0 - t) * r.mean;  // glass picked with probability t
     CHECK(std::fabs(mean - wrongExpect) / se > 4.0);
   }
+}
+
+// Glass whose metallicRoughnessTexture says smooth (G 0) renders smooth whatever roughnessFactor
+// (1, the default) says: the texture makes the per-hit choice of transmission_mix.h, whose glass
+// takes the roughness after the texture: the scene file's smooth dielectric, bit for bit, and not
+// the factor's rough one.
+TEST_CASE("glTF transmission: the glass's roughness comes from the metallicRoughnessTexture's G" *
+          doctest::test_suite("cpu")) {
+  TempDir dir;
+  writeImage8(dir.file("smooth.png"), 4, 4, 3, [](int, int, int) { return 0; });  // G 0, B 0
+  nlohmann::json g = nlohmann::json::parse(tentGltf(0.0f, 1.0f, {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                                                                   {"KHR_materials_volume", {{"thicknessFactor", 0.1}}}}));
+  g["images"] = {{{"uri", "smooth.png"}}};
+  g["textures"] = {{{"source", 0}}};
+  g["materials"][0]["pbrMetallicRoughness"]["metallicRoughnessTexture"] = {{"index", 0}};
+  dir.write("textured.gltf", g.dump());
+  dir.write("plain.gltf", tentGltf(0.0f, 0.5f, nullptr));
+  dir.write("textured.json", sceneText("textured.gltf", nullptr, 8));
+  dir.write("smooth.json", sceneText("plain.gltf", {{"type", "dielectric"}, {"ior", 1.5}}, 8));
+  dir.write("rough.json", sceneText("plain.gltf", {{"type", "dielectric"}, {"ior", 1.5}, {"roughness", 1.0}}, 8));
+  const Film textured = renderFile(dir.file("textured.json"));
+  CHECK(sameFilm(textured, renderFile(dir.file("smooth.json"))));
+  CHECK_FALSE(sameFilm(textured, renderFile(dir.file("rough.json"))));
 }
 
 TEST_CASE("glTF transmission: bad values are one line naming the key" * doctest::test_suite("cpu")) {

@@ -15,6 +15,7 @@
 #include "film_stats.h"
 #include "mesh_files.h"
 #include "render/wavefront.h"
+#include "scene_renders.h"
 #include "test_images.h"
 #include "test_scenes.h"
 #include "texture/scene_textures.h"
@@ -108,15 +109,6 @@ TEST_CASE("metallicRoughnessTexture: B scales metallic and G roughness in the re
 
 namespace {
 
-Film renderFile(const std::string& path) {
-  std::vector<std::string> warnings;
-  const Scene s = loadScene(path, warnings);
-  Bvh bvh = buildBvh(s.triangles);
-  WavefrontRenderer r(hostDeviceInfo(), {});
-  RenderStats stats;
-  return r.render(s, bvh, stats);
-}
-
 std::string sceneAround(const std::string& mesh, const nlohmann::json& material) {
   nlohmann::json s = {{"camera", {{"position", {1.2, 3.5, -1}}, {"target", {1.2, 0, -1}}, {"up", {0, 0, -1}},
                                   {"fov_y", 45}, {"width", 12}, {"height", 10}}},
@@ -125,11 +117,6 @@ std::string sceneAround(const std::string& mesh, const nlohmann::json& material)
                       {"render", {{"integrator", "direct"}, {"spp", 16}}}};
   if (!material.is_null()) s["meshes"][0]["material"] = material;
   return s.dump();
-}
-
-bool sameMeans(const Film& a, const Film& b) {
-  return !a.mean.empty() && a.mean.size() == b.mean.size() &&
-         std::memcmp(a.mean.data(), b.mean.data(), a.mean.size() * sizeof a.mean[0]) == 0;
 }
 
 }  // namespace
@@ -156,9 +143,9 @@ TEST_CASE("metallic_roughness_texture: the scene-file key equals the glTF textur
   const Scene key = loadScene(dir.file("key.json"), warnings);
   REQUIRE(key.materials.size() == 2);  // the file's and the override's copy
   CHECK(key.materials[1].metallicRoughnessTexture == dir.file("mr.png"));
-  const Film viaGltf = renderFile(dir.file("gltf.json"));
-  CHECK(sameMeans(viaGltf, renderFile(dir.file("key.json"))));
-  CHECK_FALSE(sameMeans(viaGltf, renderFile(dir.file("factors.json"))));  // the texture matters
+  const Film viaGltf = renderSceneFile(dir.file("gltf.json"));
+  CHECK(sameMeanBits(viaGltf, renderSceneFile(dir.file("key.json"))));
+  CHECK_FALSE(sameMeanBits(viaGltf, renderSceneFile(dir.file("factors.json"))));  // the texture matters
   // Only metal_rough reads it; a missing file is refused too.
   dir.write("conductor.json", sceneAround("plain.gltf", {{"type", "conductor"}, {"metallic_roughness_texture", "mr.png"}}));
   dir.write("missing.json", sceneAround("plain.gltf", {{"type", "metal_rough"}, {"metallic_roughness_texture", "no.png"}}));

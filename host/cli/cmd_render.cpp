@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <limits>
 #include <optional>
 #include <set>
@@ -27,6 +28,8 @@
 #include "cli/dark_image.h"
 #include "cli/load_steps.h"
 #include "cli/render_signals.h"
+#include "cli/render_views.h"
+#include "cli/view_output.h"
 #include "job/job.h"
 #include "cli/validators.h"
 #include "image/exr_layers.h"
@@ -78,6 +81,16 @@ int runRender(const RenderArgs& a) {
   // The budget in bytes must fit 64 bits (2^44 MiB and more would wrap to 0: every texture 1x1).
   if (a.textureBudgetMiB && !(*a.textureBudgetMiB * double(1 << 20) < 18446744073709551616.0))
     throwInputError("--texture-budget", "", "too large: at most 2^44 MiB (a 64-bit byte count)");
+  checkOutputPattern(a.output, a.cameras);
+  if (a.cameras.batch()) {  // several views: options that name one image or one camera position
+    if (!a.job.checkpoint.empty() || !a.job.resume.empty())
+      throwInputError(a.job.checkpoint.empty() ? "--resume" : "--checkpoint", "",
+                      "a checkpoint holds one view: render the cameras one at a time (--camera N) to checkpoint them");
+    if (!a.lookFrom.empty() || !a.lookAt.empty())
+      throwInputError(a.lookFrom.empty() ? "--look-at" : "--look-from", "",
+                      "would move every camera of --camera " + std::string(a.cameras.all ? "all" : "N,M,...") +
+                          " to one place: give one camera (--camera N)");
+  }
   std::vector<std::string> warnings;
   // --missing-textures decides while the loaders run (the other settings apply after loading).
   std::optional<MissingTextures> missing;
@@ -92,25 +105,40 @@ int runRender(const RenderArgs& a) {
   LoadSteps steps(!a.quiet);
   listEveryWarning(a.verbose);  // -v: every warning of a kind, not the first and a count
   steps.begin("reading " + a.scene);
-  Scene scene = loadScene(a.scene, warnings, missing);
+  Scene scene = loadScene(a.scene, warnings, missing, a.gltfScene);
   steps.finish();
   for (const std::string& w : warnings) std::cerr << "montecl: warning: " << w << "\n";
   applyOverrides(a, scene);
   if (filterHasNegativeLobes(scene.render.filter))
     std::cerr << "montecl: warning: filter " << filterText(scene.render.filter)
               << ": its negative lobes are clamped to 0 (importance sampling draws offsets from max(0, filter))\n";
-  if (scene.fileCameras.size() > 1 && !a.camera && a.view.empty())
+  const std::vector<unsigned> fileCameras = resolveCameras(a.cameras, scene.fileCameras.size(), scene.path);
+  // The views: one per camera asked for (else the scene's camera), each with its own image; every
+  // name is checked before any work.
+  std::vector<RenderView> views;
+  const std::size_t viewCount = fileCameras.empty() ? 1 : fileCameras.size();
+  for (std::size_t v = 0; v < viewCount; ++v) {
+    RenderView view;
+    const std::optional<unsigned> cam = fileCameras.empty() ? std::nullopt : std::optional<unsigned>(fileCameras[v]);
+    view.camera = viewCamera(a, scene, cam);
+    view.fileCamera = cam ? int(*cam) : -1;
+    if (!a.output.empty())
+      view.output = cam ? expandOutputPattern(a.output, *cam) : a.output;
+    else  // <scene name>.png, or <scene name>_<camera>.png for each of several
+      view.output = defaultOutput(a.scene, a.overwrite, view.outputNote,
+                                  a.cameras.batch() ? "_" + std::to_string(*cam) : std::string());
+    checkOutputPath(view.output);
+    if (!a.aovs.empty() && !isExr(view.output))
+      throwInputError(view.output, "--aov", "AOVs need an .exr output");
+    checkOutputIsNoInput(view.output, scene);
+    checkWritableTarget(view.output);
+    checkJobFiles(a.job.checkpoint, a.job.resume, view.output, scene);
+    views.push_back(std::move(view));
+  }
+  scene.camera = views[0].camera;
+  if (scene.fileCameras.size() > 1 && !a.cameras.given && a.view.empty())
     std::cerr << "montecl: warning: " << scene.path << ": " << scene.fileCameras.size()
-              << " cameras; camera 0 is used (--camera N picks camera N, from 0)\n";
-  std::string output = a.output;
-  std::string outputNote;
-  if (output.empty()) output = defaultOutput(a.scene, a.overwrite, outputNote);
-  checkOutputPath(output);
-  if (!a.aovs.empty() && !isExr(output))
-    throwInputError(output, "--aov", "AOVs need an .exr output");
-  checkOutputIsNoInput(output, scene);
-  checkWritableTarget(output);
-  checkJobFiles(a.job.checkpoint, a.job.resume, output, scene);
+              << " cameras; camera 0 is used (--camera N picks camera N, from 0; --camera all renders each)\n";
   // The denoiser is loaded and its device committed now, so a missing or broken library is one line
   // before any work, not after it.
   if (scene.render.denoise)
@@ -175,8 +203,8 @@ int runRender(const RenderArgs& a) {
               << " triangle references\n"
               << "montecl: device " << device.platformIndex << ":" << device.deviceIndex << " " << device.name
               << ", " << bvhLayoutName(layout) << " BVH layout, " << resolveLanes(a.lanes, device)
-              << " lanes\n"
-              << "montecl: " << cameraJson(scene.camera) << "\n";
+              << " lanes\n";
+    for (const RenderView& view : views) std::cerr << "montecl: " << cameraJson(view.camera) << "\n";
     if (!scene.defaultsNote.empty() && a.env.empty()) std::cerr << "montecl: environment: " << scene.defaultsNote << "\n";
     if (!textures.textures.empty())
       std::cerr << "montecl: " << textures.textures.size() << " textures, " << textures.levels.size()
@@ -203,11 +231,15 @@ int runRender(const RenderArgs& a) {
   options.verbose = a.verbose;
   options.profile = a.profile;
   options.identityExtra = textureBudgetIdentity(textures);
-  // Everything that reads the scene's triangles runs now: the provenance digest, the job's
-  // checkpoint key and the renderer's per-triangle table; then they are freed (only the BVH's
-  // arrays and that table are uploaded), which lowers the peak by their size.
-  const Provenance provenance = isExr(output) ? provenanceOf(a, scene, options.identityExtra) : Provenance{};
-  jobs::Job job(a.job, scene, options);
+  // Everything that reads the scene's triangles runs now, for every view: the provenance digest,
+  // the job's checkpoint key and the renderer's per-triangle table; then they are freed (only the
+  // BVH's arrays and that table are uploaded), which lowers the peak by their size.
+  std::vector<std::unique_ptr<jobs::Job>> jobsOfViews;
+  for (RenderView& view : views) {
+    scene.camera = view.camera;
+    if (isExr(view.output)) view.provenance = provenanceOf(a, scene, options.identityExtra);
+    jobsOfViews.push_back(std::make_unique<jobs::Job>(a.job, scene, options));
+  }
   RenderPart part;
   part.textures = &textures;
   steps.begin("preparing the triangles");
@@ -223,74 +255,39 @@ int runRender(const RenderArgs& a) {
     std::cerr << "montecl: kernels " << (renderer.programFromCache() ? "loaded from cache" : "compiled") << " in "
               << renderer.programBuildMs() << " ms\n";
 
-  RenderStats stats;
-  ProgressBar bar(!a.quiet);
-  // The lights' and the device's tables are built inside the render, before its first wave.
-  steps.begin("preparing lights and device tables");
-  Film film = job.render(renderer, scene, bvh, stats, [&](std::uint64_t done, std::uint64_t total, const RenderStats& s) {
-    bar.update(done, total, s);
-  }, part);
-  endLoading();
-  steps.finish();
-  bar.finish();
-  if (a.profile) std::cout << formatProfile(stats.profile, stats.seconds);
-  if (stats.nanRays > 0)  // each rank of an MPI job warns about its own pixels
-    std::cerr << "montecl: warning: " << stats.nanRays
-              << " rays with NaN/inf origin or direction were treated as misses\n";
-  if (!job.writesImage()) return kExitOk;
-  const int signalled = *renderInterruptFlag();
-  const bool interrupted = signalled && stats.stoppedEarly;  // a signal after the last wave changes nothing
-  // Only the final image is denoised (an MPI job's rank 0, after the merge of the ranks' films).
-  double denoiseSeconds = 0.0;
-  std::vector<float> denoised;
-  // The render is done: a denoiser that fails now (memory, a device lost) costs the denoised planes,
-  // not the image.
-  if (scene.render.denoise) try {
-      denoised = denoiseFilm(film, scene.render.denoiseQuality, a.quiet, denoiseSeconds);
-    } catch (const RuntimeError& e) {
-      std::cerr << "montecl: warning: " << e.what() << "; " << output << " holds the image without denoising\n";
+  // Each view in turn through the one renderer (the scene, textures, BVH and kernels are shared);
+  // a signal stops the view under way, which is written, and the rest are left out.
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    if (v > 0 && *renderInterruptFlag()) {
+      std::cout << "interrupted: " << views.size() - v << " of " << views.size() << " views not rendered\n";
+      return *renderInterruptFlag() == SIGTERM ? kExitTerminated : kExitInterrupted;
     }
-  // The image as written: every EXR plane (the noisy estimate exactly, plus denoised.R/G/B), or the
-  // mean (denoised with --denoise) for PNG/PFM; refused if a value overflowed.
-  LayeredImage img;
-  if (isExr(output)) {
-    img = renderLayers(film, a.aovs);
-    if (!denoised.empty()) addRgbPlanes(img, "denoised.", denoised);
-    setProvenance(img, provenance);
-  } else {
-    img.width = film.width;
-    img.height = film.height;
-    addRgbPlanes(img, "", denoised.empty() ? film.meanRgb() : denoised);
+    scene.camera = views[v].camera;
+    RenderStats stats;
+    ProgressBar bar(!a.quiet);
+    // The lights' and the device's tables are built inside the render, before its first wave.
+    steps.begin("preparing lights and device tables");
+    jobs::Job& job = *jobsOfViews[v];
+    part.keepTriangles = v + 1 < views.size();  // the last view takes the tables, the others copy them
+    Film film = job.render(renderer, scene, bvh, stats, [&](std::uint64_t done, std::uint64_t total, const RenderStats& s) {
+      bar.update(done, total, s);
+    }, part);
+    endLoading();
+    steps.finish();
+    bar.finish();
+    if (a.profile) std::cout << formatProfile(stats.profile, stats.seconds);
+    if (stats.nanRays > 0)  // each rank of an MPI job warns about its own pixels
+      std::cerr << "montecl: warning: " << stats.nanRays
+                << " rays with NaN/inf origin or direction were treated as misses\n";
+    if (!job.writesImage()) continue;
+    const int status = writeView(a, scene, views[v], film, stats, saidBlack);
+    if (status != kExitOk) {
+      if (v + 1 < views.size())
+        std::cout << "interrupted: " << views.size() - v - 1 << " of " << views.size() << " views not rendered\n";
+      return status;
+    }
   }
-  if (std::size_t bad = nonFinitePixels(img))
-    throw RuntimeError(std::to_string(bad) + " of " + std::to_string(img.pixelCount()) +
-                       " pixels hold NaN or infinite values (radiance overflows a float: check emission and camera); " +
-                       output + " was not written");
-  if (!interrupted && !saidBlack)
-    if (const std::string dark = darkImageWarning(denoised.empty() ? film.meanRgb() : denoised, scene); !dark.empty())
-      std::cerr << "montecl: warning: " << dark << "\n";
-  if (isExr(output))
-    writeLayeredExr(output, img);
-  else
-    writeRgbImage(output, film.width, film.height, denoised.empty() ? film.meanRgb() : denoised);
-  std::cout << "wrote " << output << ": " << summaryLine(film.width, film.height, scene.render.spp, stats)
-            << (a.job.resume.empty() ? "" : imageSamplesNote(film.count));
-  if (!denoised.empty()) {
-    char took[64];
-    std::snprintf(took, sizeof took, ", denoised in %.3f s", denoiseSeconds);
-    std::cout << took;
-  }
-  std::cout << outputNote << "\n";
-  const std::uint64_t pixels = std::uint64_t(film.width) * film.height;
-  if (a.targetError > 0.0)
-    std::cout << "adaptive: " << stats.converged << " of " << pixels << " pixels within relative error "
-              << a.targetError << ", " << stats.samples << " samples (" << double(stats.samples) / pixels
-              << " per pixel) in " << stats.rounds << " rounds\n";
-  if (stats.stoppedEarly)
-    std::cout << (interrupted ? "interrupted" : "time limit reached") << ": " << stats.samples
-              << " pixel samples done; the image holds each pixel's own sample count\n";
-  if (!interrupted) return kExitOk;
-  return signalled == SIGTERM ? kExitTerminated : kExitInterrupted;
+  return kExitOk;
 }
 
 }  // namespace
@@ -356,10 +353,16 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--view", args->view,
                   "Frame the whole model from a side, replacing the scene's camera: front (+z, a bare mesh's "
                   "default) | back | left | right | top | bottom | iso");
-  cmd->add_option("--camera", args->camera,
-                  "Render through the model file's camera N (a glTF file's perspective cameras, from 0, in "
-                  "the order its nodes meet them; default: the first, else the automatic framing)")
+  cmd->add_option_function<std::string>(
+         "--camera", [args](const std::string& v) { args->cameras = parseCameraRequest(v); },
+         "Render through the model file's camera N (a glTF file's perspective cameras, from 0, in the order its "
+         "nodes meet them; default: the first, else the automatic framing); N,M,... or all: one image per camera, "
+         "-o naming them by a pattern with {camera} (out_{camera}.png), loading the scene and kernels once")
+      ->check(CLI::Validator([](std::string& text) { return cameraRequestProblem(text); }, "N|N,M,...|all"))
+      ->type_name("N|all")
       ->excludes("--view");
+  cmd->add_option("--scene", args->gltfScene,
+                  "Load the glTF model's scene N (its scenes[], from 0; default: the file's \"scene\", else 0)");
   cmd->add_option("--look-from", args->lookFrom, "Camera position X,Y,Z, replacing the chosen camera's (scene units)");
   cmd->add_option("--look-at", args->lookAt, "Point the camera looks at, X,Y,Z, replacing the chosen camera's");
   cmd->add_option("--fov", args->fov, "Vertical field of view in degrees, replacing the camera's (up to 179.9)")

@@ -1,5 +1,5 @@
-// render_args.cpp: applyOverrides (render_args.h): the command line's settings, environment and
-// camera applied to the loaded scene.
+// render_args.cpp: applyOverrides and viewCamera (render_args.h): the command line's settings,
+// environment and camera applied to the loaded scene.
 #include "cli/render_args.h"
 
 #include <cmath>
@@ -35,36 +35,34 @@ void applyOverrides(const RenderArgs& a, Scene& scene) {
   // Adaptive sampling stops each pixel on its estimated error: under sobol that needs the
   // sub-sequences (var/n overstates it 30-100x there), so --target-error asks for them.
   if (a.targetError > 0.0) scene.render.errorEstimate = true;
-  if (a.camera) {  // before the size: --width and --height still set it
-    const std::size_t n = scene.fileCameras.size();
-    if (*a.camera >= n)
-      throwInputError("--camera", "",
-                      "camera " + std::to_string(*a.camera) + " out of range: " + oneLine(scene.path) + " has " +
-                          std::to_string(n) + (n == 1 ? " camera" : " cameras") +
-                          " (a glTF file's perspective cameras, from 0; --view or --look-from frame other models)");
-    scene.camera = scene.fileCameras[*a.camera];
-  }
-  if (a.width) scene.camera.width = *a.width;
-  if (a.height) scene.camera.height = *a.height;
-  // The command line's environment replaces the scene's; --view frames the model from that side.
+  // The command line's environment replaces the scene's.
   if (!a.env.empty()) {
     scene.environment = environmentFromOption(a.env, a.envScale, a.envRotate);
     if (!scene.environment.file.empty()) scene.inputFiles.push_back(scene.environment.file);
   }
+}
+
+Camera viewCamera(const RenderArgs& a, const Scene& scene, std::optional<unsigned> fileCamera) {
+  // The file's camera before the size: --width and --height still set it.
+  Camera camera = fileCamera ? scene.fileCameras.at(*fileCamera) : scene.camera;
+  if (a.width) camera.width = *a.width;
+  if (a.height) camera.height = *a.height;
+  // --view frames the model from that side.
   if (!a.view.empty()) {
     if (!isViewName(a.view)) throwInputError("--view", "", "unknown side '" + a.view + "' (known: " + viewNames() + ")");
-    scene.camera = defaultCamera(scene.boundsMin, scene.boundsMax, scene.camera.width, scene.camera.height, a.view);
+    camera = defaultCamera(scene.boundsMin, scene.boundsMax, camera.width, camera.height, a.view);
   }
   // Then the camera chosen above moved, turned or zoomed.
-  if (!a.lookFrom.empty()) scene.camera.position = cameraPointOption("--look-from", a.lookFrom);
-  if (!a.lookAt.empty()) scene.camera.target = cameraPointOption("--look-at", a.lookAt);
-  if (a.fov) scene.camera.fovY = *a.fov;
+  if (!a.lookFrom.empty()) camera.position = cameraPointOption("--look-from", a.lookFrom);
+  if (!a.lookAt.empty()) camera.target = cameraPointOption("--look-at", a.lookAt);
+  if (a.fov) camera.fovY = *a.fov;
   if (!a.lookFrom.empty() || !a.lookAt.empty() || a.fov) {
-    const CameraProblem p = cameraBasisProblem(scene.camera);
+    const CameraProblem p = cameraBasisProblem(camera);
     if (!p.empty())
       throwInputError(a.lookFrom.empty() && a.lookAt.empty() ? "--fov" : "--look-from/--look-at", "",
                       "the camera is unusable: " + p.key + " " + p.problem);
   }
+  return camera;
 }
 
 }  // namespace montecl

@@ -1,5 +1,6 @@
 // render_args.h: the options of `montecl render` as parsed (RenderArgs), and how they change the
-// loaded scene (applyOverrides: settings, size, environment, camera). Reads no files but --env's map.
+// loaded scene (applyOverrides: settings, environment; viewCamera: the camera of one view, its size).
+// Reads no files but --env's map.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "bvh/bvh.h"
+#include "cli/render_views.h"
 #include "job/job.h"
 #include "scene/scene.h"
 
@@ -27,7 +29,8 @@ struct RenderArgs {
   int minSpp = 16, maxSpp = 1024;
   std::vector<std::string> aovs;
   std::string env, view;            // --env R,G,B | FILE; --view SIDE
-  std::optional<unsigned> camera;   // --camera N: the file's camera N
+  CameraRequest cameras;            // --camera N | N,M,... | all: the file's cameras (cli/render_views.h)
+  std::optional<unsigned> gltfScene;  // --scene N: a glTF model's scene N (loadScene)
   std::optional<float> fov;         // --fov DEG
   std::string lookFrom, lookAt;     // --look-from X,Y,Z; --look-at X,Y,Z
   float envScale = 1.0f, envRotate = 0.0f;
@@ -37,9 +40,12 @@ struct RenderArgs {
   jobs::JobArgs job;  // MPI split, --checkpoint, --resume (job/job.h)
 };
 
-// The command line's changes to the scene: render settings, the environment, then the camera
-// (--camera N, --width / --height, --view, --look-from / --look-at, --fov). Throws InputError
-// "--option: <problem>" for a value that cannot apply (a camera out of range, an unusable camera).
+// The command line's changes to the scene but its camera: render settings, the environment.
 void applyOverrides(const RenderArgs& a, Scene& scene);
+
+// The camera of one view: the scene's, or the file's camera `fileCamera` (one of --camera's,
+// resolveCameras), then --width / --height, --view, --look-from / --look-at, --fov. Throws
+// InputError "--option: <problem>" for a camera they make unusable.
+Camera viewCamera(const RenderArgs& a, const Scene& scene, std::optional<unsigned> fileCamera);
 
 }  // namespace montecl

@@ -200,7 +200,7 @@ std::string cameraJson(const Camera& c) {
 // The default output: <stem>.png in the current folder, named after the scene's folder when the
 // file is scene.json (every shared scene is). An existing file is never replaced without
 // --overwrite: the first free <name>-N.png is used instead, and `note` says so.
-std::string defaultOutput(const std::string& scenePath, bool overwrite, std::string& note) {
+std::string defaultOutput(const std::string& scenePath, bool overwrite, std::string& note, const std::string& suffix) {
   namespace fs = std::filesystem;
   fs::path scene(scenePath);
   std::string stem = scene.stem().string();
@@ -208,6 +208,7 @@ std::string defaultOutput(const std::string& scenePath, bool overwrite, std::str
     std::string folder = fs::absolute(scene).lexically_normal().parent_path().filename().string();
     if (!folder.empty()) stem = folder;
   }
+  stem += suffix;
   const std::string name = stem + ".png";
   std::error_code ec;
   if (overwrite || !fs::exists(fs::symlink_status(name, ec))) return name;

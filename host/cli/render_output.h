@@ -46,7 +46,8 @@ void addRgbPlanes(LayeredImage& img, const std::string& prefix, const std::vecto
 std::string cameraJson(const Camera& c);
 // The default output: <stem>.png in the current folder, named after the scene's folder when the
 // file is scene.json (every shared scene is). An existing file is never replaced without
-// --overwrite: the first free <name>-N.png is used instead, and `note` says so.
-std::string defaultOutput(const std::string& scenePath, bool overwrite, std::string& note);
+// --overwrite: the first free <name>-N.png is used instead, and `note` says so. suffix follows the
+// name (one image of several views: "_2" for camera 2).
+std::string defaultOutput(const std::string& scenePath, bool overwrite, std::string& note, const std::string& suffix = "");
 
 }  // namespace montecl

@@ -72,8 +72,11 @@ struct RenderPart {
   // defaultTextureBudget when a material names a texture (warnings dropped).
   const SceneTextures* textures = nullptr;
   // The scene's triangles as prepared beforehand (the render moves the shading table out of it:
-  // no second copy); null: prepared here from scene.triangles.
+  // no second copy, unless keepTriangles); null: prepared here from scene.triangles.
   PreparedTriangles* triangles = nullptr;
+  // Another render of the same triangles follows (a batch of views): the render copies their
+  // tables instead of taking them, so *triangles stays whole for it.
+  bool keepTriangles = false;
 };
 
 }  // namespace montecl

@@ -101,10 +101,16 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
                               bvh.triangles.size() * sizeof(Triangle), environment.map.size() * sizeof(float4),
                               environment.cdf.size() * sizeof(float)})
     checkFits(bytes, maxAlloc, "use a smaller image or scene");
-  in.shading = std::move(triangles.shading);
-  in.vertexColors = std::move(triangles.vertexColors);
+  if (part.keepTriangles && part.triangles) {
+    in.shading = triangles.shading;
+    in.vertexColors = triangles.vertexColors;
+    in.tangents = triangles.tangents;
+  } else {
+    in.shading = std::move(triangles.shading);
+    in.vertexColors = std::move(triangles.vertexColors);
+    in.tangents = std::move(triangles.tangents);
+  }
   checkFits(in.vertexColors.size() * sizeof(float4), maxAlloc, "use a smaller scene");
-  in.tangents = std::move(triangles.tangents);
   checkFits(in.tangents.size() * sizeof(float4), maxAlloc, "use a smaller scene");
   checkFits(in.shading.size() * sizeof(TriangleShading), maxAlloc, "use a smaller scene");
 

@@ -7,6 +7,7 @@
 
 #include "scene/gltf_model.h"
 #include "scene/load_util.h"
+#include "util/errors.h"
 
 namespace montecl {
 
@@ -104,11 +105,19 @@ GltfInstances gltfNodeInstances(const std::string& file, const tinygltf::Model& 
   return out;
 }
 
-std::vector<int> gltfRootNodes(const tinygltf::Model& m) {
-  if (!m.scenes.empty()) {
-    const std::size_t s = m.defaultScene >= 0 && static_cast<std::size_t>(m.defaultScene) < m.scenes.size() ? std::size_t(m.defaultScene) : 0;
-    return m.scenes[s].nodes;
-  }
+std::size_t gltfSceneIndex(const std::string& file, const tinygltf::Model& m, std::optional<unsigned> chosen) {
+  const std::size_t n = m.scenes.size();
+  if (chosen && *chosen >= n)
+    throwInputError("--scene", "",
+                    "scene " + std::to_string(*chosen) + " out of range: " + oneLine(file) + " has " +
+                        (n == 0 ? std::string("no scenes[] (every root node is rendered; leave --scene out)")
+                                : std::to_string(n) + (n == 1 ? " scene" : " scenes") + " (from 0)"));
+  if (chosen) return *chosen;
+  return m.defaultScene >= 0 && static_cast<std::size_t>(m.defaultScene) < n ? std::size_t(m.defaultScene) : 0;
+}
+
+std::vector<int> gltfRootNodes(const tinygltf::Model& m, std::size_t scene) {
+  if (scene < m.scenes.size()) return m.scenes[scene].nodes;
   std::vector<bool> child(m.nodes.size(), false);
   for (const tinygltf::Node& n : m.nodes)
     for (int c : n.children)

@@ -8,6 +8,7 @@
 
 #include <glm/glm.hpp>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,9 +31,14 @@ GltfInstances gltfNodeInstances(const std::string& file, const tinygltf::Model& 
 // matrix of other than 16 numbers or a zero quaternion is InputError naming where + the key.
 glm::dmat4 gltfLocalTransform(const std::string& file, const tinygltf::Node& n, const std::string& where);
 
-// The hierarchy's roots: the default scene's nodes (scene 0 when none is named; every parentless
-// node when the file has no scene).
-std::vector<int> gltfRootNodes(const tinygltf::Model& m);
+// Which of the file's scenes[] gltfRootNodes walks: `chosen` (the command line's --scene) when
+// given, else the file's "scene", else 0. Throws InputError "--scene: scene N out of range: <file>
+// has K scenes ..." for a chosen index the file does not have (a file without scenes[] has none).
+std::size_t gltfSceneIndex(const std::string& file, const tinygltf::Model& m, std::optional<unsigned> chosen);
+
+// The hierarchy's roots: scene `scene`'s nodes (gltfSceneIndex); every parentless node when the
+// file has no scenes[].
+std::vector<int> gltfRootNodes(const tinygltf::Model& m, std::size_t scene);
 
 // The triangles a mesh declares (index or POSITION counts / 3), before any is read.
 std::uint64_t gltfMeshTriangles(const tinygltf::Model& m, const tinygltf::Mesh& mesh);

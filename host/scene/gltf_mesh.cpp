@@ -1,19 +1,14 @@
-// gltf_mesh.cpp: loadGltfInto(): a glTF 2.0 scene (gltf_model.h) into a Scene. Walks the default
-// scene's node hierarchy (TRS or matrix transforms); TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN
-// primitives (indexed or not) give triangles with POSITION, NORMAL (kHasNormals), TANGENT (kHasTangents,
-// Scene::vertexTangents, placed by Placement::tangent) and the TEXCOORD_n set the
-// material's textures read (kHasUv, v flipped to OBJ's convention: v = 1 - v_gltf); each texture's
-// KHR_texture_transform and sampler wrap modes are its TextureSampling (gltf_texture_info.h);
-// KHR_materials_unlit makes the base colour the emission of a surface that reflects nothing. Materials: baseColorFactor x baseColorTexture -> albedo and
-// albedoTexture; alphaMode MASK (+ alphaCutoff) -> alphaTexture = the base colour texture, BLEND
-// treated as MASK with a warning; emissiveFactor x KHR_materials_emissive_strength -> emission
-// (two-sided when doubleSided), emissiveTexture -> emissionTexture; metallic/roughness factors (x
-// metallicRoughnessTexture) -> the metal_rough kind; KHR_materials_transmission (+ _ior, _volume)
-// -> the dielectric kinds (gltf_transmission.h). EXT_mesh_gpu_instancing: one copy of the node's
-// mesh per instance (flattened). KHR_draco_mesh_compression: a primitive's attributes and indices
-// come from its Draco buffer (gltf_draco.h), decoded once however many nodes use the mesh, and
-// are read as if they were accessors. The first perspective camera met in the hierarchy is returned.
-// Everything else the file uses is one warning per kind.
+// gltf_mesh.cpp: loadGltfInto(): a glTF 2.0 scene (gltf_model.h) into a Scene. Walks the chosen
+// scene's node hierarchy (--scene N, else the file's default; TRS or matrix transforms);
+// TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN primitives (indexed or not) give triangles with
+// POSITION, NORMAL (kHasNormals), TANGENT (kHasTangents, Scene::vertexTangents, placed by
+// Placement::tangent), COLOR_0 and the TEXCOORD_n set the material's textures read (kHasUv, v
+// flipped to OBJ's convention: v = 1 - v_gltf). Materials: gltf_material.h, made on first use.
+// EXT_mesh_gpu_instancing: one copy of the node's mesh per instance (flattened, or a mesh range
+// placed many times). KHR_draco_mesh_compression: a primitive's attributes and indices come from its
+// Draco buffer (gltf_draco.h), decoded once however many nodes use the mesh, and are read as if
+// they were accessors. The first perspective camera met in the hierarchy is returned. Everything
+// else the file uses is one warning per kind.
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
@@ -29,9 +24,9 @@
 #include "scene/gltf_draco.h"
 #include "scene/gltf_instancing.h"
 #include "scene/gltf_lights.h"
+#include "scene/gltf_material.h"
 #include "scene/gltf_model.h"
 #include "scene/gltf_placement_budget.h"
-#include "scene/gltf_transmission.h"
 #include "scene/gltf_texture_info.h"
 #include "scene/load_util.h"
 #include "scene/mesh_entry.h"
@@ -48,146 +43,17 @@ struct Loader {
   const Model& m;
   Scene& scene;
   KindWarnings unused;
-  std::vector<std::int64_t> materialIndex;  // glTF material -> scene material (-1: not yet)
+  GltfMaterials materials{file, m, scene, unused};  // glTF material -> scene material, made on first use
   std::vector<Camera> cameras{};  // every perspective camera, in the order met (the first is the camera)
   std::size_t skippedPrimitives = 0;  // points and lines: named when nothing else is left
-  std::set<int> missingImages{};  // images whose file cannot be opened
-  // glTF material -> the TEXCOORD_n set its textures read, and the key that named it.
-  std::vector<int> uvSet = std::vector<int>(m.materials.size(), 0);
-  std::vector<std::string> uvSetKey = std::vector<std::string>(m.materials.size());
   std::map<const tinygltf::Primitive*, GltfDracoMesh> draco{};  // decoded Draco primitives
   GltfAccessorCache accessors{};  // primitives sharing an accessor decode it once
 
-  std::uint32_t material(int index);
   void primitive(const tinygltf::Primitive& p, const glm::dmat4& world, const std::string& where);
   void takeCamera(int index, const glm::dmat4& world, const std::string& where);
 };
 
 std::string itemWhere(const char* kind, std::size_t i) { return std::string(kind) + "[" + std::to_string(i) + "]"; }
-
-glm::vec3 factor3(const std::vector<double>& f, double scale) {
-  return f.size() >= 3 ? glm::vec3(float(f[0] * scale), float(f[1] * scale), float(f[2] * scale)) : glm::vec3(0.0f);
-}
-
-std::uint32_t Loader::material(int index) {
-  if (index < 0 || static_cast<std::size_t>(index) >= m.materials.size()) return defaultMaterialIndex(scene);
-  const std::size_t i = static_cast<std::size_t>(index);
-  if (materialIndex[i] >= 0) return static_cast<std::uint32_t>(materialIndex[i]);
-  const tinygltf::Material& g = m.materials[i];
-  const std::string where = itemWhere("materials", i);
-  MaterialDesc d;
-  d.name = g.name.empty() ? where : g.name;
-  d.kind = MCL_MATERIAL_diffuse;  // the base colour as Lambert unless metallic/roughness say otherwise (below)
-  const auto& pbr = g.pbrMetallicRoughness;
-  d.albedo = factor3(pbr.baseColorFactor, 1.0);
-  double strength = 1.0;
-  bool unlit = false;
-  for (const auto& ext : g.extensions) {
-    if (ext.first == "KHR_materials_emissive_strength" && ext.second.Has("emissiveStrength"))
-      strength = ext.second.Get("emissiveStrength").GetNumberAsDouble();
-    else if (gltfTransmissionExtension(ext.first)) continue;  // applyGltfTransmission, below
-    else if (ext.first == "KHR_materials_unlit") unlit = true;
-    else unused.add("extension " + ext.first, where, "material extension '" + oneLine(ext.first, 60) + "' not used by montecl, ignored");
-  }
-  d.emission = factor3(g.emissiveFactor, strength);
-  d.twoSidedEmission = g.doubleSided;
-  for (int c = 0; c < 3; ++c) {
-    if (!std::isfinite(d.albedo[c]) || d.albedo[c] < 0) loadFail(file, where, "baseColorFactor must be finite and >= 0");
-    if (!std::isfinite(d.emission[c]) || d.emission[c] < 0) loadFail(file, where, "emissiveFactor x emissiveStrength must be finite and >= 0");
-  }
-  // A texture of this material (key names it in messages, info is its textureInfo): the path of
-  // its image, checked now when it is a file of its own (then an input file), and how it is read
-  // (sampling: transform, wrap modes). Every texture of a material reads one TEXCOORD set.
-  const auto texturePath = [&](const auto& info, const char* key, TextureSampling& sampling) {
-    const int tex = info.index;
-    const std::string name(key);
-    if (static_cast<std::size_t>(tex) >= m.textures.size())
-      loadFail(file, where, name.substr(name.rfind('.') + 1) + " index out of range");
-    const std::string infoKey = where + "." + key;
-    const GltfTextureRead read = readGltfTextureInfo(file, m, tex, info.texCoord, info.extensions, infoKey);
-    sampling = read.sampling;
-    if (read.texCoord != uvSet[i] && !uvSetKey[i].empty())
-      unused.add("uv sets", where, "textures read TEXCOORD_" + std::to_string(uvSet[i]) + " and TEXCOORD_" +
-                                       std::to_string(read.texCoord) + ": montecl reads one set per material (TEXCOORD_" +
-                                       std::to_string(uvSet[i]) + " used for all)");
-    else if (uvSetKey[i].empty()) uvSet[i] = read.texCoord, uvSetKey[i] = infoKey + ".texCoord";
-    const tinygltf::Texture& t = m.textures[static_cast<std::size_t>(tex)];
-    if (t.source < 0 || static_cast<std::size_t>(t.source) >= m.images.size())
-      loadFail(file, itemWhere("textures", std::size_t(tex)), "source image missing or out of range");
-    std::string path = gltfImagePath(file, m, t.source, scene);
-    if (scene.embeddedImages.count(path) == 0) {  // a file of its own: an input, checked now
-      const std::string problem = fileProblem(path), found = problem.empty() ? "" : findIgnoringCase(path);
-      if (!found.empty()) {
-        unused.add("case", itemWhere("images", std::size_t(t.source)),
-                   "'" + path + "' not found as written; using '" + found + "' (the names differ in case)");
-        path = found;
-      } else if (!problem.empty()) {  // recorded once per image; the material goes without it
-        if (missingImages.insert(t.source).second)
-          noteMissingTexture(scene.missingTextures, {file, itemWhere("images", std::size_t(t.source)),
-                                           "cannot open '" + path + "': " + problem,
-                                           itemWhere("images", std::size_t(t.source)) + " '" + path + "'"});
-        return std::string();
-      }
-      scene.inputFiles.push_back(path);
-    }
-    return path;
-  };
-  if (pbr.baseColorTexture.index >= 0)
-    d.albedoTexture = texturePath(pbr.baseColorTexture, "pbrMetallicRoughness.baseColorTexture", d.albedoSampling);
-  if (g.alphaMode == "MASK" || g.alphaMode == "BLEND") {
-    if (g.alphaMode == "BLEND") unused.add("BLEND", where, "alphaMode BLEND treated as MASK (cut-out at alphaCutoff)");
-    d.alphaCutoff = static_cast<float>(g.alphaCutoff);
-    if (!(d.alphaCutoff >= 0.0f && d.alphaCutoff <= 1.0f)) loadFail(file, where, "alphaCutoff must be in [0, 1]");
-    d.alphaTexture = d.albedoTexture;
-    d.alphaSampling = d.albedoSampling;
-    if (d.alphaTexture.empty()) unused.add("constant alpha", where, "alphaMode " + g.alphaMode + " without a usable base colour texture: no cut-out");
-  }
-  // KHR_materials_unlit: the base colour is what the surface shows, lit or not: it becomes the
-  // emission (Le = baseColorFactor x baseColorTexture, both faces when doubleSided) and the surface
-  // reflects nothing (albedo 0, no other texture read).
-  if (unlit) {
-    d.emission = d.albedo;
-    d.emissionTexture = d.albedoTexture;
-    d.emissionSampling = d.albedoSampling;
-    d.albedo = glm::vec3(0.0f);
-    d.albedoTexture.clear();
-    d.albedoSampling = TextureSampling{};
-    materialIndex[i] = static_cast<std::int64_t>(scene.materials.size());
-    scene.materials.push_back(d);
-    return static_cast<std::uint32_t>(materialIndex[i]);
-  }
-  // emissiveFactor x emissiveTexture (x strength); with a black factor the texture emits nothing:
-  // not read at all.
-  if (g.emissiveTexture.index >= 0 && d.emission != glm::vec3(0.0f))
-    d.emissionTexture = texturePath(g.emissiveTexture, "emissiveTexture", d.emissionSampling);
-  // metallic/roughness factors -> the metal_rough kind. Two factor pairs stay Lambertian, as every
-  // glTF material rendered before the kind existed: (0, 1), which metal_rough nearly is (a rough
-  // dielectric), and the defaults (1, 1), which montecl always drew as Lambert (glTF's rough metal
-  // would change those images; give the factors explicitly, or a scene file's material type).
-  const float metallic = float(pbr.metallicFactor), roughness = float(pbr.roughnessFactor);
-  if (!(metallic >= 0.0f && metallic <= 1.0f)) loadFail(file, where, "metallicFactor must be in [0, 1]");
-  if (!(roughness >= 0.0f && roughness <= 1.0f)) loadFail(file, where, "roughnessFactor must be in [0, 1]");
-  // A metallicRoughnessTexture (B metallic, G roughness, x the factors) always means metal_rough.
-  const bool mrTexture = pbr.metallicRoughnessTexture.index >= 0 && (metallic > 0.0f || roughness > 0.0f);
-  if (roughness != 1.0f || (metallic != 0.0f && metallic != 1.0f) || mrTexture) {
-    d.kind = MCL_MATERIAL_metal_rough;
-    d.metallic = metallic;
-    d.roughness = roughness;
-  }
-  if (mrTexture)
-    d.metallicRoughnessTexture = texturePath(pbr.metallicRoughnessTexture, "pbrMetallicRoughness.metallicRoughnessTexture",
-                                             d.metallicRoughnessSampling);
-  if (g.normalTexture.index >= 0) {
-    d.normalScale = static_cast<float>(g.normalTexture.scale);
-    if (!std::isfinite(d.normalScale)) loadFail(file, where, "normalTexture scale must be finite");
-    d.normalTexture = texturePath(g.normalTexture, "normalTexture", d.normalSampling);
-  }
-  applyGltfTransmission(file, where, g, d, unused);
-  if (g.occlusionTexture.index >= 0) unused.add("occlusionTexture", where, "occlusionTexture not used by montecl, ignored");
-  materialIndex[i] = static_cast<std::int64_t>(scene.materials.size());
-  scene.materials.push_back(d);
-  return static_cast<std::uint32_t>(materialIndex[i]);
-}
 
 void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, const std::string& where) {
   const int mode = p.mode == -1 ? TINYGLTF_MODE_TRIANGLES : p.mode;
@@ -227,12 +93,11 @@ void Loader::primitive(const tinygltf::Primitive& p, const glm::dmat4& world, co
   const std::vector<float>& pos = values("POSITION", 3, AccessorUse::Position);
   const std::size_t n = pos.size() / 3;
   const std::vector<float>& nor = attr("NORMAL") >= 0 ? values("NORMAL", 3, AccessorUse::Normal) : kNone;
-  const std::uint32_t mat = material(p.material);
-  const bool hasMaterial = p.material >= 0 && static_cast<std::size_t>(p.material) < m.materials.size();
-  const int set = hasMaterial ? uvSet[std::size_t(p.material)] : 0;
+  const std::uint32_t mat = materials.index(p.material);
+  const int set = materials.uvSet(p.material);
   const std::string uvName = "TEXCOORD_" + std::to_string(set);
   if (set > 0 && attr(uvName.c_str()) < 0)  // TEXCOORD_0 missing: no UVs, as always
-    loadFail(file, uvSetKey[std::size_t(p.material)], "names " + uvName + ", which " + where + " does not have");
+    loadFail(file, materials.uvSetKey(p.material), "names " + uvName + ", which " + where + " does not have");
   const std::vector<float>& uv = attr(uvName.c_str()) >= 0 ? values(uvName, 2, AccessorUse::TexCoord) : kNone;
   // COLOR_0 (VEC3 or VEC4: alpha not read) multiplies the base colour.
   const int colA = attr("COLOR_0");
@@ -323,19 +188,21 @@ void Loader::takeCamera(int index, const glm::dmat4& world, const std::string& w
 
 }  // namespace
 
-bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string>* warnings, Camera* camera) {
+bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string>* warnings, Camera* camera,
+                  std::optional<unsigned> sceneIndex) {
   std::vector<std::string> opened;  // external buffers and images, as opened (decoded URIs)
   const Model m = readGltfModel(path, warnings, &opened);
   scene.inputFiles.push_back(path);
   scene.inputFiles.insert(scene.inputFiles.end(), opened.begin(), opened.end());
-  Loader l{path, m, scene, KindWarnings(path), std::vector<std::int64_t>(m.materials.size(), -1), {}, 0};
+  Loader l{path, m, scene, KindWarnings(path)};
   checkGltfSamplers(path, m);
   for (const std::string& e : m.extensionsUsed)
     if (!gltfExtensionSupported(e))
       l.unused.add("extension " + e, "extensionsUsed", "extension '" + oneLine(e, 60) + "' not used by montecl, ignored");
   if (!m.animations.empty()) l.unused.add("animations", "animations", "animations not used by montecl (the rest pose is rendered)");
   if (!m.skins.empty()) l.unused.add("skins", "skins", "skins not used by montecl (the rest pose is rendered)");
-  const std::vector<int> roots = gltfRootNodes(m);
+  const std::size_t sceneChosen = gltfSceneIndex(path, m, sceneIndex);
+  const std::vector<int> roots = gltfRootNodes(m, sceneChosen);
   const std::size_t before = scene.triangles.size(), droppedBefore = scene.degenerateDropped;
   const std::size_t missingBefore = scene.missingTextures.size();
   std::uint64_t instanced = 0;  // triangles the meshes of the nodes so far declare
@@ -438,6 +305,7 @@ bool loadGltfInto(const std::string& path, Scene& scene, std::vector<std::string
                            std::to_string(scene.degenerateDropped - droppedBefore) + " degenerate triangles dropped)");
   if (camera && !l.cameras.empty()) *camera = l.cameras[0];
   if (camera) scene.fileCameras = l.cameras;  // a bare model: `render --camera N` picks among them
+  scene.fileScenes = m.scenes.size(), scene.fileScene = sceneChosen;
   return !l.cameras.empty();
 }
 

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "scene/gltf_draco.h"
+#include "scene/gltf_material.h"
 #include "scene/gltf_transmission.h"
 #include "scene/load_util.h"
 
@@ -270,9 +271,8 @@ tinygltf::Model readGltfModel(const std::string& path, std::vector<std::string>*
 }
 
 bool gltfExtensionSupported(const std::string& name) {
-  return name == "KHR_materials_emissive_strength" || name == "KHR_lights_punctual" || name == "KHR_mesh_quantization" ||
-         gltfTransmissionExtension(name) || name == "EXT_mesh_gpu_instancing" ||
-         name == "KHR_texture_transform" || name == "KHR_materials_unlit" || name == "KHR_draco_mesh_compression";
+  return gltfMaterialExtensionRead(name) || name == "KHR_lights_punctual" || name == "KHR_mesh_quantization" ||
+         name == "EXT_mesh_gpu_instancing" || name == "KHR_texture_transform" || name == "KHR_draco_mesh_compression";
 }
 
 const tinygltf::Accessor& checkFloatAccessor(const std::string& file, const tinygltf::Model& m, int index, int components,

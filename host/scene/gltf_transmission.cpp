@@ -62,11 +62,9 @@ void applyGltfTransmission(const std::string& file, const std::string& where, co
     unused.add("transmission tint", where, "the base colour does not tint transmitted light in montecl (clear glass)");
   // glTF: thicknessFactor 0 (the default) is a thin-walled material, > 0 the boundary of a volume.
   const bool solid = thickness > 0.0;
-  const auto& pbr = g.pbrMetallicRoughness;
-  // The factors as the loader read them into d: a material it left Lambertian (the (0, 1) pair and
-  // the (1, 1) defaults, gltf_mesh.cpp) keeps MaterialDesc's metallic 0, so a transmission factor
-  // near 0 renders close to the same material without the extension, not as a rough metal.
-  const float metallic = d.metallic, roughness = float(pbr.roughnessFactor);
+  // The factors as the loader read them into d (gltf_material.cpp): glTF's defaults (1, 1) are a
+  // rough metal, through which nothing is transmitted (p = t (1 - metallic) = 0), as glTF defines.
+  const float metallic = d.metallic, roughness = d.roughness;
   if (!solid && roughness > 0.0f)
     unused.add("thin roughness", where, "the roughness of a thin-walled transmission not used (montecl's thin sheet is smooth)");
   d.ior = float(ior);

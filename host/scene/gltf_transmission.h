@@ -15,7 +15,7 @@ namespace montecl {
 bool gltfTransmissionExtension(const std::string& name);
 
 // Applies g's transmission extensions to d, whose factors, base colour and textures the loader has
-// already read (a d the loader left diffuse, as it reads the (1, 1) default factors, counts as
+// already read (d.metallic, d.roughness: the (0, 1) pair the loader leaves diffuse counts as
 // metallic 0). A transmission factor of 0 (or none) leaves d as it is. Factor 1 on a dielectric
 // (metallic 0, no metallicRoughnessTexture) makes d the kind dielectric (with KHR_materials_volume
 // and thicknessFactor > 0; alpha = roughness^2) or thin_dielectric (without); any other factor

@@ -80,6 +80,14 @@ struct MaterialDesc {
   // relative to vacuum: the BSDF divides it by ior) and GGX alpha baseAlpha (0: smooth).
   float baseAlpha = 0.0f;
   std::string metallicRoughnessTexture;  // glTF metallicRoughnessTexture (linear; B x metallic, G x roughness)
+  // When specGlossMap, metallicRoughnessTexture is a glTF specular-glossiness map
+  // (KHR_materials_pbrSpecularGlossiness's specularGlossinessTexture: sRGB specular colour, linear
+  // glossiness in alpha), which the texture loader converts texel by texel to (0, roughness,
+  // metallic) through metalRoughFromSpecGloss (scene/gltf_spec_gloss.h) with specular = texel x
+  // specGloss.rgb, glossiness = alpha x specGloss.w and the diffuse colour specGlossDiffuse.
+  bool specGlossMap = false;
+  glm::vec4 specGloss{1.0f};
+  glm::vec3 specGlossDiffuse{1.0f};
   // metal_rough: glTF KHR_materials_transmission's factor (0: none) through a dielectric of index
   // `ior`, solid (KHR_materials_volume) or a thin sheet (kernels/shared/transmission_mix.h).
   float transmission = 0.0f;
@@ -183,6 +191,8 @@ struct Scene {
   // A bare model's own cameras (glTF perspective cameras, in the order the node walk meets them;
   // the first is `camera`): what `render --camera N` picks from.
   std::vector<Camera> fileCameras;
+  // A glTF model's scenes[] count and the one loaded (render --scene N; default the file's "scene").
+  std::size_t fileScenes = 0, fileScene = 0;
   glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world bounds (instances by their placed boxes)
   // Instanced geometry, kept unflattened (scene_instances.h): meshRanges[r] is a run of
   // `triangles` in the mesh's own (object) space, placed once per entry of `instances` naming it;
@@ -197,8 +207,10 @@ struct Scene {
 // appended to warnings ("<file>: <key>: unknown key, ignored"). Texture files that cannot be opened
 // follow render.missing_textures (`missing`, the command line's, replaces the scene file's): error
 // throws one line listing all of them; warn leaves each out and warns once listing all.
+// gltfScene (the command line's --scene) picks one of a bare glTF model's scenes; with any other
+// file it is InputError "--scene: ...".
 Scene loadScene(const std::string& path, std::vector<std::string>& warnings,
-                std::optional<MissingTextures> missing = std::nullopt);
+                std::optional<MissingTextures> missing = std::nullopt, std::optional<unsigned> gltfScene = std::nullopt);
 
 // What a bare mesh (a model file given without a scene file) renders with, the one rule for it:
 // integrator path, and a constant white sky: radiance kDefaultSkyRadiance (a diffuse surface open

@@ -113,6 +113,11 @@ std::string sceneDigest(const Scene& scene) {
       if (!m.metallicRoughnessTexture.empty()) {
         const std::uint64_t mr = fileContentHash(m.metallicRoughnessTexture, files);
         append(bytes, &mr, sizeof mr);
+        if (m.specGlossMap) {  // converted per texel with these factors (only then: other digests stay)
+          bytes.add("spec-gloss");
+          append(bytes, &m.specGloss, sizeof m.specGloss);
+          appendVec(bytes, m.specGlossDiffuse);
+        }
       }
       if (m.transmission > 0.0f) {  // only when there is some, so other scenes keep their digests
         bytes.add(m.transmissionSolid ? "transmission solid" : "transmission thin");

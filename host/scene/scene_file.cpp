@@ -292,13 +292,17 @@ void reportMissingTextures(const Scene& scene, std::vector<std::string>& warning
                      "; rendered without them (each material's factor alone: missing_textures warn)");
 }
 
-Scene loadBareMesh(const std::string& path, std::vector<std::string>& warnings, std::optional<MissingTextures> missing) {
+Scene loadBareMesh(const std::string& path, std::vector<std::string>& warnings, std::optional<MissingTextures> missing,
+                   std::optional<unsigned> gltfScene) {
   Scene scene;
   scene.path = path;
   if (missing) scene.render.missingTextures = *missing;
   scene.deferMissingTextures = true;
   Camera fileCamera;
-  const bool hasCamera = loadMeshFile(path, scene, &warnings, &fileCamera);
+  const bool hasCamera = loadMeshFile(path, scene, &warnings, &fileCamera, gltfScene);
+  if (scene.fileScenes > 1 && !gltfScene)
+    warnings.push_back(oneLine(path) + ": " + std::to_string(scene.fileScenes) + " scenes; scene " +
+                       std::to_string(scene.fileScene) + " (the file's default) is used (--scene N picks scene N, from 0)");
   const CameraProblem fileProblem = hasCamera ? cameraBasisProblem(fileCamera) : CameraProblem{};
   if (hasCamera && fileProblem.empty()) {
     scene.camera = fileCamera;
@@ -336,9 +340,11 @@ void applyBareModelDefaults(Scene& scene) {
                            : "a white sky of radiance 1 (--env none, R,G,B or a map file for another)";
 }
 
-Scene loadScene(const std::string& path, std::vector<std::string>& warnings, std::optional<MissingTextures> missing) {
+Scene loadScene(const std::string& path, std::vector<std::string>& warnings, std::optional<MissingTextures> missing,
+                std::optional<unsigned> gltfScene) {
   const SceneReader reader = sceneReaderOf(path);  // the table of formats (scene/scene_readers.h)
-  if (reader == SceneReader::Mesh) return loadBareMesh(path, warnings, missing);
+  if (reader == SceneReader::Mesh) return loadBareMesh(path, warnings, missing, gltfScene);
+  if (gltfScene) throwSceneOptionError(path);  // a scene file: its glTF meshes load their default scene
   if (reader == SceneReader::Pbrt || reader == SceneReader::Mitsuba) {
     Scene scene = reader == SceneReader::Pbrt ? loadPbrtScene(path, warnings, missing)     // scene/pbrt_scene.h
                                               : loadMitsubaScene(path, warnings, missing);  // scene/mitsuba_scene.h

@@ -10,6 +10,7 @@
 
 #include "image/exr_layers.h"
 #include "image/image_read.h"
+#include "scene/gltf_spec_gloss.h"
 #include "texture/bump_gradient.h"
 #include "texture/mip_chain.h"
 #include "texture/texture_budget.h"
@@ -28,53 +29,9 @@ bool sceneHasTextures(const Scene& scene) {
   return false;
 }
 
-bool SceneTextures::anyAlpha() const {
-  for (const MaterialTextures& m : materials)
-    if (m.alpha != MCL_NO_TEXTURE) return true;
-  return false;
-}
-
-std::uint16_t floatToHalf(float f) {
-  std::uint32_t x;
-  std::memcpy(&x, &f, 4);
-  const std::uint16_t sign = std::uint16_t((x >> 16) & 0x8000u);
-  const std::uint32_t a = x & 0x7fffffffu;
-  if (a >= 0x7f800000u) return sign | (a > 0x7f800000u ? 0x7e00u : 0x7c00u);  // NaN, inf
-  if (a >= 0x477ff000u) return sign | 0x7c00u;                                // rounds past 65504
-  if (a < 0x38800000u) {  // below 2^-14: a subnormal half (nearest even by the rounding mode)
-    float mag;
-    std::memcpy(&mag, &a, 4);
-    return sign | std::uint16_t(std::lrint(double(mag) * 16777216.0));
-  }
-  const std::uint32_t e = a - 0x38000000u;  // exponent bias 127 -> 15
-  return sign | std::uint16_t((e + 0xfffu + ((e >> 13) & 1u)) >> 13);
-}
-
-float halfToFloat(std::uint16_t h) { return mcl_half_to_float(h); }
-
-std::vector<Triangle> alphaFlaggedTriangles(const std::vector<Triangle>& tris, const SceneTextures& textures) {
-  if (!textures.anyAlpha()) return {};
-  std::vector<Triangle> out = tris;
-  for (Triangle& t : out) {
-    const std::uint32_t m = glm::floatBitsToUint(t.v0.w);
-    if (m < textures.materials.size() && textures.materials[m].alpha != MCL_NO_TEXTURE)
-      t.e2.w = glm::uintBitsToFloat(glm::floatBitsToUint(t.e2.w) | MCL_ATTR_ALPHA);
-  }
-  return out;
-}
-
-void setTextureIndices(std::vector<Material>& materials, const SceneTextures& textures) {
-  for (std::size_t i = 0; i < materials.size() && i < textures.materials.size(); ++i) {
-    const MaterialTextures& t = textures.materials[i];
-    materials[i].albedo.w = glm::uintBitsToFloat(t.albedo);
-    materials[i].alpha.x = glm::uintBitsToFloat(t.alpha);
-    materials[i].alpha.z = glm::uintBitsToFloat(t.alphaChannel);
-    materials[i].maps.x = glm::uintBitsToFloat(t.emission);
-    materials[i].maps.y = glm::uintBitsToFloat(t.metallicRoughness);
-    // One more than the index, 0 none: a zeroed Material (hand-made in tests) has no normal map.
-    materials[i].maps.z = glm::uintBitsToFloat(t.normal == MCL_NO_TEXTURE ? 0u : t.normal + 1u);
-    materials[i].maps.w = glm::uintBitsToFloat(t.bump == MCL_NO_TEXTURE ? 0u : t.bump + 1u);  // the same rule
-  }
+glm::vec4 specGlossTexel(glm::vec4 texel, glm::vec4 factors, glm::vec3 diffuse) {
+  const MetalRoughFactors mr = metalRoughFromSpecGloss(diffuse, glm::vec3(texel) * glm::vec3(factors), texel.w * factors.w);
+  return glm::vec4(0.0f, mr.roughness, mr.metallic, 1.0f);
 }
 
 namespace {
@@ -229,7 +186,12 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     std::string path, material;
     const char* key = "";
     bool asColour = false, asAlpha = false;
-    bool asLinear = false;  // a data texture read linear: a File of its own (fileIndex key + kLinear)
+    bool asLinear = false;  // a data texture read linear: a File of its own (fileIndex key: linearKey)
+    // A specular-glossiness map read as a metallic-roughness one (MaterialDesc::specGlossMap): a
+    // File of its own per (path, factors), each texel converted (specGlossTexel).
+    bool specGloss = false;
+    glm::vec4 sg{1.0f};
+    glm::vec3 sgDiffuse{1.0f};
     // A normal map: a File of its own per (path, scale), texels the decoded tangent-space vectors
     // with the scale baked in (normal_map.h).
     bool asNormal = false;
@@ -251,15 +213,25 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
   };
   std::vector<File> files;
   std::map<std::string, std::size_t> fileIndex;
-  const std::string kLinear = std::string(1, '\0') + "linear";
-  const auto useLinear = [&](const MaterialDesc& m, const std::string& path, const char* key, bool read) {
-    auto [it, added] = fileIndex.emplace(path + kLinear, files.size());
+  const auto linearKey = [](const MaterialDesc& m) {
+    if (!m.specGlossMap) return m.metallicRoughnessTexture + std::string(1, '\0') + "linear";
+    char key[160];
+    std::snprintf(key, sizeof key, "spec-gloss %a %a %a %a %a %a %a", double(m.specGloss.x), double(m.specGloss.y),
+                  double(m.specGloss.z), double(m.specGloss.w), double(m.specGlossDiffuse.x), double(m.specGlossDiffuse.y),
+                  double(m.specGlossDiffuse.z));
+    return m.metallicRoughnessTexture + std::string(1, '\0') + key;
+  };
+  const auto useLinear = [&](const MaterialDesc& m, const char* key, bool read) {
+    auto [it, added] = fileIndex.emplace(linearKey(m), files.size());
     if (added) {
       files.emplace_back();
-      files.back().path = path;
+      files.back().path = m.metallicRoughnessTexture;
       files.back().material = m.name;
       files.back().key = key;
       files.back().asLinear = true;
+      files.back().specGloss = m.specGlossMap;
+      files.back().sg = m.specGloss;
+      files.back().sgDiffuse = m.specGlossDiffuse;
     }
     files[it->second].dataRead |= read;
   };
@@ -318,7 +290,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     if (!m.alphaTexture.empty()) use(m, m.alphaTexture, "map_d", false, true);
     if (!m.emissionTexture.empty()) use(m, m.emissionTexture, "map_Ke", true, uses.emission);
     if (!m.metallicRoughnessTexture.empty())
-      useLinear(m, m.metallicRoughnessTexture, "metallicRoughnessTexture", uses.reflectance);
+      useLinear(m, m.specGlossMap ? "specularGlossinessTexture" : "metallicRoughnessTexture", uses.reflectance);
     if (!m.normalTexture.empty()) useNormal(m, uses.normal);
     if (usesBumpMap(m)) useBump(m, uses.normal);
   }
@@ -371,7 +343,12 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
         else if (f.asColour || (f.asAlpha && alphaDecode == colourDecode))
           f.images.push_back(halfChain(rgbaFromImage(image, colourDecode)));
         if (f.asAlpha && alphaDecode != colourDecode) f.images.push_back(halfChain(rgbaFromImage(image, alphaDecode)));
-        if (f.asLinear) f.images.push_back(halfChain(rgbaFromImage(image, false)));
+        if (f.asLinear && !f.specGloss) f.images.push_back(halfChain(rgbaFromImage(image, false)));
+        if (f.asLinear && f.specGloss) {  // the specular colour sRGB-decoded (when integer), glossiness linear
+          RgbaImage t = rgbaFromImage(image, f.integer);
+          for (glm::vec4& x : t.texels) x = specGlossTexel(x, f.sg, f.sgDiffuse);
+          f.images.push_back(halfChain(std::move(t)));
+        }
         if (f.asNormal) {  // linear texels (never sRGB), decoded: n = ((2r - 1) s, (2g - 1) s, 2b - 1)
           RgbaImage n = rgbaFromImage(image, false);
           const float sc = f.normalScale;
@@ -415,7 +392,7 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     if (uses.reflectance && !m.albedoTexture.empty()) out.materials[i].albedo = first[fileIndex.at(m.albedoTexture)];
     if (uses.emission && !m.emissionTexture.empty()) out.materials[i].emission = first[fileIndex.at(m.emissionTexture)];
     if (uses.reflectance && !m.metallicRoughnessTexture.empty())
-      out.materials[i].metallicRoughness = first[fileIndex.at(m.metallicRoughnessTexture + kLinear)];
+      out.materials[i].metallicRoughness = first[fileIndex.at(linearKey(m))];
     if (uses.normal && !m.normalTexture.empty()) out.materials[i].normal = first[fileIndex.at(normalKey(m))];
     if (uses.normal && usesBumpMap(m)) out.materials[i].bump = first[fileIndex.at(bumpKey(m))];
     if (!m.alphaTexture.empty()) {

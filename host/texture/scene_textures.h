@@ -79,6 +79,11 @@ struct RgbaImage;
 void packTextures(SceneTextures& out, std::vector<RgbaImage> images, std::uint64_t budgetBytes,
                   std::vector<std::string>& warnings);
 
+// One texel of a glTF specular-glossiness map (RGB the specular colour, decoded; A the glossiness)
+// as a metallic-roughness texel (0, roughness, metallic, 1) for the factors (specular RGB,
+// glossiness) and the material's diffuse colour (MaterialDesc::specGlossMap).
+glm::vec4 specGlossTexel(glm::vec4 texel, glm::vec4 factors, glm::vec3 diffuse);
+
 // Float -> half (round to nearest even) and back, as the device's vload_half reads it.
 std::uint16_t floatToHalf(float f);
 float halfToFloat(std::uint16_t h);
