@@ -111,6 +111,7 @@ TEST_CASE("identity: every render option outside the settings table is classed a
       "--width", "--height",                    // the image size, compared by resume and merge
       "--env", "--env-scale", "--env-rotate",   // the scene digest's environment
       "--view", "--camera", "--look-from", "--look-at", "--fov",  // the scene digest's camera
+      "--scene",                                // the scene digest's triangles (a glTF file's scenes[N])
       "--first-sample", "--target-error", "--min-spp", "--max-spp", "--aov",  // sample ranges and the key
       "--texture-budget",                       // the levels it drops (texture_levels_dropped)
   };

@@ -95,7 +95,7 @@ MCL_INLINE float4 texel_at(TextureTables tt, TextureLevel l, uint x, uint y) {
   MCL_INLINE F P##texture_log2(F x) {                                                                           \
     U bits = AS_U(x);                                                                                           \
     U biased = (bits >> 23) & 0xffu;                                                                            \
-    F m = AS_F((bits & 0x807fffffu) | 0x3f000000u); /* x = m 2^e, m in [0.5, 1) */                              \
+    F m = AS_F((bits & 0x807fffffu) | 0x3f000000u); /* x = m 2^e, m in [1/2, 1) */                              \
     F e = F_OF_U(biased) - 126.0f;                  /* exact: small integers */                                 \
     F s = (m - 1.0f) / (m + 1.0f), s2 = s * s;                                                                  \
     F p = 0.33333334f + s2 * (0.2f + s2 * (0.14285715f + s2 * (0.11111111f + s2 * 0.09090909f)));              \
