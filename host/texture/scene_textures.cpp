@@ -11,6 +11,7 @@
 #include "image/exr_layers.h"
 #include "image/image_read.h"
 #include "scene/gltf_spec_gloss.h"
+#include "texture/texel_codes.h"
 #include "texture/bump_gradient.h"
 #include "texture/mip_chain.h"
 #include "texture/texture_budget.h"
@@ -42,6 +43,7 @@ struct HalfChain {
   int width = 0, height = 0;                    // of level 0
   std::vector<std::pair<int, int>> sizes;       // of each level
   std::vector<std::vector<std::uint16_t>> levels;
+  std::vector<std::uint32_t> formats;           // of each level (MCL_TEXELS_*): 8-bit codes or half
   // A texture no image of this render reads (TextureUses), known by its size alone: it takes part
   // in the budget's choice of levels, as it would if it were loaded, so that the textures that are
   // loaded keep the same levels (the same image) whichever others are; it gets no TextureDesc.
@@ -72,7 +74,11 @@ HalfChain halfChain(RgbaImage image) {
     for (const glm::vec4& t : image.texels)
       for (int i = 0; i < 4; ++i) *dst++ = floatToHalf(t[i]);
     c.sizes.push_back({image.width, image.height});
-    c.levels.push_back(std::move(half));
+    // The finest level of an 8-bit image is its codes' decodes (texel_codes.h): 4 bytes a texel.
+    std::vector<std::uint16_t> codes;
+    const std::uint32_t format = k == 0 ? encodeTexelCodes(half, &codes) : MCL_TEXELS_HALF;
+    c.formats.push_back(format);
+    c.levels.push_back(format == MCL_TEXELS_HALF ? std::move(half) : std::move(codes));
   }
   return c;
 }
@@ -92,6 +98,10 @@ void packChains(SceneTextures& out, std::vector<HalfChain> chains, std::uint64_t
   out.textures.clear();
   out.levels.clear();
   std::uint64_t texelCount = 0;
+  // Where each level starts in the texel buffer, in ushorts: after the code tables, a half level
+  // at a multiple of 4 (its offset counts 8-byte texels), an 8-bit one at a multiple of 2 (4-byte).
+  std::uint64_t at = MCL_TEXEL_TABLES;
+  std::vector<std::vector<std::uint64_t>> starts(count);
   std::ostringstream dropped;
   int droppedCount = 0;
   for (std::size_t t = 0; t < count; ++t) {
@@ -109,21 +119,30 @@ void packChains(SceneTextures& out, std::vector<HalfChain> chains, std::uint64_t
     for (std::size_t k = std::size_t(drop[t]); k < c.sizes.size(); ++k) {
       if (texelCount + std::uint64_t(c.sizes[k].first) * c.sizes[k].second > 0xffffffffull)
         throw RuntimeError("textures: more than 2^32 texels after the texture budget; lower --texture-budget");
-      out.levels.push_back(TextureLevel{std::uint32_t(texelCount), std::uint32_t(c.sizes[k].first),
-                                        std::uint32_t(c.sizes[k].second), 0u});
-      texelCount += std::uint64_t(c.sizes[k].first) * c.sizes[k].second;
+      const std::uint64_t n = std::uint64_t(c.sizes[k].first) * c.sizes[k].second;
+      const std::uint64_t unit = c.formats[k] == MCL_TEXELS_HALF ? 4u : 2u;  // ushorts a texel
+      at = (at + unit - 1) / unit * unit;
+      out.levels.push_back(TextureLevel{std::uint32_t(at / unit), std::uint32_t(c.sizes[k].first),
+                                        std::uint32_t(c.sizes[k].second), c.formats[k]});
+      starts[t].push_back(at);
+      at += unit * n;
+      texelCount += n;
     }
     if (drop[t] > 0)
       dropped << (droppedCount++ ? ", " : "") << (index < out.files.size() ? out.files[index] : "texture " + std::to_string(index))
               << " " << c.width << "x" << c.height << " -> " << c.sizes[drop[t]].first << "x"
               << c.sizes[drop[t]].second;
   }
-  // Levels in table order (offsets ascending): appended, each chain freed once copied.
+  // The code tables, then the levels in table order (offsets ascending, zeros where a level's
+  // start is rounded up): appended, each chain freed once copied.
   out.texels.clear();
-  out.texels.reserve(texelCount * 4);
+  out.texels.reserve(at);
+  out.texels.assign(texelCodeTables().begin(), texelCodeTables().end());
   for (std::size_t t = 0; t < count; ++t) {
-    for (std::size_t k = std::size_t(drop[t]); k < chains[t].levels.size() && !chains[t].sizeOnly; ++k)
+    for (std::size_t k = std::size_t(drop[t]), j = 0; k < chains[t].levels.size() && !chains[t].sizeOnly; ++k, ++j) {
+      out.texels.resize(starts[t][j], 0);
       out.texels.insert(out.texels.end(), chains[t].levels[k].begin(), chains[t].levels[k].end());
+    }
     chains[t] = HalfChain{};
   }
   if (droppedCount > 0) {

@@ -1,6 +1,6 @@
 // scene_textures.h: every texture a scene's materials name, loaded once each (image/image_read.h),
 // sRGB-decoded (integer images), mip-mapped and packed into the device's texture
-// tables (kernels/shared/types.h TextureDesc / TextureLevel, RGBA half texels) under a byte budget.
+// tables (kernels/shared/types.h TextureDesc / TextureLevel, RGBA half texels, a finest level of 8-bit codes in 4 bytes) under a byte budget.
 // Reads Scene::materials' textures (albedo, alpha, emission, metallic-roughness, normal, bump);
 // writes SceneTextures.
 #pragma once
@@ -32,7 +32,7 @@ struct MaterialTextures {
 struct SceneTextures {
   std::vector<TextureDesc> textures;
   std::vector<TextureLevel> levels;
-  std::vector<std::uint16_t> texels;    // RGBA half floats, 4 per texel
+  std::vector<std::uint16_t> texels;    // the code tables, then each level: RGBA half (4 a texel) or 8-bit codes (2)
   std::vector<std::string> files;       // textures[i] was read from files[i]
   std::vector<MaterialTextures> materials;  // one per Scene::materials entry
   std::uint64_t bytes() const { return texels.size() * sizeof(std::uint16_t); }

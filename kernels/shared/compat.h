@@ -50,6 +50,7 @@ MCL_INLINE float3 mcl_normalize3(float3 v) { return v * (1.0f / sqrt(mcl_dot3(v,
 #define normalize(v) mcl_normalize3(v)
 // Four half floats (texels: RGBA half) at p + 4 i, as floats; core OpenCL 1.2 (no cl_khr_fp16).
 #define mcl_load_half4(p, i) vload_half4((i), (MCL_GLOBAL const half*)(p))
+#define mcl_load_half(p, i) vload_half((i), (MCL_GLOBAL const half*)(p))
 #else
 #include <glm/glm.hpp>
 #include <math.h>  // libstdc++'s math.h puts the float overloads of sqrt, fmin, ... in the global namespace
@@ -93,6 +94,7 @@ inline float mcl_half_to_float(ushort h) {
   }
   return as_float(sign | (e == 31 ? 0x7f800000u | (m << 13) : ((e + 112u) << 23) | (m << 13)));
 }
+inline float mcl_load_half(const ushort* p, uint i) { return mcl_half_to_float(p[i]); }
 inline float4 mcl_load_half4(const ushort* p, uint i) {
   const ushort* q = p + 4 * std::size_t(i);
   return float4(mcl_half_to_float(q[0]), mcl_half_to_float(q[1]), mcl_half_to_float(q[2]), mcl_half_to_float(q[3]));

@@ -22,8 +22,20 @@ typedef struct {
   MCL_GLOBAL const float4* tangents;  // corner tangents (MCL_ATTR_TANGENTS; read by apply_normal_map only; may be null elsewhere)
 } TextureTables;
 
+// Texel i (in units of its format's size) of a level of format `format` (MCL_TEXELS_*): half
+// texels as stored; 8-bit codes (r, g in the first ushort, b, a in the second, low byte first)
+// through the tables at the buffer's start.
+MCL_INLINE float4 texel_fetch(TextureTables tt, uint format, uint i) {
+  if (format == MCL_TEXELS_HALF) return mcl_load_half4(tt.texels, i);
+  MCL_GLOBAL const ushort* q = tt.texels + 2u * (ulong)i;
+  uint rg = q[0], ba = q[1];
+  uint rgb = format == MCL_TEXELS_SRGB8 ? 0u : 256u;
+  return make_float4(mcl_load_half(tt.texels, rgb + (rg & 0xffu)), mcl_load_half(tt.texels, rgb + (rg >> 8)),
+                     mcl_load_half(tt.texels, rgb + (ba & 0xffu)), mcl_load_half(tt.texels, 256u + (ba >> 8)));
+}
+
 MCL_INLINE float4 texel_at(TextureTables tt, TextureLevel l, uint x, uint y) {
-  return mcl_load_half4(tt.texels, l.offset + y * l.width + x);
+  return texel_fetch(tt, l.format, l.offset + y * l.width + x);
 }
 
 // The lookups below are written once over a float type F (with its uint U and int I types, the

@@ -217,10 +217,18 @@ typedef struct MCL_ALIGN16 {
   float4 uvRow1;    // xyz: v' = x u + y v + z; w: wrap mode of v' (as_float bits)
 } TextureDesc;
 
+// A level's texels: RGBA half (8 bytes), or 4 bytes of 8-bit codes decoded through the 256-entry
+// tables of half values at the start of the texel buffer (ushorts [0, 256) the sRGB decode, [256,
+// 512) code / 255; alpha always the latter): a finest level whose every half value is one of these
+// is stored so (host/texture/scene_textures.cpp) and reads back the same bits in half the memory.
+#define MCL_TEXELS_HALF 0u
+#define MCL_TEXELS_SRGB8 1u    // rgb through the sRGB table, alpha linear
+#define MCL_TEXELS_LINEAR8 2u  // every channel linear
+#define MCL_TEXEL_TABLES 512u  // ushorts of the two tables
 typedef struct MCL_ALIGN16 {
-  uint offset;  // first texel (RGBA half, 8 bytes) of this level in the texel buffer
+  uint offset;  // first texel of this level in the texel buffer, in units of its texel size
   uint width, height;
-  uint pad;
+  uint format;  // MCL_TEXELS_*
 } TextureLevel;
 
 // Attribute flag (Triangle::e2.w, SceneTriangle::attributes kAlphaTested): the triangle's material

@@ -164,7 +164,7 @@ typedef struct {
   vfloat4 uvRow0, uvRow1;
 } vTextureDesc;
 typedef struct {
-  vuint offset, width, height;
+  vuint offset, width, height, format;
 } vTextureLevel;
 
 MCL_INLINE vfloat4 v4_make(vfloat x, vfloat y, vfloat z, vfloat w) {
@@ -191,12 +191,13 @@ MCL_INLINE vTextureDesc v_texture_desc(TextureTables tt, vuint tex) {
 }
 
 MCL_INLINE vTextureLevel v_texture_level(TextureTables tt, vuint level) {
-  vfloat o, w, h, pad;
-  v_gather4((MCL_GLOBAL const float*)tt.levels, level, (uint)(sizeof(TextureLevel) / sizeof(float)), &o, &w, &h, &pad);
+  vfloat o, w, h, format;
+  v_gather4((MCL_GLOBAL const float*)tt.levels, level, (uint)(sizeof(TextureLevel) / sizeof(float)), &o, &w, &h, &format);
   vTextureLevel l;
   l.offset = v_as_uint(o);
   l.width = v_as_uint(w);
   l.height = v_as_uint(h);
+  l.format = v_as_uint(format);
   return l;
 }
 
@@ -204,14 +205,15 @@ MCL_INLINE vTextureLevel v_texture_level(TextureTables tt, vuint level) {
 // another's (a scattered packet's texels are mostly cache misses).
 MCL_INLINE vfloat4 v_texel_at(TextureTables tt, vTextureLevel l, vuint x, vuint y) {
 #if MCL_LANES == 1
-  float4 t = mcl_load_half4(tt.texels, l.offset + y * l.width + x);
+  float4 t = texel_fetch(tt, l.format, l.offset + y * l.width + x);
   return v4_make(t.x, t.y, t.z, t.w);
 #else
-  uint at[MCL_LANES] MCL_LANE_ALIGN;
+  uint at[MCL_LANES] MCL_LANE_ALIGN, fm[MCL_LANES] MCL_LANE_ALIGN;
   float r[MCL_LANES] MCL_LANE_ALIGN, g[MCL_LANES] MCL_LANE_ALIGN, b[MCL_LANES] MCL_LANE_ALIGN, a[MCL_LANES] MCL_LANE_ALIGN;
   v_store_lanes(l.offset + y * l.width + x, at);
+  v_store_lanes(l.format, fm);
   for (uint k = 0; k < MCL_LANES; ++k) {
-    float4 t = mcl_load_half4(tt.texels, at[k]);
+    float4 t = texel_fetch(tt, fm[k], at[k]);
     r[k] = t.x;
     g[k] = t.y;
     b[k] = t.z;
@@ -323,7 +325,7 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
   h.tri = t;
   h.attrs = v_as_uint(e2w);
   h.albedoTex = v_as_uint(kdw);
-  h.placed = (v_as_uint(kmz) != 0u) | (v_as_uint(kmw) != 0u);
+  h.placed = (v_as_uint(kmz) | v_as_uint(kmw)) != 0u;
   if (f->instanceCount > 0u) {  // instanced hits: their frame from surface_at, in object space
     uint inst[MCL_LANES] MCL_LANE_ALIGN;
     for (uint j = 0; j < MCL_LANES; ++j) inst[j] = j < lanes ? hit_instance(f, hitInstances, first + j) : 0u;
