@@ -24,15 +24,6 @@ using montecl_test::RunningStats;
 
 namespace {
 
-SurfaceFrame flatFrameCc() {
-  SurfaceFrame s;
-  s.p = float3(0.0f);
-  s.ng = s.ns = float3(0.0f, 0.0f, 1.0f);
-  s.smooth = 0;
-  s.backface = 0;
-  return s;
-}
-
 const glm::vec3 kGoldEta(0.143f, 0.375f, 1.442f), kGoldK(3.983f, 2.386f, 1.603f);
 
 MaterialDesc coatedMetal(glm::vec3 eta, glm::vec3 k, float baseAlpha, float coatAlpha, float thickness,
@@ -73,7 +64,7 @@ double coatedMetalReflectance(double cosO, double eta, double m, double k, doubl
 }
 
 RunningStats reflectanceCc(const Bsdf& b, float3 wo, int channel, int count, std::uint32_t seed) {
-  const SurfaceFrame s = flatFrameCc();
+  const SurfaceFrame s = montecl_test::flatBsdfFrame();
   RunningStats r;
   for (int i = 0; i < count; ++i) {
     const float4 u = rng_uniform4(seed, uint(i), 1u, 0u);
@@ -147,20 +138,15 @@ TEST_CASE("coated_conductor: its walk is reciprocal in expectation" * doctest::t
 
 TEST_CASE("coated_conductor: the sampler passes chi-square against its pdf and fails a wrong one" *
           doctest::test_suite("cpu")) {
-  const SurfaceFrame s = flatFrameCc();
+  const SurfaceFrame s = montecl_test::flatBsdfFrame();
   for (float alpha : {0.1f, 0.3f})
     for (double thetaO : {0.35, 1.1}) {
       const Bsdf b = makeCc(coatedMetal(kGoldEta, kGoldK, alpha, 0.2f, 0.01f));
       const Bsdf w = makeCc(coatedMetal(kGoldEta, kGoldK, alpha * 1.2f, 0.2f, 0.01f));
       const float3 wo = chiDirFromAngles(thetaO, 0.4);
-      const auto sample = [&](float4 u, float3& wi) {
-        const BsdfSample bs = bsdf_sample(b, s, wo, u.x, u.y, u.z);
-        wi = bs.wi;
-        return bs.pdf > 0.0f;
-      };
-      int dof = 0, dofWrong = 0;
-      const double stat = chiSquareStat(sample, [&](float3 wi) { return bsdf_pdf(b, s, wo, wi); }, 300000, dof);
-      const double wrong = chiSquareStat(sample, [&](float3 wi) { return bsdf_pdf(w, s, wo, wi); }, 300000, dofWrong);
+      const montecl_test::SamplerChi2 r = montecl_test::samplerChi2(b, w, s, wo);
+      const double stat = r.stat, wrong = r.wrong;
+      const int dof = r.dof, dofWrong = r.dofWrong;
       INFO("base alpha " << alpha << " theta_o " << thetaO << ": chi2 " << stat << " dof " << dof << "; wrong " << wrong);
       CHECK(stat < chiSquareCritical(dof));
       CHECK(wrong > chiSquareCritical(dofWrong));

@@ -23,15 +23,6 @@ using montecl_test::RunningStats;
 
 namespace {
 
-SurfaceFrame flatFrame() {
-  SurfaceFrame s;
-  s.p = float3(0.0f);
-  s.ng = s.ns = float3(0.0f, 0.0f, 1.0f);
-  s.smooth = 0;
-  s.backface = 0;
-  return s;
-}
-
 MaterialDesc coated(float base, float alpha, float thickness, int maxDepth = 10, float ior = 1.5f) {
   MaterialDesc d;
   d.kind = MCL_MATERIAL_coated_diffuse;
@@ -70,7 +61,7 @@ double coatedReflectance(double cosO, double rho, double eta) {
 }
 
 RunningStats reflectance(const Bsdf& b, float3 wo, int count, std::uint32_t seed) {
-  const SurfaceFrame s = flatFrame();
+  const SurfaceFrame s = montecl_test::flatBsdfFrame();
   RunningStats r;
   for (int i = 0; i < count; ++i) {
     const float4 u = rng_uniform4(seed, uint(i), 1u, 0u);
@@ -125,19 +116,14 @@ TEST_CASE("coated_diffuse: f is reciprocal in expectation; the coat's lobe exact
 }
 
 TEST_CASE("coated_diffuse: the sampler passes chi-square against its pdf and fails a wrong one" * doctest::test_suite("cpu")) {
-  const SurfaceFrame s = flatFrame();
+  const SurfaceFrame s = montecl_test::flatBsdfFrame();
   for (float alpha : {0.1f, 0.3f})
     for (double thetaO : {0.35, 1.1}) {
       const Bsdf b = make(coated(0.6f, alpha, 0.01f)), w = make(coated(0.6f, alpha + 0.1f, 0.01f, 10, 2.0f));
       const float3 wo = chiDirFromAngles(thetaO, 0.4);
-      const auto sample = [&](float4 u, float3& wi) {
-        const BsdfSample bs = bsdf_sample(b, s, wo, u.x, u.y, u.z);
-        wi = bs.wi;
-        return bs.pdf > 0.0f;
-      };
-      int dof = 0, dofWrong = 0;
-      const double stat = chiSquareStat(sample, [&](float3 wi) { return bsdf_pdf(b, s, wo, wi); }, 300000, dof);
-      const double wrong = chiSquareStat(sample, [&](float3 wi) { return bsdf_pdf(w, s, wo, wi); }, 300000, dofWrong);
+      const montecl_test::SamplerChi2 r = montecl_test::samplerChi2(b, w, s, wo);
+      const double stat = r.stat, wrong = r.wrong;
+      const int dof = r.dof, dofWrong = r.dofWrong;
       INFO("alpha " << alpha << " theta_o " << thetaO << ": chi2 " << stat << " dof " << dof << "; wrong " << wrong);
       CHECK(stat < chiSquareCritical(dof));
       CHECK(wrong > chiSquareCritical(dofWrong));

@@ -24,15 +24,6 @@ using montecl_test::RunningStats;
 
 namespace {
 
-SurfaceFrame flatFrame(int backface) {
-  SurfaceFrame s;
-  s.p = float3(0.0f);
-  s.ng = s.ns = float3(0.0f, 0.0f, 1.0f);
-  s.smooth = 0;
-  s.backface = backface;
-  return s;
-}
-
 Bsdf make(MaterialDesc d, float3 albedo = float3(1.0f)) { return bsdf_from_material(montecl::deviceMaterial(d), albedo); }
 
 MaterialDesc conductorDesc(float alpha) {
@@ -78,7 +69,7 @@ TEST_CASE("bsdf: exact Fresnel: the conductor with k = 0 is the dielectric; norm
 
 TEST_CASE("bsdf: rough conductor and metal_rough samplers pass chi-square against their pdfs, fail a wrong one" *
           doctest::test_suite("cpu")) {
-  const SurfaceFrame s = flatFrame(0);
+  const SurfaceFrame s = montecl_test::flatBsdfFrame(0);
   struct Case {
     const char* what;
     MaterialDesc right, wrong;  // wrong: a plausible other normalised density
@@ -95,14 +86,9 @@ TEST_CASE("bsdf: rough conductor and metal_rough samplers pass chi-square agains
       const Bsdf b = make(c.right, float3(c.right.albedo.x, c.right.albedo.y, c.right.albedo.z));
       const Bsdf w = make(c.wrong, float3(c.wrong.albedo.x, c.wrong.albedo.y, c.wrong.albedo.z));
       const float3 wo = chiDirFromAngles(thetaO, 0.4);
-      const auto sample = [&](float4 u, float3& wi) {
-        const BsdfSample bs = bsdf_sample(b, s, wo, u.x, u.y, u.z);
-        wi = bs.wi;
-        return bs.pdf > 0.0f;
-      };
-      int dof = 0, dofWrong = 0;
-      const double stat = chiSquareStat(sample, [&](float3 wi) { return bsdf_pdf(b, s, wo, wi); }, 300000, dof);
-      const double wrong = chiSquareStat(sample, [&](float3 wi) { return bsdf_pdf(w, s, wo, wi); }, 300000, dofWrong);
+      const montecl_test::SamplerChi2 r = montecl_test::samplerChi2(b, w, s, wo);
+      const double stat = r.stat, wrong = r.wrong;
+      const int dof = r.dof, dofWrong = r.dofWrong;
       INFO(c.what << " theta_o " << thetaO << ": chi2 " << stat << " dof " << dof << "; wrong " << wrong << " dof "
                   << dofWrong);
       CHECK(stat < chiSquareCritical(dof));
@@ -111,7 +97,7 @@ TEST_CASE("bsdf: rough conductor and metal_rough samplers pass chi-square agains
 }
 
 TEST_CASE("bsdf: conductor and metal_rough are reciprocal; white furnaces reflect at most 1" * doctest::test_suite("cpu")) {
-  const SurfaceFrame s = flatFrame(0);
+  const SurfaceFrame s = montecl_test::flatBsdfFrame(0);
   MaterialDesc white = conductorDesc(0.5f);
   white.eta = glm::vec3(0.0f), white.k = glm::vec3(1.0f);  // F = 1 at every angle
   const MaterialDesc descs[] = {conductorDesc(0.2f), white, metalRoughDesc(glm::vec3(1.0f), 0.0f, 1.0f),
@@ -150,7 +136,7 @@ TEST_CASE("bsdf: delta lobes: eval and pdf 0; mirror weight F; smooth dielectric
   {  // the smooth conductor: the mirror direction, weight F(cos_o), flagged delta
     const MaterialDesc d = conductorDesc(0.0f);
     const Bsdf b = make(d);
-    const SurfaceFrame s = flatFrame(0);
+    const SurfaceFrame s = montecl_test::flatBsdfFrame(0);
     REQUIRE(bsdf_is_delta(b));
     const BsdfSample bs = bsdf_sample(b, s, wo, 0.3f, 0.6f, 0.5f);
     CHECK(bs.flags == MCL_BSDF_DELTA);
@@ -163,7 +149,7 @@ TEST_CASE("bsdf: delta lobes: eval and pdf 0; mirror weight F; smooth dielectric
   }
   for (int backface : {0, 1}) {  // the smooth dielectric from outside (front) and from inside (back)
     const Bsdf b = make(iorDesc(MCL_MATERIAL_dielectric, 1.5f));
-    const SurfaceFrame s = flatFrame(backface);
+    const SurfaceFrame s = montecl_test::flatBsdfFrame(backface);
     const float eta = backface ? 1.0f / 1.5f : 1.5f;
     const float3 w = backface ? chiDirFromAngles(0.5, 0.3) : wo;  // inside: below the critical angle 0.73
     float cosT;
@@ -192,7 +178,7 @@ TEST_CASE("bsdf: delta lobes: eval and pdf 0; mirror weight F; smooth dielectric
   }
   {  // total internal reflection from inside past the critical angle: always reflected, weight 1
     const Bsdf b = make(iorDesc(MCL_MATERIAL_dielectric, 1.5f));
-    const BsdfSample bs = bsdf_sample(b, flatFrame(1), chiDirFromAngles(1.0, 0.3), 0.5f, 0.5f, 0.999f);
+    const BsdfSample bs = bsdf_sample(b, montecl_test::flatBsdfFrame(1), chiDirFromAngles(1.0, 0.3), 0.5f, 0.5f, 0.999f);
     CHECK(bs.wi.z > 0.0f);
     CHECK(bs.weight.x == 1.0f);
   }
@@ -200,8 +186,8 @@ TEST_CASE("bsdf: delta lobes: eval and pdf 0; mirror weight F; smooth dielectric
     const Bsdf b = make(iorDesc(MCL_MATERIAL_thin_dielectric, 1.5f));
     float cosT;
     const float R = fresnel_dielectric(cosO, 1.5f, &cosT), T = 1.0f - R, R2 = R + T * T * R / (1.0f - R * R);
-    const BsdfSample r = bsdf_sample(b, flatFrame(0), wo, 0.5f, 0.5f, R2 * 0.999f);
-    const BsdfSample t = bsdf_sample(b, flatFrame(1), wo, 0.5f, 0.5f, R2 * 1.001f);
+    const BsdfSample r = bsdf_sample(b, montecl_test::flatBsdfFrame(0), wo, 0.5f, 0.5f, R2 * 0.999f);
+    const BsdfSample t = bsdf_sample(b, montecl_test::flatBsdfFrame(1), wo, 0.5f, 0.5f, R2 * 1.001f);
     CHECK(r.pdf == doctest::Approx(R2).epsilon(1e-6));
     CHECK(r.wi.z == doctest::Approx(wo.z));
     CHECK(t.pdf == doctest::Approx(1.0f - R2).epsilon(1e-5));

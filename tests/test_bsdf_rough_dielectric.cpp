@@ -27,15 +27,6 @@ using montecl_test::RunningStats;
 
 namespace {
 
-SurfaceFrame flatFrame(int backface) {
-  SurfaceFrame s;
-  s.p = float3(0.0f);
-  s.ng = s.ns = float3(0.0f, 0.0f, 1.0f);
-  s.smooth = 0;
-  s.backface = backface;
-  return s;
-}
-
 // Chi-square of sampled directions binned over the whole sphere in (cos theta in [-1, 1], phi)
 // against pdf integrated over each bin (midpoint rule on a sub-grid), plus an "absorbed" bin of
 // mass 1 - integral. Bins expecting < 5 samples are pooled. *integral receives the pdf's integral.
@@ -100,7 +91,7 @@ TEST_CASE("rough dielectric: sampling passes a whole-sphere chi-square test agai
     for (float ior : {1.5f, 1.33f}) {
       for (int backface : {0, 1}) {
         for (double thetaO : {0.4, 1.2}) {
-          const SurfaceFrame sf = flatFrame(backface);
+          const SurfaceFrame sf = montecl_test::flatBsdfFrame(backface);
           const DielectricBsdf b = dielectric_make(ior, alpha);
           const float3 wo = chiDirFromAngles(thetaO, 0.7);
           int absorbed = 0, transmitted = 0;
@@ -150,7 +141,7 @@ TEST_CASE("rough dielectric: eval obeys the adjoint relation f(wo, wi) / n_o^2 =
       for (int i = 0; i < 20000; ++i) {
         const float4 u = rng_uniform4(41u, uint(i), 0u, 0u);
         const int backface = u.w < 0.5f;
-        const SurfaceFrame a = flatFrame(backface);
+        const SurfaceFrame a = montecl_test::flatBsdfFrame(backface);
         const float3 wo = chiDirFromAngles(std::acos(0.02 + 0.98 * u.x), 2.0 * M_PI * u.y);
         const float zi = -1.0f + 2.0f * u.z;  // wi anywhere on the sphere
         const float4 v = rng_uniform4(41u, uint(i), 1u, 0u);
@@ -191,7 +182,7 @@ TEST_CASE("rough dielectric: as alpha goes to 0 the reflected and transmitted en
   for (float ior : {1.5f, 1.33f}) {
     for (int backface : {0, 1}) {
       for (double thetaO : {0.2, 0.7, 1.2}) {
-        const SurfaceFrame sf = flatFrame(backface);
+        const SurfaceFrame sf = montecl_test::flatBsdfFrame(backface);
         const DielectricBsdf rough = dielectric_make(ior, 1e-3f), smooth = dielectric_make(ior, 0.0f);
         const float3 wo = chiDirFromAngles(thetaO, 1.1);
         RunningStats rr, rt, sr, st;  // reflected / transmitted weight, rough and smooth
@@ -223,7 +214,7 @@ TEST_CASE("rough dielectric: as alpha goes to 0 the reflected and transmitted en
 TEST_CASE("rough dielectric: alpha 0 stays the smooth delta kind; a positive alpha is not delta and is sampled into "
           "both sides with its flags" *
           doctest::test_suite("cpu")) {
-  const SurfaceFrame sf = flatFrame(0);
+  const SurfaceFrame sf = montecl_test::flatBsdfFrame(0);
   const float3 wo = chiDirFromAngles(0.5, 0.3);
   const DielectricBsdf smooth = dielectric_make(1.5f, 0.0f), rough = dielectric_make(1.5f, 0.3f);
   CHECK(dielectric_is_delta(smooth));
@@ -251,7 +242,7 @@ TEST_CASE("rough dielectric: alpha 0 stays the smooth delta kind; a positive alp
 // transmission's times eta^2 (undoing the radiance scaling). The kind computes it by a 32-point
 // quadrature; here the sampler's Monte Carlo mean checks it (z-test, plus 5e-4 for the quadrature).
 TEST_CASE("rough dielectric: the albedo AOV is the directional albedo at normal incidence" * doctest::test_suite("cpu")) {
-  const SurfaceFrame s = flatFrame(0);
+  const SurfaceFrame s = montecl_test::flatBsdfFrame(0);
   const float3 wo(0.0f, 0.0f, 1.0f);
   const int n = 400000;
   for (float ior : {1.5f, 2.4f})

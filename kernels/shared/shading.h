@@ -87,8 +87,7 @@ MCL_INLINE float shading_cosine(float3 ns, float3 ng, float3 wi) {
   }
 MCL_INLINE float3 mcl_sub3(float3 a, float3 b) { return a - b; }
 MCL_INLINE float3 mcl_scale3(float3 a, float s) { return a * s; }
-#define MCL_SEL3(m, t, f) ((m) ? (t) : (f))
-MCL_DEFINE_SHADING_RULE(, float, float3, int, dot, mcl_sub3, mcl_scale3, MCL_SEL3, make_float3, pdf_cosine_hemisphere)
+MCL_DEFINE_SHADING_RULE(, float, float3, int, dot, mcl_sub3, mcl_scale3, MCL_SEL1, make_float3, pdf_cosine_hemisphere)
 
 // --- the rule on a SurfaceFrame (smooth == 0: exactly the flat formulas) ---------------------
 
