@@ -18,13 +18,18 @@
 #define MCL_BSDF_DELTA 1
 #define MCL_BSDF_TRANSMISSION 2
 
-// A direction drawn by <kind>_sample with its weight.
-typedef struct {
-  float3 wi;
-  float3 weight;  // f * cos / pdf
-  float pdf;      // solid angle (delta: the lobe's discrete probability); 0: no direction (absorbed)
-  int flags;      // MCL_BSDF_DELTA | MCL_BSDF_TRANSMISSION; 0 for a non-delta reflection
-} BsdfSample;
+// A direction drawn by <kind>_sample with its weight: wi; weight f * cos / pdf; pdf, in solid angle
+// (delta: the lobe's discrete probability), 0: no direction (absorbed); flags MCL_BSDF_DELTA |
+// MCL_BSDF_TRANSMISSION, 0 for a non-delta reflection. Declared once for floats and lanes (the
+// packet stages' vBsdfSample, stages/lane_bsdf.h).
+#define MCL_DEFINE_BSDF_SAMPLE_TYPE(T, F, F3, M) \
+  typedef struct {                               \
+    F3 wi;                                       \
+    F3 weight;                                   \
+    F pdf;                                       \
+    M flags;                                     \
+  } T;
+MCL_DEFINE_BSDF_SAMPLE_TYPE(BsdfSample, float, float3, int)
 
 // The direct integrator draws its BSDF direction in shade_direct and weighs it in
 // shade_direct_hit, with only the direction passed between them: <kind>_sample_direction gives
@@ -42,13 +47,6 @@ typedef struct {
   int counts;
 } BsdfWeight;
 
-// Local coordinates of w in the frame (t, b, n) of make_basis.
-MCL_INLINE float3 to_local(float3 w, float3 n) {
-  float3 t, b;
-  make_basis(n, &t, &b);
-  return make_float3(dot(w, t), dot(w, b), dot(w, n));
-}
-
 // The usual split pair of a kind whose sample weight can be rebuilt from wi alone.
 MCL_INLINE BsdfDirection bsdf_direction_of(BsdfSample bs) {
   BsdfDirection d;
@@ -64,34 +62,44 @@ MCL_INLINE float3 bsdf_ray_origin(float3 p, float3 ng, int flags, float scale) {
   return offset_ray_origin(p, (flags & MCL_BSDF_TRANSMISSION) ? -ng : ng, scale);
 }
 
-// Unpolarised Fresnel reflectance of a dielectric interface for cosI = cos of the incident angle
-// (> 0, on the side of the incident medium) and eta = n_transmitted / n_incident; *cosT receives
-// the cosine of the refracted direction (0 under total internal reflection, where R = 1).
-MCL_INLINE float fresnel_dielectric(float cosI, float eta, float* cosT) {
-  float sin2T = (1.0f - cosI * cosI) / (eta * eta);
-  float c = sqrt(fmax(0.0f, 1.0f - sin2T));
-  float rs = (cosI - eta * c) / (cosI + eta * c);
-  float rp = (eta * cosI - c) / (eta * cosI + c);
-  int tir = sin2T >= 1.0f;
-  *cosT = tir ? 0.0f : c;
-  return tir ? 1.0f : 0.5f * (rs * rs + rp * rp);
-}
-
-// Unpolarised Fresnel reflectance of a conductor of complex index eta + i k (relative to the outside
-// medium) for one channel at cosI in [0, 1]: the exact expression (e.g. pbrt-v3's FrConductor).
-MCL_INLINE float fresnel_conductor1(float cosI, float eta, float k) {
-  float c2 = cosI * cosI, s2 = 1.0f - c2;
-  float e2 = eta * eta, k2 = k * k;
-  float t0 = e2 - k2 - s2;
-  float a2b2 = sqrt(fmax(0.0f, t0 * t0 + 4.0f * e2 * k2));
-  float a = sqrt(fmax(0.0f, 0.5f * (a2b2 + t0)));
-  float t1 = a2b2 + c2, t2 = 2.0f * cosI * a;
-  float rs = (t1 - t2) / fmax(t1 + t2, 1e-30f);
-  float t3 = c2 * a2b2 + s2 * s2, t4 = t2 * s2;
-  float rp = rs * (t3 - t4) / fmax(t3 + t4, 1e-30f);
-  return 0.5f * (rs + rp);
-}
-MCL_INLINE float3 fresnel_conductor(float cosI, float3 eta, float3 k) {
-  return make_float3(fresnel_conductor1(cosI, eta.x, k.x), fresnel_conductor1(cosI, eta.y, k.y),
-                     fresnel_conductor1(cosI, eta.z, k.z));
-}
+// Written once for floats and lanes (F, F3, V: float, float3, f3 here; vfloat, vfloat3, v3 in
+// stages/lane_bsdf.h), selects rather than branches:
+// - fresnel_dielectric: the unpolarised Fresnel reflectance of a dielectric interface for cosI =
+//   cos of the incident angle (> 0, on the side of the incident medium) and eta = n_transmitted /
+//   n_incident; *cosT receives the cosine of the refracted direction (0 under total internal
+//   reflection, where R = 1).
+// - fresnel_conductor1: the unpolarised Fresnel reflectance of a conductor of complex index
+//   eta + i k (relative to the outside medium) for one channel at cosI in [0, 1]: the exact
+//   expression (e.g. pbrt-v3's FrConductor); fresnel_conductor: per RGB channel.
+// - to_local: the local coordinates of w in the frame (t, b, n) of make_basis.
+#define MCL_DEFINE_FRESNEL(P, F, F3, V)                                                  \
+  MCL_INLINE F P##fresnel_dielectric(F cosI, F eta, F* cosT) {                          \
+    F sin2T = (1.0f - cosI * cosI) / (eta * eta);                                        \
+    F c = sqrt(fmax((F)(0.0f), 1.0f - sin2T));                                           \
+    F rs = (cosI - eta * c) / (cosI + eta * c);                                          \
+    F rp = (eta * cosI - c) / (eta * cosI + c);                                          \
+    *cosT = vsel(sin2T >= 1.0f, (F)(0.0f), c);                                           \
+    return vsel(sin2T >= 1.0f, (F)(1.0f), 0.5f * (rs * rs + rp * rp));                   \
+  }                                                                                      \
+  MCL_INLINE F P##fresnel_conductor1(F cosI, F eta, F k) {                              \
+    F c2 = cosI * cosI, s2 = 1.0f - c2;                                                  \
+    F e2 = eta * eta, k2 = k * k;                                                        \
+    F t0 = e2 - k2 - s2;                                                                 \
+    F a2b2 = sqrt(fmax((F)(0.0f), t0 * t0 + 4.0f * e2 * k2));                            \
+    F a = sqrt(fmax((F)(0.0f), 0.5f * (a2b2 + t0)));                                     \
+    F t1 = a2b2 + c2, t2 = 2.0f * cosI * a;                                              \
+    F rs = (t1 - t2) / fmax(t1 + t2, 1e-30f);                                            \
+    F t3 = c2 * a2b2 + s2 * s2, t4 = t2 * s2;                                            \
+    F rp = rs * (t3 - t4) / fmax(t3 + t4, 1e-30f);                                       \
+    return 0.5f * (rs + rp);                                                             \
+  }                                                                                      \
+  MCL_INLINE F3 P##fresnel_conductor(F cosI, F3 eta, F3 k) {                            \
+    return V##_make(P##fresnel_conductor1(cosI, eta.x, k.x), P##fresnel_conductor1(cosI, eta.y, k.y), \
+                    P##fresnel_conductor1(cosI, eta.z, k.z));                            \
+  }                                                                                      \
+  MCL_INLINE F3 P##to_local(F3 w, F3 n) {                                               \
+    F3 t, b;                                                                             \
+    P##make_basis(n, &t, &b);                                                            \
+    return V##_make(V##_dot(w, t), V##_dot(w, b), V##_dot(w, n));                        \
+  }
+MCL_DEFINE_FRESNEL(, float, float3, f3)

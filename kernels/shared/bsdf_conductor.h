@@ -5,25 +5,68 @@
 // cos_i) (Mitsuba's roughconductor, pbrt's ConductorBxDF). Reads a Material's params0 (xyz: eta,
 // w: alpha) and params1 (xyz: k); pure; compiled by the kernels and the host tests.
 // Around the shading normal ns; a direction below the geometric surface contributes nothing.
-// Written with selects (no early returns) so the kind can later run in lanes.
 #pragma once
 #include "bsdf_common.h"
 #include "microfacet.h"
 
-typedef struct {
-  float3 eta, k;
-  float alpha;  // 0: smooth (delta); else GGX roughness, at least MCL_GGX_MIN_ALPHA
-  int smooth;   // alpha == 0
-} ConductorBsdf;
+// The kind's parameters and its eval, pdf and sample, written once for floats and lanes (P, F, F3,
+// M, V: the prefix, float, float3, int mask, f3 here; the packet stages' v_, vfloat, vfloat3,
+// vmask, v3 in stages/lane_bsdf.h, with their frame FR and sample type BS): selects, not
+// branches, so a lane performs the scalar function's operations in the same order.
+#define MCL_DEFINE_CONDUCTOR_TYPE(B, F, F3, M)                                                   \
+  typedef struct {                                                                               \
+    F3 eta, k;                                                                                   \
+    F alpha; /* 0: smooth (delta); else GGX roughness, at least MCL_GGX_MIN_ALPHA */             \
+    M smooth; /* alpha == 0 */                                                                   \
+  } B;
+MCL_DEFINE_CONDUCTOR_TYPE(ConductorBsdf, float, float3, int)
 
-MCL_INLINE ConductorBsdf conductor_make(float3 eta, float3 k, float alpha) {
-  ConductorBsdf b;
-  b.eta = eta;
-  b.k = k;
-  b.smooth = !(alpha > 0.0f);
-  b.alpha = fmax(alpha, MCL_GGX_MIN_ALPHA);
-  return b;
-}
+// conductor_make: from eta, k and alpha. conductor_eval: f * cos(ns, wi) of the rough lobe; 0 for
+// a smooth conductor (delta) and below either surface. conductor_pdf: its pdf. conductor_sample:
+// smooth: the mirror direction about ns with weight F(cos_o), pdf 1 (the only lobe), flag delta;
+// rough: a visible normal, wi its reflection, weight eval / pdf.
+#define MCL_DEFINE_CONDUCTOR(P, F, F3, M, V, B, FR, BS)                                           \
+  MCL_INLINE B P##conductor_make(F3 eta, F3 k, F alpha) {                                        \
+    B b;                                                                                         \
+    b.eta = eta;                                                                                 \
+    b.k = k;                                                                                     \
+    b.smooth = (alpha > 0.0f) == (M)(0);                                                         \
+    b.alpha = fmax(alpha, MCL_GGX_MIN_ALPHA);                                                    \
+    return b;                                                                                    \
+  }                                                                                              \
+  MCL_INLINE F3 P##conductor_eval(B b, FR s, F3 wo, F3 wi) {                                     \
+    F3 woL = P##to_local(wo, s.ns), wiL = P##to_local(wi, s.ns);                                 \
+    M ok = (b.smooth == (M)(0)) & (V##_dot(s.ng, wi) > 0.0f) & (woL.z > 0.0f) & (wiL.z > 0.0f);  \
+    F3 h = V##_normalize(V##_add(woL, wiL));                                                     \
+    F3 fr = P##fresnel_conductor(fmin(fmax(V##_dot(woL, h), 0.0f), 1.0f), b.eta, b.k);           \
+    F g = vsel(ok, P##ggx_eval_cos(woL, wiL, b.alpha), (F)(0.0f));                               \
+    return V##_select(ok, V##_scale(fr, g), V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));          \
+  }                                                                                              \
+  MCL_INLINE F P##conductor_pdf(B b, FR s, F3 wo, F3 wi) {                                       \
+    F3 woL = P##to_local(wo, s.ns), wiL = P##to_local(wi, s.ns);                                 \
+    M ok = (b.smooth == (M)(0)) & (V##_dot(s.ng, wi) > 0.0f) & (woL.z > 0.0f) & (wiL.z > 0.0f);  \
+    return vsel(ok, P##ggx_pdf(woL, wiL, b.alpha), (F)(0.0f));                                   \
+  }                                                                                              \
+  MCL_INLINE BS P##conductor_sample(B b, FR s, F3 wo, F u1, F u2, F uLobe) {                     \
+    (void)uLobe;                                                                                 \
+    F3 woL = P##to_local(wo, s.ns);                                                              \
+    M up = woL.z > 0.0f;                                                                         \
+    F3 hL = V##_select(b.smooth | (up == (M)(0)), V##_make((F)(0.0f), (F)(0.0f), (F)(1.0f)),    \
+                       P##ggx_sample_visible_normal(woL, b.alpha, u1, u2));                      \
+    F3 wiL = P##reflect_about(woL, hL);                                                          \
+    BS r;                                                                                        \
+    r.wi = P##to_world(wiL, s.ns);                                                               \
+    M ok = up & (wiL.z > 0.0f) & (V##_dot(s.ng, r.wi) > 0.0f);                                   \
+    F pdf = vsel(b.smooth, (F)(1.0f), P##conductor_pdf(b, s, wo, r.wi));                         \
+    ok = ok & (pdf > 0.0f);                                                                      \
+    F3 w = V##_select(b.smooth, P##fresnel_conductor(fmin(woL.z, 1.0f), b.eta, b.k),            \
+                      V##_scale(P##conductor_eval(b, s, wo, r.wi), 1.0f / fmax(pdf, 1e-30f)));   \
+    r.pdf = vsel(ok, pdf, (F)(0.0f));                                                            \
+    r.weight = V##_select(ok, w, V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                     \
+    r.flags = vsel(b.smooth, (M)(MCL_BSDF_DELTA), (M)(0));                                       \
+    return r;                                                                                    \
+  }
+MCL_DEFINE_CONDUCTOR(, float, float3, int, f3, ConductorBsdf, SurfaceFrame, BsdfSample)
 
 MCL_INLINE ConductorBsdf conductor_from_material(Material m, float3 albedo) {
   (void)albedo;
@@ -36,46 +79,9 @@ MCL_INLINE int conductor_is_delta(ConductorBsdf b) { return b.smooth; }
 // albedo that ignores the Fresnel rise at grazing angles and the rough lobe's energy loss).
 MCL_INLINE float3 conductor_albedo(ConductorBsdf b) { return fresnel_conductor(1.0f, b.eta, b.k); }
 
-// f * cos(ns, wi) of the rough lobe; 0 for a smooth conductor (delta) and below either surface.
-MCL_INLINE float3 conductor_eval(ConductorBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
-  float3 woL = to_local(wo, s.ns), wiL = to_local(wi, s.ns);
-  int ok = !b.smooth && above_surface(s.ng, wi) && woL.z > 0.0f && wiL.z > 0.0f;
-  float3 h = normalize(woL + wiL);
-  float3 fr = fresnel_conductor(fmin(fmax(dot(woL, h), 0.0f), 1.0f), b.eta, b.k);
-  float g = ok ? ggx_eval_cos(woL, wiL, b.alpha) : 0.0f;
-  return ok ? fr * g : make_float3(0.0f, 0.0f, 0.0f);
-}
-
 MCL_INLINE float3 conductor_f(ConductorBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
   float c = dot(s.ns, wi);
   return c > 0.0f ? conductor_eval(b, s, wo, wi) * (1.0f / c) : make_float3(0.0f, 0.0f, 0.0f);
-}
-
-MCL_INLINE float conductor_pdf(ConductorBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
-  float3 woL = to_local(wo, s.ns), wiL = to_local(wi, s.ns);
-  int ok = !b.smooth && above_surface(s.ng, wi) && woL.z > 0.0f && wiL.z > 0.0f;
-  return ok ? ggx_pdf(woL, wiL, b.alpha) : 0.0f;
-}
-
-// Smooth: the mirror direction about ns with weight F(cos_o), pdf 1 (the only lobe), flag delta.
-// Rough: a visible normal, wi its reflection, weight eval / pdf.
-MCL_INLINE BsdfSample conductor_sample(ConductorBsdf b, SurfaceFrame s, float3 wo, float u1, float u2, float uLobe) {
-  (void)uLobe;
-  float3 woL = to_local(wo, s.ns);
-  int up = woL.z > 0.0f;
-  float3 hL = b.smooth || !up ? make_float3(0.0f, 0.0f, 1.0f) : ggx_sample_visible_normal(woL, b.alpha, u1, u2);
-  float3 wiL = reflect_about(woL, hL);
-  BsdfSample r;
-  r.wi = to_world(wiL, s.ns);
-  int ok = up && wiL.z > 0.0f && above_surface(s.ng, r.wi);
-  float pdf = b.smooth ? 1.0f : conductor_pdf(b, s, wo, r.wi);
-  ok = ok && pdf > 0.0f;
-  float3 w = b.smooth ? fresnel_conductor(fmin(woL.z, 1.0f), b.eta, b.k)
-                      : conductor_eval(b, s, wo, r.wi) * (1.0f / fmax(pdf, 1e-30f));
-  r.pdf = ok ? pdf : 0.0f;
-  r.weight = ok ? w : make_float3(0.0f, 0.0f, 0.0f);
-  r.flags = b.smooth ? MCL_BSDF_DELTA : 0;
-  return r;
 }
 
 MCL_INLINE BsdfDirection conductor_sample_direction(ConductorBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,

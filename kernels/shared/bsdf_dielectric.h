@@ -18,19 +18,132 @@
 #include "bsdf_common.h"
 #include "microfacet.h"
 
-typedef struct {
-  float ior;    // inside / outside
-  float alpha;  // GGX roughness of the rough kind, at least MCL_GGX_MIN_ALPHA
-  int smooth;   // alpha == 0: the delta lobes
-} DielectricBsdf;
+#define MCL_DEFINE_DIELECTRIC_TYPE(B, F, M)                                           \
+  typedef struct {                                                                    \
+    F ior;    /* inside / outside */                                                  \
+    F alpha;  /* GGX roughness of the rough kind, at least MCL_GGX_MIN_ALPHA */       \
+    M smooth; /* alpha == 0: the delta lobes */                                       \
+  } B;
+MCL_DEFINE_DIELECTRIC_TYPE(DielectricBsdf, float, int)
 
-MCL_INLINE DielectricBsdf dielectric_make(float ior, float alpha) {
-  DielectricBsdf b;
-  b.ior = ior;
-  b.smooth = !(alpha > 0.0f);
-  b.alpha = fmax(alpha, MCL_GGX_MIN_ALPHA);
-  return b;
-}
+// The kind's make, eta, lobes and sample, written once for floats and lanes (P, F, F3, M, V: the
+// prefix, float, float3, int mask, f3 here; the packet stages' v_, vfloat, vfloat3, vmask, v3 in
+// stages/lane_bsdf.h, with their frame FR and sample type BS): selects, not branches, so a lane
+// performs the scalar function's operations in the same order.
+// - dielectric_eta: eta = n_transmitted / n_incident for a ray arriving on the side s.backface says.
+// - rough_dielectric_eval_local: the rough lobes at local wo (above: wo.z > 0, the side of index
+//   n_i), wi, for eta = n_t / n_i: f * |cos_i| (returned) and the solid-angle pdf of the rough
+//   sample (*pdf). The half vector is the generalised one, h ~ wo + eta' wi (eta' = 1 for a
+//   reflection, eta for a transmission), turned to +z; wo must see h (wo.h > 0) and wi lie on the
+//   side of h its lobe leaves by. With D = D(h), G = G1(wo) G1(wi), F = F(wo.h), c = wi.h + wo.h / eta:
+//     reflection:   f cos = F D G / (4 wo.z),                pdf = F G1(wo) D / (4 wo.z)
+//     transmission: f cos = (1 - F) D G |wi.h| wo.h / (wo.z c^2 eta^2),
+//                   pdf = (1 - F) G1(wo) D wo.h / wo.z * |wi.h| / c^2
+//   (pdf: the visible-normal density D_wo(h) = G1(wo) D wo.h / wo.z times the lobe's probability
+//   and the Jacobian dh / dwi, 1 / (4 wo.h) and |wi.h| / c^2). So f cos / pdf = G1(wi), and
+//   G1(wi) / eta^2 for a transmission. side: the geometric side test of wi (0: nothing).
+// - dielectric_eval_pdf: f * |cos(ns, wi)| of the rough lobes around ns and their pdf (*pdf); 0 for
+//   the smooth kind (delta lobes only) and for a reflection below the geometric surface or a
+//   transmission above it.
+// - dielectric_sample_rough: a visible normal h for wo, then uLobe < F(wo.h) reflects wo about h,
+//   else wo refracts through h (flag transmission); weight eval / pdf (G1(wi), over eta^2 for a
+//   transmission), pdf dielectric_pdf's. A direction on the wrong geometric side is absorbed.
+// - dielectric_sample_smooth: uLobe < F: the mirror direction (weight 1, pdf F); else the refracted
+//   one (weight 1 / eta^2, pdf 1 - F, flag transmission). Both flagged delta.
+#define MCL_DEFINE_DIELECTRIC(P, F, F3, M, V, B, FR, BS)                                                    \
+  MCL_INLINE B P##dielectric_make(F ior, F alpha) {                                                        \
+    B b;                                                                                                   \
+    b.ior = ior;                                                                                           \
+    b.smooth = (alpha > 0.0f) == (M)(0);                                                                   \
+    b.alpha = fmax(alpha, MCL_GGX_MIN_ALPHA);                                                              \
+    return b;                                                                                              \
+  }                                                                                                        \
+  MCL_INLINE F P##dielectric_eta(B b, FR s) { return vsel(s.backface, 1.0f / b.ior, b.ior); }             \
+  MCL_INLINE F P##rough_dielectric_eval_local(F3 wo, F3 wi, F eta, F alpha, M side, F* pdf) {              \
+    M refl = wi.z > 0.0f;                                                                                  \
+    F etaP = vsel(refl, (F)(1.0f), eta);                                                                   \
+    F3 hr = V##_add(wo, V##_scale(wi, etaP));                                                              \
+    F len2 = V##_dot(hr, hr);                                                                              \
+    F3 h = V##_scale(hr, 1.0f / sqrt(fmax(len2, 1e-30f)));                                                 \
+    h = V##_select(h.z < 0.0f, V##_neg(h), h);                                                             \
+    F dO = V##_dot(wo, h), dI = V##_dot(wi, h);                                                            \
+    M ok = side & (wo.z > 0.0f) & (wi.z != 0.0f) & (len2 > 1e-30f) & (dO > 0.0f) &                         \
+           vsel(refl, dI > 0.0f, dI < 0.0f);                                                               \
+    F cosT;                                                                                                \
+    F fr = P##fresnel_dielectric(fmin(fmax(dO, 0.0f), 1.0f), eta, &cosT);                                  \
+    F d = P##ggx_d(h, alpha);                                                                              \
+    F g1o = P##ggx_g1(wo, alpha);                                                                          \
+    F g1i = P##ggx_g1(wi, alpha);                                                                          \
+    F c = dI + dO / eta;                                                                                   \
+    F c2 = fmax(c * c, 1e-30f);                                                                            \
+    F cosO = fmax(wo.z, 1e-30f);                                                                           \
+    F pr = fr * g1o * d / (4.0f * cosO);                                                                   \
+    F pt = (1.0f - fr) * g1o * d * dO / cosO * (fabs(dI) / c2);                                            \
+    F p = vsel(refl, pr, pt);                                                                              \
+    F w = vsel(refl, g1i, g1i / (eta * eta));                                                              \
+    *pdf = vsel(ok, p, (F)(0.0f));                                                                         \
+    return vsel(ok, p * w, (F)(0.0f));                                                                     \
+  }                                                                                                        \
+  MCL_INLINE F P##dielectric_eval_pdf(B b, FR s, F3 wo, F3 wi, F* pdf) {                                   \
+    F3 woL = P##to_local(wo, s.ns), wiL = P##to_local(wi, s.ns);                                           \
+    M side = vsel(wiL.z > 0.0f, V##_dot(s.ng, wi) > 0.0f, V##_dot(s.ng, wi) < 0.0f);                       \
+    return P##rough_dielectric_eval_local(woL, wiL, P##dielectric_eta(b, s), b.alpha,                     \
+                                          side & (b.smooth == (M)(0)), pdf);                               \
+  }                                                                                                        \
+  MCL_INLINE BS P##dielectric_sample_rough(B b, FR s, F3 wo, F u1, F u2, F uLobe) {                        \
+    F eta = P##dielectric_eta(b, s);                                                                       \
+    F3 woL = P##to_local(wo, s.ns);                                                                        \
+    M up = woL.z > 0.0f;                                                                                   \
+    F3 hL = P##ggx_sample_visible_normal(V##_select(up, woL, V##_make((F)(0.0f), (F)(0.0f), (F)(1.0f))),   \
+                                         b.alpha, u1, u2);                                                 \
+    F cosI = V##_dot(woL, hL);                                                                             \
+    F cosT;                                                                                                \
+    F fr = P##fresnel_dielectric(fmin(fmax(cosI, 0.0f), 1.0f), eta, &cosT);                                \
+    M refl = uLobe < fr;                                                                                   \
+    F3 wr = P##reflect_about(woL, hL);                                                                     \
+    F3 wt = V##_sub(V##_scale(hL, cosI / eta - cosT), V##_scale(woL, 1.0f / eta));                         \
+    F3 wiL = V##_select(refl, wr, V##_normalize(wt));                                                      \
+    BS r;                                                                                                  \
+    r.wi = P##to_world(wiL, s.ns);                                                                         \
+    F pdf;                                                                                                 \
+    F fcos = P##dielectric_eval_pdf(b, s, wo, r.wi, &pdf);                                                 \
+    /* The lobe drawn must be the lobe evaluated (a refraction that rounding put above ns is lost). */     \
+    M ok = up & (pdf > 0.0f) & vsel(refl, wiL.z > 0.0f, wiL.z < 0.0f);                                     \
+    F w = fcos * (1.0f / fmax(pdf, 1e-30f));                                                               \
+    r.pdf = vsel(ok, pdf, (F)(0.0f));                                                                      \
+    r.weight = V##_select(ok, V##_make(w, w, w), V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));               \
+    r.flags = vsel(refl, (M)(0), (M)(MCL_BSDF_TRANSMISSION));                                              \
+    return r;                                                                                              \
+  }                                                                                                        \
+  MCL_INLINE BS P##dielectric_sample_smooth(B b, FR s, F3 wo, F uLobe) {                                   \
+    F eta = P##dielectric_eta(b, s);                                                                       \
+    F cosI = V##_dot(wo, s.ns);                                                                            \
+    F cosT;                                                                                                \
+    F fr = P##fresnel_dielectric(fmin(fmax(cosI, 0.0f), 1.0f), eta, &cosT);                                \
+    M refl = uLobe < fr;                                                                                   \
+    F3 wr = V##_sub(V##_scale(s.ns, 2.0f * cosI), wo);                                                     \
+    F3 wt = V##_sub(V##_scale(s.ns, cosI / eta - cosT), V##_scale(wo, 1.0f / eta));                        \
+    BS r;                                                                                                  \
+    r.wi = V##_select(refl, wr, V##_normalize(wt));                                                        \
+    F dg = V##_dot(s.ng, r.wi);                                                                            \
+    M ok = (cosI > 0.0f) & vsel(refl, dg > 0.0f, dg < 0.0f);                                               \
+    F w = vsel(refl, (F)(1.0f), 1.0f / (eta * eta));                                                       \
+    r.pdf = vsel(ok, vsel(refl, fr, 1.0f - fr), (F)(0.0f));                                                \
+    r.weight = V##_select(ok, V##_make(w, w, w), V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));               \
+    r.flags = vsel(refl, (M)(MCL_BSDF_DELTA), (M)(MCL_BSDF_DELTA | MCL_BSDF_TRANSMISSION));                \
+    return r;                                                                                              \
+  }                                                                                                        \
+  MCL_INLINE BS P##dielectric_sample(B b, FR s, F3 wo, F u1, F u2, F uLobe) {                              \
+    BS smooth = P##dielectric_sample_smooth(b, s, wo, uLobe);                                              \
+    BS rough = P##dielectric_sample_rough(b, s, wo, u1, u2, uLobe);                                        \
+    BS r;                                                                                                  \
+    r.wi = V##_select(b.smooth, smooth.wi, rough.wi);                                                      \
+    r.weight = V##_select(b.smooth, smooth.weight, rough.weight);                                          \
+    r.pdf = vsel(b.smooth, smooth.pdf, rough.pdf);                                                         \
+    r.flags = vsel(b.smooth, smooth.flags, rough.flags);                                                   \
+    return r;                                                                                              \
+  }
+MCL_DEFINE_DIELECTRIC(, float, float3, int, f3, DielectricBsdf, SurfaceFrame, BsdfSample)
 
 MCL_INLINE DielectricBsdf dielectric_from_material(Material m, float3 albedo) {
   (void)albedo;
@@ -68,56 +181,6 @@ MCL_INLINE float3 dielectric_albedo(DielectricBsdf b) {
   return make_float3(e, e, e);
 }
 
-// eta = n_transmitted / n_incident for a ray arriving on the side s.backface says.
-MCL_INLINE float dielectric_eta(DielectricBsdf b, SurfaceFrame s) { return s.backface ? 1.0f / b.ior : b.ior; }
-
-// The rough lobes at local wo (above: wo.z > 0, the side of index n_i), wi, for eta = n_t / n_i:
-// f * |cos_i| (returned) and the solid-angle pdf of dielectric_sample's rough branch (*pdf). The
-// half vector is the generalised one, h ~ wo + eta' wi (eta' = 1 for a reflection, eta for a
-// transmission), turned to +z; wo must see h (wo.h > 0) and wi lie on the side of h its lobe
-// leaves by. With D = D(h), G = G1(wo) G1(wi), F = F(wo.h), c = wi.h + wo.h / eta:
-//   reflection:   f cos = F D G / (4 wo.z),                pdf = F G1(wo) D / (4 wo.z)
-//   transmission: f cos = (1 - F) D G |wi.h| wo.h / (wo.z c^2 eta^2),
-//                 pdf = (1 - F) G1(wo) D wo.h / wo.z * |wi.h| / c^2
-// (pdf: the visible-normal density D_wo(h) = G1(wo) D wo.h / wo.z times the lobe's probability
-// and the Jacobian dh / dwi, 1 / (4 wo.h) and |wi.h| / c^2). So f cos / pdf = G1(wi), and
-// G1(wi) / eta^2 for a transmission. side: the geometric side test of wi (0: nothing).
-MCL_INLINE float rough_dielectric_eval_local(float3 wo, float3 wi, float eta, float alpha, int side, float* pdf) {
-  int refl = wi.z > 0.0f;
-  float etaP = refl ? 1.0f : eta;
-  float3 hr = wo + wi * etaP;
-  float len2 = dot(hr, hr);
-  float3 h = hr * (1.0f / sqrt(fmax(len2, 1e-30f)));
-  h = h.z < 0.0f ? -h : h;
-  float dO = dot(wo, h), dI = dot(wi, h);
-  int ok = side && wo.z > 0.0f && wi.z != 0.0f && len2 > 1e-30f && dO > 0.0f && (refl ? dI > 0.0f : dI < 0.0f);
-  float cosT;
-  float F = fresnel_dielectric(fmin(fmax(dO, 0.0f), 1.0f), eta, &cosT);
-  float d = ggx_d(h, alpha);
-  float g1o = ggx_g1(wo, alpha);
-  float g1i = ggx_g1(wi, alpha);
-  float c = dI + dO / eta;
-  float c2 = fmax(c * c, 1e-30f);
-  float cosO = fmax(wo.z, 1e-30f);
-  float pr = F * g1o * d / (4.0f * cosO);
-  float pt = (1.0f - F) * g1o * d * dO / cosO * (fabs(dI) / c2);
-  float p = refl ? pr : pt;
-  float w = refl ? g1i : g1i / (eta * eta);
-  *pdf = ok ? p : 0.0f;
-  return ok ? p * w : 0.0f;
-}
-
-// f * |cos(ns, wi)| of the rough lobes around ns and their pdf (*pdf); 0 for the smooth kind
-// (delta lobes only) and for a reflection below the geometric surface or a transmission above it.
-MCL_INLINE float dielectric_eval_pdf(DielectricBsdf b, SurfaceFrame s, float3 wo, float3 wi, float* pdf) {
-  float3 woL = to_local(wo, s.ns), wiL = to_local(wi, s.ns);
-  int side = wiL.z > 0.0f ? above_surface(s.ng, wi) : dot(s.ng, wi) < 0.0f;
-  float p;
-  float fcos = rough_dielectric_eval_local(woL, wiL, dielectric_eta(b, s), b.alpha, side && !b.smooth, &p);
-  *pdf = p;
-  return fcos;
-}
-
 MCL_INLINE float3 dielectric_eval(DielectricBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
   float p;
   float fcos = dielectric_eval_pdf(b, s, wo, wi, &p);
@@ -133,63 +196,6 @@ MCL_INLINE float3 dielectric_f(DielectricBsdf b, SurfaceFrame s, float3 wo, floa
   float c = fabs(dot(s.ns, wi));
   return c > 0.0f ? dielectric_eval(b, s, wo, wi) * (1.0f / c) : make_float3(0.0f, 0.0f, 0.0f);
 }
-
-// The rough lobes' sample: a visible normal h for wo, then uLobe < F(wo.h) reflects wo about h,
-// else wo refracts through h (flag transmission); weight eval / pdf (G1(wi), over eta^2 for a
-// transmission), pdf dielectric_pdf's. A direction on the wrong geometric side is absorbed.
-MCL_INLINE BsdfSample dielectric_sample_rough(DielectricBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,
-                                              float uLobe) {
-  float eta = dielectric_eta(b, s);
-  float3 woL = to_local(wo, s.ns);
-  int up = woL.z > 0.0f;
-  float3 hL = ggx_sample_visible_normal(up ? woL : make_float3(0.0f, 0.0f, 1.0f), b.alpha, u1, u2);
-  float cosI = dot(woL, hL);
-  float cosT;
-  float F = fresnel_dielectric(fmin(fmax(cosI, 0.0f), 1.0f), eta, &cosT);
-  int refl = uLobe < F;
-  float3 wr = reflect_about(woL, hL);
-  float3 wt = hL * (cosI / eta - cosT) - woL * (1.0f / eta);
-  float3 wiL = refl ? wr : normalize(wt);
-  BsdfSample r;
-  r.wi = to_world(wiL, s.ns);
-  float pdf;
-  float fcos = dielectric_eval_pdf(b, s, wo, r.wi, &pdf);
-  // The lobe drawn must be the lobe evaluated (a refraction that rounding put above ns is lost).
-  int ok = up && pdf > 0.0f && (refl ? wiL.z > 0.0f : wiL.z < 0.0f);
-  float w = fcos * (1.0f / fmax(pdf, 1e-30f));
-  r.pdf = ok ? pdf : 0.0f;
-  r.weight = ok ? make_float3(w, w, w) : make_float3(0.0f, 0.0f, 0.0f);
-  r.flags = refl ? 0 : MCL_BSDF_TRANSMISSION;
-  return r;
-}
-
-// uLobe < F: the mirror direction (weight 1, pdf F); else the refracted one (weight 1 / eta^2,
-// pdf 1 - F, flag transmission). Both flagged delta.
-MCL_INLINE BsdfSample dielectric_sample_smooth(DielectricBsdf b, SurfaceFrame s, float3 wo, float u1, float u2, float uLobe) {
-  (void)u1; (void)u2;
-  float eta = dielectric_eta(b, s);
-  float cosI = dot(wo, s.ns);
-  float cosT;
-  float F = fresnel_dielectric(fmin(fmax(cosI, 0.0f), 1.0f), eta, &cosT);
-  int refl = uLobe < F;
-  float3 wr = s.ns * (2.0f * cosI) - wo;
-  float3 wt = s.ns * (cosI / eta - cosT) - wo * (1.0f / eta);
-  BsdfSample r;
-  r.wi = refl ? wr : normalize(wt);
-  int ok = cosI > 0.0f && (refl ? above_surface(s.ng, r.wi) : dot(s.ng, r.wi) < 0.0f);
-  float w = refl ? 1.0f : 1.0f / (eta * eta);
-  r.pdf = ok ? (refl ? F : 1.0f - F) : 0.0f;
-  r.weight = ok ? make_float3(w, w, w) : make_float3(0.0f, 0.0f, 0.0f);
-  r.flags = refl ? MCL_BSDF_DELTA : (MCL_BSDF_DELTA | MCL_BSDF_TRANSMISSION);
-  return r;
-}
-
-MCL_INLINE BsdfSample dielectric_sample(DielectricBsdf b, SurfaceFrame s, float3 wo, float u1, float u2, float uLobe) {
-  BsdfSample smooth = dielectric_sample_smooth(b, s, wo, u1, u2, uLobe);
-  BsdfSample rough = dielectric_sample_rough(b, s, wo, u1, u2, uLobe);
-  return b.smooth ? smooth : rough;
-}
-
 MCL_INLINE BsdfDirection dielectric_sample_direction(DielectricBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,
                                                      float uLobe) {
   return bsdf_direction_of(dielectric_sample(b, s, wo, u1, u2, uLobe));

@@ -191,6 +191,9 @@ MCL_INLINE float3 f3_scale(float3 a, float s) { return a * s; }
 MCL_INLINE float f3_dot(float3 a, float3 b) { return dot(a, b); }
 MCL_INLINE float3 f3_neg(float3 a) { return -a; }
 MCL_INLINE float3 f3_select(int m, float3 t, float3 f) { return m ? t : f; }
+MCL_INLINE float3 f3_mul(float3 a, float3 b) { return a * b; }
+MCL_INLINE float3 f3_cross(float3 a, float3 b) { return cross(a, b); }
+MCL_INLINE float3 f3_normalize(float3 v) { return normalize(v); }
 
 // --- loads and stores of W consecutive records -------------------------------------------------
 // v_load4(p, x, y, z, w): the float4s p[0 .. W) (p: floats, 4 per record, consecutive records),

@@ -13,60 +13,64 @@
 
 MCL_INLINE float ggx_alpha_from_ns(float ns) { return fmax(sqrt(2.0f / (ns + 2.0f)), MCL_GGX_MIN_ALPHA); }
 
-// D(h): density of microfacet normals per unit projected area (h local, unit).
-MCL_INLINE float ggx_d(float3 h, float alpha) {
-  if (!(h.z > 0.0f)) return 0.0f;
-  float a2 = alpha * alpha;
-  float t = h.z * h.z * (a2 - 1.0f) + 1.0f;
-  return a2 / (MCL_PI * t * t);
-}
-
-// Smith's Lambda for GGX: (-1 + sqrt(1 + alpha^2 tan^2 theta)) / 2.
-MCL_INLINE float ggx_lambda(float3 w, float alpha) {
-  float z2 = w.z * w.z;
-  float s2 = w.x * w.x + w.y * w.y;
-  if (!(z2 > 0.0f)) return 1e30f;
-  return 0.5f * (-1.0f + sqrt(1.0f + alpha * alpha * s2 / z2));
-}
-MCL_INLINE float ggx_g1(float3 w, float alpha) { return 1.0f / (1.0f + ggx_lambda(w, alpha)); }
-MCL_INLINE float ggx_g2(float3 wo, float3 wi, float alpha) {
-  return 1.0f / (1.0f + ggx_lambda(wo, alpha) + ggx_lambda(wi, alpha));
-}
-
-// f * cos(theta_i) of the lobe with unit colour: D G2 / (4 cos_o); 0 unless both are above.
-MCL_INLINE float ggx_eval_cos(float3 wo, float3 wi, float alpha) {
-  if (!(wo.z > 0.0f && wi.z > 0.0f)) return 0.0f;
-  float3 h = normalize(wo + wi);
-  return ggx_d(h, alpha) * ggx_g2(wo, wi, alpha) / (4.0f * wo.z);
-}
-
-// A visible normal for wo (wo.z > 0) from u1, u2 in [0, 1): Heitz 2018, section 2: stretch wo to
-// the hemisphere configuration, sample a projected disk warped toward wo, unstretch.
-MCL_INLINE float3 ggx_sample_visible_normal(float3 wo, float alpha, float u1, float u2) {
-  float3 vh = normalize(make_float3(alpha * wo.x, alpha * wo.y, wo.z));
-  float lensq = vh.x * vh.x + vh.y * vh.y;
-  float3 t1 = lensq > 0.0f ? make_float3(-vh.y, vh.x, 0.0f) * (1.0f / sqrt(lensq)) : make_float3(1.0f, 0.0f, 0.0f);
-  float3 t2 = cross(vh, t1);
-  float r = sqrt(u1);
-  float sinPhi, cosPhi;
-  mcl_sincos_turns(u2, &sinPhi, &cosPhi);  // phi = 2 pi u2
-  float p1 = r * cosPhi, p2 = r * sinPhi;
-  float s = 0.5f * (1.0f + vh.z);
-  p2 = (1.0f - s) * sqrt(fmax(0.0f, 1.0f - p1 * p1)) + s * p2;
-  float3 nh = t1 * p1 + t2 * p2 + vh * sqrt(fmax(0.0f, 1.0f - p1 * p1 - p2 * p2));
-  return normalize(make_float3(alpha * nh.x, alpha * nh.y, fmax(1e-7f, nh.z)));
-}
-
-// Solid-angle pdf of wi = reflect(wo about h) under visible-normal sampling:
-// D_wo(h) / (4 wo.h) = G1(wo) D(h) / (4 wo.z).
-MCL_INLINE float ggx_pdf(float3 wo, float3 wi, float alpha) {
-  if (!(wo.z > 0.0f && wi.z > 0.0f)) return 0.0f;
-  float3 h = normalize(wo + wi);
-  return ggx_g1(wo, alpha) * ggx_d(h, alpha) / (4.0f * wo.z);
-}
-
-// Mirror of w about the unit normal h.
-MCL_INLINE float3 reflect_about(float3 w, float3 h) { return h * (2.0f * dot(w, h)) - w; }
+// The lobe written once for a float type F, its 3-vector F3 with that vector's operations V and
+// trig.h's sine and cosine of prefix S (float, float3, f3, mcl_ here; the packet stages' vfloat,
+// vfloat3, v3, v_ in stages/lane_bsdf.h): selects (vsel), not branches, so each lane performs the
+// scalar function's operations in the same order.
+// - ggx_d(h): density of microfacet normals per unit projected area (h local, unit; 0 below).
+// - ggx_lambda(w): Smith's Lambda for GGX, (-1 + sqrt(1 + alpha^2 tan^2 theta)) / 2; ggx_g1, ggx_g2
+//   (height-correlated) from it.
+// - ggx_eval_cos: f * cos(theta_i) of the lobe with unit colour, D G2 / (4 cos_o); 0 unless wo and
+//   wi are both above.
+// - ggx_sample_visible_normal: a visible normal for wo (wo.z > 0) from u1, u2 in [0, 1): Heitz
+//   2018, section 2: stretch wo to the hemisphere configuration, sample a projected disk warped
+//   toward wo, unstretch.
+// - ggx_pdf: solid-angle pdf of wi = reflect(wo about h) under visible-normal sampling,
+//   D_wo(h) / (4 wo.h) = G1(wo) D(h) / (4 wo.z).
+// - reflect_about: the mirror of w about the unit normal h.
+#define MCL_DEFINE_GGX(P, S, F, F3, V)                                                                         \
+  MCL_INLINE F P##ggx_d(F3 h, F alpha) {                                                                      \
+    F a2 = alpha * alpha;                                                                                      \
+    F t = h.z * h.z * (a2 - 1.0f) + 1.0f;                                                                      \
+    return vsel(h.z > 0.0f, a2 / (MCL_PI * t * t), (F)(0.0f));                                                 \
+  }                                                                                                            \
+  MCL_INLINE F P##ggx_lambda(F3 w, F alpha) {                                                                 \
+    F z2 = w.z * w.z;                                                                                          \
+    F s2 = w.x * w.x + w.y * w.y;                                                                              \
+    return vsel(z2 > 0.0f, 0.5f * (-1.0f + sqrt(1.0f + alpha * alpha * s2 / z2)), (F)(1e30f));                \
+  }                                                                                                            \
+  MCL_INLINE F P##ggx_g1(F3 w, F alpha) { return 1.0f / (1.0f + P##ggx_lambda(w, alpha)); }                   \
+  MCL_INLINE F P##ggx_g2(F3 wo, F3 wi, F alpha) {                                                             \
+    return 1.0f / (1.0f + P##ggx_lambda(wo, alpha) + P##ggx_lambda(wi, alpha));                                \
+  }                                                                                                            \
+  MCL_INLINE F P##ggx_eval_cos(F3 wo, F3 wi, F alpha) {                                                       \
+    F3 h = V##_normalize(V##_add(wo, wi));                                                                     \
+    F r = P##ggx_d(h, alpha) * P##ggx_g2(wo, wi, alpha) / (4.0f * wo.z);                                       \
+    return vsel((wo.z > 0.0f) & (wi.z > 0.0f), r, (F)(0.0f));                                                  \
+  }                                                                                                            \
+  MCL_INLINE F3 P##ggx_sample_visible_normal(F3 wo, F alpha, F u1, F u2) {                                    \
+    F3 vh = V##_normalize(V##_make(alpha * wo.x, alpha * wo.y, wo.z));                                         \
+    F lensq = vh.x * vh.x + vh.y * vh.y;                                                                       \
+    F3 t1 = V##_select(lensq > 0.0f, V##_scale(V##_make(-vh.y, vh.x, (F)(0.0f)), 1.0f / sqrt(lensq)),          \
+                       V##_make((F)(1.0f), (F)(0.0f), (F)(0.0f)));                                             \
+    F3 t2 = V##_cross(vh, t1);                                                                                 \
+    F r = sqrt(u1);                                                                                            \
+    F sinPhi, cosPhi;                                                                                          \
+    S##sincos_turns(u2, &sinPhi, &cosPhi); /* phi = 2 pi u2 */                                                 \
+    F p1 = r * cosPhi, p2 = r * sinPhi;                                                                        \
+    F s = 0.5f * (1.0f + vh.z);                                                                                \
+    p2 = (1.0f - s) * sqrt(fmax((F)(0.0f), 1.0f - p1 * p1)) + s * p2;                                          \
+    F3 nh = V##_add(V##_add(V##_scale(t1, p1), V##_scale(t2, p2)),                                             \
+                    V##_scale(vh, sqrt(fmax((F)(0.0f), 1.0f - p1 * p1 - p2 * p2))));                           \
+    return V##_normalize(V##_make(alpha * nh.x, alpha * nh.y, fmax((F)(1e-7f), nh.z)));                        \
+  }                                                                                                            \
+  MCL_INLINE F P##ggx_pdf(F3 wo, F3 wi, F alpha) {                                                            \
+    F3 h = V##_normalize(V##_add(wo, wi));                                                                     \
+    F r = P##ggx_g1(wo, alpha) * P##ggx_d(h, alpha) / (4.0f * wo.z);                                           \
+    return vsel((wo.z > 0.0f) & (wi.z > 0.0f), r, (F)(0.0f));                                                  \
+  }                                                                                                            \
+  MCL_INLINE F3 P##reflect_about(F3 w, F3 h) { return V##_sub(V##_scale(h, 2.0f * V##_dot(w, h)), w); }
+MCL_DEFINE_GGX(, mcl_, float, float3, f3)
 
 // A cosine lobe mixed with a GGX reflection lobe picked with probability ps (the kinds with a
 // diffuse base under a glossy lobe: metal_rough, coated_diffuse), in the shading frame (woL, wiL;

@@ -19,15 +19,17 @@
 // aimed at the same light point, origin + wi * tmax / (1 - 1e-4) (the samplers' margin), and
 // stopping short of it by the same margin; *tmaxFrom receives its length. Keeping wi and tmax
 // would overshoot a nearby light by the offset, and the light's own triangle would block it. A
-// light at infinity (tmax INFINITY) keeps wi.
-MCL_INLINE float3 shadow_dir_from(float3 origin, float3 from, float3 wi, float tmax, float* tmaxFrom) {
-  int finite = tmax < INFINITY;
-  float3 d = origin + wi * (finite ? tmax * (1.0f / (1.0f - 1e-4f)) : 0.0f) - from;
-  float len = sqrt(dot(d, d));
-  int ok = finite && len > 0.0f;
-  *tmaxFrom = ok ? len * (1.0f - 1e-4f) : tmax;
-  return ok ? d * (1.0f / len) : wi;
-}
+// light at infinity (tmax INFINITY) keeps wi. Written once for floats and lanes (lane_bsdf.h).
+#define MCL_DEFINE_SHADOW_DIR_FROM(P, F, F3, M, V)                                                  \
+  MCL_INLINE F3 P##shadow_dir_from(F3 origin, F3 from, F3 wi, F tmax, F* tmaxFrom) {               \
+    M finite = tmax < INFINITY;                                                                    \
+    F3 d = V##_sub(V##_add(origin, V##_scale(wi, vsel(finite, tmax * (1.0f / (1.0f - 1e-4f)), (F)(0.0f)))), from); \
+    F len = sqrt(V##_dot(d, d));                                                                   \
+    M ok = finite & (len > 0.0f);                                                                  \
+    *tmaxFrom = vsel(ok, len * (1.0f - 1e-4f), tmax);                                              \
+    return V##_select(ok, V##_scale(d, 1.0f / len), wi);                                           \
+  }
+MCL_DEFINE_SHADOW_DIR_FROM(, float, float3, int, f3)
 
 // The light of a ray along wi that got hit h: the triangle hit (an area light, emitting or not),
 // or the environment on a miss.

@@ -101,7 +101,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
   LaneHits lh = lane_hits(f, a->tris, a->normals, a->materials, a->hitInstances, first, lanes, hit, tri);
   const vmask packet = lh.lamb, flat = lh.flat;
   vmask other = hit & v_not(packet);  // other kinds: their surface and BSDF lane by lane
-  lane_tally(f, a->packedLanes, a->aloneLanes, &lh, hit);
+  lane_tally(f, a->packedLanes, a->aloneLanes, &lh, packet, hit);
   vfloat dx, dy, dz, dw;
   v_load4_stride_n((MCL_GLOBAL const float*)(a->rays + first) + 4, 8, lanes, &dx, &dy, &dz, &dw);
   vfloat3 dir = v3_make(dx, dy, dz);

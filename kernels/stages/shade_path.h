@@ -29,6 +29,7 @@
 // sample, and the path's state is indexed by its id).
 #pragma once
 #include "stage_lanes.h"
+#include "lane_bsdf.h"
 #include "light_area_lanes.h"
 #include "direct_light.h"
 
@@ -130,12 +131,12 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
   v_load4_n((MCL_GLOBAL const float*)(a->hits + first), lanes, &ht, &htri, &hu, &hv);
   vuint tri = v_as_uint(htri);
   vmask hit = own & (tri != MCL_NO_HIT);
-  // The hit triangles, their materials, and the lanes taken in lane types (lamb) and from the
-  // triangle alone (flat).
+  // The hit triangles, their materials, and the lanes taken in lane types (kinds: lane_bsdf.h's)
+  // and from the triangle alone (flat).
   LaneHits lh = lane_hits(f, a->tris, a->normals, a->materials, a->hitInstances, first, lanes, hit, tri);
-  const vmask lamb = lh.lamb, flat = lh.flat;
-  vmask other = hit & v_not(lamb);  // other kinds: their surface and BSDF lane by lane (path_light_sample, path_continue)
-  lane_tally(f, a->packedLanes, a->aloneLanes, &lh, hit);
+  const vmask kinds = lh.lamb | lh.conductor | lh.dielectric, flat = lh.flat;
+  vmask other = hit & v_not(kinds);  // other kinds: their surface and BSDF lane by lane (path_light_sample, path_continue)
+  lane_tally(f, a->packedLanes, a->aloneLanes, &lh, kinds, hit);
 
   uint ids[MCL_LANES] MCL_LANE_ALIGN, owned[MCL_LANES] MCL_LANE_ALIGN;
   v_store_lanes(id, ids);
@@ -219,8 +220,10 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
       sample = v_loadu_lanes(sm);
     }
     LaneFrame sf = lane_frame(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first,
-                              lamb & v_not(flat), pixel, sample, bounce, &lh, hu, hv, ht, dir);
+                              kinds & v_not(flat), pixel, sample, bounce, &lh, hu, hv, ht, dir);
     vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
+    const LaneBsdf lb = lane_bsdf(&lh);
+    const vfloat3 wo = v3_neg(dir);
     // The lanes of other kinds: surface_at, the offset origin and the path weight, lane by lane.
     Surface surfs[MCL_LANES];
     float3 origins[MCL_LANES], betas[MCL_LANES];
@@ -237,8 +240,9 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
         others[j] = path_takes_light_samples(f, surfs[j]) ? 2u : 1u;  // 2: light samples too
       }
     }
-    // Some light exists (a Lambertian lobe is never a delta lobe).
+    // Light samples where some light exists and the BSDF is not purely delta (path_takes_light_samples).
     const int nee = f->emitterCount > 0u || env_present(f) || f->lightCount > 0u;
+    const vmask takes = kinds & v_not(lane_bsdf_delta(&lb));
     vuint slot0 = id * slots;
     for (uint s = 0; nee && s < f->lightSamples; ++s) {
       vfloat4 u = v_sample_uniform4(f, pixel, sample, path_dim(bounce, 1u + s));
@@ -249,20 +253,32 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
             path_light_sample(a, lights, surfs[j], xyz(a->rays[first + j].dir) * -1.0f, origins[j], betas[j], ids[j], s,
                               float4_lane(&ul, j));
       }
-      if (!v_any(lamb)) continue;
-      VLightSample ls = v_sample_direct_light(f, lights, lamb, origin, u);
+      if (!v_any(takes)) continue;
+      VLightSample ls = v_sample_direct_light(f, lights, takes, origin, u);
       vfloat3 wi = ls.wi, lle = ls.le;
       vfloat pdf = ls.pdf, tmax = ls.tmax;
       vmask delta = ls.delta;
-      vfloat3 fcos = v_lambert_eval(sf.kd, sf.ng, sf.ns, sf.smooth, wi);  // bsdf_eval
-      vmask push = lamb & (pdf > 0.0f) & (v_max_component(fcos) > 0.0f);
+      vfloat bsdfPdf;
+      vfloat3 fcos = lane_bsdf_eval_pdf(&lb, sf, wo, wi, &bsdfPdf);
+      vmask push = takes & (pdf > 0.0f) & (v_max_component(fcos) > 0.0f);
       if (!v_any(push)) continue;
-      vfloat bsdfPdf = v_lambert_pdf(sf.ng, sf.ns, sf.smooth, wi);
       vfloat fw = nLight * pdf, gw = 1.0f * bsdfPdf;
       vfloat weight = vsel(delta, v_f(1.0f), v_power_heuristic(fw, gw));
       vfloat3 contrib = v3_scale(v3_mul(v3_mul(beta, fcos), lle), weight / (pdf * nLight));
-      // Lambertian lights are above the geometric surface: the query leaves from origin along wi.
-      v_push_shadow_queries(a->queue, a->queueCount, push, origin, wi, tmax, contrib, slot0 + s);
+      // A light below the geometric surface (seen through a transmitting lobe): the shadow ray
+      // leaves from the far side, as a transmitted BSDF ray does.
+      vmask below = push & v_not(v3_dot(sf.ng, wi) > 0.0f);
+      vfloat3 from = origin, along = wi;
+      vfloat reach = tmax;
+      if (v_any(below)) {
+        vfloat3 far = v_offset_ray_origin(sf.p, v3_neg(sf.ng), f->offsetScale);
+        vfloat tmaxFar;
+        vfloat3 dirFar = v_shadow_dir_from(origin, far, wi, tmax, &tmaxFar);
+        from = v3_select(below, far, origin);
+        along = v3_select(below, dirFar, wi);
+        reach = vsel(below, tmaxFar, tmax);
+      }
+      v_push_shadow_queries(a->queue, a->queueCount, push, from, along, reach, contrib, slot0 + s);
     }
 
     // bsdf_sample: the cosine lobe around the frame; other kinds lane by lane.
@@ -274,11 +290,11 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
           path_continue(a, surfs[j], xyz(a->rays[first + j].dir) * -1.0f, origins[j], betas[j], ids[j],
                         float4_lane(&ul, j));
     }
-    vfloat pdf;
-    vfloat3 bw;
-    vfloat3 wi = v_lambert_sample(sf, u.x, u.y, &pdf, &bw);
-    vmask live = lamb & (pdf > 0.0f);
-    vfloat3 next = v3_mul(beta, bw);
+    const vBsdfSample bs = lane_bsdf_sample(&lb, sf, wo, u);
+    vfloat3 wi = bs.wi;
+    vfloat pdf = bs.pdf;
+    vmask live = kinds & (pdf > 0.0f);
+    vfloat3 next = v3_mul(beta, bs.weight);
     if (bounce + 1u >= f->rrDepth) {  // Russian roulette (depth after this bounce: bounce + 1)
       vfloat q = fmin(v_f(0.95f), v_max_component(next));
       live = live & (u.z < q);
@@ -286,6 +302,11 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
     }
     live = live & (v_max_component(next) > 0.0f);
     if (v_any(live)) {
+      // w: the sample's pdf for MIS at the next hit, 0 after a delta lobe; a transmitted ray
+      // starts on the far side.
+      pdf = vsel((bs.flags & MCL_BSDF_DELTA) != 0, v_f(0.0f), pdf);
+      vmask through = live & ((bs.flags & MCL_BSDF_TRANSMISSION) != 0);
+      if (v_any(through)) origin = v3_select(through, v_offset_ray_origin(sf.p, v3_neg(sf.ng), f->offsetScale), origin);
       uint set[MCL_LANES] MCL_LANE_ALIGN;
       float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN;
       float wx[MCL_LANES] MCL_LANE_ALIGN, wy[MCL_LANES] MCL_LANE_ALIGN, wz[MCL_LANES] MCL_LANE_ALIGN;

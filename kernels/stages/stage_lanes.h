@@ -280,24 +280,27 @@ MCL_DEFINE_SHADING_RULE(v_, vfloat, vfloat3, vmask, v3_dot, v3_sub, v3_scale, v3
 // The shading frame of W hits (SurfaceFrame per lane) and their Lambertian albedo Kd.
 typedef struct {
   vfloat3 p, ng, ns, kd;
-  vmask smooth;  // set where ns came from normals or a map (shading.h's folding rule applies)
+  vmask smooth;    // set where ns came from normals or a map (shading.h's folding rule applies)
+  vmask backface;  // set where the ray arrived at the triangle's back face (SurfaceFrame::backface)
 } LaneFrame;
 
 // luminance (lights.h) per lane.
 MCL_INLINE vfloat v_luminance(vfloat3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 // The hit triangles of a packet (lanes not in `hit` read entry 0, masked off by the caller), their
-// normals and the materials' fields the stage bodies read, and which lanes the lane-type
-// Lambertian code takes: lamb, the diffuse kind without a glossy lobe (bsdf_make's specular
-// probability 0, computed as it does), and of those flat, whose frame comes from the triangle
-// alone (no shading normals, vertex colours, albedo texture, normal or bump map, nor an instance:
-// the others' frame comes from surface_at).
+// normals and the materials' fields the stage bodies read, and which lanes lane-type code takes:
+// lamb, the diffuse kind without a glossy lobe (bsdf_make's specular probability 0, computed as
+// it does); conductor and dielectric, those kinds (without a metallic-roughness texture, whose
+// parameters would be a lookup: hit_metal_rough); and of all three flat, whose frame comes from
+// the triangle alone (no shading normals, normal or bump map, nor an instance; for lamb no vertex
+// colours nor albedo texture either: the others' frame comes from surface_at).
 typedef struct {
   vfloat3 v0, e1, e2, n, kd, ke;
   vfloat area, twoSided;  // normals[].w; Material::emission.w
   vuint tri, attrs, albedoTex;  // the triangle (0 where no hit), its MCL_ATTR_* flags, Kd's texture
-  vmask lamb, flat;
+  vmask lamb, conductor, dielectric, flat;
   vmask placed;  // a normal or bump map, or an instance: the frame only through surface_at
+  vfloat4 params0, params1;  // Material::params0, params1 (the kinds' own parameters)
 } LaneHits;
 
 MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const Triangle* tris,
@@ -321,7 +324,16 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
   v_gather4(mf + 24, mat, MCL_MATERIAL_FLOATS, &kmx, &kmy, &kmz, &kmw);  // maps: z the normal map, w the bump map (+1)
   vfloat ls = v_luminance(v3_make(ksx, ksy, ksz)), ld = v_luminance(h.kd);
   vfloat specProb = vsel(ls > 0.0f, ls / (ls + ld), v_f(0.0f));
-  h.lamb = hit & (specProb == 0.0f) & (v_as_uint(kaw) == (uint)MCL_MATERIAL_diffuse);
+  vuint kind = v_as_uint(kaw);
+  h.lamb = hit & (specProb == 0.0f) & (kind == (uint)MCL_MATERIAL_diffuse);
+  vmask plain = v_as_uint(kmy) == MCL_NO_TEXTURE;
+  h.conductor = hit & plain & (kind == (uint)MCL_MATERIAL_conductor);
+  h.dielectric = hit & plain & (kind == (uint)MCL_MATERIAL_dielectric);
+  h.params0 = h.params1 = v4_make(v_f(0.0f), v_f(0.0f), v_f(0.0f), v_f(0.0f));
+  if (v_any(h.conductor | h.dielectric)) {
+    v_gather4(mf + 16, mat, MCL_MATERIAL_FLOATS, &h.params0.x, &h.params0.y, &h.params0.z, &h.params0.w);
+    v_gather4(mf + 20, mat, MCL_MATERIAL_FLOATS, &h.params1.x, &h.params1.y, &h.params1.z, &h.params1.w);
+  }
   h.tri = t;
   h.attrs = v_as_uint(e2w);
   h.albedoTex = v_as_uint(kdw);
@@ -331,17 +343,19 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
     for (uint j = 0; j < MCL_LANES; ++j) inst[j] = j < lanes ? hit_instance(f, hitInstances, first + j) : 0u;
     h.placed = h.placed | (v_loadu_lanes(inst) != MCL_NO_INSTANCE);
   }
-  h.flat = h.lamb & ((h.attrs & (MCL_ATTR_NORMALS | MCL_ATTR_COLOR)) == 0u) & (h.albedoTex == MCL_NO_TEXTURE) &
-           v_not(h.placed);
+  vmask tinted = ((h.attrs & MCL_ATTR_COLOR) != 0u) | (h.albedoTex != MCL_NO_TEXTURE);
+  h.flat = (h.lamb | h.conductor | h.dielectric) & ((h.attrs & MCL_ATTR_NORMALS) == 0u) & v_not(h.placed) &
+           v_not(h.lamb & tinted);
   return h;
 }
 
 // --profile's tally (FrameParams::countLanes): a packet's hits shaded in lane types (packed: the
-// diffuse kind without a glossy lobe, framed in lanes) and one by one (the rest), one atomic each.
+// lanes of the kinds the stage shades in lanes, `kinds`, framed in lanes) and one by one (the
+// rest), one atomic each.
 MCL_INLINE void lane_tally(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL volatile uint* packedLanes,
-                           MCL_GLOBAL volatile uint* aloneLanes, const LaneHits* lh, vmask hit) {
+                           MCL_GLOBAL volatile uint* aloneLanes, const LaneHits* lh, vmask kinds, vmask hit) {
   if (!f->countLanes) return;
-  vmask packed = lh->lamb & v_not(lh->placed);
+  vmask packed = kinds & v_not(lh->placed);
   uint p = v_count(packed), q = v_count(hit & v_not(packed));
   if (p) MCL_ATOMIC_ADD(packedLanes, p);
   if (q) MCL_ATOMIC_ADD(aloneLanes, q);
@@ -349,13 +363,12 @@ MCL_INLINE void lane_tally(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL volatil
 
 // The lanes set in `rich` of a frame whose other lanes are already set: each through the scalar
 // surface_at (in its hit's instance, hit_instance), for sample ref (pixel, sample, bounce) of the
-// lane; their BSDF is the diffuse kind without a glossy lobe (the caller's mask says so from the
-// material).
+// lane; kd where the BSDF is the diffuse kind (the caller's masks say which kind from the material).
 MCL_INLINE LaneFrame lane_frame_rich(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const Hit* hits,
                                      MCL_GLOBAL const uint* hitInstances, MCL_GLOBAL const Ray* rays, uint first,
                                      vmask rich, vuint pixel, vuint sample, uint bounce, LaneFrame lf) {
   uint set[MCL_LANES] MCL_LANE_ALIGN, px[MCL_LANES] MCL_LANE_ALIGN, sm[MCL_LANES] MCL_LANE_ALIGN;
-  uint smo[MCL_LANES] MCL_LANE_ALIGN;
+  uint smo[MCL_LANES] MCL_LANE_ALIGN, bf[MCL_LANES] MCL_LANE_ALIGN;
   float pX[MCL_LANES] MCL_LANE_ALIGN, pY[MCL_LANES] MCL_LANE_ALIGN, pZ[MCL_LANES] MCL_LANE_ALIGN;
   float gX[MCL_LANES] MCL_LANE_ALIGN, gY[MCL_LANES] MCL_LANE_ALIGN, gZ[MCL_LANES] MCL_LANE_ALIGN;
   float sX[MCL_LANES] MCL_LANE_ALIGN, sY[MCL_LANES] MCL_LANE_ALIGN, sZ[MCL_LANES] MCL_LANE_ALIGN;
@@ -368,6 +381,7 @@ MCL_INLINE LaneFrame lane_frame_rich(SurfaceScene sc, MCL_CONSTANT const FramePa
   v3_store_lanes(lf.ns, sX, sY, sZ);
   v3_store_lanes(lf.kd, kX, kY, kZ);
   v_store_lanes(v_mask01(lf.smooth), smo);
+  v_store_lanes(v_mask01(lf.backface), bf);
   for (uint j = 0; j < MCL_LANES; ++j) {
     if (!set[j]) continue;
     Surface s = surface_at(sc, f, hits[first + j], hit_instance(f, hitInstances, first + j), xyz(rays[first + j].dir),
@@ -375,8 +389,11 @@ MCL_INLINE LaneFrame lane_frame_rich(SurfaceScene sc, MCL_CONSTANT const FramePa
     pX[j] = s.frame.p.x; pY[j] = s.frame.p.y; pZ[j] = s.frame.p.z;
     gX[j] = s.frame.ng.x; gY[j] = s.frame.ng.y; gZ[j] = s.frame.ng.z;
     sX[j] = s.frame.ns.x; sY[j] = s.frame.ns.y; sZ[j] = s.frame.ns.z;
-    kX[j] = s.bsdf.p.diffuse.kd.x; kY[j] = s.bsdf.p.diffuse.kd.y; kZ[j] = s.bsdf.p.diffuse.kd.z;
+    if (s.bsdf.kind == (uint)MCL_MATERIAL_diffuse) {
+      kX[j] = s.bsdf.p.diffuse.kd.x; kY[j] = s.bsdf.p.diffuse.kd.y; kZ[j] = s.bsdf.p.diffuse.kd.z;
+    }
     smo[j] = s.frame.smooth != 0;
+    bf[j] = s.frame.backface != 0;
   }
   LaneFrame r;
   r.p = v3_load_lanes(pX, pY, pZ);
@@ -384,17 +401,20 @@ MCL_INLINE LaneFrame lane_frame_rich(SurfaceScene sc, MCL_CONSTANT const FramePa
   r.ns = v3_load_lanes(sX, sY, sZ);
   r.kd = v3_load_lanes(kX, kY, kZ);
   r.smooth = v_loadu_lanes(smo) != 0u;
+  r.backface = v_loadu_lanes(bf) != 0u;
   return r;
 }
 
 // The lanes set in m (hits on world-space triangles without a normal or bump map) of a frame whose
-// flat part is set: surface_frame's shading normal and hit_albedo's vertex colour and albedo
-// texture (trilinear, ray-cone footprint, hit_texture), in lanes, barycentrics hu, hv, distance ht.
+// flat part is set: surface_frame's shading normal and, for the Lambertian lanes, hit_albedo's
+// vertex colour and albedo texture (trilinear, ray-cone footprint, hit_texture), in lanes, at
+// barycentrics hu, hv, distance ht.
 MCL_INLINE LaneFrame lane_frame_attributes(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, vmask m,
                                            const LaneHits* lh, vfloat hu, vfloat hv, vfloat ht, vfloat3 dir,
                                            LaneFrame lf) {
   vmask hasN = m & ((lh->attrs & MCL_ATTR_NORMALS) != 0u), hasUV = m & ((lh->attrs & MCL_ATTR_UV) != 0u);
-  vmask coloured = m & ((lh->attrs & MCL_ATTR_COLOR) != 0u), textured = m & (lh->albedoTex != MCL_NO_TEXTURE);
+  vmask coloured = m & lh->lamb & ((lh->attrs & MCL_ATTR_COLOR) != 0u);
+  vmask textured = m & lh->lamb & (lh->albedoTex != MCL_NO_TEXTURE);
   vfloat3 n0 = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f)), n1 = n0, n2 = n0;
   vfloat u0 = v_f(0.0f), u1 = u0, u2 = u0, t0 = u0, t1 = u0, t2 = u0, tw;
   if (v_any(hasN | hasUV)) {  // TriangleShading: corner normals, u in w; v of the corners in tv
@@ -456,6 +476,7 @@ MCL_INLINE LaneFrame lane_frame(SurfaceScene sc, MCL_CONSTANT const FrameParams*
   LaneFrame lf;
   lf.p = v3_add(v3_add(lh->v0, v3_scale(lh->e1, hu)), v3_scale(lh->e2, hv));
   lf.ng = v_orient_facing(lh->n, dir);
+  lf.backface = v3_dot(lh->n, dir) > 0.0f;
   lf.ns = lf.ng;
   lf.kd = lh->kd;
   lf.smooth = v_not(rich | v_not(rich));  // none
@@ -503,6 +524,7 @@ MCL_INLINE LaneFrame lane_surface_frame(MCL_GLOBAL const Triangle* tris, MCL_GLO
   LaneFrame lf;
   lf.p = v3_add(v3_add(v3_make(v0x, v0y, v0z), v3_scale(v3_make(e1x, e1y, e1z), hu)), v3_scale(v3_make(e2x, e2y, e2z), hv));
   lf.ng = v_orient_facing(v3_make(nx, ny, nz), dir);
+  lf.backface = v3_dot(v3_make(nx, ny, nz), dir) > 0.0f;  // (instanced lanes: not read)
   lf.ns = lf.ng;
   lf.kd = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f));
   lf.smooth = hit & v_not(hit);  // none
