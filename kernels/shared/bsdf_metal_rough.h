@@ -6,24 +6,78 @@
 // textured base colour (the albedo path: Kd x baseColorTexture). Pure; compiled by the kernels and
 // the host tests. Sampling picks the GGX lobe (visible normals) with probability pSpec from wo's
 // Schlick weight and the diffuse colour; the pdf is the mixture. Around the shading normal ns; a
-// direction below the geometric surface contributes nothing. Written with selects.
+// direction below the geometric surface contributes nothing.
 #pragma once
 #include "bsdf_common.h"
 #include "microfacet.h"
 
-typedef struct {
-  float3 base;  // base colour at the hit
-  float metallic;
-  float alpha;  // roughness^2
-} MetalRoughBsdf;
+#define MCL_DEFINE_METAL_ROUGH_TYPE(B, F, F3) \
+  typedef struct {                            \
+    F3 base; /* base colour at the hit */     \
+    F metallic;                               \
+    F alpha; /* roughness^2 */                \
+  } B;
+MCL_DEFINE_METAL_ROUGH_TYPE(MetalRoughBsdf, float, float3)
 
-MCL_INLINE MetalRoughBsdf metal_rough_make(float3 base, float metallic, float roughness) {
-  MetalRoughBsdf b;
-  b.base = base;
-  b.metallic = metallic;
-  b.alpha = fmax(roughness * roughness, MCL_GGX_MIN_ALPHA);
-  return b;
-}
+// The kind's functions written once for floats and lanes (P, F, F3, M, V: the prefix, float,
+// float3, int mask, f3 here; the packet stages' v_, vfloat, vfloat3, vmask, v3 in
+// stages/lane_bsdf.h, with their frame FR and sample type BS): selects, not branches.
+// - metal_rough_f0: F0 = mix(0.04, base, metallic); metal_rough_schlick: F0 + (1 - F0)(1 - c)^5.
+// - metal_rough_spec_prob: the probability of sampling the GGX lobe for wo (local z = cosO).
+// - metal_rough_eval, _pdf, _sample: f cos, the mixture pdf, a direction with weight eval / pdf.
+#define MCL_DEFINE_METAL_ROUGH(P, F, F3, M, V, B, FR, BS)                                                  \
+  MCL_INLINE B P##metal_rough_make(F3 base, F metallic, F roughness) {                                    \
+    B b;                                                                                                  \
+    b.base = base;                                                                                        \
+    b.metallic = metallic;                                                                                \
+    b.alpha = fmax(roughness * roughness, MCL_GGX_MIN_ALPHA);                                             \
+    return b;                                                                                             \
+  }                                                                                                       \
+  MCL_INLINE F3 P##metal_rough_f0(B b) {                                                                  \
+    return V##_add(V##_scale(V##_make((F)(0.04f), (F)(0.04f), (F)(0.04f)), 1.0f - b.metallic),            \
+                   V##_scale(b.base, b.metallic));                                                        \
+  }                                                                                                       \
+  MCL_INLINE F3 P##metal_rough_schlick(F3 f0, F c) {                                                      \
+    F m = 1.0f - fmin(fmax(c, 0.0f), 1.0f);                                                               \
+    F m5 = m * m * m * m * m;                                                                             \
+    return V##_add(f0, V##_scale(V##_sub(V##_make((F)(1.0f), (F)(1.0f), (F)(1.0f)), f0), m5));            \
+  }                                                                                                       \
+  MCL_INLINE F P##metal_rough_spec_prob(B b, F cosO) {                                                    \
+    F3 fo = P##metal_rough_schlick(P##metal_rough_f0(b), cosO);                                           \
+    F ls = P##luminance(fo);                                                                              \
+    F ld = P##luminance(V##_mul(V##_scale(b.base, 1.0f - b.metallic),                                     \
+                                V##_sub(V##_make((F)(1.0f), (F)(1.0f), (F)(1.0f)), fo)));                 \
+    return vsel(ls + ld > 0.0f, fmax(ls / (ls + ld), 0.05f), (F)(1.0f));                                  \
+  }                                                                                                       \
+  MCL_INLINE F3 P##metal_rough_eval(B b, FR s, F3 wo, F3 wi) {                                            \
+    F3 woL = P##to_local(wo, s.ns), wiL = P##to_local(wi, s.ns);                                          \
+    M ok = (V##_dot(s.ng, wi) > 0.0f) & (woL.z > 0.0f) & (wiL.z > 0.0f);                                  \
+    F3 h = V##_normalize(V##_add(woL, wiL));                                                              \
+    F3 fr = P##metal_rough_schlick(P##metal_rough_f0(b), V##_dot(woL, h));                                \
+    F3 diff = V##_scale(b.base, (1.0f - b.metallic) * MCL_INV_PI * fmax(wiL.z, 0.0f));                    \
+    F g = vsel(ok, P##ggx_eval_cos(woL, wiL, b.alpha), (F)(0.0f));                                        \
+    F3 fcos = V##_add(V##_mul(V##_sub(V##_make((F)(1.0f), (F)(1.0f), (F)(1.0f)), fr), diff), V##_scale(fr, g)); \
+    return V##_select(ok, fcos, V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                               \
+  }                                                                                                       \
+  MCL_INLINE F P##metal_rough_pdf(B b, FR s, F3 wo, F3 wi) {                                              \
+    F3 woL = P##to_local(wo, s.ns), wiL = P##to_local(wi, s.ns);                                          \
+    return P##ggx_cosine_mix_pdf(woL, wiL, V##_dot(s.ng, wi) > 0.0f, P##metal_rough_spec_prob(b, woL.z), b.alpha); \
+  }                                                                                                       \
+  MCL_INLINE BS P##metal_rough_sample(B b, FR s, F3 wo, F u1, F u2, F uLobe) {                            \
+    F3 woL = P##to_local(wo, s.ns);                                                                       \
+    M up = woL.z > 0.0f;                                                                                  \
+    F3 wiL = P##ggx_cosine_mix_sample(woL, uLobe < P##metal_rough_spec_prob(b, woL.z), b.alpha, u1, u2);  \
+    BS r;                                                                                                 \
+    r.wi = P##to_world(wiL, s.ns);                                                                        \
+    F pdf = P##metal_rough_pdf(b, s, wo, r.wi);                                                           \
+    M ok = up & (pdf > 0.0f);                                                                             \
+    r.pdf = vsel(ok, pdf, (F)(0.0f));                                                                     \
+    r.weight = V##_select(ok, V##_scale(P##metal_rough_eval(b, s, wo, r.wi), 1.0f / fmax(pdf, 1e-30f)),   \
+                          V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                                     \
+    r.flags = (M)(0);                                                                                     \
+    return r;                                                                                             \
+  }
+MCL_DEFINE_METAL_ROUGH(, float, float3, int, f3, MetalRoughBsdf, SurfaceFrame, BsdfSample)
 
 MCL_INLINE MetalRoughBsdf metal_rough_from_material(Material m, float3 albedo) {
   return metal_rough_make(albedo, m.params0.x, m.params0.y);
@@ -34,16 +88,6 @@ MCL_INLINE int metal_rough_is_delta(MetalRoughBsdf b) {
   return 0;
 }
 
-MCL_INLINE float3 metal_rough_f0(MetalRoughBsdf b) {
-  return make_float3(0.04f, 0.04f, 0.04f) * (1.0f - b.metallic) + b.base * b.metallic;
-}
-
-MCL_INLINE float3 metal_rough_schlick(float3 f0, float c) {
-  float m = 1.0f - fmin(fmax(c, 0.0f), 1.0f);
-  float m5 = m * m * m * m * m;
-  return f0 + (make_float3(1.0f, 1.0f, 1.0f) - f0) * m5;
-}
-
 // The albedo AOV: the diffuse colour plus F0 (the directional albedo at normal incidence,
 // approximately: base for a metal, base (1 - 0.04) + 0.04 for a dielectric).
 MCL_INLINE float3 metal_rough_albedo(MetalRoughBsdf b) {
@@ -51,48 +95,9 @@ MCL_INLINE float3 metal_rough_albedo(MetalRoughBsdf b) {
   return b.base * (1.0f - b.metallic) * (make_float3(1.0f, 1.0f, 1.0f) - f0) + f0;
 }
 
-// Probability of sampling the GGX lobe for wo (local z = cosO).
-MCL_INLINE float metal_rough_spec_prob(MetalRoughBsdf b, float cosO) {
-  float3 fo = metal_rough_schlick(metal_rough_f0(b), cosO);
-  float ls = luminance(fo);
-  float ld = luminance(b.base * (1.0f - b.metallic) * (make_float3(1.0f, 1.0f, 1.0f) - fo));
-  return ls + ld > 0.0f ? fmax(ls / (ls + ld), 0.05f) : 1.0f;
-}
-
-MCL_INLINE float3 metal_rough_eval(MetalRoughBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
-  float3 woL = to_local(wo, s.ns), wiL = to_local(wi, s.ns);
-  int ok = above_surface(s.ng, wi) && woL.z > 0.0f && wiL.z > 0.0f;
-  float3 h = normalize(woL + wiL);
-  float3 F = metal_rough_schlick(metal_rough_f0(b), dot(woL, h));
-  float3 diff = b.base * ((1.0f - b.metallic) * MCL_INV_PI * fmax(wiL.z, 0.0f));
-  float g = ok ? ggx_eval_cos(woL, wiL, b.alpha) : 0.0f;
-  float3 fcos = (make_float3(1.0f, 1.0f, 1.0f) - F) * diff + F * g;
-  return ok ? fcos : make_float3(0.0f, 0.0f, 0.0f);
-}
-
 MCL_INLINE float3 metal_rough_f(MetalRoughBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
   float c = dot(s.ns, wi);
   return c > 0.0f ? metal_rough_eval(b, s, wo, wi) * (1.0f / c) : make_float3(0.0f, 0.0f, 0.0f);
-}
-
-MCL_INLINE float metal_rough_pdf(MetalRoughBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
-  float3 woL = to_local(wo, s.ns), wiL = to_local(wi, s.ns);
-  return ggx_cosine_mix_pdf(woL, wiL, above_surface(s.ng, wi), metal_rough_spec_prob(b, woL.z), b.alpha);
-}
-
-MCL_INLINE BsdfSample metal_rough_sample(MetalRoughBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,
-                                         float uLobe) {
-  float3 woL = to_local(wo, s.ns);
-  int up = woL.z > 0.0f;
-  float3 wiL = ggx_cosine_mix_sample(woL, uLobe < metal_rough_spec_prob(b, woL.z), b.alpha, u1, u2);
-  BsdfSample r;
-  r.wi = to_world(wiL, s.ns);
-  float pdf = metal_rough_pdf(b, s, wo, r.wi);
-  int ok = up && pdf > 0.0f;
-  r.pdf = ok ? pdf : 0.0f;
-  r.weight = ok ? metal_rough_eval(b, s, wo, r.wi) * (1.0f / fmax(pdf, 1e-30f)) : make_float3(0.0f, 0.0f, 0.0f);
-  r.flags = 0;
-  return r;
 }
 
 MCL_INLINE BsdfDirection metal_rough_sample_direction(MetalRoughBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,

@@ -7,9 +7,37 @@
 #pragma once
 #include "bsdf_common.h"
 
-typedef struct {
-  float ior;
-} ThinDielectricBsdf;
+#define MCL_DEFINE_THIN_DIELECTRIC_TYPE(B, F) \
+  typedef struct {                            \
+    F ior;                                    \
+  } B;
+MCL_DEFINE_THIN_DIELECTRIC_TYPE(ThinDielectricBsdf, float)
+
+// The sheet's reflectance (all inter-reflections: R + T^2 R / (1 - R^2)) and its sample, written once
+// for floats and lanes (P, F, F3, M, V: float, float3, int, f3 here; the packet stages' lane types
+// in stages/lane_bsdf.h): uLobe < R reflects about ns, else the ray goes straight through; both delta.
+#define MCL_DEFINE_THIN_DIELECTRIC(P, F, F3, M, V, B, FR, BS)                                       \
+  MCL_INLINE F P##thin_dielectric_reflectance(B b, F cosI) {                                       \
+    F cosT;                                                                                        \
+    F r = P##fresnel_dielectric(cosI, b.ior, &cosT);                                               \
+    F t = 1.0f - r;                                                                                \
+    return vsel(r < 1.0f, r + t * t * r / (1.0f - r * r), (F)(1.0f));                              \
+  }                                                                                                \
+  MCL_INLINE BS P##thin_dielectric_sample(B b, FR s, F3 wo, F u1, F u2, F uLobe) {                 \
+    (void)u1;                                                                                      \
+    (void)u2;                                                                                      \
+    F cosI = V##_dot(wo, s.ns);                                                                    \
+    F r = P##thin_dielectric_reflectance(b, fmin(fmax(cosI, 0.0f), 1.0f));                         \
+    M refl = uLobe < r;                                                                            \
+    BS out;                                                                                        \
+    out.wi = V##_select(refl, V##_sub(V##_scale(s.ns, 2.0f * cosI), wo), V##_neg(wo));             \
+    M ok = (cosI > 0.0f) & ((V##_dot(s.ng, out.wi) > 0.0f) | (refl == (M)(0)));                    \
+    out.pdf = vsel(ok, vsel(refl, r, 1.0f - r), (F)(0.0f));                                        \
+    out.weight = V##_select(ok, V##_make((F)(1.0f), (F)(1.0f), (F)(1.0f)), V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f))); \
+    out.flags = vsel(refl, (M)(MCL_BSDF_DELTA), (M)(MCL_BSDF_DELTA | MCL_BSDF_TRANSMISSION));      \
+    return out;                                                                                    \
+  }
+MCL_DEFINE_THIN_DIELECTRIC(, float, float3, int, f3, ThinDielectricBsdf, SurfaceFrame, BsdfSample)
 
 MCL_INLINE ThinDielectricBsdf thin_dielectric_from_material(Material m, float3 albedo) {
   (void)albedo;
@@ -41,28 +69,6 @@ MCL_INLINE float thin_dielectric_pdf(ThinDielectricBsdf b, SurfaceFrame s, float
 }
 
 // The sheet's reflectance at cos_o = cosI.
-MCL_INLINE float thin_dielectric_reflectance(ThinDielectricBsdf b, float cosI) {
-  float cosT;
-  float R = fresnel_dielectric(cosI, b.ior, &cosT);
-  float T = 1.0f - R;
-  return R < 1.0f ? R + T * T * R / (1.0f - R * R) : 1.0f;
-}
-
-MCL_INLINE BsdfSample thin_dielectric_sample(ThinDielectricBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,
-                                             float uLobe) {
-  (void)u1; (void)u2;
-  float cosI = dot(wo, s.ns);
-  float R = thin_dielectric_reflectance(b, fmin(fmax(cosI, 0.0f), 1.0f));
-  int refl = uLobe < R;
-  BsdfSample r;
-  r.wi = refl ? s.ns * (2.0f * cosI) - wo : -wo;
-  int ok = cosI > 0.0f && (refl ? above_surface(s.ng, r.wi) : 1);
-  r.pdf = ok ? (refl ? R : 1.0f - R) : 0.0f;
-  r.weight = ok ? make_float3(1.0f, 1.0f, 1.0f) : make_float3(0.0f, 0.0f, 0.0f);
-  r.flags = refl ? MCL_BSDF_DELTA : (MCL_BSDF_DELTA | MCL_BSDF_TRANSMISSION);
-  return r;
-}
-
 MCL_INLINE BsdfDirection thin_dielectric_sample_direction(ThinDielectricBsdf b, SurfaceFrame s, float3 wo, float u1,
                                                           float u2, float uLobe) {
   return bsdf_direction_of(thin_dielectric_sample(b, s, wo, u1, u2, uLobe));

@@ -28,7 +28,12 @@ MCL_INLINE float ggx_alpha_from_ns(float ns) { return fmax(sqrt(2.0f / (ns + 2.0
 // - ggx_pdf: solid-angle pdf of wi = reflect(wo about h) under visible-normal sampling,
 //   D_wo(h) / (4 wo.h) = G1(wo) D(h) / (4 wo.z).
 // - reflect_about: the mirror of w about the unit normal h.
-#define MCL_DEFINE_GGX(P, S, F, F3, V)                                                                         \
+// - ggx_cosine_mix_pdf, ggx_cosine_mix_sample: a cosine lobe mixed with a GGX reflection lobe
+//   picked with probability ps (the kinds with a diffuse base under a glossy lobe: metal_rough,
+//   coated_diffuse), in the shading frame (woL, wiL; above: wi lies above the geometric surface):
+//   the mixture's solid-angle pdf, and the direction drawn from the lobe `glossy` names (M: the
+//   mask type of F).
+#define MCL_DEFINE_GGX(P, S, F, F3, M, V)                                                                         \
   MCL_INLINE F P##ggx_d(F3 h, F alpha) {                                                                      \
     F a2 = alpha * alpha;                                                                                      \
     F t = h.z * h.z * (a2 - 1.0f) + 1.0f;                                                                      \
@@ -69,19 +74,16 @@ MCL_INLINE float ggx_alpha_from_ns(float ns) { return fmax(sqrt(2.0f / (ns + 2.0
     F r = P##ggx_g1(wo, alpha) * P##ggx_d(h, alpha) / (4.0f * wo.z);                                           \
     return vsel((wo.z > 0.0f) & (wi.z > 0.0f), r, (F)(0.0f));                                                  \
   }                                                                                                            \
-  MCL_INLINE F3 P##reflect_about(F3 w, F3 h) { return V##_sub(V##_scale(h, 2.0f * V##_dot(w, h)), w); }
-MCL_DEFINE_GGX(, mcl_, float, float3, f3)
+  MCL_INLINE F3 P##reflect_about(F3 w, F3 h) { return V##_sub(V##_scale(h, 2.0f * V##_dot(w, h)), w); }    \
+  MCL_INLINE F P##ggx_cosine_mix_pdf(F3 woL, F3 wiL, M above, F ps, F alpha) {                                \
+    M ok = above & (woL.z > 0.0f) & (wiL.z > 0.0f);                                                            \
+    F p = (1.0f - ps) * P##pdf_cosine_hemisphere(wiL.z) + ps * vsel(ok, P##ggx_pdf(woL, wiL, alpha), (F)(0.0f)); \
+    return vsel(ok, p, (F)(0.0f));                                                                             \
+  }                                                                                                            \
+  MCL_INLINE F3 P##ggx_cosine_mix_sample(F3 woL, M glossy, F alpha, F u1, F u2) {                             \
+    F3 hL = V##_select(woL.z > 0.0f, P##ggx_sample_visible_normal(woL, alpha, u1, u2),                         \
+                       V##_make((F)(0.0f), (F)(0.0f), (F)(1.0f)));                                             \
+    return V##_select(glossy, P##reflect_about(woL, hL), P##sample_cosine_hemisphere(u1, u2));                 \
+  }
+MCL_DEFINE_GGX(, mcl_, float, float3, int, f3)
 
-// A cosine lobe mixed with a GGX reflection lobe picked with probability ps (the kinds with a
-// diffuse base under a glossy lobe: metal_rough, coated_diffuse), in the shading frame (woL, wiL;
-// above: wi lies above the geometric surface). The mixture's solid-angle pdf, and the direction
-// drawn from the lobe `glossy` names.
-MCL_INLINE float ggx_cosine_mix_pdf(float3 woL, float3 wiL, int above, float ps, float alpha) {
-  int ok = above && woL.z > 0.0f && wiL.z > 0.0f;
-  float p = (1.0f - ps) * pdf_cosine_hemisphere(wiL.z) + ps * (ok ? ggx_pdf(woL, wiL, alpha) : 0.0f);
-  return ok ? p : 0.0f;
-}
-MCL_INLINE float3 ggx_cosine_mix_sample(float3 woL, int glossy, float alpha, float u1, float u2) {
-  float3 hL = woL.z > 0.0f ? ggx_sample_visible_normal(woL, alpha, u1, u2) : make_float3(0.0f, 0.0f, 1.0f);
-  return glossy ? reflect_about(woL, hL) : sample_cosine_hemisphere(u1, u2);
-}

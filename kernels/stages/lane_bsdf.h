@@ -1,44 +1,60 @@
 // lane_bsdf.h: the BSDF of W hits in lane types, for the packet stages: the material kinds written
-// once for floats and lanes (bsdf_conductor.h, bsdf_dielectric.h, microfacet.h, bsdf_common.h's
-// Fresnel terms) instantiated for lanes, and their dispatch under masks, with the Lambertian lobe
-// of stage_lanes.h. Reads the hits' material fields (LaneHits); writes nothing. At W = 1 every
+// once for floats and lanes (bsdf_conductor.h, bsdf_dielectric.h, bsdf_thin_dielectric.h,
+// bsdf_metal_rough.h, microfacet.h, bsdf_common.h's Fresnel terms) instantiated for lanes, and
+// their dispatch under masks, with the Lambertian lobe of stage_lanes.h. Reads the hits' material fields (LaneHits); writes nothing. At W = 1 every
 // mask test is the plain `if`; each lane performs the scalar functions' operations in order.
 #pragma once
 #include "stage_lanes.h"
 #include "direct_light.h"
 
-MCL_DEFINE_GGX(v_, v_, vfloat, vfloat3, v3)
+MCL_DEFINE_GGX(v_, v_, vfloat, vfloat3, vmask, v3)
 MCL_DEFINE_FRESNEL(v_, vfloat, vfloat3, v3)
 MCL_DEFINE_BSDF_SAMPLE_TYPE(vBsdfSample, vfloat, vfloat3, vmask)
 MCL_DEFINE_CONDUCTOR_TYPE(vConductorBsdf, vfloat, vfloat3, vmask)
 MCL_DEFINE_CONDUCTOR(v_, vfloat, vfloat3, vmask, v3, vConductorBsdf, LaneFrame, vBsdfSample)
 MCL_DEFINE_DIELECTRIC_TYPE(vDielectricBsdf, vfloat, vmask)
 MCL_DEFINE_DIELECTRIC(v_, vfloat, vfloat3, vmask, v3, vDielectricBsdf, LaneFrame, vBsdfSample)
+MCL_DEFINE_THIN_DIELECTRIC_TYPE(vThinDielectricBsdf, vfloat)
+MCL_DEFINE_THIN_DIELECTRIC(v_, vfloat, vfloat3, vmask, v3, vThinDielectricBsdf, LaneFrame, vBsdfSample)
+MCL_DEFINE_METAL_ROUGH_TYPE(vMetalRoughBsdf, vfloat, vfloat3)
+MCL_DEFINE_METAL_ROUGH(v_, vfloat, vfloat3, vmask, v3, vMetalRoughBsdf, LaneFrame, vBsdfSample)
 MCL_DEFINE_SHADOW_DIR_FROM(v_, vfloat, vfloat3, vmask, v3)
 
-// The BSDFs of a packet's hits (LaneHits: lamb, conductor, dielectric say which lane is which
-// kind; the parameters of the other kinds are read but never used).
+// The BSDFs of a packet's hits (LaneHits' masks say which lane is which kind; each kind's
+// parameters are made in every lane and read only in its own).
 typedef struct {
-  vmask lamb, conductor, dielectric;
+  vmask lamb, conductor, dielectric, thin, metalRough;
   vConductorBsdf cond;
   vDielectricBsdf diel;
+  vThinDielectricBsdf sheet;
+  vMetalRoughBsdf mr;
 } LaneBsdf;
 
-// <kind>_from_material per lane, from the materials' params0 and params1 (LaneHits).
-MCL_INLINE LaneBsdf lane_bsdf(const LaneHits* lh) {
+// The lanes shaded in lane types (the kinds above).
+MCL_INLINE vmask lane_bsdf_kinds(const LaneHits* lh) {
+  return lh->lamb | lh->conductor | lh->dielectric | lh->thin | lh->metalRough;
+}
+
+// <kind>_from_material per lane, from the materials' params0 and params1 (LaneHits) and the frame's
+// textured albedo (metal_rough's base colour).
+MCL_INLINE LaneBsdf lane_bsdf(const LaneHits* lh, LaneFrame s) {
   LaneBsdf b;
   b.lamb = lh->lamb;
   b.conductor = lh->conductor;
   b.dielectric = lh->dielectric;
+  b.thin = lh->thin;
+  b.metalRough = lh->metalRough;
   b.cond = v_conductor_make(v3_make(lh->params0.x, lh->params0.y, lh->params0.z),
                             v3_make(lh->params1.x, lh->params1.y, lh->params1.z), lh->params0.w);
   b.diel = v_dielectric_make(lh->params0.x, lh->params0.y);
+  b.sheet.ior = lh->params0.x;
+  b.mr = v_metal_rough_make(s.kd, lh->params0.x, lh->params0.y);
   return b;
 }
 
 // The lanes whose every lobe is a delta lobe (bsdf_is_delta): no light sample there.
 MCL_INLINE vmask lane_bsdf_delta(const LaneBsdf* b) {
-  return (b->conductor & b->cond.smooth) | (b->dielectric & b->diel.smooth);
+  return (b->conductor & b->cond.smooth) | (b->dielectric & b->diel.smooth) | b->thin;
 }
 
 // bsdf_eval (returned) and bsdf_pdf (*pdf) of wi at each lane (0 in lanes of no kind here).
@@ -54,6 +70,10 @@ MCL_INLINE vfloat3 lane_bsdf_eval_pdf(const LaneBsdf* b, LaneFrame s, vfloat3 wo
     vfloat d = v_dielectric_eval_pdf(b->diel, s, wo, wi, &dp);
     fc = v3_select(b->dielectric, v3_make(d, d, d), fc);
     p = vsel(b->dielectric, dp, p);
+  }
+  if (v_any(b->metalRough)) {
+    fc = v3_select(b->metalRough, v_metal_rough_eval(b->mr, s, wo, wi), fc);
+    p = vsel(b->metalRough, v_metal_rough_pdf(b->mr, s, wo, wi), p);
   }
   *pdf = p;
   return fc;
@@ -77,6 +97,20 @@ MCL_INLINE vBsdfSample lane_bsdf_sample(const LaneBsdf* b, LaneFrame s, vfloat3 
     r.weight = v3_select(b->dielectric, d.weight, r.weight);
     r.pdf = vsel(b->dielectric, d.pdf, r.pdf);
     r.flags = vsel(b->dielectric, d.flags, r.flags);
+  }
+  if (v_any(b->thin)) {
+    vBsdfSample t = v_thin_dielectric_sample(b->sheet, s, wo, u.x, u.y, u.w);
+    r.wi = v3_select(b->thin, t.wi, r.wi);
+    r.weight = v3_select(b->thin, t.weight, r.weight);
+    r.pdf = vsel(b->thin, t.pdf, r.pdf);
+    r.flags = vsel(b->thin, t.flags, r.flags);
+  }
+  if (v_any(b->metalRough)) {
+    vBsdfSample m = v_metal_rough_sample(b->mr, s, wo, u.x, u.y, u.w);
+    r.wi = v3_select(b->metalRough, m.wi, r.wi);
+    r.weight = v3_select(b->metalRough, m.weight, r.weight);
+    r.pdf = vsel(b->metalRough, m.pdf, r.pdf);
+    r.flags = vsel(b->metalRough, m.flags, r.flags);
   }
   return r;
 }

@@ -134,7 +134,7 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
   // The hit triangles, their materials, and the lanes taken in lane types (kinds: lane_bsdf.h's)
   // and from the triangle alone (flat).
   LaneHits lh = lane_hits(f, a->tris, a->normals, a->materials, a->hitInstances, first, lanes, hit, tri);
-  const vmask kinds = lh.lamb | lh.conductor | lh.dielectric, flat = lh.flat;
+  const vmask kinds = lane_bsdf_kinds(&lh), flat = lh.flat;
   vmask other = hit & v_not(kinds);  // other kinds: their surface and BSDF lane by lane (path_light_sample, path_continue)
   lane_tally(f, a->packedLanes, a->aloneLanes, &lh, kinds, hit);
 
@@ -222,7 +222,7 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
     LaneFrame sf = lane_frame(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first,
                               kinds & v_not(flat), pixel, sample, bounce, &lh, hu, hv, ht, dir);
     vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
-    const LaneBsdf lb = lane_bsdf(&lh);
+    const LaneBsdf lb = lane_bsdf(&lh, sf);
     const vfloat3 wo = v3_neg(dir);
     // The lanes of other kinds: surface_at, the offset origin and the path weight, lane by lane.
     Surface surfs[MCL_LANES];

@@ -290,15 +290,17 @@ MCL_INLINE vfloat v_luminance(vfloat3 c) { return 0.2126f * c.x + 0.7152f * c.y 
 // The hit triangles of a packet (lanes not in `hit` read entry 0, masked off by the caller), their
 // normals and the materials' fields the stage bodies read, and which lanes lane-type code takes:
 // lamb, the diffuse kind without a glossy lobe (bsdf_make's specular probability 0, computed as
-// it does); conductor and dielectric, those kinds (without a metallic-roughness texture, whose
-// parameters would be a lookup: hit_metal_rough); and of all three flat, whose frame comes from
-// the triangle alone (no shading normals, normal or bump map, nor an instance; for lamb no vertex
-// colours nor albedo texture either: the others' frame comes from surface_at).
+// it does); conductor, dielectric, thin_dielectric and metal_rough, those kinds (without a
+// metallic-roughness texture, whose parameters are a lookup, hit_metal_rough, nor metal_rough's
+// transmission, which picks another kind per sample, hit_transmission); tinted, the lanes whose
+// BSDF reads the textured albedo (lamb, metal_rough's base colour); and of them all flat, whose
+// frame comes from the triangle alone (no shading normals, normal or bump map, nor an instance,
+// and where tinted no vertex colours nor albedo texture: the others' frame comes from surface_at).
 typedef struct {
   vfloat3 v0, e1, e2, n, kd, ke;
   vfloat area, twoSided;  // normals[].w; Material::emission.w
   vuint tri, attrs, albedoTex;  // the triangle (0 where no hit), its MCL_ATTR_* flags, Kd's texture
-  vmask lamb, conductor, dielectric, flat;
+  vmask lamb, conductor, dielectric, thin, metalRough, tinted, flat;
   vmask placed;  // a normal or bump map, or an instance: the frame only through surface_at
   vfloat4 params0, params1;  // Material::params0, params1 (the kinds' own parameters)
 } LaneHits;
@@ -329,11 +331,15 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
   vmask plain = v_as_uint(kmy) == MCL_NO_TEXTURE;
   h.conductor = hit & plain & (kind == (uint)MCL_MATERIAL_conductor);
   h.dielectric = hit & plain & (kind == (uint)MCL_MATERIAL_dielectric);
+  h.thin = hit & plain & (kind == (uint)MCL_MATERIAL_thin_dielectric);
+  h.metalRough = hit & plain & (kind == (uint)MCL_MATERIAL_metal_rough);
   h.params0 = h.params1 = v4_make(v_f(0.0f), v_f(0.0f), v_f(0.0f), v_f(0.0f));
-  if (v_any(h.conductor | h.dielectric)) {
+  if (v_any(h.conductor | h.dielectric | h.thin | h.metalRough)) {
     v_gather4(mf + 16, mat, MCL_MATERIAL_FLOATS, &h.params0.x, &h.params0.y, &h.params0.z, &h.params0.w);
     v_gather4(mf + 20, mat, MCL_MATERIAL_FLOATS, &h.params1.x, &h.params1.y, &h.params1.z, &h.params1.w);
+    h.metalRough = h.metalRough & v_not(h.params1.x > 0.0f);  // hit_transmission's mix: per lane
   }
+  h.tinted = h.lamb | h.metalRough;
   h.tri = t;
   h.attrs = v_as_uint(e2w);
   h.albedoTex = v_as_uint(kdw);
@@ -343,9 +349,9 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
     for (uint j = 0; j < MCL_LANES; ++j) inst[j] = j < lanes ? hit_instance(f, hitInstances, first + j) : 0u;
     h.placed = h.placed | (v_loadu_lanes(inst) != MCL_NO_INSTANCE);
   }
-  vmask tinted = ((h.attrs & MCL_ATTR_COLOR) != 0u) | (h.albedoTex != MCL_NO_TEXTURE);
-  h.flat = (h.lamb | h.conductor | h.dielectric) & ((h.attrs & MCL_ATTR_NORMALS) == 0u) & v_not(h.placed) &
-           v_not(h.lamb & tinted);
+  vmask albedoVaries = ((h.attrs & MCL_ATTR_COLOR) != 0u) | (h.albedoTex != MCL_NO_TEXTURE);
+  h.flat = (h.tinted | h.conductor | h.dielectric | h.thin) & ((h.attrs & MCL_ATTR_NORMALS) == 0u) &
+           v_not(h.placed) & v_not(h.tinted & albedoVaries);
   return h;
 }
 
@@ -363,7 +369,8 @@ MCL_INLINE void lane_tally(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL volatil
 
 // The lanes set in `rich` of a frame whose other lanes are already set: each through the scalar
 // surface_at (in its hit's instance, hit_instance), for sample ref (pixel, sample, bounce) of the
-// lane; kd where the BSDF is the diffuse kind (the caller's masks say which kind from the material).
+// lane; kd, the textured albedo, where the BSDF reads one (the diffuse kind's kd, metal_rough's
+// base colour; the caller's masks say which kind from the material).
 MCL_INLINE LaneFrame lane_frame_rich(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const Hit* hits,
                                      MCL_GLOBAL const uint* hitInstances, MCL_GLOBAL const Ray* rays, uint first,
                                      vmask rich, vuint pixel, vuint sample, uint bounce, LaneFrame lf) {
@@ -391,6 +398,8 @@ MCL_INLINE LaneFrame lane_frame_rich(SurfaceScene sc, MCL_CONSTANT const FramePa
     sX[j] = s.frame.ns.x; sY[j] = s.frame.ns.y; sZ[j] = s.frame.ns.z;
     if (s.bsdf.kind == (uint)MCL_MATERIAL_diffuse) {
       kX[j] = s.bsdf.p.diffuse.kd.x; kY[j] = s.bsdf.p.diffuse.kd.y; kZ[j] = s.bsdf.p.diffuse.kd.z;
+    } else if (s.bsdf.kind == (uint)MCL_MATERIAL_metal_rough) {
+      kX[j] = s.bsdf.p.metal_rough.base.x; kY[j] = s.bsdf.p.metal_rough.base.y; kZ[j] = s.bsdf.p.metal_rough.base.z;
     }
     smo[j] = s.frame.smooth != 0;
     bf[j] = s.frame.backface != 0;
@@ -406,15 +415,15 @@ MCL_INLINE LaneFrame lane_frame_rich(SurfaceScene sc, MCL_CONSTANT const FramePa
 }
 
 // The lanes set in m (hits on world-space triangles without a normal or bump map) of a frame whose
-// flat part is set: surface_frame's shading normal and, for the Lambertian lanes, hit_albedo's
+// flat part is set: surface_frame's shading normal and, for the tinted lanes, hit_albedo's
 // vertex colour and albedo texture (trilinear, ray-cone footprint, hit_texture), in lanes, at
 // barycentrics hu, hv, distance ht.
 MCL_INLINE LaneFrame lane_frame_attributes(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, vmask m,
                                            const LaneHits* lh, vfloat hu, vfloat hv, vfloat ht, vfloat3 dir,
                                            LaneFrame lf) {
   vmask hasN = m & ((lh->attrs & MCL_ATTR_NORMALS) != 0u), hasUV = m & ((lh->attrs & MCL_ATTR_UV) != 0u);
-  vmask coloured = m & lh->lamb & ((lh->attrs & MCL_ATTR_COLOR) != 0u);
-  vmask textured = m & lh->lamb & (lh->albedoTex != MCL_NO_TEXTURE);
+  vmask coloured = m & lh->tinted & ((lh->attrs & MCL_ATTR_COLOR) != 0u);
+  vmask textured = m & lh->tinted & (lh->albedoTex != MCL_NO_TEXTURE);
   vfloat3 n0 = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f)), n1 = n0, n2 = n0;
   vfloat u0 = v_f(0.0f), u1 = u0, u2 = u0, t0 = u0, t1 = u0, t2 = u0, tw;
   if (v_any(hasN | hasUV)) {  // TriangleShading: corner normals, u in w; v of the corners in tv
