@@ -1,5 +1,5 @@
 // lane_bsdf.h: the BSDF of W hits in lane types, for the packet stages: the material kinds written
-// once for floats and lanes (bsdf_conductor.h, bsdf_dielectric.h, bsdf_thin_dielectric.h,
+// once for floats and lanes (bsdf_diffuse.h's glossy mixture, bsdf_conductor.h, bsdf_dielectric.h, bsdf_thin_dielectric.h,
 // bsdf_metal_rough.h, microfacet.h, bsdf_common.h's Fresnel terms) instantiated for lanes, and
 // their dispatch under masks, with the Lambertian lobe of stage_lanes.h. Reads the hits' material fields (LaneHits); writes nothing. At W = 1 every
 // mask test is the plain `if`; each lane performs the scalar functions' operations in order.
@@ -10,6 +10,8 @@
 MCL_DEFINE_GGX(v_, v_, vfloat, vfloat3, vmask, v3)
 MCL_DEFINE_FRESNEL(v_, vfloat, vfloat3, v3)
 MCL_DEFINE_BSDF_SAMPLE_TYPE(vBsdfSample, vfloat, vfloat3, vmask)
+MCL_DEFINE_DIFFUSE_TYPE(vDiffuseBsdf, vfloat, vfloat3)
+MCL_DEFINE_DIFFUSE_GLOSSY(v_, vfloat, vfloat3, vmask, v3, v_any, vDiffuseBsdf, LaneFrame, vBsdfSample)
 MCL_DEFINE_CONDUCTOR_TYPE(vConductorBsdf, vfloat, vfloat3, vmask)
 MCL_DEFINE_CONDUCTOR(v_, vfloat, vfloat3, vmask, v3, vConductorBsdf, LaneFrame, vBsdfSample)
 MCL_DEFINE_DIELECTRIC_TYPE(vDielectricBsdf, vfloat, vmask)
@@ -23,7 +25,8 @@ MCL_DEFINE_SHADOW_DIR_FROM(v_, vfloat, vfloat3, vmask, v3)
 // The BSDFs of a packet's hits (LaneHits' masks say which lane is which kind; each kind's
 // parameters are made in every lane and read only in its own).
 typedef struct {
-  vmask lamb, conductor, dielectric, thin, metalRough;
+  vmask lamb, glossy, conductor, dielectric, thin, metalRough;
+  vDiffuseBsdf gl;
   vConductorBsdf cond;
   vDielectricBsdf diel;
   vThinDielectricBsdf sheet;
@@ -32,14 +35,19 @@ typedef struct {
 
 // The lanes shaded in lane types (the kinds above).
 MCL_INLINE vmask lane_bsdf_kinds(const LaneHits* lh) {
-  return lh->lamb | lh->conductor | lh->dielectric | lh->thin | lh->metalRough;
+  return lh->lamb | lh->glossy | lh->conductor | lh->dielectric | lh->thin | lh->metalRough;
 }
 
 // <kind>_from_material per lane, from the materials' params0 and params1 (LaneHits) and the frame's
-// textured albedo (metal_rough's base colour).
+// textured albedo (the diffuse kind's kd, metal_rough's base colour).
 MCL_INLINE LaneBsdf lane_bsdf(const LaneHits* lh, LaneFrame s) {
   LaneBsdf b;
   b.lamb = lh->lamb;
+  b.glossy = lh->glossy;
+  b.gl.kd = s.kd;  // diffuse_from_material: diffuse_make's lobes, then kd the textured albedo
+  b.gl.ks = v3_make(lh->specular.x, lh->specular.y, lh->specular.z);
+  b.gl.alpha = fmax(lh->specAlpha, MCL_GGX_MIN_ALPHA);
+  b.gl.specProb = lh->specular.w;
   b.conductor = lh->conductor;
   b.dielectric = lh->dielectric;
   b.thin = lh->thin;
@@ -61,6 +69,10 @@ MCL_INLINE vmask lane_bsdf_delta(const LaneBsdf* b) {
 MCL_INLINE vfloat3 lane_bsdf_eval_pdf(const LaneBsdf* b, LaneFrame s, vfloat3 wo, vfloat3 wi, vfloat* pdf) {
   vfloat3 fc = v_lambert_eval(s.kd, s.ng, s.ns, s.smooth, wi);
   vfloat p = v_lambert_pdf(s.ng, s.ns, s.smooth, wi);
+  if (v_any(b->glossy)) {
+    fc = v3_select(b->glossy, v_glossy_eval(b->gl, s, wo, wi), fc);
+    p = vsel(b->glossy, v_glossy_pdf(b->gl, s, wo, wi), p);
+  }
   if (v_any(b->conductor)) {
     fc = v3_select(b->conductor, v_conductor_eval(b->cond, s, wo, wi), fc);
     p = vsel(b->conductor, v_conductor_pdf(b->cond, s, wo, wi), p);
@@ -84,6 +96,12 @@ MCL_INLINE vBsdfSample lane_bsdf_sample(const LaneBsdf* b, LaneFrame s, vfloat3 
   vBsdfSample r;
   r.wi = v_lambert_sample(s, u.x, u.y, &r.pdf, &r.weight);
   r.flags = (vmask)(0);  // a non-delta reflection
+  if (v_any(b->glossy)) {
+    vBsdfSample g = v_glossy_sample(b->gl, s, wo, u.x, u.y, u.w);
+    r.wi = v3_select(b->glossy, g.wi, r.wi);
+    r.weight = v3_select(b->glossy, g.weight, r.weight);
+    r.pdf = vsel(b->glossy, g.pdf, r.pdf);
+  }
   if (v_any(b->conductor)) {
     vBsdfSample c = v_conductor_sample(b->cond, s, wo, u.x, u.y, u.w);
     r.wi = v3_select(b->conductor, c.wi, r.wi);

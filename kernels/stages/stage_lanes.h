@@ -290,19 +290,21 @@ MCL_INLINE vfloat v_luminance(vfloat3 c) { return 0.2126f * c.x + 0.7152f * c.y 
 // The hit triangles of a packet (lanes not in `hit` read entry 0, masked off by the caller), their
 // normals and the materials' fields the stage bodies read, and which lanes lane-type code takes:
 // lamb, the diffuse kind without a glossy lobe (bsdf_make's specular probability 0, computed as
-// it does); conductor, dielectric, thin_dielectric and metal_rough, those kinds (without a
+// it does), glossy, that kind with one (specular: Ks, its alpha and that probability); conductor, dielectric, thin_dielectric and metal_rough, those kinds (without a
 // metallic-roughness texture, whose parameters are a lookup, hit_metal_rough, nor metal_rough's
 // transmission, which picks another kind per sample, hit_transmission); tinted, the lanes whose
-// BSDF reads the textured albedo (lamb, metal_rough's base colour); and of them all flat, whose
+// BSDF reads the textured albedo (the diffuse kind, metal_rough's base colour); and of them all flat, whose
 // frame comes from the triangle alone (no shading normals, normal or bump map, nor an instance,
 // and where tinted no vertex colours nor albedo texture: the others' frame comes from surface_at).
 typedef struct {
   vfloat3 v0, e1, e2, n, kd, ke;
   vfloat area, twoSided;  // normals[].w; Material::emission.w
   vuint tri, attrs, albedoTex;  // the triangle (0 where no hit), its MCL_ATTR_* flags, Kd's texture
-  vmask lamb, conductor, dielectric, thin, metalRough, tinted, flat;
+  vmask lamb, glossy, conductor, dielectric, thin, metalRough, tinted, flat;
   vmask placed;  // a normal or bump map, or an instance: the frame only through surface_at
   vfloat4 params0, params1;  // Material::params0, params1 (the kinds' own parameters)
+  vfloat4 specular;          // Ks and the glossy lobe's probability (diffuse_make's specProb)
+  vfloat specAlpha;          // the glossy lobe's alpha as the material holds it
 } LaneHits;
 
 MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const Triangle* tris,
@@ -328,6 +330,9 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
   vfloat specProb = vsel(ls > 0.0f, ls / (ls + ld), v_f(0.0f));
   vuint kind = v_as_uint(kaw);
   h.lamb = hit & (specProb == 0.0f) & (kind == (uint)MCL_MATERIAL_diffuse);
+  h.glossy = hit & v_not(specProb == 0.0f) & (kind == (uint)MCL_MATERIAL_diffuse);
+  h.specular = v4_make(ksx, ksy, ksz, specProb);
+  h.specAlpha = ksw;
   vmask plain = v_as_uint(kmy) == MCL_NO_TEXTURE;
   h.conductor = hit & plain & (kind == (uint)MCL_MATERIAL_conductor);
   h.dielectric = hit & plain & (kind == (uint)MCL_MATERIAL_dielectric);
@@ -339,7 +344,7 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
     v_gather4(mf + 20, mat, MCL_MATERIAL_FLOATS, &h.params1.x, &h.params1.y, &h.params1.z, &h.params1.w);
     h.metalRough = h.metalRough & v_not(h.params1.x > 0.0f);  // hit_transmission's mix: per lane
   }
-  h.tinted = h.lamb | h.metalRough;
+  h.tinted = h.lamb | h.glossy | h.metalRough;
   h.tri = t;
   h.attrs = v_as_uint(e2w);
   h.albedoTex = v_as_uint(kdw);
