@@ -34,8 +34,8 @@ PLATES = [("Smooth", 0.01, (345, 265, 935, 370)), ("Glossy", 0.05, (310, 382, 97
 # Copper, as the file gives it (Tungsten's "Cu").
 ETA, K = "0.200438, 0.924033, 1.102212", "3.912949, 2.452848, 2.142188"
 # label, distribution, the plates' reflectance factor, max depth (Mitsuba's convention; -1 unlimited)
-MODELS = [("file", "ggx", 1.0, -1), ("file, direct light only", "ggx", 1.0, 2),
-          ("Tungsten's", "beckmann", 0.3, 2)]
+MODELS = [("the file (GGX, factor 1), unlimited depth", "ggx", 1.0, -1), ("the file, direct light only", "ggx", 1.0, 2),
+          ("Tungsten's (Beckmann, 0.3), direct light only", "beckmann", 0.3, 2)]
 
 
 def numbers(text):
