@@ -24,6 +24,10 @@ pixel at the reference's 1024 x 1024 and 64 bounces (pbrt maxdepth 64, montecl -
 "and lamp" also gives the lamp Tungsten's "null" BSDF (light passes through it; pbrt's
 `interface`, written into a copy of the file in place of the conversion's opaque black `diffuse`).
 
+veach-mis's reference was rendered from Tungsten's own scene, whose plates (Beckmann, albedo 0.3) and
+direct-light-only setting the pbrt-v4 file cannot carry: its rows show what pbrt-v4's semantics give;
+scripts/veach_mis_model.py renders Tungsten's model (as Mitsuba XML) and shows the agreement.
+
 Reads EXR through Mitsuba 3's Bitmap: run with any python3, the script re-runs itself with the
 Mitsuba venv's python (scripts/setup.sh --mitsuba; $MONTECL_MITSUBA_VENV overrides). Exit 77 when
 that venv or the shared scenes are missing.
