@@ -3,7 +3,7 @@
 reference renders (TungstenRender.exr) per block of pixels; prints the table of docs/pbrt-format.md.
 
     scripts/vs_tungsten.py [--montecl build/montecl] [--scenes ../shared/scenes-pbrt] [--spp 1024]
-                           [--only NAME] [--device P:D|host]
+                           [--only NAME] [--size WxH] [--device P:D|host]
 
 Each row renders one scene with independent samples (`--sampler independent --seed 7`, so that a
 pixel's var / n is its squared standard error), the file's camera and materials and the row's depth
@@ -23,6 +23,10 @@ The rows "Tungsten's filter" render cornell-box with the settings of Tungsten's 
 pixel at the reference's 1024 x 1024 and 64 bounces (pbrt maxdepth 64, montecl --max-depth 65).
 "and lamp" also gives the lamp Tungsten's "null" BSDF (light passes through it; pbrt's
 `interface`, written into a copy of the file in place of the conversion's opaque black `diffuse`).
+
+veach-mis's reference was rendered from Tungsten's own scene, whose plates (Beckmann, albedo 0.3) and
+direct-light-only setting the pbrt-v4 file cannot carry: its rows show what pbrt-v4's semantics give;
+scripts/veach_mis_model.py renders Tungsten's model (as Mitsuba XML) and shows the agreement.
 
 Reads EXR through Mitsuba 3's Bitmap: run with any python3, the script re-runs itself with the
 Mitsuba venv's python (scripts/setup.sh --mitsuba; $MONTECL_MITSUBA_VENV overrides). Exit 77 when
@@ -65,7 +69,7 @@ def ensure_numpy_mitsuba():
         pass
     py = os.path.join(VENV, "bin", "python")
     if os.path.exists(py) and os.path.realpath(sys.prefix) != os.path.realpath(VENV):
-        os.execv(py, [py, os.path.abspath(__file__)] + sys.argv[1:])
+        os.execv(py, [py, os.path.abspath(sys.argv[0])] + sys.argv[1:])  # the script run, which may import this one
     print(f"vs_tungsten: needs numpy and Mitsuba 3 (no venv at {VENV}); run scripts/setup.sh --mitsuba",
           file=sys.stderr)
     sys.exit(EXIT_SKIP)
@@ -124,7 +128,8 @@ def compare(render, ref_path, up):
     m, r = blocks(lum, up), blocks(ref_lum, 1)
     se = np.sqrt(blocks(var, up) / (BLOCK * up) ** 2)
     rel = np.abs(m - r) / np.maximum(r, 1e-6)
-    z = np.abs(m - r) / np.sqrt(se ** 2 + (FLOOR * r) ** 2)
+    sz = np.sqrt(se ** 2 + (FLOOR * r) ** 2)
+    z = np.abs(m - r) / np.where(sz > 0, sz, 1.0)  # a block black in both (no samples' spread): z 0
     worst = np.unravel_index(np.argmax(z), z.shape)
     return {
         "mean": (m.sum() - r.sum()) / r.sum(),
@@ -142,8 +147,11 @@ def main():
     p.add_argument("--scenes", default=os.path.join(os.path.dirname(ROOT), "shared", "scenes-pbrt"))
     p.add_argument("--spp", type=int, default=1024)
     p.add_argument("--only", help="rows of this scene only (cornell-box, veach-mis)")
+    p.add_argument("--size", help="compared size WxH for every row (default: each row's own); it must divide the reference's")
     p.add_argument("--device", help="montecl's --device (default: its own choice)")
     a = p.parse_args()
+    if a.size and not re.fullmatch(r"[1-9][0-9]*x[1-9][0-9]*", a.size):
+        p.error(f"--size {a.size}: give WxH, e.g. 320x180")
     if not os.path.isdir(a.scenes):
         print(f"vs_tungsten: no shared pbrt scenes at {a.scenes}", file=sys.stderr)
         return EXIT_SKIP
@@ -155,6 +163,8 @@ def main():
         for label, name, w, h, up, filt, depth, lamp in ROWS:
             if a.only and name != a.only:
                 continue
+            if a.size:
+                w, h = (int(v) for v in a.size.split("x"))
             scene = os.path.join(a.scenes, name, "scene-v4.pbrt")
             if lamp:
                 scene = tungsten_lamp_copy(scene, tmp)

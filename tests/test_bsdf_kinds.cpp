@@ -1,5 +1,6 @@
 // test_bsdf_kinds.cpp: the conductor, dielectric, thin_dielectric and metal_rough kinds
 // (kernels/shared/bsdf_<kind>.h), compiled as C++: the exact Fresnel terms against closed forms,
+// the conductor's Beckmann lobe (microfacet_beckmann.h) against its closed forms and its factor,
 // chi-square tests of the rough lobes' samplers against their pdfs (failing against a wrong pdf),
 // reciprocity of f, white furnaces (reflectance <= 1), and the delta lobes: eval and pdf 0, the
 // mirror's weight F, the smooth dielectric from both sides (reflection picked with probability F,
@@ -32,6 +33,12 @@ MaterialDesc conductorDesc(float alpha) {
   d.eta = glm::vec3(0.143f, 0.375f, 1.442f);  // gold
   d.k = glm::vec3(3.983f, 2.386f, 1.603f);
   d.kindAlpha = alpha;
+  return d;
+}
+MaterialDesc beckmannDesc(float alpha, glm::vec3 factor = glm::vec3(1.0f)) {
+  MaterialDesc d = conductorDesc(alpha);
+  d.beckmann = true;
+  d.conductorFactor = factor;
   return d;
 }
 MaterialDesc metalRoughDesc(glm::vec3 base, float metallic, float roughness) {
@@ -76,6 +83,7 @@ TEST_CASE("bsdf: rough conductor and metal_rough samplers pass chi-square agains
   };
   const Case cases[] = {
       {"conductor alpha 0.3", conductorDesc(0.3f), conductorDesc(0.36f)},
+      {"conductor Beckmann alpha 0.3", beckmannDesc(0.3f), beckmannDesc(0.36f)},
       {"metal_rough dielectric r 0.5", metalRoughDesc(glm::vec3(0.6f, 0.5f, 0.4f), 0.0f, 0.5f),
        metalRoughDesc(glm::vec3(0.6f, 0.5f, 0.4f), 0.0f, 0.6f)},
       {"metal_rough metal r 0.4", metalRoughDesc(glm::vec3(0.9f, 0.6f, 0.3f), 1.0f, 0.4f),
@@ -100,7 +108,9 @@ TEST_CASE("bsdf: conductor and metal_rough are reciprocal; white furnaces reflec
   const SurfaceFrame s = montecl_test::flatBsdfFrame(0);
   MaterialDesc white = conductorDesc(0.5f);
   white.eta = glm::vec3(0.0f), white.k = glm::vec3(1.0f);  // F = 1 at every angle
-  const MaterialDesc descs[] = {conductorDesc(0.2f), white, metalRoughDesc(glm::vec3(1.0f), 0.0f, 1.0f),
+  MaterialDesc whiteBeckmann = white;
+  whiteBeckmann.beckmann = true;
+  const MaterialDesc descs[] = {conductorDesc(0.2f), white, beckmannDesc(0.2f), whiteBeckmann, metalRoughDesc(glm::vec3(1.0f), 0.0f, 1.0f),
                                 metalRoughDesc(glm::vec3(1.0f), 1.0f, 0.3f), metalRoughDesc(glm::vec3(1.0f), 0.5f, 0.7f)};
   for (const MaterialDesc& d : descs) {
     const Bsdf b = make(d);
@@ -125,6 +135,75 @@ TEST_CASE("bsdf: conductor and metal_rough are reciprocal; white furnaces reflec
         CHECK(r[k].mean <= 1.0 + 4.0 * r[k].standardError());
         CHECK(r[k].mean > 0.3);  // and it reflects (a broken sampler absorbing everything fails)
       }
+    }
+  }
+}
+
+TEST_CASE("bsdf: Beckmann conductor: D normalised, Lambda within 0.35% of the erf form, f the closed form, "
+          "sampled reflectance = the quadrature of f cos; the factor scales F" * doctest::test_suite("cpu")) {
+  for (float alpha : {0.05f, 0.25f, 0.6f}) {  // integral of D cos over the hemisphere, z = cos theta
+    const int n = 20000;
+    double sum = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const double z = (i + 0.5) / n;
+      sum += beckmann_d(chiDirFromAngles(std::acos(z), 0.0), alpha) * z * 2.0 * M_PI / n;
+    }
+    INFO("alpha " << alpha);
+    CHECK(sum == doctest::Approx(1.0).epsilon(2e-3));
+  }
+  double worst = 0.0;  // G1 = 1 / (1 + Lambda) against the exact Lambda(a) = (erf(a) - 1) / 2 + e^-a^2 / (2 a sqrt(pi))
+  for (double a = 0.05; a < 3.0; a += 0.01) {
+    const double alpha = 0.3, theta = std::atan(1.0 / (a * alpha));
+    const double exact = 0.5 * (std::erf(a) - 1.0) + std::exp(-a * a) / (2.0 * a * std::sqrt(M_PI));
+    const double g1 = 1.0 / (1.0 + beckmann_lambda(chiDirFromAngles(theta, 0.7), float(alpha)));
+    worst = std::max(worst, std::fabs(g1 * (1.0 + exact) - 1.0));
+  }
+  CHECK(worst < 0.0035);
+  const SurfaceFrame s = montecl_test::flatBsdfFrame(0);
+  const MaterialDesc d = beckmannDesc(0.25f);
+  const Bsdf b = make(d);
+  {  // f through the material record is F(wo.h) D G2 / (4 cos_o cos_i), in double
+    const float3 wo = chiDirFromAngles(0.9, 0.2), wi = chiDirFromAngles(0.6, 2.9);
+    const float3 h = normalize(wo + wi);
+    const double D = std::exp(-(1.0 - h.z * h.z) / (h.z * h.z) / 0.0625) / (M_PI * 0.0625 * std::pow(double(h.z), 4));
+    const double G2 = 1.0 / (1.0 + beckmann_lambda(wo, 0.25f) + beckmann_lambda(wi, 0.25f));
+    const float3 f = bsdf_f(b, s, wo, wi);
+    for (int k = 0; k < 3; ++k)
+      CHECK(f[k] == doctest::Approx(fresnel_conductor1(dot(wo, h), d.eta[k], d.k[k]) * D * G2 / (4.0 * wo.z * wi.z)).epsilon(1e-4));
+  }
+  for (double thetaO : {0.3, 1.2}) {  // the sampler's mean weight is the reflectance f cos integrates to
+    const float3 wo = chiDirFromAngles(thetaO, 0.5);
+    RunningStats r;
+    for (int i = 0; i < 200000; ++i) {
+      const float4 u = rng_uniform4(31u, uint(i), 2u, 0u);
+      const BsdfSample bs = bsdf_sample(b, s, wo, u.x, u.y, u.z);
+      r.add(bs.pdf > 0.0f ? double(bs.weight.y) : 0.0);
+    }
+    double quad = 0.0;
+    const int nz = 800, nphi = 800;
+    for (int i = 0; i < nz; ++i)
+      for (int j = 0; j < nphi; ++j) {
+        const float3 wi = chiDirFromAngles(std::acos((i + 0.5) / nz), 2.0 * M_PI * (j + 0.5) / nphi);
+        quad += double(bsdf_eval(b, s, wo, wi).y) * (2.0 * M_PI) / (double(nz) * nphi);
+      }
+    INFO("theta_o " << thetaO << ": sampled " << r.mean << " +- " << r.standardError() << ", quadrature " << quad);
+    CHECK(std::fabs(r.mean - quad) < 4.0 * r.standardError() + 2e-3 * quad);
+  }
+  {  // the factor multiplies F: f, the sample weights (rough and mirror) and the albedo AOV
+    const glm::vec3 factor(0.3f, 0.5f, 0.7f);
+    const float3 wo = chiDirFromAngles(0.5, 0.1), wi = chiDirFromAngles(0.7, 3.0);
+    for (bool rough : {true, false}) {
+      MaterialDesc one = beckmannDesc(rough ? 0.25f : 0.0f), scaled = beckmannDesc(rough ? 0.25f : 0.0f, factor);
+      const Bsdf b1 = make(one), b3 = make(scaled);
+      const BsdfSample s1 = bsdf_sample(b1, s, wo, 0.3f, 0.6f, 0.5f), s3 = bsdf_sample(b3, s, wo, 0.3f, 0.6f, 0.5f);
+      const float3 a1 = bsdf_albedo(b1), a3 = bsdf_albedo(b3);
+      for (int k = 0; k < 3; ++k) {
+        INFO("rough " << rough << " channel " << k);
+        CHECK(s3.weight[k] == doctest::Approx(s1.weight[k] * factor[k]).epsilon(1e-6));
+        CHECK(a3[k] == doctest::Approx(a1[k] * factor[k]).epsilon(1e-6));
+        if (rough) CHECK(bsdf_f(b3, s, wo, wi)[k] == doctest::Approx(bsdf_f(b1, s, wo, wi)[k] * factor[k]).epsilon(1e-6));
+      }
+      CHECK(s1.weight.y > 0.0f);
     }
   }
 }

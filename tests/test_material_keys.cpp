@@ -1,6 +1,6 @@
 // test_material_keys.cpp: the material kinds' scene keys and loader mappings: a scene file's
 // conductor / dielectric / metal_rough keys land in MaterialDesc (a metal name picks its RGB eta,
-// k; roughness squares into alpha), bad values exit 2 through the CLI with one line naming the key
+// k; roughness squares into alpha; the conductor's distribution and specular_reflectance), bad values exit 2 through the CLI with one line naming the key
 // and write no output; MTL illum 7 + Ni -> dielectric (no 'Ni'/'illum' warning), Pm / Pr ->
 // metal_rough; glTF metallic/roughness factors -> metal_rough, the (1, 1) defaults stay diffuse.
 #include <doctest/doctest.h>
@@ -43,6 +43,12 @@ TEST_CASE("material keys: conductor metal / roughness, dielectric ior, metal_rou
   CHECK(c.eta.x == doctest::Approx(0.201005f));
   CHECK(c.k.z == doctest::Approx(2.14209f));
   CHECK(c.kindAlpha == doctest::Approx(0.25f));
+  CHECK(!c.beckmann);  // GGX unless asked
+  CHECK(c.conductorFactor == glm::vec3(1.0f));
+  s = loadScene(sceneWith(dir, R"({"type": "conductor", "metal": "Cu", "alpha": 0.1, "distribution": "beckmann",
+                                   "specular_reflectance": [0.3, 0.3, 0.3]})"), warnings);
+  CHECK(s.materials.back().beckmann);
+  CHECK(s.materials.back().conductorFactor == glm::vec3(0.3f));
   s = loadScene(sceneWith(dir, R"({"type": "dielectric", "ior": 1.33})"), warnings);
   CHECK(s.materials.back().kind == std::uint32_t(MCL_MATERIAL_dielectric));
   CHECK(s.materials.back().ior == doctest::Approx(1.33f));
@@ -65,6 +71,8 @@ TEST_CASE("material keys: bad values exit 2 with one line naming the key, no out
       {R"({"type": "glass"})", "material.type"},
       {R"({"type": "conductor", "metal": "Pt"})", "material.metal"},
       {R"({"type": "conductor", "metal": "Au", "eta": [1, 1, 1]})", "material.eta"},
+      {R"({"type": "conductor", "distribution": "phong"})", "material.distribution"},
+      {R"({"type": "conductor", "specular_reflectance": [0.3, -1, 0.3]})", "material.specular_reflectance"},
   };
   for (const auto& row : bad) {
     const auto& material = std::get<0>(row);

@@ -184,6 +184,17 @@ TEST_CASE("mitsuba: BSDFs map to montecl's kinds" * doctest::test_suite("cpu mit
   CHECK(m.kind == MCL_MATERIAL_conductor);
   CHECK(m.kindAlpha == doctest::Approx(0.2f));
   CHECK(m.eta.x == doctest::Approx(0.143036f));
+  CHECK(m.beckmann);  // Mitsuba's default distribution, rendered as such
+  CHECK(m.conductorFactor == glm::vec3(1.0f));
+  CHECK(!anyWarning(w, "read as GGX"));
+  m = material("<bsdf type=\"roughconductor\"><string name=\"distribution\" value=\"ggx\"/>"
+               "<rgb name=\"specular_reflectance\" value=\"0.3 0.4 0.5\"/></bsdf>", &w);
+  CHECK(!m.beckmann);
+  CHECK(m.conductorFactor == glm::vec3(0.3f, 0.4f, 0.5f));
+  CHECK(!anyWarning(w, "specular_reflectance"));
+  CHECK_THROWS_AS(material("<bsdf type=\"conductor\"><float name=\"specular_reflectance\" value=\"-1\"/></bsdf>"),
+                  montecl::InputError);
+  material("<bsdf type=\"roughdielectric\"/>", &w);  // a dielectric's Beckmann is still read as GGX
   CHECK(anyWarning(w, "the beckmann distribution is read as GGX"));
   m = material("<bsdf type=\"roughplastic\"><rgb name=\"diffuse_reflectance\" value=\"0.1 0.2 0.3\"/><float name=\"alpha\" value=\"0.25\"/></bsdf>", &w);
   CHECK(m.kind == MCL_MATERIAL_metal_rough);

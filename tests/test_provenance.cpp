@@ -135,6 +135,17 @@ TEST_CASE("provenance: the scene digest follows content, not paths or image size
   t = s;
   t.camera.fovY = 40.0f;
   CHECK(sceneDigest(t) != d);
+  t = s;  // a conductor's distribution and factor are part of what it renders
+  t.materials[0].kind = MCL_MATERIAL_conductor;
+  const std::string conductor = sceneDigest(t);
+  t.materials[0].beckmann = true;
+  CHECK(sceneDigest(t) != conductor);
+  t.materials[0].beckmann = false;
+  t.materials[0].conductorFactor = glm::vec3(0.3f);
+  const std::string factor = sceneDigest(t);
+  CHECK(factor != conductor);
+  t.materials[0].conductorFactor = glm::vec3(0.4f);
+  CHECK(sceneDigest(t) != factor);
   RenderSettings r;
   RenderSettings r2 = r;
   r2.aoSampling = AoSampling::Uniform;

@@ -307,6 +307,12 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
     finishScene(delta);
     if (direct) cases.push_back({"glass-mirror/direct-mis", withDirect(delta, DirectSampling::Mis, 2), nullptr, false});
     else cases.push_back({"glass-metal/path", withPath(delta, 1), nullptr, false});
+    if (!direct) {  // the gold as Tungsten's and Mitsuba's rough metal: Beckmann, a factor on F
+      Scene beckmann = delta;
+      beckmann.materials[2].beckmann = true;
+      beckmann.materials[2].conductorFactor = {0.8f, 0.9f, 0.3f};
+      cases.push_back({"glass-metal-beckmann/path", withPath(beckmann, 1), nullptr, false});
+    }
   }
   cases.push_back(texturedCase(withDirect(light, DirectSampling::Mis, 2), "textured-cutout/direct-mis"));
   cases.push_back(texturedCase(withAo(light, AoSampling::Cosine), "textured-cutout/ao-cosine"));

@@ -18,7 +18,8 @@ Material deviceMaterial(const MaterialDesc& m) {
   switch (m.kind) {
     case MCL_MATERIAL_conductor:
       d.params0 = glm::vec4(m.eta, m.kindAlpha);
-      d.params1 = glm::vec4(m.k, 0.0f);
+      d.params1 = glm::vec4(m.k, m.beckmann ? 1.0f : 0.0f);
+      d.specular = glm::vec4(m.conductorFactor, 0.0f);  // bsdf_conductor.h: the factor on F
       break;
     case MCL_MATERIAL_dielectric: d.params0 = glm::vec4(m.ior, m.kindAlpha, 0.0f, 0.0f); break;
     case MCL_MATERIAL_thin_dielectric: d.params0 = glm::vec4(m.ior, 0.0f, 0.0f, 0.0f); break;

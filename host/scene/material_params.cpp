@@ -93,6 +93,15 @@ bool parseKindParams(const JsonCtx& ctx, const json& j, const std::string& prefi
     d.kindAlpha = d.roughness * d.roughness;
   }
   if (const json* v = optionalKey(j, "metallic")) any = true, d.metallic = unitKey(ctx, *v, prefix + ".metallic");
+  // conductor: the microfacets (Mitsuba's and Tungsten's "beckmann", or "ggx") and a factor on F.
+  if (const json* v = optionalKey(j, "distribution")) {
+    any = true;
+    const std::string name = getString(ctx, *v, prefix + ".distribution", "\"ggx\" or \"beckmann\"");
+    if (name != "ggx" && name != "beckmann") jsonFail(ctx, prefix + ".distribution", "must be \"ggx\" or \"beckmann\"");
+    d.beckmann = name == "beckmann";
+  }
+  if (const json* v = optionalKey(j, "specular_reflectance"))
+    any = true, d.conductorFactor = getColor(ctx, *v, prefix + ".specular_reflectance");
   // coated_diffuse's layer: thickness > 0; the walk's bounce limit and walks per evaluation.
   if (const json* v = optionalKey(j, "thickness")) {
     any = true;

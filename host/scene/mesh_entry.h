@@ -23,7 +23,7 @@ struct MaterialOverride {
   bool kind = false, albedo = false, albedoTexture = false, alphaTexture = false, alphaCutoff = false,
        emission = false, twoSided = false, specular = false, specularExponent = false,
        emissionTexture = false, normalTexture = false, normalScale = false, metallicRoughnessTexture = false,
-       kindParams = false;  // eta, k, ior, kindAlpha, metallic, roughness (given with the type)
+       kindParams = false;  // eta, k, ior, kindAlpha, metallic, roughness, ... (given with the type)
   MaterialDesc value;
   bool any() const {
     return kind || albedo || albedoTexture || alphaTexture || alphaCutoff || emission || twoSided || specular ||

@@ -41,11 +41,14 @@ double iorOf(const MiProps& p, const std::string& name, double fallback) {
   return ior;
 }
 
-// GGX alpha of a rough BSDF (alpha, or alpha_u / alpha_v: their geometric mean, warned).
-float roughness(MiContext& c, const MiProps& p) {
+// The alpha of a rough BSDF (alpha, or alpha_u / alpha_v: their geometric mean, warned), for GGX;
+// *beckmann (the conductor, which has both distributions) is set for Mitsuba's "beckmann" (its
+// default), else that distribution is read as GGX of the same alpha with a warning.
+float roughness(MiContext& c, const MiProps& p, bool* beckmann = nullptr) {
   const std::string dist = p.getString("distribution", "beckmann");
-  if (dist != "ggx")
-    c.warn(p.locOf("distribution"), p.type + ": montecl's rough surfaces are GGX; the " + oneLine(dist, 20) + " distribution is read as GGX of the same alpha");
+  if (beckmann && (dist == "beckmann" || dist == "ggx")) *beckmann = dist == "beckmann";
+  else if (dist != "ggx")
+    c.warn(p.locOf("distribution"), p.type + ": montecl's rough surfaces here are GGX; the " + oneLine(dist, 20) + " distribution is read as GGX of the same alpha");
   p.find("sample_visible");
   double a = 0.1;  // Mitsuba's default
   if (p.find("alpha_u") || p.find("alpha_v")) {
@@ -84,8 +87,12 @@ void conductor(MiContext& c, const MiProps& p, MaterialDesc& d) {
     c.warn(p.locOf("material"), p.type + ": material '" + oneLine(metal, 40) + "' not among montecl's metals (Au, Ag, Cu, Al, Cr); a perfect mirror is used");
   miColourInto(c, p, "eta", &d.eta, nullptr, nullptr);
   miColourInto(c, p, "k", &d.k, nullptr, nullptr);
-  if (p.type == "roughconductor") d.kindAlpha = roughness(c, p);
-  warnScaled(c, p, "specular_reflectance");
+  if (p.type == "roughconductor") d.kindAlpha = roughness(c, p, &d.beckmann);
+  if (miColourInto(c, p, "specular_reflectance", &d.conductorFactor, nullptr, nullptr)) {
+    const glm::vec3 f = d.conductorFactor;
+    if (!(f.x >= 0.0f && f.y >= 0.0f && f.z >= 0.0f && std::isfinite(f.x + f.y + f.z)))
+      mitsubaFail(p.locOf("specular_reflectance"), p.type + ": 'specular_reflectance' must be finite and >= 0");
+  }
 }
 
 // plastic / roughplastic: a dielectric coat over a diffuse base, as montecl's metal_rough with

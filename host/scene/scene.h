@@ -69,6 +69,11 @@ struct MaterialDesc {
   glm::vec3 eta{0.0f}, k{1.0f};  // conductor: complex IOR (default eta 0, k 1: a perfect mirror)
   float ior = 1.5f;               // dielectric, thin_dielectric: inside / outside
   float kindAlpha = 0.0f;         // conductor, dielectric: GGX alpha (0: smooth)
+  // conductor: Beckmann microfacets of alpha kindAlpha in place of GGX (Mitsuba's and Tungsten's
+  // default distribution), and a factor on its Fresnel term (Mitsuba's specular_reflectance,
+  // Tungsten's albedo).
+  bool beckmann = false;
+  glm::vec3 conductorFactor{1.0f};
   float metallic = 0.0f, roughness = 1.0f;  // metal_rough (glTF factors)
   // coated_diffuse (pbrt-v4's layered coat over a Lambertian base of reflectance `albedo`; the coat
   // is a dielectric of index `ior`, GGX `kindAlpha`): the thickness of the clear layer between the

@@ -128,6 +128,10 @@ std::string sceneDigest(const Scene& scene) {
         append(bytes, layer, sizeof layer);
       }
       if (m.kind == MCL_MATERIAL_coated_conductor) append(bytes, &m.baseAlpha, sizeof m.baseAlpha);
+      if (m.kind == MCL_MATERIAL_conductor && (m.beckmann || m.conductorFactor != glm::vec3(1.0f))) {
+        bytes.add(m.beckmann ? "beckmann" : "ggx");  // only then: other scenes keep their digests
+        appendVec(bytes, m.conductorFactor);
+      }
     }
   }
   if (scene.environment.enabled) {  // the map by its content

@@ -26,7 +26,7 @@
 // refraction's solid-angle ratio cos_o / (ior^2 cos_t)); the weight is eval / pdf with eval's
 // estimate, unbiased because eval is.
 #pragma once
-#include "bsdf_coated_diffuse.h"  // coated_exp_neg
+#include "bsdf_coated_diffuse.h"
 #include "bsdf_common.h"
 #include "microfacet.h"
 #include "rng.h"
@@ -83,7 +83,7 @@ MCL_INLINE float3 coated_conductor_walk(CoatedConductorBsdf b, float3 woL, float
   float fo = fresnel_dielectric(woL.z, b.ior, &ct), fi = fresnel_dielectric(wiL.z, b.ior, &ct);
   float3 wiIn = coated_conductor_inside(b, wiL);
   float3 beta = make_float3(1.0f, 1.0f, 1.0f) * ((1.0f - fo) / (b.ior * b.ior));
-  float exitWeight = coated_exp_neg(b.thickness / fmax(wiIn.z, 1e-7f)) * (1.0f - fi);
+  float exitWeight = mcl_exp_neg(b.thickness / fmax(wiIn.z, 1e-7f)) * (1.0f - fi);
   float3 f = make_float3(0.0f, 0.0f, 0.0f);
   float3 v = coated_conductor_inside(b, woL);  // toward the viewer's side, seen from the base
   uint visits = (b.maxDepth + 1u) / 2u;        // a visit is two events: the base and the coat
@@ -95,14 +95,14 @@ MCL_INLINE float3 coated_conductor_walk(CoatedConductorBsdf b, float3 woL, float
       if (u32_to_unit(r.x) < q) break;
       beta = beta * (1.0f / (1.0f - q));
     }
-    beta = beta * coated_exp_neg(b.thickness / fmax(v.z, 1e-7f));  // down to the base
+    beta = beta * mcl_exp_neg(b.thickness / fmax(v.z, 1e-7f));  // down to the base
     f = f + beta * coated_conductor_base_f(b, v, wiIn) * exitWeight;
     float3 h = ggx_sample_visible_normal(v, b.baseAlpha, u32_to_unit(r.y), u32_to_unit(r.z));
     float3 u = reflect_about(v, h);
     float up = u.z > 0.0f ? 1.0f : 0.0f;
     float3 fr = fresnel_conductor(fmin(fmax(dot(v, h), 0.0f), 1.0f), b.eta, b.k);
     beta = beta * fr * (up * ggx_g2(v, u, b.baseAlpha) / ggx_g1(v, b.baseAlpha));
-    beta = beta * coated_exp_neg(b.thickness / fmax(u.z, 1e-7f));  // up to the coat
+    beta = beta * mcl_exp_neg(b.thickness / fmax(u.z, 1e-7f));  // up to the coat
     beta = beta * fresnel_dielectric(fmax(u.z, 0.0f), 1.0f / b.ior, &ct);
     v = make_float3(-u.x, -u.y, u.z);  // mirrored by the flat underside, seen from the base again
     if (!(fmax(beta.x, fmax(beta.y, beta.z)) > 0.0f)) break;

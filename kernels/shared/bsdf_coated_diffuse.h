@@ -27,6 +27,7 @@
 // eval / pdf with eval's estimate, unbiased because eval is.
 #pragma once
 #include "bsdf_common.h"
+#include "exp_neg.h"
 #include "microfacet.h"
 #include "rng.h"
 
@@ -58,18 +59,6 @@ MCL_INLINE int coated_diffuse_is_delta(CoatedDiffuseBsdf b) {
 // The albedo AOV: the base's colour (what a denoiser should see under a clear coat).
 MCL_INLINE float3 coated_diffuse_albedo(CoatedDiffuseBsdf b) { return b.base; }
 
-// exp(-x) for x >= 0 with + - * only (the built-in exp differs between devices): 2^-n by the
-// exponent bits, and e^-t for t = the rest in [0, ln 2) by its Taylor series to t^9 (relative
-// error below 2e-8).
-MCL_INLINE float coated_exp_neg(float x) {
-  float y = fmin(x * 1.44269504f, 200.0f);  // past 126 the result is 0; the cast stays in range (NaN: 200)
-  int n = (int)y;
-  float t = (y - (float)n) * 0.693147181f;
-  float p = 1.0f - t * (1.0f - t * (0.5f - t * (1.0f / 6.0f - t * (1.0f / 24.0f - t * (1.0f / 120.0f - t * (1.0f / 720.0f - t * (1.0f / 5040.0f - t * (1.0f / 40320.0f - t * (1.0f / 362880.0f)))))))));
-  float scale = as_float((uint)(127 - (n < 126 ? n : 126)) << 23);
-  return n >= 126 ? 0.0f : p * scale;
-}
-
 // Fresnel reflectance from outside at cos c (> 0), and from inside the coat.
 MCL_INLINE float coated_fresnel_out(CoatedDiffuseBsdf b, float c) {
   float ct;
@@ -87,7 +76,7 @@ MCL_INLINE float3 coated_diffuse_walk(CoatedDiffuseBsdf b, float cosO, float cos
   float fo = coated_fresnel_out(b, cosO), fi = coated_fresnel_out(b, cosI);
   float co = coated_cos_inside(b, cosO), ci = coated_cos_inside(b, cosI);
   float3 beta = make_float3(1.0f, 1.0f, 1.0f) * ((1.0f - fo) / (b.eta * b.eta));
-  float3 exitWeight = b.base * (MCL_INV_PI * coated_exp_neg(b.thickness / ci) * (1.0f - fi));
+  float3 exitWeight = b.base * (MCL_INV_PI * mcl_exp_neg(b.thickness / ci) * (1.0f - fi));
   float3 f = make_float3(0.0f, 0.0f, 0.0f);
   float c = co;       // cosine of the walk's direction inside the layer
   int atBase = 0;     // the walk starts just under the coat, heading down
@@ -99,7 +88,7 @@ MCL_INLINE float3 coated_diffuse_walk(CoatedDiffuseBsdf b, float cosO, float cos
       if (u32_to_unit(r.x) < q) break;
       beta = beta * (1.0f / (1.0f - q));
     }
-    beta = beta * coated_exp_neg(b.thickness / c);
+    beta = beta * mcl_exp_neg(b.thickness / c);
     atBase = !atBase;
     if (atBase) {
       f = f + beta * exitWeight;

@@ -39,6 +39,7 @@ typedef ulong vulong;
 #define v_as_int(x) ((int)(x))
 #define v_int_as_uint(x) ((uint)(x))
 #define v_cvt_f_u(x) ((float)(x))
+#define v_cvt_f_i(x) ((float)(x))
 #define v_cvt_f_ul(x) ((float)(x))
 #define v_cvt_i_f(x) ((int)(x))
 #define v_cvt_u_f(x) ((uint)(x))
@@ -83,6 +84,7 @@ typedef MCL_LANES_CAT(ulong, MCL_LANES) vulong;
 #define v_int_as_uint(x) MCL_LANES_CAT(as_uint, MCL_LANES)(x)
 // Conversions with C's rounding: integer -> float to nearest, float -> integer toward zero.
 #define v_cvt_f_u(x) MCL_LANES_CAT(convert_float, MCL_LANES)(x)
+#define v_cvt_f_i(x) MCL_LANES_CAT(convert_float, MCL_LANES)(x)
 #define v_cvt_f_ul(x) MCL_LANES_CAT(convert_float, MCL_LANES)(x)
 #define v_cvt_i_f(x) MCL_LANES_CAT(convert_int, MCL_LANES)(x)
 #define v_cvt_u_f(x) MCL_LANES_CAT(convert_uint, MCL_LANES)(x)

@@ -17,7 +17,7 @@
 // before kinds existed) is that kind.
 #define MCL_MATERIAL_KINDS(KIND)                                                                   \
   KIND(diffuse, DiffuseBsdf) /* Lambert Kd (x albedo texture) + optional GGX glossy lobe Ks */    \
-  KIND(conductor, ConductorBsdf) /* metal: complex IOR eta + i k; mirror or GGX (alpha) */          \
+  KIND(conductor, ConductorBsdf) /* metal: complex IOR eta + i k; mirror, GGX or Beckmann */      \
   KIND(dielectric, DielectricBsdf) /* smooth glass of index ior: delta reflection + refraction */   \
   KIND(thin_dielectric, ThinDielectricBsdf) /* thin sheet: delta reflection + straight through */   \
   KIND(metal_rough, MetalRoughBsdf) /* glTF metallic-roughness: Lambert + Schlick GGX */          \

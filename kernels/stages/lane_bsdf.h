@@ -1,19 +1,23 @@
 // lane_bsdf.h: the BSDF of W hits in lane types, for the packet stages: the material kinds written
-// once for floats and lanes (bsdf_diffuse.h's glossy mixture, bsdf_conductor.h, bsdf_dielectric.h, bsdf_thin_dielectric.h,
-// bsdf_metal_rough.h, microfacet.h, bsdf_common.h's Fresnel terms) instantiated for lanes, and
-// their dispatch under masks, with the Lambertian lobe of stage_lanes.h. Reads the hits' material fields (LaneHits); writes nothing. At W = 1 every
-// mask test is the plain `if`; each lane performs the scalar functions' operations in order.
+// once for floats and lanes (bsdf_diffuse.h's glossy mixture; bsdf_conductor.h with
+// microfacet_beckmann.h and exp_neg.h; bsdf_dielectric.h, bsdf_thin_dielectric.h,
+// bsdf_metal_rough.h; microfacet.h and bsdf_common.h's Fresnel terms) instantiated for lanes, and
+// their dispatch under masks, with the Lambertian lobe of stage_lanes.h. Reads the hits' material
+// fields (LaneHits); writes nothing. At W = 1 every mask test is the plain `if`; each lane performs
+// the scalar functions' operations in order.
 #pragma once
 #include "stage_lanes.h"
 #include "direct_light.h"
 
 MCL_DEFINE_GGX(v_, v_, vfloat, vfloat3, vmask, v3)
+MCL_DEFINE_EXP_NEG(v_, vfloat, vint, v_cvt_i_f, v_cvt_f_i, v_int_as_uint, v_as_float)
+MCL_DEFINE_BECKMANN(v_, v_, vfloat, vfloat3, v3)
 MCL_DEFINE_FRESNEL(v_, vfloat, vfloat3, v3)
 MCL_DEFINE_BSDF_SAMPLE_TYPE(vBsdfSample, vfloat, vfloat3, vmask)
 MCL_DEFINE_DIFFUSE_TYPE(vDiffuseBsdf, vfloat, vfloat3)
 MCL_DEFINE_DIFFUSE_GLOSSY(v_, vfloat, vfloat3, vmask, v3, v_any, vDiffuseBsdf, LaneFrame, vBsdfSample)
 MCL_DEFINE_CONDUCTOR_TYPE(vConductorBsdf, vfloat, vfloat3, vmask)
-MCL_DEFINE_CONDUCTOR(v_, vfloat, vfloat3, vmask, v3, vConductorBsdf, LaneFrame, vBsdfSample)
+MCL_DEFINE_CONDUCTOR(v_, vfloat, vfloat3, vmask, v3, v_any, vConductorBsdf, LaneFrame, vBsdfSample)
 MCL_DEFINE_DIELECTRIC_TYPE(vDielectricBsdf, vfloat, vmask)
 MCL_DEFINE_DIELECTRIC(v_, vfloat, vfloat3, vmask, v3, vDielectricBsdf, LaneFrame, vBsdfSample)
 MCL_DEFINE_THIN_DIELECTRIC_TYPE(vThinDielectricBsdf, vfloat)
@@ -54,6 +58,8 @@ MCL_INLINE LaneBsdf lane_bsdf(const LaneHits* lh, LaneFrame s) {
   b.metalRough = lh->metalRough;
   b.cond = v_conductor_make(v3_make(lh->params0.x, lh->params0.y, lh->params0.z),
                             v3_make(lh->params1.x, lh->params1.y, lh->params1.z), lh->params0.w);
+  b.cond.factor = v3_make(lh->specular.x, lh->specular.y, lh->specular.z);  // conductor_from_material
+  b.cond.beckmann = lh->params1.w > 0.5f;
   b.diel = v_dielectric_make(lh->params0.x, lh->params0.y);
   b.sheet.ior = lh->params0.x;
   b.mr = v_metal_rough_make(s.kd, lh->params0.x, lh->params0.y);
