@@ -16,13 +16,17 @@
 // The body takes W consecutive queue entries, one per lane (W = MCL_LANES: 1 on the host backend
 // and GPUs; lanes past the queue masked; per-path state gathered and scattered by id). Misses: the
 // background, or path_miss per lane. Emission seen (MIS weighted after a BSDF bounce) for every
-// hit in lanes (textured emission: light_eval and light_pdf per lane). Hits on the diffuse kind
-// without a glossy lobe, textured or not, flat or smooth, in lanes (stage_lanes.h): the next-event
-// light samples (the kind picked per lane: emitter triangles in lanes, the others through
-// sample_direct_light per lane, light_area_lanes.h; one atomic per packet per light sample) and
-// the cosine-lobe continuation with Russian roulette (one atomic per packet). Hits on other kinds:
-// their surface, light samples and continuation lane by lane through the functions below
-// (path_light_sample, path_continue), with the packet's random numbers.
+// hit in lanes (textured emission: light_eval and light_pdf per lane). Hits on the kinds with a
+// lane form (lane_bsdf.h: diffuse, conductor, dielectric, thin_dielectric, metal_rough), textured
+// or not, flat or smooth, in lanes (the frame from stage_lanes.h; normal and bump maps and
+// instances through surface_at per lane): the next-event light samples (the light kind picked per
+// lane: emitter triangles in lanes, the others through sample_direct_light per lane,
+// light_area_lanes.h; one atomic per packet per light sample; a light below the geometric surface
+// through a transmitting lobe, its shadow ray from the far side) and the BSDF continuation with
+// Russian roulette (one atomic per packet). Hits on other kinds (the coated ones, a metallic-
+// roughness texture, glTF transmission): their surface, light samples and continuation lane by
+// lane through the functions below (path_light_sample, path_continue), with the packet's random
+// numbers.
 // Queue order: the packet's shadow queries and continuations fill their entries in lane order, so
 // the next queue's order depends on W; nothing depends on it (shadow queries name their slot,
 // path_gather adds slots in slot order, every random number comes from the path's pixel and
