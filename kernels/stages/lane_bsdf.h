@@ -97,44 +97,23 @@ MCL_INLINE vfloat3 lane_bsdf_eval_pdf(const LaneBsdf* b, LaneFrame s, vfloat3 wo
   return fc;
 }
 
+// r's lanes set in m take sample q's.
+MCL_INLINE void lane_sample_take(vBsdfSample* r, vmask m, vBsdfSample q) {
+  r->wi = v3_select(m, q.wi, r->wi);
+  r->weight = v3_select(m, q.weight, r->weight);
+  r->pdf = vsel(m, q.pdf, r->pdf);
+  r->flags = vsel(m, q.flags, r->flags);
+}
+
 // bsdf_sample at each lane from u (x, y: the lobe's warp, w: the lobe pick).
 MCL_INLINE vBsdfSample lane_bsdf_sample(const LaneBsdf* b, LaneFrame s, vfloat3 wo, vfloat4 u) {
   vBsdfSample r;
   r.wi = v_lambert_sample(s, u.x, u.y, &r.pdf, &r.weight);
   r.flags = (vmask)(0);  // a non-delta reflection
-  if (v_any(b->glossy)) {
-    vBsdfSample g = v_glossy_sample(b->gl, s, wo, u.x, u.y, u.w);
-    r.wi = v3_select(b->glossy, g.wi, r.wi);
-    r.weight = v3_select(b->glossy, g.weight, r.weight);
-    r.pdf = vsel(b->glossy, g.pdf, r.pdf);
-  }
-  if (v_any(b->conductor)) {
-    vBsdfSample c = v_conductor_sample(b->cond, s, wo, u.x, u.y, u.w);
-    r.wi = v3_select(b->conductor, c.wi, r.wi);
-    r.weight = v3_select(b->conductor, c.weight, r.weight);
-    r.pdf = vsel(b->conductor, c.pdf, r.pdf);
-    r.flags = vsel(b->conductor, c.flags, r.flags);
-  }
-  if (v_any(b->dielectric)) {
-    vBsdfSample d = v_dielectric_sample(b->diel, s, wo, u.x, u.y, u.w);
-    r.wi = v3_select(b->dielectric, d.wi, r.wi);
-    r.weight = v3_select(b->dielectric, d.weight, r.weight);
-    r.pdf = vsel(b->dielectric, d.pdf, r.pdf);
-    r.flags = vsel(b->dielectric, d.flags, r.flags);
-  }
-  if (v_any(b->thin)) {
-    vBsdfSample t = v_thin_dielectric_sample(b->sheet, s, wo, u.x, u.y, u.w);
-    r.wi = v3_select(b->thin, t.wi, r.wi);
-    r.weight = v3_select(b->thin, t.weight, r.weight);
-    r.pdf = vsel(b->thin, t.pdf, r.pdf);
-    r.flags = vsel(b->thin, t.flags, r.flags);
-  }
-  if (v_any(b->metalRough)) {
-    vBsdfSample m = v_metal_rough_sample(b->mr, s, wo, u.x, u.y, u.w);
-    r.wi = v3_select(b->metalRough, m.wi, r.wi);
-    r.weight = v3_select(b->metalRough, m.weight, r.weight);
-    r.pdf = vsel(b->metalRough, m.pdf, r.pdf);
-    r.flags = vsel(b->metalRough, m.flags, r.flags);
-  }
+  if (v_any(b->glossy)) lane_sample_take(&r, b->glossy, v_glossy_sample(b->gl, s, wo, u.x, u.y, u.w));
+  if (v_any(b->conductor)) lane_sample_take(&r, b->conductor, v_conductor_sample(b->cond, s, wo, u.x, u.y, u.w));
+  if (v_any(b->dielectric)) lane_sample_take(&r, b->dielectric, v_dielectric_sample(b->diel, s, wo, u.x, u.y, u.w));
+  if (v_any(b->thin)) lane_sample_take(&r, b->thin, v_thin_dielectric_sample(b->sheet, s, wo, u.x, u.y, u.w));
+  if (v_any(b->metalRough)) lane_sample_take(&r, b->metalRough, v_metal_rough_sample(b->mr, s, wo, u.x, u.y, u.w));
   return r;
 }
