@@ -29,7 +29,7 @@ MCL_DEFINE_CONDUCTOR_TYPE(ConductorBsdf, float, float3, int)
 
 // conductor_make: from eta, k and alpha (factor 1, GGX). conductor_fresnel: F(cos) x the factor.
 // conductor_eval: f * cos(ns, wi) of the rough lobe; 0 for a smooth conductor (delta) and below
-// either surface. conductor_pdf: its pdf. conductor_sample: smooth: the mirror direction about ns
+// either surface; conductor_f: f (eval over the cosine). conductor_pdf: its pdf. conductor_sample: smooth: the mirror direction about ns
 // with weight F(cos_o), pdf 1 (the only lobe), flag delta; rough: a visible normal, wi its
 // reflection, weight eval / pdf.
 #define MCL_DEFINE_CONDUCTOR(P, F, F3, M, V, ANY, B, FR, BS)                                      \
@@ -55,6 +55,11 @@ MCL_DEFINE_CONDUCTOR_TYPE(ConductorBsdf, float, float3, int)
     if (ANY(b.beckmann)) g = vsel(b.beckmann, P##beckmann_eval_cos(woL, wiL, b.alpha), g);       \
     g = vsel(ok, g, (F)(0.0f));                                                                  \
     return V##_select(ok, V##_scale(fr, g), V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));          \
+  }                                                                                              \
+  MCL_INLINE F3 P##conductor_f(B b, FR s, F3 wo, F3 wi) {                                        \
+    F c = V##_dot(s.ns, wi);                                                                     \
+    return V##_select(c > 0.0f, V##_scale(P##conductor_eval(b, s, wo, wi), 1.0f / c),            \
+                      V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                                \
   }                                                                                              \
   MCL_INLINE F P##conductor_pdf(B b, FR s, F3 wo, F3 wi) {                                       \
     F3 woL = P##to_local(wo, s.ns), wiL = P##to_local(wi, s.ns);                                 \
@@ -95,11 +100,6 @@ MCL_INLINE int conductor_is_delta(ConductorBsdf b) { return b.smooth; }
 // The albedo AOV: the reflectance at normal incidence, F(1) (an approximation of the directional
 // albedo that ignores the Fresnel rise at grazing angles and the rough lobe's energy loss).
 MCL_INLINE float3 conductor_albedo(ConductorBsdf b) { return conductor_fresnel(b, 1.0f); }
-
-MCL_INLINE float3 conductor_f(ConductorBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
-  float c = dot(s.ns, wi);
-  return c > 0.0f ? conductor_eval(b, s, wo, wi) * (1.0f / c) : make_float3(0.0f, 0.0f, 0.0f);
-}
 
 MCL_INLINE BsdfDirection conductor_sample_direction(ConductorBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,
                                                     float uLobe) {

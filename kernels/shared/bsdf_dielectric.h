@@ -44,7 +44,8 @@ MCL_DEFINE_DIELECTRIC_TYPE(DielectricBsdf, float, int)
 //   G1(wi) / eta^2 for a transmission. side: the geometric side test of wi (0: nothing).
 // - dielectric_eval_pdf: f * |cos(ns, wi)| of the rough lobes around ns and their pdf (*pdf); 0 for
 //   the smooth kind (delta lobes only) and for a reflection below the geometric surface or a
-//   transmission above it.
+//   transmission above it; dielectric_f: f = eval / |cos(ns, wi)| (a transmitted wi has a negative
+//   cosine).
 // - dielectric_sample_rough: a visible normal h for wo, then uLobe < F(wo.h) reflects wo about h,
 //   else wo refracts through h (flag transmission); weight eval / pdf (G1(wi), over eta^2 for a
 //   transmission), pdf dielectric_pdf's. A direction on the wrong geometric side is absorbed.
@@ -89,6 +90,12 @@ MCL_DEFINE_DIELECTRIC_TYPE(DielectricBsdf, float, int)
     M side = vsel(wiL.z > 0.0f, V##_dot(s.ng, wi) > 0.0f, V##_dot(s.ng, wi) < 0.0f);                       \
     return P##rough_dielectric_eval_local(woL, wiL, P##dielectric_eta(b, s), b.alpha,                     \
                                           side & (b.smooth == (M)(0)), pdf);                               \
+  }                                                                                                        \
+  MCL_INLINE F3 P##dielectric_f(B b, FR s, F3 wo, F3 wi) {                                                 \
+    F c = fabs(V##_dot(s.ns, wi));                                                                         \
+    F p;                                                                                                   \
+    F e = P##dielectric_eval_pdf(b, s, wo, wi, &p);                                                        \
+    return V##_select(c > 0.0f, V##_scale(V##_make(e, e, e), 1.0f / c), V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f))); \
   }                                                                                                        \
   MCL_INLINE BS P##dielectric_sample_rough(B b, FR s, F3 wo, F u1, F u2, F uLobe) {                        \
     F eta = P##dielectric_eta(b, s);                                                                       \
@@ -190,11 +197,6 @@ MCL_INLINE float dielectric_pdf(DielectricBsdf b, SurfaceFrame s, float3 wo, flo
   float p;
   (void)dielectric_eval_pdf(b, s, wo, wi, &p);
   return p;
-}
-// f = eval / |cos(ns, wi)| (a transmitted wi has a negative cosine).
-MCL_INLINE float3 dielectric_f(DielectricBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
-  float c = fabs(dot(s.ns, wi));
-  return c > 0.0f ? dielectric_eval(b, s, wo, wi) * (1.0f / c) : make_float3(0.0f, 0.0f, 0.0f);
 }
 MCL_INLINE BsdfDirection dielectric_sample_direction(DielectricBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,
                                                      float uLobe) {

@@ -61,7 +61,7 @@ MCL_INLINE float3 diffuse_albedo(DiffuseBsdf b) { return b.kd; }
 // sample type BS. Selects, not branches: a lane performs the scalar function's operations in order.
 // - glossy_*_about: about a unit normal n facing wo: f (no cosine) and f cos, 0 when wi or wo is
 //   below the surface; the mixture pdf; a sample from u1, u2 (the lobe's warp) and uLobe (the pick).
-// - glossy_eval, _pdf, _sample: around a shading frame: about ng where flat; where smooth about ns,
+// - glossy_f, _eval, _pdf, _sample: around a shading frame: about ng where flat; where smooth about ns,
 //   nothing below the geometric surface, the cosine lobe's samples folded above it (its pdf the
 //   folded one) and a glossy sample below it absorbed.
 #define MCL_DEFINE_DIFFUSE_GLOSSY(P, F, F3, M, V, ANY, B, FR, BS)                                            \
@@ -99,6 +99,11 @@ MCL_INLINE float3 diffuse_albedo(DiffuseBsdf b) { return b.kd; }
   }                                                                                                         \
   MCL_INLINE F3 P##glossy_eval(B b, FR s, F3 wo, F3 wi) {                                                   \
     F3 e = P##glossy_eval_about(b, V##_select(s.smooth, s.ns, s.ng), wo, wi);                               \
+    M below = s.smooth & ((V##_dot(s.ng, wi) > 0.0f) == (M)(0));                                            \
+    return V##_select(below, V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)), e);                                 \
+  }                                                                                                         \
+  MCL_INLINE F3 P##glossy_f(B b, FR s, F3 wo, F3 wi) {                                                      \
+    F3 e = P##glossy_f_about(b, V##_select(s.smooth, s.ns, s.ng), wo, wi);                                  \
     M below = s.smooth & ((V##_dot(s.ng, wi) > 0.0f) == (M)(0));                                            \
     return V##_select(below, V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)), e);                                 \
   }                                                                                                         \

@@ -24,7 +24,7 @@ MCL_DEFINE_METAL_ROUGH_TYPE(MetalRoughBsdf, float, float3)
 // stages/lane_bsdf.h, with their frame FR and sample type BS): selects, not branches.
 // - metal_rough_f0: F0 = mix(0.04, base, metallic); metal_rough_schlick: F0 + (1 - F0)(1 - c)^5.
 // - metal_rough_spec_prob: the probability of sampling the GGX lobe for wo (local z = cosO).
-// - metal_rough_eval, _pdf, _sample: f cos, the mixture pdf, a direction with weight eval / pdf.
+// - metal_rough_eval, _f, _pdf, _sample: f cos, f, the mixture pdf, a direction with weight eval / pdf.
 #define MCL_DEFINE_METAL_ROUGH(P, F, F3, M, V, B, FR, BS)                                                  \
   MCL_INLINE B P##metal_rough_make(F3 base, F metallic, F roughness) {                                    \
     B b;                                                                                                  \
@@ -58,6 +58,11 @@ MCL_DEFINE_METAL_ROUGH_TYPE(MetalRoughBsdf, float, float3)
     F g = vsel(ok, P##ggx_eval_cos(woL, wiL, b.alpha), (F)(0.0f));                                        \
     F3 fcos = V##_add(V##_mul(V##_sub(V##_make((F)(1.0f), (F)(1.0f), (F)(1.0f)), fr), diff), V##_scale(fr, g)); \
     return V##_select(ok, fcos, V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                               \
+  }                                                                                                       \
+  MCL_INLINE F3 P##metal_rough_f(B b, FR s, F3 wo, F3 wi) {                                               \
+    F c = V##_dot(s.ns, wi);                                                                              \
+    return V##_select(c > 0.0f, V##_scale(P##metal_rough_eval(b, s, wo, wi), 1.0f / c),                   \
+                      V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                                         \
   }                                                                                                       \
   MCL_INLINE F P##metal_rough_pdf(B b, FR s, F3 wo, F3 wi) {                                              \
     F3 woL = P##to_local(wo, s.ns), wiL = P##to_local(wi, s.ns);                                          \
@@ -93,11 +98,6 @@ MCL_INLINE int metal_rough_is_delta(MetalRoughBsdf b) {
 MCL_INLINE float3 metal_rough_albedo(MetalRoughBsdf b) {
   float3 f0 = metal_rough_f0(b);
   return b.base * (1.0f - b.metallic) * (make_float3(1.0f, 1.0f, 1.0f) - f0) + f0;
-}
-
-MCL_INLINE float3 metal_rough_f(MetalRoughBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
-  float c = dot(s.ns, wi);
-  return c > 0.0f ? metal_rough_eval(b, s, wo, wi) * (1.0f / c) : make_float3(0.0f, 0.0f, 0.0f);
 }
 
 MCL_INLINE BsdfDirection metal_rough_sample_direction(MetalRoughBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,

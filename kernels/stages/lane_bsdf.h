@@ -97,6 +97,17 @@ MCL_INLINE vfloat3 lane_bsdf_eval_pdf(const LaneBsdf* b, LaneFrame s, vfloat3 wo
   return fc;
 }
 
+// bsdf_f (no cosine) of wi at each lane of the kinds other than the Lambertian lobe (0 in the
+// Lambertian lanes, whose stages spell their Kd / pi out, and in lanes of no kind here).
+MCL_INLINE vfloat3 lane_bsdf_f(const LaneBsdf* b, LaneFrame s, vfloat3 wo, vfloat3 wi) {
+  vfloat3 f = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f));
+  if (v_any(b->glossy)) f = v3_select(b->glossy, v_glossy_f(b->gl, s, wo, wi), f);
+  if (v_any(b->conductor)) f = v3_select(b->conductor, v_conductor_f(b->cond, s, wo, wi), f);
+  if (v_any(b->dielectric)) f = v3_select(b->dielectric, v_dielectric_f(b->diel, s, wo, wi), f);
+  if (v_any(b->metalRough)) f = v3_select(b->metalRough, v_metal_rough_f(b->mr, s, wo, wi), f);
+  return f;  // thin_dielectric: delta lobes only, f = 0
+}
+
 // r's lanes set in m take sample q's.
 MCL_INLINE void lane_sample_take(vBsdfSample* r, vmask m, vBsdfSample q) {
   r->wi = v3_select(m, q.wi, r->wi);
@@ -105,15 +116,15 @@ MCL_INLINE void lane_sample_take(vBsdfSample* r, vmask m, vBsdfSample q) {
   r->flags = vsel(m, q.flags, r->flags);
 }
 
-// bsdf_sample at each lane from u (x, y: the lobe's warp, w: the lobe pick).
-MCL_INLINE vBsdfSample lane_bsdf_sample(const LaneBsdf* b, LaneFrame s, vfloat3 wo, vfloat4 u) {
+// bsdf_sample at each lane from u1, u2 (the lobe's warp) and uLobe (the lobe pick).
+MCL_INLINE vBsdfSample lane_bsdf_sample(const LaneBsdf* b, LaneFrame s, vfloat3 wo, vfloat u1, vfloat u2, vfloat uLobe) {
   vBsdfSample r;
-  r.wi = v_lambert_sample(s, u.x, u.y, &r.pdf, &r.weight);
+  r.wi = v_lambert_sample(s, u1, u2, &r.pdf, &r.weight);
   r.flags = (vmask)(0);  // a non-delta reflection
-  if (v_any(b->glossy)) lane_sample_take(&r, b->glossy, v_glossy_sample(b->gl, s, wo, u.x, u.y, u.w));
-  if (v_any(b->conductor)) lane_sample_take(&r, b->conductor, v_conductor_sample(b->cond, s, wo, u.x, u.y, u.w));
-  if (v_any(b->dielectric)) lane_sample_take(&r, b->dielectric, v_dielectric_sample(b->diel, s, wo, u.x, u.y, u.w));
-  if (v_any(b->thin)) lane_sample_take(&r, b->thin, v_thin_dielectric_sample(b->sheet, s, wo, u.x, u.y, u.w));
-  if (v_any(b->metalRough)) lane_sample_take(&r, b->metalRough, v_metal_rough_sample(b->mr, s, wo, u.x, u.y, u.w));
+  if (v_any(b->glossy)) lane_sample_take(&r, b->glossy, v_glossy_sample(b->gl, s, wo, u1, u2, uLobe));
+  if (v_any(b->conductor)) lane_sample_take(&r, b->conductor, v_conductor_sample(b->cond, s, wo, u1, u2, uLobe));
+  if (v_any(b->dielectric)) lane_sample_take(&r, b->dielectric, v_dielectric_sample(b->diel, s, wo, u1, u2, uLobe));
+  if (v_any(b->thin)) lane_sample_take(&r, b->thin, v_thin_dielectric_sample(b->sheet, s, wo, u1, u2, uLobe));
+  if (v_any(b->metalRough)) lane_sample_take(&r, b->metalRough, v_metal_rough_sample(b->mr, s, wo, u1, u2, uLobe));
   return r;
 }

@@ -10,16 +10,20 @@
 // strategy leaves the slots it does not use at 0.
 // The body takes W consecutive camera hits, one per lane (W = MCL_LANES: 1 on the host backend
 // and GPUs; lanes past the wave masked): misses (the background, or the environment through
-// light_eval per lane) and hits on the diffuse kind without a glossy lobe, textured or not, flat or
-// smooth, in lanes (stage_lanes.h: the frame and albedo per lane, from surface_at where the hit is
-// not flat and untextured): Le seen, the light samples (the kind picked per lane, emitter triangles
-// in lanes and the other kinds through sample_direct_light per lane, light_area_lanes.h; one atomic
-// per packet per light sample) and the BSDF ray (the cosine lobe, folded where smooth). Hits on
-// other kinds: their surface, light samples and BSDF ray lane by lane through the functions below
-// (direct_light_sample, direct_bsdf_ray), with the packet's random numbers. Textured emission: Le
-// and the emitter samples lane by lane (light_eval, sample_direct_light).
+// light_eval per lane) and hits on the kinds with a lane form (lane_bsdf.h), textured or not, flat
+// or smooth, in lanes (stage_lanes.h: the frame and albedo per lane; normal and bump maps and
+// instances through surface_at per lane): Le seen, the light samples (the light kind picked per
+// lane, emitter triangles in lanes and the other kinds through sample_direct_light per lane,
+// light_area_lanes.h; one atomic per packet per light sample; the Lambertian lobe's Kd / pi spelled
+// out, the other kinds' f cos, a light below the surface through a transmitting lobe with its
+// shadow ray from the far side) and the BSDF ray (the cosine lobe, folded where smooth; the other
+// kinds' sample). Hits on other kinds (the coated ones, a metallic-roughness texture, glTF
+// transmission): their surface, light samples and BSDF ray lane by lane through the functions
+// below (direct_light_sample, direct_bsdf_ray), with the packet's random numbers. Textured
+// emission: Le and the emitter samples lane by lane (light_eval, sample_direct_light).
 #pragma once
 #include "stage_lanes.h"
+#include "lane_bsdf.h"
 #include "light_area_lanes.h"
 #include "direct_light.h"
 
@@ -96,12 +100,12 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
     v_store4_stride_n(bounce + 4, 8, lanes, v_f(0.0f), v_f(0.0f), v_f(1.0f), v_f(-1.0f));
     return;
   }
-  // The hit triangles, their materials, and the lanes taken in lane types (packet) and from the
-  // triangle alone (flat).
+  // The hit triangles, their materials, and the lanes taken in lane types (kinds: lane_bsdf.h's;
+  // packet: the Lambertian lobe's, rest: the other kinds') and from the triangle alone (flat).
   LaneHits lh = lane_hits(f, a->tris, a->normals, a->materials, a->hitInstances, first, lanes, hit, tri);
-  const vmask packet = lh.lamb, flat = lh.flat;
-  vmask other = hit & v_not(packet);  // other kinds: their surface and BSDF lane by lane
-  lane_tally(f, a->packedLanes, a->aloneLanes, &lh, packet, hit);
+  const vmask kinds = lane_bsdf_kinds(&lh), packet = lh.lamb, rest = kinds & v_not(lh.lamb), flat = lh.flat;
+  vmask other = hit & v_not(kinds);  // other kinds: their surface and BSDF lane by lane
+  lane_tally(f, a->packedLanes, a->aloneLanes, &lh, kinds, hit);
   vfloat dx, dy, dz, dw;
   v_load4_stride_n((MCL_GLOBAL const float*)(a->rays + first) + 4, 8, lanes, &dx, &dy, &dz, &dw);
   vfloat3 dir = v3_make(dx, dy, dz);
@@ -140,8 +144,12 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
     vuint pixel, sample;
     v_item_pixel_sample(f, a->active, a->waveStart, first, &pixel, &sample);
     LaneFrame sf = lane_frame(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first,
-                              packet & v_not(flat), pixel, sample, 0u, &lh, hu, hv, ht, dir);
+                              kinds & v_not(flat), pixel, sample, 0u, &lh, hu, hv, ht, dir);
     vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
+    const LaneBsdf lb = lane_bsdf(&lh, sf);
+    const vfloat3 wo = v3_neg(dir);
+    // Light samples at the other kinds where the BSDF is not purely delta (direct_takes_light_samples).
+    const vmask restLit = rest & v_not(lane_bsdf_delta(&lb));
     const float nLight = (float)f->lightSamples;
     const int useLight = f->directSampling != MCL_DIRECT_BRDF && (f->emitterCount > 0 || env || f->lightCount > 0u);
     const int useBrdf = f->directSampling != MCL_DIRECT_LIGHT;
@@ -164,8 +172,8 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
             direct_light_sample(a, lights, surfs[j], -xyz(a->rays[first + j].dir), origins[j], useBrdf, first + j, k,
                                 float4_lane(&ul, j));
       }
-      if (!v_any(packet)) continue;
-      VLightSample ls = v_sample_direct_light(f, lights, packet, origin, u);
+      if (!v_any(packet | restLit)) continue;
+      VLightSample ls = v_sample_direct_light(f, lights, packet | restLit, origin, u);
       vfloat3 wi = ls.wi, lle = ls.le;
       vfloat pdf = ls.pdf, tmax = ls.tmax;
       vmask delta = ls.delta;
@@ -174,6 +182,34 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
       vfloat cn = v3_dot(sf.ns, wi);
       vfloat cosSurf = vsel(sf.smooth, vsel(above, fmax(cn, v_f(0.0f)), v_f(0.0f)), cn);
       vmask push = packet & (pdf > 0.0f) & above & (cosSurf > 0.0f);
+      vfloat3 from = origin, along = wi;
+      vfloat reach = tmax;
+      vfloat3 contrib = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f));
+      if (v_any(restLit)) {  // direct_light_sample: f cos above the surface, the BSDF's own f |cos| below
+        vfloat bsdfPdf;
+        vfloat3 fcos = lane_bsdf_eval_pdf(&lb, sf, wo, wi, &bsdfPdf);
+        vmask below = v_not(above);
+        vfloat3 fcosBelow = v3_select(below, fcos, v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f)));
+        vmask lit = restLit & (pdf > 0.0f) &
+                    vsel(below, fmax(fcosBelow.x, fmax(fcosBelow.y, fcosBelow.z)) > 0.0f, cosSurf > 0.0f);
+        if (v_any(lit)) {
+          vfloat weight = v_f(1.0f);
+          if (useBrdf) weight = vsel(delta, weight, v_power_heuristic(nLight * pdf, 1.0f * bsdfPdf));
+          vfloat3 cb = v3_scale(v3_mul(fcosBelow, lle), weight / (pdf * nLight));
+          vfloat3 ca = v3_scale(v3_mul(lane_bsdf_f(&lb, sf, wo, wi), lle), cosSurf * weight / (pdf * nLight));
+          contrib = v3_select(lit, v3_select(below, cb, ca), contrib);
+          vmask far = lit & below;
+          if (v_any(far)) {
+            vfloat3 farOrigin = v_offset_ray_origin(sf.p, v3_neg(sf.ng), f->offsetScale);
+            vfloat tmaxFar;
+            vfloat3 dirFar = v_shadow_dir_from(origin, farOrigin, wi, tmax, &tmaxFar);
+            from = v3_select(far, farOrigin, from);
+            along = v3_select(far, dirFar, along);
+            reach = vsel(far, tmaxFar, reach);
+          }
+          push = push | lit;
+        }
+      }
       if (!v_any(push)) continue;
       vfloat weight = v_f(1.0f);
       if (useBrdf) {  // power_heuristic(nLight, pdf, 1, bsdf_pdf), none for a delta light
@@ -184,8 +220,8 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
       vfloat3 fr = v3_make(vsel(lit, sf.kd.x * MCL_INV_PI, v_f(0.0f)), vsel(lit, sf.kd.y * MCL_INV_PI, v_f(0.0f)),
                            vsel(lit, sf.kd.z * MCL_INV_PI, v_f(0.0f)));
       vfloat s = cosSurf * weight / (pdf * nLight);
-      vfloat3 contrib = v3_scale(v3_mul(fr, lle), s);
-      v_push_shadow_queries(a->queue, a->queueCount, push, origin, wi, tmax, contrib, slot0 + k);
+      contrib = v3_select(packet, v3_scale(v3_mul(fr, lle), s), contrib);
+      v_push_shadow_queries(a->queue, a->queueCount, push, from, along, reach, contrib, slot0 + k);
     }
     if (useBrdf) {  // Lambertian: the cosine lobe around ns, folded above ng where smooth
       vfloat4 u = v_sample_uniform4(f, pixel, sample, MCL_DIM_BRDF);
@@ -200,6 +236,16 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
       bo = v3_select(packet, origin, bo);
       bd = v3_select(packet, wi, bd);
       btmax = vsel(packet, v_f(INFINITY), btmax);
+      if (v_any(rest)) {  // direct_bsdf_ray: the kind's sample, traced where its pdf is positive
+        vBsdfSample q = lane_bsdf_sample(&lb, sf, wo, u.x, u.y, u.z);
+        vmask traced = rest & (q.pdf > 0.0f);
+        vmask through = traced & ((q.flags & MCL_BSDF_TRANSMISSION) != 0);
+        vfloat3 o = origin;
+        if (v_any(through)) o = v3_select(through, v_offset_ray_origin(sf.p, v3_neg(sf.ng), f->offsetScale), o);
+        bo = v3_select(traced, o, bo);
+        bd = v3_select(traced, q.wi, bd);
+        btmax = vsel(traced, v_f(INFINITY), btmax);
+      }
     }
   }
   v_store4_stride_n(bounce, 8, lanes, bo.x, bo.y, bo.z, v_f(0.0f));

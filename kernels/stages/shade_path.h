@@ -294,7 +294,7 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
           path_continue(a, surfs[j], xyz(a->rays[first + j].dir) * -1.0f, origins[j], betas[j], ids[j],
                         float4_lane(&ul, j));
     }
-    const vBsdfSample bs = lane_bsdf_sample(&lb, sf, wo, u);
+    const vBsdfSample bs = lane_bsdf_sample(&lb, sf, wo, u.x, u.y, u.w);
     vfloat3 wi = bs.wi;
     vfloat pdf = bs.pdf;
     vmask live = kinds & (pdf > 0.0f);
