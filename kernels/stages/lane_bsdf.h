@@ -108,6 +108,23 @@ MCL_INLINE vfloat3 lane_bsdf_f(const LaneBsdf* b, LaneFrame s, vfloat3 wo, vfloa
   return f;  // thin_dielectric: delta lobes only, f = 0
 }
 
+// The shadow query of a light sample along wi (length tmax) from origin; in the lanes set in far (a
+// light below the geometric surface, seen through a transmitting lobe) it leaves from the far side
+// instead, as a transmitted BSDF ray does (shadow_dir_from): *from, *along, *reach.
+MCL_INLINE void lane_shadow_query(LaneFrame sf, float offsetScale, vmask far, vfloat3 origin, vfloat3 wi, vfloat tmax,
+                                  vfloat3* from, vfloat3* along, vfloat* reach) {
+  *from = origin;
+  *along = wi;
+  *reach = tmax;
+  if (!v_any(far)) return;
+  vfloat3 o = v_offset_ray_origin(sf.p, v3_neg(sf.ng), offsetScale);
+  vfloat t;
+  vfloat3 d = v_shadow_dir_from(origin, o, wi, tmax, &t);
+  *from = v3_select(far, o, origin);
+  *along = v3_select(far, d, wi);
+  *reach = vsel(far, t, tmax);
+}
+
 // r's lanes set in m take sample q's.
 MCL_INLINE void lane_sample_take(vBsdfSample* r, vmask m, vBsdfSample q) {
   r->wi = v3_select(m, q.wi, r->wi);

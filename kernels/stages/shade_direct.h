@@ -182,7 +182,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
       vfloat cn = v3_dot(sf.ns, wi);
       vfloat cosSurf = vsel(sf.smooth, vsel(above, fmax(cn, v_f(0.0f)), v_f(0.0f)), cn);
       vmask push = packet & (pdf > 0.0f) & above & (cosSurf > 0.0f);
-      vfloat3 from = origin, along = wi;
+      vfloat3 from = origin, along = wi;  // the Lambertian lobe's queries (above the surface)
       vfloat reach = tmax;
       vfloat3 contrib = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f));
       if (v_any(restLit)) {  // direct_light_sample: f cos above the surface, the BSDF's own f |cos| below
@@ -198,15 +198,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
           vfloat3 cb = v3_scale(v3_mul(fcosBelow, lle), weight / (pdf * nLight));
           vfloat3 ca = v3_scale(v3_mul(lane_bsdf_f(&lb, sf, wo, wi), lle), cosSurf * weight / (pdf * nLight));
           contrib = v3_select(lit, v3_select(below, cb, ca), contrib);
-          vmask far = lit & below;
-          if (v_any(far)) {
-            vfloat3 farOrigin = v_offset_ray_origin(sf.p, v3_neg(sf.ng), f->offsetScale);
-            vfloat tmaxFar;
-            vfloat3 dirFar = v_shadow_dir_from(origin, farOrigin, wi, tmax, &tmaxFar);
-            from = v3_select(far, farOrigin, from);
-            along = v3_select(far, dirFar, along);
-            reach = vsel(far, tmaxFar, reach);
-          }
+          lane_shadow_query(sf, f->offsetScale, lit & below, origin, wi, tmax, &from, &along, &reach);
           push = push | lit;
         }
       }

@@ -270,18 +270,11 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
       vfloat weight = vsel(delta, v_f(1.0f), v_power_heuristic(fw, gw));
       vfloat3 contrib = v3_scale(v3_mul(v3_mul(beta, fcos), lle), weight / (pdf * nLight));
       // A light below the geometric surface (seen through a transmitting lobe): the shadow ray
-      // leaves from the far side, as a transmitted BSDF ray does.
-      vmask below = push & v_not(v3_dot(sf.ng, wi) > 0.0f);
-      vfloat3 from = origin, along = wi;
-      vfloat reach = tmax;
-      if (v_any(below)) {
-        vfloat3 far = v_offset_ray_origin(sf.p, v3_neg(sf.ng), f->offsetScale);
-        vfloat tmaxFar;
-        vfloat3 dirFar = v_shadow_dir_from(origin, far, wi, tmax, &tmaxFar);
-        from = v3_select(below, far, origin);
-        along = v3_select(below, dirFar, wi);
-        reach = vsel(below, tmaxFar, tmax);
-      }
+      // leaves from the far side.
+      vfloat3 from, along;
+      vfloat reach;
+      lane_shadow_query(sf, f->offsetScale, push & v_not(v3_dot(sf.ng, wi) > 0.0f), origin, wi, tmax, &from, &along,
+                        &reach);
       v_push_shadow_queries(a->queue, a->queueCount, push, from, along, reach, contrib, slot0 + s);
     }
 
