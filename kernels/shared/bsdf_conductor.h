@@ -70,16 +70,22 @@ MCL_DEFINE_CONDUCTOR_TYPE(ConductorBsdf, float, float3, int)
     (void)uLobe;                                                                                 \
     F3 woL = P##to_local(wo, s.ns);                                                              \
     M up = woL.z > 0.0f;                                                                         \
-    F3 hL = V##_select(b.smooth | (up == (M)(0)), V##_make((F)(0.0f), (F)(0.0f), (F)(1.0f)),    \
-                       P##ggx_sample_visible_normal(woL, b.alpha, u1, u2));                      \
+    M rough = (b.smooth == (M)(0)) & up;                                                         \
+    F3 hL = V##_make((F)(0.0f), (F)(0.0f), (F)(1.0f));                                           \
+    if (ANY(rough)) hL = V##_select(rough, P##ggx_sample_visible_normal(woL, b.alpha, u1, u2), hL); \
     F3 wiL = P##reflect_about(woL, hL);                                                          \
     BS r;                                                                                        \
     r.wi = P##to_world(wiL, s.ns);                                                               \
     M ok = up & (wiL.z > 0.0f) & (V##_dot(s.ng, r.wi) > 0.0f);                                   \
-    F pdf = vsel(b.smooth, (F)(1.0f), P##conductor_pdf(b, s, wo, r.wi));                         \
+    F pdf = (F)(1.0f);                                                                           \
+    F3 w = V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f));                                            \
+    if (ANY(b.smooth)) w = P##conductor_fresnel(b, fmin(woL.z, 1.0f));                          \
+    if (ANY(b.smooth == (M)(0))) { /* the rough lobe: weight eval / pdf */                       \
+      F pr = P##conductor_pdf(b, s, wo, r.wi);                                                   \
+      pdf = vsel(b.smooth, pdf, pr);                                                             \
+      w = V##_select(b.smooth, w, V##_scale(P##conductor_eval(b, s, wo, r.wi), 1.0f / fmax(pr, 1e-30f))); \
+    }                                                                                            \
     ok = ok & (pdf > 0.0f);                                                                      \
-    F3 w = V##_select(b.smooth, P##conductor_fresnel(b, fmin(woL.z, 1.0f)),                     \
-                      V##_scale(P##conductor_eval(b, s, wo, r.wi), 1.0f / fmax(pdf, 1e-30f)));   \
     r.pdf = vsel(ok, pdf, (F)(0.0f));                                                            \
     r.weight = V##_select(ok, w, V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                     \
     r.flags = vsel(b.smooth, (M)(MCL_BSDF_DELTA), (M)(0));                                       \

@@ -26,10 +26,10 @@
   } B;
 MCL_DEFINE_DIELECTRIC_TYPE(DielectricBsdf, float, int)
 
-// The kind's make, eta, lobes and sample, written once for floats and lanes (P, F, F3, M, V: the
-// prefix, float, float3, int mask, f3 here; the packet stages' v_, vfloat, vfloat3, vmask, v3 in
-// stages/lane_bsdf.h, with their frame FR and sample type BS): selects, not branches, so a lane
-// performs the scalar function's operations in the same order.
+// The kind's make, eta, lobes and sample, written once for floats and lanes (P, F, F3, M, V, ANY:
+// the prefix, float, float3, int mask, f3, MCL_ANY1 here; the packet stages' v_, vfloat, vfloat3,
+// vmask, v3, v_any in stages/lane_bsdf.h, with their frame FR and sample type BS): selects, not
+// branches, so a lane performs the scalar function's operations in the same order.
 // - dielectric_eta: eta = n_transmitted / n_incident for a ray arriving on the side s.backface says.
 // - rough_dielectric_eval_local: the rough lobes at local wo (above: wo.z > 0, the side of index
 //   n_i), wi, for eta = n_t / n_i: f * |cos_i| (returned) and the solid-angle pdf of the rough
@@ -51,7 +51,7 @@ MCL_DEFINE_DIELECTRIC_TYPE(DielectricBsdf, float, int)
 //   transmission), pdf dielectric_pdf's. A direction on the wrong geometric side is absorbed.
 // - dielectric_sample_smooth: uLobe < F: the mirror direction (weight 1, pdf F); else the refracted
 //   one (weight 1 / eta^2, pdf 1 - F, flag transmission). Both flagged delta.
-#define MCL_DEFINE_DIELECTRIC(P, F, F3, M, V, B, FR, BS)                                                    \
+#define MCL_DEFINE_DIELECTRIC(P, F, F3, M, V, ANY, B, FR, BS)                                                    \
   MCL_INLINE B P##dielectric_make(F ior, F alpha) {                                                        \
     B b;                                                                                                   \
     b.ior = ior;                                                                                           \
@@ -141,16 +141,20 @@ MCL_DEFINE_DIELECTRIC_TYPE(DielectricBsdf, float, int)
     return r;                                                                                              \
   }                                                                                                        \
   MCL_INLINE BS P##dielectric_sample(B b, FR s, F3 wo, F u1, F u2, F uLobe) {                              \
-    BS smooth = P##dielectric_sample_smooth(b, s, wo, uLobe);                                              \
-    BS rough = P##dielectric_sample_rough(b, s, wo, u1, u2, uLobe);                                        \
+    M rough = b.smooth == (M)(0);                                                                          \
     BS r;                                                                                                  \
-    r.wi = V##_select(b.smooth, smooth.wi, rough.wi);                                                      \
-    r.weight = V##_select(b.smooth, smooth.weight, rough.weight);                                          \
-    r.pdf = vsel(b.smooth, smooth.pdf, rough.pdf);                                                         \
-    r.flags = vsel(b.smooth, smooth.flags, rough.flags);                                                   \
+    if (ANY(b.smooth)) r = P##dielectric_sample_smooth(b, s, wo, uLobe);                                   \
+    else r = P##dielectric_sample_rough(b, s, wo, u1, u2, uLobe);                                          \
+    if (ANY(b.smooth) && ANY(rough)) { /* both kinds in the packet: the rough lanes' own */                \
+      BS q = P##dielectric_sample_rough(b, s, wo, u1, u2, uLobe);                                          \
+      r.wi = V##_select(rough, q.wi, r.wi);                                                                \
+      r.weight = V##_select(rough, q.weight, r.weight);                                                    \
+      r.pdf = vsel(rough, q.pdf, r.pdf);                                                                   \
+      r.flags = vsel(rough, q.flags, r.flags);                                                             \
+    }                                                                                                      \
     return r;                                                                                              \
   }
-MCL_DEFINE_DIELECTRIC(, float, float3, int, f3, DielectricBsdf, SurfaceFrame, BsdfSample)
+MCL_DEFINE_DIELECTRIC(, float, float3, int, f3, MCL_ANY1, DielectricBsdf, SurfaceFrame, BsdfSample)
 
 MCL_INLINE DielectricBsdf dielectric_from_material(Material m, float3 albedo) {
   (void)albedo;

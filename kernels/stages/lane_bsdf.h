@@ -19,7 +19,7 @@ MCL_DEFINE_DIFFUSE_GLOSSY(v_, vfloat, vfloat3, vmask, v3, v_any, vDiffuseBsdf, L
 MCL_DEFINE_CONDUCTOR_TYPE(vConductorBsdf, vfloat, vfloat3, vmask)
 MCL_DEFINE_CONDUCTOR(v_, vfloat, vfloat3, vmask, v3, v_any, vConductorBsdf, LaneFrame, vBsdfSample)
 MCL_DEFINE_DIELECTRIC_TYPE(vDielectricBsdf, vfloat, vmask)
-MCL_DEFINE_DIELECTRIC(v_, vfloat, vfloat3, vmask, v3, vDielectricBsdf, LaneFrame, vBsdfSample)
+MCL_DEFINE_DIELECTRIC(v_, vfloat, vfloat3, vmask, v3, v_any, vDielectricBsdf, LaneFrame, vBsdfSample)
 MCL_DEFINE_THIN_DIELECTRIC_TYPE(vThinDielectricBsdf, vfloat)
 MCL_DEFINE_THIN_DIELECTRIC(v_, vfloat, vfloat3, vmask, v3, vThinDielectricBsdf, LaneFrame, vBsdfSample)
 MCL_DEFINE_METAL_ROUGH_TYPE(vMetalRoughBsdf, vfloat, vfloat3)
