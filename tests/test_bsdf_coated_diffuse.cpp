@@ -104,9 +104,9 @@ TEST_CASE("coated_diffuse: f is reciprocal in expectation; the coat's lobe exact
     RunningStats ab, ba;
     for (std::uint32_t i = 0; i < 40000; ++i) {
       RngOut seed = pcg4d(i, uint(pair), 17u, 0u);
-      ab.add(double(coated_diffuse_walk(b.p.coated_diffuse, float(cosA), float(cosB), seed).x));
+      ab.add(double(coated_diffuse_walk(b.p.coated_diffuse, float(cosA), float(cosB), seed, 1).x));
       seed = pcg4d(i, uint(pair), 23u, 0u);
-      ba.add(double(coated_diffuse_walk(b.p.coated_diffuse, float(cosB), float(cosA), seed).x));
+      ba.add(double(coated_diffuse_walk(b.p.coated_diffuse, float(cosB), float(cosA), seed, 1).x));
     }
     const double se = std::sqrt(ab.standardError() * ab.standardError() + ba.standardError() * ba.standardError());
     INFO("cos " << cosA << ", " << cosB << ": " << ab.mean << " vs " << ba.mean << " +- " << se);

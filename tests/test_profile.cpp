@@ -130,14 +130,14 @@ std::pair<double, long> laneTally(const std::string& out) {
 // The tally counts hits, not work items: the host backend (one lane) and the OpenCL device (W
 // lanes, fused stages) count the same hits the same way; a scene of flat diffuse walls is shaded
 // wholly in lane types, the materials box (glass, metals) too by both integrators, the box with
-// its gold sphere made a coated kind (no lane form: one by one) in part.
+// its gold sphere made coated_conductor (no lane form: one by one) in part.
 TEST_CASE("render --profile: the shading lane tally is the hits' own (host backend = OpenCL), 100% for diffuse walls" *
           doctest::test_suite("cli")) {
   TempDir dir;
   const std::string src = std::string(MONTECL_SOURCE_DIR) + "/scenes/materials/";
   dir.write("coated.json", R"({"camera": {"position": [0, 1, 3.6], "target": [0, 0.9, 0], "fov_y": 38},
     "meshes": [{"file": ")" + src + R"(box.obj"}, {"file": ")" + src + R"(light.obj", "emission": [17, 12, 4]},
-               {"file": ")" + src + R"(gold.obj", "material": {"type": "coated_diffuse", "albedo": [0.6, 0.3, 0.2]}},
+               {"file": ")" + src + R"(gold.obj", "material": {"type": "coated_conductor", "metal": "Au"}},
                {"file": ")" + src + R"(glass.obj", "material": {"type": "dielectric", "ior": 1.5}}]})");
   for (const std::string& scene : {src + "scene.json", dir.file("coated.json")}) {
     const bool coated = scene == dir.file("coated.json");
@@ -161,7 +161,7 @@ TEST_CASE("render --profile: the shading lane tally is the hits' own (host backe
           CHECK(tallies[k].first == 100.0);  // diffuse walls, conductors and dielectrics in lane types
         } else {
           CHECK(tallies[k].first > 0.0);
-          CHECK(tallies[k].first < 100.0);  // the coated sphere one by one
+          CHECK(tallies[k].first < 100.0);  // the coated_conductor sphere one by one
         }
         ++k;
       }

@@ -31,14 +31,16 @@
 #include "microfacet.h"
 #include "rng.h"
 
-typedef struct {
-  float3 base;      // Lambertian reflectance of the base at the hit
-  float alpha;      // the coat's GGX alpha
-  float eta;        // the coat's index (inside / outside)
-  float thickness;  // of the clear layer
-  uint maxDepth;    // scattering events per walk
-  uint samples;     // walks per evaluation
-} CoatedDiffuseBsdf;
+#define MCL_DEFINE_COATED_DIFFUSE_TYPE(B, F, F3, U)                     \
+  typedef struct {                                                       \
+    F3 base;     /* Lambertian reflectance of the base at the hit */     \
+    F alpha;     /* the coat's GGX alpha */                              \
+    F eta;       /* the coat's index (inside / outside) */               \
+    F thickness; /* of the clear layer */                                \
+    U maxDepth;  /* scattering events per walk */                        \
+    U samples;   /* walks per evaluation */                              \
+  } B;
+MCL_DEFINE_COATED_DIFFUSE_TYPE(CoatedDiffuseBsdf, float, float3, uint)
 
 MCL_INLINE CoatedDiffuseBsdf coated_diffuse_from_material(Material m, float3 albedo) {
   CoatedDiffuseBsdf b;
@@ -59,98 +61,111 @@ MCL_INLINE int coated_diffuse_is_delta(CoatedDiffuseBsdf b) {
 // The albedo AOV: the base's colour (what a denoiser should see under a clear coat).
 MCL_INLINE float3 coated_diffuse_albedo(CoatedDiffuseBsdf b) { return b.base; }
 
-// Fresnel reflectance from outside at cos c (> 0), and from inside the coat.
-MCL_INLINE float coated_fresnel_out(CoatedDiffuseBsdf b, float c) {
-  float ct;
-  return fresnel_dielectric(c, b.eta, &ct);
-}
-MCL_INLINE float coated_cos_inside(CoatedDiffuseBsdf b, float c) {
-  float ct;
-  fresnel_dielectric(c, b.eta, &ct);
-  return ct;
-}
-
-// One walk's estimate of the through-the-coat part of f (no cosine) for local cosines cosO,
-// cosI (> 0) with numbers from pcg4d(seed, step): the walk of the header.
-MCL_INLINE float3 coated_diffuse_walk(CoatedDiffuseBsdf b, float cosO, float cosI, RngOut seed) {
-  float fo = coated_fresnel_out(b, cosO), fi = coated_fresnel_out(b, cosI);
-  float co = coated_cos_inside(b, cosO), ci = coated_cos_inside(b, cosI);
-  float3 beta = make_float3(1.0f, 1.0f, 1.0f) * ((1.0f - fo) / (b.eta * b.eta));
-  float3 exitWeight = b.base * (MCL_INV_PI * mcl_exp_neg(b.thickness / ci) * (1.0f - fi));
-  float3 f = make_float3(0.0f, 0.0f, 0.0f);
-  float c = co;       // cosine of the walk's direction inside the layer
-  int atBase = 0;     // the walk starts just under the coat, heading down
-  for (uint depth = 0; depth < b.maxDepth; ++depth) {
-    RngOut r = pcg4d(seed.x, seed.y, seed.z, seed.w + depth);
-    float m = fmax(beta.x, fmax(beta.y, beta.z));
-    if (depth > 3u && m < 0.25f) {
-      float q = fmax(0.0f, 1.0f - m);
-      if (u32_to_unit(r.x) < q) break;
-      beta = beta * (1.0f / (1.0f - q));
-    }
-    beta = beta * mcl_exp_neg(b.thickness / c);
-    atBase = !atBase;
-    if (atBase) {
-      f = f + beta * exitWeight;
-      beta = beta * b.base;
-      c = sqrt(fmax(u32_to_unit(r.y), 1e-7f));  // cosine-weighted: cos = sqrt(u)
-    } else {
-      float ct;
-      beta = beta * fresnel_dielectric(c, 1.0f / b.eta, &ct);
-    }
-    if (!(fmax(beta.x, fmax(beta.y, beta.z)) > 0.0f)) break;
+// The kind's functions written once for floats and lanes (P, F, F3, M, U, V, ANY: the prefix,
+// float, float3, int mask, uint, f3, MCL_ANY1 here; the packet stages' v_, vfloat, vfloat3, vmask,
+// vuint, v3, v_any in stages/lane_bsdf.h, with the frame FR, sample type BS, random-number type RO,
+// pcg4d PCG, u32_to_unit UNIT, the float -> uint bit cast AS_U, uint -> float CVT_F_U and exp_neg's
+// prefix E). A lane's walk stops (its mask clears) where the scalar walk breaks; the walks run
+// while some lane's does.
+// - coated_fresnel_out, coated_cos_inside: the Fresnel reflectance from outside at cos c (> 0), and
+//   the cosine inside the coat.
+// - coated_diffuse_walk: one walk's estimate of the through-the-coat part of f (no cosine) for
+//   local cosines cosO, cosI (> 0) with numbers from pcg4d(seed, step), in the lanes of `live`.
+// - coated_diffuse_seed: the walk's seed from the directions' bits (wo first: the estimate is
+//   reciprocal in expectation).
+// - coated_diffuse_eval, _f, _pdf, _sample: f cos (the coat's GGX reflection plus the walks'
+//   mean), f, the mixture pdf of the coat's lobe and the cosine lobe, a direction with weight
+//   eval / pdf.
+#define MCL_DEFINE_COATED_DIFFUSE(P, F, F3, M, U, V, ANY, B, FR, BS, RO, PCG, UNIT, AS_U, CVT_F_U, E)          \
+  MCL_INLINE F P##coated_fresnel_out(B b, F c) {                                                            \
+    F ct;                                                                                                   \
+    return P##fresnel_dielectric(c, b.eta, &ct);                                                            \
+  }                                                                                                         \
+  MCL_INLINE F P##coated_cos_inside(B b, F c) {                                                             \
+    F ct;                                                                                                   \
+    P##fresnel_dielectric(c, b.eta, &ct);                                                                   \
+    return ct;                                                                                              \
+  }                                                                                                         \
+  MCL_INLINE F3 P##coated_diffuse_walk(B b, F cosO, F cosI, RO seed, M live) {                              \
+    F fo = P##coated_fresnel_out(b, cosO), fi = P##coated_fresnel_out(b, cosI);                             \
+    F co = P##coated_cos_inside(b, cosO), ci = P##coated_cos_inside(b, cosI);                               \
+    F3 beta = V##_scale(V##_make((F)(1.0f), (F)(1.0f), (F)(1.0f)), (1.0f - fo) / (b.eta * b.eta));          \
+    F3 exitWeight = V##_scale(b.base, MCL_INV_PI * E##exp_neg(b.thickness / ci) * (1.0f - fi));             \
+    F3 f = V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f));                                                       \
+    F c = co;            /* cosine of the walk's direction inside the layer */                              \
+    M atBase = (M)(0);   /* the walk starts just under the coat, heading down */                            \
+    for (uint depth = 0;; ++depth) {                                                                        \
+      live = live & (depth < b.maxDepth);                                                                   \
+      if (!ANY(live)) break;                                                                                \
+      RO r = PCG(seed.x, seed.y, seed.z, seed.w + depth);                                                   \
+      if (depth > 3u) { /* Russian roulette */                                                              \
+        F m = fmax(beta.x, fmax(beta.y, beta.z));                                                           \
+        F q = fmax((F)(0.0f), 1.0f - m);                                                                    \
+        M roulette = live & (m < 0.25f);                                                                    \
+        M dies = roulette & (UNIT(r.x) < q);                                                                \
+        live = live & (dies == (M)(0));                                                                     \
+        beta = V##_select(roulette & (dies == (M)(0)), V##_scale(beta, 1.0f / (1.0f - q)), beta);           \
+      }                                                                                                     \
+      beta = V##_select(live, V##_scale(beta, E##exp_neg(b.thickness / c)), beta);                          \
+      atBase = vsel(live, atBase == (M)(0), atBase);                                                        \
+      M base = live & atBase;                                                                               \
+      f = V##_select(base, V##_add(f, V##_mul(beta, exitWeight)), f);                                       \
+      F ct;                                                                                                 \
+      F fr = P##fresnel_dielectric(c, 1.0f / b.eta, &ct);                                                   \
+      beta = V##_select(live, V##_select(atBase, V##_mul(beta, b.base), V##_scale(beta, fr)), beta);        \
+      c = vsel(base, sqrt(fmax(UNIT(r.y), 1e-7f)), c); /* cosine-weighted: cos = sqrt(u) */                  \
+      live = live & (fmax(beta.x, fmax(beta.y, beta.z)) > 0.0f);                                            \
+    }                                                                                                       \
+    return f;                                                                                               \
+  }                                                                                                         \
+  MCL_INLINE RO P##coated_diffuse_seed(F3 wo, F3 wi) {                                                      \
+    return PCG(AS_U(wo.x) ^ AS_U(wi.z), AS_U(wo.y), AS_U(wi.x) ^ AS_U(wo.z), AS_U(wi.y));                   \
+  }                                                                                                         \
+  MCL_INLINE F3 P##coated_diffuse_eval(B b, FR s, F3 wo, F3 wi) {                                           \
+    F3 woL = P##to_local(wo, s.ns), wiL = P##to_local(wi, s.ns);                                            \
+    M ok = (V##_dot(s.ng, wi) > 0.0f) & (woL.z > 0.0f) & (wiL.z > 0.0f);                                    \
+    F3 zero = V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f));                                                    \
+    if (!ANY(ok)) return zero;                                                                              \
+    F3 h = V##_normalize(V##_add(woL, wiL));                                                                \
+    F coat = P##coated_fresnel_out(b, fmax(V##_dot(woL, h), 0.0f)) * P##ggx_eval_cos(woL, wiL, b.alpha);    \
+    RO seed = P##coated_diffuse_seed(wo, wi);                                                               \
+    F3 walk = zero;                                                                                         \
+    for (uint k = 0;; ++k) {                                                                                \
+      M more = ok & (k < b.samples);                                                                        \
+      if (!ANY(more)) break;                                                                                \
+      walk = V##_select(more, V##_add(walk, P##coated_diffuse_walk(b, woL.z, wiL.z, seed, more)), walk);    \
+      seed.y += 0x9e3779b9u; /* the next walk's numbers */                                                  \
+    }                                                                                                       \
+    return V##_select(ok, V##_add(V##_make(coat, coat, coat), V##_scale(walk, wiL.z / CVT_F_U(b.samples))), zero); \
+  }                                                                                                         \
+  MCL_INLINE F3 P##coated_diffuse_f(B b, FR s, F3 wo, F3 wi) {                                              \
+    F c = V##_dot(s.ns, wi);                                                                                \
+    return V##_select(c > 0.0f, V##_scale(P##coated_diffuse_eval(b, s, wo, wi), 1.0f / c),                  \
+                      V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                                           \
+  }                                                                                                         \
+  MCL_INLINE F P##coated_diffuse_coat_prob(B b, F cosO) {                                                   \
+    return fmin(fmax(P##coated_fresnel_out(b, fmax(cosO, 0.0f)), 0.1f), 0.9f);                              \
+  }                                                                                                         \
+  MCL_INLINE F P##coated_diffuse_pdf(B b, FR s, F3 wo, F3 wi) {                                             \
+    F3 woL = P##to_local(wo, s.ns), wiL = P##to_local(wi, s.ns);                                            \
+    return P##ggx_cosine_mix_pdf(woL, wiL, V##_dot(s.ng, wi) > 0.0f, P##coated_diffuse_coat_prob(b, woL.z), b.alpha); \
+  }                                                                                                         \
+  MCL_INLINE BS P##coated_diffuse_sample(B b, FR s, F3 wo, F u1, F u2, F uLobe) {                           \
+    F3 woL = P##to_local(wo, s.ns);                                                                         \
+    M up = woL.z > 0.0f;                                                                                    \
+    F3 wiL = P##ggx_cosine_mix_sample(woL, uLobe < P##coated_diffuse_coat_prob(b, woL.z), b.alpha, u1, u2); \
+    BS r;                                                                                                   \
+    r.wi = P##to_world(wiL, s.ns);                                                                          \
+    F pdf = P##coated_diffuse_pdf(b, s, wo, r.wi);                                                          \
+    M ok = up & (pdf > 0.0f);                                                                               \
+    r.pdf = vsel(ok, pdf, (F)(0.0f));                                                                       \
+    r.weight = V##_select(ok, V##_scale(P##coated_diffuse_eval(b, s, wo, r.wi), 1.0f / fmax(pdf, 1e-30f)),  \
+                          V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                                       \
+    r.flags = (M)(0);                                                                                       \
+    return r;                                                                                               \
   }
-  return f;
-}
-
-// The walk's seed from the directions' bits (wo first: the estimate is reciprocal in expectation).
-MCL_INLINE RngOut coated_diffuse_seed(float3 wo, float3 wi) {
-  return pcg4d(as_uint(wo.x) ^ as_uint(wi.z), as_uint(wo.y), as_uint(wi.x) ^ as_uint(wo.z), as_uint(wi.y));
-}
-
-MCL_INLINE float3 coated_diffuse_eval(CoatedDiffuseBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
-  float3 woL = to_local(wo, s.ns), wiL = to_local(wi, s.ns);
-  int ok = above_surface(s.ng, wi) && woL.z > 0.0f && wiL.z > 0.0f;
-  if (!ok) return make_float3(0.0f, 0.0f, 0.0f);
-  float3 h = normalize(woL + wiL);
-  float coat = coated_fresnel_out(b, fmax(dot(woL, h), 0.0f)) * ggx_eval_cos(woL, wiL, b.alpha);
-  RngOut seed = coated_diffuse_seed(wo, wi);
-  float3 walk = make_float3(0.0f, 0.0f, 0.0f);
-  for (uint k = 0; k < b.samples; ++k) {
-    walk = walk + coated_diffuse_walk(b, woL.z, wiL.z, seed);
-    seed.y += 0x9e3779b9u;  // the next walk's numbers
-  }
-  return make_float3(coat, coat, coat) + walk * (wiL.z / (float)b.samples);
-}
-
-MCL_INLINE float3 coated_diffuse_f(CoatedDiffuseBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
-  float c = dot(s.ns, wi);
-  return c > 0.0f ? coated_diffuse_eval(b, s, wo, wi) * (1.0f / c) : make_float3(0.0f, 0.0f, 0.0f);
-}
-
-MCL_INLINE float coated_diffuse_coat_prob(CoatedDiffuseBsdf b, float cosO) {
-  return fmin(fmax(coated_fresnel_out(b, fmax(cosO, 0.0f)), 0.1f), 0.9f);
-}
-
-MCL_INLINE float coated_diffuse_pdf(CoatedDiffuseBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
-  float3 woL = to_local(wo, s.ns), wiL = to_local(wi, s.ns);
-  return ggx_cosine_mix_pdf(woL, wiL, above_surface(s.ng, wi), coated_diffuse_coat_prob(b, woL.z), b.alpha);
-}
-
-MCL_INLINE BsdfSample coated_diffuse_sample(CoatedDiffuseBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,
-                                            float uLobe) {
-  float3 woL = to_local(wo, s.ns);
-  int up = woL.z > 0.0f;
-  float3 wiL = ggx_cosine_mix_sample(woL, uLobe < coated_diffuse_coat_prob(b, woL.z), b.alpha, u1, u2);
-  BsdfSample r;
-  r.wi = to_world(wiL, s.ns);
-  float pdf = coated_diffuse_pdf(b, s, wo, r.wi);
-  int ok = up && pdf > 0.0f;
-  r.pdf = ok ? pdf : 0.0f;
-  r.weight = ok ? coated_diffuse_eval(b, s, wo, r.wi) * (1.0f / fmax(pdf, 1e-30f)) : make_float3(0.0f, 0.0f, 0.0f);
-  r.flags = 0;
-  return r;
-}
+MCL_DEFINE_COATED_DIFFUSE(, float, float3, int, uint, f3, MCL_ANY1, CoatedDiffuseBsdf, SurfaceFrame, BsdfSample, RngOut,
+                          pcg4d, u32_to_unit, as_uint, (float), mcl_)
 
 MCL_INLINE BsdfDirection coated_diffuse_sample_direction(CoatedDiffuseBsdf b, SurfaceFrame s, float3 wo, float u1,
                                                          float u2, float uLobe) {

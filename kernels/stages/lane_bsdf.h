@@ -24,22 +24,26 @@ MCL_DEFINE_THIN_DIELECTRIC_TYPE(vThinDielectricBsdf, vfloat)
 MCL_DEFINE_THIN_DIELECTRIC(v_, vfloat, vfloat3, vmask, v3, vThinDielectricBsdf, LaneFrame, vBsdfSample)
 MCL_DEFINE_METAL_ROUGH_TYPE(vMetalRoughBsdf, vfloat, vfloat3)
 MCL_DEFINE_METAL_ROUGH(v_, vfloat, vfloat3, vmask, v3, vMetalRoughBsdf, LaneFrame, vBsdfSample)
+MCL_DEFINE_COATED_DIFFUSE_TYPE(vCoatedDiffuseBsdf, vfloat, vfloat3, vuint)
+MCL_DEFINE_COATED_DIFFUSE(v_, vfloat, vfloat3, vmask, vuint, v3, v_any, vCoatedDiffuseBsdf, LaneFrame, vBsdfSample, vRngOut,
+                          v_pcg4d, v_u32_to_unit, v_as_uint, v_cvt_f_u, v_)
 MCL_DEFINE_SHADOW_DIR_FROM(v_, vfloat, vfloat3, vmask, v3)
 
 // The BSDFs of a packet's hits (LaneHits' masks say which lane is which kind; each kind's
 // parameters are made in every lane and read only in its own).
 typedef struct {
-  vmask lamb, glossy, conductor, dielectric, thin, metalRough;
+  vmask lamb, glossy, conductor, dielectric, thin, metalRough, coatedDiffuse;
   vDiffuseBsdf gl;
   vConductorBsdf cond;
   vDielectricBsdf diel;
   vThinDielectricBsdf sheet;
   vMetalRoughBsdf mr;
+  vCoatedDiffuseBsdf cd;
 } LaneBsdf;
 
 // The lanes shaded in lane types (the kinds above).
 MCL_INLINE vmask lane_bsdf_kinds(const LaneHits* lh) {
-  return lh->lamb | lh->glossy | lh->conductor | lh->dielectric | lh->thin | lh->metalRough;
+  return lh->lamb | lh->glossy | lh->conductor | lh->dielectric | lh->thin | lh->metalRough | lh->coatedDiffuse;
 }
 
 // <kind>_from_material per lane, from the materials' params0 and params1 (LaneHits) and the frame's
@@ -56,6 +60,7 @@ MCL_INLINE LaneBsdf lane_bsdf(const LaneHits* lh, LaneFrame s) {
   b.dielectric = lh->dielectric;
   b.thin = lh->thin;
   b.metalRough = lh->metalRough;
+  b.coatedDiffuse = lh->coatedDiffuse;
   b.cond = v_conductor_make(v3_make(lh->params0.x, lh->params0.y, lh->params0.z),
                             v3_make(lh->params1.x, lh->params1.y, lh->params1.z), lh->params0.w);
   b.cond.factor = v3_make(lh->specular.x, lh->specular.y, lh->specular.z);  // conductor_from_material
@@ -63,6 +68,14 @@ MCL_INLINE LaneBsdf lane_bsdf(const LaneHits* lh, LaneFrame s) {
   b.diel = v_dielectric_make(lh->params0.x, lh->params0.y);
   b.sheet.ior = lh->params0.x;
   b.mr = v_metal_rough_make(s.kd, lh->params0.x, lh->params0.y);
+  b.cd.base = s.kd;  // coated_diffuse_from_material
+  b.cd.alpha = fmax(lh->params0.x, MCL_GGX_MIN_ALPHA);
+  b.cd.eta = lh->params0.y;
+  b.cd.thickness = lh->params0.z;
+  // Other kinds' lanes hold other fields there: no walk (their loops must not run on them).
+  b.cd.maxDepth = vsel(lh->coatedDiffuse, v_as_uint(lh->params1.x), v_u(0u));
+  vuint walks = v_as_uint(lh->params1.y);
+  b.cd.samples = vsel(lh->coatedDiffuse & (walks > 1u), walks, v_u(1u));
   return b;
 }
 
@@ -93,6 +106,10 @@ MCL_INLINE vfloat3 lane_bsdf_eval_pdf(const LaneBsdf* b, LaneFrame s, vfloat3 wo
     fc = v3_select(b->metalRough, v_metal_rough_eval(b->mr, s, wo, wi), fc);
     p = vsel(b->metalRough, v_metal_rough_pdf(b->mr, s, wo, wi), p);
   }
+  if (v_any(b->coatedDiffuse)) {
+    fc = v3_select(b->coatedDiffuse, v_coated_diffuse_eval(b->cd, s, wo, wi), fc);
+    p = vsel(b->coatedDiffuse, v_coated_diffuse_pdf(b->cd, s, wo, wi), p);
+  }
   *pdf = p;
   return fc;
 }
@@ -105,6 +122,7 @@ MCL_INLINE vfloat3 lane_bsdf_f(const LaneBsdf* b, LaneFrame s, vfloat3 wo, vfloa
   if (v_any(b->conductor)) f = v3_select(b->conductor, v_conductor_f(b->cond, s, wo, wi), f);
   if (v_any(b->dielectric)) f = v3_select(b->dielectric, v_dielectric_f(b->diel, s, wo, wi), f);
   if (v_any(b->metalRough)) f = v3_select(b->metalRough, v_metal_rough_f(b->mr, s, wo, wi), f);
+  if (v_any(b->coatedDiffuse)) f = v3_select(b->coatedDiffuse, v_coated_diffuse_f(b->cd, s, wo, wi), f);
   return f;  // thin_dielectric: delta lobes only, f = 0
 }
 
@@ -143,5 +161,7 @@ MCL_INLINE vBsdfSample lane_bsdf_sample(const LaneBsdf* b, LaneFrame s, vfloat3 
   if (v_any(b->dielectric)) lane_sample_take(&r, b->dielectric, v_dielectric_sample(b->diel, s, wo, u1, u2, uLobe));
   if (v_any(b->thin)) lane_sample_take(&r, b->thin, v_thin_dielectric_sample(b->sheet, s, wo, u1, u2, uLobe));
   if (v_any(b->metalRough)) lane_sample_take(&r, b->metalRough, v_metal_rough_sample(b->mr, s, wo, u1, u2, uLobe));
+  if (v_any(b->coatedDiffuse))
+    lane_sample_take(&r, b->coatedDiffuse, v_coated_diffuse_sample(b->cd, s, wo, u1, u2, uLobe));
   return r;
 }

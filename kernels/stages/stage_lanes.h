@@ -290,17 +290,19 @@ MCL_INLINE vfloat v_luminance(vfloat3 c) { return 0.2126f * c.x + 0.7152f * c.y 
 // The hit triangles of a packet (lanes not in `hit` read entry 0, masked off by the caller), their
 // normals and the materials' fields the stage bodies read, and which lanes lane-type code takes:
 // lamb, the diffuse kind without a glossy lobe (bsdf_make's specular probability 0, computed as
-// it does), glossy, that kind with one (specular: Ks, its alpha and that probability); conductor, dielectric, thin_dielectric and metal_rough, those kinds (without a
-// metallic-roughness texture, whose parameters are a lookup, hit_metal_rough, nor metal_rough's
-// transmission, which picks another kind per sample, hit_transmission); tinted, the lanes whose
-// BSDF reads the textured albedo (the diffuse kind, metal_rough's base colour); and of them all flat, whose
-// frame comes from the triangle alone (no shading normals, normal or bump map, nor an instance,
-// and where tinted no vertex colours nor albedo texture: the others' frame comes from surface_at).
+// it does); glossy, that kind with one (specular: Ks and that probability, specAlpha its alpha);
+// conductor, dielectric, thin, metalRough, coatedDiffuse: those kinds (without a metallic-roughness
+// texture, whose parameters are a lookup, hit_metal_rough, nor metal_rough's transmission, which
+// picks another kind per sample, hit_transmission); tinted, the lanes whose BSDF reads the
+// textured albedo (the diffuse kind, metal_rough's and coated_diffuse's base colour); and of them
+// all flat, whose frame comes from the triangle alone (no shading normals, normal or bump map, nor
+// an instance, and where tinted no vertex colours nor albedo texture: the others' frame comes from
+// surface_at).
 typedef struct {
   vfloat3 v0, e1, e2, n, kd, ke;
   vfloat area, twoSided;  // normals[].w; Material::emission.w
   vuint tri, attrs, albedoTex;  // the triangle (0 where no hit), its MCL_ATTR_* flags, Kd's texture
-  vmask lamb, glossy, conductor, dielectric, thin, metalRough, tinted, flat;
+  vmask lamb, glossy, conductor, dielectric, thin, metalRough, coatedDiffuse, tinted, flat;
   vmask placed;  // a normal or bump map, or an instance: the frame only through surface_at
   vfloat4 params0, params1;  // Material::params0, params1 (the kinds' own parameters)
   vfloat4 specular;          // Ks and the glossy lobe's probability (diffuse_make's specProb)
@@ -338,13 +340,14 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
   h.dielectric = hit & plain & (kind == (uint)MCL_MATERIAL_dielectric);
   h.thin = hit & plain & (kind == (uint)MCL_MATERIAL_thin_dielectric);
   h.metalRough = hit & plain & (kind == (uint)MCL_MATERIAL_metal_rough);
+  h.coatedDiffuse = hit & plain & (kind == (uint)MCL_MATERIAL_coated_diffuse);
   h.params0 = h.params1 = v4_make(v_f(0.0f), v_f(0.0f), v_f(0.0f), v_f(0.0f));
-  if (v_any(h.conductor | h.dielectric | h.thin | h.metalRough)) {
+  if (v_any(h.conductor | h.dielectric | h.thin | h.metalRough | h.coatedDiffuse)) {
     v_gather4(mf + 16, mat, MCL_MATERIAL_FLOATS, &h.params0.x, &h.params0.y, &h.params0.z, &h.params0.w);
     v_gather4(mf + 20, mat, MCL_MATERIAL_FLOATS, &h.params1.x, &h.params1.y, &h.params1.z, &h.params1.w);
     h.metalRough = h.metalRough & v_not(h.params1.x > 0.0f);  // hit_transmission's mix: per lane
   }
-  h.tinted = h.lamb | h.glossy | h.metalRough;
+  h.tinted = h.lamb | h.glossy | h.metalRough | h.coatedDiffuse;
   h.tri = t;
   h.attrs = v_as_uint(e2w);
   h.albedoTex = v_as_uint(kdw);
@@ -405,6 +408,9 @@ MCL_INLINE LaneFrame lane_frame_rich(SurfaceScene sc, MCL_CONSTANT const FramePa
       kX[j] = s.bsdf.p.diffuse.kd.x; kY[j] = s.bsdf.p.diffuse.kd.y; kZ[j] = s.bsdf.p.diffuse.kd.z;
     } else if (s.bsdf.kind == (uint)MCL_MATERIAL_metal_rough) {
       kX[j] = s.bsdf.p.metal_rough.base.x; kY[j] = s.bsdf.p.metal_rough.base.y; kZ[j] = s.bsdf.p.metal_rough.base.z;
+    } else if (s.bsdf.kind == (uint)MCL_MATERIAL_coated_diffuse) {
+      kX[j] = s.bsdf.p.coated_diffuse.base.x; kY[j] = s.bsdf.p.coated_diffuse.base.y;
+      kZ[j] = s.bsdf.p.coated_diffuse.base.z;
     }
     smo[j] = s.frame.smooth != 0;
     bf[j] = s.frame.backface != 0;
