@@ -1,7 +1,7 @@
 // lane_bsdf.h: the BSDF of W hits in lane types, for the packet stages: the material kinds written
 // once for floats and lanes (bsdf_diffuse.h's glossy mixture; bsdf_conductor.h with
 // microfacet_beckmann.h and exp_neg.h; bsdf_dielectric.h, bsdf_thin_dielectric.h,
-// bsdf_metal_rough.h; microfacet.h and bsdf_common.h's Fresnel terms) instantiated for lanes, and
+// bsdf_metal_rough.h, bsdf_coated_diffuse.h; microfacet.h and bsdf_common.h's Fresnel terms) instantiated for lanes, and
 // their dispatch under masks, with the Lambertian lobe of stage_lanes.h. Reads the hits' material
 // fields (LaneHits); writes nothing. At W = 1 every mask test is the plain `if`; each lane performs
 // the scalar functions' operations in order.

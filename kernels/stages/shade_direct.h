@@ -17,7 +17,7 @@
 // light_area_lanes.h; one atomic per packet per light sample; the Lambertian lobe's Kd / pi spelled
 // out, the other kinds' f cos, a light below the surface through a transmitting lobe with its
 // shadow ray from the far side) and the BSDF ray (the cosine lobe, folded where smooth; the other
-// kinds' sample). Hits on other kinds (the coated ones, a metallic-roughness texture, glTF
+// kinds' sample). Hits on other kinds (coated_conductor, a metallic-roughness texture, glTF
 // transmission): their surface, light samples and BSDF ray lane by lane through the functions
 // below (direct_light_sample, direct_bsdf_ray), with the packet's random numbers. Textured
 // emission: Le and the emitter samples lane by lane (light_eval, sample_direct_light).

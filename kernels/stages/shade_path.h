@@ -17,13 +17,13 @@
 // and GPUs; lanes past the queue masked; per-path state gathered and scattered by id). Misses: the
 // background, or path_miss per lane. Emission seen (MIS weighted after a BSDF bounce) for every
 // hit in lanes (textured emission: light_eval and light_pdf per lane). Hits on the kinds with a
-// lane form (lane_bsdf.h: diffuse, conductor, dielectric, thin_dielectric, metal_rough), textured
+// lane form (lane_bsdf.h: diffuse, conductor, dielectric, thin_dielectric, metal_rough, coated_diffuse), textured
 // or not, flat or smooth, in lanes (the frame from stage_lanes.h; normal and bump maps and
 // instances through surface_at per lane): the next-event light samples (the light kind picked per
 // lane: emitter triangles in lanes, the others through sample_direct_light per lane,
 // light_area_lanes.h; one atomic per packet per light sample; a light below the geometric surface
 // through a transmitting lobe, its shadow ray from the far side) and the BSDF continuation with
-// Russian roulette (one atomic per packet). Hits on other kinds (the coated ones, a metallic-
+// Russian roulette (one atomic per packet). Hits on other kinds (coated_conductor, a metallic-
 // roughness texture, glTF transmission): their surface, light samples and continuation lane by
 // lane through the functions below (path_light_sample, path_continue), with the packet's random
 // numbers.
