@@ -139,9 +139,7 @@ MCL_INLINE float3 coated_diffuse_albedo(CoatedDiffuseBsdf b) { return b.base; }
     return V##_select(ok, V##_add(V##_make(coat, coat, coat), V##_scale(walk, wiL.z / CVT_F_U(b.samples))), zero); \
   }                                                                                                         \
   MCL_INLINE F3 P##coated_diffuse_f(B b, FR s, F3 wo, F3 wi) {                                              \
-    F c = V##_dot(s.ns, wi);                                                                                \
-    return V##_select(c > 0.0f, V##_scale(P##coated_diffuse_eval(b, s, wo, wi), 1.0f / c),                  \
-                      V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                                           \
+    return P##over_cosine(P##coated_diffuse_eval(b, s, wo, wi), V##_dot(s.ns, wi));                         \
   }                                                                                                         \
   MCL_INLINE F P##coated_diffuse_coat_prob(B b, F cosO) {                                                   \
     return fmin(fmax(P##coated_fresnel_out(b, fmax(cosO, 0.0f)), 0.1f), 0.9f);                              \

@@ -72,6 +72,7 @@ MCL_INLINE float3 bsdf_ray_origin(float3 p, float3 ng, int flags, float scale) {
 //   eta + i k (relative to the outside medium) for one channel at cosI in [0, 1]: the exact
 //   expression (e.g. pbrt-v3's FrConductor); fresnel_conductor: per RGB channel.
 // - to_local: the local coordinates of w in the frame (t, b, n) of make_basis.
+// - over_cosine: a kind's f from its f cos: fcos / c where the cosine c is positive, else 0.
 #define MCL_DEFINE_FRESNEL(P, F, F3, V)                                                  \
   MCL_INLINE F P##fresnel_dielectric(F cosI, F eta, F* cosT) {                          \
     F sin2T = (1.0f - cosI * cosI) / (eta * eta);                                        \
@@ -101,5 +102,8 @@ MCL_INLINE float3 bsdf_ray_origin(float3 p, float3 ng, int flags, float scale) {
     F3 t, b;                                                                             \
     P##make_basis(n, &t, &b);                                                            \
     return V##_make(V##_dot(w, t), V##_dot(w, b), V##_dot(w, n));                        \
+  }                                                                                      \
+  MCL_INLINE F3 P##over_cosine(F3 fcos, F c) {                                          \
+    return V##_select(c > 0.0f, V##_scale(fcos, 1.0f / c), V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f))); \
   }
 MCL_DEFINE_FRESNEL(, float, float3, f3)

@@ -57,9 +57,7 @@ MCL_DEFINE_CONDUCTOR_TYPE(ConductorBsdf, float, float3, int)
     return V##_select(ok, V##_scale(fr, g), V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));          \
   }                                                                                              \
   MCL_INLINE F3 P##conductor_f(B b, FR s, F3 wo, F3 wi) {                                        \
-    F c = V##_dot(s.ns, wi);                                                                     \
-    return V##_select(c > 0.0f, V##_scale(P##conductor_eval(b, s, wo, wi), 1.0f / c),            \
-                      V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                                \
+    return P##over_cosine(P##conductor_eval(b, s, wo, wi), V##_dot(s.ns, wi));                   \
   }                                                                                              \
   MCL_INLINE F P##conductor_pdf(B b, FR s, F3 wo, F3 wi) {                                       \
     F3 woL = P##to_local(wo, s.ns), wiL = P##to_local(wi, s.ns);                                 \

@@ -92,10 +92,9 @@ MCL_DEFINE_DIELECTRIC_TYPE(DielectricBsdf, float, int)
                                           side & (b.smooth == (M)(0)), pdf);                               \
   }                                                                                                        \
   MCL_INLINE F3 P##dielectric_f(B b, FR s, F3 wo, F3 wi) {                                                 \
-    F c = fabs(V##_dot(s.ns, wi));                                                                         \
     F p;                                                                                                   \
     F e = P##dielectric_eval_pdf(b, s, wo, wi, &p);                                                        \
-    return V##_select(c > 0.0f, V##_scale(V##_make(e, e, e), 1.0f / c), V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f))); \
+    return P##over_cosine(V##_make(e, e, e), fabs(V##_dot(s.ns, wi)));                                     \
   }                                                                                                        \
   MCL_INLINE BS P##dielectric_sample_rough(B b, FR s, F3 wo, F u1, F u2, F uLobe) {                        \
     F eta = P##dielectric_eta(b, s);                                                                       \

@@ -60,9 +60,7 @@ MCL_DEFINE_METAL_ROUGH_TYPE(MetalRoughBsdf, float, float3)
     return V##_select(ok, fcos, V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                               \
   }                                                                                                       \
   MCL_INLINE F3 P##metal_rough_f(B b, FR s, F3 wo, F3 wi) {                                               \
-    F c = V##_dot(s.ns, wi);                                                                              \
-    return V##_select(c > 0.0f, V##_scale(P##metal_rough_eval(b, s, wo, wi), 1.0f / c),                   \
-                      V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                                         \
+    return P##over_cosine(P##metal_rough_eval(b, s, wo, wi), V##_dot(s.ns, wi));                          \
   }                                                                                                       \
   MCL_INLINE F P##metal_rough_pdf(B b, FR s, F3 wo, F3 wi) {                                              \
     F3 woL = P##to_local(wo, s.ns), wiL = P##to_local(wi, s.ns);                                          \
