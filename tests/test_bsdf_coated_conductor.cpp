@@ -125,9 +125,9 @@ TEST_CASE("coated_conductor: its walk is reciprocal in expectation" * doctest::t
     RunningStats ab, ba;
     for (std::uint32_t i = 0; i < 40000; ++i) {
       RngOut seed = pcg4d(i, uint(pair), 17u, 0u);
-      ab.add(double(coated_conductor_walk(b.p.coated_conductor, wa, wb, seed).y));
+      ab.add(double(coated_conductor_walk(b.p.coated_conductor, wa, wb, seed, 1).y));
       seed = pcg4d(i, uint(pair), 23u, 0u);
-      ba.add(double(coated_conductor_walk(b.p.coated_conductor, wb, wa, seed).y));
+      ba.add(double(coated_conductor_walk(b.p.coated_conductor, wb, wa, seed, 1).y));
     }
     const double se = std::sqrt(ab.standardError() * ab.standardError() + ba.standardError() * ba.standardError());
     INFO("pair " << pair << ": " << ab.mean << " vs " << ba.mean << " +- " << se);

@@ -31,28 +31,152 @@
 #include "microfacet.h"
 #include "rng.h"
 
-typedef struct {
-  float3 eta, k;      // the metal's index relative to the coat
-  float baseAlpha;    // the base's GGX alpha (at least MCL_GGX_MIN_ALPHA)
-  float alpha;        // the coat's GGX alpha
-  float ior;          // the coat's index (inside / outside)
-  float thickness;    // of the clear layer
-  uint maxDepth;      // scattering events per walk
-  uint samples;       // walks per evaluation
-} CoatedConductorBsdf;
+#define MCL_DEFINE_COATED_CONDUCTOR_TYPE(B, F, F3, U)                   \
+  typedef struct {                                                       \
+    F3 eta, k;    /* the metal's index relative to the coat */           \
+    F baseAlpha;  /* the base's GGX alpha (at least MCL_GGX_MIN_ALPHA) */ \
+    F alpha;      /* the coat's GGX alpha */                             \
+    F ior;        /* the coat's index (inside / outside) */              \
+    F thickness;  /* of the clear layer */                               \
+    U maxDepth;   /* scattering events per walk */                       \
+    U samples;    /* walks per evaluation */                             \
+  } B;
+MCL_DEFINE_COATED_CONDUCTOR_TYPE(CoatedConductorBsdf, float, float3, uint)
+
+// The kind's functions written once for floats and lanes (the parameters as coated_diffuse's
+// macro: P, F, F3, M, U, V, ANY, the frame FR, sample type BS, random-number type RO, PCG, UNIT,
+// the uint -> float conversion CVT_F_U, exp_neg's prefix E). A lane's walk stops (its mask clears) where the scalar walk breaks; the
+// walks run while some lane's does.
+// - coated_conductor_make: from the Material's fields (eta and k before the division by ior).
+// - coated_conductor_inside: a local direction w (w.z > 0) outside as the layer sees it: (w.xy /
+//   ior, cos of the refraction).
+// - coated_conductor_base_f: the base's GGX conductor f (no cosine) between two inside directions.
+// - coated_conductor_walk: one walk's estimate of the through-the-coat part of f (no cosine) for
+//   local directions woL, wiL (z > 0) with numbers from pcg4d(seed, step), in the lanes of `live`.
+// - coated_conductor_eval, _f, _coat_prob, _pdf, _sample: f cos (the coat's GGX reflection plus the
+//   walks' mean), f, the coat lobe's probability, the mixture pdf, a direction with weight eval / pdf.
+#define MCL_DEFINE_COATED_CONDUCTOR(P, F, F3, M, U, V, ANY, B, FR, BS, RO, PCG, UNIT, CVT_F_U, E)                         \
+  MCL_INLINE B P##coated_conductor_make(F3 eta, F3 k, F baseAlpha, F alpha, F ior, F thickness, U maxDepth,       \
+                                        U samples) {                                                            \
+    B b;                                                                                                        \
+    b.ior = ior;                                                                                                \
+    b.eta = V##_scale(eta, 1.0f / b.ior);                                                                       \
+    b.k = V##_scale(k, 1.0f / b.ior);                                                                           \
+    b.baseAlpha = fmax(baseAlpha, MCL_GGX_MIN_ALPHA);                                                           \
+    b.alpha = fmax(alpha, MCL_GGX_MIN_ALPHA);                                                                   \
+    b.thickness = thickness;                                                                                    \
+    b.maxDepth = maxDepth;                                                                                      \
+    b.samples = vsel(samples > 1u, samples, (U)(1u));                                                           \
+    return b;                                                                                                   \
+  }                                                                                                             \
+  MCL_INLINE F3 P##coated_conductor_inside(B b, F3 w) {                                                         \
+    F tx = w.x * (1.0f / b.ior), ty = w.y * (1.0f / b.ior);                                                     \
+    return V##_make(tx, ty, sqrt(fmax((F)(0.0f), 1.0f - tx * tx - ty * ty)));                                  \
+  }                                                                                                             \
+  MCL_INLINE F3 P##coated_conductor_base_f(B b, F3 v, F3 w) {                                                   \
+    F3 h = V##_normalize(V##_add(v, w));                                                                        \
+    F3 fr = P##fresnel_conductor(fmin(fmax(V##_dot(v, h), 0.0f), 1.0f), b.eta, b.k);                           \
+    return V##_scale(fr, P##ggx_eval_cos(v, w, b.baseAlpha) / fmax(w.z, 1e-7f));                                \
+  }                                                                                                             \
+  MCL_INLINE F3 P##coated_conductor_walk(B b, F3 woL, F3 wiL, RO seed, M live) {                                \
+    F ct;                                                                                                       \
+    F fo = P##fresnel_dielectric(woL.z, b.ior, &ct), fi = P##fresnel_dielectric(wiL.z, b.ior, &ct);            \
+    F3 wiIn = P##coated_conductor_inside(b, wiL);                                                               \
+    F3 beta = V##_scale(V##_make((F)(1.0f), (F)(1.0f), (F)(1.0f)), (1.0f - fo) / (b.ior * b.ior));             \
+    F exitWeight = E##exp_neg(b.thickness / fmax(wiIn.z, 1e-7f)) * (1.0f - fi);                                 \
+    F3 f = V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f));                                                           \
+    F3 v = P##coated_conductor_inside(b, woL); /* toward the viewer's side, seen from the base */              \
+    U visits = (b.maxDepth + 1u) / 2u;         /* a visit is two events: the base and the coat */              \
+    for (uint k = 0;; ++k) {                                                                                    \
+      live = live & (k < visits);                                                                               \
+      if (!ANY(live)) break;                                                                                    \
+      RO r = PCG(seed.x, seed.y, seed.z, seed.w + k);                                                           \
+      F m = fmax(beta.x, fmax(beta.y, beta.z));                                                                 \
+      if (k > 1u) { /* Russian roulette */                                                                      \
+        F q = fmax((F)(0.0f), 1.0f - m);                                                                        \
+        M roulette = live & (m < 0.25f);                                                                        \
+        M dies = roulette & (UNIT(r.x) < q);                                                                    \
+        live = live & (dies == (M)(0));                                                                         \
+        beta = V##_select(roulette & (dies == (M)(0)), V##_scale(beta, 1.0f / (1.0f - q)), beta);               \
+      }                                                                                                         \
+      beta = V##_select(live, V##_scale(beta, E##exp_neg(b.thickness / fmax(v.z, 1e-7f))), beta); /* down */   \
+      f = V##_select(live, V##_add(f, V##_scale(V##_mul(beta, P##coated_conductor_base_f(b, v, wiIn)), exitWeight)), f); \
+      F3 h = P##ggx_sample_visible_normal(v, b.baseAlpha, UNIT(r.y), UNIT(r.z));                                \
+      F3 u = P##reflect_about(v, h);                                                                            \
+      F up = vsel(u.z > 0.0f, (F)(1.0f), (F)(0.0f));                                                            \
+      F3 fr = P##fresnel_conductor(fmin(fmax(V##_dot(v, h), 0.0f), 1.0f), b.eta, b.k);                          \
+      F3 next = V##_scale(V##_mul(beta, fr), up * P##ggx_g2(v, u, b.baseAlpha) / P##ggx_g1(v, b.baseAlpha));    \
+      next = V##_scale(next, E##exp_neg(b.thickness / fmax(u.z, 1e-7f))); /* up to the coat */                 \
+      next = V##_scale(next, P##fresnel_dielectric(fmax(u.z, 0.0f), 1.0f / b.ior, &ct));                        \
+      beta = V##_select(live, next, beta);                                                                      \
+      v = V##_select(live, V##_make(-u.x, -u.y, u.z), v); /* mirrored by the flat underside */                  \
+      live = live & (fmax(beta.x, fmax(beta.y, beta.z)) > 0.0f);                                                \
+    }                                                                                                           \
+    return f;                                                                                                   \
+  }                                                                                                             \
+  MCL_INLINE F3 P##coated_conductor_eval(B b, FR s, F3 wo, F3 wi) {                                             \
+    F3 woL = P##to_local(wo, s.ns), wiL = P##to_local(wi, s.ns);                                                \
+    M ok = (V##_dot(s.ng, wi) > 0.0f) & (woL.z > 0.0f) & (wiL.z > 0.0f);                                        \
+    F3 zero = V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f));                                                        \
+    if (!ANY(ok)) return zero;                                                                                  \
+    F3 h = V##_normalize(V##_add(woL, wiL));                                                                    \
+    F ct;                                                                                                       \
+    F coat = P##fresnel_dielectric(fmax(V##_dot(woL, h), 0.0f), b.ior, &ct) * P##ggx_eval_cos(woL, wiL, b.alpha); \
+    RO seed = P##coated_diffuse_seed(wo, wi);                                                                   \
+    F3 walk = zero;                                                                                             \
+    for (uint k = 0;; ++k) {                                                                                    \
+      M more = ok & (k < b.samples);                                                                            \
+      if (!ANY(more)) break;                                                                                    \
+      walk = V##_select(more, V##_add(walk, P##coated_conductor_walk(b, woL, wiL, seed, more)), walk);         \
+      seed.y += 0x9e3779b9u; /* the next walk's numbers */                                                      \
+    }                                                                                                           \
+    return V##_select(ok, V##_add(V##_make(coat, coat, coat), V##_scale(walk, wiL.z / CVT_F_U(b.samples))), zero); \
+  }                                                                                                             \
+  MCL_INLINE F3 P##coated_conductor_f(B b, FR s, F3 wo, F3 wi) {                                                \
+    return P##over_cosine(P##coated_conductor_eval(b, s, wo, wi), V##_dot(s.ns, wi));                           \
+  }                                                                                                             \
+  MCL_INLINE F P##coated_conductor_coat_prob(B b, F cosO) {                                                     \
+    F ct;                                                                                                       \
+    return fmin(fmax(P##fresnel_dielectric(fmax(cosO, 0.0f), b.ior, &ct), 0.1f), 0.9f);                         \
+  }                                                                                                             \
+  MCL_INLINE F P##coated_conductor_pdf(B b, FR s, F3 wo, F3 wi) {                                               \
+    F3 woL = P##to_local(wo, s.ns), wiL = P##to_local(wi, s.ns);                                                \
+    M ok = (V##_dot(s.ng, wi) > 0.0f) & (woL.z > 0.0f) & (wiL.z > 0.0f);                                        \
+    F ps = P##coated_conductor_coat_prob(b, woL.z);                                                             \
+    F3 woIn = P##coated_conductor_inside(b, woL), wiIn = P##coated_conductor_inside(b, wiL);                    \
+    F base = P##ggx_pdf(woIn, wiIn, b.baseAlpha) * wiL.z / (b.ior * b.ior * fmax(wiIn.z, 1e-7f));             \
+    F p = ps * P##ggx_pdf(woL, wiL, b.alpha) + (1.0f - ps) * base;                                              \
+    return vsel(ok, p, (F)(0.0f));                                                                              \
+  }                                                                                                             \
+  MCL_INLINE BS P##coated_conductor_sample(B b, FR s, F3 wo, F u1, F u2, F uLobe) {                             \
+    F3 woL = P##to_local(wo, s.ns);                                                                             \
+    M up = woL.z > 0.0f;                                                                                        \
+    M coatLobe = uLobe < P##coated_conductor_coat_prob(b, woL.z);                                               \
+    F3 v = V##_select(coatLobe, woL, P##coated_conductor_inside(b, woL));                                      \
+    F3 h = V##_select(up, P##ggx_sample_visible_normal(v, vsel(coatLobe, b.alpha, b.baseAlpha), u1, u2),        \
+                      V##_make((F)(0.0f), (F)(0.0f), (F)(1.0f)));                                               \
+    F3 w = P##reflect_about(v, h);                                                                              \
+    /* The base lobe's reflection refracted out: tangent x ior; none under total internal reflection. */       \
+    F s2 = (w.x * w.x + w.y * w.y) * (b.ior * b.ior);                                                           \
+    F3 out = V##_make(w.x * b.ior, w.y * b.ior, sqrt(fmax((F)(0.0f), 1.0f - s2)));                              \
+    M valid = coatLobe | ((w.z > 0.0f) & (s2 < 1.0f));                                                          \
+    BS r;                                                                                                       \
+    r.wi = P##to_world(V##_select(coatLobe, w, out), s.ns);                                                     \
+    F pdf = P##coated_conductor_pdf(b, s, wo, r.wi);                                                            \
+    M ok = up & valid & (pdf > 0.0f);                                                                           \
+    r.pdf = vsel(ok, pdf, (F)(0.0f));                                                                           \
+    r.weight = V##_select(ok, V##_scale(P##coated_conductor_eval(b, s, wo, r.wi), 1.0f / fmax(pdf, 1e-30f)),    \
+                          V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                                           \
+    r.flags = (M)(0);                                                                                           \
+    return r;                                                                                                   \
+  }
+MCL_DEFINE_COATED_CONDUCTOR(, float, float3, int, uint, f3, MCL_ANY1, CoatedConductorBsdf, SurfaceFrame, BsdfSample,
+                            RngOut, pcg4d, u32_to_unit, (float), mcl_)
 
 MCL_INLINE CoatedConductorBsdf coated_conductor_from_material(Material m, float3 albedo) {
   (void)albedo;
-  CoatedConductorBsdf b;
-  b.ior = m.specular.x;
-  b.eta = xyz(m.params0) * (1.0f / b.ior);
-  b.k = xyz(m.params1) * (1.0f / b.ior);
-  b.baseAlpha = fmax(m.params0.w, MCL_GGX_MIN_ALPHA);
-  b.alpha = fmax(m.params1.w, MCL_GGX_MIN_ALPHA);
-  b.thickness = m.specular.y;
-  b.maxDepth = as_uint(m.specular.z);
-  b.samples = as_uint(m.specular.w) > 1u ? as_uint(m.specular.w) : 1u;
-  return b;
+  return coated_conductor_make(xyz(m.params0), xyz(m.params1), m.params0.w, m.params1.w, m.specular.x, m.specular.y,
+                               as_uint(m.specular.z), as_uint(m.specular.w));
 }
 
 MCL_INLINE int coated_conductor_is_delta(CoatedConductorBsdf b) {
@@ -62,113 +186,6 @@ MCL_INLINE int coated_conductor_is_delta(CoatedConductorBsdf b) {
 
 // The albedo AOV: the base metal's reflectance at normal incidence under the coat.
 MCL_INLINE float3 coated_conductor_albedo(CoatedConductorBsdf b) { return fresnel_conductor(1.0f, b.eta, b.k); }
-
-// A local direction w (w.z > 0) outside as the layer sees it: (w.xy / ior, cos of the refraction).
-MCL_INLINE float3 coated_conductor_inside(CoatedConductorBsdf b, float3 w) {
-  float3 t = make_float3(w.x, w.y, 0.0f) * (1.0f / b.ior);
-  return make_float3(t.x, t.y, sqrt(fmax(0.0f, 1.0f - t.x * t.x - t.y * t.y)));
-}
-
-// The base's GGX conductor f (no cosine) between two inside directions above it.
-MCL_INLINE float3 coated_conductor_base_f(CoatedConductorBsdf b, float3 v, float3 w) {
-  float3 h = normalize(v + w);
-  float3 fr = fresnel_conductor(fmin(fmax(dot(v, h), 0.0f), 1.0f), b.eta, b.k);
-  return fr * (ggx_eval_cos(v, w, b.baseAlpha) / fmax(w.z, 1e-7f));
-}
-
-// One walk's estimate of the through-the-coat part of f (no cosine) for local directions wo, wi
-// (z > 0) with numbers from pcg4d(seed, step): the walk of the header.
-MCL_INLINE float3 coated_conductor_walk(CoatedConductorBsdf b, float3 woL, float3 wiL, RngOut seed) {
-  float ct;
-  float fo = fresnel_dielectric(woL.z, b.ior, &ct), fi = fresnel_dielectric(wiL.z, b.ior, &ct);
-  float3 wiIn = coated_conductor_inside(b, wiL);
-  float3 beta = make_float3(1.0f, 1.0f, 1.0f) * ((1.0f - fo) / (b.ior * b.ior));
-  float exitWeight = mcl_exp_neg(b.thickness / fmax(wiIn.z, 1e-7f)) * (1.0f - fi);
-  float3 f = make_float3(0.0f, 0.0f, 0.0f);
-  float3 v = coated_conductor_inside(b, woL);  // toward the viewer's side, seen from the base
-  uint visits = (b.maxDepth + 1u) / 2u;        // a visit is two events: the base and the coat
-  for (uint k = 0; k < visits; ++k) {
-    RngOut r = pcg4d(seed.x, seed.y, seed.z, seed.w + k);
-    float m = fmax(beta.x, fmax(beta.y, beta.z));
-    if (k > 1u && m < 0.25f) {
-      float q = fmax(0.0f, 1.0f - m);
-      if (u32_to_unit(r.x) < q) break;
-      beta = beta * (1.0f / (1.0f - q));
-    }
-    beta = beta * mcl_exp_neg(b.thickness / fmax(v.z, 1e-7f));  // down to the base
-    f = f + beta * coated_conductor_base_f(b, v, wiIn) * exitWeight;
-    float3 h = ggx_sample_visible_normal(v, b.baseAlpha, u32_to_unit(r.y), u32_to_unit(r.z));
-    float3 u = reflect_about(v, h);
-    float up = u.z > 0.0f ? 1.0f : 0.0f;
-    float3 fr = fresnel_conductor(fmin(fmax(dot(v, h), 0.0f), 1.0f), b.eta, b.k);
-    beta = beta * fr * (up * ggx_g2(v, u, b.baseAlpha) / ggx_g1(v, b.baseAlpha));
-    beta = beta * mcl_exp_neg(b.thickness / fmax(u.z, 1e-7f));  // up to the coat
-    beta = beta * fresnel_dielectric(fmax(u.z, 0.0f), 1.0f / b.ior, &ct);
-    v = make_float3(-u.x, -u.y, u.z);  // mirrored by the flat underside, seen from the base again
-    if (!(fmax(beta.x, fmax(beta.y, beta.z)) > 0.0f)) break;
-  }
-  return f;
-}
-
-MCL_INLINE float3 coated_conductor_eval(CoatedConductorBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
-  float3 woL = to_local(wo, s.ns), wiL = to_local(wi, s.ns);
-  int ok = above_surface(s.ng, wi) && woL.z > 0.0f && wiL.z > 0.0f;
-  if (!ok) return make_float3(0.0f, 0.0f, 0.0f);
-  float3 h = normalize(woL + wiL);
-  float ct;
-  float coat = fresnel_dielectric(fmax(dot(woL, h), 0.0f), b.ior, &ct) * ggx_eval_cos(woL, wiL, b.alpha);
-  RngOut seed = coated_diffuse_seed(wo, wi);
-  float3 walk = make_float3(0.0f, 0.0f, 0.0f);
-  for (uint k = 0; k < b.samples; ++k) {
-    walk = walk + coated_conductor_walk(b, woL, wiL, seed);
-    seed.y += 0x9e3779b9u;  // the next walk's numbers
-  }
-  return make_float3(coat, coat, coat) + walk * (wiL.z / (float)b.samples);
-}
-
-MCL_INLINE float3 coated_conductor_f(CoatedConductorBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
-  float c = dot(s.ns, wi);
-  return c > 0.0f ? coated_conductor_eval(b, s, wo, wi) * (1.0f / c) : make_float3(0.0f, 0.0f, 0.0f);
-}
-
-MCL_INLINE float coated_conductor_coat_prob(CoatedConductorBsdf b, float cosO) {
-  float ct;
-  return fmin(fmax(fresnel_dielectric(fmax(cosO, 0.0f), b.ior, &ct), 0.1f), 0.9f);
-}
-
-MCL_INLINE float coated_conductor_pdf(CoatedConductorBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
-  float3 woL = to_local(wo, s.ns), wiL = to_local(wi, s.ns);
-  int ok = above_surface(s.ng, wi) && woL.z > 0.0f && wiL.z > 0.0f;
-  float ps = coated_conductor_coat_prob(b, woL.z);
-  float3 woIn = coated_conductor_inside(b, woL), wiIn = coated_conductor_inside(b, wiL);
-  float base = ggx_pdf(woIn, wiIn, b.baseAlpha) * wiL.z / (b.ior * b.ior * fmax(wiIn.z, 1e-7f));
-  float p = ps * ggx_pdf(woL, wiL, b.alpha) + (1.0f - ps) * base;
-  return ok ? p : 0.0f;
-}
-
-MCL_INLINE BsdfSample coated_conductor_sample(CoatedConductorBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,
-                                              float uLobe) {
-  float3 woL = to_local(wo, s.ns);
-  int up = woL.z > 0.0f;
-  int coatLobe = uLobe < coated_conductor_coat_prob(b, woL.z);
-  float3 woIn = coated_conductor_inside(b, woL);
-  float3 v = coatLobe ? woL : woIn;
-  float3 h = up ? ggx_sample_visible_normal(v, coatLobe ? b.alpha : b.baseAlpha, u1, u2) : make_float3(0.0f, 0.0f, 1.0f);
-  float3 w = reflect_about(v, h);
-  // The base lobe's reflection refracted out: tangent x ior; none under total internal reflection.
-  float s2 = (w.x * w.x + w.y * w.y) * (b.ior * b.ior);
-  float3 out = make_float3(w.x * b.ior, w.y * b.ior, sqrt(fmax(0.0f, 1.0f - s2)));
-  int valid = coatLobe ? 1 : (w.z > 0.0f && s2 < 1.0f);
-  float3 wiL = coatLobe ? w : out;
-  BsdfSample r;
-  r.wi = to_world(wiL, s.ns);
-  float pdf = coated_conductor_pdf(b, s, wo, r.wi);
-  int ok = up && valid && pdf > 0.0f;
-  r.pdf = ok ? pdf : 0.0f;
-  r.weight = ok ? coated_conductor_eval(b, s, wo, r.wi) * (1.0f / fmax(pdf, 1e-30f)) : make_float3(0.0f, 0.0f, 0.0f);
-  r.flags = 0;
-  return r;
-}
 
 MCL_INLINE BsdfDirection coated_conductor_sample_direction(CoatedConductorBsdf b, SurfaceFrame s, float3 wo, float u1,
                                                            float u2, float uLobe) {

@@ -1,7 +1,7 @@
 // lane_bsdf.h: the BSDF of W hits in lane types, for the packet stages: the material kinds written
 // once for floats and lanes (bsdf_diffuse.h's glossy mixture; bsdf_conductor.h with
 // microfacet_beckmann.h and exp_neg.h; bsdf_dielectric.h, bsdf_thin_dielectric.h,
-// bsdf_metal_rough.h, bsdf_coated_diffuse.h; microfacet.h and bsdf_common.h's Fresnel terms) instantiated for lanes, and
+// bsdf_metal_rough.h, bsdf_coated_diffuse.h, bsdf_coated_conductor.h; microfacet.h and bsdf_common.h's Fresnel terms) instantiated for lanes, and
 // their dispatch under masks, with the Lambertian lobe of stage_lanes.h. Reads the hits' material
 // fields (LaneHits); writes nothing. At W = 1 every mask test is the plain `if`; each lane performs
 // the scalar functions' operations in order.
@@ -27,23 +27,28 @@ MCL_DEFINE_METAL_ROUGH(v_, vfloat, vfloat3, vmask, v3, vMetalRoughBsdf, LaneFram
 MCL_DEFINE_COATED_DIFFUSE_TYPE(vCoatedDiffuseBsdf, vfloat, vfloat3, vuint)
 MCL_DEFINE_COATED_DIFFUSE(v_, vfloat, vfloat3, vmask, vuint, v3, v_any, vCoatedDiffuseBsdf, LaneFrame, vBsdfSample, vRngOut,
                           v_pcg4d, v_u32_to_unit, v_as_uint, v_cvt_f_u, v_)
+MCL_DEFINE_COATED_CONDUCTOR_TYPE(vCoatedConductorBsdf, vfloat, vfloat3, vuint)
+MCL_DEFINE_COATED_CONDUCTOR(v_, vfloat, vfloat3, vmask, vuint, v3, v_any, vCoatedConductorBsdf, LaneFrame, vBsdfSample,
+                            vRngOut, v_pcg4d, v_u32_to_unit, v_cvt_f_u, v_)
 MCL_DEFINE_SHADOW_DIR_FROM(v_, vfloat, vfloat3, vmask, v3)
 
 // The BSDFs of a packet's hits (LaneHits' masks say which lane is which kind; each kind's
 // parameters are made in every lane and read only in its own).
 typedef struct {
-  vmask lamb, glossy, conductor, dielectric, thin, metalRough, coatedDiffuse;
+  vmask lamb, glossy, conductor, dielectric, thin, metalRough, coatedDiffuse, coatedConductor;
   vDiffuseBsdf gl;
   vConductorBsdf cond;
   vDielectricBsdf diel;
   vThinDielectricBsdf sheet;
   vMetalRoughBsdf mr;
   vCoatedDiffuseBsdf cd;
+  vCoatedConductorBsdf cc;
 } LaneBsdf;
 
 // The lanes shaded in lane types (the kinds above).
 MCL_INLINE vmask lane_bsdf_kinds(const LaneHits* lh) {
-  return lh->lamb | lh->glossy | lh->conductor | lh->dielectric | lh->thin | lh->metalRough | lh->coatedDiffuse;
+  return lh->lamb | lh->glossy | lh->conductor | lh->dielectric | lh->thin | lh->metalRough | lh->coatedDiffuse |
+         lh->coatedConductor;
 }
 
 // <kind>_from_material per lane, from the materials' params0 and params1 (LaneHits) and the frame's
@@ -76,6 +81,12 @@ MCL_INLINE LaneBsdf lane_bsdf(const LaneHits* lh, LaneFrame s) {
   b.cd.maxDepth = vsel(lh->coatedDiffuse, v_as_uint(lh->params1.x), v_u(0u));
   vuint walks = v_as_uint(lh->params1.y);
   b.cd.samples = vsel(lh->coatedDiffuse & (walks > 1u), walks, v_u(1u));
+  b.coatedConductor = lh->coatedConductor;  // coated_conductor_from_material; no walk in other lanes
+  b.cc = v_coated_conductor_make(v3_make(lh->params0.x, lh->params0.y, lh->params0.z),
+                                 v3_make(lh->params1.x, lh->params1.y, lh->params1.z), lh->params0.w, lh->params1.w,
+                                 lh->specular.x, lh->specular.y,
+                                 vsel(lh->coatedConductor, v_as_uint(lh->specular.z), v_u(0u)),
+                                 vsel(lh->coatedConductor, v_as_uint(lh->specAlpha), v_u(1u)));
   return b;
 }
 
@@ -110,6 +121,10 @@ MCL_INLINE vfloat3 lane_bsdf_eval_pdf(const LaneBsdf* b, LaneFrame s, vfloat3 wo
     fc = v3_select(b->coatedDiffuse, v_coated_diffuse_eval(b->cd, s, wo, wi), fc);
     p = vsel(b->coatedDiffuse, v_coated_diffuse_pdf(b->cd, s, wo, wi), p);
   }
+  if (v_any(b->coatedConductor)) {
+    fc = v3_select(b->coatedConductor, v_coated_conductor_eval(b->cc, s, wo, wi), fc);
+    p = vsel(b->coatedConductor, v_coated_conductor_pdf(b->cc, s, wo, wi), p);
+  }
   *pdf = p;
   return fc;
 }
@@ -123,6 +138,7 @@ MCL_INLINE vfloat3 lane_bsdf_f(const LaneBsdf* b, LaneFrame s, vfloat3 wo, vfloa
   if (v_any(b->dielectric)) f = v3_select(b->dielectric, v_dielectric_f(b->diel, s, wo, wi), f);
   if (v_any(b->metalRough)) f = v3_select(b->metalRough, v_metal_rough_f(b->mr, s, wo, wi), f);
   if (v_any(b->coatedDiffuse)) f = v3_select(b->coatedDiffuse, v_coated_diffuse_f(b->cd, s, wo, wi), f);
+  if (v_any(b->coatedConductor)) f = v3_select(b->coatedConductor, v_coated_conductor_f(b->cc, s, wo, wi), f);
   return f;  // thin_dielectric: delta lobes only, f = 0
 }
 
@@ -163,5 +179,7 @@ MCL_INLINE vBsdfSample lane_bsdf_sample(const LaneBsdf* b, LaneFrame s, vfloat3 
   if (v_any(b->metalRough)) lane_sample_take(&r, b->metalRough, v_metal_rough_sample(b->mr, s, wo, u1, u2, uLobe));
   if (v_any(b->coatedDiffuse))
     lane_sample_take(&r, b->coatedDiffuse, v_coated_diffuse_sample(b->cd, s, wo, u1, u2, uLobe));
+  if (v_any(b->coatedConductor))
+    lane_sample_take(&r, b->coatedConductor, v_coated_conductor_sample(b->cc, s, wo, u1, u2, uLobe));
   return r;
 }

@@ -302,7 +302,7 @@ typedef struct {
   vfloat3 v0, e1, e2, n, kd, ke;
   vfloat area, twoSided;  // normals[].w; Material::emission.w
   vuint tri, attrs, albedoTex;  // the triangle (0 where no hit), its MCL_ATTR_* flags, Kd's texture
-  vmask lamb, glossy, conductor, dielectric, thin, metalRough, coatedDiffuse, tinted, flat;
+  vmask lamb, glossy, conductor, dielectric, thin, metalRough, coatedDiffuse, coatedConductor, tinted, flat;
   vmask placed;  // a normal or bump map, or an instance: the frame only through surface_at
   vfloat4 params0, params1;  // Material::params0, params1 (the kinds' own parameters)
   vfloat4 specular;          // Ks and the glossy lobe's probability (diffuse_make's specProb)
@@ -341,8 +341,9 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
   h.thin = hit & plain & (kind == (uint)MCL_MATERIAL_thin_dielectric);
   h.metalRough = hit & plain & (kind == (uint)MCL_MATERIAL_metal_rough);
   h.coatedDiffuse = hit & plain & (kind == (uint)MCL_MATERIAL_coated_diffuse);
+  h.coatedConductor = hit & plain & (kind == (uint)MCL_MATERIAL_coated_conductor);
   h.params0 = h.params1 = v4_make(v_f(0.0f), v_f(0.0f), v_f(0.0f), v_f(0.0f));
-  if (v_any(h.conductor | h.dielectric | h.thin | h.metalRough | h.coatedDiffuse)) {
+  if (v_any(h.conductor | h.dielectric | h.thin | h.metalRough | h.coatedDiffuse | h.coatedConductor)) {
     v_gather4(mf + 16, mat, MCL_MATERIAL_FLOATS, &h.params0.x, &h.params0.y, &h.params0.z, &h.params0.w);
     v_gather4(mf + 20, mat, MCL_MATERIAL_FLOATS, &h.params1.x, &h.params1.y, &h.params1.z, &h.params1.w);
     h.metalRough = h.metalRough & v_not(h.params1.x > 0.0f);  // hit_transmission's mix: per lane
@@ -358,7 +359,7 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
     h.placed = h.placed | (v_loadu_lanes(inst) != MCL_NO_INSTANCE);
   }
   vmask albedoVaries = ((h.attrs & MCL_ATTR_COLOR) != 0u) | (h.albedoTex != MCL_NO_TEXTURE);
-  h.flat = (h.tinted | h.conductor | h.dielectric | h.thin) & ((h.attrs & MCL_ATTR_NORMALS) == 0u) &
+  h.flat = (h.tinted | h.conductor | h.dielectric | h.thin | h.coatedConductor) & ((h.attrs & MCL_ATTR_NORMALS) == 0u) &
            v_not(h.placed) & v_not(h.tinted & albedoVaries);
   return h;
 }
