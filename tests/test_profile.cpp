@@ -129,8 +129,9 @@ std::pair<double, long> laneTally(const std::string& out) {
 
 // The tally counts hits, not work items: the host backend (one lane) and the OpenCL device (W
 // lanes, fused stages) count the same hits the same way; a scene of flat diffuse walls is shaded
-// wholly in lane types, the materials box (glass, metals) too by both integrators, the box with
-// its gold sphere made coated_conductor (no lane form: one by one) in part.
+// wholly in lane types, the materials box (glass, metals) too by both integrators, and the box
+// with a coated_conductor sphere and glass; the same box with the sphere placed as two instances
+// (their frames through surface_at, one by one) in part.
 TEST_CASE("render --profile: the shading lane tally is the hits' own (host backend = OpenCL), 100% for diffuse walls" *
           doctest::test_suite("cli")) {
   TempDir dir;
@@ -139,8 +140,12 @@ TEST_CASE("render --profile: the shading lane tally is the hits' own (host backe
     "meshes": [{"file": ")" + src + R"(box.obj"}, {"file": ")" + src + R"(light.obj", "emission": [17, 12, 4]},
                {"file": ")" + src + R"(gold.obj", "material": {"type": "coated_conductor", "metal": "Au"}},
                {"file": ")" + src + R"(glass.obj", "material": {"type": "dielectric", "ior": 1.5}}]})");
-  for (const std::string& scene : {src + "scene.json", dir.file("coated.json")}) {
-    const bool coated = scene == dir.file("coated.json");
+  dir.write("placed.json", R"({"camera": {"position": [0, 1, 3.6], "target": [0, 0.9, 0], "fov_y": 38},
+    "meshes": [{"file": ")" + src + R"(box.obj"}, {"file": ")" + src + R"(light.obj", "emission": [17, 12, 4]},
+               {"file": ")" + src + R"(gold.obj", "material": {"type": "coated_conductor", "metal": "Au"},
+                "instances": [{"translate": [0, 0, 0]}, {"translate": [0.3, 0, 0.2]}]}]})");
+  for (const std::string& scene : {src + "scene.json", dir.file("coated.json"), dir.file("placed.json")}) {
+    const bool placed = scene == dir.file("placed.json");
     for (const char* integrator : {"path", "direct"}) {
       CAPTURE(scene);
       CAPTURE(integrator);
@@ -157,11 +162,11 @@ TEST_CASE("render --profile: the shading lane tally is the hits' own (host backe
         REQUIRE(r.exitCode == 0);
         tallies[k] = laneTally(r.out);
         CHECK(tallies[k].second > 24 * 16);  // most camera rays hit
-        if (!coated) {
-          CHECK(tallies[k].first == 100.0);  // diffuse walls, conductors and dielectrics in lane types
+        if (!placed) {
+          CHECK(tallies[k].first == 100.0);  // every material kind in lane types
         } else {
           CHECK(tallies[k].first > 0.0);
-          CHECK(tallies[k].first < 100.0);  // the coated_conductor sphere one by one
+          CHECK(tallies[k].first < 100.0);  // the instanced spheres' frames one by one
         }
         ++k;
       }

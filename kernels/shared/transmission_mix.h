@@ -22,16 +22,41 @@
 #include "sampler.h"
 #include "types.h"
 
+// The kind's pick written once for floats and lanes (P, F, U, M, F3: the prefix, float, uint, int
+// mask, float3 here; the packet stages' v_, vfloat, vuint, vmask, vfloat3 in stage_lanes.h, with
+// mix32 MIX, the float -> uint bit cast AS_U and u32_to_unit UNIT).
+// - hit_uniform_at: a uniform number in [0, 1) that is a function of the hit (triangle tri,
+//   barycentrics u, v) of a ray along dir.
+// - transmission_pick: the kind a material of kind `kind` with transmission factor t (params1.x),
+//   index ior (params1.y) and solid flag (params1.z) is at a hit whose uniform number is u (only
+//   read where the material mixes); *metallic, *roughness (params0.x, .y in, the picked kind's
+//   params0.x, .y out).
+#define MCL_DEFINE_TRANSMISSION_PICK(P, F, U, M, F3, MIX, AS_U, UNIT)                           \
+  MCL_INLINE F P##hit_uniform_at(U tri, F u, F v, F3 dir) {                                     \
+    U x = MIX(tri ^ 0x9e3779b9u);                                                               \
+    x = MIX(x ^ AS_U(u));                                                                       \
+    x = MIX(x ^ AS_U(v));                                                                       \
+    x = MIX(x ^ AS_U(dir.x));                                                                   \
+    x = MIX(x ^ AS_U(dir.y));                                                                   \
+    x = MIX(x ^ AS_U(dir.z));                                                                   \
+    return UNIT(x);                                                                             \
+  }                                                                                             \
+  MCL_INLINE U P##transmission_pick(U kind, F t, F ior, F solidFlag, F u, F* metallic, F* roughness) { \
+    M mixes = (kind == (uint)MCL_MATERIAL_metal_rough) & (t > 0.0f);                            \
+    F p = t * (1.0f - *metallic);                                                               \
+    M pick = mixes & (u < p);                                                                   \
+    M solid = solidFlag > 0.0f;                                                                 \
+    U glass = vsel(solid, (U)((uint)MCL_MATERIAL_dielectric), (U)((uint)MCL_MATERIAL_thin_dielectric)); \
+    F rest = fmin(*metallic / fmax(1.0f - p, 1e-30f), 1.0f);                                    \
+    F r = *roughness;                                                                           \
+    *metallic = vsel(pick, ior, vsel(mixes, rest, *metallic));                                  \
+    *roughness = vsel(pick, vsel(solid, r * r, (F)(0.0f)), r);                                  \
+    return vsel(pick, glass, kind);                                                             \
+  }
+MCL_DEFINE_TRANSMISSION_PICK(, float, uint, int, float3, mcl_mix32, as_uint, u32_to_unit)
+
 // A uniform number in [0, 1) that is a function of the hit h of a ray along dir.
-MCL_INLINE float hit_uniform(Hit h, float3 dir) {
-  uint x = mcl_mix32(h.tri ^ 0x9e3779b9u);
-  x = mcl_mix32(x ^ as_uint(h.u));
-  x = mcl_mix32(x ^ as_uint(h.v));
-  x = mcl_mix32(x ^ as_uint(dir.x));
-  x = mcl_mix32(x ^ as_uint(dir.y));
-  x = mcl_mix32(x ^ as_uint(dir.z));
-  return u32_to_unit(x);
-}
+MCL_INLINE float hit_uniform(Hit h, float3 dir) { return hit_uniform_at(h.tri, h.u, h.v, dir); }
 
 // Which sample a surface is built for: its pixel, its sample index and the bounce (0: the camera
 // ray's hit).
@@ -57,17 +82,12 @@ MCL_INLINE float transmission_uniform(MCL_CONSTANT const FrameParams* f, SampleR
 // material, and every metal_rough one without transmission, keeps its bits and draws no number).
 MCL_INLINE Material hit_transmission(MCL_CONSTANT const FrameParams* f, Material m, SampleRef r, Hit h, float3 dir) {
   uint kind = as_uint(m.alpha.w);
-  float t = m.params1.x;
-  int mixes = kind == (uint)MCL_MATERIAL_metal_rough && t > 0.0f;
+  int mixes = kind == (uint)MCL_MATERIAL_metal_rough && m.params1.x > 0.0f;
+  float u = mixes ? transmission_uniform(f, r, h, dir) : 1.0f;
   float metallic = m.params0.x, roughness = m.params0.y;
-  float p = t * (1.0f - metallic);
-  int pick = mixes && transmission_uniform(f, r, h, dir) < p;
-  int solid = m.params1.z > 0.0f;
-  uint glass = solid ? (uint)MCL_MATERIAL_dielectric : (uint)MCL_MATERIAL_thin_dielectric;
-  float rest = fmin(metallic / fmax(1.0f - p, 1e-30f), 1.0f);
   Material out = m;
-  out.alpha.w = as_float(pick ? glass : kind);
-  out.params0.x = pick ? m.params1.y : (mixes ? rest : metallic);
-  out.params0.y = pick ? (solid ? roughness * roughness : 0.0f) : roughness;
+  out.alpha.w = as_float(transmission_pick(kind, m.params1.x, m.params1.y, m.params1.z, u, &metallic, &roughness));
+  out.params0.x = metallic;
+  out.params0.y = roughness;
   return out;
 }

@@ -10,73 +10,20 @@
 // strategy leaves the slots it does not use at 0.
 // The body takes W consecutive camera hits, one per lane (W = MCL_LANES: 1 on the host backend
 // and GPUs; lanes past the wave masked): misses (the background, or the environment through
-// light_eval per lane) and hits on the kinds with a lane form (lane_bsdf.h), textured or not, flat
-// or smooth, in lanes (stage_lanes.h: the frame and albedo per lane; normal and bump maps and
-// instances through surface_at per lane): Le seen, the light samples (the light kind picked per
-// lane, emitter triangles in lanes and the other kinds through sample_direct_light per lane,
-// light_area_lanes.h; one atomic per packet per light sample; the Lambertian lobe's Kd / pi spelled
-// out, the other kinds' f cos, a light below the surface through a transmitting lobe with its
-// shadow ray from the far side) and the BSDF ray (the cosine lobe, folded where smooth; the other
-// kinds' sample). Hits on other kinds (coated_conductor, a metallic-roughness texture, glTF
-// transmission): their surface, light samples and BSDF ray lane by lane through the functions
-// below (direct_light_sample, direct_bsdf_ray), with the packet's random numbers. Textured
-// emission: Le and the emitter samples lane by lane (light_eval, sample_direct_light).
+// light_eval per lane) and hits on every material kind (lane_bsdf.h), textured or not, flat or
+// smooth, in lanes (stage_lanes.h: the frame, albedo, metallic-roughness texture and glTF
+// transmission's kind pick per lane; normal and bump maps and instances through surface_at per
+// lane): Le seen, the light samples (the light kind picked per lane, emitter triangles in lanes and
+// the other kinds through sample_direct_light per lane, light_area_lanes.h; one atomic per packet
+// per light sample; the Lambertian lobe's Kd / pi spelled out, the other kinds' f cos, a light
+// below the surface through a transmitting lobe with its shadow ray from the far side) and the
+// BSDF ray (the cosine lobe, folded where smooth; the other kinds' sample). Textured emission: Le
+// and the emitter samples lane by lane (light_eval, sample_direct_light).
 #pragma once
 #include "stage_lanes.h"
 #include "lane_bsdf.h"
 #include "light_area_lanes.h"
 #include "direct_light.h"
-
-// Light sample k (random numbers u) at item i's surface surf (wo toward the camera, origin the
-// offset hit point; useBrdf: MIS against the BSDF ray): pushes its occlusion query to slot
-// i * shadowSlots + k, or nothing. The body's lanes of other kinds take
-// their light samples here.
-MCL_INLINE void direct_light_sample(const shade_direct_args* a, LightScene lights, Surface surf, float3 wo,
-                                    float3 origin, int useBrdf, uint i, uint k, float4 u) {
-  MCL_CONSTANT const FrameParams* f = a->frame;
-  SurfaceFrame sf = surf.frame;
-  Bsdf bsdf = surf.bsdf;
-  float nLight = (float)f->lightSamples;
-  LightSample ls = sample_direct_light(f, lights, origin, u);
-  float cosSurf = frame_cosine(sf, ls.wi);  // 0 below the geometric surface
-  // A light below the geometric surface is seen through it (a transmitting lobe, e.g. rough
-  // glass): the BSDF's own f |cos| (0 for a reflecting kind), the shadow ray from the far side.
-  int below = !above_surface(sf.ng, ls.wi);
-  float3 fcosBelow = below ? bsdf_eval(bsdf, sf, wo, ls.wi) : make_float3(0.0f, 0.0f, 0.0f);
-  if (!(ls.pdf > 0.0f && (below ? fmax(fcosBelow.x, fmax(fcosBelow.y, fcosBelow.z)) > 0.0f : cosSurf > 0.0f))) return;
-  // A delta light: no BSDF sample can reach it, so no MIS weight.
-  float weight = useBrdf && !ls.delta ? power_heuristic(nLight, ls.pdf, 1.0f, bsdf_pdf(bsdf, sf, wo, ls.wi)) : 1.0f;
-  float3 c = below ? fcosBelow * ls.le * (weight / (ls.pdf * nLight))
-                   : bsdf_f(bsdf, sf, wo, ls.wi) * ls.le * (cosSurf * weight / (ls.pdf * nLight));
-  float3 from = below ? bsdf_ray_origin(sf.p, sf.ng, MCL_BSDF_TRANSMISSION, f->offsetScale) : origin;
-  float tmaxFrom;
-  float3 dirFrom = shadow_dir_from(origin, from, ls.wi, ls.tmax, &tmaxFrom);
-  push_shadow_query(a->queue, a->queueCount, from, below ? dirFrom : ls.wi, below ? tmaxFrom : ls.tmax, c,
-                    i * f->shadowSlots + k);
-}
-
-// The BSDF ray at surface surf from random numbers u (weighed in shade_direct_hit): an empty ray
-// (tmax < 0) where the sample is absorbed; a transmitted one starts below the surface.
-MCL_INLINE Ray direct_bsdf_ray(MCL_CONSTANT const FrameParams* f, Surface surf, float3 wo, float3 origin, float4 u) {
-  Ray bounce;
-  bounce.origin = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
-  bounce.dir = make_float4(0.0f, 0.0f, 1.0f, -1.0f);
-  BsdfDirection d = bsdf_sample_direction(surf.bsdf, surf.frame, wo, u.x, u.y, u.z);
-  if (d.traced) {
-    bounce.origin = with_w(
-        (d.flags & MCL_BSDF_TRANSMISSION) ? bsdf_ray_origin(surf.frame.p, surf.frame.ng, d.flags, f->offsetScale) : origin,
-        0.0f);
-    bounce.dir = with_w(d.wi, INFINITY);
-  }
-  return bounce;
-}
-
-// Light sampling at a purely delta surface (a mirror, smooth glass) finds nothing (f = 0 for
-// every light direction): skipped, the BSDF ray (shade_direct_hit) carries it all.
-MCL_INLINE int direct_takes_light_samples(MCL_CONSTANT const FrameParams* f, Surface surf) {
-  return f->directSampling != MCL_DIRECT_BRDF && (f->emitterCount > 0 || env_present(f) || f->lightCount > 0) &&
-         !bsdf_is_delta(surf.bsdf);
-}
 
 MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
   if (first >= a->waveCount) return;
@@ -104,7 +51,6 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
   // packet: the Lambertian lobe's, rest: the other kinds') and from the triangle alone (flat).
   LaneHits lh = lane_hits(f, a->tris, a->normals, a->materials, a->hitInstances, first, lanes, hit, tri);
   const vmask kinds = lane_bsdf_kinds(&lh), packet = lh.lamb, rest = kinds & v_not(lh.lamb), flat = lh.flat;
-  vmask other = hit & v_not(kinds);  // other kinds: their surface and BSDF lane by lane
   lane_tally(f, a->packedLanes, a->aloneLanes, &lh, kinds, hit);
   vfloat dx, dy, dz, dw;
   v_load4_stride_n((MCL_GLOBAL const float*)(a->rays + first) + 4, 8, lanes, &dx, &dy, &dz, &dw);
@@ -137,9 +83,6 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
   v_store4_n(rad, lanes, vsel(hit, le.x, miss.x), vsel(hit, le.y, miss.y), vsel(hit, le.z, miss.z), vsel(hit, v_f(0.0f), missW));
   vfloat3 bo = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f)), bd = v3_make(v_f(0.0f), v_f(0.0f), v_f(1.0f));
   vfloat btmax = v_f(-1.0f);
-  Ray otherRays[MCL_LANES];
-  uint others[MCL_LANES] MCL_LANE_ALIGN;
-  v_store_lanes(v_mask01(other), others);
   if (v_any(hit)) {
     vuint pixel, sample;
     v_item_pixel_sample(f, a->active, a->waveStart, first, &pixel, &sample);
@@ -148,31 +91,16 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
     vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
     const LaneBsdf lb = lane_bsdf(&lh, sf);
     const vfloat3 wo = v3_neg(dir);
-    // Light samples at the other kinds where the BSDF is not purely delta (direct_takes_light_samples).
+    // Light samples (light / mis) at the other kinds where the BSDF is not purely delta: light
+    // sampling at a mirror or smooth glass finds nothing (f = 0 for every light direction), the
+    // BSDF ray (shade_direct_hit) carries it all.
     const vmask restLit = rest & v_not(lane_bsdf_delta(&lb));
     const float nLight = (float)f->lightSamples;
     const int useLight = f->directSampling != MCL_DIRECT_BRDF && (f->emitterCount > 0 || env || f->lightCount > 0u);
     const int useBrdf = f->directSampling != MCL_DIRECT_LIGHT;
     vuint slot0 = (first + v_lane_index()) * slots;
-    // The lanes of other kinds: surface_at and the offset origin, lane by lane.
-    Surface surfs[MCL_LANES];
-    float3 origins[MCL_LANES];
-    if (v_any(other)) {
-      lane_surfaces(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first, others, pixel, sample, 0u,
-                    surfs, origins);
-      for (uint j = 0; j < MCL_LANES; ++j)
-        if (others[j]) others[j] = direct_takes_light_samples(f, surfs[j]) ? 2u : 1u;  // 2: light samples too
-    }
-    for (uint k = 0; useLight && k < f->lightSamples; ++k) {
+    for (uint k = 0; useLight && v_any(packet | restLit) && k < f->lightSamples; ++k) {
       vfloat4 u = v_sample_uniform4(f, pixel, sample, MCL_DIM_LIGHT + k);
-      if (v_any(other)) {
-        Float4Lanes ul = float4_lanes(u);
-        for (uint j = 0; j < MCL_LANES; ++j)
-          if (others[j] == 2u)
-            direct_light_sample(a, lights, surfs[j], -xyz(a->rays[first + j].dir), origins[j], useBrdf, first + j, k,
-                                float4_lane(&ul, j));
-      }
-      if (!v_any(packet | restLit)) continue;
       VLightSample ls = v_sample_direct_light(f, lights, packet | restLit, origin, u);
       vfloat3 wi = ls.wi, lle = ls.le;
       vfloat pdf = ls.pdf, tmax = ls.tmax;
@@ -217,11 +145,6 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
     }
     if (useBrdf) {  // Lambertian: the cosine lobe around ns, folded above ng where smooth
       vfloat4 u = v_sample_uniform4(f, pixel, sample, MCL_DIM_BRDF);
-      if (v_any(other)) {  // other kinds: direct_bsdf_ray, stored after the packet's rays
-        Float4Lanes ul = float4_lanes(u);
-        for (uint j = 0; j < MCL_LANES; ++j)
-          if (others[j]) otherRays[j] = direct_bsdf_ray(f, surfs[j], -xyz(a->rays[first + j].dir), origins[j], float4_lane(&ul, j));
-      }
       vfloat3 w = v_to_world(v_sample_cosine_hemisphere(u.x, u.y), sf.ns);
       vfloat d = v3_dot(w, sf.ng);  // fold_above
       vfloat3 wi = v3_select(sf.smooth & (d < 0.0f), v3_sub(w, v3_scale(sf.ng, 2.0f * d)), w);
@@ -242,7 +165,4 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
   }
   v_store4_stride_n(bounce, 8, lanes, bo.x, bo.y, bo.z, v_f(0.0f));
   v_store4_stride_n(bounce + 4, 8, lanes, bd.x, bd.y, bd.z, btmax);
-  if (v_any(other) && f->directSampling != MCL_DIRECT_LIGHT)
-    for (uint j = 0; j < MCL_LANES; ++j)
-      if (others[j]) a->bounce[first + j] = otherRays[j];
 }

@@ -16,17 +16,14 @@
 // The body takes W consecutive queue entries, one per lane (W = MCL_LANES: 1 on the host backend
 // and GPUs; lanes past the queue masked; per-path state gathered and scattered by id). Misses: the
 // background, or path_miss per lane. Emission seen (MIS weighted after a BSDF bounce) for every
-// hit in lanes (textured emission: light_eval and light_pdf per lane). Hits on the kinds with a
-// lane form (lane_bsdf.h: diffuse, conductor, dielectric, thin_dielectric, metal_rough, coated_diffuse), textured
-// or not, flat or smooth, in lanes (the frame from stage_lanes.h; normal and bump maps and
-// instances through surface_at per lane): the next-event light samples (the light kind picked per
-// lane: emitter triangles in lanes, the others through sample_direct_light per lane,
-// light_area_lanes.h; one atomic per packet per light sample; a light below the geometric surface
-// through a transmitting lobe, its shadow ray from the far side) and the BSDF continuation with
-// Russian roulette (one atomic per packet). Hits on other kinds (coated_conductor, a metallic-
-// roughness texture, glTF transmission): their surface, light samples and continuation lane by
-// lane through the functions below (path_light_sample, path_continue), with the packet's random
-// numbers.
+// hit in lanes (textured emission: light_eval and light_pdf per lane). Hits on every material
+// kind (lane_bsdf.h), textured or not, flat or smooth, in lanes (the frame, the metallic-roughness
+// texture and glTF transmission's kind pick from stage_lanes.h; normal and bump maps and instances
+// through surface_at per lane): the next-event light samples (the light kind picked per lane:
+// emitter triangles in lanes, the others through sample_direct_light per lane, light_area_lanes.h;
+// one atomic per packet per light sample; a light below the geometric surface through a
+// transmitting lobe, its shadow ray from the far side) and the BSDF continuation with Russian
+// roulette (one atomic per packet).
 // Queue order: the packet's shadow queries and continuations fill their entries in lane order, so
 // the next queue's order depends on W; nothing depends on it (shadow queries name their slot,
 // path_gather adds slots in slot order, every random number comes from the path's pixel and
@@ -50,69 +47,6 @@ MCL_INLINE float3 path_miss(MCL_CONSTANT const FrameParams* f, LightScene lights
 }
 
 MCL_INLINE uint path_dim(uint bounce, uint j) { return MCL_DIM_PATH + bounce * MCL_DIM_PATH_STRIDE + j; }
-
-MCL_INLINE float max_component(float3 c) { return fmax(c.x, fmax(c.y, c.z)); }
-
-// Light sample s (random numbers u) of next-event estimation at surface surf of path id (weight
-// beta; wo toward the viewer, origin the offset hit point): pushes its occlusion query to slot
-// id * shadowSlots + s, or nothing. The scalar body and the packet body's lanes of other kinds
-// take their light samples here.
-MCL_INLINE void path_light_sample(const shade_path_args* a, LightScene lights, Surface surf, float3 wo, float3 origin,
-                                  float3 beta, uint id, uint s, float4 u) {
-  MCL_CONSTANT const FrameParams* f = a->frame;
-  SurfaceFrame sf = surf.frame;
-  Bsdf bsdf = surf.bsdf;
-  float nLight = (float)f->lightSamples;
-  LightSample ls = sample_direct_light(f, lights, origin, u);
-  if (!(ls.pdf > 0.0f)) return;
-  float3 fcos = bsdf_eval(bsdf, sf, wo, ls.wi);
-  if (!(max_component(fcos) > 0.0f)) return;
-  // A delta light: no BSDF sample can reach it, so no MIS weight.
-  float weight = ls.delta ? 1.0f : power_heuristic(nLight, ls.pdf, 1.0f, bsdf_pdf(bsdf, sf, wo, ls.wi));
-  float3 c = beta * fcos * ls.le * (weight / (ls.pdf * nLight));
-  // A light below the geometric surface (seen through a transmitting lobe): the shadow ray
-  // leaves from the far side, as a transmitted BSDF ray does.
-  int above = above_surface(sf.ng, ls.wi);
-  float3 from = above ? origin : bsdf_ray_origin(sf.p, sf.ng, MCL_BSDF_TRANSMISSION, f->offsetScale);
-  float tmaxFrom;
-  float3 dirFrom = shadow_dir_from(origin, from, ls.wi, ls.tmax, &tmaxFrom);
-  push_shadow_query(a->queue, a->queueCount, from, above ? ls.wi : dirFrom, above ? ls.tmax : tmaxFrom, c,
-                    id * f->shadowSlots + s);
-}
-
-// The path's continuation from surface surf (random numbers u: x, y the BSDF sample, z roulette,
-// w the lobe): samples the BSDF, applies Russian roulette from depth rrDepth and pushes the ray onto
-// nextRays / nextPathIds with the new throughput, or ends the path.
-MCL_INLINE void path_continue(const shade_path_args* a, Surface surf, float3 wo, float3 origin, float3 beta, uint id,
-                              float4 u) {
-  MCL_CONSTANT const FrameParams* f = a->frame;
-  SurfaceFrame sf = surf.frame;
-  BsdfSample bs = bsdf_sample(surf.bsdf, sf, wo, u.x, u.y, u.w);
-  float3 wi = bs.wi;
-  float pdf = bs.pdf;
-  float3 next = beta * bs.weight;
-  if (!(pdf > 0.0f)) return;
-  if (a->pathBounce + 1u >= f->rrDepth) {  // Russian roulette (depth after this bounce: bounce + 1)
-    float q = fmin(0.95f, max_component(next));
-    if (!(u.z < q)) return;
-    next = next / q;
-  }
-  if (!(max_component(next) > 0.0f)) return;
-  a->throughput[id] = with_w(next, (bs.flags & MCL_BSDF_DELTA) ? 0.0f : pdf);  // w 0: no MIS at the next hit
-  uint slot = MCL_ATOMIC_INC(a->nextCount);
-  Ray r;
-  r.origin = with_w((bs.flags & MCL_BSDF_TRANSMISSION) ? bsdf_ray_origin(sf.p, sf.ng, bs.flags, f->offsetScale) : origin,
-                    0.0f);
-  r.dir = with_w(wi, INFINITY);
-  a->nextRays[slot] = r;
-  a->nextPathIds[slot] = id;
-}
-
-// Whether light samples are taken at surface surf: some light exists and the BSDF is not purely
-// delta (every light direction has f = 0 there; the emitter its BSDF sample finds counts fully).
-MCL_INLINE int path_takes_light_samples(MCL_CONSTANT const FrameParams* f, Surface surf) {
-  return (f->emitterCount > 0 || env_present(f) || f->lightCount > 0) && !bsdf_is_delta(surf.bsdf);
-}
 
 MCL_INLINE vfloat v_max_component(vfloat3 c) { return fmax(c.x, fmax(c.y, c.z)); }
 
@@ -139,7 +73,6 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
   // and from the triangle alone (flat).
   LaneHits lh = lane_hits(f, a->tris, a->normals, a->materials, a->hitInstances, first, lanes, hit, tri);
   const vmask kinds = lane_bsdf_kinds(&lh), flat = lh.flat;
-  vmask other = hit & v_not(kinds);  // other kinds: their surface and BSDF lane by lane (path_light_sample, path_continue)
   lane_tally(f, a->packedLanes, a->aloneLanes, &lh, kinds, hit);
 
   uint ids[MCL_LANES] MCL_LANE_ALIGN, owned[MCL_LANES] MCL_LANE_ALIGN;
@@ -228,36 +161,13 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
     vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
     const LaneBsdf lb = lane_bsdf(&lh, sf);
     const vfloat3 wo = v3_neg(dir);
-    // The lanes of other kinds: surface_at, the offset origin and the path weight, lane by lane.
-    Surface surfs[MCL_LANES];
-    float3 origins[MCL_LANES], betas[MCL_LANES];
-    uint others[MCL_LANES] MCL_LANE_ALIGN;
-    v_store_lanes(v_mask01(other), others);
-    if (v_any(other)) {
-      lane_surfaces(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first, others, pixel, sample,
-                    bounce, surfs, origins);
-      float bx[MCL_LANES] MCL_LANE_ALIGN, by[MCL_LANES] MCL_LANE_ALIGN, bz[MCL_LANES] MCL_LANE_ALIGN;
-      v3_store_lanes(beta, bx, by, bz);
-      for (uint j = 0; j < MCL_LANES; ++j) {
-        if (!others[j]) continue;
-        betas[j] = make_float3(bx[j], by[j], bz[j]);
-        others[j] = path_takes_light_samples(f, surfs[j]) ? 2u : 1u;  // 2: light samples too
-      }
-    }
-    // Light samples where some light exists and the BSDF is not purely delta (path_takes_light_samples).
+    // Light samples where some light exists and the BSDF is not purely delta (every light direction
+    // has f = 0 there; the emitter its BSDF sample finds counts fully).
     const int nee = f->emitterCount > 0u || env_present(f) || f->lightCount > 0u;
     const vmask takes = kinds & v_not(lane_bsdf_delta(&lb));
     vuint slot0 = id * slots;
-    for (uint s = 0; nee && s < f->lightSamples; ++s) {
+    for (uint s = 0; nee && v_any(takes) && s < f->lightSamples; ++s) {
       vfloat4 u = v_sample_uniform4(f, pixel, sample, path_dim(bounce, 1u + s));
-      if (v_any(other)) {
-        Float4Lanes ul = float4_lanes(u);
-        for (uint j = 0; j < MCL_LANES; ++j)
-          if (others[j] == 2u)
-            path_light_sample(a, lights, surfs[j], xyz(a->rays[first + j].dir) * -1.0f, origins[j], betas[j], ids[j], s,
-                              float4_lane(&ul, j));
-      }
-      if (!v_any(takes)) continue;
       VLightSample ls = v_sample_direct_light(f, lights, takes, origin, u);
       vfloat3 wi = ls.wi, lle = ls.le;
       vfloat pdf = ls.pdf, tmax = ls.tmax;
@@ -278,15 +188,8 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
       v_push_shadow_queries(a->queue, a->queueCount, push, from, along, reach, contrib, slot0 + s);
     }
 
-    // bsdf_sample: the cosine lobe around the frame; other kinds lane by lane.
+    // bsdf_sample, Russian roulette from depth rrDepth, the continuation ray.
     vfloat4 u = v_sample_uniform4(f, pixel, sample, path_dim(bounce, 0u));  // z: roulette, w: lobe
-    if (v_any(other)) {
-      Float4Lanes ul = float4_lanes(u);
-      for (uint j = 0; j < MCL_LANES; ++j)
-        if (others[j])
-          path_continue(a, surfs[j], xyz(a->rays[first + j].dir) * -1.0f, origins[j], betas[j], ids[j],
-                        float4_lane(&ul, j));
-    }
     const vBsdfSample bs = lane_bsdf_sample(&lb, sf, wo, u.x, u.y, u.w);
     vfloat3 wi = bs.wi;
     vfloat pdf = bs.pdf;

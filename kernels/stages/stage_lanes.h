@@ -143,6 +143,7 @@ MCL_DEFINE_RNG_UNIFORM4(v_rng_uniform4, vuint, vfloat4, vRngOut, v_pcg4d, v_unit
 
 // --- Sobol (shared/sobol.h, shared/sampler.h) -------------------------------------------------
 MCL_DEFINE_MIX32(v_mix32, vuint)
+MCL_DEFINE_TRANSMISSION_PICK(v_, vfloat, vuint, vmask, vfloat3, v_mix32, v_as_uint, v_u32_to_unit)
 MCL_DEFINE_REVERSE_BITS(v_reverse_bits, vuint)
 MCL_DEFINE_OWEN_SCRAMBLE(v_owen_scramble, vuint, v_reverse_bits)
 MCL_DEFINE_SOBOL4(v_sobol4, vuint, vRngOut, v_reverse_bits)
@@ -291,9 +292,10 @@ MCL_INLINE vfloat v_luminance(vfloat3 c) { return 0.2126f * c.x + 0.7152f * c.y 
 // normals and the materials' fields the stage bodies read, and which lanes lane-type code takes:
 // lamb, the diffuse kind without a glossy lobe (bsdf_make's specular probability 0, computed as
 // it does); glossy, that kind with one (specular: Ks and that probability, specAlpha its alpha);
-// conductor, dielectric, thin, metalRough, coatedDiffuse: those kinds (without a metallic-roughness
-// texture, whose parameters are a lookup, hit_metal_rough, nor metal_rough's transmission, which
-// picks another kind per sample, hit_transmission); tinted, the lanes whose BSDF reads the
+// conductor, dielectric, thin, metalRough, coatedDiffuse, coatedConductor: those kinds (mixes:
+// metal_rough with a transmission factor, which picks a kind per sample: lane_frame makes the
+// pick, and applies a metallic-roughness texture, whose parameters are a lookup, before it,
+// hit_metal_rough and hit_transmission); tinted, the lanes whose BSDF reads the
 // textured albedo (the diffuse kind, metal_rough's and coated_diffuse's base colour); and of them
 // all flat, whose frame comes from the triangle alone (no shading normals, normal or bump map, nor
 // an instance, and where tinted no vertex colours nor albedo texture: the others' frame comes from
@@ -302,7 +304,9 @@ typedef struct {
   vfloat3 v0, e1, e2, n, kd, ke;
   vfloat area, twoSided;  // normals[].w; Material::emission.w
   vuint tri, attrs, albedoTex;  // the triangle (0 where no hit), its MCL_ATTR_* flags, Kd's texture
+  vuint metalRoughTex;          // metal_rough's metallic-roughness texture (Material::maps.y)
   vmask lamb, glossy, conductor, dielectric, thin, metalRough, coatedDiffuse, coatedConductor, tinted, flat;
+  vmask mixes;   // metal_rough lanes with a transmission factor (another kind per sample)
   vmask placed;  // a normal or bump map, or an instance: the frame only through surface_at
   vfloat4 params0, params1;  // Material::params0, params1 (the kinds' own parameters)
   vfloat4 specular;          // Ks and the glossy lobe's probability (diffuse_make's specProb)
@@ -335,23 +339,24 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
   h.glossy = hit & v_not(specProb == 0.0f) & (kind == (uint)MCL_MATERIAL_diffuse);
   h.specular = v4_make(ksx, ksy, ksz, specProb);
   h.specAlpha = ksw;
-  vmask plain = v_as_uint(kmy) == MCL_NO_TEXTURE;
-  h.conductor = hit & plain & (kind == (uint)MCL_MATERIAL_conductor);
-  h.dielectric = hit & plain & (kind == (uint)MCL_MATERIAL_dielectric);
-  h.thin = hit & plain & (kind == (uint)MCL_MATERIAL_thin_dielectric);
-  h.metalRough = hit & plain & (kind == (uint)MCL_MATERIAL_metal_rough);
-  h.coatedDiffuse = hit & plain & (kind == (uint)MCL_MATERIAL_coated_diffuse);
-  h.coatedConductor = hit & plain & (kind == (uint)MCL_MATERIAL_coated_conductor);
+  h.conductor = hit & (kind == (uint)MCL_MATERIAL_conductor);
+  h.dielectric = hit & (kind == (uint)MCL_MATERIAL_dielectric);
+  h.thin = hit & (kind == (uint)MCL_MATERIAL_thin_dielectric);
+  h.metalRough = hit & (kind == (uint)MCL_MATERIAL_metal_rough);
+  h.coatedDiffuse = hit & (kind == (uint)MCL_MATERIAL_coated_diffuse);
+  h.coatedConductor = hit & (kind == (uint)MCL_MATERIAL_coated_conductor);
   h.params0 = h.params1 = v4_make(v_f(0.0f), v_f(0.0f), v_f(0.0f), v_f(0.0f));
+  h.mixes = hit & v_not(hit);  // none
   if (v_any(h.conductor | h.dielectric | h.thin | h.metalRough | h.coatedDiffuse | h.coatedConductor)) {
     v_gather4(mf + 16, mat, MCL_MATERIAL_FLOATS, &h.params0.x, &h.params0.y, &h.params0.z, &h.params0.w);
     v_gather4(mf + 20, mat, MCL_MATERIAL_FLOATS, &h.params1.x, &h.params1.y, &h.params1.z, &h.params1.w);
-    h.metalRough = h.metalRough & v_not(h.params1.x > 0.0f);  // hit_transmission's mix: per lane
+    h.mixes = h.metalRough & (h.params1.x > 0.0f);  // hit_transmission's mix
   }
   h.tinted = h.lamb | h.glossy | h.metalRough | h.coatedDiffuse;
   h.tri = t;
   h.attrs = v_as_uint(e2w);
   h.albedoTex = v_as_uint(kdw);
+  h.metalRoughTex = v_as_uint(kmy);
   h.placed = (v_as_uint(kmz) | v_as_uint(kmw)) != 0u;
   if (f->instanceCount > 0u) {  // instanced hits: their frame from surface_at, in object space
     uint inst[MCL_LANES] MCL_LANE_ALIGN;
@@ -360,13 +365,14 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
   }
   vmask albedoVaries = ((h.attrs & MCL_ATTR_COLOR) != 0u) | (h.albedoTex != MCL_NO_TEXTURE);
   h.flat = (h.tinted | h.conductor | h.dielectric | h.thin | h.coatedConductor) & ((h.attrs & MCL_ATTR_NORMALS) == 0u) &
-           v_not(h.placed) & v_not(h.tinted & albedoVaries);
+           v_not(h.placed) & v_not(h.tinted & albedoVaries) &
+           (h.metalRoughTex == MCL_NO_TEXTURE);
   return h;
 }
 
 // --profile's tally (FrameParams::countLanes): a packet's hits shaded in lane types (packed: the
-// lanes of the kinds the stage shades in lanes, `kinds`, framed in lanes) and one by one (the
-// rest), one atomic each.
+// lanes of the kinds the stage shades in lanes, `kinds`, framed in lanes) and with their frame
+// one by one (the rest: normal and bump maps, instances), one atomic each.
 MCL_INLINE void lane_tally(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL volatile uint* packedLanes,
                            MCL_GLOBAL volatile uint* aloneLanes, const LaneHits* lh, vmask kinds, vmask hit) {
   if (!f->countLanes) return;
@@ -376,13 +382,23 @@ MCL_INLINE void lane_tally(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL volatil
   if (q) MCL_ATOMIC_ADD(aloneLanes, q);
 }
 
+// The lanes set in m become the kind `kind` (a metal_rough hit's pick: the same kind or glass) with
+// params0.x, .y = metallic, roughness (hit_metal_rough and hit_transmission's result).
+MCL_INLINE void lane_take_pick(LaneHits* lh, vmask m, vuint kind, vfloat metallic, vfloat roughness) {
+  lh->params0.x = vsel(m, metallic, lh->params0.x);
+  lh->params0.y = vsel(m, roughness, lh->params0.y);
+  lh->dielectric = lh->dielectric | (m & (kind == (uint)MCL_MATERIAL_dielectric));
+  lh->thin = lh->thin | (m & (kind == (uint)MCL_MATERIAL_thin_dielectric));
+  lh->metalRough = lh->metalRough & v_not(m & (kind != (uint)MCL_MATERIAL_metal_rough));
+}
+
 // The lanes set in `rich` of a frame whose other lanes are already set: each through the scalar
 // surface_at (in its hit's instance, hit_instance), for sample ref (pixel, sample, bounce) of the
 // lane; kd, the textured albedo, where the BSDF reads one (the diffuse kind's kd, metal_rough's
 // base colour; the caller's masks say which kind from the material).
 MCL_INLINE LaneFrame lane_frame_rich(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const Hit* hits,
                                      MCL_GLOBAL const uint* hitInstances, MCL_GLOBAL const Ray* rays, uint first,
-                                     vmask rich, vuint pixel, vuint sample, uint bounce, LaneFrame lf) {
+                                     vmask rich, vuint pixel, vuint sample, uint bounce, LaneFrame lf, LaneHits* lh) {
   uint set[MCL_LANES] MCL_LANE_ALIGN, px[MCL_LANES] MCL_LANE_ALIGN, sm[MCL_LANES] MCL_LANE_ALIGN;
   uint smo[MCL_LANES] MCL_LANE_ALIGN, bf[MCL_LANES] MCL_LANE_ALIGN;
   float pX[MCL_LANES] MCL_LANE_ALIGN, pY[MCL_LANES] MCL_LANE_ALIGN, pZ[MCL_LANES] MCL_LANE_ALIGN;
@@ -398,10 +414,19 @@ MCL_INLINE LaneFrame lane_frame_rich(SurfaceScene sc, MCL_CONSTANT const FramePa
   v3_store_lanes(lf.kd, kX, kY, kZ);
   v_store_lanes(v_mask01(lf.smooth), smo);
   v_store_lanes(v_mask01(lf.backface), bf);
+  uint kn[MCL_LANES] MCL_LANE_ALIGN;
+  float mX[MCL_LANES] MCL_LANE_ALIGN, mY[MCL_LANES] MCL_LANE_ALIGN;
+  v_store_lanes(v_u((uint)MCL_MATERIAL_diffuse), kn);
+  v_store_lanes(lh->params0.x, mX);
+  v_store_lanes(lh->params0.y, mY);
   for (uint j = 0; j < MCL_LANES; ++j) {
     if (!set[j]) continue;
-    Surface s = surface_at(sc, f, hits[first + j], hit_instance(f, hitInstances, first + j), xyz(rays[first + j].dir),
-                           sample_ref(px[j], sm[j], bounce));
+    Material m;
+    Surface s = surface_at_resolving(sc, f, hits[first + j], hit_instance(f, hitInstances, first + j),
+                                     xyz(rays[first + j].dir), sample_ref(px[j], sm[j], bounce), &m);
+    kn[j] = as_uint(m.alpha.w);
+    mX[j] = m.params0.x;
+    mY[j] = m.params0.y;
     pX[j] = s.frame.p.x; pY[j] = s.frame.p.y; pZ[j] = s.frame.p.z;
     gX[j] = s.frame.ng.x; gY[j] = s.frame.ng.y; gZ[j] = s.frame.ng.z;
     sX[j] = s.frame.ns.x; sY[j] = s.frame.ns.y; sZ[j] = s.frame.ns.z;
@@ -423,7 +448,21 @@ MCL_INLINE LaneFrame lane_frame_rich(SurfaceScene sc, MCL_CONSTANT const FramePa
   r.kd = v3_load_lanes(kX, kY, kZ);
   r.smooth = v_loadu_lanes(smo) != 0u;
   r.backface = v_loadu_lanes(bf) != 0u;
+  // metal_rough lanes: their parameters after the metallic-roughness texture and the kind's pick
+  lane_take_pick(lh, rich, v_loadu_lanes(kn), v_loadf_lanes(mX), v_loadf_lanes(mY));
   return r;
+}
+
+// texture_sample of texture tex at (u, v) with footprint fp in the lanes set in on; the other
+// lanes read some lane's texture (masked by the caller).
+MCL_INLINE vfloat4 lane_texture(TextureTables tt, vmask on, vuint tex, vfloat u, vfloat v, vfloat fp) {
+  uint texs[MCL_LANES] MCL_LANE_ALIGN, set[MCL_LANES] MCL_LANE_ALIGN;
+  v_store_lanes(tex, texs);
+  v_store_lanes(v_mask01(on), set);
+  uint some = 0u;
+  for (uint j = 0; j < MCL_LANES; ++j)
+    if (set[j]) some = texs[j];
+  return v_texture_sample(tt, vsel(on, tex, v_u(some)), u, v, fp);
 }
 
 // The lanes set in m (hits on world-space triangles without a normal or bump map) of a frame whose
@@ -431,7 +470,7 @@ MCL_INLINE LaneFrame lane_frame_rich(SurfaceScene sc, MCL_CONSTANT const FramePa
 // vertex colour and albedo texture (trilinear, ray-cone footprint, hit_texture), in lanes, at
 // barycentrics hu, hv, distance ht.
 MCL_INLINE LaneFrame lane_frame_attributes(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, vmask m,
-                                           const LaneHits* lh, vfloat hu, vfloat hv, vfloat ht, vfloat3 dir,
+                                           LaneHits* lh, vfloat hu, vfloat hv, vfloat ht, vfloat3 dir,
                                            LaneFrame lf) {
   vmask hasN = m & ((lh->attrs & MCL_ATTR_NORMALS) != 0u), hasUV = m & ((lh->attrs & MCL_ATTR_UV) != 0u);
   vmask coloured = m & lh->tinted & ((lh->attrs & MCL_ATTR_COLOR) != 0u);
@@ -466,21 +505,23 @@ MCL_INLINE LaneFrame lane_frame_attributes(SurfaceScene sc, MCL_CONSTANT const F
     vfloat3 blend = v3_add(v3_add(v3_scale(c0, w), v3_scale(c1, hu)), v3_scale(c2, hv));
     kd = v3_select(coloured, v3_mul(kd, blend), kd);
   }
-  if (v_any(textured)) {  // hit_texture: the camera's ray cone at distance ht
-    uint texs[MCL_LANES] MCL_LANE_ALIGN, on[MCL_LANES] MCL_LANE_ALIGN;
-    vuint tex = lh->albedoTex;
-    v_store_lanes(tex, texs);
-    v_store_lanes(v_mask01(textured), on);
-    uint some = 0u;  // a texture the other lanes read (masked): some textured lane's
-    for (uint j = 0; j < MCL_LANES; ++j)
-      if (on[j]) some = texs[j];
+  vmask mrTextured = m & (lh->metalRoughTex != MCL_NO_TEXTURE);
+  if (v_any(textured | mrTextured)) {  // hit_texture: the camera's ray cone at distance ht
     vfloat u, v;
     v_uv_blend(u0, u1, u2, t0, t1, t2, hu, hv, &u, &v);
     vfloat area = vsel(hasUV, v_uv_triangle_area(u0, u1, u2, t0, t1, t2), v_f(0.0f));
     vfloat fp = v_texture_footprint(camera_spread_angle(f) * ht, area, lh->area, v3_dot(lh->n, dir));
-    vfloat4 c = v_texture_sample(sc.tex, vsel(textured, tex, v_u(some)), vsel(hasUV, u, v_f(0.0f)),
-                                 vsel(hasUV, v, v_f(0.0f)), fp);
-    kd = v3_select(textured, v3_mul(kd, v3_make(c.x, c.y, c.z)), kd);
+    u = vsel(hasUV, u, v_f(0.0f));
+    v = vsel(hasUV, v, v_f(0.0f));
+    if (v_any(textured)) {
+      vfloat4 c = lane_texture(sc.tex, textured, lh->albedoTex, u, v, fp);
+      kd = v3_select(textured, v3_mul(kd, v3_make(c.x, c.y, c.z)), kd);
+    }
+    if (v_any(mrTextured)) {  // hit_metal_rough: B metallic, G roughness times the factors
+      vfloat4 c = lane_texture(sc.tex, mrTextured, lh->metalRoughTex, u, v, fp);
+      lh->params0.x = vsel(mrTextured, lh->params0.x * fmin(fmax(c.z, 0.0f), 1.0f), lh->params0.x);
+      lh->params0.y = vsel(mrTextured, lh->params0.y * fmin(fmax(c.y, 0.0f), 1.0f), lh->params0.y);
+    }
   }
   lf.kd = kd;
   return lf;
@@ -489,10 +530,12 @@ MCL_INLINE LaneFrame lane_frame_attributes(SurfaceScene sc, MCL_CONSTANT const F
 // The frame of W hits (lh, at barycentrics hu, hv and distance ht along dir): flat world-space hits
 // from their triangle, surface_frame's operations; of the lanes in `rich`, those without a normal or
 // bump map nor an instance in lanes (lane_frame_attributes), the others from surface_at
-// (lane_frame_rich).
+// (lane_frame_rich). lh's metal_rough lanes then hold their parameters after the metallic-roughness
+// texture and, where they mix in transmission, the kind this sample's hit is (hit_transmission:
+// transmission_uniform, for sample `sample` of pixel `pixel` at bounce `bounce`).
 MCL_INLINE LaneFrame lane_frame(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const Hit* hits,
                                 MCL_GLOBAL const uint* hitInstances, MCL_GLOBAL const Ray* rays, uint first, vmask rich,
-                                vuint pixel, vuint sample, uint bounce, const LaneHits* lh, vfloat hu, vfloat hv,
+                                vuint pixel, vuint sample, uint bounce, LaneHits* lh, vfloat hu, vfloat hv,
                                 vfloat ht, vfloat3 dir) {
   LaneFrame lf;
   lf.p = v3_add(v3_add(lh->v0, v3_scale(lh->e1, hu)), v3_scale(lh->e2, hv));
@@ -501,29 +544,20 @@ MCL_INLINE LaneFrame lane_frame(SurfaceScene sc, MCL_CONSTANT const FrameParams*
   lf.ns = lf.ng;
   lf.kd = lh->kd;
   lf.smooth = v_not(rich | v_not(rich));  // none
-  if (!v_any(rich)) return lf;
   vmask inLanes = rich & v_not(lh->placed);
   if (v_any(inLanes)) lf = lane_frame_attributes(sc, f, inLanes, lh, hu, hv, ht, dir, lf);
   vmask placed = rich & lh->placed;
-  if (!v_any(placed)) return lf;
-  return lane_frame_rich(sc, f, hits, hitInstances, rays, first, placed, pixel, sample, bounce, lf);
-}
-
-// The surfaces (surface_at) and offset ray origins of the lanes set in which[] (nonzero), the
-// hits' of other kinds, which the stages shade lane by lane through their scalar functions.
-MCL_INLINE void lane_surfaces(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const Hit* hits,
-                              MCL_GLOBAL const uint* hitInstances, MCL_GLOBAL const Ray* rays, uint first,
-                              const uint* which, vuint pixel, vuint sample, uint bounce, Surface* surfs,
-                              float3* origins) {
-  uint px[MCL_LANES] MCL_LANE_ALIGN, sm[MCL_LANES] MCL_LANE_ALIGN;
-  v_store_lanes(pixel, px);
-  v_store_lanes(sample, sm);
-  for (uint j = 0; j < MCL_LANES; ++j) {
-    if (!which[j]) continue;
-    surfs[j] = surface_at(sc, f, hits[first + j], hit_instance(f, hitInstances, first + j), xyz(rays[first + j].dir),
-                          sample_ref(px[j], sm[j], bounce));
-    origins[j] = offset_ray_origin(surfs[j].frame.p, surfs[j].frame.ng, f->offsetScale);
+  if (v_any(placed)) lf = lane_frame_rich(sc, f, hits, hitInstances, rays, first, placed, pixel, sample, bounce, lf, lh);
+  vmask mixes = lh->mixes & v_not(placed);
+  if (v_any(mixes)) {  // hit_transmission: the kind this sample's hit is (transmission_uniform)
+    vfloat u = f->sampler == MCL_SAMPLER_SOBOL ? v_sample_uniform4(f, pixel, sample, MCL_DIM_MIX + bounce).x
+                                               : v_hit_uniform_at(lh->tri, hu, hv, dir);
+    vfloat metallic = lh->params0.x, roughness = lh->params0.y;
+    vuint kind = v_transmission_pick(v_u((uint)MCL_MATERIAL_metal_rough), lh->params1.x, lh->params1.y,
+                                     lh->params1.z, u, &metallic, &roughness);
+    lane_take_pick(lh, mixes, kind, metallic, roughness);
   }
+  return lf;
 }
 
 // The shading frames (surface_frame_in: no textures or maps) of W hits, `hit` the lanes with one:
