@@ -18,20 +18,22 @@ MCL_INLINE int has_bump_map(Material m) { return as_uint(m.maps.w) != 0u; }
 // meshes too; both are kept multiplied by the UV determinant (no division: the cross product's
 // direction is the same). The zero vector when the UVs are degenerate or the result is no usable
 // direction.
-MCL_INLINE float3 bump_normal(float3 N, float3 e1, float3 e2, float du1, float dv1, float du2, float dv2, float gu,
-                              float gv) {
-  float det = du1 * dv2 - du2 * dv1;
-  float3 T = e1 * dv2 - e2 * dv1;  // det dP/du
-  float3 B = e2 * du1 - e1 * du2;  // det dP/dv
-  T = T - N * dot(N, T);
-  B = B - N * dot(N, B);
-  float3 n = cross(T + N * (gu * det), B + N * (gv * det));
-  n = dot(n, N) < 0.0f ? -n : n;
-  float nl2 = dot(n, n);
-  n = n * (1.0f / sqrt(fmax(nl2, 1e-30f)));
-  int ok = det != 0.0f && fabs(det) < INFINITY && nl2 > 1e-30f && nl2 < INFINITY;
-  return ok ? n : make_float3(0.0f, 0.0f, 0.0f);
-}
+// Written once for floats and lanes (the parameters as MCL_DEFINE_NORMAL_MAP's).
+#define MCL_DEFINE_BUMP_NORMAL(P, F, F3, M, V)                                                             \
+  MCL_INLINE F3 P##bump_normal(F3 N, F3 e1, F3 e2, F du1, F dv1, F du2, F dv2, F gu, F gv) {               \
+    F det = du1 * dv2 - du2 * dv1;                                                                         \
+    F3 T = V##_sub(V##_scale(e1, dv2), V##_scale(e2, dv1)); /* det dP/du */                                \
+    F3 B = V##_sub(V##_scale(e2, du1), V##_scale(e1, du2)); /* det dP/dv */                                \
+    T = V##_sub(T, V##_scale(N, V##_dot(N, T)));                                                           \
+    B = V##_sub(B, V##_scale(N, V##_dot(N, B)));                                                           \
+    F3 n = V##_cross(V##_add(T, V##_scale(N, gu * det)), V##_add(B, V##_scale(N, gv * det)));              \
+    n = V##_select(V##_dot(n, N) < 0.0f, V##_neg(n), n);                                                   \
+    F nl2 = V##_dot(n, n);                                                                                 \
+    n = V##_scale(n, 1.0f / sqrt(fmax(nl2, 1e-30f)));                                                      \
+    M ok = (det != 0.0f) & (fabs(det) < INFINITY) & (nl2 > 1e-30f) & (nl2 < INFINITY);                     \
+    return V##_select(ok, n, V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                                   \
+  }
+MCL_DEFINE_BUMP_NORMAL(, float, float3, int, f3)
 
 // The frame fr of hit h on triangle tri (attributes sh, unit geometric normal ng0, unoriented)
 // under material m's bump map; fr unchanged without a map or without UVs, and (bit for bit) where

@@ -12,7 +12,7 @@
 // and GPUs; lanes past the wave masked): misses (the background, or the environment through
 // light_eval per lane) and hits on every material kind (lane_bsdf.h), textured or not, flat or
 // smooth, in lanes (stage_lanes.h: the frame, albedo, metallic-roughness texture and glTF
-// transmission's kind pick per lane; normal and bump maps and instances through surface_at per
+// transmission's kind pick, normal and bump maps per lane; instances through surface_at per
 // lane): Le seen, the light samples (the light kind picked per lane, emitter triangles in lanes and
 // the other kinds through sample_direct_light per lane, light_area_lanes.h; one atomic per packet
 // per light sample; the Lambertian lobe's Kd / pi spelled out, the other kinds' f cos, a light

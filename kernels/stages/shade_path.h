@@ -18,7 +18,7 @@
 // background, or path_miss per lane. Emission seen (MIS weighted after a BSDF bounce) for every
 // hit in lanes (textured emission: light_eval and light_pdf per lane). Hits on every material
 // kind (lane_bsdf.h), textured or not, flat or smooth, in lanes (the frame, the metallic-roughness
-// texture and glTF transmission's kind pick from stage_lanes.h; normal and bump maps and instances
+// texture, glTF transmission's kind pick, normal and bump maps from stage_lanes.h; instances
 // through surface_at per lane): the next-event light samples (the light kind picked per lane:
 // emitter triangles in lanes, the others through sample_direct_light per lane, light_area_lanes.h;
 // one atomic per packet per light sample; a light below the geometric surface through a

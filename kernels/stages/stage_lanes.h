@@ -285,6 +285,9 @@ typedef struct {
   vmask backface;  // set where the ray arrived at the triangle's back face (SurfaceFrame::backface)
 } LaneFrame;
 
+MCL_DEFINE_NORMAL_MAP(v_, vfloat, vfloat3, vfloat4, vmask, v3, v4_make, LaneFrame)
+MCL_DEFINE_BUMP_NORMAL(v_, vfloat, vfloat3, vmask, v3)
+
 // luminance (lights.h) per lane.
 MCL_INLINE vfloat v_luminance(vfloat3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
@@ -305,9 +308,10 @@ typedef struct {
   vfloat area, twoSided;  // normals[].w; Material::emission.w
   vuint tri, attrs, albedoTex;  // the triangle (0 where no hit), its MCL_ATTR_* flags, Kd's texture
   vuint metalRoughTex;          // metal_rough's metallic-roughness texture (Material::maps.y)
+  vuint normalMap, bumpMap;     // one more than the maps' textures, 0: none (Material::maps.z, .w)
   vmask lamb, glossy, conductor, dielectric, thin, metalRough, coatedDiffuse, coatedConductor, tinted, flat;
   vmask mixes;   // metal_rough lanes with a transmission factor (another kind per sample)
-  vmask placed;  // a normal or bump map, or an instance: the frame only through surface_at
+  vmask placed;  // an instance: the frame only through surface_at
   vfloat4 params0, params1;  // Material::params0, params1 (the kinds' own parameters)
   vfloat4 specular;          // Ks and the glossy lobe's probability (diffuse_make's specProb)
   vfloat specAlpha;          // the glossy lobe's alpha as the material holds it
@@ -357,7 +361,9 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
   h.attrs = v_as_uint(e2w);
   h.albedoTex = v_as_uint(kdw);
   h.metalRoughTex = v_as_uint(kmy);
-  h.placed = (v_as_uint(kmz) | v_as_uint(kmw)) != 0u;
+  h.normalMap = v_as_uint(kmz);
+  h.bumpMap = v_as_uint(kmw);
+  h.placed = hit & v_not(hit);  // none
   if (f->instanceCount > 0u) {  // instanced hits: their frame from surface_at, in object space
     uint inst[MCL_LANES] MCL_LANE_ALIGN;
     for (uint j = 0; j < MCL_LANES; ++j) inst[j] = j < lanes ? hit_instance(f, hitInstances, first + j) : 0u;
@@ -365,14 +371,14 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
   }
   vmask albedoVaries = ((h.attrs & MCL_ATTR_COLOR) != 0u) | (h.albedoTex != MCL_NO_TEXTURE);
   h.flat = (h.tinted | h.conductor | h.dielectric | h.thin | h.coatedConductor) & ((h.attrs & MCL_ATTR_NORMALS) == 0u) &
-           v_not(h.placed) & v_not(h.tinted & albedoVaries) &
+           v_not(h.placed) & ((h.normalMap | h.bumpMap) == 0u) & v_not(h.tinted & albedoVaries) &
            (h.metalRoughTex == MCL_NO_TEXTURE);
   return h;
 }
 
 // --profile's tally (FrameParams::countLanes): a packet's hits shaded in lane types (packed: the
 // lanes of the kinds the stage shades in lanes, `kinds`, framed in lanes) and with their frame
-// one by one (the rest: normal and bump maps, instances), one atomic each.
+// one by one (the rest: instanced hits), one atomic each.
 MCL_INLINE void lane_tally(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL volatile uint* packedLanes,
                            MCL_GLOBAL volatile uint* aloneLanes, const LaneHits* lh, vmask kinds, vmask hit) {
   if (!f->countLanes) return;
@@ -453,22 +459,76 @@ MCL_INLINE LaneFrame lane_frame_rich(SurfaceScene sc, MCL_CONSTANT const FramePa
   return r;
 }
 
-// texture_sample of texture tex at (u, v) with footprint fp in the lanes set in on; the other
-// lanes read some lane's texture (masked by the caller).
-MCL_INLINE vfloat4 lane_texture(TextureTables tt, vmask on, vuint tex, vfloat u, vfloat v, vfloat fp) {
-  uint texs[MCL_LANES] MCL_LANE_ALIGN, set[MCL_LANES] MCL_LANE_ALIGN;
-  v_store_lanes(tex, texs);
+// x where on is set, some lane's x of on elsewhere (a lookup the caller masks reads a valid index).
+MCL_INLINE vuint lane_some(vuint x, vmask on) {
+  uint xs[MCL_LANES] MCL_LANE_ALIGN, set[MCL_LANES] MCL_LANE_ALIGN;
+  v_store_lanes(x, xs);
   v_store_lanes(v_mask01(on), set);
   uint some = 0u;
   for (uint j = 0; j < MCL_LANES; ++j)
-    if (set[j]) some = texs[j];
-  return v_texture_sample(tt, vsel(on, tex, v_u(some)), u, v, fp);
+    if (set[j]) some = xs[j];
+  return vsel(on, x, v_u(some));
 }
 
-// The lanes set in m (hits on world-space triangles without a normal or bump map) of a frame whose
-// flat part is set: surface_frame's shading normal and, for the tinted lanes, hit_albedo's
-// vertex colour and albedo texture (trilinear, ray-cone footprint, hit_texture), in lanes, at
-// barycentrics hu, hv, distance ht.
+// texture_fine per lane: the finest level kept of the texture whose desc is d, bilinear.
+MCL_INLINE vfloat4 v_texture_fine_of(TextureTables tt, vTextureDesc d, vfloat u, vfloat v) {
+  vfloat x, y;
+  v_texture_uv_of(d, u, v, &x, &y);
+  return v_texture_bilinear_wrap(tt, d.firstLevel, x, y, v_as_uint(d.uvRow0.w), v_as_uint(d.uvRow1.w));
+}
+
+// apply_normal_map, then apply_bump_map, for the lanes set in m (hits with UVs and a relief map;
+// N the unoriented shading normal, the corners' u in u0..u2 and v in t0..t2, at barycentrics hu, hv).
+MCL_INLINE LaneFrame lane_relief(TextureTables tt, const LaneHits* lh, vmask m, vfloat3 N, vfloat u0, vfloat u1,
+                                 vfloat u2, vfloat t0, vfloat t1, vfloat t2, vfloat hu, vfloat hv, LaneFrame lf) {
+  vfloat u, v;
+  v_uv_blend(u0, u1, u2, t0, t1, t2, hu, hv, &u, &v);
+  vfloat du1 = u1 - u0, dv1 = t1 - t0, du2 = u2 - u0, dv2 = t2 - t0;
+  vmask nm = m & (lh->normalMap != 0u);
+  if (v_any(nm)) {
+    vTextureDesc d = v_texture_desc(tt, lane_some(lh->normalMap - 1u, nm));
+    vfloat4 c = v_texture_fine_of(tt, d, u, v);
+    vfloat3 t = v3_make(c.x, c.y, c.z);
+    vfloat4 q = v_map_uv_deltas_of(d.uvRow0, d.uvRow1, du1, dv1, du2, dv2);
+    vfloat3 n = v_tangent_to_world(N, lh->e1, lh->e2, q.x, q.y, q.z, q.w, t);
+    vmask filed = nm & ((lh->attrs & MCL_ATTR_TANGENTS) != 0u);
+    if (v_any(filed)) {  // the file's corner tangents
+      MCL_GLOBAL const float* tg = (MCL_GLOBAL const float*)tt.tangents;
+      vuint at = vsel(filed, lh->tri, v_u(0u)) * 3u;
+      vfloat4 c0, c1, c2;
+      v_gather4(tg, at, 4, &c0.x, &c0.y, &c0.z, &c0.w);
+      v_gather4(tg, at + 1u, 4, &c1.x, &c1.y, &c1.z, &c1.w);
+      v_gather4(tg, at + 2u, 4, &c2.x, &c2.y, &c2.z, &c2.w);
+      n = v3_select(filed, v_file_tangent_to_world(N, c0, c1, c2, hu, hv, t), n);
+    }
+    LaneFrame mapped = v_normal_mapped_frame(lf, N, n, t);
+    lf.ns = v3_select(nm, mapped.ns, lf.ns);
+    lf.smooth = vsel(nm, mapped.smooth, lf.smooth);
+  }
+  vmask bm = m & (lh->bumpMap != 0u);
+  if (v_any(bm)) {
+    vTextureDesc d = v_texture_desc(tt, lane_some(lh->bumpMap - 1u, bm));
+    vfloat4 g = v_texture_fine_of(tt, d, u, v);  // the gradient per unit of the map's own UVs
+    vfloat4 q = v_map_uv_deltas_of(d.uvRow0, d.uvRow1, du1, dv1, du2, dv2);
+    vfloat3 n = v_bump_normal(N, lh->e1, lh->e2, q.x, q.y, q.z, q.w, g.x, g.y);
+    LaneFrame mapped = v_normal_mapped_frame(lf, N, n, v3_make(g.x, g.y, v_f(1.0f)));
+    lf.ns = v3_select(bm, mapped.ns, lf.ns);
+    lf.smooth = vsel(bm, mapped.smooth, lf.smooth);
+  }
+  return lf;
+}
+
+// texture_sample of texture tex at (u, v) with footprint fp in the lanes set in on; the other
+// lanes read some lane's texture (masked by the caller).
+MCL_INLINE vfloat4 lane_texture(TextureTables tt, vmask on, vuint tex, vfloat u, vfloat v, vfloat fp) {
+  return v_texture_sample(tt, lane_some(tex, on), u, v, fp);
+}
+
+// The lanes set in m (hits on world-space triangles) of a frame whose flat part is set:
+// surface_frame's shading normal, the normal and bump maps (lane_relief), for the tinted lanes
+// hit_albedo's vertex colour and albedo texture (trilinear, ray-cone footprint, hit_texture), and
+// the metallic-roughness texture (hit_metal_rough, into lh's params0), in lanes, at barycentrics
+// hu, hv, distance ht.
 MCL_INLINE LaneFrame lane_frame_attributes(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, vmask m,
                                            LaneHits* lh, vfloat hu, vfloat hv, vfloat ht, vfloat3 dir,
                                            LaneFrame lf) {
@@ -486,12 +546,16 @@ MCL_INLINE LaneFrame lane_frame_attributes(SurfaceScene sc, MCL_CONSTANT const F
     v_gather4(sh + 8, ts, stride, &n2.x, &n2.y, &n2.z, &u2);
     v_gather4(sh + 12, ts, stride, &t0, &t1, &t2, &tw);
   }
+  vfloat3 N = lh->n;  // unoriented_shading_normal: the interpolated corner normals, else the triangle's
   if (v_any(hasN)) {
     vfloat3 n = v_interpolate_normal(n0, n1, n2, hu, hv);
     vmask usable = hasN & (v3_dot(n, n) > 0.0f);
     lf.ns = v3_select(usable, v_orient_to(n, lf.ng), lf.ns);
     lf.smooth = lf.smooth | usable;
+    N = v3_select(usable, n, N);
   }
+  vmask relief = hasUV & ((lh->normalMap | lh->bumpMap) != 0u);
+  if (v_any(relief)) lf = lane_relief(sc.tex, lh, relief, N, u0, u1, u2, t0, t1, t2, hu, hv, lf);
   vfloat3 kd = lf.kd;
   if (v_any(coloured)) {  // times the vertex colour interpolated at the hit
     MCL_GLOBAL const float* c = (MCL_GLOBAL const float*)sc.tex.colors;
