@@ -48,7 +48,7 @@ std::string formatProfile(const StageProfile& profile, double wallSeconds) {
     std::snprintf(line, sizeof line, "shading: %.1f%% of %llu hits in lane types", 100.0 * double(profile.packedLanes) / double(hits),
                   static_cast<unsigned long long>(hits));
     out += line;
-    out += " (the rest framed one by one: instanced hits)\n";
+    out += " (the rest: material kinds without a lane form)\n";
   }
   return out;
 }

@@ -16,9 +16,7 @@ MCL_INLINE float3 instance_point(MCL_GLOBAL const Instance* in, float3 p) { retu
 // Unit world-space normal of object-space normal n (n need not be unit).
 MCL_INLINE float3 instance_normal(MCL_GLOBAL const Instance* in, float3 n) {
   MCL_GLOBAL const float4* w = in->worldToObject;
-  float3 m = make_float3(w[0].x * n.x + w[1].x * n.y + w[2].x * n.z, w[0].y * n.x + w[1].y * n.y + w[2].y * n.z,
-                         w[0].z * n.x + w[1].z * n.y + w[2].z * n.z);
-  return normalize(m);
+  return instance_normal_of(w[0], w[1], w[2], n);
 }
 
 // The world frame of an object-space frame s (computed for the object-space ray direction).

@@ -101,10 +101,8 @@ typedef struct {
 // length to the hit is h.t (the albedo texture's footprint is the camera's ray cone there), with
 // the triangle and dir in one space (world, or an instance's object space: surface_at below), for
 // sample r (which kind a partly transmissive material is at this hit, transmission_mix.h).
-// *resolved: the hit's material after its textures and the kind's pick (the packet stages read
-// its kind and parameters).
 MCL_INLINE Surface surface_at_object(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, Hit h, float3 dir,
-                                     SampleRef r, Material* resolved) {
+                                     SampleRef r) {
   MCL_GLOBAL const Triangle* tri = &sc.tris[h.tri];
   Material m = sc.materials[triangle_material(tri)];
   Surface s;
@@ -115,7 +113,6 @@ MCL_INLINE Surface surface_at_object(SurfaceScene sc, MCL_CONSTANT const FramePa
   m = hit_metal_rough(sc.tex, f, m, tri, sc.normals[h.tri], &sc.shading[h.tri], h, dir);
   m = hit_transmission(f, m, r, h, dir);
   s.bsdf = bsdf_from_material(m, albedo);
-  *resolved = m;
   return s;
 }
 
@@ -125,18 +122,11 @@ MCL_INLINE Surface surface_at_object(SurfaceScene sc, MCL_CONSTANT const FramePa
 // footprint then uses the object-space area, so a scaled instance may pick another mip level
 // than a flattened copy would. Every shade stage and record_aov read their surface through this
 // one function.
-MCL_INLINE Surface surface_at_resolving(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, Hit h, uint inst,
-                                        float3 dir, SampleRef r, Material* resolved) {
-  if (inst == MCL_NO_INSTANCE) return surface_at_object(sc, f, h, dir, r, resolved);
-  MCL_GLOBAL const Instance* in = &sc.instances[inst];
-  Surface s = surface_at_object(sc, f, h, normalize(affine_vector(in->worldToObject, dir)), r, resolved);
-  s.frame = instance_frame(in, s.frame);
-  return s;
-}
-
-// surface_at: the same where the caller needs only the surface.
 MCL_INLINE Surface surface_at(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, Hit h, uint inst, float3 dir,
                               SampleRef r) {
-  Material m;
-  return surface_at_resolving(sc, f, h, inst, dir, r, &m);
+  if (inst == MCL_NO_INSTANCE) return surface_at_object(sc, f, h, dir, r);
+  MCL_GLOBAL const Instance* in = &sc.instances[inst];
+  Surface s = surface_at_object(sc, f, h, normalize(affine_vector(in->worldToObject, dir)), r);
+  s.frame = instance_frame(in, s.frame);
+  return s;
 }

@@ -19,16 +19,31 @@ typedef struct {
   uint instance;  // MCL_NO_INSTANCE on a miss
 } InstanceHit;
 
-// Row r . (p, 1) and row r . (d, 0) of a 3x4 affine map, the products summed left to right.
+// Row r . (p, 1) and row r . (d, 0) of a 3x4 affine map, the products summed left to right;
+// written once for floats and lanes over the map's rows r0, r1, r2 (P, F3, F4, V: the prefix,
+// float3, float4, f3 here; v_, vfloat3, vfloat4, v3 in stages/stage_lanes.h); instance_normal_of:
+// the unit normal that the map with these rows (an instance's world-to-object map) transposed
+// gives object-space normal n (n need not be unit).
+#define MCL_DEFINE_AFFINE(P, F3, F4, V)                                                                   \
+  MCL_INLINE F3 P##affine_point_of(F4 r0, F4 r1, F4 r2, F3 p) {                                           \
+    return V##_make(r0.x * p.x + r0.y * p.y + r0.z * p.z + r0.w, r1.x * p.x + r1.y * p.y + r1.z * p.z + r1.w, \
+                    r2.x * p.x + r2.y * p.y + r2.z * p.z + r2.w);                                         \
+  }                                                                                                       \
+  MCL_INLINE F3 P##affine_vector_of(F4 r0, F4 r1, F4 r2, F3 d) {                                          \
+    return V##_make(r0.x * d.x + r0.y * d.y + r0.z * d.z, r1.x * d.x + r1.y * d.y + r1.z * d.z,           \
+                    r2.x * d.x + r2.y * d.y + r2.z * d.z);                                                \
+  }                                                                                                       \
+  MCL_INLINE F3 P##instance_normal_of(F4 w0, F4 w1, F4 w2, F3 n) {                                        \
+    return V##_normalize(V##_make(w0.x * n.x + w1.x * n.y + w2.x * n.z, w0.y * n.x + w1.y * n.y + w2.y * n.z, \
+                                  w0.z * n.x + w1.z * n.y + w2.z * n.z));                                 \
+  }
+MCL_DEFINE_AFFINE(, float3, float4, f3)
+
 MCL_INLINE float3 affine_point(MCL_GLOBAL const float4* rows, float3 p) {
-  return make_float3(rows[0].x * p.x + rows[0].y * p.y + rows[0].z * p.z + rows[0].w,
-                     rows[1].x * p.x + rows[1].y * p.y + rows[1].z * p.z + rows[1].w,
-                     rows[2].x * p.x + rows[2].y * p.y + rows[2].z * p.z + rows[2].w);
+  return affine_point_of(rows[0], rows[1], rows[2], p);
 }
 MCL_INLINE float3 affine_vector(MCL_GLOBAL const float4* rows, float3 d) {
-  return make_float3(rows[0].x * d.x + rows[0].y * d.y + rows[0].z * d.z,
-                     rows[1].x * d.x + rows[1].y * d.y + rows[1].z * d.z,
-                     rows[2].x * d.x + rows[2].y * d.y + rows[2].z * d.z);
+  return affine_vector_of(rows[0], rows[1], rows[2], d);
 }
 
 // Pops entries above stack[base] until one the ray enters at or before tHit (stored in *ref,

@@ -12,8 +12,7 @@
 // and GPUs; lanes past the wave masked): misses (the background, or the environment through
 // light_eval per lane) and hits on every material kind (lane_bsdf.h), textured or not, flat or
 // smooth, in lanes (stage_lanes.h: the frame, albedo, metallic-roughness texture and glTF
-// transmission's kind pick, normal and bump maps per lane; instances through surface_at per
-// lane): Le seen, the light samples (the light kind picked per lane, emitter triangles in lanes and
+// transmission's kind pick, normal and bump maps, instances: lane_frame in lanes): Le seen, the light samples (the light kind picked per lane, emitter triangles in lanes and
 // the other kinds through sample_direct_light per lane, light_area_lanes.h; one atomic per packet
 // per light sample; the Lambertian lobe's Kd / pi spelled out, the other kinds' f cos, a light
 // below the surface through a transmitting lobe with its shadow ray from the far side) and the
@@ -86,8 +85,8 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
   if (v_any(hit)) {
     vuint pixel, sample;
     v_item_pixel_sample(f, a->active, a->waveStart, first, &pixel, &sample);
-    LaneFrame sf = lane_frame(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first,
-                              kinds & v_not(flat), pixel, sample, 0u, &lh, hu, hv, ht, dir);
+    LaneFrame sf =
+        lane_frame(MCL_STAGE_SURFACE_SCENE(a), f, kinds & v_not(flat), pixel, sample, 0u, &lh, hu, hv, ht, dir);
     vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
     const LaneBsdf lb = lane_bsdf(&lh, sf);
     const vfloat3 wo = v3_neg(dir);

@@ -18,8 +18,8 @@
 // background, or path_miss per lane. Emission seen (MIS weighted after a BSDF bounce) for every
 // hit in lanes (textured emission: light_eval and light_pdf per lane). Hits on every material
 // kind (lane_bsdf.h), textured or not, flat or smooth, in lanes (the frame, the metallic-roughness
-// texture, glTF transmission's kind pick, normal and bump maps from stage_lanes.h; instances
-// through surface_at per lane): the next-event light samples (the light kind picked per lane:
+// texture, glTF transmission's kind pick, normal and bump maps, instances: lane_frame in
+// stage_lanes.h): the next-event light samples (the light kind picked per lane:
 // emitter triangles in lanes, the others through sample_direct_light per lane, light_area_lanes.h;
 // one atomic per packet per light sample; a light below the geometric surface through a
 // transmitting lobe, its shadow ray from the far side) and the BSDF continuation with Russian
@@ -156,8 +156,8 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
       pixel = v_loadu_lanes(px);
       sample = v_loadu_lanes(sm);
     }
-    LaneFrame sf = lane_frame(MCL_STAGE_SURFACE_SCENE(a), f, a->hits, a->hitInstances, a->rays, first,
-                              kinds & v_not(flat), pixel, sample, bounce, &lh, hu, hv, ht, dir);
+    LaneFrame sf =
+        lane_frame(MCL_STAGE_SURFACE_SCENE(a), f, kinds & v_not(flat), pixel, sample, bounce, &lh, hu, hv, ht, dir);
     vfloat3 origin = v_offset_ray_origin(sf.p, sf.ng, f->offsetScale);
     const LaneBsdf lb = lane_bsdf(&lh, sf);
     const vfloat3 wo = v3_neg(dir);

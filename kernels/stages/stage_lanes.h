@@ -230,6 +230,7 @@ MCL_DEFINE_TEXTURE_LOOKUP(v_, vfloat, vuint, vint, vfloat4, v4_make, vsel, v_any
 MCL_DEFINE_SURFACE_UV(v_, vfloat)
 
 // --- geometry.h, surface.h -------------------------------------------------------------------
+MCL_DEFINE_AFFINE(v_, vfloat3, vfloat4, v3)
 MCL_DEFINE_OFFSET_RAY_ORIGIN(v_, vfloat, vint, vfloat3, v3, v_cvt_i_f, v_as_float, v_as_uint, v_int_as_uint)
 MCL_DEFINE_ORIENT_FACING(v_, vfloat3, v3)
 MCL_DEFINE_INTERPOLATE_NORMAL(v_, vfloat, vfloat3, v3)
@@ -311,7 +312,8 @@ typedef struct {
   vuint normalMap, bumpMap;     // one more than the maps' textures, 0: none (Material::maps.z, .w)
   vmask lamb, glossy, conductor, dielectric, thin, metalRough, coatedDiffuse, coatedConductor, tinted, flat;
   vmask mixes;   // metal_rough lanes with a transmission factor (another kind per sample)
-  vmask placed;  // an instance: the frame only through surface_at
+  vmask placed;   // hits in an instance: their frame made in its object space, then placed
+  vuint instance; // that instance (0 in the other lanes)
   vfloat4 params0, params1;  // Material::params0, params1 (the kinds' own parameters)
   vfloat4 specular;          // Ks and the glossy lobe's probability (diffuse_make's specProb)
   vfloat specAlpha;          // the glossy lobe's alpha as the material holds it
@@ -364,10 +366,12 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
   h.normalMap = v_as_uint(kmz);
   h.bumpMap = v_as_uint(kmw);
   h.placed = hit & v_not(hit);  // none
+  h.instance = v_u(0u);
   if (f->instanceCount > 0u) {  // instanced hits: their frame from surface_at, in object space
     uint inst[MCL_LANES] MCL_LANE_ALIGN;
     for (uint j = 0; j < MCL_LANES; ++j) inst[j] = j < lanes ? hit_instance(f, hitInstances, first + j) : 0u;
-    h.placed = h.placed | (v_loadu_lanes(inst) != MCL_NO_INSTANCE);
+    h.placed = hit & (v_loadu_lanes(inst) != MCL_NO_INSTANCE);
+    h.instance = vsel(h.placed, v_loadu_lanes(inst), v_u(0u));
   }
   vmask albedoVaries = ((h.attrs & MCL_ATTR_COLOR) != 0u) | (h.albedoTex != MCL_NO_TEXTURE);
   h.flat = (h.tinted | h.conductor | h.dielectric | h.thin | h.coatedConductor) & ((h.attrs & MCL_ATTR_NORMALS) == 0u) &
@@ -377,12 +381,13 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
 }
 
 // --profile's tally (FrameParams::countLanes): a packet's hits shaded in lane types (packed: the
-// lanes of the kinds the stage shades in lanes, `kinds`, framed in lanes) and with their frame
-// one by one (the rest: instanced hits), one atomic each.
+// lanes of the kinds the stage shades in lanes, `kinds`) and the rest (a kind without a lane
+// branch: lane_bsdf.h), one atomic each.
 MCL_INLINE void lane_tally(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL volatile uint* packedLanes,
                            MCL_GLOBAL volatile uint* aloneLanes, const LaneHits* lh, vmask kinds, vmask hit) {
   if (!f->countLanes) return;
-  vmask packed = kinds & v_not(lh->placed);
+  (void)lh;
+  vmask packed = kinds & hit;
   uint p = v_count(packed), q = v_count(hit & v_not(packed));
   if (p) MCL_ATOMIC_ADD(packedLanes, p);
   if (q) MCL_ATOMIC_ADD(aloneLanes, q);
@@ -396,67 +401,6 @@ MCL_INLINE void lane_take_pick(LaneHits* lh, vmask m, vuint kind, vfloat metalli
   lh->dielectric = lh->dielectric | (m & (kind == (uint)MCL_MATERIAL_dielectric));
   lh->thin = lh->thin | (m & (kind == (uint)MCL_MATERIAL_thin_dielectric));
   lh->metalRough = lh->metalRough & v_not(m & (kind != (uint)MCL_MATERIAL_metal_rough));
-}
-
-// The lanes set in `rich` of a frame whose other lanes are already set: each through the scalar
-// surface_at (in its hit's instance, hit_instance), for sample ref (pixel, sample, bounce) of the
-// lane; kd, the textured albedo, where the BSDF reads one (the diffuse kind's kd, metal_rough's
-// base colour; the caller's masks say which kind from the material).
-MCL_INLINE LaneFrame lane_frame_rich(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const Hit* hits,
-                                     MCL_GLOBAL const uint* hitInstances, MCL_GLOBAL const Ray* rays, uint first,
-                                     vmask rich, vuint pixel, vuint sample, uint bounce, LaneFrame lf, LaneHits* lh) {
-  uint set[MCL_LANES] MCL_LANE_ALIGN, px[MCL_LANES] MCL_LANE_ALIGN, sm[MCL_LANES] MCL_LANE_ALIGN;
-  uint smo[MCL_LANES] MCL_LANE_ALIGN, bf[MCL_LANES] MCL_LANE_ALIGN;
-  float pX[MCL_LANES] MCL_LANE_ALIGN, pY[MCL_LANES] MCL_LANE_ALIGN, pZ[MCL_LANES] MCL_LANE_ALIGN;
-  float gX[MCL_LANES] MCL_LANE_ALIGN, gY[MCL_LANES] MCL_LANE_ALIGN, gZ[MCL_LANES] MCL_LANE_ALIGN;
-  float sX[MCL_LANES] MCL_LANE_ALIGN, sY[MCL_LANES] MCL_LANE_ALIGN, sZ[MCL_LANES] MCL_LANE_ALIGN;
-  float kX[MCL_LANES] MCL_LANE_ALIGN, kY[MCL_LANES] MCL_LANE_ALIGN, kZ[MCL_LANES] MCL_LANE_ALIGN;
-  v_store_lanes(v_mask01(rich), set);
-  v_store_lanes(pixel, px);
-  v_store_lanes(sample, sm);
-  v3_store_lanes(lf.p, pX, pY, pZ);
-  v3_store_lanes(lf.ng, gX, gY, gZ);
-  v3_store_lanes(lf.ns, sX, sY, sZ);
-  v3_store_lanes(lf.kd, kX, kY, kZ);
-  v_store_lanes(v_mask01(lf.smooth), smo);
-  v_store_lanes(v_mask01(lf.backface), bf);
-  uint kn[MCL_LANES] MCL_LANE_ALIGN;
-  float mX[MCL_LANES] MCL_LANE_ALIGN, mY[MCL_LANES] MCL_LANE_ALIGN;
-  v_store_lanes(v_u((uint)MCL_MATERIAL_diffuse), kn);
-  v_store_lanes(lh->params0.x, mX);
-  v_store_lanes(lh->params0.y, mY);
-  for (uint j = 0; j < MCL_LANES; ++j) {
-    if (!set[j]) continue;
-    Material m;
-    Surface s = surface_at_resolving(sc, f, hits[first + j], hit_instance(f, hitInstances, first + j),
-                                     xyz(rays[first + j].dir), sample_ref(px[j], sm[j], bounce), &m);
-    kn[j] = as_uint(m.alpha.w);
-    mX[j] = m.params0.x;
-    mY[j] = m.params0.y;
-    pX[j] = s.frame.p.x; pY[j] = s.frame.p.y; pZ[j] = s.frame.p.z;
-    gX[j] = s.frame.ng.x; gY[j] = s.frame.ng.y; gZ[j] = s.frame.ng.z;
-    sX[j] = s.frame.ns.x; sY[j] = s.frame.ns.y; sZ[j] = s.frame.ns.z;
-    if (s.bsdf.kind == (uint)MCL_MATERIAL_diffuse) {
-      kX[j] = s.bsdf.p.diffuse.kd.x; kY[j] = s.bsdf.p.diffuse.kd.y; kZ[j] = s.bsdf.p.diffuse.kd.z;
-    } else if (s.bsdf.kind == (uint)MCL_MATERIAL_metal_rough) {
-      kX[j] = s.bsdf.p.metal_rough.base.x; kY[j] = s.bsdf.p.metal_rough.base.y; kZ[j] = s.bsdf.p.metal_rough.base.z;
-    } else if (s.bsdf.kind == (uint)MCL_MATERIAL_coated_diffuse) {
-      kX[j] = s.bsdf.p.coated_diffuse.base.x; kY[j] = s.bsdf.p.coated_diffuse.base.y;
-      kZ[j] = s.bsdf.p.coated_diffuse.base.z;
-    }
-    smo[j] = s.frame.smooth != 0;
-    bf[j] = s.frame.backface != 0;
-  }
-  LaneFrame r;
-  r.p = v3_load_lanes(pX, pY, pZ);
-  r.ng = v3_load_lanes(gX, gY, gZ);
-  r.ns = v3_load_lanes(sX, sY, sZ);
-  r.kd = v3_load_lanes(kX, kY, kZ);
-  r.smooth = v_loadu_lanes(smo) != 0u;
-  r.backface = v_loadu_lanes(bf) != 0u;
-  // metal_rough lanes: their parameters after the metallic-roughness texture and the kind's pick
-  lane_take_pick(lh, rich, v_loadu_lanes(kn), v_loadf_lanes(mX), v_loadf_lanes(mY));
-  return r;
 }
 
 // x where on is set, some lane's x of on elsewhere (a lookup the caller masks reads a valid index).
@@ -591,16 +535,32 @@ MCL_INLINE LaneFrame lane_frame_attributes(SurfaceScene sc, MCL_CONSTANT const F
   return lf;
 }
 
-// The frame of W hits (lh, at barycentrics hu, hv and distance ht along dir): flat world-space hits
-// from their triangle, surface_frame's operations; of the lanes in `rich`, those without a normal or
-// bump map nor an instance in lanes (lane_frame_attributes), the others from surface_at
-// (lane_frame_rich). lh's metal_rough lanes then hold their parameters after the metallic-roughness
+// The rows of each lane's instance's affine map (Instance::worldToObject at row 0,
+// objectToWorld at row 3), gathered.
+MCL_INLINE void v_instance_rows(MCL_GLOBAL const Instance* instances, vuint inst, uint row, vfloat4* r0, vfloat4* r1,
+                                vfloat4* r2) {
+  MCL_GLOBAL const float* p = (MCL_GLOBAL const float*)instances + 4u * row;
+  const uint stride = (uint)(sizeof(Instance) / sizeof(float));
+  v_gather4(p, inst, stride, &r0->x, &r0->y, &r0->z, &r0->w);
+  v_gather4(p + 4, inst, stride, &r1->x, &r1->y, &r1->z, &r1->w);
+  v_gather4(p + 8, inst, stride, &r2->x, &r2->y, &r2->z, &r2->w);
+}
+
+// The frame of W hits (lh, at barycentrics hu, hv and distance ht along dir), surface_at's
+// operations per lane: flat world-space hits from their triangle alone; the lanes in `rich` with
+// their shading normals, relief maps and textures (lane_frame_attributes); hits in an instance
+// (lh's placed lanes) made in its object space with the unit object-space direction, then placed
+// (instance_frame). lh's metal_rough lanes then hold their parameters after the metallic-roughness
 // texture and, where they mix in transmission, the kind this sample's hit is (hit_transmission:
 // transmission_uniform, for sample `sample` of pixel `pixel` at bounce `bounce`).
-MCL_INLINE LaneFrame lane_frame(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const Hit* hits,
-                                MCL_GLOBAL const uint* hitInstances, MCL_GLOBAL const Ray* rays, uint first, vmask rich,
-                                vuint pixel, vuint sample, uint bounce, LaneHits* lh, vfloat hu, vfloat hv,
-                                vfloat ht, vfloat3 dir) {
+MCL_INLINE LaneFrame lane_frame(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, vmask rich, vuint pixel,
+                                vuint sample, uint bounce, LaneHits* lh, vfloat hu, vfloat hv, vfloat ht, vfloat3 dir) {
+  vmask placed = rich & lh->placed;
+  vfloat4 w0, w1, w2;
+  if (v_any(placed)) {  // the object-space direction
+    v_instance_rows(sc.instances, lh->instance, 0u, &w0, &w1, &w2);
+    dir = v3_select(placed, v3_normalize(v_affine_vector_of(w0, w1, w2, dir)), dir);
+  }
   LaneFrame lf;
   lf.p = v3_add(v3_add(lh->v0, v3_scale(lh->e1, hu)), v3_scale(lh->e2, hv));
   lf.ng = v_orient_facing(lh->n, dir);
@@ -608,18 +568,21 @@ MCL_INLINE LaneFrame lane_frame(SurfaceScene sc, MCL_CONSTANT const FrameParams*
   lf.ns = lf.ng;
   lf.kd = lh->kd;
   lf.smooth = v_not(rich | v_not(rich));  // none
-  vmask inLanes = rich & v_not(lh->placed);
-  if (v_any(inLanes)) lf = lane_frame_attributes(sc, f, inLanes, lh, hu, hv, ht, dir, lf);
-  vmask placed = rich & lh->placed;
-  if (v_any(placed)) lf = lane_frame_rich(sc, f, hits, hitInstances, rays, first, placed, pixel, sample, bounce, lf, lh);
-  vmask mixes = lh->mixes & v_not(placed);
-  if (v_any(mixes)) {  // hit_transmission: the kind this sample's hit is (transmission_uniform)
+  if (v_any(rich)) lf = lane_frame_attributes(sc, f, rich, lh, hu, hv, ht, dir, lf);
+  if (v_any(placed)) {  // instance_frame
+    vfloat4 o0, o1, o2;
+    v_instance_rows(sc.instances, lh->instance, 3u, &o0, &o1, &o2);
+    lf.p = v3_select(placed, v_affine_point_of(o0, o1, o2, lf.p), lf.p);
+    lf.ng = v3_select(placed, v_instance_normal_of(w0, w1, w2, lf.ng), lf.ng);
+    lf.ns = v3_select(placed, v_instance_normal_of(w0, w1, w2, lf.ns), lf.ns);
+  }
+  if (v_any(lh->mixes)) {  // hit_transmission: the kind this sample's hit is (transmission_uniform)
     vfloat u = f->sampler == MCL_SAMPLER_SOBOL ? v_sample_uniform4(f, pixel, sample, MCL_DIM_MIX + bounce).x
                                                : v_hit_uniform_at(lh->tri, hu, hv, dir);
     vfloat metallic = lh->params0.x, roughness = lh->params0.y;
     vuint kind = v_transmission_pick(v_u((uint)MCL_MATERIAL_metal_rough), lh->params1.x, lh->params1.y,
                                      lh->params1.z, u, &metallic, &roughness);
-    lane_take_pick(lh, mixes, kind, metallic, roughness);
+    lane_take_pick(lh, lh->mixes, kind, metallic, roughness);
   }
   return lf;
 }
