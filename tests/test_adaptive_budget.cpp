@@ -1,0 +1,259 @@
+// test_adaptive_budget.cpp: adaptive sampling under a budget (render.adaptive, --adaptive): at the
+// same total samples its relMSE over 16 seeds is below a uniform render's on a scene with an exact
+// (bright, unoccluded) half and a noisy (dark, occluded) half; the image is bit-identical across
+// devices and wave sizes; a render stopped after a wave and resumed from that wave's film (what a
+// checkpoint holds, round targets included) equals an uninterrupted one; the error estimate it
+// writes stays calibrated; bad combinations are one line and exit 2.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "bvh/bvh.h"
+#include "cl/devices.h"
+#include "cli_runner.h"
+#include "image/exr_layers.h"
+#include "render/checkpoint.h"
+#include "render/wavefront.h"
+#include "stats.h"
+#include "test_scenes.h"
+
+namespace test_file_adaptive_budget {  // keeps this file's helpers apart in a unity batch
+
+using namespace montecl;
+using namespace montecl_test;
+
+namespace {
+
+Film render(const DeviceInfo& device, const Scene& s, const RenderOptions& o = {}, RenderStats* statsOut = nullptr,
+            const RenderPart& part = {}) {
+  Bvh bvh = buildBvh(s.triangles);
+  WavefrontRenderer r(device, o);
+  RenderStats stats;
+  Film f = r.render(s, bvh, stats, {}, part);
+  if (statsOut) *statsOut = stats;
+  return f;
+}
+
+const DeviceInfo& openclDevice() {
+  static const DeviceInfo device = selectDevice("");
+  return device;
+}
+
+// Floor beside a wall, AO within distance 1, seen from above: the half of the image farther than
+// 1 from the wall is exactly 1 (bright, no variance), the half near it is darker and noisy.
+Scene halvesScene(int size, int spp) {
+  Scene s = wallScene(size, spp);
+  s.camera.position = {-1.4f, 1.6f, 0.0f};  // x from about -2.3 to -0.5: a quarter within 1 of the wall
+  s.camera.target = {-1.4f, 0.0f, 0.0f};
+  s.camera.fovY = 60.0f;
+  s.render.aoDistance = 1.0f;
+  s.render.aoSampling = AoSampling::Cosine;  // each sample is V: exactly 1 where nothing is within 1
+  return s;
+}
+
+// relMSE of a film against a reference (per pixel and channel: (x - r)^2 / (r^2 + 0.01)).
+double relMse(const Film& f, const std::vector<double>& reference) {
+  double sum = 0.0;
+  for (std::size_t p = 0; p < f.pixelCount(); ++p)
+    for (int c = 0; c < 3; ++c) {
+      const double r = reference[3 * p + std::size_t(c)], d = f.meanOf(p, c) - r;
+      sum += d * d / (r * r + 0.01);
+    }
+  return sum / double(3 * f.pixelCount());
+}
+
+bool sameBits(const Film& a, const Film& b) {
+  return a.count == b.count && a.mean == b.mean && a.meanLo == b.meanLo && a.m2 == b.m2 && a.m2Lo == b.m2Lo &&
+         a.split == b.split;
+}
+
+}  // namespace
+
+TEST_CASE("adaptive budget: every pixel gets the first pass, the total is the budget, the dark half gets more" * doctest::test_suite("opencl")) {
+  Scene s = halvesScene(16, 32);
+  s.render.errorEstimate = true;  // as --adaptive asks
+  s.render.adaptive = true;
+  RenderStats stats;
+  Film f = render(openclDevice(), s, {}, &stats);
+  std::uint64_t total = 0, exactSamples = 0, noisySamples = 0, exactPixels = 0;
+  for (std::size_t p = 0; p < f.pixelCount(); ++p) {
+    CHECK(f.count[p] >= 16);
+    CHECK(f.count[p] % 4 == 0);  // whole rounds of the 4 sub-sequences
+    total += f.count[p];
+    const bool exact = f.meanVariance(p, 0) == 0.0 && f.meanOf(p, 0) == 1.0;
+    (exact ? exactSamples : noisySamples) += f.count[p];
+    exactPixels += exact;
+  }
+  CHECK(total == stats.samples);
+  CHECK(total == std::uint64_t(32) * f.pixelCount());
+  REQUIRE(exactPixels > 0);
+  REQUIRE(exactPixels < f.pixelCount());
+  const double exactSpp = double(exactSamples) / double(exactPixels),
+               noisySpp = double(noisySamples) / double(f.pixelCount() - exactPixels);
+  MESSAGE("exact pixels " << exactPixels << " at " << exactSpp << " spp, the others at " << noisySpp << " spp");
+  CHECK(noisySpp > 2.0 * exactSpp);
+}
+
+TEST_CASE("adaptive budget: over 16 seeds its relMSE is below the uniform render's at the same total samples" * doctest::test_suite("opencl slow")) {
+  for (Sampler sampler : {Sampler::Independent, Sampler::Sobol}) {
+    Scene s = halvesScene(16, 32);
+    s.render.sampler = sampler;
+    s.render.errorEstimate = true;  // the adaptive render's, and the uniform one's alike (the same sub-sequences)
+    std::vector<double> reference(3 * 256, 0.0);
+    Scene ref = s;
+    ref.render.spp = 4096;
+    ref.render.errorEstimate = false;
+    ref.render.seed = 1000;
+    const Film r = render(openclDevice(), ref);
+    for (std::size_t p = 0; p < r.pixelCount(); ++p)
+      for (int c = 0; c < 3; ++c) reference[3 * p + std::size_t(c)] = r.meanOf(p, c);
+    double adaptive = 0.0, uniform = 0.0, defaultUniform = 0.0;
+    for (std::uint32_t seed = 0; seed < 16; ++seed) {
+      s.render.seed = seed;
+      s.render.adaptive = false;
+      uniform += relMse(render(openclDevice(), s), reference) / 16.0;
+      Scene plain = s;
+      plain.render.errorEstimate = false;  // the default render: one sequence per pixel under sobol
+      defaultUniform += relMse(render(openclDevice(), plain), reference) / 16.0;
+      s.render.adaptive = true;
+      RenderStats stats;
+      adaptive += relMse(render(openclDevice(), s, {}, &stats), reference) / 16.0;
+      CHECK(stats.samples == std::uint64_t(32) * 256);
+    }
+    MESSAGE(std::string(sampler == Sampler::Sobol ? "sobol" : "independent") << ": relMSE adaptive " << adaptive << ", uniform "
+                                                                  << uniform << " (" << uniform / adaptive
+                                                                  << "x), default uniform " << defaultUniform);
+    CHECK(adaptive < 0.8 * uniform);
+  }
+}
+
+TEST_CASE("adaptive budget: bit-identical on the host backend and OpenCL, for any wave size" * doctest::test_suite("opencl")) {
+  Scene s = halvesScene(12, 24);
+  s.render.errorEstimate = true;
+  s.render.adaptive = true;
+  s.render.seed = 5;
+  const Film reference = render(openclDevice(), s);
+  const DeviceInfo host = selectDevice("host");
+  for (std::uint64_t wave : {0ull, 37ull, 1000ull}) {
+    RenderOptions o;
+    o.waveSize = wave;
+    CHECK_MESSAGE(sameBits(render(openclDevice(), s, o), reference), "OpenCL, wave size " << wave);
+    CHECK_MESSAGE(sameBits(render(host, s, o), reference), "host, wave size " << wave);
+  }
+}
+
+TEST_CASE("adaptive budget: a render stopped after a wave resumes from that wave's film (a checkpoint) bit-identically" * doctest::test_suite("opencl")) {
+  Scene s = halvesScene(12, 32);
+  s.render.errorEstimate = true;
+  s.render.adaptive = true;
+  RenderOptions o;
+  o.waveSize = 50;  // many waves: the stops fall within rounds
+  const Film whole = render(openclDevice(), s, o);
+  TempDir dir;
+  for (int stopAfter : {3, 20, 45}) {
+    volatile int stop = 0;
+    int waves = 0;
+    Film saved;
+    RenderPart part;
+    part.afterWave = [&](const std::function<Film()>& readFilm) {
+      if (++waves == stopAfter) saved = readFilm(), stop = 1;
+    };
+    RenderOptions stopping = o;
+    stopping.interrupt = &stop;
+    RenderStats stats;
+    render(openclDevice(), s, stopping, &stats, part);
+    REQUIRE(stop == 1);
+    CHECK(stats.stoppedEarly);
+    REQUIRE(saved.roundTarget.size() == saved.pixelCount());
+    // Through the checkpoint file, as --checkpoint / --resume do.
+    CheckpointInfo info = checkpointInfo(s, o);
+    CHECK(info.adaptive);
+    const std::string path = dir.file("run.ckpt");
+    writeCheckpoint(path, info, saved);
+    const Film loaded = readCheckpoint(path, info, saved.width, saved.height);
+    CHECK(loaded.roundTarget == saved.roundTarget);
+    RenderPart resume;
+    resume.initialFilm = &loaded;
+    RenderOptions other = o;
+    other.waveSize = 0;  // another wave size after the resume
+    CHECK_MESSAGE(sameBits(render(openclDevice(), s, other, nullptr, resume), whole), "stopped after wave " << stopAfter);
+  }
+}
+
+// The error estimate it writes (err.*: the sub-sequences' spread) against the spread of the pixel
+// means over 40 seeds: the allocation reads the estimate, so a pixel whose estimate came out low
+// gets fewer samples; the 3x3 averaging of the weights keeps that from skewing the calibration.
+TEST_CASE("adaptive budget: the estimated error matches the spread over 40 seeds within 20%" * doctest::test_suite("opencl slow")) {
+  Scene s = halvesScene(8, 32);
+  s.render.sampler = Sampler::Sobol;
+  s.render.errorEstimate = true;
+  s.render.adaptive = true;
+  const int seeds = 40;
+  std::vector<RunningStats> spread(64);
+  double estimated = 0.0;
+  for (int seed = 0; seed < seeds; ++seed) {
+    s.render.seed = std::uint32_t(seed);
+    const Film f = render(openclDevice(), s);
+    REQUIRE(f.splits() == 4u);
+    for (std::size_t p = 0; p < 64; ++p) {
+      spread[p].add(f.meanOf(p, 0));
+      estimated += f.meanVariance(p, 0) / seeds;
+    }
+  }
+  double empirical = 0.0;
+  for (const RunningStats& r : spread) empirical += r.variance();
+  MESSAGE("empirical / estimated squared error = " << empirical / estimated);
+  CHECK(empirical > 0.0);
+  CHECK(empirical / estimated > 0.8);
+  CHECK(empirical / estimated < 1.2);
+}
+
+TEST_CASE("adaptive budget: --adaptive with --target-error, or a budget above --max-spp, is one line, exit 2" * doctest::test_suite("cli sanitize")) {
+  TempDir dir;
+  const std::string out = dir.file("out.exr");
+  struct Case {
+    std::vector<std::string> extra;
+    const char* named;
+  };
+  for (const Case& c : {Case{{"--adaptive", "--target-error", "0.05"}, "--adaptive"},
+                        Case{{"--adaptive", "--spp", "64", "--max-spp", "32"}, "--max-spp"}}) {
+    CliResult r = renderOnHost(demoScene(), out, c.extra);
+    INFO(r.err);
+    CHECK(r.exitCode == 2);
+    CHECK(oneLine(r.err));
+    CHECK(r.err.find(c.named) != std::string::npos);
+    CHECK(!std::filesystem::exists(out));
+  }
+}
+
+TEST_CASE("adaptive budget: --adaptive writes the per-pixel counts and a resumed --time render equals the whole one" * doctest::test_suite("cli sanitize")) {
+  TempDir dir;
+  const std::vector<std::string> common{"--adaptive", "--spp", "32", "--min-spp", "8", "--error-estimate"};
+  std::vector<std::string> whole = common;
+  CliResult a = renderOnHost(demoScene(), dir.file("whole.exr"), whole, {}, 16, 16);
+  REQUIRE_MESSAGE(a.exitCode == 0, a.err);
+  CHECK(a.out.find("adaptive: ") != std::string::npos);
+  // A short time limit that checkpoints after every wave, then the rest from the checkpoint.
+  std::vector<std::string> first = common;
+  for (const char* x : {"--time", "0.05", "--wave-size", "64", "--checkpoint", "", "--checkpoint-every", "1e-9"})
+    first.push_back(x);
+  first[first.size() - 3] = dir.file("run.ckpt");
+  CliResult b = renderOnHost(demoScene(), dir.file("part.exr"), first, {}, 16, 16);
+  REQUIRE_MESSAGE(b.exitCode == 0, b.err);
+  std::vector<std::string> rest = common;
+  rest.push_back("--resume");
+  rest.push_back(dir.file("run.ckpt"));
+  CliResult c = renderOnHost(demoScene(), dir.file("resumed.exr"), rest, {}, 16, 16);
+  REQUIRE_MESSAGE(c.exitCode == 0, c.err);
+  const LayeredImage w = readLayeredImage(dir.file("whole.exr")), r = readLayeredImage(dir.file("resumed.exr"));
+  REQUIRE(w.channels == r.channels);
+  const std::vector<float>* samples = w.find("samples");
+  REQUIRE(samples);
+  CHECK(*std::min_element(samples->begin(), samples->end()) < *std::max_element(samples->begin(), samples->end()));
+  for (std::size_t k = 0; k < w.channels.size(); ++k) CHECK_MESSAGE(w.planes[k] == r.planes[k], w.channels[k]);
+}
+
+}  // namespace test_file_adaptive_budget
