@@ -26,9 +26,11 @@ double adaptiveWeight(const Film& film, std::size_t p);
 // Starts the next round: sets target[p] (>= counts[p]) for every pixel of `mine`. The first
 // round brings every pixel to firstPass. Later rounds add min(total - done, done) samples (the
 // total doubles), rounded down to the quantum, split by water-filling: target_p =
-// clamp(lambda w_p, count_p, maxSpp) with lambda such that they add the round's samples (counts
-// proportional to w minimise the summed relMSE for a given total: Neyman allocation), then each
-// share rounded to the quantum by running sums. Returns the samples the round adds (0: done).
+// clamp(snap(lambda w_p), count_p, maxSpp) with the largest lambda whose targets add at most the
+// round's samples (counts proportional to w minimise the summed relMSE for a given total: Neyman
+// allocation); snap: the nearest of quantum x {1, 1.5, 2, 3, 4, 6, ...}, so that a round has few
+// distinct counts (the wave loop runs a group per count); the rest a quantum each to the pixels
+// farthest below lambda w, so the round adds exactly its samples. Returns them (0: done).
 std::uint64_t nextAdaptiveRound(const Film& film, const std::vector<std::uint32_t>& mine,
                                 const std::vector<std::uint64_t>& counts, const AdaptiveBudget& budget,
                                 std::vector<std::uint64_t>& target);
