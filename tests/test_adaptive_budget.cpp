@@ -3,7 +3,8 @@
 // (bright, unoccluded) half and a noisy (dark, occluded) half; the image is bit-identical across
 // devices and wave sizes; a render stopped after a wave and resumed from that wave's film (what a
 // checkpoint holds, round targets included) equals an uninterrupted one; the error estimate it
-// writes stays calibrated; bad combinations are one line and exit 2.
+// writes stays calibrated; two adaptive renders merge by their counts; bad combinations are one
+// line and exit 2.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -254,6 +255,32 @@ TEST_CASE("adaptive budget: --adaptive writes the per-pixel counts and a resumed
   REQUIRE(samples);
   CHECK(*std::min_element(samples->begin(), samples->end()) < *std::max_element(samples->begin(), samples->end()));
   for (std::size_t k = 0; k < w.channels.size(); ++k) CHECK_MESSAGE(w.planes[k] == r.planes[k], w.channels[k]);
+}
+
+// Two adaptive renders with other seeds have other counts per pixel; merge weights each pixel by
+// its own counts (as for --target-error), and the provenance lets them combine.
+TEST_CASE("adaptive budget: two --adaptive renders merge by their per-pixel counts" * doctest::test_suite("cli sanitize")) {
+  TempDir dir;
+  for (const char* seed : {"1", "2"}) {
+    CliResult r = renderOnHost(demoScene(), dir.file(std::string("s") + seed + ".exr"),
+                               {"--adaptive", "--spp", "32", "--min-spp", "8", "--seed", seed}, {}, 16, 12);
+    REQUIRE_MESSAGE(r.exitCode == 0, r.err);
+  }
+  CliResult m = runMontecl({"merge", dir.file("s1.exr"), dir.file("s2.exr"), "-o", dir.file("m.exr"), "-q"});
+  REQUIRE_MESSAGE(m.exitCode == 0, m.err);
+  const LayeredImage a = readLayeredImage(dir.file("s1.exr")), b = readLayeredImage(dir.file("s2.exr")),
+                     merged = readLayeredImage(dir.file("m.exr"));
+  const std::vector<float>&na = *a.find("samples"), &nb = *b.find("samples"), &nm = *merged.find("samples");
+  const std::vector<float>&ra = *a.find("R"), &rb = *b.find("R"), &rm = *merged.find("R");
+  REQUIRE(merged.find("err.R"));
+  std::size_t differentCounts = 0;
+  for (std::size_t p = 0; p < nm.size(); ++p) {
+    CHECK(nm[p] == na[p] + nb[p]);
+    differentCounts += na[p] != nb[p];
+    const double expected = (double(na[p]) * ra[p] + double(nb[p]) * rb[p]) / (double(na[p]) + double(nb[p]));
+    CHECK(rm[p] == doctest::Approx(expected).epsilon(1e-5));
+  }
+  CHECK(differentCounts > 0);
 }
 
 }  // namespace test_file_adaptive_budget
