@@ -131,6 +131,48 @@ TEST_CASE("adaptive budget: over 16 seeds its relMSE is below the uniform render
   }
 }
 
+// Under --time a render stops after the wave that crosses the limit, part-way through a round;
+// the same stop rule on a sample count (through the interrupt flag the time limit shares) makes it
+// repeatable: stopped at 48 spp on average, part-way through its third round, against a uniform
+// 48-spp render (normalised by the samples each took: the adaptive one overshoots by under a wave).
+TEST_CASE("adaptive budget: stopped part-way like --time, its relMSE over 16 seeds is below the uniform render's" * doctest::test_suite("opencl slow")) {
+  Scene s = halvesScene(16, 48);
+  s.render.errorEstimate = true;
+  std::vector<double> reference(3 * 256, 0.0);
+  Scene ref = s;
+  ref.render.spp = 4096;
+  ref.render.seed = 1000;
+  const Film r = render(openclDevice(), ref);
+  for (std::size_t p = 0; p < r.pixelCount(); ++p)
+    for (int c = 0; c < 3; ++c) reference[3 * p + std::size_t(c)] = r.meanOf(p, c);
+  const std::uint64_t stopAt = 48 * 256;
+  double adaptive = 0.0, uniform = 0.0;
+  for (std::uint32_t seed = 0; seed < 16; ++seed) {
+    s.render.seed = seed;
+    s.render.adaptive = false;
+    s.render.spp = 48;
+    uniform += relMse(render(openclDevice(), s), reference) / 16.0;
+    s.render.adaptive = true;
+    s.render.spp = 1024;  // a budget it will not reach
+    volatile int stop = 0;
+    RenderOptions o;
+    o.waveSize = 64;
+    o.interrupt = &stop;
+    Bvh bvh = buildBvh(s.triangles);
+    WavefrontRenderer renderer(openclDevice(), o);
+    RenderStats stats;
+    const Film f = renderer.render(s, bvh, stats, [&](std::uint64_t done, std::uint64_t, const RenderStats&) {
+      if (done >= stopAt) stop = 1;
+    });
+    REQUIRE(stats.stoppedEarly);
+    REQUIRE(stats.samples >= stopAt);
+    REQUIRE(stats.samples < stopAt + 64);
+    adaptive += relMse(f, reference) * double(stats.samples) / double(stopAt) / 16.0;
+  }
+  MESSAGE("stopped at 48 spp: relMSE adaptive " << adaptive << ", uniform " << uniform << " (" << uniform / adaptive << "x)");
+  CHECK(adaptive < 0.8 * uniform);
+}
+
 TEST_CASE("adaptive budget: bit-identical on the host backend and OpenCL, for any wave size" * doctest::test_suite("opencl")) {
   Scene s = halvesScene(12, 24);
   s.render.errorEstimate = true;

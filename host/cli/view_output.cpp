@@ -1,9 +1,9 @@
 // view_output.cpp: writeView (view_output.h): one view's film to its image file and summary line.
-#include <algorithm>
 #include "cli/view_output.h"
 
 #include <signal.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <vector>

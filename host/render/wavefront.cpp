@@ -201,10 +201,10 @@ class WaveLoop {
   bool mustStop() const {
     return (o_.interrupt && *o_.interrupt) || (o_.timeLimit > 0.0 && elapsed() >= o_.timeLimit);
   }
-  // The active list has activeCount pixels; expected: the samples the whole render will have.
-  // blockShift: the round's item order (kernels/stages/stage_common.h).
   // Under a budget: the schedule's round targets, which a film read after a wave carries.
   void setRoundTargets(const std::vector<std::uint64_t>* targets) { roundTargets_ = targets; }
+  // The active list has activeCount pixels; expected: the samples the whole render will have.
+  // blockShift: the round's item order (kernels/stages/stage_common.h).
   void setActive(std::uint64_t activeCount, std::uint64_t expected, unsigned blockShift) {
     activeCount_ = activeCount;
     expected_ = expected;
