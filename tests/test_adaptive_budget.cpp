@@ -161,9 +161,11 @@ TEST_CASE("adaptive budget: stopped part-way like --time, its relMSE over 16 see
     Bvh bvh = buildBvh(s.triangles);
     WavefrontRenderer renderer(openclDevice(), o);
     RenderStats stats;
+    RenderPart part;
+    part.afterWave = [](const std::function<Film()>&) {};  // as under --time: no wave queued ahead
     const Film f = renderer.render(s, bvh, stats, [&](std::uint64_t done, std::uint64_t, const RenderStats&) {
       if (done >= stopAt) stop = 1;
-    });
+    }, part);
     REQUIRE(stats.stoppedEarly);
     REQUIRE(stats.samples >= stopAt);
     REQUIRE(stats.samples < stopAt + 64);
