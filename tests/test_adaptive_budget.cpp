@@ -175,7 +175,7 @@ TEST_CASE("adaptive budget: stopped part-way like --time, its relMSE over 16 see
   CHECK(adaptive < 0.8 * uniform);
 }
 
-TEST_CASE("adaptive budget: bit-identical on the host backend and OpenCL, for any wave size" * doctest::test_suite("opencl")) {
+TEST_CASE("adaptive budget: bit-identical on the host backend and OpenCL, for any wave size and lane width" * doctest::test_suite("opencl")) {
   Scene s = halvesScene(12, 24);
   s.render.errorEstimate = true;
   s.render.adaptive = true;
@@ -187,6 +187,11 @@ TEST_CASE("adaptive budget: bit-identical on the host backend and OpenCL, for an
     o.waveSize = wave;
     CHECK_MESSAGE(sameBits(render(openclDevice(), s, o), reference), "OpenCL, wave size " << wave);
     CHECK_MESSAGE(sameBits(render(host, s, o), reference), "host, wave size " << wave);
+  }
+  for (unsigned lanes : {1u, 4u, 8u}) {
+    RenderOptions o;
+    o.lanes = lanes;
+    CHECK_MESSAGE(sameBits(render(openclDevice(), s, o), reference), "OpenCL, " << lanes << " lanes");
   }
 }
 
