@@ -319,6 +319,22 @@ TEST_CASE("adaptive budget: --adaptive writes the per-pixel counts and a resumed
   for (std::size_t k = 0; k < w.channels.size(); ++k) CHECK_MESSAGE(w.planes[k] == r.planes[k], w.channels[k]);
 }
 
+// Without --spp on the command line, --time is the budget: the scene file's spp (the demo's 64)
+// does not stop it; every pixel may go up to --max-spp.
+TEST_CASE("adaptive budget: --adaptive --time without --spp spends the time, not the scene's spp" * doctest::test_suite("cli sanitize")) {
+  TempDir dir;
+  CliResult r = runMontecl({"render", demoScene(), "-o", dir.file("t.exr"), "--width", "8", "--height", "8", "-q",
+                            "--device", "host", "--adaptive", "--time", "0.5", "--max-spp", "512"});
+  REQUIRE_MESSAGE(r.exitCode == 0, r.err);
+  const LayeredImage img = readLayeredImage(dir.file("t.exr"));
+  const std::vector<float>& n = *img.find("samples");
+  double total = 0.0;
+  for (float c : n) total += c;
+  INFO(r.out);
+  CHECK(total / double(n.size()) > 64.0);
+  CHECK(*std::max_element(n.begin(), n.end()) <= 512.0f);
+}
+
 // Two adaptive renders with other seeds have other counts per pixel; merge weights each pixel by
 // its own counts (as for --target-error), and the provenance lets them combine.
 TEST_CASE("adaptive budget: two --adaptive renders merge by their per-pixel counts" * doctest::test_suite("cli sanitize")) {

@@ -117,6 +117,9 @@ int runRender(const RenderArgs& a) {
   if (scene.render.adaptive && a.targetError > 0.0)
     throwInputError("--adaptive", "", "not with --target-error: --adaptive shares out a budget (--spp, --time), "
                                       "--target-error samples each pixel to an error; pick one");
+  // --adaptive --time T without --spp: the time is the budget (rounds go on until it is up, or
+  // until every pixel has --max-spp), not the scene file's spp.
+  if (scene.render.adaptive && a.timeLimit > 0.0 && !a.settings.count("spp")) scene.render.spp = a.maxSpp;
   if (scene.render.adaptive && a.maxSpp < scene.render.spp)
     throwInputError("--max-spp", "", std::to_string(a.maxSpp) + " is below the --adaptive budget of " +
                                          std::to_string(scene.render.spp) + " spp: raise --max-spp (the most one pixel gets)");
