@@ -8,13 +8,13 @@ the slopes. Needs build/montecl and ../shared/scenes (skips with a message when 
 Usage: /usr/bin/python3 scripts/convergence.py [--size 48] [--max-spp 256] [--ref-spp 4096]
 
 --vs-time: relMSE, mean FLIP and RMSE against process CPU time instead (median of --seeds runs per
-point), montecl (independent, sobol with sub-sequences, the default, the default + --denoise) and
+point), montecl (independent, sobol with sub-sequences, the default, the default + --denoise, --adaptive) and
 Mitsuba 3 (its samplers) on the Cornell box, 128x128 (scripts/convergence_time.py): writes
 docs/images/convergence-time.png and prints the errors at the CPU time Mitsuba's best sampler
 needs for 64 spp.
   /usr/bin/python3 scripts/convergence.py --vs-time [--integrator direct|path] [--size 128]
       [--ref-spp 4096] [--seeds 5] [--exposure 0] [--json FILE] [--replot] [--montecl EXE]
-      [--mitsuba-samplers independent,multijitter,ldsampler]
+      [--mitsuba-samplers independent,multijitter,ldsampler] [--curves default,adaptive]
 """
 import argparse
 import math
@@ -72,6 +72,8 @@ def main():
     ap.add_argument("--seeds", type=int, default=5, help="--vs-time: runs per point (the median is plotted)")
     ap.add_argument("--exposure", type=float, default=0.0, help="--vs-time: stops before FLIP's LDR clamp")
     ap.add_argument("--montecl", default=os.path.join(ROOT, "build", "montecl"), help="--vs-time: the binary")
+    ap.add_argument("--curves", default="",
+                    help="--vs-time: only the montecl curves whose labels contain one of these comma-separated words")
     args = ap.parse_args()
     scene = os.path.join(ROOT, "..", "shared", "scenes", "cornell-box", "scene.json")
     if args.vs_time and args.scene:

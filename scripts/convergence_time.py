@@ -8,8 +8,10 @@ Curves, each at spp 1, 4, 16, ... up to --max-spp (default 256; montecl one powe
 montecl `--sampler independent`; montecl sobol with 4 sub-sequences and its error estimate
 (`--sobol-splits 4 --error-estimate`, what every sobol render used before the estimate became
 opt-in); montecl's default (sobol, one Owen-scrambled sequence per pixel); the default +
-`--denoise` (when Open Image Denoise is installed); and Mitsuba 3 with each of --mitsuba-samplers
+`--denoise` (when Open Image Denoise is installed); montecl `--adaptive` (sobol, its first pass of
+16 then the budget shared out by estimated relative error; `--max-spp` 16x the budget); and Mitsuba 3 with each of --mitsuba-samplers
 (default independent, multijitter, ldsampler: powers of 4 are valid sample counts for all of them).
+--curves keeps the montecl curves whose labels contain one of its comma-separated words (default: all).
 Integrator: --integrator direct (MIS: montecl `--direct-sampling mis` = Mitsuba `direct`) or path
 (unlimited depth, Russian roulette from depth 5 in both).
 
@@ -47,6 +49,7 @@ MONTECL_CURVES = [  # (label, extra montecl arguments)
     ("montecl sobol, 4 sub-sequences + estimate", ["--sampler", "sobol", "--sobol-splits", "4", "--error-estimate"]),
     ("montecl default (sobol)", ["--sampler", "sobol"]),
     ("montecl default + denoise", ["--sampler", "sobol", "--denoise"]),
+    ("montecl adaptive", ["--sampler", "sobol", "--adaptive"]),
 ]
 # The reference: sobol with its sub-sequence error estimate, so its own error can be printed.
 REFERENCE_ARGS = ["--sampler", "sobol", "--sobol-splits", "4", "--error-estimate"]
@@ -136,14 +139,19 @@ def measure(a):
 
     have_oidn = subprocess.run([a.montecl, "render", scene, "-o", os.path.join(work, "probe.exr"), "--spp", "1",
                                 "--width", "4", "--height", "4", "--denoise", "-q"], capture_output=True).returncode == 0
+    wanted = [w for w in a.curves.split(",") if w]
     for label, extra in MONTECL_CURVES:
+        if wanted and not any(w in label for w in wanted):
+            continue
         denoise = "--denoise" in extra
         if denoise and not have_oidn:
             print(f"{label}: skipped (Open Image Denoise not installed: scripts/setup.sh --oidn)")
             continue
         out = os.path.join(work, "m.exr")
+        # --adaptive: the most one pixel may take, 16x the budget (it must be at least the budget).
+        cap = lambda spp: ["--max-spp", str(16 * spp)] if "--adaptive" in extra else []
         cmd = lambda spp, seed: [a.montecl, "render", scene, "-o", out, "--spp", str(spp), "--seed", str(seed)] + \
-            common + extra
+            common + extra + cap(spp)
         vm.run_timed(cmd(1, 1))  # warm-up: the kernel program cache, OIDN's libraries
         pts = []
         for spp in levels + [levels[-1] * 4]:
@@ -285,7 +293,7 @@ def main(a):
         cmd = [py, os.path.abspath(__file__), "--measure", data, "--scene", a.scene, "--size", str(a.size),
                "--height", str(a.height), "--max-spp", str(a.max_spp), "--ref-spp", str(a.ref_spp),
                "--montecl", a.montecl, "--mitsuba-samplers", a.mitsuba_samplers, "--integrator", a.integrator,
-               "--seeds", str(a.seeds), "--exposure", str(a.exposure)]
+               "--seeds", str(a.seeds), "--exposure", str(a.exposure), "--curves", a.curves]
         subprocess.run(cmd, env=vm.mitsuba_env(), check=True)
     with open(data) as f:
         res = json.load(f)
@@ -309,6 +317,7 @@ if __name__ == "__main__":  # the measuring half, in Mitsuba's venv
     p.add_argument("--integrator", choices=["direct", "path"], required=True)
     p.add_argument("--seeds", type=int, required=True)
     p.add_argument("--exposure", type=float, required=True)
+    p.add_argument("--curves", default="")
     args = p.parse_args()
     result = measure(args)
     with open(args.measure, "w") as f:

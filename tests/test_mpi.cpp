@@ -3,7 +3,7 @@
 // skipping a pixel, MONTECL_DEBUG_DROP_PIXEL) differs; a failing rank ends the job at once with its
 // message and no file; and --checkpoint / --resume: a render killed by SIGKILL after its first
 // checkpoint, resumed, equals the uninterrupted render bit for bit; a mismatched checkpoint is
-// refused with exit 2. MPI cases skip when mpirun is missing.
+// refused with exit 2; --adaptive over several ranks is refused. MPI cases skip when mpirun is missing.
 #include <doctest/doctest.h>
 #include <signal.h>
 #include <spawn.h>
@@ -101,6 +101,27 @@ TEST_CASE("mpi: mpirun -np 1|2|3 direct render is bit-identical to one process" 
 
 TEST_CASE("mpi: mpirun -np 1|2|3 adaptive render is bit-identical to one process" * doctest::test_suite("cli sanitize")) {
   checkMpiMatchesOneProcess({"--target-error", "0.05", "--min-spp", "4", "--max-spp", "64"});
+}
+
+// --adaptive shares each round's samples out over the whole image, which no rank holds when there
+// are several: refused; one rank holds it all and renders the one-process image.
+TEST_CASE("mpi: --adaptive over 2 ranks is refused naming it; over 1 rank it is bit-identical to one process" * doctest::test_suite("cli sanitize")) {
+  MCL_SKIP_UNLESS(haveMpirun(), "mpirun not found (scripts/setup.sh installs openmpi-bin)");
+  TempDir dir;
+  const auto args = [&](const std::string& out) {
+    return std::vector<std::string>{"render", demoScene(), "-o", out, "--width", "24", "--height", "16", "--spp", "32",
+                                    "--adaptive", "--min-spp", "8", "-q"};
+  };
+  CliResult two = mpirun(2, args(dir.file("two.exr")));
+  INFO("stderr: " << two.err);
+  CHECK(two.exitCode != 0);
+  CHECK(two.err.find("--adaptive: not with more than one MPI rank") != std::string::npos);
+  CHECK(!fs::exists(dir.file("two.exr")));
+  CliResult one = runMontecl(args(dir.file("one.exr")));
+  REQUIRE_MESSAGE(one.exitCode == 0, one.err);
+  CliResult rank = mpirun(1, args(dir.file("rank.exr")));
+  REQUIRE_MESSAGE(rank.exitCode == 0, rank.err);
+  CHECK(differences(readLayeredImage(dir.file("one.exr")), readLayeredImage(dir.file("rank.exr"))) == 0);
 }
 
 TEST_CASE("mpi: a rank with a bad --device or an unreadable scene ends the job fast, with its message, no file" * doctest::test_suite("cli sanitize")) {

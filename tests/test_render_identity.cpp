@@ -75,6 +75,9 @@ TEST_CASE("identity: every row of the settings table changes the render key, or 
     if (s.key == "filter") base.filter.type = FilterType::Triangle;
     // The sub-sequence count is recorded only where the error estimate makes them.
     if (s.key == "sobol_splits") base.errorEstimate = true;
+    // render.adaptive is recorded only when on (plain renders keep their key): from on, the row
+    // takes part (turned off, the key changes).
+    if (s.key == "adaptive") base.adaptive = true;
     REQUIRE((!s.applies || s.applies(base)));
     RenderSettings changed = base;
     s.set(changed, otherValue(s, base));

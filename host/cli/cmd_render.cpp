@@ -61,10 +61,14 @@ Provenance provenanceOf(const RenderArgs& a, const Scene& scene, const std::stri
   p.version = MONTECL_VERSION;
   p.scene = sceneDigest(scene);
   p.settings = integratorSettings(scene.render) + (identityExtra.empty() ? "" : " " + identityExtra);
-  const bool adaptive = a.targetError > 0.0;
-  if (adaptive) {
+  const bool adaptive = a.targetError > 0.0 || scene.render.adaptive;
+  if (a.targetError > 0.0) {
     std::ostringstream s;
     s << "target_error=" << a.targetError << " min_spp=" << a.minSpp << " max_spp=" << a.maxSpp;
+    p.adaptive = s.str();
+  } else if (scene.render.adaptive) {  // a pixel's samples are a prefix of [first, first + max_spp)
+    std::ostringstream s;
+    s << "budget spp=" << scene.render.spp << " min_spp=" << a.minSpp << " max_spp=" << a.maxSpp;
     p.adaptive = s.str();
   } else {
     p.adaptive = "off";
@@ -109,6 +113,16 @@ int runRender(const RenderArgs& a) {
   steps.finish();
   for (const std::string& w : warnings) std::cerr << "montecl: warning: " << w << "\n";
   applyOverrides(a, scene);
+  // A budget (--adaptive) and a target error are two rules for the same samples.
+  if (scene.render.adaptive && a.targetError > 0.0)
+    throwInputError("--adaptive", "", "not with --target-error: --adaptive shares out a budget (--spp, --time), "
+                                      "--target-error samples each pixel to an error; pick one");
+  // --adaptive --time T without --spp: the time is the budget (rounds go on until it is up, or
+  // until every pixel has --max-spp), not the scene file's spp.
+  if (scene.render.adaptive && a.timeLimit > 0.0 && !a.settings.count("spp")) scene.render.spp = a.maxSpp;
+  if (scene.render.adaptive && a.maxSpp < scene.render.spp)
+    throwInputError("--max-spp", "", std::to_string(a.maxSpp) + " is below the --adaptive budget of " +
+                                         std::to_string(scene.render.spp) + " spp: raise --max-spp (the most one pixel gets)");
   if (filterHasNegativeLobes(scene.render.filter))
     std::cerr << "montecl: warning: filter " << filterText(scene.render.filter)
               << ": its negative lobes are clamped to 0 (importance sampling draws offsets from max(0, filter))\n";
@@ -144,10 +158,11 @@ int runRender(const RenderArgs& a) {
   if (scene.render.denoise)
     if (const std::string problem = oidnProblem(); !problem.empty()) throw InputError(problem);
   // Sample indices are 32-bit: a range past 2^32 would wrap to sample 0 while the provenance says otherwise.
-  const std::uint64_t sampleCount = a.targetError > 0.0 ? std::uint64_t(a.maxSpp) : std::uint64_t(scene.render.spp);
+  const bool perPixelCounts = a.targetError > 0.0 || scene.render.adaptive;
+  const std::uint64_t sampleCount = perPixelCounts ? std::uint64_t(a.maxSpp) : std::uint64_t(scene.render.spp);
   if (std::uint64_t(a.firstSample) + sampleCount > (std::uint64_t(1) << 32))
     throwInputError("--first-sample", "", std::to_string(a.firstSample) + " + " + std::to_string(sampleCount) +
-                                              (a.targetError > 0.0 ? " (--max-spp)" : " (spp)") +
+                                              (perPixelCounts ? " (--max-spp)" : " (spp)") +
                                               " samples run past sample index 4294967295");
   DeviceInfo device = selectDevice(jobs::deviceSpec(a.device));
   guard.reinstall();
@@ -374,9 +389,11 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                   "Adaptive sampling: sample until each pixel's relative standard error (stderr / max(mean "
                   "luminance, 0.01)) is at most this, between --min-spp and --max-spp; ignores --spp")
       ->check(positiveNumber());
-  cmd->add_option("--min-spp", args->minSpp, "Adaptive sampling: samples every pixel gets first (default 16)")
+  cmd->add_option("--min-spp", args->minSpp,
+                  "Adaptive sampling: samples every pixel gets first (default 16; with --adaptive at most --spp)")
       ->check(integerIn(2, 1 << 24, "an integer from 2 to 16777216"));
-  cmd->add_option("--max-spp", args->maxSpp, "Adaptive sampling: most samples a pixel gets (default 1024)")
+  cmd->add_option("--max-spp", args->maxSpp,
+                  "Adaptive sampling: most samples a pixel gets (default 1024; with --adaptive at least --spp)")
       ->check(integerIn(2, 1 << 24, "an integer from 2 to 16777216"));
   cmd->add_option("--time", args->timeLimit,
                   "Stop after the wave that crosses this many seconds and write the image so far")

@@ -32,9 +32,10 @@ void applyOverrides(const RenderArgs& a, Scene& scene) {
     const auto it = a.settings.find(s.key);
     if (it != a.settings.end()) setFromText(s, it->second, scene.render);
   }
-  // Adaptive sampling stops each pixel on its estimated error: under sobol that needs the
-  // sub-sequences (var/n overstates it 30-100x there), so --target-error asks for them.
-  if (a.targetError > 0.0) scene.render.errorEstimate = true;
+  // Adaptive sampling stops each pixel on its estimated error, or shares samples out by it: under
+  // sobol that needs the sub-sequences (var/n overstates it 30-100x there), so --target-error and
+  // --adaptive (render.adaptive) ask for them.
+  if (a.targetError > 0.0 || scene.render.adaptive) scene.render.errorEstimate = true;
   // The command line's environment replaces the scene's.
   if (!a.env.empty()) {
     scene.environment = environmentFromOption(a.env, a.envScale, a.envRotate);

@@ -3,6 +3,7 @@
 
 #include <signal.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <vector>
@@ -68,6 +69,12 @@ int writeView(const RenderArgs& a, const Scene& scene, const RenderView& view, F
     std::cout << "adaptive: " << stats.converged << " of " << pixels << " pixels within relative error "
               << a.targetError << ", " << stats.samples << " samples (" << double(stats.samples) / pixels
               << " per pixel) in " << stats.rounds << " rounds\n";
+  if (scene.render.adaptive && !film.count.empty()) {
+    const auto [fewest, most] = std::minmax_element(film.count.begin(), film.count.end());
+    std::cout << "adaptive: " << stats.samples << " samples (" << double(stats.samples) / pixels
+              << " per pixel, budget " << scene.render.spp << "), " << *fewest << " to " << *most
+              << " per pixel, in " << stats.rounds << " groups\n";
+  }
   if (stats.stoppedEarly)
     std::cout << (interrupted ? "interrupted" : "time limit reached") << ": " << stats.samples
               << " pixel samples done; the image holds each pixel's own sample count\n";

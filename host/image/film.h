@@ -45,6 +45,9 @@ struct Film {
   // With the sobol sampler's K > 1 sub-sequences: K per pixel, split[K p + k] = sub-sequence k's
   // mean (rgb) and its sample count (w, uint bits); else empty.
   std::vector<glm::vec4> split;
+  // Adaptive sampling under a budget (render.adaptive): the count each pixel's current round
+  // brings it to (render/adaptive_budget.h), so a checkpoint resumes mid-round exactly; else empty.
+  std::vector<std::uint64_t> roundTarget;
   // Whether a pixel's samples are correlated (the sobol sampler): var/n is then not the error of
   // its mean, with or without sub-sequences (set by the renderer; statistics code asks it).
   bool correlated = false;

@@ -57,6 +57,11 @@ std::string deviceSpec(const std::string& spec) {
 
 Job::Job(const JobArgs& args, const Scene& scene, const RenderOptions& options) : args_(args) {
   const World& w = world();
+  // A budget's rounds share their samples out over the whole image (render/adaptive_budget.h): a
+  // rank sees its own pixels only, so its allocation would differ from one process's.
+  if (w.active && w.size > 1 && scene.render.adaptive)
+    throwInputError("--adaptive", "", "not with more than one MPI rank (each round shares samples out over the "
+                                      "whole image, which no rank holds): render in one process, or use --target-error");
   width_ = scene.camera.width;
   height_ = scene.camera.height;
   aovs_ = options.aovs;

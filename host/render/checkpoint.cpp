@@ -35,13 +35,17 @@ void append(std::string& out, const T* data, std::size_t n) {
   out.append(reinterpret_cast<const char*>(data), n * sizeof(T));
 }
 
-std::string payloadOf(const Film& film, bool aovs) {
+std::string payloadOf(const Film& film, bool aovs, bool adaptive) {
   std::string out;
   const std::size_t n = film.pixelCount();
   for (const auto* v : {&film.mean, &film.meanLo, &film.m2, &film.m2Lo}) append(out, v->data(), n);
   append(out, film.count.data(), n);
   if (aovs) append(out, film.aovSum.data(), MCL_AOV_VECTORS * n);
   append(out, film.split.data(), film.split.size());
+  if (adaptive) {  // a film read before the first round has none yet: its targets are its counts
+    const std::vector<std::uint64_t>& t = film.roundTarget.size() == n ? film.roundTarget : film.count;
+    append(out, t.data(), n);
+  }
   return out;
 }
 
@@ -72,6 +76,7 @@ CheckpointInfo checkpointInfo(const Scene& scene, const RenderOptions& options) 
   info.spp = std::uint32_t(scene.render.spp);
   info.firstSample = options.firstSample;
   info.aovs = options.aovs;
+  info.adaptive = scene.render.adaptive;
   return info;
 }
 
@@ -89,7 +94,7 @@ void writeCheckpoint(const std::string& path, const CheckpointInfo& info, const 
   h.firstSample = info.firstSample;
   h.splits = std::uint32_t(film.splits());
   for (std::uint64_t c : film.count) h.samplesDone += c;
-  const std::string payload = payloadOf(film, info.aovs);
+  const std::string payload = payloadOf(film, info.aovs, info.adaptive);
   h.payloadHash = fnv1a64(payload);
   writeAtomically(path, [&](const std::string& tmp) {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
@@ -143,7 +148,8 @@ Film readCheckpoint(const std::string& path, const CheckpointInfo& expected, int
   film.height = height;
   const std::size_t n = std::size_t(width) * height;
   if (h.splits > 64) throwInputError(path, "--resume", "damaged checkpoint (" + std::to_string(h.splits) + " sub-sequences)");
-  const std::size_t need = sizeof h + n * (4 * 16 + 8) + (h.aovs ? MCL_AOV_VECTORS * n * 16 : 0) + std::size_t(h.splits) * n * 16;
+  const std::size_t need = sizeof h + n * (4 * 16 + 8) + (h.aovs ? MCL_AOV_VECTORS * n * 16 : 0) + std::size_t(h.splits) * n * 16 +
+                           (expected.adaptive ? n * 8 : 0);
   if (std::uint64_t(st.st_size) != need) throwInputError(path, "--resume", "damaged checkpoint (wrong size)");
   std::string payload(need - sizeof h, '\0');
   if (!in.read(payload.data(), std::streamsize(payload.size())))
@@ -162,6 +168,7 @@ Film readCheckpoint(const std::string& path, const CheckpointInfo& expected, int
   take(film.count, n);
   if (h.aovs) take(film.aovSum, MCL_AOV_VECTORS * n);
   if (h.splits) take(film.split, std::size_t(h.splits) * n);
+  if (expected.adaptive) take(film.roundTarget, n);
   return film;
 }
 

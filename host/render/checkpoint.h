@@ -6,7 +6,8 @@
 //   splits (K: the sobol sampler's sub-sequences with film accumulators, 0 without; was a 0 pad);
 //   f64 targetError; u64 samplesDone (sum of counts); u64 payloadHash (FNV-1a of the payload);
 //   payload: mean[P], meanLo[P], m2[P], m2Lo[P] (float4 each), count[P] (u64), aovSum[3P] (with AOVs),
-//   split[K P] (float4, Film::split, with K > 0).
+//   split[K P] (float4, Film::split, with K > 0), roundTarget[P] (u64, Film::roundTarget: only for
+//   render.adaptive, which the key records).
 // It is written through util/atomic_file.h (temporary + rename), so a kill -9 at any moment leaves
 // the previous checkpoint or the new one; a torn or foreign file fails its size, magic or hash check.
 #pragma once
@@ -28,6 +29,7 @@ struct CheckpointInfo {
   std::uint64_t key = 0;
   std::uint32_t seed = 0, spp = 0, firstSample = 0;
   bool aovs = false;
+  bool adaptive = false;  // render.adaptive: the payload ends with the round targets
 };
 
 CheckpointInfo checkpointInfo(const Scene& scene, const RenderOptions& options);

@@ -201,6 +201,8 @@ class WaveLoop {
   bool mustStop() const {
     return (o_.interrupt && *o_.interrupt) || (o_.timeLimit > 0.0 && elapsed() >= o_.timeLimit);
   }
+  // Under a budget: the schedule's round targets, which a film read after a wave carries.
+  void setRoundTargets(const std::vector<std::uint64_t>* targets) { roundTargets_ = targets; }
   // The active list has activeCount pixels; expected: the samples the whole render will have.
   // blockShift: the round's item order (kernels/stages/stage_common.h).
   void setActive(std::uint64_t activeCount, std::uint64_t expected, unsigned blockShift) {
@@ -277,6 +279,7 @@ class WaveLoop {
       f.width = int(frame_.width);
       f.height = int(frame_.height);
       run_.readFilm(f);
+      if (roundTargets_) f.roundTarget = *roundTargets_;
       return f;
     });
   }
@@ -300,6 +303,7 @@ class WaveLoop {
   double lastBooked_ = 0.0;
   std::uint64_t activeCount_ = 0, expected_ = 0;
   unsigned blockShift_ = 0;
+  const std::vector<std::uint64_t>* roundTargets_ = nullptr;
   Queued queued_[2] = {};
   int waiting_ = 0;
 };
@@ -345,13 +349,14 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   film.height = int(frame.height);
   if (part.initialFilm) film = *part.initialFilm;
   // Rounds of samples, each for the pixels at the lowest count (sample_schedule.h).
-  SampleSchedule schedule(m.options, part, pixels, scene.render.spp);
-  const bool adaptive = m.options.targetError > 0.0;
+  const bool budget = scene.render.adaptive;
+  SampleSchedule schedule(m.options, part, pixels, scene.render.spp, budget, sobolSplitsUsed(scene.render));
+  if (budget) loop.setRoundTargets(&schedule.roundTargets());
   bool going = true, filmCurrent = true;  // film: the initial state (or unused: all counts 0)
   std::vector<std::uint32_t> active;
   std::uint64_t from = 0, to = 0, remaining = 0;
   while (going) {
-    if (adaptive && !filmCurrent) run.readFilm(film);
+    if (schedule.needsFilm() && !filmCurrent) run.readFilm(film);
     filmCurrent = false;
     if (!schedule.next(film, active, from, to, remaining)) break;
     const std::uint64_t sampleBase = m.options.firstSample + from;
@@ -369,6 +374,7 @@ Film WavefrontRenderer::render(const Scene& scene, const Bvh& bvh, RenderStats& 
   std::vector<std::uint32_t>().swap(active);
   schedule.releaseTargets();
   run.finish(film);  // the film, and every buffer released (the film's part by part)
+  if (budget) film.roundTarget = schedule.roundTargets();
   film.correlated = scene.render.sampler == Sampler::Sobol;
   settle.done = true;
   if (!going) stats.stoppedEarly = schedule.unfinished(film);

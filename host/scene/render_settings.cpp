@@ -165,6 +165,14 @@ std::vector<RenderSetting> makeTable() {
           "error of the mean (EXR err.*, the adaptive stop, the converged count); on with --target-error. Off: one "
           "Owen-scrambled sequence per pixel (about 3x lower MSE), error figures from var.* (they overstate it)",
           boolRule(), &RenderSettings::errorEstimate, kEveryIntegrator, true, errorEstimateApplies),
+      // In the provenance only when on, so plain renders keep their settings string (and merge
+      // with earlier ones); adaptive renders merge only with adaptive ones.
+      row("adaptive", "--adaptive",
+          "Adaptive sampling under a budget: --min-spp samples per pixel first, then the rest of --spp (the "
+          "average; with --time, until the time is up) in rounds that double the total, each pixel's share "
+          "following its estimated relative error; turns error_estimate on; EXR samples holds the counts",
+          boolRule(), &RenderSettings::adaptive, kEveryIntegrator, true,
+          [](const RenderSettings& r) { return r.adaptive; }),
       row("background", "", "Radiance of camera rays that hit nothing (without an environment)", backgroundRule(),
           &RenderSettings::background),
       // Denoising changes only the added denoised layers, never the estimate: not in the provenance,

@@ -42,6 +42,9 @@ struct RenderSettings {
   // Off by default because the split costs about 3x in MSE against one sequence; adaptive
   // sampling turns it on (the CLI's --target-error), since it stops pixels on that estimate.
   bool errorEstimate = false;
+  // Adaptive sampling under a budget (--spp N as the average, and --time): after a first pass the
+  // remaining samples go to pixels by their estimated relative error (render/adaptive_budget.h).
+  bool adaptive = false;
   bool denoise = false;  // Open Image Denoise on the final image (image/oidn_denoiser.h)
   DenoiseQuality denoiseQuality = DenoiseQuality::High;  // OIDN's own default
   MissingTextures missingTextures = MissingTextures::Error;  // what a texture file that cannot be opened does
