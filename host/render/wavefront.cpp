@@ -151,6 +151,9 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
   }
   extras.envRotateY = environment.rotateY;
   extras.textureCount = textures ? std::uint32_t(textures->textures.size()) : 0u;
+  // The triangles whose hits the traversals alpha-test, flagged (cut-outs, stochastic transparency).
+  in.triangles = alphaFlaggedTriangles(bvh.triangles, scene.materials, textures);
+  extras.alphaTested = !in.triangles.empty();
   extras.instanceCount = std::uint32_t(bvh.instances.size());
   extras.recordAovs = o.aovs;
   extras.countLanes = o.profile;
@@ -161,10 +164,7 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
   const FrameParams frame = makeFrameParams(scene.camera, scene.render, extras);
   in.frame = frame;
   in.bvh = &bvh;
-  if (textures) {
-    in.textures = textures;
-    in.triangles = alphaFlaggedTriangles(bvh.triangles, *textures);
-  }
+  if (textures) in.textures = textures;
   in.emitters = emitters.emitters;
   p.emitterCount = emitters.emitters.size();
   in.envMap = std::move(environment.map);
