@@ -4,9 +4,11 @@
 // hash of the ray and the triangle. Checked against the estimator's own standard error (independent
 // sampler, the films' per-pixel M2): an unlit quad of colour c and alpha a (factor only, or factor x
 // texture) before a constant environment B shows a c + (1 - a) B; a BLEND occluder seen only by
-// shadow rays lets 1 - a of a directional light through. The loader reads factor-only BLEND with no
-// warning (and MASK as before), and the images are byte for byte the same on the host backend and
-// the default OpenCL device at W = 1, 4, 8, 16.
+// shadow rays lets 1 - a of a directional light through; an emitter of alpha a sends a of its light
+// by light sampling (its samples weighted by the coverage), BRDF sampling (rays that meet it with
+// probability a) and MIS alike. The loader reads factor-only BLEND with no
+// warning (and MASK as before), the images are byte for byte the same on the host backend and
+// the default OpenCL device at W = 1, 4, 8, 16, and montecl bench's tracers agree ray for ray.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -213,12 +215,51 @@ TEST_CASE("glTF BLEND: an occluder of alpha a lets 1 - a of a light through to t
   }
 }
 
+// A white floor seen from y = 0.5 straight down, lit only by an emitting quad of alpha a facing
+// down from y = 1 (camera rays never reach it); opaque: the same quad without BLEND.
+std::string emitterScene(const TempDir& dir, float a, bool opaque, const char* sampling) {
+  dir.write("floor.gltf", quadGltf({-3, 0, 3, 3, 0, 3, 3, 0, -3, -3, 0, -3},
+                                   {{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1}}, {"metallicFactor", 0},
+                                                              {"roughnessFactor", 1}}}}));
+  json lamp = {{"pbrMetallicRoughness", {{"baseColorFactor", {0, 0, 0, a}}, {"metallicFactor", 0}, {"roughnessFactor", 1}}},
+               {"emissiveFactor", {1, 1, 1}},
+               {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}}}}};
+  if (!opaque) lamp["alphaMode"] = "BLEND";
+  dir.write("lamp.gltf", quadGltf({-0.5f, 1, -0.5f, 0.5f, 1, -0.5f, 0.5f, 1, 0.5f, -0.5f, 1, 0.5f}, lamp));
+  json s = {{"camera", {{"position", {0, 0.5, 0}}, {"target", {0, 0, 0}}, {"up", {0, 0, -1}}, {"fov_y", 60}, {"width", 16}, {"height", 16}}},
+            {"meshes", {{{"file", dir.file("floor.gltf")}}, {{"file", dir.file("lamp.gltf")}}}},
+            {"render", {{"integrator", "direct"}, {"direct_sampling", sampling}, {"spp", 64}, {"sampler", "independent"}, {"seed", 9}}}};
+  return s.dump();
+}
+
+TEST_CASE("glTF BLEND: an emitter of alpha a sends a of its light, by light, BRDF and MIS sampling alike" *
+          doctest::test_suite("cpu")) {
+  TempDir dir;
+  const float a = 0.35f;
+  dir.write("opaque.json", emitterScene(dir, a, true, "light"));
+  const Estimate full = pooled(renderSceneFile(dir.file("opaque.json")));
+  REQUIRE(full.mean > 0.05);
+  for (const char* sampling : {"light", "brdf", "mis"}) {
+    CAPTURE(sampling);
+    dir.write("blend.json", emitterScene(dir, a, false, sampling));
+    const Estimate e = pooled(renderSceneFile(dir.file("blend.json")));
+    const double expected = double(a) * full.mean, se = std::sqrt(e.se * e.se + double(a) * double(a) * full.se * full.se);
+    CAPTURE(e.mean);
+    CAPTURE(expected);
+    CAPTURE(se);
+    CHECK(se > 0.0);
+    CHECK(std::fabs((e.mean - expected) / se) < 4.0);
+    // Light sampling weights each sample by the coverage: a times the opaque lamp's samples.
+    if (std::string(sampling) == "light") CHECK(e.mean == doctest::Approx(expected).epsilon(1e-5));
+  }
+}
+
 TEST_CASE("glTF BLEND: byte for byte the host backend's on the OpenCL device at W = 1, 4, 8, 16" *
           doctest::test_suite("cli")) {
   TempDir dir;
   writeImage8(dir.file("a.png"), 4, 4, 4, [](int x, int y, int c) { return c == 3 ? 40 + 50 * x + 5 * y : 255; });
   // A lit (not unlit) textured BLEND quad over the floor, path traced: camera, bounce and shadow rays
-  // meet it; and the shadow scene (the occluder factor-only), direct lighting.
+  // meet it; the shadow scene (the occluder factor-only), direct lighting; a BLEND emitter, path traced.
   json quad = json::parse(quadGltf({-0.8f, 0.3f, 0.6f, 0.8f, 0.3f, 0.6f, 0.8f, 1.2f, -0.4f, -0.8f, 1.2f, -0.4f},
                                    {{"pbrMetallicRoughness", {{"baseColorFactor", {0.9, 0.5, 0.3, 0.8}},
                                                               {"baseColorTexture", {{"index", 0}}}}},
@@ -232,13 +273,36 @@ TEST_CASE("glTF BLEND: byte for byte the host backend's on the OpenCL device at 
   s["environment"] = {{"radiance", {0.3, 0.4, 0.5}}};
   dir.write("path.json", s.dump());
   dir.write("shadow.json", shadowScene(dir, 0.5f, true));
-  for (const char* scene : {"path.json", "shadow.json"}) {
+  dir.write("lamp.json", emitterScene(dir, 0.4f, false, "mis"));  // a BLEND emitter: light samples weighted
+  for (const char* scene : {"path.json", "shadow.json", "lamp.json"}) {
     CAPTURE(scene);
     const std::vector<std::string> common = {"render", dir.file(scene), "-q", "--width", "27", "--height", "21",
-                                             "--spp", "4", "--integrator", std::string(scene) == "path.json" ? "path" : "direct",
+                                             "--spp", "4", "--integrator", std::string(scene) == "shadow.json" ? "direct" : "path",
                                              "--overwrite"};
     checkLanesMatchHost(common, dir, {"1", "4", "8", "16"});
   }
+}
+
+TEST_CASE("glTF BLEND: montecl bench's tracers (device, host reference, Embree) take the same coin" *
+          doctest::test_suite("cli")) {
+  TempDir dir;
+  // The shadow scene seen from the side: camera and AO rays cross the occluder (alpha 0.5, factor
+  // alone) and the floor behind it.
+  json s = json::parse(shadowScene(dir, 0.5f, true));
+  s["camera"] = {{"position", {-1.5, 3, 3}}, {"target", {-1.2, 0.5, 0}}, {"fov_y", 60}};
+  dir.write("bench.json", s.dump());
+  CliResult r = runMontecl({"bench", dir.file("bench.json"), "--width", "32", "--height", "24", "--repeat", "1",
+                            "--json", dir.file("out.json"), "-q"});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  const json j = json::parse(readAll(dir.file("out.json")));
+  CHECK(j["alpha_tested_triangles"].get<std::size_t>() == 2);  // the occluder's
+  for (const auto& k : j["rays"]) {
+    INFO("ray kind " << k["kind"]);
+    CHECK(k["mismatches"].get<std::size_t>() == 0);
+    if (k.contains("embree_mismatches")) CHECK(k["embree_mismatches"].get<std::size_t>() == 0);
+  }
+  CHECK(j["mismatches_total"].get<std::size_t>() == 0);
 }
 
 }  // namespace test_file_gltf_blend

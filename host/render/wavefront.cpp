@@ -139,7 +139,14 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
       integrator.lit ? buildEmitterTable(bvh, scene.materials, emissionTextured ? &emission : nullptr) : EmitterTable{};
 
   FrameExtras extras;
-  extras.emissionTextured = emissionTextured && integrator.lit;
+  // An emitter that is stochastically transparent: its light samples are weighted by its coverage
+  // (light_area.h), which the packet stages' emitter sampling leaves to the scalar code as it does
+  // textured emission.
+  bool blendEmitter = false;
+  for (const MaterialDesc& m : scene.materials)
+    blendEmitter |= m.alphaBlend && m.emission != glm::vec3(0.0f) &&
+                    materialAlphaTested(scene.materials, textures, std::size_t(&m - scene.materials.data()));
+  extras.emissionTextured = (emissionTextured || blendEmitter) && integrator.lit;
   extras.shadowSlots = std::uint32_t(shape.slots);
   extras.offsetScale = triangles.offsetScale;
   extras.emitterCount = uint(emitters.emitters.size());

@@ -93,6 +93,20 @@ MCL_INLINE float3 material_emission(TextureTables tt, MCL_GLOBAL const Material*
   return ke * xyz(texture_fine(tt, tex, uv.x, uv.y));
 }
 
+// 1 when material m is stochastically transparent (glTF BLEND: Material alpha.y's sign bit set).
+MCL_INLINE int material_blends(MCL_GLOBAL const Material* m) { return (as_uint(m->alpha.y) & 0x80000000u) != 0u; }
+
+// The expected coverage of a stochastically transparent material m on triangle tri (attributes
+// sh) at barycentrics (u, v): its alpha factor x its alpha texture's alpha there (alpha_hit_exists'
+// probability). A light sample on such an emitter is weighted by it (light_area.h), so light
+// sampling and a ray that hits the emitter (which exists with this probability) estimate the same
+// emission.
+MCL_INLINE float material_coverage(TextureTables tt, MCL_GLOBAL const Material* m, MCL_GLOBAL const Triangle* tri,
+                                   MCL_GLOBAL const TriangleShading* sh, float u, float v) {
+  float2 uv = surface_uv(tri, sh, u, v);
+  return -m->alpha.y * alpha_value(tt, *m, uv.x, uv.y);
+}
+
 // Luminance per unit area by which the emitter table weights triangle tri of material m: that of
 // Ke, or with an emission texture its mean over the triangle (the host's emitters.cpp keeps it in
 // the attributes' tv.w; a triangle without UVs emits one colour, read at uv (0, 0)).

@@ -160,7 +160,8 @@ typedef struct MCL_ALIGN16 {
   uint pointFirst, pointCount, spotFirst, spotCount;  // each kind's range of light records
   uint directionalFirst, directionalCount, sunFirst, sunCount;
   uint sampler;              // MCL_SAMPLER_INDEPENDENT | MCL_SAMPLER_SOBOL
-  uint emissionTextured;     // 1 when a material's emission is textured (the packet stages then run scalar)
+  uint emissionTextured;     // 1 when a material's emission is textured, or an emitter is stochastically
+                             // transparent (the packet stages then run the emitters' Le scalar)
   uint sobolSplits;          // sobol: independently scrambled sub-sequences, sample s in s % this (>= 1)
   uint sampleBlockShift;     // wave item order: runs of 2^this consecutive items are one pixel's samples
                              // (kernels/stages/stage_common.h; set per round of samples)
