@@ -165,14 +165,7 @@ MCL_INLINE AlphaScene make_alpha_scene(MCL_GLOBAL const Material* materials, MCL
 // spawns a new ray past each), and an instance's ray is in its object space, so two placements of
 // one triangle choose apart too.
 MCL_INLINE float alpha_coin(float3 o, float3 d, uint canon) {
-  uint x = mcl_mix32(canon ^ 0x5bd1e995u);
-  x = mcl_mix32(x ^ as_uint(o.x));
-  x = mcl_mix32(x ^ as_uint(o.y));
-  x = mcl_mix32(x ^ as_uint(o.z));
-  x = mcl_mix32(x ^ as_uint(d.x));
-  x = mcl_mix32(x ^ as_uint(d.y));
-  x = mcl_mix32(x ^ as_uint(d.z));
-  return u32_to_unit(x);
+  return u32_to_unit(mcl_mix_float3(mcl_mix_float3(mcl_mix32(canon ^ 0x5bd1e995u), o), d));
 }
 
 // 0 when triangle i of tris is alpha-tested (MCL_ATTR_ALPHA) and its hit at (u, v) by the ray
