@@ -154,6 +154,12 @@ TEST_CASE("glTF BLEND: read as stochastic transparency (factor alone or x the te
   const MaterialDesc& m = s.materials[s.triangles[6].material];
   CHECK(!m.alphaBlend);
   CHECK(m.alphaCutoff == 0.5f);
+  // A scene file's alpha_cutoff on the mesh makes cut-outs of its BLEND materials.
+  dir.write("cut.json", json{{"camera", "auto"}, {"meshes", {{{"file", dir.file("m.gltf")}, {"material", {{"alpha_cutoff", 0.4}}}}}}}.dump());
+  const Scene cut = loadScene(dir.file("cut.json"), warnings);
+  REQUIRE(cut.triangles.size() == 8);
+  CHECK(!cut.materials[cut.triangles[0].material].alphaBlend);
+  CHECK(cut.materials[cut.triangles[0].material].alphaCutoff == 0.4f);
   // A base colour alpha outside [0, 1]: an error naming the material.
   g["materials"][2] = bad;
   dir.write("m.gltf", g.dump());
