@@ -1,7 +1,7 @@
 // test_gltf.cpp: the glTF 2.0 loader (host/scene/gltf_mesh.cpp, gltf_model.cpp): .gltf with an
 // external or a data-URI buffer and .glb give exactly the OBJ's triangles (v flipped back to OBJ's
-// convention); node hierarchies with TRS and matrices; materials (base colour x texture, MASK and
-// BLEND cut-outs, emission x KHR_materials_emissive_strength, embedded images held in memory); the first
+// convention); node hierarchies with TRS and matrices; materials (base colour x texture, MASK cut-outs and
+// BLEND transparency, emission x KHR_materials_emissive_strength, embedded images held in memory); the first
 // perspective camera; triangle strips and fans as their TRIANGLES lists; one warning per unused kind;
 // malformed files as one InputError line.
 #include <doctest/doctest.h>
@@ -130,7 +130,7 @@ TEST_CASE("glTF: node hierarchy with TRS and matrices; mirrors keep faces' sides
   CHECK(countContaining(warnings, "meshes[0].primitives[1]: primitive mode 1 (points or lines, not triangles) skipped (1 more like it; -v lists them)") == 1);
 }
 
-TEST_CASE("glTF: base colour x texture, MASK/BLEND cut-outs, emission x strength, embedded images kept in memory" *
+TEST_CASE("glTF: base colour x texture, MASK cut-outs, BLEND transparency, emission x strength, embedded images kept in memory" *
           doctest::test_suite("cpu")) {
   TempDir dir;
   dir.write("wood 1.png", "x");
@@ -164,10 +164,12 @@ TEST_CASE("glTF: base colour x texture, MASK/BLEND cut-outs, emission x strength
   REQUIRE(s.embeddedImages.count(b.albedoTexture) == 1);
   CHECK(s.embeddedImages.at(b.albedoTexture).size() == 8);
   CHECK(b.alphaTexture == b.albedoTexture);
-  CHECK(b.alphaCutoff == 0.5f);
+  CHECK(b.alphaBlend);  // stochastic transparency: factor 1 x the texture's alpha
+  CHECK(b.alphaFactor == 1.0f);
+  CHECK(!a.alphaBlend);
   INFO(allLines(warnings));
   CHECK(countContaining(warnings, "embedded image") == 0);
-  CHECK(countContaining(warnings, "m.gltf: materials[1]: alphaMode BLEND treated as MASK") == 1);
+  CHECK(countContaining(warnings, "BLEND") == 0);
   CHECK(countContaining(warnings, "m.gltf: extensionsUsed: extension 'KHR_materials_clearcoat' not used by montecl") == 1);
   CHECK(countContaining(warnings, "KHR_texture_transform") == 0);  // read (test_texture_sampling.cpp)
   CHECK(countContaining(warnings, "emissive_strength' not used") == 0);

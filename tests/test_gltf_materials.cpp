@@ -18,6 +18,7 @@
 #include "scene/gltf_spec_gloss.h"
 #include "test_images.h"
 #include "texture/scene_textures.h"
+#include "util/errors.h"
 
 namespace test_file_gltf_materials {  // keeps this file's helpers apart in a unity batch
 

@@ -184,7 +184,7 @@ TEST_CASE("instances: the conformance set's instanced spheres cover part of its 
     INFO("pixels covered " << covered << " of " << a.mean.size());
     CHECK(covered >= a.mean.size() / 10);
   }
-  CHECK(found == 3);
+  CHECK(found == 4);  // ao-cosine, direct-mis, path, path-blend
 }
 
 }  // namespace test_file_instances_render

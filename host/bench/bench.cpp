@@ -213,7 +213,10 @@ json runBench(const BenchOptions& o, bool verbose) {
   if (o.embree && EmbreeTracer::available()) {
     say("building the Embree scene");
     EmbreeTracer::AlphaTest test;
-    if (alpha) test = [a = alpha.get()](std::uint32_t tri, float u, float v) { return a->exists(tri, u, v); };
+    if (alpha)
+      test = [a = alpha.get()](std::uint32_t tri, float u, float v, const float3& org, const float3& dir) {
+        return a->exists(tri, u, v, org, dir);
+      };
     embree = std::make_unique<EmbreeTracer>(scene.triangles, threads, test,
                                             alpha ? alpha->tested : std::vector<std::uint8_t>{});
     r["embree_version"] = EmbreeTracer::version();

@@ -6,34 +6,27 @@
 
 namespace montecl {
 
-bool BenchAlpha::exists(std::uint32_t tri, float u, float v) const {
+bool BenchAlpha::exists(std::uint32_t tri, float u, float v, const float3& org, const float3& dir) const {
   if (!tested[tri]) return true;
-  const SceneTriangle& t = scene->triangles[tri];
-  const Material& m = materials[t.material];
-  float uu = 0.0f, vv = 0.0f;
-  if (t.attributes & kHasUv) {  // as surface_uv (surface_texture.h)
-    const float w = 1.0f - u - v;
-    uu = t.uv[0].x * w + t.uv[1].x * u + t.uv[2].x * v;
-    vv = t.uv[0].y * w + t.uv[1].y * u + t.uv[2].y * v;
-  }
-  return alpha_value(host.tex, m, uu, vv) >= m.alpha.y;
+  return alpha_hit_exists(&host, tris, slot[tri], u, v, org, dir) != 0;
 }
 
 std::unique_ptr<BenchAlpha> makeBenchAlpha(const Scene& scene, Bvh& bvh, std::vector<std::string>& warnings) {
-  if (!sceneHasTextures(scene)) return nullptr;
   auto a = std::make_unique<BenchAlpha>();
   a->scene = &scene;
-  a->textures = loadSceneTextures(scene, kDefaultTextureBudget, warnings);
-  if (!a->textures.anyAlpha()) return nullptr;
-  bvh.triangles = alphaFlaggedTriangles(bvh.triangles, a->textures);
+  if (sceneHasTextures(scene)) a->textures = loadSceneTextures(scene, kDefaultTextureBudget, warnings);
+  if (!anyAlphaTested(scene.materials, &a->textures)) return nullptr;
+  bvh.triangles = alphaFlaggedTriangles(bvh.triangles, scene.materials, &a->textures);
+  a->tris = bvh.triangles.data();
   a->materials = deviceMaterials(scene.materials, &a->textures);
   a->shading = buildTriangleShading(scene.triangles, bvh);
   a->tested.resize(scene.triangles.size());
   for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
-    const std::uint32_t m = scene.triangles[i].material;
-    a->tested[i] = m < a->textures.materials.size() && a->textures.materials[m].alpha != MCL_NO_TEXTURE;
+    a->tested[i] = materialAlphaTested(scene.materials, &a->textures, scene.triangles[i].material);
     a->testedCount += a->tested[i];
   }
+  a->slot.assign(scene.triangles.size(), 0u);
+  for (std::size_t i = bvh.order.size(); i-- > 0;) a->slot[bvh.order[i]] = std::uint32_t(i);  // the first slot
   a->host = make_alpha_scene(a->materials.data(), a->shading.data(),
                              make_texture_tables(a->textures.textures.data(), a->textures.levels.data(),
                                                  a->textures.texels.data()));

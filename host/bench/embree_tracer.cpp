@@ -33,7 +33,11 @@ void alphaFilter(const RTCFilterFunctionNArguments* args) {
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
     const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
-    if (!f->test(f->inputIndex[prim], RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i)))
+    const float3 org(RTCRayN_org_x(args->ray, args->N, i), RTCRayN_org_y(args->ray, args->N, i),
+                     RTCRayN_org_z(args->ray, args->N, i));
+    const float3 dir(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+                     RTCRayN_dir_z(args->ray, args->N, i));
+    if (!f->test(f->inputIndex[prim], RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i), org, dir))
       args->valid[i] = 0;
   }
 }

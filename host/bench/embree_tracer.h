@@ -15,8 +15,9 @@ namespace montecl {
 
 class EmbreeTracer {
  public:
-  // Whether a hit at barycentrics (u, v) of input triangle tri exists (the cut-outs' alpha test).
-  using AlphaTest = std::function<bool(std::uint32_t tri, float u, float v)>;
+  // Whether a hit at barycentrics (u, v) of input triangle tri by the ray org + t dir exists (the
+  // alpha test of cut-outs and stochastic transparency).
+  using AlphaTest = std::function<bool(std::uint32_t tri, float u, float v, const float3& org, const float3& dir)>;
 
   // Builds the scene on `threads` threads; buildMs() is the time of rtcCommitScene (after one
   // warm-up build that starts Embree's thread pool). With alphaTest, the triangles where

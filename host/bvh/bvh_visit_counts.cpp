@@ -26,7 +26,7 @@ void countRay(const WideNode* nodes, const Triangle* tris, const AlphaScene* alp
       for (uint b = first; b <= last; b += 4u) {
         float4 u, v;
         float4 t = ray_triangle4(tris, b, last, org, dir, anyHit ? tmax : hitT, &u, &v);
-        if (alpha) t = alpha_filter4(alpha, tris, b, last, t, u, v, anyHit ? tmax : hitT);
+        if (alpha) t = alpha_filter4(alpha, tris, b, last, t, u, v, anyHit ? tmax : hitT, org, dir);
         float bt = fminf(fminf(t.x, t.y), fminf(t.z, t.w));
         if (anyHit && bt < tmax) return;
         if (bt < hitT) hitT = bt;

@@ -317,6 +317,14 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   cases.push_back(texturedCase(withDirect(light, DirectSampling::Mis, 2), "textured-cutout/direct-mis"));
   cases.push_back(texturedCase(withAo(light, AoSampling::Cosine), "textured-cutout/ao-cosine"));
   cases.push_back(texturedCase(withPath(light, 1), "textured-cutout/path"));
+  // Stochastic transparency (glTF BLEND): the occluder 0.6 x its stripes' alpha, the floor 0.85 by
+  // its factor alone (misses behind it see the background); camera, bounce and shadow rays.
+  for (ConformanceCase c : {texturedCase(withDirect(light, DirectSampling::Mis, 2), "blend/direct-mis"),
+                            texturedCase(withPath(light, 1), "blend/path")}) {
+    c.scene.materials[2].alphaBlend = c.scene.materials[0].alphaBlend = true;
+    c.scene.materials[2].alphaFactor = 0.6f, c.scene.materials[0].alphaFactor = 0.85f;
+    cases.push_back(c);
+  }
   cases.push_back(texturedAttributesCase(withDirect(light, DirectSampling::Mis, 2), "textured-attributes/direct-mis"));
   cases.push_back(texturedAttributesCase(withPath(light, 1), "textured-attributes/path"));
   // First-hit AOVs (albedo through the texture, shading normal, depth, emission seen directly: the
@@ -411,6 +419,9 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   cases.push_back({"instanced-spheres/ao-cosine", withAo(spheres, AoSampling::Cosine), nullptr, false});
   cases.push_back({"instanced-spheres/direct-mis", withDirect(spheres, DirectSampling::Mis, 2), nullptr, false});
   cases.push_back({"instanced-spheres/path", withPath(spheres, 1), nullptr, false});
+  Scene blendSpheres = withPath(spheres, 1);  // BLEND spheres: the coin in each instance's object space
+  blendSpheres.materials.back().alphaBlend = true, blendSpheres.materials.back().alphaFactor = 0.5f;
+  cases.push_back({"instanced-spheres/path-blend", blendSpheres, nullptr, false});
 
   const std::string path = o.cornellPath.empty() ? defaultCornellPath() : o.cornellPath;
   if (!std::ifstream(path)) {

@@ -12,7 +12,10 @@ Material deviceMaterial(const MaterialDesc& m) {
   d.albedo = glm::vec4(m.albedo, noTexture);
   d.emission = glm::vec4(m.emission, m.twoSidedEmission ? 1.0f : 0.0f);
   d.specular = glm::vec4(m.specular, ggx_alpha_from_ns(m.specularExponent));
-  d.alpha = glm::vec4(noTexture, m.alphaCutoff, glm::uintBitsToFloat(0u), glm::uintBitsToFloat(m.kind));
+  // alpha.y: a cut-out's cutoff (sign bit clear: -0 becomes 0), or stochastic transparency's alpha
+  // factor negated (sign bit set, 0 included as -0; surface_texture.h alpha_hit_exists).
+  const float alphaY = m.alphaBlend ? -m.alphaFactor : (m.alphaCutoff > 0.0f ? m.alphaCutoff : 0.0f);
+  d.alpha = glm::vec4(noTexture, alphaY, glm::uintBitsToFloat(0u), glm::uintBitsToFloat(m.kind));
   d.maps = glm::vec4(noTexture, noTexture, 0.0f, 0.0f);
   // The kinds' parameters, as bsdf_<kind>.h's <kind>_from_material reads them; zero for diffuse.
   switch (m.kind) {

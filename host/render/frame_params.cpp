@@ -48,6 +48,7 @@ FrameParams makeFrameParams(const Camera& camera, const RenderSettings& settings
   f.envHeight = extras.envHeight;
   f.envRotateY = extras.envRotateY;
   f.textureCount = extras.textureCount;
+  f.alphaTested = extras.alphaTested ? 1u : 0u;
   f.packetAllRays = extras.packetAllRays ? 1u : 0u;
   f.instanceCount = extras.instanceCount;
   f.recordAovs = extras.recordAovs ? 1u : 0u;

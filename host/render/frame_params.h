@@ -28,6 +28,7 @@ struct FrameExtras {
   uint envWidth = 0, envHeight = 0;
   float envRotateY = 0.0f;
   uint textureCount = 0;
+  bool alphaTested = false;    // some triangle carries MCL_ATTR_ALPHA (FrameParams::alphaTested)
   bool packetAllRays = false;  // packetTraversalForAllRays(the BVH's wide node count)
   uint instanceCount = 0;      // Bvh::instances (a two-level BVH), 0: one level
   bool recordAovs = false;     // first-hit AOVs are recorded (FrameParams::recordAovs)

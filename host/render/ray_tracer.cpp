@@ -14,17 +14,19 @@ RayTracer::RayTracer(StageProgram& program, const Bvh& bvh, const Scene* scene, 
       lanes_(program.lanes()),
       intersect_(cl_.kernel(stageName(Stage::intersect))),
       intersectShadow_(cl_.kernel(stageName(Stage::intersect_shadow))) {
-  const bool alpha = scene && textures && textures->anyAlpha();
-  frame_.textureCount = alpha ? std::uint32_t(textures->textures.size()) : 0u;
+  const bool alpha = scene && anyAlphaTested(scene->materials, textures);
+  frame_.textureCount = alpha && textures ? std::uint32_t(textures->textures.size()) : 0u;
+  frame_.alphaTested = alpha ? 1u : 0u;
   bindings_.frame = {cl_.upload(std::vector<FrameParams>{frame_})};
   bindings_.nodes = {program.uploadNodes(bvh)};
-  bindings_.tris = {cl_.upload(alpha ? alphaFlaggedTriangles(bvh.triangles, *textures) : bvh.triangles)};
+  bindings_.tris = {cl_.upload(alpha ? alphaFlaggedTriangles(bvh.triangles, scene->materials, textures) : bvh.triangles)};
   // What the alpha test reads (1-entry dummies without cut-outs).
   bindings_.materials = {cl_.upload(alpha ? deviceMaterials(scene->materials, textures) : std::vector<Material>(1))};
   bindings_.shading = {cl_.upload(alpha ? buildTriangleShading(scene->triangles, bvh) : std::vector<TriangleShading>(1))};
-  bindings_.textures = {cl_.upload(alpha ? textures->textures : std::vector<TextureDesc>(1))};
-  bindings_.textureLevels = {cl_.upload(alpha ? textures->levels : std::vector<TextureLevel>(1))};
-  bindings_.texels = {cl_.upload(alpha ? textures->texels : std::vector<std::uint16_t>(4))};
+  const bool textured = alpha && textures && !textures->textures.empty();
+  bindings_.textures = {cl_.upload(textured ? textures->textures : std::vector<TextureDesc>(1))};
+  bindings_.textureLevels = {cl_.upload(textured ? textures->levels : std::vector<TextureLevel>(1))};
+  bindings_.texels = {cl_.upload(textured ? textures->texels : std::vector<std::uint16_t>(4))};
   bindings_.vertexColors = {cl_.upload(std::vector<float4>(1))};  // no albedo is read here
   bindings_.nanRays = {cl_.upload(std::vector<cl_uint>{0}, CL_MEM_READ_WRITE)};
 }

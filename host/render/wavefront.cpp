@@ -139,7 +139,14 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
       integrator.lit ? buildEmitterTable(bvh, scene.materials, emissionTextured ? &emission : nullptr) : EmitterTable{};
 
   FrameExtras extras;
-  extras.emissionTextured = emissionTextured && integrator.lit;
+  // An emitter that is stochastically transparent: its light samples are weighted by its coverage
+  // (light_area.h), which the packet stages' emitter sampling leaves to the scalar code as it does
+  // textured emission.
+  bool blendEmitter = false;
+  for (const MaterialDesc& m : scene.materials)
+    blendEmitter |= m.alphaBlend && m.emission != glm::vec3(0.0f) &&
+                    materialAlphaTested(scene.materials, textures, std::size_t(&m - scene.materials.data()));
+  extras.emissionTextured = (emissionTextured || blendEmitter) && integrator.lit;
   extras.shadowSlots = std::uint32_t(shape.slots);
   extras.offsetScale = triangles.offsetScale;
   extras.emitterCount = uint(emitters.emitters.size());
@@ -151,6 +158,9 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
   }
   extras.envRotateY = environment.rotateY;
   extras.textureCount = textures ? std::uint32_t(textures->textures.size()) : 0u;
+  // The triangles whose hits the traversals alpha-test, flagged (cut-outs, stochastic transparency).
+  in.triangles = alphaFlaggedTriangles(bvh.triangles, scene.materials, textures);
+  extras.alphaTested = !in.triangles.empty();
   extras.instanceCount = std::uint32_t(bvh.instances.size());
   extras.recordAovs = o.aovs;
   extras.countLanes = o.profile;
@@ -161,10 +171,7 @@ void prepare(Prepared& p, const Scene& scene, const Bvh& bvh, const RenderOption
   const FrameParams frame = makeFrameParams(scene.camera, scene.render, extras);
   in.frame = frame;
   in.bvh = &bvh;
-  if (textures) {
-    in.textures = textures;
-    in.triangles = alphaFlaggedTriangles(bvh.triangles, *textures);
-  }
+  if (textures) in.textures = textures;
   in.emitters = emitters.emitters;
   p.emitterCount = emitters.emitters.size();
   in.envMap = std::move(environment.map);

@@ -201,6 +201,8 @@ MaterialDesc GltfMaterials::read(std::size_t i) {
     d.albedoTexture = texture(pbr.baseColorTexture, "pbrMetallicRoughness.baseColorTexture", d.albedoSampling);
   ExtTexture specGlossMap;  // KHR_materials_pbrSpecularGlossiness's specularGlossinessTexture
   MetalRoughFactors converted;
+  // The base colour's alpha: baseColorFactor's, or the specular-glossiness diffuseFactor's.
+  double alphaFactor = pbr.baseColorFactor.size() == 4 ? pbr.baseColorFactor[3] : 1.0;
   if (specGloss) {
     const std::string at = where + ".extensions." + kSpecGloss;
     const glm::vec4 diffuse = extColour(file_, at, *specGloss, "diffuseFactor", 4, glm::vec4(1.0f));
@@ -208,6 +210,7 @@ MaterialDesc GltfMaterials::read(std::size_t i) {
     const double gloss = extNumber(file_, at, *specGloss, "glossinessFactor", 1.0);
     if (!(gloss >= 0.0 && gloss <= 1.0)) loadFail(file_, at + ".glossinessFactor", "must be in [0, 1]");
     converted = metalRoughFromSpecGloss(glm::vec3(diffuse), specular, float(gloss));
+    alphaFactor = diffuse.w;
     d.albedo = converted.base;
     const ExtTexture diffuseMap = extTexture(file_, at, *specGloss, "diffuseTexture");
     if (diffuseMap.index >= 0)
@@ -227,13 +230,22 @@ MaterialDesc GltfMaterials::read(std::size_t i) {
                        "the diffuseFactor's brightness)"
                      : ")"));
   }
-  if (g.alphaMode == "MASK" || g.alphaMode == "BLEND") {
-    if (g.alphaMode == "BLEND") unused_.add("BLEND", where, "alphaMode BLEND treated as MASK (cut-out at alphaCutoff)");
+  if (g.alphaMode == "MASK") {
     d.alphaCutoff = static_cast<float>(g.alphaCutoff);
     if (!(d.alphaCutoff >= 0.0f && d.alphaCutoff <= 1.0f)) loadFail(file_, where, "alphaCutoff must be in [0, 1]");
     d.alphaTexture = d.albedoTexture;
     d.alphaSampling = d.albedoSampling;
-    if (d.alphaTexture.empty()) unused_.add("constant alpha", where, "alphaMode " + g.alphaMode + " without a usable base colour texture: no cut-out");
+    if (d.alphaTexture.empty()) unused_.add("constant alpha", where, "alphaMode MASK without a usable base colour texture: no cut-out");
+  } else if (g.alphaMode == "BLEND") {
+    // Stochastic transparency (pbrt-v4's and Cycles' reading of alpha): a ray meets the surface
+    // with probability baseColorFactor's alpha x the base colour texture's (the texture read as a
+    // MASK cut-out reads it) and passes straight through otherwise, so a pixel sees
+    // alpha x the surface + (1 - alpha) x what lies behind, shadows included.
+    if (!(alphaFactor >= 0.0 && alphaFactor <= 1.0)) loadFail(file_, where, "the base colour's alpha must be in [0, 1]");
+    d.alphaBlend = true;
+    d.alphaFactor = static_cast<float>(alphaFactor);
+    d.alphaTexture = d.albedoTexture;
+    d.alphaSampling = d.albedoSampling;
   }
   // KHR_materials_unlit: the base colour is what the surface shows, lit or not: it becomes the
   // emission (Le = baseColorFactor x baseColorTexture, both faces when doubleSided) and the surface

@@ -185,7 +185,7 @@ void overrideMaterials(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, c
       }
       if (o.alphaTexture || o.albedoTexture) d.cutoutHint.clear();  // the MTL's map_Kd is no longer alone
       if (o.alphaTexture) d.alphaTexture = o.value.alphaTexture, d.alphaSampling = TextureSampling{};
-      if (o.alphaCutoff) d.alphaCutoff = o.value.alphaCutoff;
+      if (o.alphaCutoff) d.alphaCutoff = o.value.alphaCutoff, d.alphaBlend = false;  // a cut-out, even of a BLEND material
       if (o.emission) d.emission = o.value.emission;
       if (o.emissionTexture) {
         d.emissionTexture = o.value.emissionTexture;

@@ -53,6 +53,12 @@ struct MaterialDesc {
   std::string alphaTexture;   // map_d, or the albedo texture's alpha (glTF MASK); empty: opaque
   std::string emissionTexture;  // map_Ke, glTF emissiveTexture (colour, like the albedo's): Le = Ke x it
   float alphaCutoff = 0.5f;   // a hit whose alpha is below this does not exist for any ray
+  // Stochastic transparency (glTF alphaMode BLEND) in place of the cut-out: a ray meets the surface
+  // with probability alphaFactor x the alpha texture's alpha there (1 without one) and passes
+  // through otherwise (alphaCutoff unused), decided by a hash of the ray and the triangle
+  // (kernels/shared/surface_texture.h alpha_hit_exists).
+  bool alphaBlend = false;
+  float alphaFactor = 1.0f;   // in [0, 1]; glTF: baseColorFactor's alpha
   // Tangent-space normal map (glTF normalTexture, MTL norm; read linear, never sRGB-decoded):
   // n = ((2r - 1) normalScale, (2g - 1) normalScale, 2b - 1) in the triangle's UV tangent frame.
   std::string normalTexture;

@@ -75,6 +75,10 @@ std::string sceneDigest(const Scene& scene) {
     const std::uint64_t textures[2] = {fileContentHash(m.albedoTexture, files), fileContentHash(m.alphaTexture, files)};
     append(bytes, textures, sizeof textures);
     bytes.add(m.twoSidedEmission ? "2" : "1");
+    if (m.alphaBlend) {  // only when set: the digests of other scenes stay
+      bytes.add("alpha_blend");
+      append(bytes, &m.alphaFactor, sizeof m.alphaFactor);
+    }
     if (!m.emissionTexture.empty()) {  // only when there is one: the digests of other scenes stay
       bytes.add("emission_texture");
       const std::uint64_t e = fileContentHash(m.emissionTexture, files);

@@ -65,9 +65,15 @@ struct TextureUses {
 SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes,
                                 std::vector<std::string>& warnings, TextureUses uses = {});
 
-// tris (BVH order) with MCL_ATTR_ALPHA set in e2.w on every triangle whose material has an alpha
-// texture (the traversals test only those); empty when no material has one.
-std::vector<Triangle> alphaFlaggedTriangles(const std::vector<Triangle>& tris, const SceneTextures& textures);
+// Whether material i is alpha-tested: it has an alpha texture in textures (may be null), or is
+// stochastically transparent (alphaBlend) with an alpha factor below 1.
+bool materialAlphaTested(const std::vector<MaterialDesc>& materials, const SceneTextures* textures, std::size_t i);
+bool anyAlphaTested(const std::vector<MaterialDesc>& materials, const SceneTextures* textures);
+
+// tris (BVH order) with MCL_ATTR_ALPHA set in e2.w on every triangle whose material is
+// alpha-tested (materialAlphaTested; the traversals test only those); empty when none is.
+std::vector<Triangle> alphaFlaggedTriangles(const std::vector<Triangle>& tris, const std::vector<MaterialDesc>& materials,
+                                            const SceneTextures* textures);
 
 // Writes the texture indices and alpha channel of textures.materials[i] into device material i
 // (kernels/shared/types.h Material: albedo.w, alpha.x, alpha.z, maps.x, maps.y, maps.z, maps.w).

@@ -3,6 +3,7 @@
 // float <-> half as the device reads texels.
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -34,12 +35,25 @@ std::uint16_t floatToHalf(float f) {
 
 float halfToFloat(std::uint16_t h) { return mcl_half_to_float(h); }
 
-std::vector<Triangle> alphaFlaggedTriangles(const std::vector<Triangle>& tris, const SceneTextures& textures) {
-  if (!textures.anyAlpha()) return {};
+bool materialAlphaTested(const std::vector<MaterialDesc>& materials, const SceneTextures* textures, std::size_t i) {
+  if (textures && i < textures->materials.size() && textures->materials[i].alpha != MCL_NO_TEXTURE) return true;
+  return i < materials.size() && materials[i].alphaBlend && !(materials[i].alphaFactor >= 1.0f);
+}
+
+bool anyAlphaTested(const std::vector<MaterialDesc>& materials, const SceneTextures* textures) {
+  const std::size_t n = std::max(materials.size(), textures ? textures->materials.size() : std::size_t(0));
+  for (std::size_t i = 0; i < n; ++i)
+    if (materialAlphaTested(materials, textures, i)) return true;
+  return false;
+}
+
+std::vector<Triangle> alphaFlaggedTriangles(const std::vector<Triangle>& tris, const std::vector<MaterialDesc>& materials,
+                                            const SceneTextures* textures) {
+  if (!anyAlphaTested(materials, textures)) return {};
   std::vector<Triangle> out = tris;
   for (Triangle& t : out) {
     const std::uint32_t m = glm::floatBitsToUint(t.v0.w);
-    if (m < textures.materials.size() && textures.materials[m].alpha != MCL_NO_TEXTURE)
+    if (materialAlphaTested(materials, textures, m))
       t.e2.w = glm::uintBitsToFloat(glm::floatBitsToUint(t.e2.w) | MCL_ATTR_ALPHA);
   }
   return out;

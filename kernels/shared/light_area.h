@@ -3,7 +3,8 @@
 // textured emitter's mean over the triangle), the triangles, their normals and areas, their
 // materials' emission and emission textures (with the triangles' UVs); pure; compiled by the
 // kernels and the host. Emitters emit Le = Ke (x the emission texture at the point) from their
-// front face (the side of cross(e1, e2)), or from both faces when the material's emission.w is set.
+// front face (the side of cross(e1, e2)), or from both faces when the material's emission.w is set;
+// a light sample on a stochastically transparent one is weighted by its coverage.
 #pragma once
 #include "environment.h"
 #include "light_scene.h"
@@ -39,6 +40,10 @@ MCL_INLINE LightSample area_light_sample(MCL_CONSTANT const FrameParams* f, Ligh
   float3 p = sample_triangle(xyz(lt->v0), xyz(lt->e1), xyz(lt->e2), u1, u2);
   float su = sqrt(u1);  // the barycentrics of p (sample_triangle's), for the emission texture
   float3 le = material_emission(ls.tex, lm, lt, &ls.shading[em->tri], su * (1.0f - u2), su * u2);
+  // A stochastically transparent emitter (BLEND) sends its emission times its coverage there: the
+  // expectation of a ray that meets it with that probability (the packet stages take this scalar
+  // code for such scenes: FrameParams::emissionTextured).
+  if (material_blends(lm)) le = le * material_coverage(ls.tex, lm, lt, &ls.shading[em->tri], su * (1.0f - u2), su * u2);
   float3 toLight = p - origin;
   float dist2 = dot(toLight, toLight);
   float dist = sqrt(dist2);

@@ -77,6 +77,14 @@ MCL_DEFINE_UNIT4(unit4, float4, RngOut, u32_to_unit)
   }
 MCL_DEFINE_MIX32(mcl_mix32, uint)
 
+// x mixed with the bits of v's three floats in turn (x, y, z), each through mcl_mix32: a hash of a
+// point or direction's exact bits.
+MCL_INLINE uint mcl_mix_float3(uint x, float3 v) {
+  x = mcl_mix32(x ^ as_uint(v.x));
+  x = mcl_mix32(x ^ as_uint(v.y));
+  return mcl_mix32(x ^ as_uint(v.z));
+}
+
 // Four uniform numbers in [0, 1) for dimension group `group` of the given sample; for T uint or
 // the lanes' vuint, F4 float4 or vfloat4 (with that type's pcg4d and unit4).
 #define MCL_DEFINE_RNG_UNIFORM4(name, T, F4, Out, pcg, unit4)            \

@@ -1,11 +1,13 @@
 // surface_texture.h: textures at a triangle hit: its UVs (the per-triangle attribute buffer,
 // TriangleShading, when the triangle has MCL_ATTR_UV; (0, 0) otherwise), the albedo Kd x texture
-// with a ray-cone footprint, and the alpha test of cut-out materials that every traversal applies
-// (a hit whose alpha is below the material's cutoff does not exist). Pure; compiled by the kernels,
-// the host backend and the host tests.
+// with a ray-cone footprint, and the alpha test that every traversal applies (a hit on a cut-out
+// whose alpha is below the material's cutoff does not exist; one on a stochastically transparent
+// material exists with probability alpha, by a hash of the ray and the triangle). Pure; compiled by
+// the kernels, the host backend and the host tests.
 #pragma once
 #include "geometry.h"
 #include "lights.h"
+#include "rng.h"
 #include "texture.h"
 
 // A triangle's texture coordinates at barycentrics (bu, bv) of corners 1 and 2 from its corners'
@@ -91,6 +93,20 @@ MCL_INLINE float3 material_emission(TextureTables tt, MCL_GLOBAL const Material*
   return ke * xyz(texture_fine(tt, tex, uv.x, uv.y));
 }
 
+// 1 when material m is stochastically transparent (glTF BLEND: Material alpha.y's sign bit set).
+MCL_INLINE int material_blends(MCL_GLOBAL const Material* m) { return (as_uint(m->alpha.y) & 0x80000000u) != 0u; }
+
+// The expected coverage of a stochastically transparent material m on triangle tri (attributes
+// sh) at barycentrics (u, v): its alpha factor x its alpha texture's alpha there (alpha_hit_exists'
+// probability). A light sample on such an emitter is weighted by it (light_area.h), so light
+// sampling and a ray that hits the emitter (which exists with this probability) estimate the same
+// emission.
+MCL_INLINE float material_coverage(TextureTables tt, MCL_GLOBAL const Material* m, MCL_GLOBAL const Triangle* tri,
+                                   MCL_GLOBAL const TriangleShading* sh, float u, float v) {
+  float2 uv = surface_uv(tri, sh, u, v);
+  return -m->alpha.y * alpha_value(tt, *m, uv.x, uv.y);
+}
+
 // Luminance per unit area by which the emitter table weights triangle tri of material m: that of
 // Ke, or with an emission texture its mean over the triangle (the host's emitters.cpp keeps it in
 // the attributes' tv.w; a triangle without UVs emits one colour, read at uv (0, 0)).
@@ -141,11 +157,29 @@ MCL_INLINE AlphaScene make_alpha_scene(MCL_GLOBAL const Material* materials, MCL
   return s;
 }
 
-// 0 when triangle i of tris is alpha-tested (MCL_ATTR_ALPHA) and its material's alpha at (u, v)
-// is below the cutoff: the hit does not exist. Deterministic: the finest level kept, bilinear.
-MCL_INLINE int alpha_hit_exists(const AlphaScene* a, MCL_GLOBAL const Triangle* tris, uint i, float u, float v) {
+// A uniform number in [0, 1) that is a function of a ray (its origin's and direction's bits) and a
+// triangle (its canonical slot): the stochastic transparency's coin for that ray and triangle (as
+// pbrt-v4's HashFloat(o, d) of its alpha test). Every traversal (binary, wide, two rays
+// interleaved, packets lane by lane) sees the same ray bits and slot, so every device, lane width
+// and wave shape makes the same choice; the slot tells apart the surfaces one ray crosses (pbrt
+// spawns a new ray past each), and an instance's ray is in its object space, so two placements of
+// one triangle choose apart too.
+MCL_INLINE float alpha_coin(float3 o, float3 d, uint canon) {
+  return u32_to_unit(mcl_mix_float3(mcl_mix_float3(mcl_mix32(canon ^ 0x5bd1e995u), o), d));
+}
+
+// 0 when triangle i of tris is alpha-tested (MCL_ATTR_ALPHA) and its hit at (u, v) by the ray
+// o + t d does not exist: for a cut-out (Material alpha.y >= 0, its sign bit clear) when the
+// material's alpha there is below the cutoff; for stochastic transparency (glTF BLEND: the sign
+// bit set, -alpha.y the alpha factor) with probability 1 - factor x alpha, decided by
+// alpha_coin. Deterministic: the finest level kept, bilinear; the coin a hash. The one alpha test:
+// the packet traversals run it lane by lane.
+MCL_INLINE int alpha_hit_exists(const AlphaScene* a, MCL_GLOBAL const Triangle* tris, uint i, float u, float v,
+                                float3 o, float3 d) {
   if (!a || !(as_uint(tris[i].e2.w) & MCL_ATTR_ALPHA)) return 1;
   Material m = a->materials[as_uint(tris[i].v0.w)];
   float2 uv = surface_uv(&tris[i], &a->shading[i], u, v);
-  return alpha_value(a->tex, m, uv.x, uv.y) >= m.alpha.y;
+  float alpha = alpha_value(a->tex, m, uv.x, uv.y);
+  if (!(as_uint(m.alpha.y) & 0x80000000u)) return alpha >= m.alpha.y;
+  return alpha_coin(o, d, as_uint(tris[i].e1.w)) < -m.alpha.y * alpha;
 }

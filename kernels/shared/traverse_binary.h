@@ -47,7 +47,7 @@ MCL_INLINE Hit binary_closest_hit(MCL_GLOBAL const BvhNode* nodes, MCL_GLOBAL co
         float t = ray_triangle(org, dir, xyz(tris[i].v0), xyz(tris[i].e1), xyz(tris[i].e2),
                                leaf_tmax(hit.t, hit.tri), &u, &v);
         uint canon = as_uint(tris[i].e1.w);
-        if (hit_before(t, canon, hit.t, hit.tri) && alpha_hit_exists(alpha, tris, i, u, v)) {
+        if (hit_before(t, canon, hit.t, hit.tri) && alpha_hit_exists(alpha, tris, i, u, v, org, dir)) {
           hit.t = t;
           hit.tri = canon;  // the canonical slot, whichever copy was hit
           hit.u = u;
@@ -88,10 +88,10 @@ MCL_INLINE int binary_any_hit(MCL_GLOBAL const BvhNode* nodes, MCL_GLOBAL const 
     MCL_GLOBAL const BvhNode* n = &nodes[ref];
     if (n->triCount > 0) {
       for (uint i = n->leftFirst, end = n->leftFirst + n->triCount; i < end; ++i) {
-        float u, v;
+        float u = 0.0f, v = 0.0f;
         if (ray_triangle(org, dir, xyz(tris[i].v0), xyz(tris[i].e1), xyz(tris[i].e2), tmax, &u,
                          &v) < tmax &&
-            alpha_hit_exists(alpha, tris, i, u, v))
+            alpha_hit_exists(alpha, tris, i, u, v, org, dir))
           return 1;
       }
     } else {

@@ -152,7 +152,7 @@ MCL_INLINE int instances_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL co
       for (uint b = first; b <= last; b += 4u) {
         float4 u, v;
         float4 t = ray_triangle4(tris, b, last, o, d, tmax, &u, &v);
-        if (alpha) t = alpha_filter4(alpha, tris, b, last, t, u, v, tmax);
+        if (alpha) t = alpha_filter4(alpha, tris, b, last, t, u, v, tmax, o, d);
         if (t.x < tmax || t.y < tmax || t.z < tmax || t.w < tmax) return 1;
       }
     } else {

@@ -93,20 +93,26 @@ MCL_INLINE vfloat v_ray_triangle(MCL_GLOBAL const Triangle* tris, uint j, vfloat
   return (te2.x * qx + te2.y * qy + te2.z * qz) * idet;
 }
 
-// The lanes of cand whose hit on triangle j (barycentrics u, v per lane) exists: all of them unless
-// alpha is set and j is a cut-out (MCL_ATTR_ALPHA), then those passing its alpha test
-// (alpha_hit_exists, lane by lane: the same test the single-ray leaves make, at the same u, v).
+// The lanes of cand whose hit on triangle j (barycentrics u, v per lane; rays o + t d) exists: all
+// of them unless alpha is set and j is alpha-tested (MCL_ATTR_ALPHA), then those passing its alpha
+// test (alpha_hit_exists, lane by lane: the same test the single-ray leaves make, at the same u, v
+// and ray bits).
 MCL_INLINE vmask v_alpha_hits(const AlphaScene* alpha, MCL_GLOBAL const Triangle* tris, uint j, vmask cand,
-                              vfloat u, vfloat v) {
+                              vfloat u, vfloat v, vfloat3 o, vfloat3 d) {
   if (!alpha || !(as_uint(tris[j].e2.w) & MCL_ATTR_ALPHA)) return cand;
   float su[MCL_LANES] MCL_LANE_ALIGN, sv[MCL_LANES] MCL_LANE_ALIGN;
+  float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN;
+  float dx[MCL_LANES] MCL_LANE_ALIGN, dy[MCL_LANES] MCL_LANE_ALIGN, dz[MCL_LANES] MCL_LANE_ALIGN;
   v_store_lanes(u, su);
   v_store_lanes(v, sv);
+  v3_store_lanes(o, ox, oy, oz);
+  v3_store_lanes(d, dx, dy, dz);
   uint bits = v_bits(cand), gone = 0u;
   while (bits != 0u) {
     uint k = mcl_ctz(bits);
     bits &= bits - 1u;
-    if (!alpha_hit_exists(alpha, tris, j, su[k], sv[k])) gone |= 1u << k;
+    if (!alpha_hit_exists(alpha, tris, j, su[k], sv[k], make_float3(ox[k], oy[k], oz[k]), make_float3(dx[k], dy[k], dz[k])))
+      gone |= 1u << k;
   }
   return gone == 0u ? cand : cand & v_not(v_from_bits(gone));
 }
@@ -211,7 +217,7 @@ MCL_INLINE void packet_closest_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL 
         vmask nearer = hitc & (t < *ht);
         vmask tie = hitc & (t == *ht) & (*hcanon != MCL_NO_HIT);
         if (!v_any(nearer | tie)) continue;
-        vmask exists = v_alpha_hits(alpha, tris, j, nearer | tie, u, v);
+        vmask exists = v_alpha_hits(alpha, tris, j, nearer | tie, u, v, o, d);
         nearer = nearer & exists;
         tie = tie & exists;
         uint canon = as_uint(tris[j].e1.w);

@@ -45,7 +45,7 @@ MCL_INLINE vmask packet_any_hit(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL con
         vfloat t = v_ray_triangle(tris, j, o, d, &u, &v, &bad);
         vmask hit = m & v_not(bad) & (t > 0.0f) & (t < tmax);
         if (!v_any(hit)) continue;
-        hit = v_alpha_hits(alpha, tris, j, hit, u, v);
+        hit = v_alpha_hits(alpha, tris, j, hit, u, v, o, d);
         blocked = blocked | hit;
         m = m & v_not(hit);
         if (!v_any(m)) break;

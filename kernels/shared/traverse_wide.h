@@ -241,15 +241,16 @@ MCL_INLINE float4 ray_triangle4(MCL_GLOBAL const Triangle* tris, uint first, uin
   return mcl_tri_t4(det, u, v, t, tmax);
 }
 
-// t with the lanes whose hit (t < tmax) fails the alpha test set to INFINITY (alpha not null).
+// t with the lanes whose hit (t < tmax) of the ray org + t dir fails the alpha test set to
+// INFINITY (alpha not null).
 MCL_INLINE float4 alpha_filter4(const AlphaScene* alpha, MCL_GLOBAL const Triangle* tris, uint first,
-                                uint last, float4 t, float4 u, float4 v, float tmax) {
+                                uint last, float4 t, float4 u, float4 v, float tmax, float3 org, float3 dir) {
   uint i1 = first + 1u < last ? first + 1u : last, i2 = first + 2u < last ? first + 2u : last;
   uint i3 = first + 3u < last ? first + 3u : last;
-  if (t.x < tmax && !alpha_hit_exists(alpha, tris, first, u.x, v.x)) t.x = INFINITY;
-  if (t.y < tmax && !alpha_hit_exists(alpha, tris, i1, u.y, v.y)) t.y = INFINITY;
-  if (t.z < tmax && !alpha_hit_exists(alpha, tris, i2, u.z, v.z)) t.z = INFINITY;
-  if (t.w < tmax && !alpha_hit_exists(alpha, tris, i3, u.w, v.w)) t.w = INFINITY;
+  if (t.x < tmax && !alpha_hit_exists(alpha, tris, first, u.x, v.x, org, dir)) t.x = INFINITY;
+  if (t.y < tmax && !alpha_hit_exists(alpha, tris, i1, u.y, v.y, org, dir)) t.y = INFINITY;
+  if (t.z < tmax && !alpha_hit_exists(alpha, tris, i2, u.z, v.z, org, dir)) t.z = INFINITY;
+  if (t.w < tmax && !alpha_hit_exists(alpha, tris, i3, u.w, v.w, org, dir)) t.w = INFINITY;
   return t;
 }
 
@@ -264,7 +265,7 @@ MCL_ALWAYS_INLINE int wide_leaf_closest(MCL_GLOBAL const Triangle* tris, const A
     float4 u, v;
     const float tmax = leaf_tmax(hit->t, hit->tri);
     float4 t = ray_triangle4(tris, b, last, org, dir, tmax, &u, &v);
-    if (alpha) t = alpha_filter4(alpha, tris, b, last, t, u, v, tmax);
+    if (alpha) t = alpha_filter4(alpha, tris, b, last, t, u, v, tmax, org, dir);
     // The nearest lane (the lowest on an equal t); then, only when it is a hit at or before the
     // hit so far (rare), hit_before's rule among the lanes at exactly that t (a repeated last
     // triangle ties with itself) and against the hit so far.
@@ -410,7 +411,7 @@ MCL_ALWAYS_INLINE int wide_any_step(MCL_GLOBAL const WideNode* nodes, MCL_GLOBAL
     for (uint b = first; b <= last; b += 4u) {
       float4 u, v;
       float4 t = ray_triangle4(tris, b, last, s->org, s->dir, tmax, &u, &v);
-      if (alpha) t = alpha_filter4(alpha, tris, b, last, t, u, v, tmax);
+      if (alpha) t = alpha_filter4(alpha, tris, b, last, t, u, v, tmax, s->org, s->dir);
       if (t.x < tmax || t.y < tmax || t.z < tmax || t.w < tmax) {
         s->blocked = 1;
         return 0;

@@ -87,7 +87,9 @@ typedef struct MCL_ALIGN16 {
   float4 albedo;    // rgb: Kd; w: albedo texture index (as_float bits), MCL_NO_TEXTURE for none
   float4 emission;  // rgb: Ke; w: 1 when both faces emit ("two_sided_emission"), else 0 (front only)
   float4 specular;  // rgb: Ks (glossy lobe); w: GGX roughness alpha (unused while Ks is 0)
-  float4 alpha;     // x: alpha texture index (as_float bits, MCL_NO_TEXTURE: opaque); y: cutoff;
+  float4 alpha;     // x: alpha texture index (as_float bits, MCL_NO_TEXTURE: opaque); y: sign bit
+                    // clear: a cut-out's cutoff (>= 0); set: stochastic transparency (glTF BLEND),
+                    // -y the alpha factor (surface_texture.h alpha_hit_exists);
                     // z: channel of that texture holding alpha (as_float bits); w: the material kind
                     // MCL_MATERIAL_<kind> (as_float bits; shared/material_kinds.h; 0: diffuse)
   float4 params0;   // the kind's own parameters (bsdf_<kind>.h <kind>_from_material; 0 for diffuse)
@@ -158,7 +160,8 @@ typedef struct MCL_ALIGN16 {
   uint pointFirst, pointCount, spotFirst, spotCount;  // each kind's range of light records
   uint directionalFirst, directionalCount, sunFirst, sunCount;
   uint sampler;              // MCL_SAMPLER_INDEPENDENT | MCL_SAMPLER_SOBOL
-  uint emissionTextured;     // 1 when a material's emission is textured (the packet stages then run scalar)
+  uint emissionTextured;     // 1 when a material's emission is textured, or an emitter is stochastically
+                             // transparent (the packet stages then run the emitters' Le scalar)
   uint sobolSplits;          // sobol: independently scrambled sub-sequences, sample s in s % this (>= 1)
   uint sampleBlockShift;     // wave item order: runs of 2^this consecutive items are one pixel's samples
                              // (kernels/stages/stage_common.h; set per round of samples)
@@ -171,6 +174,7 @@ typedef struct MCL_ALIGN16 {
   // drawn from it independently, the filters being products of one function of x and one of y.
   float filterCdf[MCL_FILTER_BINS];
   uint countLanes;  // 1 (--profile): the shading stages count their hits shaded in lanes and one by one
+  uint alphaTested;  // 1: some triangle carries MCL_ATTR_ALPHA (the traversals then run the alpha test)
 } FrameParams;
 
 // One emitting triangle. It is picked with probability area * luminance(Le) / emitterPower;
@@ -232,8 +236,9 @@ typedef struct MCL_ALIGN16 {
 } TextureLevel;
 
 // Attribute flag (Triangle::e2.w, SceneTriangle::attributes kAlphaTested): the triangle's material
-// has an alpha texture, so a hit on it exists only where the alpha test passes
-// (surface_texture.h alpha_hit_exists). Opaque triangles never pay for the test.
+// has an alpha texture, or is stochastically transparent with an alpha factor below 1, so a hit on
+// it exists only where the alpha test passes (surface_texture.h alpha_hit_exists). Opaque
+// triangles never pay for the test.
 #define MCL_ATTR_ALPHA 4u
 // Attribute flag (SceneTriangle::attributes kHasColor): the triangle has vertex colours (glTF
 // COLOR_0), vertexColors[3 tri + k].xyz at corner k, multiplying the material's base colour

@@ -5,8 +5,9 @@
 // tree, FrameParams::packetAllRays) takes the packet traversal (shared/traverse_packet.h); the
 // others (incoherent bounce rays, a partial last packet, scenes with instances, the binary BVH
 // layout, W = 1) go ray by ray through the single-ray traversal, two rays interleaved where it
-// can. Hits on cut-outs whose alpha is below their cutoff do not exist (surface_texture.h; per
-// lane inside the packet traversal); scenes without textures skip the test. A ray with a NaN or
+// can. Hits on cut-outs whose alpha is below their cutoff, and on stochastically transparent
+// surfaces whose coin says so, do not exist (surface_texture.h alpha_hit_exists; per lane inside
+// the packet traversal); scenes without alpha-tested triangles skip the test. A ray with a NaN or
 // infinite origin or direction is a miss and counted in *nanRays. With instances
 // (frame->instanceCount > 0) the two-level BVH is traversed and each hit's instance written to
 // hitInstances.

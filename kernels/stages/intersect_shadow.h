@@ -1,7 +1,8 @@
 // intersect_shadow: reads the occlusion queries first .. first + W - 1 below *queueCount, one per
 // lane (W = MCL_LANES: 1 on the host backend and GPUs), and the BVH; writes the contribution of
 // each unblocked query to its shadow slot (any hit, up to the query's tmax; cut-outs block only
-// where their alpha passes the cutoff, surface_texture.h). A packet coherent enough to share one
+// where their alpha passes the cutoff, stochastically transparent surfaces only where their coin
+// says the hit exists: the test camera and bounce rays take, surface_texture.h). A packet coherent enough to share one
 // traversal (all finite and in one octant: one pixel's samples towards a light; or any rays in a
 // small tree, FrameParams::packetAllRays) takes the packet any-hit traversal
 // (shared/traverse_packet_any.h, the alpha test per lane); the others (a partial last packet,

@@ -19,12 +19,12 @@
 #include "../shared/surface.h"
 #include "../shared/surface_texture.h"
 
-// The cut-out test of a traversal stage (its arguments hold MCL_ALPHA_ARGS), built in `as`: &as, or
-// null when the frame has no textures (no triangle can be cut out).
+// The alpha test of a traversal stage (its arguments hold MCL_ALPHA_ARGS), built in `as`: &as, or
+// null when no triangle is alpha-tested (FrameParams::alphaTested).
 #define MCL_STAGE_ALPHA(a, as)                                                                          \
   ((as) = make_alpha_scene((a)->materials, (a)->shading,                                                \
                            make_texture_tables((a)->textures, (a)->textureLevels, (a)->texels)),        \
-   (a)->frame->textureCount > 0 ? &(as) : (const AlphaScene*)0)
+   (a)->frame->alphaTested ? &(as) : (const AlphaScene*)0)
 
 // The instance of hit i of a hit buffer (its hitInstances buffer), MCL_NO_INSTANCE for a world-space
 // triangle; without a two-level BVH the buffer is a 1-entry dummy and never read.
