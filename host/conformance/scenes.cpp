@@ -3,6 +3,7 @@
 // last-bit differences between devices cannot flip a visibility decision.
 #include "conformance/scenes.h"
 
+#include "conformance/layered_scene.h"
 #include "scene/builtin_scenes.h"
 #include "scene/mesh_entry.h"
 #include "texture/bump_gradient.h"
@@ -408,23 +409,7 @@ std::vector<ConformanceCase> conformanceSet(const ConformanceSetOptions& o, std:
   finishScene(rough);
   cases.push_back({"rough-glass/direct-mis", withDirect(rough, DirectSampling::Mis, 2), nullptr, false});
   cases.push_back({"rough-glass/path", withPath(rough, 1), nullptr, false});
-  // The layered kinds (random walks under masks in the packet stages): a coated gold sphere and a
-  // coated diffuse occluder, under the environment.
-  Scene coated = rough;
-  coated.path = "<coated scene>";
-  MaterialDesc& gold = coated.materials.back();
-  gold.kind = MCL_MATERIAL_coated_conductor;
-  gold.eta = {0.18f, 0.42f, 1.37f};
-  gold.k = {3.42f, 2.35f, 1.77f};
-  gold.baseAlpha = 0.2f;
-  gold.kindAlpha = 0.05f;
-  gold.thickness = 0.05f;
-  gold.layerSamples = 2;
-  MaterialDesc& layered = coated.materials[2];
-  layered = MaterialDesc{"coated diffuse", glm::vec3(0.2f, 0.5f, 0.3f), glm::vec3(0.0f)};
-  layered.kind = MCL_MATERIAL_coated_diffuse;
-  layered.kindAlpha = 0.1f;
-  finishScene(coated);
+  const Scene coated = layeredScene(rough);
   cases.push_back({"coated/direct-mis", withDirect(coated, DirectSampling::Mis, 2), nullptr, false});
   cases.push_back({"coated/path", withPath(coated, 1), nullptr, false});
   cases.push_back(lampAndBumpsCase(withDirect(light, DirectSampling::Mis, 2), "emissive-texture/direct-mis", true, false));

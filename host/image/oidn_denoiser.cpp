@@ -6,6 +6,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <initializer_list>
+#include <utility>
 
 #include "image/oidn_api.h"
 #include "util/errors.h"
@@ -138,23 +140,37 @@ std::vector<float> oidnDenoise(int width, int height, const std::vector<float>& 
     if (error.empty() && a.getDeviceError(dev, &msg) != oidn::kErrorNone)
       error = msg && *msg ? msg : "unknown error";
   };
-  oidn::Filter f = a.newFilter(dev, "RT");
-  check();
-  if (f) {
-    a.setSharedFilterImage(f, "color", in.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
-    a.setSharedFilterImage(f, "albedo", alb.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
-    a.setSharedFilterImage(f, "normal", nrm.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
-    a.setSharedFilterImage(f, "output", out.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
-    a.setFilterBool(f, "hdr", true);  // radiance, not display values
-    a.setFilterInt(f, "quality", quality);
+  // One RT filter over the shared images `images` (name, buffer) into `output`.
+  auto run = [&](std::initializer_list<std::pair<const char*, float*>> images, float* output, bool hdr, bool cleanAux,
+                 int q) {
+    if (!error.empty()) return;
+    oidn::Filter f = a.newFilter(dev, "RT");
+    check();
+    if (!f) {
+      if (error.empty()) error = "no RT filter";
+      return;
+    }
+    for (const auto& [name, data] : images) a.setSharedFilterImage(f, name, data, oidn::kFormatFloat3, w, h, 0, 0, 0);
+    a.setSharedFilterImage(f, "output", output, oidn::kFormatFloat3, w, h, 0, 0, 0);
+    if (hdr) a.setFilterBool(f, "hdr", true);  // radiance, not display values
+    if (cleanAux) a.setFilterBool(f, "cleanAux", true);
+    a.setFilterInt(f, "quality", q);
     a.commitFilter(f);
     check();
     if (error.empty()) a.executeFilter(f);
     check();
     a.releaseFilter(f);
-  } else if (error.empty()) {
-    error = "no RT filter";
-  }
+  };
+  // The guides are first-hit averages over each pixel's own samples, as noisy as the colour at low
+  // sample counts: each is denoised on its own first (OIDN's prefiltering), and the colour's filter
+  // is then told they are clean (cleanAux), so it keeps the detail they show instead of hedging.
+  std::vector<float> albClean(alb.size()), nrmClean(nrm.size());
+  // The guides' own filters at OIDN's fast quality: on the Cornell box (128², 16 spp, 5 seeds) the
+  // result's relMSE is the same as with high-quality prefilters, at a third of their time.
+  const int auxQuality = oidn::kQualityFast;
+  run({{"albedo", alb.data()}}, albClean.data(), false, false, auxQuality);
+  run({{"normal", nrm.data()}}, nrmClean.data(), false, false, auxQuality);
+  run({{"color", in.data()}, {"albedo", albClean.data()}, {"normal", nrmClean.data()}}, out.data(), true, true, quality);
   if (!error.empty()) throw RuntimeError("Open Image Denoise: " + error);
   return out;
 }

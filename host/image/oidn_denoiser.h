@@ -16,8 +16,9 @@ std::string oidnLibraryPath();
 std::string oidnProblem();
 
 // Denoises `color` (width * height RGB floats, linear HDR radiance, row 0 at the top) with the
-// guides albedo (RGB in [0, 1]) and normal (XYZ in [-1, 1]), both as noisy as the color (no
-// cleanAux), in the filter's quality mode `quality` (oidn::kQuality* of image/oidn_api.h).
+// guides albedo (RGB in [0, 1]) and normal (XYZ in [-1, 1]), both as noisy as the color: each is
+// denoised first (OIDN's prefiltering, at its fast quality), then the color with the clean guides
+// (cleanAux) in the filter's quality mode `quality` (oidn::kQuality* of image/oidn_api.h).
 // Returns the denoised RGB. Throws RuntimeError when the library is missing or reports an error.
 std::vector<float> oidnDenoise(int width, int height, const std::vector<float>& color,
                                const std::vector<float>& albedo, const std::vector<float>& normal, int quality);
