@@ -3,6 +3,7 @@
 // LightSample of a delta light. Reads the light-record table; pure; compiled by the kernels and
 // the host.
 #pragma once
+#include "lanes.h"  // vsel and the float3 operations under the lanes' names
 #include "light_scene.h"
 
 // Index of the first record in [first, first + count) whose cdf (position.w) exceeds u (binary
@@ -19,13 +20,19 @@ MCL_INLINE uint pick_light_record(MCL_GLOBAL const LightRecord* records, uint fi
 
 // A delta light's sample: direction wi, the radiance-like factor le (the contribution is
 // f * le * cos / pdf) and pdf the discrete probability of picking it (no solid angle: nothing
-// else can produce this direction, so it takes no MIS weight). ok = 0 gives no sample.
-MCL_INLINE LightSample delta_light_sample(float3 wi, float3 le, float pick, float tmax, int ok) {
-  LightSample s = no_light_sample();
-  s.wi = ok ? wi : s.wi;
-  s.le = ok ? le : s.le;
-  s.pdf = ok ? pick : 0.0f;
-  s.tmax = tmax;
-  s.delta = 1;
-  return s;
-}
+// else can produce this direction, so it takes no MIS weight). ok unset gives no sample (the
+// fields of no_light_sample). Written once for floats and lanes (P, F, F3, M, V, LS: the prefix,
+// float, float3, int mask, f3, LightSample here; v_, vfloat, vfloat3, vmask, v3, VLightSample in
+// stages/light_area_lanes.h), as the record kinds' samples at a picked record (light_point.h,
+// light_spot.h, light_directional.h, light_sun.h) are.
+#define MCL_DEFINE_DELTA_LIGHT_SAMPLE(P, F, F3, M, V, LS)                                   \
+  MCL_INLINE LS P##delta_light_sample(F3 wi, F3 le, F pick, F tmax, M ok) {                \
+    LS s;                                                                                  \
+    s.wi = V##_select(ok, wi, V##_make((F)(0.0f), (F)(0.0f), (F)(1.0f)));                  \
+    s.le = V##_select(ok, le, V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                  \
+    s.pdf = vsel(ok, pick, (F)(0.0f));                                                     \
+    s.tmax = tmax;                                                                         \
+    s.delta = ok == ok; /* every lane: a delta light */                                    \
+    return s;                                                                              \
+  }
+MCL_DEFINE_DELTA_LIGHT_SAMPLE(, float, float3, int, f3, LightSample)

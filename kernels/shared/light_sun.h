@@ -12,20 +12,31 @@
 
 MCL_INLINE float sun_light_probability(MCL_CONSTANT const FrameParams* f) { return f->shareSun; }
 
-// A sun by power (u0), a direction uniform in its cone (u1, u2): cos theta = 1 - u1 (1 - cos alpha),
-// sin theta from the same product (exact for tiny disks, where 1 - cos theta rounds away).
+// The sample of the sun travelling along `direction` with radiance L and cone `cone`, picked with
+// probability `pick`: a direction uniform in its cone (u1, u2): cos theta = 1 - u1 (1 - cos alpha),
+// sin theta from the same product (exact for tiny disks, where 1 - cos theta rounds away); pdf
+// pick / solid angle. Written once for floats and lanes (the parameters of
+// MCL_DEFINE_DELTA_LIGHT_SAMPLE, and the portable sine and cosine's prefix S: the same bits on
+// every device).
+#define MCL_DEFINE_SUN_LIGHT(P, F, F3, F4, M, V, LS, S)                                                   \
+  MCL_INLINE LS P##sun_light_at(F3 direction, F3 radiance, F pick, F4 cone, F u1, F u2) {                 \
+    F3 axis = V##_scale(direction, -1.0f);                                                                \
+    F h = u1 * cone.z; /* 1 - cos theta */                                                                \
+    F cosT = 1.0f - h;                                                                                    \
+    F sinT = sqrt(fmax(h * (2.0f - h), 0.0f));                                                            \
+    F sp, cp;                                                                                             \
+    S##sincos_turns(u2, &sp, &cp);                                                                        \
+    F3 wi = P##to_world(V##_make(sinT * cp, sinT * sp, cosT), axis);                                      \
+    return P##delta_light_sample(wi, radiance, pick / cone.y, (F)(INFINITY), (F)(0.0f) == (F)(0.0f));     \
+  }
+MCL_DEFINE_SUN_LIGHT(, float, float3, float4, int, f3, LightSample, mcl_)
+
+// A sun by power (u0): sun_light_at the picked record, the direction from u1, u2.
 MCL_INLINE LightSample sun_light_sample(MCL_CONSTANT const FrameParams* f, LightScene ls, float3 origin, float u0,
                                         float u1, float u2) {
   (void)origin;
   MCL_GLOBAL const LightRecord* r = &ls.records[pick_light_record(ls.records, f->sunFirst, f->sunCount, u0)];
-  float3 axis = xyz(r->direction) * -1.0f;
-  float h = u1 * r->cone.z;  // 1 - cos theta
-  float cosT = 1.0f - h;
-  float sinT = sqrt(fmax(h * (2.0f - h), 0.0f));
-  float sp, cp;
-  mcl_sincos_turns(u2, &sp, &cp);  // the portable sine and cosine (same bits on every device)
-  float3 wi = to_world(make_float3(sinT * cp, sinT * sp, cosT), axis);
-  return delta_light_sample(wi, xyz(r->intensity), r->direction.w / r->cone.y, INFINITY, 1);
+  return sun_light_at(xyz(r->direction), xyz(r->intensity), r->direction.w, r->cone, u1, u2);
 }
 
 // Not reachable by BSDF rays (see above).

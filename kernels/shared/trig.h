@@ -31,13 +31,16 @@ MCL_DEFINE_SINCOS(mcl_, float, int, (int))
 // acos(x) for x in [-1, 1] from a polynomial and one sqrt (Abramowitz and Stegun 4.4.46, error
 // below 2e-8 rad on [0, 1]; acos(-x) = pi - acos(x)), so every device gets the same bits (the
 // spot light's falloff). Branch-free: selects only.
-MCL_INLINE float mcl_acos(float x) {
-  float a = fmin(fabs(x), 1.0f);
-  float p = 1.5707963050f +
-            a * (-0.2145988016f +
-                 a * (0.0889789874f +
-                      a * (-0.0501743046f +
-                           a * (0.0308918810f + a * (-0.0170881256f + a * (0.0066700901f + a * -0.0012624911f))))));
-  float r = sqrt(1.0f - a) * p;
-  return x < 0.0f ? 3.14159265358979323846f - r : r;
-}
+// Written once for floats and lanes (P, F: mcl_, float here; v_, vfloat in stages/stage_lanes.h).
+#define MCL_DEFINE_ACOS(P, F)                                                                                  \
+  MCL_INLINE F P##acos(F x) {                                                                                  \
+    F a = fmin(fabs(x), 1.0f);                                                                                 \
+    F p = 1.5707963050f +                                                                                      \
+          a * (-0.2145988016f +                                                                                \
+               a * (0.0889789874f +                                                                            \
+                    a * (-0.0501743046f +                                                                      \
+                         a * (0.0308918810f + a * (-0.0170881256f + a * (0.0066700901f + a * -0.0012624911f)))))); \
+    F r = sqrt(1.0f - a) * p;                                                                                  \
+    return vsel(x < 0.0f, 3.14159265358979323846f - r, r);                                                     \
+  }
+MCL_DEFINE_ACOS(mcl_, float)

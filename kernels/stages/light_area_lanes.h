@@ -1,7 +1,8 @@
 // light_area_lanes.h: the area light kind (shared/light_area.h) per lane, for the packet stages,
-// and light sampling over every kind (the area kind in lanes, the others through the scalar
-// sample_direct_light lane by lane): reads the emitter table, the
-// emitting triangles, their normals and materials (and the other lights' tables); writes nothing.
+// and light sampling over every kind (the area kind and the record kinds, point, spot,
+// directional and sun, in lanes; the environment and textured emission through the scalar
+// sample_direct_light lane by lane): reads the emitter table, the emitting triangles, their
+// normals and materials, the light records (and the environment's tables); writes nothing.
 // Each function does the scalar code's float operations in the same order (the same bits per lane).
 #pragma once
 #include "direct_light.h"
@@ -114,13 +115,75 @@ MCL_INLINE VEmitterSample v_sample_emitter(MCL_CONSTANT const FrameParams* f, MC
 
 // sample_direct_light (stages/direct_light.h) for the lanes set in m, the kind picked per lane as
 // the scalar function picks it (the last kind in table order with a positive share whose share
-// starts at or below u.x): the area kind's lanes in lanes (v_sample_emitter), the other kinds'
-// lane by lane through the scalar function. The other lanes get no sample (pdf 0).
+// starts at or below u.x): the area kind's lanes (v_sample_emitter) and the record kinds' in
+// lanes, the environment's and textured emission's lane by lane through the scalar function. The
+// other lanes get no sample (pdf 0).
 typedef struct {
   vfloat3 wi, le;
   vfloat pdf, tmax;
   vmask delta;
 } VLightSample;
+
+MCL_DEFINE_ACOS(v_, vfloat)
+MCL_DEFINE_DELTA_LIGHT_SAMPLE(v_, vfloat, vfloat3, vmask, v3, VLightSample)
+MCL_DEFINE_POINT_LIGHT(v_, vfloat, vfloat3, vmask, v3, VLightSample)
+MCL_DEFINE_SPOT_LIGHT(v_, vfloat, vfloat3, vfloat4, vmask, v3, VLightSample, v_)
+MCL_DEFINE_DIRECTIONAL_LIGHT(v_, vfloat, vfloat3, vmask, v3, VLightSample)
+MCL_DEFINE_SUN_LIGHT(v_, vfloat, vfloat3, vfloat4, vmask, v3, VLightSample, v_)
+
+// pick_light_record per lane for the lanes set in m (the others end at `first`): the same
+// halving steps, each lane's record read by a gather.
+MCL_INLINE vuint v_pick_light_record(MCL_GLOBAL const LightRecord* records, uint first, uint count, vfloat u, vmask m) {
+  MCL_GLOBAL const float* rf = (MCL_GLOBAL const float*)records;
+  const uint stride = (uint)(sizeof(LightRecord) / sizeof(float));
+  vuint lo = v_u(first), hi = vsel(m, v_u(first + count - 1u), v_u(first));
+  for (;;) {
+    vmask on = lo < hi;
+    if (!v_any(on)) break;
+    vuint mid = (lo + hi) / 2u;
+    vfloat cdf = v_gather_float(rf + 3, vsel(on, mid, v_u(first)), stride);  // position.w
+    vmask right = cdf > u;
+    hi = vsel(on & right, mid, hi);
+    lo = vsel(on & v_not(right), mid + 1u, lo);
+  }
+  return lo;
+}
+
+// The record kinds' samples (point, spot, directional, sun) in the lanes set in m whose kind is
+// one of them, kind and share as v_sample_direct_light picked them, u0 the rescaled u.x: taken
+// into r with the kind's share times its pdf.
+MCL_INLINE void v_sample_record_lights(MCL_CONSTANT const FrameParams* f, LightScene lights, vmask m, vuint kind,
+                                       vfloat share, vfloat u0, vfloat3 origin, vfloat4 u, VLightSample* r) {
+  MCL_GLOBAL const float* rf = (MCL_GLOBAL const float*)lights.records;
+  const uint stride = (uint)(sizeof(LightRecord) / sizeof(float));
+#define MCL_V_RECORD_KIND(k, FIRST, COUNT, SAMPLE)                                       \
+  {                                                                                      \
+    vmask on = m & (kind == (uint)MCL_LIGHT_##k);                                        \
+    if (v_any(on)) {                                                                     \
+      vuint at = v_pick_light_record(lights.records, f->FIRST, f->COUNT, u0, on);        \
+      vfloat4 p, d, i, c;                                                                \
+      v_gather4(rf, at, stride, &p.x, &p.y, &p.z, &p.w);                                 \
+      v_gather4(rf + 4, at, stride, &d.x, &d.y, &d.z, &d.w);                             \
+      v_gather4(rf + 8, at, stride, &i.x, &i.y, &i.z, &i.w);                             \
+      v_gather4(rf + 12, at, stride, &c.x, &c.y, &c.z, &c.w);                            \
+      vfloat3 pos = v3_make(p.x, p.y, p.z), dir = v3_make(d.x, d.y, d.z);                \
+      vfloat3 inten = v3_make(i.x, i.y, i.z);                                            \
+      (void)pos;                                                                         \
+      (void)c;                                                                           \
+      VLightSample s = SAMPLE;                                                           \
+      r->wi = v3_select(on, s.wi, r->wi);                                                \
+      r->le = v3_select(on, s.le, r->le);                                                \
+      r->pdf = vsel(on, share * s.pdf, r->pdf);                                          \
+      r->tmax = vsel(on, s.tmax, r->tmax);                                               \
+      r->delta = r->delta | (on & s.delta);                                              \
+    }                                                                                    \
+  }
+  MCL_V_RECORD_KIND(point, pointFirst, pointCount, v_point_light_at(pos, inten, d.w, origin))
+  MCL_V_RECORD_KIND(spot, spotFirst, spotCount, v_spot_light_at(pos, dir, inten, d.w, c, origin))
+  MCL_V_RECORD_KIND(directional, directionalFirst, directionalCount, v_directional_light_at(dir, inten, d.w))
+  MCL_V_RECORD_KIND(sun, sunFirst, sunCount, v_sun_light_at(dir, inten, d.w, c, u.y, u.z))
+#undef MCL_V_RECORD_KIND
+}
 
 MCL_INLINE VLightSample v_sample_direct_light(MCL_CONSTANT const FrameParams* f, LightScene lights, vmask m,
                                               vfloat3 origin, vfloat4 u) {
@@ -157,7 +220,10 @@ MCL_INLINE VLightSample v_sample_direct_light(MCL_CONSTANT const FrameParams* f,
     r.pdf = vsel(ok, share * es.pdf, r.pdf);
     r.tmax = vsel(ok, es.dist * (1.0f - 1e-4f), r.tmax);
   }
-  vmask rest = m & v_not(area);
+  vmask records = m & ((kind == (uint)MCL_LIGHT_point) | (kind == (uint)MCL_LIGHT_spot) |
+                        (kind == (uint)MCL_LIGHT_directional) | (kind == (uint)MCL_LIGHT_sun));
+  if (v_any(records)) v_sample_record_lights(f, lights, records, kind, share, (u.x - start) / share, origin, u, &r);
+  vmask rest = m & v_not(area | records);
   if (!v_any(rest)) return r;
   float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN;
   Float4Lanes ul = float4_lanes(u);

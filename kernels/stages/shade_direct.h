@@ -12,9 +12,10 @@
 // and GPUs; lanes past the wave masked): misses (the background, or the environment through
 // light_eval per lane) and hits on every material kind (lane_bsdf.h), textured or not, flat or
 // smooth, in lanes (stage_lanes.h: the frame, albedo, metallic-roughness texture and glTF
-// transmission's kind pick, normal and bump maps, instances: lane_frame in lanes): Le seen, the light samples (the light kind picked per lane, emitter triangles in lanes and
-// the other kinds through sample_direct_light per lane, light_area_lanes.h; one atomic per packet
-// per light sample; the Lambertian lobe's Kd / pi spelled out, the other kinds' f cos, a light
+// transmission's kind pick, normal and bump maps, instances: lane_frame in lanes): Le seen, the
+// light samples (the light kind picked per lane, emitter triangles and point, spot, directional
+// and sun lights in lanes, the environment through sample_direct_light per lane,
+// light_area_lanes.h; one atomic per packet per light sample; the Lambertian lobe's Kd / pi spelled out, the other kinds' f cos, a light
 // below the surface through a transmitting lobe with its shadow ray from the far side) and the
 // BSDF ray (the cosine lobe, folded where smooth; the other kinds' sample). Textured emission: Le
 // and the emitter samples lane by lane (light_eval, sample_direct_light).

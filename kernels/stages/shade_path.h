@@ -19,8 +19,9 @@
 // hit in lanes (textured emission: light_eval and light_pdf per lane). Hits on every material
 // kind (lane_bsdf.h), textured or not, flat or smooth, in lanes (the frame, the metallic-roughness
 // texture, glTF transmission's kind pick, normal and bump maps, instances: lane_frame in
-// stage_lanes.h): the next-event light samples (the light kind picked per lane:
-// emitter triangles in lanes, the others through sample_direct_light per lane, light_area_lanes.h;
+// stage_lanes.h): the next-event light samples (the light kind picked per lane: emitter
+// triangles and point, spot, directional and sun lights in lanes, the environment through
+// sample_direct_light per lane, light_area_lanes.h;
 // one atomic per packet per light sample; a light below the geometric surface through a
 // transmitting lobe, its shadow ray from the far side) and the BSDF continuation with Russian
 // roulette (one atomic per packet).
