@@ -14,6 +14,7 @@
 #include "cli_runner.h"
 #include "film_stats.h"
 #include "kernels/shared/transmission_mix.h"
+#include "lanes_vs_host.h"
 #include "mesh_files.h"
 #include "render/wavefront.h"
 #include "test_images.h"
@@ -279,6 +280,35 @@ TEST_CASE("glTF transmission: the glass's roughness comes from the metallicRough
   const Film textured = renderFile(dir.file("textured.json"));
   CHECK(sameFilm(textured, renderFile(dir.file("smooth.json"))));
   CHECK_FALSE(sameFilm(textured, renderFile(dir.file("rough.json"))));
+}
+
+// The packet stages read the metallic-roughness texture in lanes and make the transmission's
+// per-sample kind pick in lanes (stages/stage_lanes.h lane_frame): byte for byte the host's, for
+// a solid and a thin mixture whose metallic and roughness vary texel by texel, both samplers
+// (sobol picks by the sample's dimension, independent by a hash of the hit).
+TEST_CASE("glTF transmission with a metallicRoughnessTexture: byte for byte the host backend's at W = 1, 4, 8, 16" *
+          doctest::test_suite("cli")) {
+  TempDir dir;
+  writeImage8(dir.file("mr.png"), 8, 8, 3, [](int x, int y, int c) { return c == 0 ? 0 : (37 * x + 91 * y * c) % 256; });
+  for (const bool solid : {true, false}) {
+    nlohmann::json ext = {{"KHR_materials_transmission", {{"transmissionFactor", 0.6}}}};
+    if (solid) ext["KHR_materials_volume"] = {{"thicknessFactor", 0.1}};
+    nlohmann::json g = nlohmann::json::parse(tentGltf(0.5f, 0.8f, ext));
+    g["images"] = {{{"uri", "mr.png"}}};
+    g["textures"] = {{{"source", 0}}};
+    g["materials"][0]["pbrMetallicRoughness"]["metallicRoughnessTexture"] = {{"index", 0}};
+    dir.write("mix.gltf", g.dump());
+    dir.write("mix.json", sceneText("mix.gltf", nullptr, 4));
+    for (const char* integrator : {"direct", "path"})
+      for (const char* sampler : {"sobol", "independent"}) {
+        CAPTURE(solid);
+        CAPTURE(integrator);
+        CAPTURE(sampler);
+        const std::vector<std::string> common = {"render", dir.file("mix.json"), "-q", "--integrator", integrator,
+                                                 "--sampler", sampler, "--overwrite"};
+        checkLanesMatchHost(common, dir, {"1", "4", "8", "16"});
+      }
+  }
 }
 
 TEST_CASE("glTF transmission: bad values are one line naming the key" * doctest::test_suite("cpu")) {
