@@ -51,7 +51,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
   // packet: the Lambertian lobe's, rest: the other kinds') and from the triangle alone (flat).
   LaneHits lh = lane_hits(f, a->tris, a->normals, a->materials, a->hitInstances, first, lanes, hit, tri);
   const vmask kinds = lane_bsdf_kinds(&lh), packet = lh.lamb, rest = kinds & v_not(lh.lamb), flat = lh.flat;
-  lane_tally(f, a->packedLanes, a->aloneLanes, &lh, kinds, hit);
+  lane_tally(f, a->packedLanes, a->aloneLanes, kinds, hit);
   vfloat dx, dy, dz, dw;
   v_load4_stride_n((MCL_GLOBAL const float*)(a->rays + first) + 4, 8, lanes, &dx, &dy, &dz, &dw);
   vfloat3 dir = v3_make(dx, dy, dz);

@@ -74,7 +74,7 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
   // and from the triangle alone (flat).
   LaneHits lh = lane_hits(f, a->tris, a->normals, a->materials, a->hitInstances, first, lanes, hit, tri);
   const vmask kinds = lane_bsdf_kinds(&lh), flat = lh.flat;
-  lane_tally(f, a->packedLanes, a->aloneLanes, &lh, kinds, hit);
+  lane_tally(f, a->packedLanes, a->aloneLanes, kinds, hit);
 
   uint ids[MCL_LANES] MCL_LANE_ALIGN, owned[MCL_LANES] MCL_LANE_ALIGN;
   v_store_lanes(id, ids);

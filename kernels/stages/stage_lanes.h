@@ -384,9 +384,8 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
 // lanes of the kinds the stage shades in lanes, `kinds`) and the rest (a kind without a lane
 // branch: lane_bsdf.h), one atomic each.
 MCL_INLINE void lane_tally(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL volatile uint* packedLanes,
-                           MCL_GLOBAL volatile uint* aloneLanes, const LaneHits* lh, vmask kinds, vmask hit) {
+                           MCL_GLOBAL volatile uint* aloneLanes, vmask kinds, vmask hit) {
   if (!f->countLanes) return;
-  (void)lh;
   vmask packed = kinds & hit;
   uint p = v_count(packed), q = v_count(hit & v_not(packed));
   if (p) MCL_ATOMIC_ADD(packedLanes, p);
