@@ -44,3 +44,27 @@ MCL_DEFINE_SINCOS(mcl_, float, int, (int))
     return vsel(x < 0.0f, 3.14159265358979323846f - r, r);                                                     \
   }
 MCL_DEFINE_ACOS(mcl_, float)
+
+// atan2(y, x) from a polynomial and one division (Abramowitz and Stegun 4.4.49 for atan on [0, 1],
+// error below 2e-8 rad; the octant folded back by selects), so every device gets the same bits
+// (the environment map's longitude). Signed zeros as IEEE's atan2: atan2(+-0, -0) = +-pi, from the
+// sign bits (AS_U: the float's bits). Written once for floats and lanes (P, F, U, AS_U: mcl_,
+// float, uint, as_uint here; v_, vfloat, vuint, v_as_uint in stages/light_area_lanes.h).
+#define MCL_DEFINE_ATAN2(P, F, U, AS_U)                                                                       \
+  MCL_INLINE F P##atan2(F y, F x) {                                                                           \
+    F ay = fabs(y), ax = fabs(x);                                                                             \
+    F hi = fmax(ay, ax), lo = fmin(ay, ax);                                                                   \
+    F a = vsel(hi > 0.0f, lo / hi, (F)(0.0f));                                                                \
+    F a2 = a * a;                                                                                             \
+    F r = a * (1.0f +                                                                                         \
+               a2 * (-0.3333314528f +                                                                         \
+                     a2 * (0.1999355085f +                                                                    \
+                           a2 * (-0.1420889944f +                                                             \
+                                 a2 * (0.1065626393f +                                                        \
+                                       a2 * (-0.0752896400f +                                                 \
+                                             a2 * (0.0429096138f + a2 * (-0.0161657367f + a2 * 0.0028662257f)))))))); \
+    r = vsel(ay > ax, 1.57079632679489661923f - r, r);                                                        \
+    r = vsel((AS_U(x) >> 31) != 0u, 3.14159265358979323846f - r, r);                                          \
+    return vsel((AS_U(y) >> 31) != 0u, -r, r);                                                                \
+  }
+MCL_DEFINE_ATAN2(mcl_, float, uint, as_uint)

@@ -1,6 +1,6 @@
 // light_area_lanes.h: the area light kind (shared/light_area.h) per lane, for the packet stages,
 // and light sampling over every kind (the area kind and the record kinds, point, spot,
-// directional and sun, in lanes; the environment and textured emission through the scalar
+// directional and sun, and the environment, in lanes; textured emission through the scalar
 // sample_direct_light lane by lane): reads the emitter table, the emitting triangles, their
 // normals and materials, the light records (and the environment's tables); writes nothing.
 // Each function does the scalar code's float operations in the same order (the same bits per lane).
@@ -115,8 +115,8 @@ MCL_INLINE VEmitterSample v_sample_emitter(MCL_CONSTANT const FrameParams* f, MC
 
 // sample_direct_light (stages/direct_light.h) for the lanes set in m, the kind picked per lane as
 // the scalar function picks it (the last kind in table order with a positive share whose share
-// starts at or below u.x): the area kind's lanes (v_sample_emitter) and the record kinds' in
-// lanes, the environment's and textured emission's lane by lane through the scalar function. The
+// starts at or below u.x): the area kind's lanes (v_sample_emitter), the record kinds' and the
+// environment's in lanes, textured emission's lane by lane through the scalar function. The
 // other lanes get no sample (pdf 0).
 typedef struct {
   vfloat3 wi, le;
@@ -125,6 +125,18 @@ typedef struct {
 } VLightSample;
 
 MCL_DEFINE_ACOS(v_, vfloat)
+MCL_DEFINE_ATAN2(v_, vfloat, vuint, v_as_uint)
+// The environment's table reads, one element per lane (environment.h's G##load_float*).
+MCL_INLINE vfloat v_load_float(MCL_GLOBAL const float* p, vuint i) { return v_gather_float(p, i, 1u); }
+MCL_INLINE vfloat4 v_load_float4(MCL_GLOBAL const float4* p, vuint i) {
+  vfloat4 t;
+  v_gather4((MCL_GLOBAL const float*)p, i, 4u, &t.x, &t.y, &t.z, &t.w);
+  return t;
+}
+MCL_DEFINE_ENV_SAMPLE_TYPE(VEnvSample, vfloat, vfloat3)
+MCL_DEFINE_ENVIRONMENT(v_, vfloat, vfloat3, vfloat4, vuint, vmask, v3, VEnvSample, v_, v_, v_any, v_cvt_u_f, v_cvt_f_u,
+                       v_as_uint)
+MCL_DEFINE_ENVIRONMENT_LIGHT(v_, vfloat, vfloat3, vmask, VLightSample, VEnvSample, v3)
 MCL_DEFINE_DELTA_LIGHT_SAMPLE(v_, vfloat, vfloat3, vmask, v3, VLightSample)
 MCL_DEFINE_POINT_LIGHT(v_, vfloat, vfloat3, vmask, v3, VLightSample)
 MCL_DEFINE_SPOT_LIGHT(v_, vfloat, vfloat3, vfloat4, vmask, v3, VLightSample, v_)
@@ -223,7 +235,14 @@ MCL_INLINE VLightSample v_sample_direct_light(MCL_CONSTANT const FrameParams* f,
   vmask records = m & ((kind == (uint)MCL_LIGHT_point) | (kind == (uint)MCL_LIGHT_spot) |
                         (kind == (uint)MCL_LIGHT_directional) | (kind == (uint)MCL_LIGHT_sun));
   if (v_any(records)) v_sample_record_lights(f, lights, records, kind, share, (u.x - start) / share, origin, u, &r);
-  vmask rest = m & v_not(area | records);
+  vmask sky = m & (kind == (uint)MCL_LIGHT_environment);
+  if (v_any(sky)) {
+    VLightSample es = v_environment_light_at(f, lights, u.y, u.z);
+    r.wi = v3_select(sky, es.wi, r.wi);
+    r.le = v3_select(sky, es.le, r.le);
+    r.pdf = vsel(sky, share * es.pdf, r.pdf);
+  }
+  vmask rest = m & v_not(area | records | sky);
   if (!v_any(rest)) return r;
   float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN;
   Float4Lanes ul = float4_lanes(u);

@@ -9,13 +9,12 @@
 // Shadow slots per sample: [0, K) light samples, K the BSDF sample (shade_direct_hit); each
 // strategy leaves the slots it does not use at 0.
 // The body takes W consecutive camera hits, one per lane (W = MCL_LANES: 1 on the host backend
-// and GPUs; lanes past the wave masked): misses (the background, or the environment through
-// light_eval per lane) and hits on every material kind (lane_bsdf.h), textured or not, flat or
+// and GPUs; lanes past the wave masked): misses (the background, or the environment in lanes)
+// and hits on every material kind (lane_bsdf.h), textured or not, flat or
 // smooth, in lanes (stage_lanes.h: the frame, albedo, metallic-roughness texture and glTF
 // transmission's kind pick, normal and bump maps, instances: lane_frame in lanes): Le seen, the
-// light samples (the light kind picked per lane, emitter triangles and point, spot, directional
-// and sun lights in lanes, the environment through sample_direct_light per lane,
-// light_area_lanes.h; one atomic per packet per light sample; the Lambertian lobe's Kd / pi spelled out, the other kinds' f cos, a light
+// light samples (the light kind picked per lane, emitter triangles, point, spot, directional
+// and sun lights and the environment in lanes, light_area_lanes.h; one atomic per packet per light sample; the Lambertian lobe's Kd / pi spelled out, the other kinds' f cos, a light
 // below the surface through a transmitting lobe with its shadow ray from the far side) and the
 // BSDF ray (the cosine lobe, folded where smooth; the other kinds' sample). Textured emission: Le
 // and the emitter samples lane by lane (light_eval, sample_direct_light).
@@ -65,18 +64,8 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
                                        make_texture_tables(a->textures, a->textureLevels, a->texels));
   vfloat3 miss = v3_make(v_f(bg.x), v_f(bg.y), v_f(bg.z));
   vfloat missW = v_f(bg.w);
-  if (env) {  // the environment seen, lane by lane (light_eval)
-    float mx[MCL_LANES] MCL_LANE_ALIGN, my[MCL_LANES] MCL_LANE_ALIGN, mz[MCL_LANES] MCL_LANE_ALIGN;
-    uint gone[MCL_LANES] MCL_LANE_ALIGN;
-    v_store_lanes(v_mask01(own & v_not(hit)), gone);
-    for (uint j = 0; j < MCL_LANES; ++j) {
-      float3 m = make_float3(0.0f, 0.0f, 0.0f);
-      if (gone[j]) m = light_eval(f, lights, light_hit(a->hits[first + j], xyz(a->rays[first + j].dir)));
-      mx[j] = m.x;
-      my[j] = m.y;
-      mz[j] = m.z;
-    }
-    miss = v3_load_lanes(mx, my, mz);
+  if (env) {  // the environment seen (environment_light_eval_of)
+    if (v_any(own & v_not(hit))) miss = v_environment_light_eval_of(f, lights, dir);
     missW = v_f(0.0f);
   }
   if (f->emissionTextured) le = lane_emission(f, lights, a->hits, a->rays, first, hit, 0);

@@ -2,7 +2,7 @@
 // hit hits[k], id pathIds[k], the identity at bounce 0). Reads and writes the path's state by id:
 // radiance[id] (accumulated L) and throughput[id] (rgb: the path weight; w: solid-angle pdf of the
 // BSDF sample that made the ray, 0 for camera rays and after a delta lobe: no MIS). Adds emission seen (MIS-weighted against
-// light sampling after a BSDF bounce) or the miss radiance (path_miss), pushes lightSamples
+// light sampling after a BSDF bounce) or the miss radiance, pushes lightSamples
 // next-event queries onto the shadow queue (slots id * shadowSlots + k, contributions MIS
 // weighted but for delta lights; lights: emitter triangles, the environment and the light records,
 // stages/direct_light.h), samples the
@@ -15,13 +15,15 @@
 // owns dimension groups MCL_DIM_PATH + b * MCL_DIM_PATH_STRIDE + j (rng.h).
 // The body takes W consecutive queue entries, one per lane (W = MCL_LANES: 1 on the host backend
 // and GPUs; lanes past the queue masked; per-path state gathered and scattered by id). Misses: the
-// background, or path_miss per lane. Emission seen (MIS weighted after a BSDF bounce) for every
+// background at bounce 0 without an environment, else the environment in lanes (camera rays see
+// it unweighted; after a BSDF bounce it is MIS weighted against environment sampling with the BSDF
+// sample's pdf). Emission seen (MIS weighted after a BSDF bounce) for every
 // hit in lanes (textured emission: light_eval and light_pdf per lane). Hits on every material
 // kind (lane_bsdf.h), textured or not, flat or smooth, in lanes (the frame, the metallic-roughness
 // texture, glTF transmission's kind pick, normal and bump maps, instances: lane_frame in
 // stage_lanes.h): the next-event light samples (the light kind picked per lane: emitter
-// triangles and point, spot, directional and sun lights in lanes, the environment through
-// sample_direct_light per lane, light_area_lanes.h;
+// triangles, point, spot, directional and sun lights and the environment in lanes,
+// light_area_lanes.h;
 // one atomic per packet per light sample; a light below the geometric surface through a
 // transmitting lobe, its shadow ray from the far side) and the BSDF continuation with Russian
 // roulette (one atomic per packet).
@@ -34,18 +36,6 @@
 #include "lane_bsdf.h"
 #include "light_area_lanes.h"
 #include "direct_light.h"
-
-// Radiance a path ray escaping the scene along dir brings back, before the path weight: the
-// environment (camera rays see it unweighted; after a BSDF bounce it is MIS weighted against
-// environment sampling with the BSDF sample's pdf lastPdf), else the background for camera rays
-// and nothing afterwards.
-MCL_INLINE float3 path_miss(MCL_CONSTANT const FrameParams* f, LightScene lights, LightHit miss, uint bounce,
-                            float lastPdf) {
-  if (!env_present(f)) return bounce == 0 ? xyz(f->background) : make_float3(0.0f, 0.0f, 0.0f);
-  float3 le = light_eval(f, lights, miss);
-  if (bounce == 0 || !(lastPdf > 0.0f)) return le;
-  return le * power_heuristic(1.0f, lastPdf, (float)f->lightSamples, light_pdf(f, lights, miss));
-}
 
 MCL_INLINE uint path_dim(uint bounce, uint j) { return MCL_DIM_PATH + bounce * MCL_DIM_PATH_STRIDE + j; }
 
@@ -96,25 +86,20 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
   vfloat3 n = lh.n;
   const float nLight = (float)f->lightSamples;
 
-  // Misses: path_miss; without an environment the background at bounce 0, else nothing.
+  // Misses: without an environment the background at bounce 0, else nothing.
   vfloat3 miss;
   if (!env_present(f)) {
     float4 bg = bounce == 0 ? f->background : make_float4(0.0f, 0.0f, 0.0f, 0.0f);
     miss = v3_make(v_f(bg.x), v_f(bg.y), v_f(bg.z));
-  } else {
-    float mx[MCL_LANES] MCL_LANE_ALIGN, my[MCL_LANES] MCL_LANE_ALIGN, mz[MCL_LANES] MCL_LANE_ALIGN;
-    float lp[MCL_LANES] MCL_LANE_ALIGN;
-    uint gone[MCL_LANES] MCL_LANE_ALIGN;
-    v_store_lanes(lastPdf, lp);
-    v_store_lanes(v_mask01(own & v_not(hit)), gone);
-    for (uint j = 0; j < MCL_LANES; ++j) {
-      float3 m = make_float3(0.0f, 0.0f, 0.0f);
-      if (gone[j]) m = path_miss(f, lights, light_hit(a->hits[first + j], xyz(a->rays[first + j].dir)), bounce, lp[j]);
-      mx[j] = m.x;
-      my[j] = m.y;
-      mz[j] = m.z;
+  } else {  // the environment (environment_light_eval_of), MIS weighted after a BSDF bounce
+    miss = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f));
+    if (v_any(own & v_not(hit))) {
+      miss = v_environment_light_eval_of(f, lights, dir);
+      if (bounce > 0) {
+        vfloat w = v_power_heuristic(1.0f * lastPdf, nLight * v_environment_light_pdf_of(f, lights, dir));
+        miss = v3_select(lastPdf > 0.0f, v3_scale(miss, w), miss);
+      }
     }
-    miss = v3_load_lanes(mx, my, mz);
   }
   vfloat3 Lmiss = v3_add(L, v3_mul(beta, miss));
   // Hits: Le seen (area_light_eval: emitted_toward), MIS weighted against light sampling after a
