@@ -146,4 +146,26 @@ TEST_CASE("mcl_sincos_turns: sine and cosine of 2 pi t within 1e-7 of the librar
   CHECK(worst < 2e-7);
 }
 
+TEST_CASE("mcl_atan2 and mcl_acos: within 5e-7 rad (2 float ulps at pi) of the library's, signed zeros as IEEE's atan2" * doctest::test_suite("cpu")) {
+  double worstAtan = 0.0, worstAcos = 0.0;
+  for (int i = -300; i <= 300; ++i)
+    for (int j = -300; j <= 300; ++j) {
+      const float y = float(i) / 97.0f, x = float(j) / 89.0f;  // every octant, the axes and the origin
+      worstAtan = std::max(worstAtan, std::abs(double(mcl_atan2(y, x)) - std::atan2(double(y), double(x))));
+    }
+  for (int i = -20000; i <= 20000; ++i) {
+    const float x = float(i) / 20000.0f;
+    worstAcos = std::max(worstAcos, std::abs(double(mcl_acos(x)) - std::acos(double(x))));
+  }
+  CHECK(worstAtan < 5e-7);  // float32 rounds results near pi to 2.4e-7
+  CHECK(worstAcos < 5e-7);
+  // The map's seam and poles: atan2(+-0, -0) = +-pi and atan2(+-0, +0) = +-0, as the library's.
+  for (float y : {0.0f, -0.0f})
+    for (float x : {0.0f, -0.0f, 1.0f, -1.0f}) {
+      INFO("y " << y << " x " << x);
+      CHECK(mcl_atan2(y, x) == float(std::atan2(y, x)));
+      CHECK(std::signbit(mcl_atan2(y, x)) == std::signbit(std::atan2(y, x)));
+    }
+}
+
 }  // namespace test_file_environment
