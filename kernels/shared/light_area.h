@@ -41,8 +41,8 @@ MCL_INLINE LightSample area_light_sample(MCL_CONSTANT const FrameParams* f, Ligh
   float su = sqrt(u1);  // the barycentrics of p (sample_triangle's), for the emission texture
   float3 le = material_emission(ls.tex, lm, lt, &ls.shading[em->tri], su * (1.0f - u2), su * u2);
   // A stochastically transparent emitter (BLEND) sends its emission times its coverage there: the
-  // expectation of a ray that meets it with that probability (the packet stages take this scalar
-  // code for such scenes: FrameParams::emissionTextured).
+  // expectation of a ray that meets it with that probability (written once with the lanes':
+  // surface_texture.h's coverage_of).
   if (material_blends(lm)) le = le * material_coverage(ls.tex, lm, lt, &ls.shading[em->tri], su * (1.0f - u2), su * u2);
   float3 toLight = p - origin;
   float dist2 = dot(toLight, toLight);

@@ -79,45 +79,96 @@ MCL_INLINE Material hit_metal_rough(TextureTables tt, MCL_CONSTANT const FramePa
   return m;
 }
 
-// Emission of material m on triangle tri (attributes sh) at barycentrics (u, v): Ke, times the
-// emission texture's colour there when the material has one (finest level kept, bilinear: one
-// function of the point, the same for a light sample and for a ray that hits the emitter, so the
-// two strategies of MIS estimate the same integral).
+// Emission, coverage and emitter weight of an emitting triangle, written once for floats and lanes
+// (P, F, F3, F4, U, M, V, ANY, LUM: the prefix, float, float3, float4, uint, int mask, f3, any and
+// luminance here; the lanes' in stages/light_area_lanes.h). FINE(tt, tex, on, u, v) is
+// texture_fine (the lanes read, where on is clear, some lane's texture, masked). The corners' UVs
+// (u0..u2, t0..t2) count where hasUV is set; elsewhere the point's UV is (0, 0).
+// - emission_of: Ke, times the emission texture's colour at barycentrics (bu, bv) where the
+//   material has one (finest level kept, bilinear: one function of the point, the same for a light
+//   sample and for a ray that hits the emitter, so the two strategies of MIS estimate the same
+//   integral); no texture read where Ke is 0.
+// - emitter_luminance_of: the luminance per unit area by which the emitter table weights the
+//   triangle: that of Ke, or with an emission texture its mean over the triangle (the host's
+//   emitters.cpp keeps it in the attributes' tv.w, tw here; a triangle without UVs emits one colour,
+//   read at uv (0, 0)).
+// - coverage_of: the expected coverage of a stochastically transparent material (alpha factor
+//   -factor, Material alpha.y) at (u, v): the factor x its alpha texture's channel ch there
+//   (alpha_hit_exists' probability). A light sample on such an emitter is weighted by it
+//   (light_area.h), so light sampling and a ray that hits the emitter (which exists with this
+//   probability) estimate the same emission.
+#define MCL_DEFINE_EMISSION(P, F, F3, F4, U, M, V, ANY, LUM, FINE)                                                \
+  MCL_INLINE M P##emits(F3 ke) { return (ke.x > 0.0f) | (ke.y > 0.0f) | (ke.z > 0.0f); }                         \
+  MCL_INLINE F3 P##emission_of(TextureTables tt, F3 ke, U tex, M hasUV, F u0, F u1, F u2, F t0, F t1, F t2, F bu, \
+                               F bv) {                                                                           \
+    M textured = (tex != MCL_NO_TEXTURE) & P##emits(ke);                                                         \
+    if (!ANY(textured)) return ke;                                                                               \
+    F u, v;                                                                                                      \
+    P##uv_blend(u0, u1, u2, t0, t1, t2, bu, bv, &u, &v);                                                         \
+    F4 c = FINE(tt, tex, textured, vsel(hasUV, u, (F)(0.0f)), vsel(hasUV, v, (F)(0.0f)));                        \
+    return V##_select(textured, V##_mul(ke, V##_make(c.x, c.y, c.z)), ke);                                       \
+  }                                                                                                              \
+  MCL_INLINE F P##emitter_luminance_of(TextureTables tt, F3 ke, U tex, M hasUV, F tw) {                          \
+    M textured = (tex != MCL_NO_TEXTURE) & P##emits(ke);                                                         \
+    F l = LUM(ke);                                                                                               \
+    if (!ANY(textured)) return l;                                                                                \
+    M looked = textured & (hasUV == (M)(0));                                                                     \
+    F3 e = ke;                                                                                                   \
+    if (ANY(looked)) {                                                                                           \
+      F4 c = FINE(tt, tex, looked, (F)(0.0f), (F)(0.0f));                                                        \
+      e = V##_mul(ke, V##_make(c.x, c.y, c.z));                                                                  \
+    }                                                                                                            \
+    return vsel(textured, vsel(hasUV, tw, LUM(e)), l);                                                           \
+  }                                                                                                              \
+  MCL_INLINE F P##coverage_of(TextureTables tt, F factor, U alphaTex, U ch, F u, F v, M on) {                    \
+    M textured = on & (alphaTex != MCL_NO_TEXTURE);                                                              \
+    F a = (F)(1.0f);                                                                                             \
+    if (ANY(textured)) {                                                                                         \
+      F4 c = FINE(tt, alphaTex, textured, u, v);                                                                 \
+      a = vsel(textured, vsel(ch == 3u, c.w, vsel(ch == 2u, c.z, vsel(ch == 1u, c.y, c.x))), a);                 \
+    }                                                                                                            \
+    return -factor * a;                                                                                          \
+  }
+MCL_INLINE float4 mcl_texture_fine_at(TextureTables tt, uint tex, int on, float u, float v) {
+  (void)on;
+  return texture_fine(tt, tex, u, v);
+}
+MCL_DEFINE_EMISSION(, float, float3, float4, uint, int, f3, MCL_ANY1, luminance, mcl_texture_fine_at)
+
+// The corners' UVs of triangle tri (attributes sh; zeros without UVs, and sh not read).
+MCL_INLINE int triangle_uvs(MCL_GLOBAL const Triangle* tri, MCL_GLOBAL const TriangleShading* sh, float* u0, float* u1,
+                            float* u2, float* t0, float* t1, float* t2) {
+  int has = (as_uint(tri->e2.w) & MCL_ATTR_UV) != 0u;
+  *u0 = *u1 = *u2 = *t0 = *t1 = *t2 = 0.0f;
+  if (has) *u0 = sh->n0.w, *u1 = sh->n1.w, *u2 = sh->n2.w, *t0 = sh->tv.x, *t1 = sh->tv.y, *t2 = sh->tv.z;
+  return has;
+}
+
+// Emission of material m on triangle tri (attributes sh) at barycentrics (u, v) (emission_of).
 MCL_INLINE float3 material_emission(TextureTables tt, MCL_GLOBAL const Material* m, MCL_GLOBAL const Triangle* tri,
                                     MCL_GLOBAL const TriangleShading* sh, float u, float v) {
-  float3 ke = xyz(m->emission);
-  uint tex = as_uint(m->maps.x);
-  bool emits = ke.x > 0.0f || ke.y > 0.0f || ke.z > 0.0f;
-  if (tex == MCL_NO_TEXTURE || !emits) return ke;  // no texture read where Ke is 0
-  float2 uv = surface_uv(tri, sh, u, v);
-  return ke * xyz(texture_fine(tt, tex, uv.x, uv.y));
+  float u0, u1, u2, t0, t1, t2;
+  int has = triangle_uvs(tri, sh, &u0, &u1, &u2, &t0, &t1, &t2);
+  return emission_of(tt, xyz(m->emission), as_uint(m->maps.x), has, u0, u1, u2, t0, t1, t2, u, v);
 }
 
 // 1 when material m is stochastically transparent (glTF BLEND: Material alpha.y's sign bit set).
 MCL_INLINE int material_blends(MCL_GLOBAL const Material* m) { return (as_uint(m->alpha.y) & 0x80000000u) != 0u; }
 
 // The expected coverage of a stochastically transparent material m on triangle tri (attributes
-// sh) at barycentrics (u, v): its alpha factor x its alpha texture's alpha there (alpha_hit_exists'
-// probability). A light sample on such an emitter is weighted by it (light_area.h), so light
-// sampling and a ray that hits the emitter (which exists with this probability) estimate the same
-// emission.
+// sh) at barycentrics (u, v) (coverage_of).
 MCL_INLINE float material_coverage(TextureTables tt, MCL_GLOBAL const Material* m, MCL_GLOBAL const Triangle* tri,
                                    MCL_GLOBAL const TriangleShading* sh, float u, float v) {
   float2 uv = surface_uv(tri, sh, u, v);
-  return -m->alpha.y * alpha_value(tt, *m, uv.x, uv.y);
+  return coverage_of(tt, m->alpha.y, as_uint(m->alpha.x), as_uint(m->alpha.z), uv.x, uv.y, 1);
 }
 
-// Luminance per unit area by which the emitter table weights triangle tri of material m: that of
-// Ke, or with an emission texture its mean over the triangle (the host's emitters.cpp keeps it in
-// the attributes' tv.w; a triangle without UVs emits one colour, read at uv (0, 0)).
+// Luminance per unit area by which the emitter table weights triangle tri of material m
+// (emitter_luminance_of).
 MCL_INLINE float emitter_luminance(TextureTables tt, MCL_GLOBAL const Material* m, MCL_GLOBAL const Triangle* tri,
                                    MCL_GLOBAL const TriangleShading* sh) {
-  float3 ke = xyz(m->emission);
-  bool emits = ke.x > 0.0f || ke.y > 0.0f || ke.z > 0.0f;
-  if (as_uint(m->maps.x) == MCL_NO_TEXTURE || !emits) return luminance(ke);
-  if (as_uint(tri->e2.w) & MCL_ATTR_UV) return sh->tv.w;
-  float3 e = material_emission(tt, m, tri, sh, 0.0f, 0.0f);
-  return luminance(e);
+  int has = (as_uint(tri->e2.w) & MCL_ATTR_UV) != 0u;
+  return emitter_luminance_of(tt, xyz(m->emission), as_uint(m->maps.x), has, has ? sh->tv.w : 0.0f);
 }
 
 MCL_INLINE TextureTables make_texture_tables(MCL_GLOBAL const TextureDesc* textures,

@@ -9,26 +9,44 @@
 #include "stage_lanes.h"
 
 
-// Le seen at W hits (light_eval: an emission texture looked up) and, where pdf is not null, its
-// light_pdf, lane by lane for the lanes set in m (0 elsewhere): hit first + j along ray first + j.
-MCL_INLINE vfloat3 lane_emission(MCL_CONSTANT const FrameParams* f, LightScene lights, MCL_GLOBAL const Hit* hits,
-                                 MCL_GLOBAL const Ray* rays, uint first, vmask m, vfloat* pdf) {
-  uint set[MCL_LANES] MCL_LANE_ALIGN;
-  float lx[MCL_LANES] MCL_LANE_ALIGN, ly[MCL_LANES] MCL_LANE_ALIGN, lz[MCL_LANES] MCL_LANE_ALIGN,
-      lp[MCL_LANES] MCL_LANE_ALIGN;
-  v_store_lanes(v_mask01(m), set);
-  for (uint j = 0; j < MCL_LANES; ++j) {
-    lx[j] = ly[j] = lz[j] = lp[j] = 0.0f;
-    if (!set[j]) continue;
-    LightHit lh = light_hit(hits[first + j], xyz(rays[first + j].dir));
-    float3 le = light_eval(f, lights, lh);
-    lx[j] = le.x;
-    ly[j] = le.y;
-    lz[j] = le.z;
-    if (pdf) lp[j] = light_pdf(f, lights, lh);
+// texture_fine per lane (emission_of's FINE, surface_texture.h): texture tex where on is set, some
+// lane's texture elsewhere (masked by the caller).
+MCL_INLINE vfloat4 lane_texture_fine(TextureTables tt, vuint tex, vmask on, vfloat u, vfloat v) {
+  return v_texture_fine_of(tt, v_texture_desc(tt, lane_some(tex, on)), u, v);
+}
+MCL_DEFINE_EMISSION(v_, vfloat, vfloat3, vfloat4, vuint, vmask, v3, v_any, v_luminance, lane_texture_fine)
+
+// triangle_uvs per lane: the corners' UVs of triangles tri where on and their attributes attrs have
+// MCL_ATTR_UV (zeros elsewhere), and the textured emitters' mean luminance (tv.w); the mask of
+// those lanes.
+MCL_INLINE vmask lane_triangle_uvs(MCL_GLOBAL const TriangleShading* shading, vuint tri, vuint attrs, vmask on,
+                                   vfloat* u0, vfloat* u1, vfloat* u2, vfloat* t0, vfloat* t1, vfloat* t2, vfloat* tw) {
+  vmask has = on & ((attrs & MCL_ATTR_UV) != 0u);
+  *u0 = *u1 = *u2 = *t0 = *t1 = *t2 = *tw = v_f(0.0f);
+  if (v_any(has)) {
+    MCL_GLOBAL const float* sh = (MCL_GLOBAL const float*)shading;
+    const uint stride = (uint)(sizeof(TriangleShading) / sizeof(float));
+    vuint ts = vsel(has, tri, v_u(0u));
+    vfloat x, y, z;
+    v_gather4(sh, ts, stride, &x, &y, &z, u0);
+    v_gather4(sh + 4, ts, stride, &x, &y, &z, u1);
+    v_gather4(sh + 8, ts, stride, &x, &y, &z, u2);
+    v_gather4(sh + 12, ts, stride, t0, t1, t2, tw);
+    *u0 = vsel(has, *u0, v_f(0.0f)), *u1 = vsel(has, *u1, v_f(0.0f)), *u2 = vsel(has, *u2, v_f(0.0f));
+    *t0 = vsel(has, *t0, v_f(0.0f)), *t1 = vsel(has, *t1, v_f(0.0f)), *t2 = vsel(has, *t2, v_f(0.0f));
+    *tw = vsel(has, *tw, v_f(0.0f));
   }
-  if (pdf) *pdf = v_loadf_lanes(lp);
-  return v3_load_lanes(lx, ly, lz);
+  return has;
+}
+
+// Ke of W hits (lh, in the lanes set in m) at barycentrics hu, hv with their emission textures
+// (area_light_eval's material_emission, before emitted_toward), and in *lum the emitter table's
+// luminance of those triangles (area_light_pdf's emitter_luminance).
+MCL_INLINE vfloat3 lane_hit_emission(LightScene lights, const LaneHits* lh, vmask m, vfloat hu, vfloat hv, vfloat* lum) {
+  vfloat u0, u1, u2, t0, t1, t2, tw;
+  vmask has = lane_triangle_uvs(lights.shading, lh->tri, lh->attrs, m, &u0, &u1, &u2, &t0, &t1, &t2, &tw);
+  *lum = v_emitter_luminance_of(lights.tex, lh->ke, lh->emissionTex, has, tw);
+  return v_emission_of(lights.tex, lh->ke, lh->emissionTex, has, u0, u1, u2, t0, t1, t2, hu, hv);
 }
 
 // pick_emitter per lane: the first emitter whose cdf exceeds u (binary search inside the guide
@@ -78,16 +96,15 @@ MCL_INLINE void v_gather4_emitters(uint count, MCL_GLOBAL const float* p, vuint 
 
 // pick: the emitter-selection number (u.x, rescaled by the caller when other kinds share it);
 // u2, u3: the point on the triangle (sample_triangle).
-MCL_INLINE VEmitterSample v_sample_emitter(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL const Emitter* emitters,
-                                           MCL_GLOBAL const Triangle* tris, MCL_GLOBAL const float4* normals,
-                                           MCL_GLOBAL const Material* materials, vfloat pick, vfloat u2, vfloat u3,
-                                           vfloat3 origin) {
-  MCL_GLOBAL const float* tf = (MCL_GLOBAL const float*)tris;
-  MCL_GLOBAL const float* mf = (MCL_GLOBAL const float*)materials;
-  vuint em = v_pick_emitter(emitters, f->emitterCount, pick);
+MCL_INLINE VEmitterSample v_sample_emitter(MCL_CONSTANT const FrameParams* f, LightScene lights, vfloat pick, vfloat u2,
+                                           vfloat u3, vfloat3 origin) {
+  MCL_GLOBAL const float* tf = (MCL_GLOBAL const float*)lights.tris;
+  MCL_GLOBAL const float* mf = (MCL_GLOBAL const float*)lights.materials;
+  MCL_GLOBAL const float4* normals = lights.normals;
+  vuint em = v_pick_emitter(lights.emitters, f->emitterCount, pick);
   vfloat emTri, emCdf, emArea, emPad;
   const uint n = f->emitterCount;
-  v_gather4_emitters(n, (MCL_GLOBAL const float*)emitters, em, 4, &emTri, &emCdf, &emArea, &emPad);
+  v_gather4_emitters(n, (MCL_GLOBAL const float*)lights.emitters, em, 4, &emTri, &emCdf, &emArea, &emPad);
   vuint lt = v_as_uint(emTri);
   vfloat l0x, l0y, l0z, l0w, l1x, l1y, l1z, l1w, l2x, l2y, l2z, l2w, lnx, lny, lnz, lnw;
   v_gather4_emitters(n, tf, lt, 12, &l0x, &l0y, &l0z, &l0w);
@@ -97,10 +114,30 @@ MCL_INLINE VEmitterSample v_sample_emitter(MCL_CONSTANT const FrameParams* f, MC
   vfloat lex, ley, lez, lew;
   v_gather4_few(mf + 4, v_as_uint(l0w), MCL_MATERIAL_FLOATS, &lex, &ley, &lez, &lew);
   VEmitterSample s;
-  s.le = v3_make(lex, ley, lez);
+  const vfloat3 ke = v3_make(lex, ley, lez);
   vfloat su = sqrt(u2);  // sample_triangle
-  vfloat3 lp = v3_add(v3_add(v3_make(l0x, l0y, l0z), v3_scale(v3_make(l1x, l1y, l1z), su * (1.0f - u3))),
-                      v3_scale(v3_make(l2x, l2y, l2z), su * u3));
+  vfloat bu = su * (1.0f - u3), bv = su * u3;
+  vfloat3 lp = v3_add(v3_add(v3_make(l0x, l0y, l0z), v3_scale(v3_make(l1x, l1y, l1z), bu)),
+                      v3_scale(v3_make(l2x, l2y, l2z), bv));
+  s.le = ke;
+  vfloat lum = v_luminance(ke);  // emitter_luminance
+  if (f->emissionTextured) {  // an emission texture at the point, a BLEND emitter's coverage there
+    vfloat kax, kay, kaz, kaw, kmx, kmy, kmz, kmw, u0, u1, u2c, t0, t1, t2, tw;
+    v_gather4_few(mf + 12, v_as_uint(l0w), MCL_MATERIAL_FLOATS, &kax, &kay, &kaz, &kaw);  // alpha
+    v_gather4_few(mf + 24, v_as_uint(l0w), MCL_MATERIAL_FLOATS, &kmx, &kmy, &kmz, &kmw);  // maps: x Ke's texture
+    vuint tex = v_as_uint(kmx);
+    vmask has = lane_triangle_uvs(lights.shading, lt, v_as_uint(l2w), v_lane_index() < MCL_LANES, &u0, &u1, &u2c, &t0, &t1, &t2, &tw);
+    s.le = v_emission_of(lights.tex, ke, tex, has, u0, u1, u2c, t0, t1, t2, bu, bv);
+    vmask blends = (v_as_uint(kay) & 0x80000000u) != 0u;  // material_blends
+    if (v_any(blends)) {
+      vfloat u, v;
+      v_uv_blend(u0, u1, u2c, t0, t1, t2, bu, bv, &u, &v);  // surface_uv
+      vfloat c = v_coverage_of(lights.tex, kay, v_as_uint(kax), v_as_uint(kaz), vsel(has, u, v_f(0.0f)),
+                               vsel(has, v, v_f(0.0f)), blends);
+      s.le = v3_select(blends, v3_scale(s.le, c), s.le);
+    }
+    lum = v_emitter_luminance_of(lights.tex, ke, tex, has, tw);
+  }
   vfloat3 toLight = v3_sub(lp, origin);
   vfloat dist2 = v3_dot(toLight, toLight);
   s.dist = sqrt(dist2);
@@ -108,7 +145,7 @@ MCL_INLINE VEmitterSample v_sample_emitter(MCL_CONSTANT const FrameParams* f, MC
   vfloat c = -v3_dot(v3_make(lnx, lny, lnz), s.wi);  // emitter_cosine
   vfloat cosLight = vsel(lew != 0.0f, fabs(c), c);
   s.ok = (cosLight > 0.0f) & (s.dist > 0.0f);
-  vfloat pickP = emArea * v_luminance(s.le) / f->emitterPower;  // emitter_pick_probability
+  vfloat pickP = emArea * lum / f->emitterPower;  // emitter_pick_probability
   s.pdf = vsel(s.ok, pickP / emArea * dist2 / cosLight, v_f(0.0f));  // area_to_solid_angle
   return s;
 }
@@ -221,11 +258,9 @@ MCL_INLINE VLightSample v_sample_direct_light(MCL_CONSTANT const FrameParams* f,
   r.pdf = v_f(0.0f);
   r.tmax = v_f(INFINITY);
   r.delta = v_not(m | v_not(m));  // none
-  // Textured emission (its Le a texture lookup) through the scalar code with the other kinds.
-  vmask area = m & (kind == (uint)MCL_LIGHT_area) & (f->emissionTextured ? v_not(m) : m);
+  vmask area = m & (kind == (uint)MCL_LIGHT_area);
   if (v_any(area)) {
-    VEmitterSample es = v_sample_emitter(f, lights.emitters, lights.tris, lights.normals, lights.materials,
-                                         (u.x - start) / share, u.y, u.z, origin);
+    VEmitterSample es = v_sample_emitter(f, lights, (u.x - start) / share, u.y, u.z, origin);
     vmask ok = area & es.ok;
     r.wi = v3_select(ok, es.wi, r.wi);
     r.le = v3_select(ok, es.le, r.le);
@@ -242,35 +277,5 @@ MCL_INLINE VLightSample v_sample_direct_light(MCL_CONSTANT const FrameParams* f,
     r.le = v3_select(sky, es.le, r.le);
     r.pdf = vsel(sky, share * es.pdf, r.pdf);
   }
-  vmask rest = m & v_not(area | records | sky);
-  if (!v_any(rest)) return r;
-  float ox[MCL_LANES] MCL_LANE_ALIGN, oy[MCL_LANES] MCL_LANE_ALIGN, oz[MCL_LANES] MCL_LANE_ALIGN;
-  Float4Lanes ul = float4_lanes(u);
-  float wx[MCL_LANES] MCL_LANE_ALIGN, wy[MCL_LANES] MCL_LANE_ALIGN, wz[MCL_LANES] MCL_LANE_ALIGN;
-  float lr[MCL_LANES] MCL_LANE_ALIGN, lg[MCL_LANES] MCL_LANE_ALIGN, lb[MCL_LANES] MCL_LANE_ALIGN;
-  float pp[MCL_LANES] MCL_LANE_ALIGN, tm[MCL_LANES] MCL_LANE_ALIGN;
-  uint set[MCL_LANES] MCL_LANE_ALIGN, dl[MCL_LANES] MCL_LANE_ALIGN;
-  v3_store_lanes(origin, ox, oy, oz);
-  v3_store_lanes(r.wi, wx, wy, wz);
-  v3_store_lanes(r.le, lr, lg, lb);
-  v_store_lanes(r.pdf, pp);
-  v_store_lanes(r.tmax, tm);
-  v_store_lanes(v_mask01(r.delta), dl);
-  v_store_lanes(v_mask01(rest), set);
-  for (uint j = 0; j < MCL_LANES; ++j) {
-    if (!set[j]) continue;
-    LightSample ls =
-        sample_direct_light(f, lights, make_float3(ox[j], oy[j], oz[j]), float4_lane(&ul, j));
-    wx[j] = ls.wi.x; wy[j] = ls.wi.y; wz[j] = ls.wi.z;
-    lr[j] = ls.le.x; lg[j] = ls.le.y; lb[j] = ls.le.z;
-    pp[j] = ls.pdf;
-    tm[j] = ls.tmax;
-    dl[j] = ls.delta != 0;
-  }
-  r.wi = v3_load_lanes(wx, wy, wz);
-  r.le = v3_load_lanes(lr, lg, lb);
-  r.pdf = v_loadf_lanes(pp);
-  r.tmax = v_loadf_lanes(tm);
-  r.delta = v_loadu_lanes(dl) != 0u;
   return r;
 }

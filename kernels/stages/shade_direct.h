@@ -16,8 +16,8 @@
 // light samples (the light kind picked per lane, emitter triangles, point, spot, directional
 // and sun lights and the environment in lanes, light_area_lanes.h; one atomic per packet per light sample; the Lambertian lobe's Kd / pi spelled out, the other kinds' f cos, a light
 // below the surface through a transmitting lobe with its shadow ray from the far side) and the
-// BSDF ray (the cosine lobe, folded where smooth; the other kinds' sample). Textured emission: Le
-// and the emitter samples lane by lane (light_eval, sample_direct_light).
+// BSDF ray (the cosine lobe, folded where smooth; the other kinds' sample). Emission textures and
+// BLEND emitters in lanes too (lane_hit_emission, v_sample_emitter).
 #pragma once
 #include "stage_lanes.h"
 #include "lane_bsdf.h"
@@ -58,7 +58,6 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
   // emitted_toward(n, material, dir)
   vmask front = v3_dot(n, dir) < 0.0f;
   vmask emits = front | (lh.twoSided != 0.0f);
-  vfloat3 le = v3_make(vsel(emits, lh.ke.x, v_f(0.0f)), vsel(emits, lh.ke.y, v_f(0.0f)), vsel(emits, lh.ke.z, v_f(0.0f)));
   LightScene lights = make_light_scene(a->tris, a->normals, a->materials, a->emitters, a->envMap, a->envCdf,
                                        a->lightRecords, a->shading,
                                        make_texture_tables(a->textures, a->textureLevels, a->texels));
@@ -68,7 +67,11 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
     if (v_any(own & v_not(hit))) miss = v_environment_light_eval_of(f, lights, dir);
     missW = v_f(0.0f);
   }
-  if (f->emissionTextured) le = lane_emission(f, lights, a->hits, a->rays, first, hit, 0);
+  vfloat3 ke = lh.ke;
+  vfloat keLum;  // the emitter weight, unused here (no MIS for camera rays)
+  if (f->emissionTextured) ke = lane_hit_emission(lights, &lh, hit, hu, hv, &keLum);
+  (void)keLum;
+  vfloat3 le = v3_make(vsel(emits, ke.x, v_f(0.0f)), vsel(emits, ke.y, v_f(0.0f)), vsel(emits, ke.z, v_f(0.0f)));
   v_store4_n(rad, lanes, vsel(hit, le.x, miss.x), vsel(hit, le.y, miss.y), vsel(hit, le.z, miss.z), vsel(hit, v_f(0.0f), missW));
   vfloat3 bo = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f)), bd = v3_make(v_f(0.0f), v_f(0.0f), v_f(1.0f));
   vfloat btmax = v_f(-1.0f);

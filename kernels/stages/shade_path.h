@@ -18,7 +18,7 @@
 // background at bounce 0 without an environment, else the environment in lanes (camera rays see
 // it unweighted; after a BSDF bounce it is MIS weighted against environment sampling with the BSDF
 // sample's pdf). Emission seen (MIS weighted after a BSDF bounce) for every
-// hit in lanes (textured emission: light_eval and light_pdf per lane). Hits on every material
+// hit in lanes (an emission texture and its emitter weight too: lane_hit_emission). Hits on every material
 // kind (lane_bsdf.h), textured or not, flat or smooth, in lanes (the frame, the metallic-roughness
 // texture, glTF transmission's kind pick, normal and bump maps, instances: lane_frame in
 // stage_lanes.h): the next-event light samples (the light kind picked per lane: emitter
@@ -106,18 +106,18 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
   // BSDF bounce (area_light_pdf).
   vmask front = v3_dot(n, dir) < 0.0f;
   vmask emits = front | (lh.twoSided != 0.0f);
-  vfloat3 le = v3_make(vsel(emits, lh.ke.x, v_f(0.0f)), vsel(emits, lh.ke.y, v_f(0.0f)), vsel(emits, lh.ke.z, v_f(0.0f)));
-  vfloat texturedPdf = v_f(0.0f);
-  if (f->emissionTextured) le = lane_emission(f, lights, a->hits, a->rays, first, hit, &texturedPdf);
+  vfloat3 ke = lh.ke;
+  vfloat keLum = v_luminance(lh.ke);  // emitter_luminance
+  if (f->emissionTextured) ke = lane_hit_emission(lights, &lh, hit, hu, hv, &keLum);
+  vfloat3 le = v3_make(vsel(emits, ke.x, v_f(0.0f)), vsel(emits, ke.y, v_f(0.0f)), vsel(emits, ke.z, v_f(0.0f)));
   vmask glows = hit & ((le.x > 0.0f) | (le.y > 0.0f) | (le.z > 0.0f));
   if (v_any(glows)) {
     vfloat weight = v_f(1.0f);
     if (bounce > 0 && f->emitterCount > 0u) {
       vfloat c = -v3_dot(n, dir);  // emitter_cosine
       vfloat cosLight = vsel(lh.twoSided != 0.0f, fabs(c), c);
-      vfloat pick = lh.area * v_luminance(lh.ke) / f->emitterPower;  // emitter_pick_probability
+      vfloat pick = lh.area * keLum / f->emitterPower;  // emitter_pick_probability
       vfloat lpdf = area_light_probability(f) * (pick / lh.area * (ht * ht) / cosLight);
-      if (f->emissionTextured) lpdf = texturedPdf;
       vfloat fw = 1.0f * lastPdf, gw = nLight * lpdf;
       weight = vsel(lastPdf > 0.0f, v_power_heuristic(fw, gw), weight);
     }

@@ -309,6 +309,7 @@ typedef struct {
   vfloat area, twoSided;  // normals[].w; Material::emission.w
   vuint tri, attrs, albedoTex;  // the triangle (0 where no hit), its MCL_ATTR_* flags, Kd's texture
   vuint metalRoughTex;          // metal_rough's metallic-roughness texture (Material::maps.y)
+  vuint emissionTex;            // Ke's texture (Material::maps.x)
   vuint normalMap, bumpMap;     // one more than the maps' textures, 0: none (Material::maps.z, .w)
   vmask lamb, glossy, conductor, dielectric, thin, metalRough, coatedDiffuse, coatedConductor, tinted, flat;
   vmask mixes;   // metal_rough lanes with a transmission factor (another kind per sample)
@@ -363,6 +364,7 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
   h.attrs = v_as_uint(e2w);
   h.albedoTex = v_as_uint(kdw);
   h.metalRoughTex = v_as_uint(kmy);
+  h.emissionTex = v_as_uint(kmx);
   h.normalMap = v_as_uint(kmz);
   h.bumpMap = v_as_uint(kmw);
   h.placed = hit & v_not(hit);  // none
