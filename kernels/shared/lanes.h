@@ -509,6 +509,10 @@ MCL_INLINE vuint v_gather_uint(MCL_GLOBAL const uint* p, vuint idx) {
 }
 #endif
 
+// One float at p + i * stride: v_gather_float's float form, for the functions written once for
+// floats and lanes (their table reads, G##gather_float).
+MCL_INLINE float mcl_gather_float(MCL_GLOBAL const float* p, uint i, uint stride) { return p[(ulong)i * stride]; }
+
 // One float per lane at p + idx[k] * stride.
 #if MCL_LANES == 1
 MCL_INLINE vfloat v_gather_float(MCL_GLOBAL const float* p, vuint idx, uint stride) { return p[(ulong)idx * stride]; }

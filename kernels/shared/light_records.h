@@ -7,15 +7,28 @@
 #include "light_scene.h"
 
 // Index of the first record in [first, first + count) whose cdf (position.w) exceeds u (binary
-// search, as pick_emitter); count > 0.
-MCL_INLINE uint pick_light_record(MCL_GLOBAL const LightRecord* records, uint first, uint count, float u) {
-  uint lo = first, hi = first + count - 1u;
-  while (lo < hi) {
-    uint mid = (lo + hi) / 2u;
-    if (records[mid].position.w > u) hi = mid;
-    else lo = mid + 1u;
+// search, as pick_emitter; count > 0), where m is set (elsewhere `first`). Written once for floats
+// and lanes (P, F, U, M, ANY, G: the prefix, float, uint, int mask, any, mcl_gather_float's prefix
+// here; the lanes' in stages/light_area_lanes.h): the same halving steps, each lane's record read
+// by a gather.
+#define MCL_DEFINE_PICK_LIGHT_RECORD(P, F, U, M, ANY, G)                                                       \
+  MCL_INLINE U P##pick_light_record_of(MCL_GLOBAL const LightRecord* records, uint first, uint count, F u, M m) { \
+    MCL_GLOBAL const float* cdf = (MCL_GLOBAL const float*)records + 3; /* position.w */                       \
+    const uint stride = (uint)(sizeof(LightRecord) / sizeof(float));                                           \
+    U lo = (U)(first), hi = vsel(m, (U)(first + count - 1u), (U)(first));                                     \
+    for (;;) {                                                                                                 \
+      M on = lo < hi;                                                                                          \
+      if (!ANY(on)) break;                                                                                     \
+      U mid = (lo + hi) / 2u;                                                                                  \
+      M right = G##gather_float(cdf, vsel(on, mid, (U)(first)), stride) > u;                                  \
+      hi = vsel(on & right, mid, hi);                                                                          \
+      lo = vsel(on & (right == (M)(0)), mid + 1u, lo);                                                         \
+    }                                                                                                          \
+    return lo;                                                                                                 \
   }
-  return lo;
+MCL_DEFINE_PICK_LIGHT_RECORD(, float, uint, int, MCL_ANY1, mcl_)
+MCL_INLINE uint pick_light_record(MCL_GLOBAL const LightRecord* records, uint first, uint count, float u) {
+  return pick_light_record_of(records, first, count, u, 1);
 }
 
 // A delta light's sample: direction wi, the radiance-like factor le (the contribution is

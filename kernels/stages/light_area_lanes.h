@@ -49,30 +49,6 @@ MCL_INLINE vfloat3 lane_hit_emission(LightScene lights, const LaneHits* lh, vmas
   return v_emission_of(lights.tex, lh->ke, lh->emissionTex, has, u0, u1, u2, t0, t1, t2, hu, hv);
 }
 
-// pick_emitter per lane: the first emitter whose cdf exceeds u (binary search inside the guide
-// table's range for u's bucket, lanes masked as they finish); count > 0.
-MCL_INLINE vuint v_pick_emitter(MCL_GLOBAL const Emitter* emitters, uint count, vfloat u) {
-  MCL_GLOBAL const float* cdf = (MCL_GLOBAL const float*)emitters + 1;    // Emitter::cdf
-  MCL_GLOBAL const float* guide = (MCL_GLOBAL const float*)emitters + 3;  // Emitter::guide (uint bits)
-  vuint lo = v_u(0u), hi = v_u(count - 1u);
-  if (count >= MCL_EMITTER_GUIDE_MIN) {
-    vfloat x = u * (float)count;  // emitter_guide_bucket
-    vuint b = vsel(x >= 1.0f, v_cvt_u_f(fmin(x, (float)(count - 1u))), v_u(0u));
-    vmask inner = b + 1u < count, nan = isnan(u);
-    lo = vsel(nan, lo, v_as_uint(v_gather_float(guide, b, 4)));
-    hi = vsel(nan | v_not(inner), hi, v_as_uint(v_gather_float(guide, vsel(inner, b + 1u, b), 4)));
-  }
-  for (;;) {
-    vmask active = lo < hi;
-    if (!v_any(active)) break;
-    vuint mid = (lo + hi) / 2u;
-    vmask above = v_gather_float(cdf, vsel(active, mid, lo), 4) > u;
-    hi = vsel(active & above, mid, hi);
-    lo = vsel(active & v_not(above), mid + 1u, lo);
-  }
-  return lo;
-}
-
 // A light sample on an emitter triangle, seen from origin (sample_direct_light's area branch
 // without the kind share): Le, the unit direction, the distance, and the solid-angle pdf of the
 // emitter pick and point (0 where the sample is unusable: ok false, i.e. the emitter faces away or
@@ -180,23 +156,7 @@ MCL_DEFINE_SPOT_LIGHT(v_, vfloat, vfloat3, vfloat4, vmask, v3, VLightSample, v_)
 MCL_DEFINE_DIRECTIONAL_LIGHT(v_, vfloat, vfloat3, vmask, v3, VLightSample)
 MCL_DEFINE_SUN_LIGHT(v_, vfloat, vfloat3, vfloat4, vmask, v3, VLightSample, v_)
 
-// pick_light_record per lane for the lanes set in m (the others end at `first`): the same
-// halving steps, each lane's record read by a gather.
-MCL_INLINE vuint v_pick_light_record(MCL_GLOBAL const LightRecord* records, uint first, uint count, vfloat u, vmask m) {
-  MCL_GLOBAL const float* rf = (MCL_GLOBAL const float*)records;
-  const uint stride = (uint)(sizeof(LightRecord) / sizeof(float));
-  vuint lo = v_u(first), hi = vsel(m, v_u(first + count - 1u), v_u(first));
-  for (;;) {
-    vmask on = lo < hi;
-    if (!v_any(on)) break;
-    vuint mid = (lo + hi) / 2u;
-    vfloat cdf = v_gather_float(rf + 3, vsel(on, mid, v_u(first)), stride);  // position.w
-    vmask right = cdf > u;
-    hi = vsel(on & right, mid, hi);
-    lo = vsel(on & v_not(right), mid + 1u, lo);
-  }
-  return lo;
-}
+MCL_DEFINE_PICK_LIGHT_RECORD(v_, vfloat, vuint, vmask, v_any, v_)
 
 // The record kinds' samples (point, spot, directional, sun) in the lanes set in m whose kind is
 // one of them, kind and share as v_sample_direct_light picked them, u0 the rescaled u.x: taken
@@ -209,7 +169,7 @@ MCL_INLINE void v_sample_record_lights(MCL_CONSTANT const FrameParams* f, LightS
   {                                                                                      \
     vmask on = m & (kind == (uint)MCL_LIGHT_##k);                                        \
     if (v_any(on)) {                                                                     \
-      vuint at = v_pick_light_record(lights.records, f->FIRST, f->COUNT, u0, on);        \
+      vuint at = v_pick_light_record_of(lights.records, f->FIRST, f->COUNT, u0, on);        \
       vfloat4 p, d, i, c;                                                                \
       v_gather4(rf, at, stride, &p.x, &p.y, &p.z, &p.w);                                 \
       v_gather4(rf + 4, at, stride, &d.x, &d.y, &d.z, &d.w);                             \

@@ -114,7 +114,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
                     vsel(below, fmax(fcosBelow.x, fmax(fcosBelow.y, fcosBelow.z)) > 0.0f, cosSurf > 0.0f);
         if (v_any(lit)) {
           vfloat weight = v_f(1.0f);
-          if (useBrdf) weight = vsel(delta, weight, v_power_heuristic(nLight * pdf, 1.0f * bsdfPdf));
+          if (useBrdf) weight = vsel(delta, weight, v_power_heuristic_of(nLight * pdf, 1.0f * bsdfPdf));
           vfloat3 cb = v3_scale(v3_mul(fcosBelow, lle), weight / (pdf * nLight));
           vfloat3 ca = v3_scale(v3_mul(lane_bsdf_f(&lb, sf, wo, wi), lle), cosSurf * weight / (pdf * nLight));
           contrib = v3_select(lit, v3_select(below, cb, ca), contrib);
@@ -126,7 +126,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
       vfloat weight = v_f(1.0f);
       if (useBrdf) {  // power_heuristic(nLight, pdf, 1, bsdf_pdf), none for a delta light
         vfloat fw = nLight * pdf, gw = 1.0f * v_lambert_pdf(sf.ng, sf.ns, sf.smooth, wi);
-        weight = vsel(delta, weight, v_power_heuristic(fw, gw));
+        weight = vsel(delta, weight, v_power_heuristic_of(fw, gw));
       }
       vmask lit = above & (cn > 0.0f);  // bsdf_f: Kd / pi above the surface
       vfloat3 fr = v3_make(vsel(lit, sf.kd.x * MCL_INV_PI, v_f(0.0f)), vsel(lit, sf.kd.y * MCL_INV_PI, v_f(0.0f)),

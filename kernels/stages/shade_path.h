@@ -96,7 +96,7 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
     if (v_any(own & v_not(hit))) {
       miss = v_environment_light_eval_of(f, lights, dir);
       if (bounce > 0) {
-        vfloat w = v_power_heuristic(1.0f * lastPdf, nLight * v_environment_light_pdf_of(f, lights, dir));
+        vfloat w = v_power_heuristic_of(1.0f * lastPdf, nLight * v_environment_light_pdf_of(f, lights, dir));
         miss = v3_select(lastPdf > 0.0f, v3_scale(miss, w), miss);
       }
     }
@@ -119,7 +119,7 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
       vfloat pick = lh.area * keLum / f->emitterPower;  // emitter_pick_probability
       vfloat lpdf = area_light_probability(f) * (pick / lh.area * (ht * ht) / cosLight);
       vfloat fw = 1.0f * lastPdf, gw = nLight * lpdf;
-      weight = vsel(lastPdf > 0.0f, v_power_heuristic(fw, gw), weight);
+      weight = vsel(lastPdf > 0.0f, v_power_heuristic_of(fw, gw), weight);
     }
     L = v3_select(glows, v3_add(L, v3_scale(v3_mul(beta, le), weight)), L);
   }
@@ -163,7 +163,7 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
       vmask push = takes & (pdf > 0.0f) & (v_max_component(fcos) > 0.0f);
       if (!v_any(push)) continue;
       vfloat fw = nLight * pdf, gw = 1.0f * bsdfPdf;
-      vfloat weight = vsel(delta, v_f(1.0f), v_power_heuristic(fw, gw));
+      vfloat weight = vsel(delta, v_f(1.0f), v_power_heuristic_of(fw, gw));
       vfloat3 contrib = v3_scale(v3_mul(v3_mul(beta, fcos), lle), weight / (pdf * nLight));
       // A light below the geometric surface (seen through a transmitting lobe): the shadow ray
       // leaves from the far side.

@@ -15,13 +15,6 @@
 inline uint MCL_ATOMIC_ADD(volatile uint* p, uint n) { return __atomic_fetch_add(p, n, __ATOMIC_RELAXED); }
 #endif
 
-// power_heuristic (shared/lights.h) per lane, for the weights f = nf * fPdf and g = ng * gPdf.
-MCL_INLINE vfloat v_power_heuristic(vfloat f, vfloat g) {
-  vfloat sum = f * f + g * g;
-  vfloat r = g / f;
-  return vsel(sum < INFINITY, (f * f) / sum, 1.0f / (1.0f + r * r));
-}
-
 // 1 when the packet starting at `first` does not lie wholly below count (W = 1: never).
 MCL_INLINE int v_packet_partial(uint first, uint count) { return MCL_LANES > 1 && count - first < MCL_LANES; }
 // 1 when the packet traversals cannot take the packet of rays at `first`: a partial packet, or a
@@ -289,8 +282,8 @@ typedef struct {
 MCL_DEFINE_NORMAL_MAP(v_, vfloat, vfloat3, vfloat4, vmask, v3, v4_make, LaneFrame)
 MCL_DEFINE_BUMP_NORMAL(v_, vfloat, vfloat3, vmask, v3)
 
-// luminance (lights.h) per lane.
-MCL_INLINE vfloat v_luminance(vfloat3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+// luminance, the power heuristic and the emitter pick (lights.h) per lane.
+MCL_DEFINE_LIGHT_PICKS(v_, vfloat, vfloat3, vuint, vmask, v_any, v_, v_cvt_u_f, v_as_uint)
 
 // The hit triangles of a packet (lanes not in `hit` read entry 0, masked off by the caller), their
 // normals and the materials' fields the stage bodies read, and which lanes lane-type code takes:
