@@ -512,6 +512,12 @@ MCL_INLINE vuint v_gather_uint(MCL_GLOBAL const uint* p, vuint idx) {
 // One float at p + i * stride: v_gather_float's float form, for the functions written once for
 // floats and lanes (their table reads, G##gather_float).
 MCL_INLINE float mcl_gather_float(MCL_GLOBAL const float* p, uint i, uint stride) { return p[(ulong)i * stride]; }
+// Four floats at p + i * stride (v_gather4's float form; also under v_gather4_few's name).
+MCL_INLINE void mcl_gather4(MCL_GLOBAL const float* p, uint i, uint stride, float* x, float* y, float* z, float* w) {
+  MCL_GLOBAL const float* q = p + (ulong)i * stride;
+  *x = q[0], *y = q[1], *z = q[2], *w = q[3];
+}
+#define mcl_gather4_few mcl_gather4
 
 // One float per lane at p + idx[k] * stride.
 #if MCL_LANES == 1

@@ -135,20 +135,37 @@ MCL_INLINE float4 mcl_texture_fine_at(TextureTables tt, uint tex, int on, float 
 }
 MCL_DEFINE_EMISSION(, float, float3, float4, uint, int, f3, MCL_ANY1, luminance, mcl_texture_fine_at)
 
-// The corners' UVs of triangle tri (attributes sh; zeros without UVs, and sh not read).
-MCL_INLINE int triangle_uvs(MCL_GLOBAL const Triangle* tri, MCL_GLOBAL const TriangleShading* sh, float* u0, float* u1,
-                            float* u2, float* t0, float* t1, float* t2) {
-  int has = (as_uint(tri->e2.w) & MCL_ATTR_UV) != 0u;
-  *u0 = *u1 = *u2 = *t0 = *t1 = *t2 = 0.0f;
-  if (has) *u0 = sh->n0.w, *u1 = sh->n1.w, *u2 = sh->n2.w, *t0 = sh->tv.x, *t1 = sh->tv.y, *t2 = sh->tv.z;
-  return has;
-}
+// The corners' UVs of the triangles tri where on is set and their attributes attrs have
+// MCL_ATTR_UV (zeros elsewhere, where nothing is read), and tw the textured emitters' mean
+// luminance (tv.w); returns the mask of those. Written once (P, F, U, M, ANY, G: the prefix, float,
+// uint, int mask, any and mcl_gather4's prefix here; the lanes' in stages/light_area_lanes.h).
+#define MCL_DEFINE_TRIANGLE_UVS(P, F, U, M, ANY, G)                                                         \
+  MCL_INLINE M P##triangle_uvs_of(MCL_GLOBAL const TriangleShading* shading, U tri, U attrs, M on, F* u0,   \
+                                  F* u1, F* u2, F* t0, F* t1, F* t2, F* tw) {                               \
+    M has = on & ((attrs & MCL_ATTR_UV) != 0u);                                                             \
+    *u0 = *u1 = *u2 = *t0 = *t1 = *t2 = *tw = (F)(0.0f);                                                    \
+    if (ANY(has)) { /* TriangleShading: corner normals, u in w; v of the corners in tv */                   \
+      MCL_GLOBAL const float* sh = (MCL_GLOBAL const float*)shading;                                        \
+      const uint stride = (uint)(sizeof(TriangleShading) / sizeof(float));                                  \
+      U ts = vsel(has, tri, (U)(0u));                                                                       \
+      F x, y, z;                                                                                            \
+      G##gather4(sh, ts, stride, &x, &y, &z, u0);                                                           \
+      G##gather4(sh + 4, ts, stride, &x, &y, &z, u1);                                                       \
+      G##gather4(sh + 8, ts, stride, &x, &y, &z, u2);                                                       \
+      G##gather4(sh + 12, ts, stride, t0, t1, t2, tw);                                                      \
+      *u0 = vsel(has, *u0, (F)(0.0f)), *u1 = vsel(has, *u1, (F)(0.0f)), *u2 = vsel(has, *u2, (F)(0.0f));   \
+      *t0 = vsel(has, *t0, (F)(0.0f)), *t1 = vsel(has, *t1, (F)(0.0f)), *t2 = vsel(has, *t2, (F)(0.0f));   \
+      *tw = vsel(has, *tw, (F)(0.0f));                                                                      \
+    }                                                                                                       \
+    return has;                                                                                             \
+  }
+MCL_DEFINE_TRIANGLE_UVS(, float, uint, int, MCL_ANY1, mcl_)
 
 // Emission of material m on triangle tri (attributes sh) at barycentrics (u, v) (emission_of).
 MCL_INLINE float3 material_emission(TextureTables tt, MCL_GLOBAL const Material* m, MCL_GLOBAL const Triangle* tri,
                                     MCL_GLOBAL const TriangleShading* sh, float u, float v) {
-  float u0, u1, u2, t0, t1, t2;
-  int has = triangle_uvs(tri, sh, &u0, &u1, &u2, &t0, &t1, &t2);
+  float u0, u1, u2, t0, t1, t2, tw;
+  int has = triangle_uvs_of(sh, 0u, as_uint(tri->e2.w), 1, &u0, &u1, &u2, &t0, &t1, &t2, &tw);
   return emission_of(tt, xyz(m->emission), as_uint(m->maps.x), has, u0, u1, u2, t0, t1, t2, u, v);
 }
 
