@@ -127,6 +127,7 @@ std::string sceneDigest(const Scene& scene) {
         bytes.add(m.transmissionSolid ? "transmission solid" : "transmission thin");
         append(bytes, &m.transmission, sizeof m.transmission);
       }
+      if (m.transmissionTinted) bytes.add("transmission tinted");  // only then, likewise
       if (m.kind == MCL_MATERIAL_coated_diffuse || m.kind == MCL_MATERIAL_coated_conductor) {  // the layer (no other kind reads it)
         const float layer[3] = {m.thickness, float(m.layerMaxDepth), float(m.layerSamples)};
         append(bytes, layer, sizeof layer);

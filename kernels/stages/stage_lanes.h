@@ -300,7 +300,8 @@ MCL_INLINE vfloat v_luminance(vfloat3 c) { return 0.2126f * c.x + 0.7152f * c.y 
 // metal_rough with a transmission factor, which picks a kind per sample: lane_frame makes the
 // pick, and applies a metallic-roughness texture, whose parameters are a lookup, before it,
 // hit_metal_rough and hit_transmission); tinted, the lanes whose BSDF reads the
-// textured albedo (the diffuse kind, metal_rough's and coated_diffuse's base colour); and of them
+// textured albedo (the diffuse kind, metal_rough's and coated_diffuse's base colour, glTF's glass's
+// tint); and of them
 // all flat, whose frame comes from the triangle alone (no shading normals, normal or bump map, nor
 // an instance, and where tinted no vertex colours nor albedo texture: the others' frame comes from
 // surface_at).
@@ -358,7 +359,8 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
     v_gather4(mf + 20, mat, MCL_MATERIAL_FLOATS, &h.params1.x, &h.params1.y, &h.params1.z, &h.params1.w);
     h.mixes = h.metalRough & (h.params1.x > 0.0f);  // hit_transmission's mix
   }
-  h.tinted = h.lamb | h.glossy | h.metalRough | h.coatedDiffuse;
+  // (glass tinted by its albedo: transmission_tint.h's flag in params0.z)
+  h.tinted = h.lamb | h.glossy | h.metalRough | h.coatedDiffuse | ((h.dielectric | h.thin) & (h.params0.z > 0.0f));
   h.tri = t;
   h.attrs = v_as_uint(e2w);
   h.albedoTex = v_as_uint(kdw);
@@ -393,10 +395,11 @@ MCL_INLINE void lane_tally(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL volatil
 }
 
 // The lanes set in m become the kind `kind` (a metal_rough hit's pick: the same kind or glass) with
-// params0.x, .y = metallic, roughness (hit_metal_rough and hit_transmission's result).
-MCL_INLINE void lane_take_pick(LaneHits* lh, vmask m, vuint kind, vfloat metallic, vfloat roughness) {
+// params0.x, .y, .z = metallic, roughness, tinted (hit_metal_rough and hit_transmission's result).
+MCL_INLINE void lane_take_pick(LaneHits* lh, vmask m, vuint kind, vfloat metallic, vfloat roughness, vfloat tinted) {
   lh->params0.x = vsel(m, metallic, lh->params0.x);
   lh->params0.y = vsel(m, roughness, lh->params0.y);
+  lh->params0.z = vsel(m, tinted, lh->params0.z);
   lh->dielectric = lh->dielectric | (m & (kind == (uint)MCL_MATERIAL_dielectric));
   lh->thin = lh->thin | (m & (kind == (uint)MCL_MATERIAL_thin_dielectric));
   lh->metalRough = lh->metalRough & v_not(m & (kind != (uint)MCL_MATERIAL_metal_rough));
@@ -578,10 +581,10 @@ MCL_INLINE LaneFrame lane_frame(SurfaceScene sc, MCL_CONSTANT const FrameParams*
   if (v_any(lh->mixes)) {  // hit_transmission: the kind this sample's hit is (transmission_uniform)
     vfloat u = f->sampler == MCL_SAMPLER_SOBOL ? v_sample_uniform4(f, pixel, sample, MCL_DIM_MIX + bounce).x
                                                : v_hit_uniform_at(lh->tri, hu, hv, dir);
-    vfloat metallic = lh->params0.x, roughness = lh->params0.y;
+    vfloat metallic = lh->params0.x, roughness = lh->params0.y, tinted = lh->params0.z;
     vuint kind = v_transmission_pick(v_u((uint)MCL_MATERIAL_metal_rough), lh->params1.x, lh->params1.y,
-                                     lh->params1.z, u, &metallic, &roughness);
-    lane_take_pick(lh, lh->mixes, kind, metallic, roughness);
+                                     lh->params1.z, u, &metallic, &roughness, &tinted);
+    lane_take_pick(lh, lh->mixes, kind, metallic, roughness, tinted);
   }
   return lf;
 }
