@@ -1,8 +1,10 @@
-// test_gltf_transmission_tint.cpp: glTF glass's colour (kernels/shared/transmission_tint.h): the
-// base colour tints the light a transmissive glTF material passes (KHR_materials_transmission's
-// BTDF x baseColor) and not the light it reflects: closed forms for a thin sheet and a solid slab
-// under a constant sky (z-tests against the film's own standard error), the per-hit kind pick's
-// glass tinted too, and the packet stages byte for byte the host backend's.
+// test_gltf_transmission_tint.cpp: glTF glass's colour and its transmissionTexture
+// (kernels/shared/transmission_tint.h, surface_texture.h hit_transmission_texture): the base colour
+// tints the light a transmissive glTF material passes (KHR_materials_transmission's BTDF x
+// baseColor) and not the light it reflects: closed forms for a thin sheet and a solid slab under a
+// constant sky (z-tests against the film's own standard error), the per-hit kind pick's glass
+// tinted too; the transmission factor x the texture's R per hit (a closed form over a lamp); the
+// packet stages byte for byte the host backend's.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -16,6 +18,7 @@
 #include "mesh_files.h"
 #include "render/wavefront.h"
 #include "test_images.h"
+#include "util/errors.h"
 
 namespace test_file_gltf_transmission_tint {  // keeps this file's helpers apart in a unity batch
 
@@ -143,20 +146,76 @@ TEST_CASE("glTF transmission tint: the glass of a per-hit pick is tinted too" * 
   }
 }
 
+// The sheet (base colour b, factor 1 x the transmissionTexture's R, r = 128 / 255; its G and B 1)
+// over a lamp of radiance 1 facing it, under a black sky: the glass is picked with probability r
+// and passes (1 - R') b of the lamp; the rest (metal_rough) reflects the black sky (the lamp lies
+// behind it): r (1 - R') b. The factor alone (1) or the texture's G (1) is twice that.
+TEST_CASE("glTF transmissionTexture: the factor times the texture's R, per hit (a sheet over a lamp)" *
+          doctest::test_suite("cpu")) {
+  TempDir dir;
+  writeImage8(dir.file("tr.png"), 4, 4, 3, [](int, int, int c) { return c == 0 ? 128 : 255; });
+  nlohmann::json g = nlohmann::json::parse(gltfWith(slabMesh(false), kTint, 0.0f, 0.2f, transmission(1.0, false)));
+  g["images"] = {{{"uri", "tr.png"}}};
+  g["textures"] = {{{"source", 0}}};
+  g["materials"][0]["extensions"]["KHR_materials_transmission"]["transmissionTexture"] = {{"index", 0}};
+  dir.write("sheet.gltf", g.dump());
+  MeshData lamp = slabMesh(false);  // the same face 3 below the sheet, wider, facing up
+  for (std::size_t k = 0; k < lamp.positions.size(); k += 3) {
+    lamp.positions[k] = 1.0f + 4.0f * (lamp.positions[k] - 1.0f);
+    lamp.positions[k + 1] = -2.0f;
+    lamp.positions[k + 2] = -1.0f + 4.0f * (lamp.positions[k + 2] + 1.0f);
+  }
+  dir.write("lamp.gltf", gltfText(lamp, 0.0f, ""));
+  nlohmann::json s = nlohmann::json::parse(slabScene("sheet.gltf", 64));
+  s["meshes"].push_back({{"file", "lamp.gltf"}, {"material", {{"emission", {1, 1, 1}}}}});
+  s["environment"]["radiance"] = {0, 0, 0};
+  dir.write("sheet.json", s.dump());
+  std::vector<std::string> warnings;
+  const Scene scene = loadScene(dir.file("sheet.json"), warnings);
+  CHECK(scene.materials[0].kind == MCL_MATERIAL_metal_rough);  // a pick per hit, not the whole kind
+  CHECK_FALSE(scene.materials[0].transmissionTexture.empty());
+  for (const std::string& w : warnings) CHECK(w.find("transmissionTexture") == std::string::npos);
+  const Film film = renderIndependent(dir.file("sheet.json"), 8);
+  const double r = 128.0 / 255.0, rs = 2.0 * kR / (1.0 + kR);
+  for (int c = 0; c < 3; ++c) {
+    CAPTURE(c);
+    const double expect = r * (1.0 - rs) * kTint[c];
+    const ImageEstimate e = imageEstimate(film, c);
+    CAPTURE(e.mean);
+    CAPTURE(expect);
+    CHECK(std::fabs(e.mean - expect) / e.standardError < 4.0);
+    CHECK(std::fabs(e.mean - expect / r) / e.standardError > 10.0);
+  }
+  // A transmissionTexture that is not a textureInfo: one line naming the key.
+  g["materials"][0]["extensions"]["KHR_materials_transmission"]["transmissionTexture"] = {{"texCoord", 0}};
+  dir.write("bad.gltf", g.dump());
+  try {
+    loadScene(dir.file("bad.gltf"), warnings);
+    FAIL("loaded");
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    CHECK(what.find("KHR_materials_transmission.transmissionTexture") != std::string::npos);
+    CHECK(what.find('\n') == std::string::npos);
+  }
+}
+
 // The packet stages build the glass's tint in lanes (lane_frame's textured albedo, lane_bsdf's
-// tint, the pick's flag): byte for byte the host's, for a textured base colour on solid and thin
-// glass, whole (the kind itself) and picked per hit, under both samplers.
+// tint, the pick's flag) and read the transmissionTexture in lanes (lane_frame_attributes): byte
+// for byte the host's, for a textured base colour on solid and thin glass, whole (the kind itself)
+// and picked per hit (with a transmissionTexture whose R varies texel by texel), both samplers.
 TEST_CASE("glTF transmission tint with a baseColorTexture: byte for byte the host backend's at W = 1, 4, 8, 16" *
           doctest::test_suite("cli")) {
   TempDir dir;
   writeImage8(dir.file("base.png"), 8, 8, 3, [](int x, int y, int c) { return (41 * x + 73 * y + 90 * c) % 256; });
+  writeImage8(dir.file("tr.png"), 8, 8, 3, [](int x, int y, int c) { return c == 0 ? (29 * x + 67 * y) % 256 : 0; });
   const float base[3] = {0.9f, 0.8f, 0.7f};
   for (const bool solid : {true, false})
     for (const double t : {1.0, 0.6}) {
       nlohmann::json g = nlohmann::json::parse(gltfWith(tentMesh(), base, 0.0f, 0.3f, transmission(t, solid)));
-      g["images"] = {{{"uri", "base.png"}}};
-      g["textures"] = {{{"source", 0}}};
+      g["images"] = {{{"uri", "base.png"}}, {{"uri", "tr.png"}}};
+      g["textures"] = {{{"source", 0}}, {{"source", 1}}};
       g["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+      if (t < 1.0) g["materials"][0]["extensions"]["KHR_materials_transmission"]["transmissionTexture"] = {{"index", 1}};
       dir.write("glass.gltf", g.dump());
       nlohmann::json s = {{"camera", {{"position", {1.2, 3.5, -1}}, {"target", {1.2, 0, -1}}, {"up", {0, 0, -1}},
                                       {"fov_y", 45}, {"width", 12}, {"height", 10}}},

@@ -168,7 +168,8 @@ void overrideMaterials(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, c
       if (o.kind) {
         // The file's metallic-roughness texture and transmission (and its tint) belong to its kind.
         if (d.kind != o.value.kind)
-          d.metallicRoughnessTexture.clear(), d.transmission = 0.0f, d.transmissionTinted = false;
+          d.metallicRoughnessTexture.clear(), d.transmission = 0.0f, d.transmissionTinted = false,
+          d.transmissionTexture.clear();
         d.kind = o.value.kind;
       }
       if (o.metallicRoughnessTexture) {

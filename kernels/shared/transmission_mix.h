@@ -4,6 +4,8 @@
 // dielectric, 0 for a thin sheet; host/render/device_materials.cpp) and returns the Material of
 // one of two kinds, picked per hit (by a number from the frame's sampler). Pure; compiled by the
 // kernels and the host tests.
+// t is the factor times the transmissionTexture's R at the hit (surface_texture.h
+// hit_transmission_texture; params1.w: that texture + 1, 0 none).
 // glTF's BSDF is metallic x metal + (1 - metallic) x fresnel_mix(specular, mix(diffuse, btdf, t)).
 // With p = t (1 - metallic) it is exactly p x (the dielectric: Fresnel-weighted specular + btdf) +
 // (1 - p) x metal_rough(metallic / (1 - p)) (the same metal weight, the rest Lambert + specular),

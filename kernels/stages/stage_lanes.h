@@ -378,7 +378,7 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
   vmask albedoVaries = ((h.attrs & MCL_ATTR_COLOR) != 0u) | (h.albedoTex != MCL_NO_TEXTURE);
   h.flat = (h.tinted | h.conductor | h.dielectric | h.thin | h.coatedConductor) & ((h.attrs & MCL_ATTR_NORMALS) == 0u) &
            v_not(h.placed) & ((h.normalMap | h.bumpMap) == 0u) & v_not(h.tinted & albedoVaries) &
-           (h.metalRoughTex == MCL_NO_TEXTURE);
+           (h.metalRoughTex == MCL_NO_TEXTURE) & v_not(h.mixes & (v_as_uint(h.params1.w) != 0u));
   return h;
 }
 
@@ -473,7 +473,8 @@ MCL_INLINE vfloat4 lane_texture(TextureTables tt, vmask on, vuint tex, vfloat u,
 // The lanes set in m (hits on world-space triangles) of a frame whose flat part is set:
 // surface_frame's shading normal, the normal and bump maps (lane_relief), for the tinted lanes
 // hit_albedo's vertex colour and albedo texture (trilinear, ray-cone footprint, hit_texture), and
-// the metallic-roughness texture (hit_metal_rough, into lh's params0), in lanes, at barycentrics
+// the metallic-roughness texture (hit_metal_rough, into lh's params0) and the transmission texture
+// (hit_transmission_texture, into params1.x), in lanes, at barycentrics
 // hu, hv, distance ht.
 MCL_INLINE LaneFrame lane_frame_attributes(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, vmask m,
                                            LaneHits* lh, vfloat hu, vfloat hv, vfloat ht, vfloat3 dir,
@@ -516,7 +517,8 @@ MCL_INLINE LaneFrame lane_frame_attributes(SurfaceScene sc, MCL_CONSTANT const F
     kd = v3_select(coloured, v3_mul(kd, blend), kd);
   }
   vmask mrTextured = m & (lh->metalRoughTex != MCL_NO_TEXTURE);
-  if (v_any(textured | mrTextured)) {  // hit_texture: the camera's ray cone at distance ht
+  vmask trTextured = m & lh->mixes & (v_as_uint(lh->params1.w) != 0u);  // params1.w: the texture + 1
+  if (v_any(textured | mrTextured | trTextured)) {  // hit_texture: the camera's ray cone at distance ht
     vfloat u, v;
     v_uv_blend(u0, u1, u2, t0, t1, t2, hu, hv, &u, &v);
     vfloat area = vsel(hasUV, v_uv_triangle_area(u0, u1, u2, t0, t1, t2), v_f(0.0f));
@@ -531,6 +533,10 @@ MCL_INLINE LaneFrame lane_frame_attributes(SurfaceScene sc, MCL_CONSTANT const F
       vfloat4 c = lane_texture(sc.tex, mrTextured, lh->metalRoughTex, u, v, fp);
       lh->params0.x = vsel(mrTextured, lh->params0.x * fmin(fmax(c.z, 0.0f), 1.0f), lh->params0.x);
       lh->params0.y = vsel(mrTextured, lh->params0.y * fmin(fmax(c.y, 0.0f), 1.0f), lh->params0.y);
+    }
+    if (v_any(trTextured)) {  // hit_transmission_texture: R times the transmission factor
+      vfloat4 c = lane_texture(sc.tex, trTextured, v_as_uint(lh->params1.w) - 1u, u, v, fp);
+      lh->params1.x = vsel(trTextured, lh->params1.x * fmin(fmax(c.x, 0.0f), 1.0f), lh->params1.x);
     }
   }
   lf.kd = kd;
