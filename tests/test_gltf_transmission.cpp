@@ -93,7 +93,10 @@ void writeMixtureScenes(TempDir& dir, int mixSpp) {
   dir.write("mix.gltf", tentGltf(kMixMetallic, 0.3f, {{"KHR_materials_transmission", {{"transmissionFactor", kMixT}}},
                                                        {"KHR_materials_volume", {{"thicknessFactor", 1.0}}}}, 0.5f));
   dir.write("mix.json", sceneText("mix.gltf", nullptr, mixSpp));
-  dir.write("glass.json", sceneText("plain.gltf", {{"type", "dielectric"}, {"ior", 1.5}, {"roughness", 0.3}}, 256));
+  // The glass the mixture picks is tinted by the base colour: the factor-1 material's.
+  dir.write("glass.gltf", tentGltf(0.0f, 0.3f, {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                                                 {"KHR_materials_volume", {{"thicknessFactor", 1.0}}}}, 0.5f));
+  dir.write("glass.json", sceneText("glass.gltf", nullptr, 256));
   dir.write("rest.json", sceneText("plain.gltf", {{"type", "metal_rough"}, {"metallic", kMixMetallic / (1.0f - p)}, {"roughness", 0.3}}, 256));
 }
 

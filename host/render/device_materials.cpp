@@ -24,11 +24,13 @@ Material deviceMaterial(const MaterialDesc& m) {
       d.params1 = glm::vec4(m.k, m.beckmann ? 1.0f : 0.0f);
       d.specular = glm::vec4(m.conductorFactor, 0.0f);  // bsdf_conductor.h: the factor on F
       break;
-    case MCL_MATERIAL_dielectric: d.params0 = glm::vec4(m.ior, m.kindAlpha, 0.0f, 0.0f); break;
-    case MCL_MATERIAL_thin_dielectric: d.params0 = glm::vec4(m.ior, 0.0f, 0.0f, 0.0f); break;
+    // z: 1 where the albedo tints the transmitted light (transmission_tint.h)
+    case MCL_MATERIAL_dielectric: d.params0 = glm::vec4(m.ior, m.kindAlpha, m.transmissionTinted ? 1.0f : 0.0f, 0.0f); break;
+    case MCL_MATERIAL_thin_dielectric: d.params0 = glm::vec4(m.ior, 0.0f, m.transmissionTinted ? 1.0f : 0.0f, 0.0f); break;
     case MCL_MATERIAL_metal_rough:
       d.params0 = glm::vec4(m.metallic, m.roughness, 0.0f, 0.0f);
-      // transmission_mix.h: x the factor, y the ior, z 1 for a solid dielectric (all 0 without)
+      // transmission_mix.h: x the factor, y the ior, z 1 for a solid dielectric (all 0 without);
+      // w the transmission texture + 1 (setTextureIndices), 0 none
       if (m.transmission > 0.0f) d.params1 = glm::vec4(m.transmission, m.ior, m.transmissionSolid ? 1.0f : 0.0f, 0.0f);
       break;
     case MCL_MATERIAL_coated_diffuse:

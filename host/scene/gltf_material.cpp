@@ -295,6 +295,13 @@ MaterialDesc GltfMaterials::read(std::size_t i) {
     d.normalTexture = texture(g.normalTexture, "normalTexture", d.normalSampling);
   }
   applyGltfSpecular(file_, where, extension(kSpecular), g, d, unused_);
+  if (const tinygltf::Value* tr = extension("KHR_materials_transmission")) {  // R x the factor, per hit
+    const std::string at = where + ".extensions.KHR_materials_transmission";
+    const ExtTexture map = extTexture(file_, at, *tr, "transmissionTexture");
+    if (map.index >= 0)
+      d.transmissionTexture = texturePath(i, map.index, map.texCoord, map.extensions,
+                                          "extensions.KHR_materials_transmission.transmissionTexture", d.transmissionSampling);
+  }
   applyGltfTransmission(file_, where, g, d, unused_);
   if (g.occlusionTexture.index >= 0) unused_.add("occlusionTexture", where, "occlusionTexture not used by montecl, ignored");
   return d;

@@ -49,17 +49,15 @@ void applyGltfTransmission(const std::string& file, const std::string& where, co
   const double thickness = number(file, where, vol, kVolume, "thicknessFactor", 0.0);
   if (!(thickness >= 0.0)) loadFail(file, where + ".extensions." + kVolume + ".thicknessFactor", "must be >= 0");
   if (t == 0.0) {  // no transmission: what the other two would change is not modelled
+    d.transmissionTexture.clear();  // (it scales a factor of 0)
+    d.transmissionSampling = TextureSampling{};
     if (io && ior != 1.5)
       unused.add("ior without transmission", where, "KHR_materials_ior without transmission not used (metal_rough's F0 stays 0.04)");
     if (vol) unused.add("volume without transmission", where, "KHR_materials_volume without transmission not used");
     return;
   }
-  if (tr && tr->IsObject() && tr->Has("transmissionTexture"))
-    unused.add("transmissionTexture", where, "transmissionTexture not read by montecl (transmissionFactor alone is used)");
   if (vol && vol->IsObject() && (vol->Has("attenuationDistance") || vol->Has("attenuationColor") || vol->Has("thicknessTexture")))
     unused.add("attenuation", where, "KHR_materials_volume attenuation and thicknessTexture not used (a clear interior)");
-  if (d.albedo != glm::vec3(1.0f) || !d.albedoTexture.empty())
-    unused.add("transmission tint", where, "the base colour does not tint transmitted light in montecl (clear glass)");
   // glTF: thicknessFactor 0 (the default) is a thin-walled material, > 0 the boundary of a volume.
   const bool solid = thickness > 0.0;
   // The factors as the loader read them into d (gltf_material.cpp): glTF's defaults (1, 1) are a
@@ -68,7 +66,8 @@ void applyGltfTransmission(const std::string& file, const std::string& where, co
   if (!solid && roughness > 0.0f)
     unused.add("thin roughness", where, "the roughness of a thin-walled transmission not used (montecl's thin sheet is smooth)");
   d.ior = float(ior);
-  if (t == 1.0 && metallic == 0.0f && d.metallicRoughnessTexture.empty()) {
+  d.transmissionTinted = true;  // glTF's BTDF x the base colour (x its texture x COLOR_0)
+  if (t == 1.0 && metallic == 0.0f && d.metallicRoughnessTexture.empty() && d.transmissionTexture.empty()) {
     // All of it transmits through a dielectric: exactly the kind (the scene file's equivalent).
     d.kind = solid ? MCL_MATERIAL_dielectric : MCL_MATERIAL_thin_dielectric;
     d.kindAlpha = solid ? roughness * roughness : 0.0f;

@@ -166,8 +166,10 @@ void overrideMaterials(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, c
       MaterialDesc d = scene.materials[m];
       d.name += " (" + mesh.prefix + " override)";
       if (o.kind) {
-        // The file's metallic-roughness texture and transmission belong to its metal_rough kind.
-        if (d.kind != o.value.kind) d.metallicRoughnessTexture.clear(), d.transmission = 0.0f;
+        // The file's metallic-roughness texture and transmission (and its tint) belong to its kind.
+        if (d.kind != o.value.kind)
+          d.metallicRoughnessTexture.clear(), d.transmission = 0.0f, d.transmissionTinted = false,
+          d.transmissionTexture.clear();
         d.kind = o.value.kind;
       }
       if (o.metallicRoughnessTexture) {

@@ -103,6 +103,13 @@ struct MaterialDesc {
   // `ior`, solid (KHR_materials_volume) or a thin sheet (kernels/shared/transmission_mix.h).
   float transmission = 0.0f;
   bool transmissionSolid = false;
+  // glTF transmissionTexture (linear; R x transmission, per hit), read where transmission > 0.
+  std::string transmissionTexture;
+  TextureSampling transmissionSampling;
+  // dielectric, thin_dielectric: the transmitted light is tinted by the albedo (x its texture x the
+  // vertex colours), as glTF's base colour tints its BTDF (kernels/shared/transmission_tint.h);
+  // false: clear glass (the scene file's). metal_rough's transmission is always tinted so.
+  bool transmissionTinted = false;
   // An MTL map_Kd without map_d: where it is ("<mtl>: line N: material 'm': map_Kd 'name'"), so the
   // texture loader can say how to cut it out when its alpha is not all 1 (it renders opaque). "": none.
   std::string cutoutHint;

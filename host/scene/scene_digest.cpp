@@ -98,7 +98,8 @@ std::string sceneDigest(const Scene& scene) {
     }
     // How the textures are read, only where it is not as they always were (other digests stay).
     for (const TextureSampling* t : {&m.albedoSampling, &m.alphaSampling, &m.emissionSampling,
-                                     &m.metallicRoughnessSampling, &m.normalSampling, &m.bumpSampling})
+                                     &m.metallicRoughnessSampling, &m.normalSampling, &m.bumpSampling,
+                                     &m.transmissionSampling})
       if (!t->identity()) {
         bytes.add("sampling");
         appendVec(bytes, t->row0);
@@ -126,7 +127,12 @@ std::string sceneDigest(const Scene& scene) {
       if (m.transmission > 0.0f) {  // only when there is some, so other scenes keep their digests
         bytes.add(m.transmissionSolid ? "transmission solid" : "transmission thin");
         append(bytes, &m.transmission, sizeof m.transmission);
+        if (!m.transmissionTexture.empty()) {
+          const std::uint64_t tt = fileContentHash(m.transmissionTexture, files);
+          append(bytes, &tt, sizeof tt);
+        }
       }
+      if (m.transmissionTinted) bytes.add("transmission tinted");  // only then, likewise
       if (m.kind == MCL_MATERIAL_coated_diffuse || m.kind == MCL_MATERIAL_coated_conductor) {  // the layer (no other kind reads it)
         const float layer[3] = {m.thickness, float(m.layerMaxDepth), float(m.layerSamples)};
         append(bytes, layer, sizeof layer);

@@ -25,7 +25,8 @@ bool usesBumpMap(const MaterialDesc& m) { return !m.bumpTexture.empty() && m.nor
 bool sceneHasTextures(const Scene& scene) {
   for (const MaterialDesc& m : scene.materials)
     if (!m.albedoTexture.empty() || !m.alphaTexture.empty() || !m.emissionTexture.empty() ||
-        !m.metallicRoughnessTexture.empty() || !m.normalTexture.empty() || usesBumpMap(m))
+        !m.metallicRoughnessTexture.empty() || !m.normalTexture.empty() || usesBumpMap(m) ||
+        !m.transmissionTexture.empty())
       return true;
   return false;
 }
@@ -181,6 +182,7 @@ void applySampling(SceneTextures& out, const Scene& scene, const TextureUses& us
     if (uses.reflectance) view(t.albedo, m.albedoSampling);
     if (uses.emission) view(t.emission, m.emissionSampling);
     if (uses.reflectance) view(t.metallicRoughness, m.metallicRoughnessSampling);
+    if (uses.reflectance) view(t.transmission, m.transmissionSampling);
     if (uses.normal) view(t.normal, m.normalSampling);
     if (uses.normal) view(t.bump, m.bumpSampling);
     view(t.alpha, m.alphaSampling);
@@ -232,23 +234,27 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
   };
   std::vector<File> files;
   std::map<std::string, std::size_t> fileIndex;
-  const auto linearKey = [](const MaterialDesc& m) {
-    if (!m.specGlossMap) return m.metallicRoughnessTexture + std::string(1, '\0') + "linear";
+  const auto plainLinearKey = [](const std::string& path) { return path + std::string(1, '\0') + "linear"; };
+  const auto linearKey = [&](const MaterialDesc& m) {
+    if (!m.specGlossMap) return plainLinearKey(m.metallicRoughnessTexture);
     char key[160];
     std::snprintf(key, sizeof key, "spec-gloss %a %a %a %a %a %a %a", double(m.specGloss.x), double(m.specGloss.y),
                   double(m.specGloss.z), double(m.specGloss.w), double(m.specGlossDiffuse.x), double(m.specGlossDiffuse.y),
                   double(m.specGlossDiffuse.z));
     return m.metallicRoughnessTexture + std::string(1, '\0') + key;
   };
-  const auto useLinear = [&](const MaterialDesc& m, const char* key, bool read) {
-    auto [it, added] = fileIndex.emplace(linearKey(m), files.size());
+  // A data texture (path, under fkey): the metallic-roughness one (specGloss: converted) or the
+  // transmission one (never: a texture of both shares the File).
+  const auto useLinear = [&](const MaterialDesc& m, const std::string& path, const std::string& fkey, bool specGloss,
+                             const char* key, bool read) {
+    auto [it, added] = fileIndex.emplace(fkey, files.size());
     if (added) {
       files.emplace_back();
-      files.back().path = m.metallicRoughnessTexture;
+      files.back().path = path;
       files.back().material = m.name;
       files.back().key = key;
       files.back().asLinear = true;
-      files.back().specGloss = m.specGlossMap;
+      files.back().specGloss = specGloss;
       files.back().sg = m.specGloss;
       files.back().sgDiffuse = m.specGlossDiffuse;
     }
@@ -309,7 +315,11 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     if (!m.alphaTexture.empty()) use(m, m.alphaTexture, "map_d", false, true);
     if (!m.emissionTexture.empty()) use(m, m.emissionTexture, "map_Ke", true, uses.emission);
     if (!m.metallicRoughnessTexture.empty())
-      useLinear(m, m.specGlossMap ? "specularGlossinessTexture" : "metallicRoughnessTexture", uses.reflectance);
+      useLinear(m, m.metallicRoughnessTexture, linearKey(m), m.specGlossMap,
+                m.specGlossMap ? "specularGlossinessTexture" : "metallicRoughnessTexture", uses.reflectance);
+    if (!m.transmissionTexture.empty())
+      useLinear(m, m.transmissionTexture, plainLinearKey(m.transmissionTexture), false, "transmissionTexture",
+                uses.reflectance);
     if (!m.normalTexture.empty()) useNormal(m, uses.normal);
     if (usesBumpMap(m)) useBump(m, uses.normal);
   }
@@ -412,6 +422,8 @@ SceneTextures loadSceneTextures(const Scene& scene, std::uint64_t budgetBytes, s
     if (uses.emission && !m.emissionTexture.empty()) out.materials[i].emission = first[fileIndex.at(m.emissionTexture)];
     if (uses.reflectance && !m.metallicRoughnessTexture.empty())
       out.materials[i].metallicRoughness = first[fileIndex.at(linearKey(m))];
+    if (uses.reflectance && !m.transmissionTexture.empty())
+      out.materials[i].transmission = first[fileIndex.at(plainLinearKey(m.transmissionTexture))];
     if (uses.normal && !m.normalTexture.empty()) out.materials[i].normal = first[fileIndex.at(normalKey(m))];
     if (uses.normal && usesBumpMap(m)) out.materials[i].bump = first[fileIndex.at(bumpKey(m))];
     if (!m.alphaTexture.empty()) {

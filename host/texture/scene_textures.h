@@ -25,6 +25,7 @@ struct MaterialTextures {
   std::uint32_t alphaChannel = 0;
   std::uint32_t emission = MCL_NO_TEXTURE;  // emission texture (colour, like the albedo's)
   std::uint32_t metallicRoughness = MCL_NO_TEXTURE;  // read linear (no sRGB decode)
+  std::uint32_t transmission = MCL_NO_TEXTURE;       // glTF transmissionTexture, linear (R)
   std::uint32_t normal = MCL_NO_TEXTURE;  // decoded tangent-space vectors (normal_map.h)
   std::uint32_t bump = MCL_NO_TEXTURE;    // scaled height gradients (bump_gradient.h, bump_map.h)
 };

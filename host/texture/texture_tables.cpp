@@ -70,6 +70,9 @@ void setTextureIndices(std::vector<Material>& materials, const SceneTextures& te
     // One more than the index, 0 none: a zeroed Material (hand-made in tests) has no normal map.
     materials[i].maps.z = glm::uintBitsToFloat(t.normal == MCL_NO_TEXTURE ? 0u : t.normal + 1u);
     materials[i].maps.w = glm::uintBitsToFloat(t.bump == MCL_NO_TEXTURE ? 0u : t.bump + 1u);  // the same rule
+    // metal_rough's transmission texture, one more than the index, in params1.w (transmission_mix.h;
+    // only a transmissive metal_rough material has one, and no other kind's params1.w is touched).
+    if (t.transmission != MCL_NO_TEXTURE) materials[i].params1.w = glm::uintBitsToFloat(t.transmission + 1u);
   }
 }
 

@@ -1,12 +1,13 @@
 // bsdf_dielectric.h: the material kind "dielectric" (material_kinds.h): an interface between
 // the outside (index 1, the triangle's front face: the side of cross(v1 - v0, v2 - v0)) and the
-// inside (index ior). Reads a Material's params0 (x: ior, y: alpha); the side from
-// SurfaceFrame::backface. Pure; compiled by the kernels and the host tests. Written with selects
-// (no early returns).
+// inside (index ior). Reads a Material's params0 (x: ior, y: alpha, z: tinted by the albedo,
+// transmission_tint.h); the side from SurfaceFrame::backface. Pure; compiled by the kernels and
+// the host tests. Written with selects (no early returns).
 // alpha 0 (smooth): one delta reflection and one delta refraction lobe, picked with the Fresnel
 // reflectance F (bsdf_common.h fresnel_dielectric) as probability, so both weights are exact:
 // reflection 1, refraction 1 / eta^2 (radiance transport: radiance is scaled by (n_i / n_t)^2
-// across the interface, as Mitsuba's dielectric and pbrt's DielectricBxDF do). Around the shading
+// across the interface, as Mitsuba's dielectric and pbrt's DielectricBxDF do), and by the tint
+// (white but for glTF's glass: its base colour; both lobes below). Around the shading
 // normal ns: a reflection below the geometric surface, or a refraction above it, is absorbed.
 // alpha > 0 (rough): GGX microfacet reflection and transmission (Walter et al. 2007, "Microfacet
 // Models for Refraction through Rough Surfaces"; Mitsuba's roughdielectric with distribution ggx,
@@ -17,14 +18,16 @@
 #pragma once
 #include "bsdf_common.h"
 #include "microfacet.h"
+#include "transmission_tint.h"
 
-#define MCL_DEFINE_DIELECTRIC_TYPE(B, F, M)                                           \
+#define MCL_DEFINE_DIELECTRIC_TYPE(B, F, F3, M)                                       \
   typedef struct {                                                                    \
     F ior;    /* inside / outside */                                                  \
     F alpha;  /* GGX roughness of the rough kind, at least MCL_GGX_MIN_ALPHA */       \
     M smooth; /* alpha == 0: the delta lobes */                                       \
+    F3 tint;  /* on the transmitted light (transmission_tint.h); white: clear glass */ \
   } B;
-MCL_DEFINE_DIELECTRIC_TYPE(DielectricBsdf, float, int)
+MCL_DEFINE_DIELECTRIC_TYPE(DielectricBsdf, float, float3, int)
 
 // The kind's make, eta, lobes and sample, written once for floats and lanes (P, F, F3, M, V, ANY:
 // the prefix, float, float3, int mask, f3, MCL_ANY1 here; the packet stages' v_, vfloat, vfloat3,
@@ -42,7 +45,8 @@ MCL_DEFINE_DIELECTRIC_TYPE(DielectricBsdf, float, int)
 //   (pdf: the visible-normal density D_wo(h) = G1(wo) D wo.h / wo.z times the lobe's probability
 //   and the Jacobian dh / dwi, 1 / (4 wo.h) and |wi.h| / c^2). So f cos / pdf = G1(wi), and
 //   G1(wi) / eta^2 for a transmission. side: the geometric side test of wi (0: nothing).
-// - dielectric_eval_pdf: f * |cos(ns, wi)| of the rough lobes around ns and their pdf (*pdf); 0 for
+// - dielectric_eval_pdf: f * |cos(ns, wi)| of the rough lobes around ns (a transmission's times
+//   the tint) and their pdf (*pdf); 0 for
 //   the smooth kind (delta lobes only) and for a reflection below the geometric surface or a
 //   transmission above it; dielectric_f: f = eval / |cos(ns, wi)| (a transmitted wi has a negative
 //   cosine).
@@ -57,6 +61,7 @@ MCL_DEFINE_DIELECTRIC_TYPE(DielectricBsdf, float, int)
     b.ior = ior;                                                                                           \
     b.smooth = (alpha > 0.0f) == (M)(0);                                                                   \
     b.alpha = fmax(alpha, MCL_GGX_MIN_ALPHA);                                                              \
+    b.tint = V##_make((F)(1.0f), (F)(1.0f), (F)(1.0f));                                                    \
     return b;                                                                                              \
   }                                                                                                        \
   MCL_INLINE F P##dielectric_eta(B b, FR s) { return vsel(s.backface, 1.0f / b.ior, b.ior); }             \
@@ -85,16 +90,16 @@ MCL_DEFINE_DIELECTRIC_TYPE(DielectricBsdf, float, int)
     *pdf = vsel(ok, p, (F)(0.0f));                                                                         \
     return vsel(ok, p * w, (F)(0.0f));                                                                     \
   }                                                                                                        \
-  MCL_INLINE F P##dielectric_eval_pdf(B b, FR s, F3 wo, F3 wi, F* pdf) {                                   \
+  MCL_INLINE F3 P##dielectric_eval_pdf(B b, FR s, F3 wo, F3 wi, F* pdf) {                                  \
     F3 woL = P##to_local(wo, s.ns), wiL = P##to_local(wi, s.ns);                                           \
     M side = vsel(wiL.z > 0.0f, V##_dot(s.ng, wi) > 0.0f, V##_dot(s.ng, wi) < 0.0f);                       \
-    return P##rough_dielectric_eval_local(woL, wiL, P##dielectric_eta(b, s), b.alpha,                     \
-                                          side & (b.smooth == (M)(0)), pdf);                               \
+    F e = P##rough_dielectric_eval_local(woL, wiL, P##dielectric_eta(b, s), b.alpha,                       \
+                                         side & (b.smooth == (M)(0)), pdf);                                \
+    return P##tint_transmitted(b.tint, (wiL.z > 0.0f) == (M)(0), e);                                      \
   }                                                                                                        \
   MCL_INLINE F3 P##dielectric_f(B b, FR s, F3 wo, F3 wi) {                                                 \
     F p;                                                                                                   \
-    F e = P##dielectric_eval_pdf(b, s, wo, wi, &p);                                                        \
-    return P##over_cosine(V##_make(e, e, e), fabs(V##_dot(s.ns, wi)));                                     \
+    return P##over_cosine(P##dielectric_eval_pdf(b, s, wo, wi, &p), fabs(V##_dot(s.ns, wi)));              \
   }                                                                                                        \
   MCL_INLINE BS P##dielectric_sample_rough(B b, FR s, F3 wo, F u1, F u2, F uLobe) {                        \
     F eta = P##dielectric_eta(b, s);                                                                       \
@@ -112,12 +117,12 @@ MCL_DEFINE_DIELECTRIC_TYPE(DielectricBsdf, float, int)
     BS r;                                                                                                  \
     r.wi = P##to_world(wiL, s.ns);                                                                         \
     F pdf;                                                                                                 \
-    F fcos = P##dielectric_eval_pdf(b, s, wo, r.wi, &pdf);                                                 \
+    F3 fcos = P##dielectric_eval_pdf(b, s, wo, r.wi, &pdf);                                                \
     /* The lobe drawn must be the lobe evaluated (a refraction that rounding put above ns is lost). */     \
     M ok = up & (pdf > 0.0f) & vsel(refl, wiL.z > 0.0f, wiL.z < 0.0f);                                     \
-    F w = fcos * (1.0f / fmax(pdf, 1e-30f));                                                               \
+    F3 w = V##_scale(fcos, 1.0f / fmax(pdf, 1e-30f));                                                      \
     r.pdf = vsel(ok, pdf, (F)(0.0f));                                                                      \
-    r.weight = V##_select(ok, V##_make(w, w, w), V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));               \
+    r.weight = V##_select(ok, w, V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                               \
     r.flags = vsel(refl, (M)(0), (M)(MCL_BSDF_TRANSMISSION));                                              \
     return r;                                                                                              \
   }                                                                                                        \
@@ -135,7 +140,8 @@ MCL_DEFINE_DIELECTRIC_TYPE(DielectricBsdf, float, int)
     M ok = (cosI > 0.0f) & vsel(refl, dg > 0.0f, dg < 0.0f);                                               \
     F w = vsel(refl, (F)(1.0f), 1.0f / (eta * eta));                                                       \
     r.pdf = vsel(ok, vsel(refl, fr, 1.0f - fr), (F)(0.0f));                                                \
-    r.weight = V##_select(ok, V##_make(w, w, w), V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));               \
+    r.weight = V##_select(ok, P##tint_transmitted(b.tint, refl == (M)(0), w),                              \
+                          V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                                      \
     r.flags = vsel(refl, (M)(MCL_BSDF_DELTA), (M)(MCL_BSDF_DELTA | MCL_BSDF_TRANSMISSION));                \
     return r;                                                                                              \
   }                                                                                                        \
@@ -156,12 +162,13 @@ MCL_DEFINE_DIELECTRIC_TYPE(DielectricBsdf, float, int)
 MCL_DEFINE_DIELECTRIC(, float, float3, int, f3, MCL_ANY1, DielectricBsdf, SurfaceFrame, BsdfSample)
 
 MCL_INLINE DielectricBsdf dielectric_from_material(Material m, float3 albedo) {
-  (void)albedo;
-  return dielectric_make(m.params0.x, m.params0.y);
+  DielectricBsdf b = dielectric_make(m.params0.x, m.params0.y);
+  b.tint = transmission_tint_of(m.params0.z, albedo);
+  return b;
 }
 
 MCL_INLINE int dielectric_is_delta(DielectricBsdf b) { return b.smooth; }
-// The albedo AOV: the directional albedo at normal incidence from outside, counted in energy
+// The albedo AOV (the tint not counted): the directional albedo at normal incidence from outside, counted in energy
 // (reflected plus transmitted, without the 1 / eta^2 of radiance), as the conductor's F(1):
 // 1 for the smooth kind (clear glass reflects and transmits everything); the rough kind keeps
 // E = the mean over wo's visible normals h of F G1(reflected) + (1 - F) G1(refracted) (what
@@ -193,8 +200,7 @@ MCL_INLINE float3 dielectric_albedo(DielectricBsdf b) {
 
 MCL_INLINE float3 dielectric_eval(DielectricBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
   float p;
-  float fcos = dielectric_eval_pdf(b, s, wo, wi, &p);
-  return make_float3(fcos, fcos, fcos);
+  return dielectric_eval_pdf(b, s, wo, wi, &p);
 }
 MCL_INLINE float dielectric_pdf(DielectricBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
   float p;
@@ -207,15 +213,15 @@ MCL_INLINE BsdfDirection dielectric_sample_direction(DielectricBsdf b, SurfaceFr
 }
 
 // The weight of a direction dielectric_sample drew. Smooth: rebuilt from its side: above the
-// geometric surface the reflection (1), below it the refraction (1 / eta^2). Rough: eval / pdf
-// (pdf: dielectric_pdf of wi).
+// geometric surface the reflection (1), below it the refraction (1 / eta^2, times the tint).
+// Rough: eval / pdf (pdf: dielectric_pdf of wi).
 MCL_INLINE BsdfWeight dielectric_direction_weight(DielectricBsdf b, SurfaceFrame s, float3 wo, float3 wi, float pdf) {
   float eta = dielectric_eta(b, s);
-  float w = above_surface(s.ng, wi) ? 1.0f : 1.0f / (eta * eta);
-  float wr = dielectric_eval(b, s, wo, wi).x * (1.0f / fmax(pdf, 1e-30f));
+  int above = above_surface(s.ng, wi);
+  float w = above ? 1.0f : 1.0f / (eta * eta);
+  float3 wr = dielectric_eval(b, s, wo, wi) * (1.0f / fmax(pdf, 1e-30f));
   BsdfWeight r;
   r.counts = b.smooth ? 1 : pdf > 0.0f;
-  w = b.smooth ? w : wr;
-  r.weight = make_float3(w, w, w);
+  r.weight = b.smooth ? tint_transmitted(b.tint, !above, w) : wr;
   return r;
 }

@@ -2,16 +2,19 @@
 // index ior (a window pane) with two delta lobes: the mirror reflection with the sheet's
 // reflectance R' = R + T^2 R / (1 - R^2) (R the single interface's Fresnel reflectance, T = 1 - R,
 // the series of internal bounces summed; Mitsuba's thindielectric) and straight-through
-// transmission (wi = -wo) with 1 - R'. Both sides alike. Reads a Material's params0.x (ior);
-// pure; compiled by the kernels and the host tests. Written with selects (no early returns).
+// transmission (wi = -wo) with 1 - R', its weight times the tint (white but for glTF's glass:
+// its base colour, transmission_tint.h). Both sides alike. Reads a Material's params0.x (ior) and
+// .z (tinted by the albedo); pure; compiled by the kernels and the host tests. Written with selects (no early returns).
 #pragma once
 #include "bsdf_common.h"
+#include "transmission_tint.h"
 
-#define MCL_DEFINE_THIN_DIELECTRIC_TYPE(B, F) \
-  typedef struct {                            \
-    F ior;                                    \
+#define MCL_DEFINE_THIN_DIELECTRIC_TYPE(B, F, F3) \
+  typedef struct {                                \
+    F ior;                                        \
+    F3 tint; /* on the transmitted light */       \
   } B;
-MCL_DEFINE_THIN_DIELECTRIC_TYPE(ThinDielectricBsdf, float)
+MCL_DEFINE_THIN_DIELECTRIC_TYPE(ThinDielectricBsdf, float, float3)
 
 // The sheet's reflectance (all inter-reflections: R + T^2 R / (1 - R^2)) and its sample, written once
 // for floats and lanes (P, F, F3, M, V: float, float3, int, f3 here; the packet stages' lane types
@@ -33,16 +36,17 @@ MCL_DEFINE_THIN_DIELECTRIC_TYPE(ThinDielectricBsdf, float)
     out.wi = V##_select(refl, V##_sub(V##_scale(s.ns, 2.0f * cosI), wo), V##_neg(wo));             \
     M ok = (cosI > 0.0f) & ((V##_dot(s.ng, out.wi) > 0.0f) | (refl == (M)(0)));                    \
     out.pdf = vsel(ok, vsel(refl, r, 1.0f - r), (F)(0.0f));                                        \
-    out.weight = V##_select(ok, V##_make((F)(1.0f), (F)(1.0f), (F)(1.0f)), V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f))); \
+    out.weight = V##_select(ok, P##tint_transmitted(b.tint, refl == (M)(0), (F)(1.0f)),           \
+                            V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                            \
     out.flags = vsel(refl, (M)(MCL_BSDF_DELTA), (M)(MCL_BSDF_DELTA | MCL_BSDF_TRANSMISSION));      \
     return out;                                                                                    \
   }
 MCL_DEFINE_THIN_DIELECTRIC(, float, float3, int, f3, ThinDielectricBsdf, SurfaceFrame, BsdfSample)
 
 MCL_INLINE ThinDielectricBsdf thin_dielectric_from_material(Material m, float3 albedo) {
-  (void)albedo;
   ThinDielectricBsdf b;
   b.ior = m.params0.x;
+  b.tint = transmission_tint_of(m.params0.z, albedo);
   return b;
 }
 
@@ -74,13 +78,14 @@ MCL_INLINE BsdfDirection thin_dielectric_sample_direction(ThinDielectricBsdf b, 
   return bsdf_direction_of(thin_dielectric_sample(b, s, wo, u1, u2, uLobe));
 }
 
-// Both lobes weigh 1 (each is picked with its own reflectance or transmittance).
+// Both lobes weigh 1 (each is picked with its own reflectance or transmittance), the one
+// through (below the geometric surface) times the tint.
 MCL_INLINE BsdfWeight thin_dielectric_direction_weight(ThinDielectricBsdf b, SurfaceFrame s, float3 wo, float3 wi,
                                                        float pdf) {
-  (void)b; (void)s; (void)wi; (void)wo;
+  (void)wo;
   (void)pdf;
   BsdfWeight r;
   r.counts = 1;
-  r.weight = make_float3(1.0f, 1.0f, 1.0f);
+  r.weight = tint_transmitted(b.tint, !above_surface(s.ng, wi), 1.0f);
   return r;
 }

@@ -111,6 +111,7 @@ MCL_INLINE Surface surface_at_object(SurfaceScene sc, MCL_CONSTANT const FramePa
   s.frame = apply_bump_map(s.frame, sc.tex, m, tri, &sc.shading[h.tri], xyz(sc.normals[h.tri]), h);
   float3 albedo = hit_albedo(sc.tex, f, m, tri, sc.normals[h.tri], &sc.shading[h.tri], h, dir);
   m = hit_metal_rough(sc.tex, f, m, tri, sc.normals[h.tri], &sc.shading[h.tri], h, dir);
+  m = hit_transmission_texture(sc.tex, f, m, tri, sc.normals[h.tri], &sc.shading[h.tri], h, dir);
   m = hit_transmission(f, m, r, h, dir);
   s.bsdf = bsdf_from_material(m, albedo);
   return s;

@@ -6,6 +6,7 @@
 // the kernels, the host backend and the host tests.
 #pragma once
 #include "geometry.h"
+#include "material_kinds.h"
 #include "lights.h"
 #include "rng.h"
 #include "texture.h"
@@ -76,6 +77,19 @@ MCL_INLINE Material hit_metal_rough(TextureTables tt, MCL_CONSTANT const FramePa
   float4 t = hit_texture(tt, f, tex, tri, nA, sh, h, dir);
   m.params0.x *= fmin(fmax(t.z, 0.0f), 1.0f);
   m.params0.y *= fmin(fmax(t.y, 0.0f), 1.0f);
+  return m;
+}
+
+// Material m with its transmission texture applied at hit h (glTF transmissionTexture: R times the
+// factor in params1.x, read by transmission_mix.h's pick; params1.w holds one more than the texture,
+// 0 none): m unchanged unless it is a metal_rough material with a factor > 0 and such a texture.
+MCL_INLINE Material hit_transmission_texture(TextureTables tt, MCL_CONSTANT const FrameParams* f, Material m,
+                                             MCL_GLOBAL const Triangle* tri, float4 nA,
+                                             MCL_GLOBAL const TriangleShading* sh, Hit h, float3 dir) {
+  uint slot = as_uint(m.params1.w);
+  if (as_uint(m.alpha.w) != (uint)MCL_MATERIAL_metal_rough || !(m.params1.x > 0.0f) || slot == 0u) return m;
+  float4 t = hit_texture(tt, f, slot - 1u, tri, nA, sh, h, dir);
+  m.params1.x *= fmin(fmax(t.x, 0.0f), 1.0f);
   return m;
 }
 

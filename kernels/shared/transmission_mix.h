@@ -4,10 +4,13 @@
 // dielectric, 0 for a thin sheet; host/render/device_materials.cpp) and returns the Material of
 // one of two kinds, picked per hit (by a number from the frame's sampler). Pure; compiled by the
 // kernels and the host tests.
+// t is the factor times the transmissionTexture's R at the hit (surface_texture.h
+// hit_transmission_texture; params1.w: that texture + 1, 0 none).
 // glTF's BSDF is metallic x metal + (1 - metallic) x fresnel_mix(specular, mix(diffuse, btdf, t)).
 // With p = t (1 - metallic) it is exactly p x (the dielectric: Fresnel-weighted specular + btdf) +
 // (1 - p) x metal_rough(metallic / (1 - p)) (the same metal weight, the rest Lambert + specular),
-// so the hit becomes the (thin_)dielectric kind (ior, alpha = roughness^2; thin: smooth) with
+// so the hit becomes the (thin_)dielectric kind (ior, alpha = roughness^2; thin: smooth; its
+// transmission tinted by the base colour, glTF's btdf x baseColor: transmission_tint.h) with
 // probability p, else metal_rough with metallic / (1 - p): a stochastic choice of one kind,
 // unbiased, branch-free, and every stage keeps seeing one kind (delta or not) per hit. The number
 // deciding it is a pure function of the sample and the bounce (SampleRef), so every stage that
@@ -29,8 +32,8 @@
 //   barycentrics u, v) of a ray along dir.
 // - transmission_pick: the kind a material of kind `kind` with transmission factor t (params1.x),
 //   index ior (params1.y) and solid flag (params1.z) is at a hit whose uniform number is u (only
-//   read where the material mixes); *metallic, *roughness (params0.x, .y in, the picked kind's
-//   params0.x, .y out).
+//   read where the material mixes); *metallic, *roughness, *tinted (params0.x, .y, .z in, the
+//   picked kind's params0.x, .y, .z out: the glass is tinted by the albedo).
 #define MCL_DEFINE_TRANSMISSION_PICK(P, F, U, M, F3, MIX, AS_U, UNIT)                           \
   MCL_INLINE F P##hit_uniform_at(U tri, F u, F v, F3 dir) {                                     \
     U x = MIX(tri ^ 0x9e3779b9u);                                                               \
@@ -41,7 +44,8 @@
     x = MIX(x ^ AS_U(dir.z));                                                                   \
     return UNIT(x);                                                                             \
   }                                                                                             \
-  MCL_INLINE U P##transmission_pick(U kind, F t, F ior, F solidFlag, F u, F* metallic, F* roughness) { \
+  MCL_INLINE U P##transmission_pick(U kind, F t, F ior, F solidFlag, F u, F* metallic, F* roughness,  \
+                                    F* tinted) {                                                \
     M mixes = (kind == (uint)MCL_MATERIAL_metal_rough) & (t > 0.0f);                            \
     F p = t * (1.0f - *metallic);                                                               \
     M pick = mixes & (u < p);                                                                   \
@@ -51,6 +55,7 @@
     F r = *roughness;                                                                           \
     *metallic = vsel(pick, ior, vsel(mixes, rest, *metallic));                                  \
     *roughness = vsel(pick, vsel(solid, r * r, (F)(0.0f)), r);                                  \
+    *tinted = vsel(pick, (F)(1.0f), *tinted);                                                   \
     return vsel(pick, glass, kind);                                                             \
   }
 MCL_DEFINE_TRANSMISSION_PICK(, float, uint, int, float3, mcl_mix32, as_uint, u32_to_unit)
@@ -84,10 +89,12 @@ MCL_INLINE Material hit_transmission(MCL_CONSTANT const FrameParams* f, Material
   uint kind = as_uint(m.alpha.w);
   int mixes = kind == (uint)MCL_MATERIAL_metal_rough && m.params1.x > 0.0f;
   float u = mixes ? transmission_uniform(f, r, h, dir) : 1.0f;
-  float metallic = m.params0.x, roughness = m.params0.y;
+  float metallic = m.params0.x, roughness = m.params0.y, tinted = m.params0.z;
   Material out = m;
-  out.alpha.w = as_float(transmission_pick(kind, m.params1.x, m.params1.y, m.params1.z, u, &metallic, &roughness));
+  out.alpha.w =
+      as_float(transmission_pick(kind, m.params1.x, m.params1.y, m.params1.z, u, &metallic, &roughness, &tinted));
   out.params0.x = metallic;
   out.params0.y = roughness;
+  out.params0.z = tinted;
   return out;
 }

@@ -18,9 +18,10 @@ MCL_DEFINE_DIFFUSE_TYPE(vDiffuseBsdf, vfloat, vfloat3)
 MCL_DEFINE_DIFFUSE_GLOSSY(v_, vfloat, vfloat3, vmask, v3, v_any, vDiffuseBsdf, LaneFrame, vBsdfSample)
 MCL_DEFINE_CONDUCTOR_TYPE(vConductorBsdf, vfloat, vfloat3, vmask)
 MCL_DEFINE_CONDUCTOR(v_, vfloat, vfloat3, vmask, v3, v_any, vConductorBsdf, LaneFrame, vBsdfSample)
-MCL_DEFINE_DIELECTRIC_TYPE(vDielectricBsdf, vfloat, vmask)
+MCL_DEFINE_TRANSMISSION_TINT(v_, vfloat, vfloat3, vmask, v3)
+MCL_DEFINE_DIELECTRIC_TYPE(vDielectricBsdf, vfloat, vfloat3, vmask)
 MCL_DEFINE_DIELECTRIC(v_, vfloat, vfloat3, vmask, v3, v_any, vDielectricBsdf, LaneFrame, vBsdfSample)
-MCL_DEFINE_THIN_DIELECTRIC_TYPE(vThinDielectricBsdf, vfloat)
+MCL_DEFINE_THIN_DIELECTRIC_TYPE(vThinDielectricBsdf, vfloat, vfloat3)
 MCL_DEFINE_THIN_DIELECTRIC(v_, vfloat, vfloat3, vmask, v3, vThinDielectricBsdf, LaneFrame, vBsdfSample)
 MCL_DEFINE_METAL_ROUGH_TYPE(vMetalRoughBsdf, vfloat, vfloat3)
 MCL_DEFINE_METAL_ROUGH(v_, vfloat, vfloat3, vmask, v3, vMetalRoughBsdf, LaneFrame, vBsdfSample)
@@ -52,7 +53,7 @@ MCL_INLINE vmask lane_bsdf_kinds(const LaneHits* lh) {
 }
 
 // <kind>_from_material per lane, from the materials' params0 and params1 (LaneHits) and the frame's
-// textured albedo (the diffuse kind's kd, metal_rough's base colour).
+// textured albedo (the diffuse kind's kd, metal_rough's base colour, the glass's tint).
 MCL_INLINE LaneBsdf lane_bsdf(const LaneHits* lh, LaneFrame s) {
   LaneBsdf b;
   b.lamb = lh->lamb;
@@ -71,7 +72,9 @@ MCL_INLINE LaneBsdf lane_bsdf(const LaneHits* lh, LaneFrame s) {
   b.cond.factor = v3_make(lh->specular.x, lh->specular.y, lh->specular.z);  // conductor_from_material
   b.cond.beckmann = lh->params1.w > 0.5f;
   b.diel = v_dielectric_make(lh->params0.x, lh->params0.y);
+  b.diel.tint = v_transmission_tint_of(lh->params0.z, s.kd);
   b.sheet.ior = lh->params0.x;
+  b.sheet.tint = b.diel.tint;
   b.mr = v_metal_rough_make(s.kd, lh->params0.x, lh->params0.y);
   b.cd.base = s.kd;  // coated_diffuse_from_material
   b.cd.alpha = fmax(lh->params0.x, MCL_GGX_MIN_ALPHA);
@@ -109,8 +112,7 @@ MCL_INLINE vfloat3 lane_bsdf_eval_pdf(const LaneBsdf* b, LaneFrame s, vfloat3 wo
   }
   if (v_any(b->dielectric)) {
     vfloat dp;
-    vfloat d = v_dielectric_eval_pdf(b->diel, s, wo, wi, &dp);
-    fc = v3_select(b->dielectric, v3_make(d, d, d), fc);
+    fc = v3_select(b->dielectric, v_dielectric_eval_pdf(b->diel, s, wo, wi, &dp), fc);
     p = vsel(b->dielectric, dp, p);
   }
   if (v_any(b->metalRough)) {

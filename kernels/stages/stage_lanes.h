@@ -293,7 +293,8 @@ MCL_DEFINE_LIGHT_PICKS(v_, vfloat, vfloat3, vuint, vmask, v_any, v_, v_cvt_u_f, 
 // metal_rough with a transmission factor, which picks a kind per sample: lane_frame makes the
 // pick, and applies a metallic-roughness texture, whose parameters are a lookup, before it,
 // hit_metal_rough and hit_transmission); tinted, the lanes whose BSDF reads the
-// textured albedo (the diffuse kind, metal_rough's and coated_diffuse's base colour); and of them
+// textured albedo (the diffuse kind, metal_rough's and coated_diffuse's base colour, glTF's glass's
+// tint); and of them
 // all flat, whose frame comes from the triangle alone (no shading normals, normal or bump map, nor
 // an instance, and where tinted no vertex colours nor albedo texture: the others' frame comes from
 // surface_at).
@@ -352,7 +353,8 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
     v_gather4(mf + 20, mat, MCL_MATERIAL_FLOATS, &h.params1.x, &h.params1.y, &h.params1.z, &h.params1.w);
     h.mixes = h.metalRough & (h.params1.x > 0.0f);  // hit_transmission's mix
   }
-  h.tinted = h.lamb | h.glossy | h.metalRough | h.coatedDiffuse;
+  // (glass tinted by its albedo: transmission_tint.h's flag in params0.z)
+  h.tinted = h.lamb | h.glossy | h.metalRough | h.coatedDiffuse | ((h.dielectric | h.thin) & (h.params0.z > 0.0f));
   h.tri = t;
   h.attrs = v_as_uint(e2w);
   h.albedoTex = v_as_uint(kdw);
@@ -371,7 +373,7 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
   vmask albedoVaries = ((h.attrs & MCL_ATTR_COLOR) != 0u) | (h.albedoTex != MCL_NO_TEXTURE);
   h.flat = (h.tinted | h.conductor | h.dielectric | h.thin | h.coatedConductor) & ((h.attrs & MCL_ATTR_NORMALS) == 0u) &
            v_not(h.placed) & ((h.normalMap | h.bumpMap) == 0u) & v_not(h.tinted & albedoVaries) &
-           (h.metalRoughTex == MCL_NO_TEXTURE);
+           (h.metalRoughTex == MCL_NO_TEXTURE) & v_not(h.mixes & (v_as_uint(h.params1.w) != 0u));
   return h;
 }
 
@@ -388,10 +390,11 @@ MCL_INLINE void lane_tally(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL volatil
 }
 
 // The lanes set in m become the kind `kind` (a metal_rough hit's pick: the same kind or glass) with
-// params0.x, .y = metallic, roughness (hit_metal_rough and hit_transmission's result).
-MCL_INLINE void lane_take_pick(LaneHits* lh, vmask m, vuint kind, vfloat metallic, vfloat roughness) {
+// params0.x, .y, .z = metallic, roughness, tinted (hit_metal_rough and hit_transmission's result).
+MCL_INLINE void lane_take_pick(LaneHits* lh, vmask m, vuint kind, vfloat metallic, vfloat roughness, vfloat tinted) {
   lh->params0.x = vsel(m, metallic, lh->params0.x);
   lh->params0.y = vsel(m, roughness, lh->params0.y);
+  lh->params0.z = vsel(m, tinted, lh->params0.z);
   lh->dielectric = lh->dielectric | (m & (kind == (uint)MCL_MATERIAL_dielectric));
   lh->thin = lh->thin | (m & (kind == (uint)MCL_MATERIAL_thin_dielectric));
   lh->metalRough = lh->metalRough & v_not(m & (kind != (uint)MCL_MATERIAL_metal_rough));
@@ -465,7 +468,8 @@ MCL_INLINE vfloat4 lane_texture(TextureTables tt, vmask on, vuint tex, vfloat u,
 // The lanes set in m (hits on world-space triangles) of a frame whose flat part is set:
 // surface_frame's shading normal, the normal and bump maps (lane_relief), for the tinted lanes
 // hit_albedo's vertex colour and albedo texture (trilinear, ray-cone footprint, hit_texture), and
-// the metallic-roughness texture (hit_metal_rough, into lh's params0), in lanes, at barycentrics
+// the metallic-roughness texture (hit_metal_rough, into lh's params0) and the transmission texture
+// (hit_transmission_texture, into params1.x), in lanes, at barycentrics
 // hu, hv, distance ht.
 MCL_INLINE LaneFrame lane_frame_attributes(SurfaceScene sc, MCL_CONSTANT const FrameParams* f, vmask m,
                                            LaneHits* lh, vfloat hu, vfloat hv, vfloat ht, vfloat3 dir,
@@ -508,7 +512,8 @@ MCL_INLINE LaneFrame lane_frame_attributes(SurfaceScene sc, MCL_CONSTANT const F
     kd = v3_select(coloured, v3_mul(kd, blend), kd);
   }
   vmask mrTextured = m & (lh->metalRoughTex != MCL_NO_TEXTURE);
-  if (v_any(textured | mrTextured)) {  // hit_texture: the camera's ray cone at distance ht
+  vmask trTextured = m & lh->mixes & (v_as_uint(lh->params1.w) != 0u);  // params1.w: the texture + 1
+  if (v_any(textured | mrTextured | trTextured)) {  // hit_texture: the camera's ray cone at distance ht
     vfloat u, v;
     v_uv_blend(u0, u1, u2, t0, t1, t2, hu, hv, &u, &v);
     vfloat area = vsel(hasUV, v_uv_triangle_area(u0, u1, u2, t0, t1, t2), v_f(0.0f));
@@ -523,6 +528,10 @@ MCL_INLINE LaneFrame lane_frame_attributes(SurfaceScene sc, MCL_CONSTANT const F
       vfloat4 c = lane_texture(sc.tex, mrTextured, lh->metalRoughTex, u, v, fp);
       lh->params0.x = vsel(mrTextured, lh->params0.x * fmin(fmax(c.z, 0.0f), 1.0f), lh->params0.x);
       lh->params0.y = vsel(mrTextured, lh->params0.y * fmin(fmax(c.y, 0.0f), 1.0f), lh->params0.y);
+    }
+    if (v_any(trTextured)) {  // hit_transmission_texture: R times the transmission factor
+      vfloat4 c = lane_texture(sc.tex, trTextured, v_as_uint(lh->params1.w) - 1u, u, v, fp);
+      lh->params1.x = vsel(trTextured, lh->params1.x * fmin(fmax(c.x, 0.0f), 1.0f), lh->params1.x);
     }
   }
   lf.kd = kd;
@@ -573,10 +582,10 @@ MCL_INLINE LaneFrame lane_frame(SurfaceScene sc, MCL_CONSTANT const FrameParams*
   if (v_any(lh->mixes)) {  // hit_transmission: the kind this sample's hit is (transmission_uniform)
     vfloat u = f->sampler == MCL_SAMPLER_SOBOL ? v_sample_uniform4(f, pixel, sample, MCL_DIM_MIX + bounce).x
                                                : v_hit_uniform_at(lh->tri, hu, hv, dir);
-    vfloat metallic = lh->params0.x, roughness = lh->params0.y;
+    vfloat metallic = lh->params0.x, roughness = lh->params0.y, tinted = lh->params0.z;
     vuint kind = v_transmission_pick(v_u((uint)MCL_MATERIAL_metal_rough), lh->params1.x, lh->params1.y,
-                                     lh->params1.z, u, &metallic, &roughness);
-    lane_take_pick(lh, lh->mixes, kind, metallic, roughness);
+                                     lh->params1.z, u, &metallic, &roughness, &tinted);
+    lane_take_pick(lh, lh->mixes, kind, metallic, roughness, tinted);
   }
   return lf;
 }
