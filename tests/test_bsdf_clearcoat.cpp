@@ -77,12 +77,7 @@ TEST_CASE("clearcoat: a smooth coat over a smooth black base reflects c F + (1 -
         const double cosO = std::cos(theta), f = schlick(0.04, cosO);
         const double fBase = metallic > 0.0f ? schlick(0.0, cosO) : f;
         const double want = c * f + (1.0 - c * f) * fBase;
-        RunningStats r;
-        for (int i = 0; i < 20000; ++i) {
-          const float4 u = rng_uniform4(13u, uint(i), 2u, 0u);
-          const BsdfSample bs = bsdf_sample(b, s, wo, u.x, u.y, u.z);
-          r.add(bs.pdf > 0.0f ? double(bs.weight.x) : 0.0);
-        }
+        const RunningStats r = montecl_test::sampledReflectance(b, s, wo, 20000, 13u, 0);
         INFO("metallic " << metallic << " coat " << c << " theta " << theta << ": " << r.mean << " +- "
                          << r.standardError() << ", closed form " << want);
         CHECK(std::fabs(r.mean - want) <= 4.0 * r.standardError() + 1e-4);
@@ -96,12 +91,7 @@ TEST_CASE("clearcoat: a white metal under a rough coat reflects at most 1, and m
   const Bsdf b = make(coated(glm::vec3(1.0f), 1.0f, 0.4f, 1.0f, 0.5f));
   for (double theta : {0.0, 0.8, 1.4}) {
     const float3 wo = chiDirFromAngles(theta, 1.0);
-    RunningStats r;
-    for (int i = 0; i < 100000; ++i) {
-      const float4 u = rng_uniform4(17u, uint(i), 1u, 0u);
-      const BsdfSample bs = bsdf_sample(b, s, wo, u.x, u.y, u.z);
-      r.add(bs.pdf > 0.0f ? double(bs.weight.y) : 0.0);
-    }
+    const RunningStats r = montecl_test::sampledReflectance(b, s, wo, 100000, 17u, 1);
     INFO("theta " << theta << ": reflectance " << r.mean << " +- " << r.standardError());
     CHECK(r.mean <= 1.0 + 4.0 * r.standardError());
     CHECK(r.mean > 0.8);  // F = 1 under a coat of weight <= Fc: most of it comes back

@@ -6,15 +6,12 @@
 // the host backend does at W = 1, 4, 8, 16, all in lane types.
 #include <doctest/doctest.h>
 
-#include <cstring>
 #include <nlohmann/json.hpp>
 
-#include "bvh/bvh.h"
-#include "cl/devices.h"
 #include "cli_runner.h"
 #include "lanes_vs_host.h"
 #include "mesh_files.h"
-#include "render/wavefront.h"
+#include "scene_renders.h"
 #include "util/errors.h"
 
 namespace test_file_gltf_clearcoat {  // keeps this file's helpers apart in a unity batch
@@ -57,20 +54,6 @@ std::string sceneText(const std::string& gltf, const nlohmann::json& material, c
   return s.dump();
 }
 
-Film renderFile(const std::string& path) {
-  std::vector<std::string> warnings;
-  Scene s = loadScene(path, warnings);
-  Bvh bvh = buildBvh(s.triangles);
-  WavefrontRenderer r(hostDeviceInfo(), {});
-  RenderStats stats;
-  return r.render(s, bvh, stats);
-}
-
-bool sameFilm(const Film& a, const Film& b) {
-  return a.mean.size() == b.mean.size() && !a.mean.empty() &&
-         std::memcmp(a.mean.data(), b.mean.data(), a.mean.size() * sizeof a.mean[0]) == 0;
-}
-
 }  // namespace
 
 TEST_CASE("glTF clearcoat: the file's coat is the scene file's clearcoat keys bit for bit; factor 0 is no coat" *
@@ -88,11 +71,11 @@ TEST_CASE("glTF clearcoat: the file's coat is the scene file's clearcoat keys bi
   };
   dir.write("keys.json", sceneText("plain.gltf", keys(0.8, 0.2)));
   dir.write("rougher.json", sceneText("plain.gltf", keys(0.8, 0.3)));
-  const Film coat = renderFile(dir.file("coat.json")), plain = renderFile(dir.file("plain.json"));
-  CHECK(sameFilm(coat, renderFile(dir.file("keys.json"))));
-  CHECK_FALSE(sameFilm(coat, renderFile(dir.file("rougher.json"))));  // the roughness is read
-  CHECK_FALSE(sameFilm(coat, plain));                                   // and the coat shows
-  CHECK(sameFilm(plain, renderFile(dir.file("off.json"))));
+  const Film coat = renderSceneFile(dir.file("coat.json")), plain = renderSceneFile(dir.file("plain.json"));
+  CHECK(sameMeanBits(coat, renderSceneFile(dir.file("keys.json"))));
+  CHECK_FALSE(sameMeanBits(coat, renderSceneFile(dir.file("rougher.json"))));  // the roughness is read
+  CHECK_FALSE(sameMeanBits(coat, plain));                                   // and the coat shows
+  CHECK(sameMeanBits(plain, renderSceneFile(dir.file("off.json"))));
 }
 
 TEST_CASE("glTF clearcoat: a file requiring it loads; the (0, 1) pair becomes metal_rough; what is left out is warned" *
