@@ -47,6 +47,12 @@ MaterialDesc metalRoughDesc(glm::vec3 base, float metallic, float roughness) {
   d.albedo = base, d.metallic = metallic, d.roughness = roughness;
   return d;
 }
+// metal_rough (metallic 0) under a full clearcoat of roughness coatRoughness.
+MaterialDesc coatedDesc(glm::vec3 base, float roughness, float coatRoughness) {
+  MaterialDesc d = metalRoughDesc(base, 0.0f, roughness);
+  d.clearcoat = 1.0f, d.clearcoatRoughness = coatRoughness;
+  return d;
+}
 MaterialDesc iorDesc(std::uint32_t kind, float ior) {
   MaterialDesc d;
   d.kind = kind;
@@ -88,6 +94,8 @@ TEST_CASE("bsdf: rough conductor and metal_rough samplers pass chi-square agains
        metalRoughDesc(glm::vec3(0.6f, 0.5f, 0.4f), 0.0f, 0.6f)},
       {"metal_rough metal r 0.4", metalRoughDesc(glm::vec3(0.9f, 0.6f, 0.3f), 1.0f, 0.4f),
        metalRoughDesc(glm::vec3(0.9f, 0.6f, 0.3f), 1.0f, 0.48f)},
+      {"metal_rough clearcoat r 0.3 over red r 0.7", coatedDesc(glm::vec3(0.8f, 0.2f, 0.1f), 0.7f, 0.3f),
+       coatedDesc(glm::vec3(0.8f, 0.2f, 0.1f), 0.7f, 0.36f)},
   };
   for (const Case& c : cases)
     for (double thetaO : {0.35, 1.1}) {

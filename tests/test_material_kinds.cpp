@@ -100,10 +100,22 @@ std::vector<KindCase> kindCases_dielectric() {
 std::vector<KindCase> kindCases_thin_dielectric() {
   return {{"sheet 1.5", withIor(MCL_MATERIAL_thin_dielectric, 1.5f), float3(1.0f), false}};
 }
+MaterialDesc clearcoat(MaterialDesc d, float coat, float roughness) {
+  d.clearcoat = coat, d.clearcoatRoughness = roughness;
+  return d;
+}
+// Uncoated, and under glTF's clearcoat (KHR_materials_clearcoat: the coat's lobe picked by its
+// weight, so the mixture pdf must still agree with the samples); a smooth coat is a near-mirror lobe.
 std::vector<KindCase> kindCases_metal_rough() {
   return {{"dielectric rough", metalRough(float3(0.8f, 0.4f, 0.2f), 0.0f, 0.6f), float3(0.8f, 0.4f, 0.2f), false},
           {"metal glossy", metalRough(float3(0.9f, 0.7f, 0.3f), 1.0f, 0.3f), float3(0.9f, 0.7f, 0.3f), false},
-          {"half metallic", metalRough(float3(0.5f), 0.5f, 0.8f), float3(0.5f), false}};
+          {"half metallic", metalRough(float3(0.5f), 0.5f, 0.8f), float3(0.5f), false},
+          {"clearcoat 1 r 0.2 over red", clearcoat(metalRough(float3(0.8f, 0.1f, 0.1f), 0.0f, 0.6f), 1.0f, 0.2f),
+           float3(0.8f, 0.1f, 0.1f), false},
+          {"clearcoat 0.5 r 0.5 over metal", clearcoat(metalRough(float3(0.9f, 0.7f, 0.3f), 1.0f, 0.3f), 0.5f, 0.5f),
+           float3(0.9f, 0.7f, 0.3f), false},
+          {"smooth clearcoat over white", clearcoat(metalRough(float3(1.0f), 0.0f, 1.0f), 1.0f, 0.0f), float3(1.0f), false,
+           false}};
 }
 MaterialDesc coatedDiffuse(float3 kd, float alpha, float thickness, int maxDepth = 10) {
   MaterialDesc d;

@@ -1,5 +1,5 @@
 // material_params.cpp: the material kinds' scene-file keys (see material_params.h): reads a
-// material object's eta / k / metal / alpha / roughness / ior / metallic, writes MaterialDesc.
+// material object's eta / k / metal / alpha / roughness / ior / metallic / clearcoat, writes MaterialDesc.
 #include "scene/material_params.h"
 
 #include <cmath>
@@ -93,6 +93,10 @@ bool parseKindParams(const JsonCtx& ctx, const json& j, const std::string& prefi
     d.kindAlpha = d.roughness * d.roughness;
   }
   if (const json* v = optionalKey(j, "metallic")) any = true, d.metallic = unitKey(ctx, *v, prefix + ".metallic");
+  // metal_rough's clearcoat (glTF KHR_materials_clearcoat's factor and perceptual roughness).
+  if (const json* v = optionalKey(j, "clearcoat")) any = true, d.clearcoat = unitKey(ctx, *v, prefix + ".clearcoat");
+  if (const json* v = optionalKey(j, "clearcoat_roughness"))
+    any = true, d.clearcoatRoughness = unitKey(ctx, *v, prefix + ".clearcoat_roughness");
   // conductor: the microfacets (Mitsuba's and Tungsten's "beckmann", or "ggx") and a factor on F.
   if (const json* v = optionalKey(j, "distribution")) {
     any = true;

@@ -110,6 +110,9 @@ struct MaterialDesc {
   // vertex colours), as glTF's base colour tints its BTDF (kernels/shared/transmission_tint.h);
   // false: clear glass (the scene file's). metal_rough's transmission is always tinted so.
   bool transmissionTinted = false;
+  // metal_rough: glTF KHR_materials_clearcoat's layer (factor 0: none; roughness: glTF's, alpha its
+  // square), IOR 1.5 (kernels/shared/bsdf_metal_rough.h).
+  float clearcoat = 0.0f, clearcoatRoughness = 0.0f;
   // An MTL map_Kd without map_d: where it is ("<mtl>: line N: material 'm': map_Kd 'name'"), so the
   // texture loader can say how to cut it out when its alpha is not all 1 (it renders opaque). "": none.
   std::string cutoutHint;

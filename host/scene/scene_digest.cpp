@@ -138,6 +138,11 @@ std::string sceneDigest(const Scene& scene) {
         append(bytes, layer, sizeof layer);
       }
       if (m.kind == MCL_MATERIAL_coated_conductor) append(bytes, &m.baseAlpha, sizeof m.baseAlpha);
+      if (m.kind == MCL_MATERIAL_metal_rough && m.clearcoat > 0.0f) {  // only then: other scenes keep their digests
+        const float coat[2] = {m.clearcoat, m.clearcoatRoughness};
+        bytes.add("clearcoat");
+        append(bytes, coat, sizeof coat);
+      }
       if (m.kind == MCL_MATERIAL_conductor && (m.beckmann || m.conductorFactor != glm::vec3(1.0f))) {
         bytes.add(m.beckmann ? "beckmann" : "ggx");  // only then: other scenes keep their digests
         appendVec(bytes, m.conductorFactor);

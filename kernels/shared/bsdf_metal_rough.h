@@ -2,11 +2,17 @@
 // metallic-roughness BRDF (the glTF 2.0 specification, Appendix B): a Lambertian lobe of colour
 // base x (1 - metallic) weighted by (1 - F), plus a GGX lobe (alpha = roughness^2, at least
 // MCL_GGX_MIN_ALPHA; shared/microfacet.h) weighted by Schlick's F = F0 + (1 - F0)(1 - |v.h|)^5 with
-// F0 = mix(0.04, base, metallic). Reads a Material's params0 (x: metallic, y: roughness) and the
-// textured base colour (the albedo path: Kd x baseColorTexture). Pure; compiled by the kernels and
-// the host tests. Sampling picks the GGX lobe (visible normals) with probability pSpec from wo's
-// Schlick weight and the diffuse colour; the pdf is the mixture. Around the shading normal ns; a
-// direction below the geometric surface contributes nothing.
+// F0 = mix(0.04, base, metallic); optionally under glTF's KHR_materials_clearcoat layer:
+// mix(that BRDF, a GGX lobe of alpha coatRoughness^2, coat x Fc) with Fc Schlick's term of IOR 1.5
+// (F0 0.04) at n.wo (the extension's fresnel_coat: n.v, not v.h, so the mix conserves energy).
+// Reads a Material's params0 (x: metallic, y: roughness), specular (x: the coat factor, y: its
+// roughness) and the textured base colour (the albedo path: Kd x baseColorTexture). Pure; compiled
+// by the kernels and the host tests. Sampling picks the coat's GGX lobe with probability pCoat
+// (the coat's weight against the base's), else the base's GGX lobe (visible normals) with
+// probability pSpec from wo's Schlick weight and the diffuse colour; the pdf is the mixture. A coat
+// factor of 0 is the uncoated BRDF bit for bit (selects keep the uncoated value; the coat is not
+// evaluated where no lane has one). Around the shading normal ns; a direction below the geometric
+// surface contributes nothing.
 #pragma once
 #include "bsdf_common.h"
 #include "microfacet.h"
@@ -16,6 +22,8 @@
     F3 base; /* base colour at the hit */     \
     F metallic;                               \
     F alpha; /* roughness^2 */                \
+    F coat;  /* clearcoat factor, 0: none */  \
+    F coatAlpha; /* clearcoat roughness^2 */  \
   } B;
 MCL_DEFINE_METAL_ROUGH_TYPE(MetalRoughBsdf, float, float3)
 
@@ -23,14 +31,27 @@ MCL_DEFINE_METAL_ROUGH_TYPE(MetalRoughBsdf, float, float3)
 // float3, int mask, f3 here; the packet stages' v_, vfloat, vfloat3, vmask, v3 in
 // stages/lane_bsdf.h, with their frame FR and sample type BS): selects, not branches.
 // - metal_rough_f0: F0 = mix(0.04, base, metallic); metal_rough_schlick: F0 + (1 - F0)(1 - c)^5.
-// - metal_rough_spec_prob: the probability of sampling the GGX lobe for wo (local z = cosO).
-// - metal_rough_eval, _f, _pdf, _sample: f cos, f, the mixture pdf, a direction with weight eval / pdf.
-#define MCL_DEFINE_METAL_ROUGH(P, F, F3, M, V, B, FR, BS)                                                  \
+// - metal_rough_lobes: the luminance of wo's specular (*ls) and diffuse (*ld) weights (cosO: local z).
+// - metal_rough_spec_prob: the probability of sampling the base's GGX lobe for wo.
+// - metal_rough_coated: b under a clearcoat of factor coat and roughness (0: none).
+// - metal_rough_coat_weight: coat x Fc(cosO); metal_rough_coat_prob: the probability of sampling the
+//   coat's lobe, its weight w against the base's (1 - w)(ls + ld); 0 without a coat.
+// - metal_rough_base_eval: f cos of the uncoated BRDF.
+// - metal_rough_eval, _f, _pdf, _sample: f cos, f, the mixture pdf, a direction with weight eval / pdf
+//   (ANY(m): whether some lane of m is set, so the coat is skipped where no lane has one).
+#define MCL_DEFINE_METAL_ROUGH(P, F, F3, M, V, ANY, B, FR, BS)                                             \
   MCL_INLINE B P##metal_rough_make(F3 base, F metallic, F roughness) {                                    \
     B b;                                                                                                  \
     b.base = base;                                                                                        \
     b.metallic = metallic;                                                                                \
     b.alpha = fmax(roughness * roughness, MCL_GGX_MIN_ALPHA);                                             \
+    b.coat = (F)(0.0f);                                                                                   \
+    b.coatAlpha = (F)(MCL_GGX_MIN_ALPHA);                                                                 \
+    return b;                                                                                             \
+  }                                                                                                       \
+  MCL_INLINE B P##metal_rough_coated(B b, F coat, F roughness) {                                          \
+    b.coat = coat;                                                                                        \
+    b.coatAlpha = fmax(roughness * roughness, MCL_GGX_MIN_ALPHA);                                         \
     return b;                                                                                             \
   }                                                                                                       \
   MCL_INLINE F3 P##metal_rough_f0(B b) {                                                                  \
@@ -42,14 +63,29 @@ MCL_DEFINE_METAL_ROUGH_TYPE(MetalRoughBsdf, float, float3)
     F m5 = m * m * m * m * m;                                                                             \
     return V##_add(f0, V##_scale(V##_sub(V##_make((F)(1.0f), (F)(1.0f), (F)(1.0f)), f0), m5));            \
   }                                                                                                       \
-  MCL_INLINE F P##metal_rough_spec_prob(B b, F cosO) {                                                    \
+  MCL_INLINE void P##metal_rough_lobes(B b, F cosO, F* ls, F* ld) {                                       \
     F3 fo = P##metal_rough_schlick(P##metal_rough_f0(b), cosO);                                           \
-    F ls = P##luminance(fo);                                                                              \
-    F ld = P##luminance(V##_mul(V##_scale(b.base, 1.0f - b.metallic),                                     \
-                                V##_sub(V##_make((F)(1.0f), (F)(1.0f), (F)(1.0f)), fo)));                 \
+    *ls = P##luminance(fo);                                                                               \
+    *ld = P##luminance(V##_mul(V##_scale(b.base, 1.0f - b.metallic),                                      \
+                               V##_sub(V##_make((F)(1.0f), (F)(1.0f), (F)(1.0f)), fo)));                  \
+  }                                                                                                       \
+  MCL_INLINE F P##metal_rough_spec_prob(B b, F cosO) {                                                    \
+    F ls, ld;                                                                                             \
+    P##metal_rough_lobes(b, cosO, &ls, &ld);                                                              \
     return vsel(ls + ld > 0.0f, fmax(ls / (ls + ld), 0.05f), (F)(1.0f));                                  \
   }                                                                                                       \
-  MCL_INLINE F3 P##metal_rough_eval(B b, FR s, F3 wo, F3 wi) {                                            \
+  MCL_INLINE F P##metal_rough_coat_weight(B b, F cosO) {                                                  \
+    F m = 1.0f - fmin(fmax(cosO, 0.0f), 1.0f);                                                            \
+    return b.coat * (0.04f + 0.96f * (m * m * m * m * m));                                                \
+  }                                                                                                       \
+  MCL_INLINE F P##metal_rough_coat_prob(B b, F cosO) {                                                    \
+    F ls, ld;                                                                                             \
+    P##metal_rough_lobes(b, cosO, &ls, &ld);                                                              \
+    F w = P##metal_rough_coat_weight(b, cosO);                                                            \
+    F all = w + (1.0f - w) * (ls + ld);                                                                   \
+    return vsel(all > 0.0f, w / fmax(all, 1e-30f), (F)(0.0f));                                            \
+  }                                                                                                       \
+  MCL_INLINE F3 P##metal_rough_base_eval(B b, FR s, F3 wo, F3 wi) {                                       \
     F3 woL = P##to_local(wo, s.ns), wiL = P##to_local(wi, s.ns);                                          \
     M ok = (V##_dot(s.ng, wi) > 0.0f) & (woL.z > 0.0f) & (wiL.z > 0.0f);                                  \
     F3 h = V##_normalize(V##_add(woL, wiL));                                                              \
@@ -59,17 +95,43 @@ MCL_DEFINE_METAL_ROUGH_TYPE(MetalRoughBsdf, float, float3)
     F3 fcos = V##_add(V##_mul(V##_sub(V##_make((F)(1.0f), (F)(1.0f), (F)(1.0f)), fr), diff), V##_scale(fr, g)); \
     return V##_select(ok, fcos, V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                               \
   }                                                                                                       \
+  MCL_INLINE F3 P##metal_rough_eval(B b, FR s, F3 wo, F3 wi) {                                            \
+    F3 fcos = P##metal_rough_base_eval(b, s, wo, wi);                                                     \
+    M coated = b.coat > 0.0f;                                                                             \
+    if (ANY(coated)) {                                                                                    \
+      F3 woL = P##to_local(wo, s.ns), wiL = P##to_local(wi, s.ns);                                        \
+      M ok = (V##_dot(s.ng, wi) > 0.0f) & (woL.z > 0.0f) & (wiL.z > 0.0f);                                \
+      F w = P##metal_rough_coat_weight(b, woL.z);                                                         \
+      F g = w * vsel(ok, P##ggx_eval_cos(woL, wiL, b.coatAlpha), (F)(0.0f));                              \
+      fcos = V##_select(coated, V##_add(V##_scale(fcos, 1.0f - w), V##_make(g, g, g)), fcos);             \
+    }                                                                                                     \
+    return fcos;                                                                                          \
+  }                                                                                                       \
   MCL_INLINE F3 P##metal_rough_f(B b, FR s, F3 wo, F3 wi) {                                               \
     return P##over_cosine(P##metal_rough_eval(b, s, wo, wi), V##_dot(s.ns, wi));                          \
   }                                                                                                       \
   MCL_INLINE F P##metal_rough_pdf(B b, FR s, F3 wo, F3 wi) {                                              \
     F3 woL = P##to_local(wo, s.ns), wiL = P##to_local(wi, s.ns);                                          \
-    return P##ggx_cosine_mix_pdf(woL, wiL, V##_dot(s.ng, wi) > 0.0f, P##metal_rough_spec_prob(b, woL.z), b.alpha); \
+    M above = V##_dot(s.ng, wi) > 0.0f;                                                                   \
+    F p = P##ggx_cosine_mix_pdf(woL, wiL, above, P##metal_rough_spec_prob(b, woL.z), b.alpha);            \
+    M coated = b.coat > 0.0f;                                                                             \
+    if (ANY(coated)) {                                                                                    \
+      F pc = P##metal_rough_coat_prob(b, woL.z);                                                          \
+      F q = P##ggx_cosine_mix_pdf(woL, wiL, above, (F)(1.0f), b.coatAlpha);                               \
+      p = vsel(coated, pc * q + (1.0f - pc) * p, p);                                                      \
+    }                                                                                                     \
+    return p;                                                                                             \
   }                                                                                                       \
   MCL_INLINE BS P##metal_rough_sample(B b, FR s, F3 wo, F u1, F u2, F uLobe) {                            \
     F3 woL = P##to_local(wo, s.ns);                                                                       \
     M up = woL.z > 0.0f;                                                                                  \
-    F3 wiL = P##ggx_cosine_mix_sample(woL, uLobe < P##metal_rough_spec_prob(b, woL.z), b.alpha, u1, u2);  \
+    M coated = b.coat > 0.0f;                                                                             \
+    F pc = (F)(0.0f);                                                                                     \
+    if (ANY(coated)) pc = vsel(coated, P##metal_rough_coat_prob(b, woL.z), (F)(0.0f));                    \
+    M toCoat = coated & (uLobe < pc);                                                                     \
+    F uBase = vsel(coated, (uLobe - pc) / fmax(1.0f - pc, 1e-30f), uLobe);                                \
+    F3 wiL = P##ggx_cosine_mix_sample(woL, uBase < P##metal_rough_spec_prob(b, woL.z), b.alpha, u1, u2);  \
+    if (ANY(toCoat)) wiL = V##_select(toCoat, P##ggx_cosine_mix_sample(woL, toCoat, b.coatAlpha, u1, u2), wiL); \
     BS r;                                                                                                 \
     r.wi = P##to_world(wiL, s.ns);                                                                        \
     F pdf = P##metal_rough_pdf(b, s, wo, r.wi);                                                           \
@@ -80,10 +142,10 @@ MCL_DEFINE_METAL_ROUGH_TYPE(MetalRoughBsdf, float, float3)
     r.flags = (M)(0);                                                                                     \
     return r;                                                                                             \
   }
-MCL_DEFINE_METAL_ROUGH(, float, float3, int, f3, MetalRoughBsdf, SurfaceFrame, BsdfSample)
+MCL_DEFINE_METAL_ROUGH(, float, float3, int, f3, MCL_ANY1, MetalRoughBsdf, SurfaceFrame, BsdfSample)
 
 MCL_INLINE MetalRoughBsdf metal_rough_from_material(Material m, float3 albedo) {
-  return metal_rough_make(albedo, m.params0.x, m.params0.y);
+  return metal_rough_coated(metal_rough_make(albedo, m.params0.x, m.params0.y), m.specular.x, m.specular.y);
 }
 
 MCL_INLINE int metal_rough_is_delta(MetalRoughBsdf b) {
@@ -92,10 +154,14 @@ MCL_INLINE int metal_rough_is_delta(MetalRoughBsdf b) {
 }
 
 // The albedo AOV: the diffuse colour plus F0 (the directional albedo at normal incidence,
-// approximately: base for a metal, base (1 - 0.04) + 0.04 for a dielectric).
+// approximately: base for a metal, base (1 - 0.04) + 0.04 for a dielectric), under a coat mixed
+// with the coat's 0.04 by coat x 0.04 (its weight at normal incidence).
 MCL_INLINE float3 metal_rough_albedo(MetalRoughBsdf b) {
   float3 f0 = metal_rough_f0(b);
-  return b.base * (1.0f - b.metallic) * (make_float3(1.0f, 1.0f, 1.0f) - f0) + f0;
+  float3 a = b.base * (1.0f - b.metallic) * (make_float3(1.0f, 1.0f, 1.0f) - f0) + f0;
+  if (!(b.coat > 0.0f)) return a;
+  float w = b.coat * 0.04f;
+  return a * (1.0f - w) + make_float3(w, w, w);
 }
 
 MCL_INLINE BsdfDirection metal_rough_sample_direction(MetalRoughBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,

@@ -24,7 +24,7 @@ MCL_DEFINE_DIELECTRIC(v_, vfloat, vfloat3, vmask, v3, v_any, vDielectricBsdf, La
 MCL_DEFINE_THIN_DIELECTRIC_TYPE(vThinDielectricBsdf, vfloat, vfloat3)
 MCL_DEFINE_THIN_DIELECTRIC(v_, vfloat, vfloat3, vmask, v3, vThinDielectricBsdf, LaneFrame, vBsdfSample)
 MCL_DEFINE_METAL_ROUGH_TYPE(vMetalRoughBsdf, vfloat, vfloat3)
-MCL_DEFINE_METAL_ROUGH(v_, vfloat, vfloat3, vmask, v3, vMetalRoughBsdf, LaneFrame, vBsdfSample)
+MCL_DEFINE_METAL_ROUGH(v_, vfloat, vfloat3, vmask, v3, v_any, vMetalRoughBsdf, LaneFrame, vBsdfSample)
 MCL_DEFINE_COATED_DIFFUSE_TYPE(vCoatedDiffuseBsdf, vfloat, vfloat3, vuint)
 MCL_DEFINE_COATED_DIFFUSE(v_, vfloat, vfloat3, vmask, vuint, v3, v_any, vCoatedDiffuseBsdf, LaneFrame, vBsdfSample, vRngOut,
                           v_pcg4d, v_u32_to_unit, v_as_uint, v_cvt_f_u, v_)
@@ -75,7 +75,8 @@ MCL_INLINE LaneBsdf lane_bsdf(const LaneHits* lh, LaneFrame s) {
   b.diel.tint = v_transmission_tint_of(lh->params0.z, s.kd);
   b.sheet.ior = lh->params0.x;
   b.sheet.tint = b.diel.tint;
-  b.mr = v_metal_rough_make(s.kd, lh->params0.x, lh->params0.y);
+  // metal_rough_from_material: the clearcoat's factor and roughness in specular.x, .y
+  b.mr = v_metal_rough_coated(v_metal_rough_make(s.kd, lh->params0.x, lh->params0.y), lh->specular.x, lh->specular.y);
   b.cd.base = s.kd;  // coated_diffuse_from_material
   b.cd.alpha = fmax(lh->params0.x, MCL_GGX_MIN_ALPHA);
   b.cd.eta = lh->params0.y;
