@@ -31,8 +31,8 @@ MCL_INLINE float env_pick_probability(MCL_CONSTANT const FrameParams* f) {
 
 // The functions below are written once for floats and lanes: P, F, F3, U, M, V (the prefix, float,
 // float3, uint, int mask and f3 here; v_, vfloat, vfloat3, vuint, vmask, v3 in
-// stages/light_area_lanes.h), ES the sample's type, S the portable trigonometry's prefix, G the
-// prefix of the table reads (G##load_float, G##load_float4: one element per lane), ANY a mask's
+// stages/lane_lights.h), ES the sample's type, S the portable trigonometry's prefix, G the
+// prefix of the table reads (G##gather_float, G##load_float4: one element per lane), ANY a mask's
 // any, CVT_U_F float to uint, CVT_F_U uint to float, AS_U a float's bits. Each lane does the float
 // function's operations in the same order (the same bits), and the map's coordinates come from the
 // portable atan2 and acos (trig.h), so every device finds the same texel.
@@ -44,7 +44,6 @@ MCL_INLINE float env_pick_probability(MCL_CONSTANT const FrameParams* f) {
   } T;
 MCL_DEFINE_ENV_SAMPLE_TYPE(EnvSample, float, float3)
 
-MCL_INLINE float mcl_load_float(MCL_GLOBAL const float* p, uint i) { return p[i]; }
 MCL_INLINE float4 mcl_load_float4(MCL_GLOBAL const float4* p, uint i) { return p[i]; }
 
 #define MCL_DEFINE_ENVIRONMENT(P, F, F3, F4, U, M, V, ES, S, G, ANY, CVT_U_F, CVT_F_U, AS_U)                 \
@@ -93,7 +92,7 @@ MCL_INLINE float4 mcl_load_float4(MCL_GLOBAL const float4* p, uint i) { return p
       M on = lo < hi;                                                                                       \
       if (!ANY(on)) break;                                                                                  \
       U mid = (lo + hi + 1u) / 2u;                                                                          \
-      M below = G##load_float(cdf, at + vsel(on, mid, lo)) <= u;                                            \
+      M below = G##gather_float(cdf, at + vsel(on, mid, lo), 1u) <= u;                                            \
       M none = below == (M)(0);                                                                             \
       lo = vsel(on & below, mid, lo);                                                                       \
       hi = vsel(on & none, mid - 1u, hi);                                                                   \
@@ -116,11 +115,11 @@ MCL_INLINE float4 mcl_load_float4(MCL_GLOBAL const float4* p, uint i) { return p
     }                                                                                                       \
     const uint w = f->envWidth, h = f->envHeight;                                                           \
     U j = P##env_cdf_find(cdf, (U)(0u), h, u2);                                                             \
-    F c0 = G##load_float(cdf, j), c1 = G##load_float(cdf, j + 1u);                                          \
+    F c0 = G##gather_float(cdf, j, 1u), c1 = G##gather_float(cdf, j + 1u, 1u);                                          \
     F dv = vsel(c1 > c0, (u2 - c0) / (c1 - c0), (F)(0.5f));                                                 \
     U row = (h + 1u) + j * (w + 1u);                                                                        \
     U i = P##env_cdf_find(cdf, row, w, u1);                                                                 \
-    F r0 = G##load_float(cdf, row + i), r1 = G##load_float(cdf, row + i + 1u);                              \
+    F r0 = G##gather_float(cdf, row + i, 1u), r1 = G##gather_float(cdf, row + i + 1u, 1u);                              \
     F du = vsel(r1 > r0, (u1 - r0) / (r1 - r0), (F)(0.5f));                                                 \
     F sinTheta, cosTheta, sinPhi, cosPhi;                                                                   \
     S##sincos_turns(0.5f * ((CVT_F_U(j) + dv) / (float)h), &sinTheta, &cosTheta); /* theta = pi v */        \

@@ -37,7 +37,7 @@ MCL_INLINE float area_light_probability(MCL_CONSTANT const FrameParams* f) {
 // at the point, and a BLEND emitter sends its emission times its coverage there: the expectation
 // of a ray that meets it with that probability. Written once for floats and lanes (P, F, F3, U, M,
 // V, LS, ANY, G, AS_U: the prefix, float, float3, uint, int mask, f3, LightSample, any, the table
-// reads' prefix (mcl_gather4...) and a float's bits here; the lanes' in stages/light_area_lanes.h,
+// reads' prefix (mcl_gather4...) and a float's bits here; the lanes' in stages/lane_lights.h,
 // whose emitter rows are read by G##gather4_emitters).
 #define MCL_DEFINE_AREA_LIGHT(P, F, F3, U, M, V, LS, ANY, G, AS_U)                                                 \
   MCL_INLINE LS P##area_light_at(MCL_CONSTANT const FrameParams* f, LightScene ls, U em, F u1, F u2, F3 origin) {   \

@@ -10,7 +10,7 @@ MCL_INLINE float environment_light_probability(MCL_CONSTANT const FrameParams* f
 
 // The kind's sample, pdf and radiance by direction, written once for floats and lanes (P, F, F3,
 // M, LS, ES: the prefix, float, float3, int, LightSample, EnvSample here; the lanes' types in
-// stages/light_area_lanes.h). The pdf is the light
+// stages/lane_lights.h). The pdf is the light
 // pdf's environment term, selection included.
 #define MCL_DEFINE_ENVIRONMENT_LIGHT(P, F, F3, M, LS, ES, V)                                                  \
   /* A direction by the map's luminance (u1, u2); pdf per solid angle within the kind. */               \

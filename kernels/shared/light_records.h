@@ -9,7 +9,7 @@
 // Index of the first record in [first, first + count) whose cdf (position.w) exceeds u (binary
 // search, as pick_emitter; count > 0), where m is set (elsewhere `first`). Written once for floats
 // and lanes (P, F, U, M, ANY, G: the prefix, float, uint, int mask, any, mcl_gather_float's prefix
-// here; the lanes' in stages/light_area_lanes.h): the same halving steps, each lane's record read
+// here; the lanes' in stages/lane_lights.h): the same halving steps, each lane's record read
 // by a gather.
 #define MCL_DEFINE_PICK_LIGHT_RECORD(P, F, U, M, ANY, G)                                                       \
   MCL_INLINE U P##pick_light_record_of(MCL_GLOBAL const LightRecord* records, uint first, uint count, F u, M m) { \
@@ -36,7 +36,7 @@ MCL_INLINE uint pick_light_record(MCL_GLOBAL const LightRecord* records, uint fi
 // else can produce this direction, so it takes no MIS weight). ok unset gives no sample (the
 // fields of no_light_sample). Written once for floats and lanes (P, F, F3, M, V, LS: the prefix,
 // float, float3, int mask, f3, LightSample here; v_, vfloat, vfloat3, vmask, v3, VLightSample in
-// stages/light_area_lanes.h), as the record kinds' samples at a picked record (light_point.h,
+// stages/lane_lights.h), as the record kinds' samples at a picked record (light_point.h,
 // light_spot.h, light_directional.h, light_sun.h) are.
 #define MCL_DEFINE_DELTA_LIGHT_SAMPLE(P, F, F3, M, V, LS)                                   \
   MCL_INLINE LS P##delta_light_sample(F3 wi, F3 le, F pick, F tmax, M ok) {                \

@@ -95,7 +95,7 @@ MCL_INLINE Material hit_transmission_texture(TextureTables tt, MCL_CONSTANT cons
 
 // Emission, coverage and emitter weight of an emitting triangle, written once for floats and lanes
 // (P, F, F3, F4, U, M, V, ANY, LUM: the prefix, float, float3, float4, uint, int mask, f3, any and
-// luminance here; the lanes' in stages/light_area_lanes.h). FINE(tt, tex, on, u, v) is
+// luminance here; the lanes' in stages/lane_lights.h). FINE(tt, tex, on, u, v) is
 // texture_fine (the lanes read, where on is clear, some lane's texture, masked). The corners' UVs
 // (u0..u2, t0..t2) count where hasUV is set; elsewhere the point's UV is (0, 0).
 // - emission_of: Ke, times the emission texture's colour at barycentrics (bu, bv) where the
@@ -152,7 +152,7 @@ MCL_DEFINE_EMISSION(, float, float3, float4, uint, int, f3, MCL_ANY1, luminance,
 // The corners' UVs of the triangles tri where on is set and their attributes attrs have
 // MCL_ATTR_UV (zeros elsewhere, where nothing is read), and tw the textured emitters' mean
 // luminance (tv.w); returns the mask of those. Written once (P, F, U, M, ANY, G: the prefix, float,
-// uint, int mask, any and mcl_gather4's prefix here; the lanes' in stages/light_area_lanes.h).
+// uint, int mask, any and mcl_gather4's prefix here; the lanes' in stages/lane_lights.h).
 #define MCL_DEFINE_TRIANGLE_UVS(P, F, U, M, ANY, G)                                                         \
   MCL_INLINE M P##triangle_uvs_of(MCL_GLOBAL const TriangleShading* shading, U tri, U attrs, M on, F* u0,   \
                                   F* u1, F* u2, F* t0, F* t1, F* t2, F* tw) {                               \

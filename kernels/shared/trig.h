@@ -49,7 +49,7 @@ MCL_DEFINE_ACOS(mcl_, float)
 // error below 2e-8 rad; the octant folded back by selects), so every device gets the same bits
 // (the environment map's longitude). Signed zeros as IEEE's atan2: atan2(+-0, -0) = +-pi, from the
 // sign bits (AS_U: the float's bits). Written once for floats and lanes (P, F, U, AS_U: mcl_,
-// float, uint, as_uint here; v_, vfloat, vuint, v_as_uint in stages/light_area_lanes.h).
+// float, uint, as_uint here; v_, vfloat, vuint, v_as_uint in stages/lane_lights.h).
 #define MCL_DEFINE_ATAN2(P, F, U, AS_U)                                                                       \
   MCL_INLINE F P##atan2(F y, F x) {                                                                           \
     F ay = fabs(y), ax = fabs(x);                                                                             \

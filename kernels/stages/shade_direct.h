@@ -14,14 +14,14 @@
 // smooth, in lanes (stage_lanes.h: the frame, albedo, metallic-roughness texture and glTF
 // transmission's kind pick, normal and bump maps, instances: lane_frame in lanes): Le seen, the
 // light samples (the light kind picked per lane, emitter triangles, point, spot, directional
-// and sun lights and the environment in lanes, light_area_lanes.h; one atomic per packet per light sample; the Lambertian lobe's Kd / pi spelled out, the other kinds' f cos, a light
+// and sun lights and the environment in lanes, lane_lights.h; one atomic per packet per light sample; the Lambertian lobe's Kd / pi spelled out, the other kinds' f cos, a light
 // below the surface through a transmitting lobe with its shadow ray from the far side) and the
 // BSDF ray (the cosine lobe, folded where smooth; the other kinds' sample). Emission textures and
 // BLEND emitters in lanes too (lane_hit_emission, v_sample_emitter).
 #pragma once
 #include "stage_lanes.h"
 #include "lane_bsdf.h"
-#include "light_area_lanes.h"
+#include "lane_lights.h"
 #include "direct_light.h"
 
 MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {

@@ -23,7 +23,7 @@
 // texture, glTF transmission's kind pick, normal and bump maps, instances: lane_frame in
 // stage_lanes.h): the next-event light samples (the light kind picked per lane: emitter
 // triangles, point, spot, directional and sun lights and the environment in lanes,
-// light_area_lanes.h;
+// lane_lights.h;
 // one atomic per packet per light sample; a light below the geometric surface through a
 // transmitting lobe, its shadow ray from the far side) and the BSDF continuation with Russian
 // roulette (one atomic per packet).
@@ -34,7 +34,7 @@
 #pragma once
 #include "stage_lanes.h"
 #include "lane_bsdf.h"
-#include "light_area_lanes.h"
+#include "lane_lights.h"
 #include "direct_light.h"
 
 MCL_INLINE uint path_dim(uint bounce, uint j) { return MCL_DIM_PATH + bounce * MCL_DIM_PATH_STRIDE + j; }

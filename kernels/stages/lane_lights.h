@@ -1,9 +1,11 @@
-// light_area_lanes.h: the area light kind (shared/light_area.h) per lane, for the packet stages,
-// and light sampling over every kind (the area kind and the record kinds, point, spot,
-// directional and sun, and the environment, in lanes; textured emission through the scalar
-// sample_direct_light lane by lane): reads the emitter table, the emitting triangles, their
-// normals and materials, the light records (and the environment's tables); writes nothing.
-// Each function does the scalar code's float operations in the same order (the same bits per lane).
+// lane_lights.h: the light kinds in lane types for the packet stages: the lane instances of the
+// functions written once for floats and lanes in shared/ (the area light with its emission
+// textures and BLEND coverage, the environment, the point, spot, directional and sun lights, the
+// emitter and record picks) and the light sample over every kind, picked per lane
+// (v_sample_direct_light, sample_direct_light's lane form); Le and the emitter weight of W hits
+// (lane_hit_emission). Reads the emitter table, the emitting triangles, their normals, attributes
+// and materials, the textures, the light records and the environment's tables; writes nothing.
+// Each lane does the float functions' operations in the same order (the same bits per lane).
 #pragma once
 #include "direct_light.h"
 #include "stage_lanes.h"
@@ -41,9 +43,8 @@ MCL_INLINE void v_gather4_emitters(uint count, MCL_GLOBAL const float* p, vuint 
 
 // sample_direct_light (stages/direct_light.h) for the lanes set in m, the kind picked per lane as
 // the scalar function picks it (the last kind in table order with a positive share whose share
-// starts at or below u.x): the area kind's lanes (v_sample_emitter), the record kinds' and the
-// environment's in lanes, textured emission's lane by lane through the scalar function. The
-// other lanes get no sample (pdf 0).
+// starts at or below u.x), every kind in lanes (the area light at the picked emitter, the records,
+// the environment). The other lanes get no sample (pdf 0).
 typedef struct {
   vfloat3 wi, le;
   vfloat pdf, tmax;
@@ -52,8 +53,7 @@ typedef struct {
 
 MCL_DEFINE_ACOS(v_, vfloat)
 MCL_DEFINE_ATAN2(v_, vfloat, vuint, v_as_uint)
-// The environment's table reads, one element per lane (environment.h's G##load_float*).
-MCL_INLINE vfloat v_load_float(MCL_GLOBAL const float* p, vuint i) { return v_gather_float(p, i, 1u); }
+// The environment map's texels, one per lane (environment.h's G##load_float4).
 MCL_INLINE vfloat4 v_load_float4(MCL_GLOBAL const float4* p, vuint i) {
   vfloat4 t;
   v_gather4((MCL_GLOBAL const float*)p, i, 4u, &t.x, &t.y, &t.z, &t.w);
