@@ -20,17 +20,6 @@
 
 namespace montecl {
 
-bool usesBumpMap(const MaterialDesc& m) { return !m.bumpTexture.empty() && m.normalTexture.empty(); }
-
-bool sceneHasTextures(const Scene& scene) {
-  for (const MaterialDesc& m : scene.materials)
-    if (!m.albedoTexture.empty() || !m.alphaTexture.empty() || !m.emissionTexture.empty() ||
-        !m.metallicRoughnessTexture.empty() || !m.normalTexture.empty() || usesBumpMap(m) ||
-        !m.transmissionTexture.empty())
-      return true;
-  return false;
-}
-
 glm::vec4 specGlossTexel(glm::vec4 texel, glm::vec4 factors, glm::vec3 diffuse) {
   const MetalRoughFactors mr = metalRoughFromSpecGloss(diffuse, glm::vec3(texel) * glm::vec3(factors), texel.w * factors.w);
   return glm::vec4(0.0f, mr.roughness, mr.metallic, 1.0f);
