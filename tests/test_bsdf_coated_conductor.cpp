@@ -64,14 +64,7 @@ double coatedMetalReflectance(double cosO, double eta, double m, double k, doubl
 }
 
 RunningStats reflectanceCc(const Bsdf& b, float3 wo, int channel, int count, std::uint32_t seed) {
-  const SurfaceFrame s = montecl_test::flatBsdfFrame();
-  RunningStats r;
-  for (int i = 0; i < count; ++i) {
-    const float4 u = rng_uniform4(seed, uint(i), 1u, 0u);
-    const BsdfSample bs = bsdf_sample(b, s, wo, u.x, u.y, u.z);
-    r.add(bs.pdf > 0.0f ? double(bs.weight[channel]) : 0.0);
-  }
-  return r;
+  return montecl_test::sampledReflectance(b, montecl_test::flatBsdfFrame(), wo, count, seed, channel);
 }
 
 }  // namespace
