@@ -17,7 +17,7 @@
 // and sun lights and the environment in lanes, lane_lights.h; one atomic per packet per light sample; the Lambertian lobe's Kd / pi spelled out, the other kinds' f cos, a light
 // below the surface through a transmitting lobe with its shadow ray from the far side) and the
 // BSDF ray (the cosine lobe, folded where smooth; the other kinds' sample). Emission textures and
-// BLEND emitters in lanes too (lane_hit_emission, v_sample_emitter).
+// BLEND emitters in lanes too (lane_hit_emission, v_area_light_at).
 #pragma once
 #include "stage_lanes.h"
 #include "lane_bsdf.h"
