@@ -18,12 +18,6 @@ MCL_INLINE float3 emitted_toward(float3 n, MCL_GLOBAL const Material* m, float3 
   return front || m->emission.w != 0.0f ? le : make_float3(0.0f, 0.0f, 0.0f);
 }
 
-// Cosine at an emitter of unit normal n and material m for a direction wi from the shading point
-// toward it: positive when wi reaches the emitting side (either side for a two-sided emitter).
-MCL_INLINE float emitter_cosine(float3 n, MCL_GLOBAL const Material* m, float3 wi) {
-  float c = -dot(n, wi);
-  return m->emission.w != 0.0f ? fabs(c) : c;
-}
 
 // The emitters' share of the lights' power (all samples without other lights).
 MCL_INLINE float area_light_probability(MCL_CONSTANT const FrameParams* f) {
@@ -40,6 +34,19 @@ MCL_INLINE float area_light_probability(MCL_CONSTANT const FrameParams* f) {
 // reads' prefix (mcl_gather4...) and a float's bits here; the lanes' in stages/lane_lights.h,
 // whose emitter rows are read by G##gather4_emitters).
 #define MCL_DEFINE_AREA_LIGHT(P, F, F3, U, M, V, LS, ANY, G, AS_U)                                                 \
+  /* Cosine at an emitter of unit normal n for a direction wi from the shading point toward it:           \
+     positive when wi reaches the emitting side (either side where twoSided, Material emission.w, is set). */ \
+  MCL_INLINE F P##emitter_cosine_of(F3 n, F twoSided, F3 wi) {                                                    \
+    F c = -V##_dot(n, wi);                                                                                        \
+    return vsel(twoSided != 0.0f, fabs(c), c);                                                                    \
+  }                                                                                                               \
+  /* Solid-angle pdf within the kind of a point on an emitter of this area and table luminance lum, at        \
+     squared distance dist2 and emitter cosine cosLight: the pick (area x lum / emitterPower, as the host's    \
+     table) over the area, to solid angle. */                                                                     \
+  MCL_INLINE F P##area_pdf_of(MCL_CONSTANT const FrameParams* f, F area, F lum, F dist2, F cosLight) {            \
+    F pick = area * lum / f->emitterPower;                                                                        \
+    return pick / area * dist2 / cosLight;                                                                        \
+  }                                                                                                               \
   MCL_INLINE LS P##area_light_at(MCL_CONSTANT const FrameParams* f, LightScene ls, U em, F u1, F u2, F3 origin) {   \
     MCL_GLOBAL const float* tf = (MCL_GLOBAL const float*)ls.tris;                                                \
     MCL_GLOBAL const float* mf = (MCL_GLOBAL const float*)ls.materials;                                           \
@@ -69,7 +76,7 @@ MCL_INLINE float area_light_probability(MCL_CONSTANT const FrameParams* f) {
       U tex = AS_U(kmx);                                                                                          \
       M has = P##triangle_uvs_of(ls.shading, lt, AS_U(e2w), (U)(0u) == 0u, &tu0, &tu1, &tu2, &tv0, &tv1, &tv2, &tw);   \
       le = P##emission_of(ls.tex, ke, tex, has, tu0, tu1, tu2, tv0, tv1, tv2, bu, bv);                            \
-      M blends = (AS_U(kay) & 0x80000000u) != 0u; /* material_blends */                                           \
+      M blends = (AS_U(kay) & 0x80000000u) != 0u; /* BLEND: alpha.y's sign bit */                               \
       if (ANY(blends)) {                                                                                          \
         F u, v;                                                                                                   \
         P##uv_blend(tu0, tu1, tu2, tv0, tv1, tv2, bu, bv, &u, &v); /* surface_uv */                               \
@@ -83,14 +90,12 @@ MCL_INLINE float area_light_probability(MCL_CONSTANT const FrameParams* f) {
     F dist2 = V##_dot(toLight, toLight);                                                                          \
     F dist = sqrt(dist2);                                                                                         \
     F3 wi = V##_make(toLight.x / dist, toLight.y / dist, toLight.z / dist);                                       \
-    F c = -V##_dot(V##_make(nx, ny, nz), wi); /* emitter_cosine */                                               \
-    F cosLight = vsel(kew != 0.0f, fabs(c), c);                                                                   \
+    F cosLight = P##emitter_cosine_of(V##_make(nx, ny, nz), kew, wi);                                             \
     M ok = (cosLight > 0.0f) & (dist > 0.0f);                                                                     \
-    F pick = emArea * lum / f->emitterPower; /* emitter_pick_probability */                                       \
     LS s;                                                                                                         \
     s.wi = V##_select(ok, wi, V##_make((F)(0.0f), (F)(0.0f), (F)(1.0f)));                                         \
     s.le = V##_select(ok, le, V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                                         \
-    s.pdf = vsel(ok, pick / emArea * dist2 / cosLight, (F)(0.0f)); /* area_to_solid_angle */                      \
+    s.pdf = vsel(ok, P##area_pdf_of(f, emArea, lum, dist2, cosLight), (F)(0.0f));                                 \
     s.tmax = vsel(ok, dist * (1.0f - 1e-4f), (F)(INFINITY));                                                      \
     s.delta = (M)(0);                                                                                             \
     return s;                                                                                                     \
@@ -115,10 +120,8 @@ MCL_INLINE float area_light_pdf(MCL_CONSTANT const FrameParams* f, LightScene ls
   MCL_GLOBAL const Triangle* lt = &ls.tris[hit.tri];
   MCL_GLOBAL const Material* lm = &ls.materials[triangle_material(lt)];
   float4 nA = ls.normals[hit.tri];
-  float area = nA.w;
-  float cosLight = emitter_cosine(xyz(nA), lm, hit.wi);
-  float pick = area * emitter_luminance(ls.tex, lm, lt, &ls.shading[hit.tri]) / f->emitterPower;
-  return area_to_solid_angle(pick / area, hit.t * hit.t, cosLight);
+  return area_pdf_of(f, nA.w, emitter_luminance(ls.tex, lm, lt, &ls.shading[hit.tri]), hit.t * hit.t,
+                     emitter_cosine_of(xyz(nA), lm->emission.w, hit.wi));
 }
 
 // Le the triangle hit.tri sends back along -hit.wi (0 for a non-emitter or its back face).

@@ -1,6 +1,6 @@
-// lights.h: area-light sampling for direct lighting: picking an emitter triangle from the CDF,
-// a uniform point on it, converting its area pdf to solid angle, and the power heuristic. Pure;
-// compiled by the kernels and by the host tests.
+// lights.h: what light sampling shares: picking an emitter triangle from the CDF (through its
+// guide table), a uniform point on a triangle, luminance and the power heuristic (the area pdf in
+// solid angle: light_area.h). Pure; compiled by the kernels and by the host tests.
 #pragma once
 #include "geometry.h"
 
@@ -69,20 +69,10 @@ MCL_INLINE float triangle_area(MCL_GLOBAL const Triangle* t) {
   }
 MCL_DEFINE_LIGHT_PICKS(, float, float3, uint, int, MCL_ANY1, mcl_, (uint), as_uint)
 
-// Probability of picking a triangle of this area and emission (same formula as the host table).
-MCL_INLINE float emitter_pick_probability(float area, float3 emission, float emitterPower) {
-  return area * luminance(emission) / emitterPower;
-}
-
 // Uniform point on the triangle (v0, v0 + e1, v0 + e2) from u1, u2 in [0, 1).
 MCL_INLINE float3 sample_triangle(float3 v0, float3 e1, float3 e2, float u1, float u2) {
   float su = sqrt(u1);
   return v0 + e1 * (su * (1.0f - u2)) + e2 * (su * u2);
-}
-
-// Area pdf to solid angle at the receiver: p_w = p_A * r^2 / cos(theta_light).
-MCL_INLINE float area_to_solid_angle(float pdfArea, float dist2, float cosLight) {
-  return pdfArea * dist2 / cosLight;
 }
 
 // Veach's power heuristic (beta = 2) for nf samples of pdf fPdf against ng samples of gPdf

@@ -183,17 +183,6 @@ MCL_INLINE float3 material_emission(TextureTables tt, MCL_GLOBAL const Material*
   return emission_of(tt, xyz(m->emission), as_uint(m->maps.x), has, u0, u1, u2, t0, t1, t2, u, v);
 }
 
-// 1 when material m is stochastically transparent (glTF BLEND: Material alpha.y's sign bit set).
-MCL_INLINE int material_blends(MCL_GLOBAL const Material* m) { return (as_uint(m->alpha.y) & 0x80000000u) != 0u; }
-
-// The expected coverage of a stochastically transparent material m on triangle tri (attributes
-// sh) at barycentrics (u, v) (coverage_of).
-MCL_INLINE float material_coverage(TextureTables tt, MCL_GLOBAL const Material* m, MCL_GLOBAL const Triangle* tri,
-                                   MCL_GLOBAL const TriangleShading* sh, float u, float v) {
-  float2 uv = surface_uv(tri, sh, u, v);
-  return coverage_of(tt, m->alpha.y, as_uint(m->alpha.x), as_uint(m->alpha.z), uv.x, uv.y, 1);
-}
-
 // Luminance per unit area by which the emitter table weights triangle tri of material m
 // (emitter_luminance_of).
 MCL_INLINE float emitter_luminance(TextureTables tt, MCL_GLOBAL const Material* m, MCL_GLOBAL const Triangle* tri,

@@ -21,12 +21,12 @@ MCL_DEFINE_EMISSION(v_, vfloat, vfloat3, vfloat4, vuint, vmask, v3, v_any, v_lum
 MCL_DEFINE_TRIANGLE_UVS(v_, vfloat, vuint, vmask, v_any, v_)
 
 // Ke of W hits (lh, in the lanes set in m) at barycentrics hu, hv with their emission textures
-// (area_light_eval's material_emission, before emitted_toward), and in *lum the emitter table's
+// (area_light_eval's material_emission, before emitted_toward), and in *lum (unless null) the emitter table's
 // luminance of those triangles (area_light_pdf's emitter_luminance).
 MCL_INLINE vfloat3 lane_hit_emission(LightScene lights, const LaneHits* lh, vmask m, vfloat hu, vfloat hv, vfloat* lum) {
   vfloat u0, u1, u2, t0, t1, t2, tw;
   vmask has = v_triangle_uvs_of(lights.shading, lh->tri, lh->attrs, m, &u0, &u1, &u2, &t0, &t1, &t2, &tw);
-  *lum = v_emitter_luminance_of(lights.tex, lh->ke, lh->emissionTex, has, tw);
+  if (lum) *lum = v_emitter_luminance_of(lights.tex, lh->ke, lh->emissionTex, has, tw);
   return v_emission_of(lights.tex, lh->ke, lh->emissionTex, has, u0, u1, u2, t0, t1, t2, hu, hv);
 }
 

@@ -68,9 +68,7 @@ MCL_INLINE void stage_shade_direct(const shade_direct_args* a, uint first) {
     missW = v_f(0.0f);
   }
   vfloat3 ke = lh.ke;
-  vfloat keLum;  // the emitter weight, unused here (no MIS for camera rays)
-  if (f->emissionTextured) ke = lane_hit_emission(lights, &lh, hit, hu, hv, &keLum);
-  (void)keLum;
+  if (f->emissionTextured) ke = lane_hit_emission(lights, &lh, hit, hu, hv, 0);  // no MIS weight for camera rays
   vfloat3 le = v3_make(vsel(emits, ke.x, v_f(0.0f)), vsel(emits, ke.y, v_f(0.0f)), vsel(emits, ke.z, v_f(0.0f)));
   v_store4_n(rad, lanes, vsel(hit, le.x, miss.x), vsel(hit, le.y, miss.y), vsel(hit, le.z, miss.z), vsel(hit, v_f(0.0f), missW));
   vfloat3 bo = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f)), bd = v3_make(v_f(0.0f), v_f(0.0f), v_f(1.0f));

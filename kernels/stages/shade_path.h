@@ -114,10 +114,8 @@ MCL_INLINE void stage_shade_path(const shade_path_args* a, uint first) {
   if (v_any(glows)) {
     vfloat weight = v_f(1.0f);
     if (bounce > 0 && f->emitterCount > 0u) {
-      vfloat c = -v3_dot(n, dir);  // emitter_cosine
-      vfloat cosLight = vsel(lh.twoSided != 0.0f, fabs(c), c);
-      vfloat pick = lh.area * keLum / f->emitterPower;  // emitter_pick_probability
-      vfloat lpdf = area_light_probability(f) * (pick / lh.area * (ht * ht) / cosLight);
+      vfloat lpdf = area_light_probability(f) *
+                    v_area_pdf_of(f, lh.area, keLum, ht * ht, v_emitter_cosine_of(n, lh.twoSided, dir));
       vfloat fw = 1.0f * lastPdf, gw = nLight * lpdf;
       weight = vsel(lastPdf > 0.0f, v_power_heuristic_of(fw, gw), weight);
     }
