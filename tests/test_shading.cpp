@@ -121,7 +121,7 @@ TEST_CASE("shading normals: interpolation, orientation, the below-surface rule" 
   // The cosine lobe's pdf as the stages take it: the diffuse kind without a glossy lobe.
   const DiffuseBsdf lambert = diffuse_make(glm::vec3(0.5f), glm::vec3(0.0f), 1.0f);
   CHECK(diffuse_pdf(lambert, flat, above, above) == pdf_cosine_hemisphere(glm::dot(ng, above)));
-  CHECK(frame_cosine_weight(flat, above) == 1.0f);
+  CHECK(cosine_weight(flat.ns, flat.ng, flat.smooth, above) == 1.0f);
   CHECK(frame_sample_direction(flat, glm::vec3(0.6f, 0.0f, 0.8f)) == to_world(glm::vec3(0.6f, 0.0f, 0.8f), ng));
 }
 
@@ -153,7 +153,7 @@ TEST_CASE("folded cosine sampling: the pdf integrates to 1 and matches the sampl
       const glm::vec4 u = rng_uniform4(11, uint(k), 0, 0);
       const glm::vec3 w = frame_sample_direction(s, sample_cosine_hemisphere(u.x, u.y));
       REQUIRE(glm::dot(w, ng) >= 0.0f);
-      est.add(frame_cosine_weight(s, w));
+      est.add(cosine_weight(s.ns, s.ng, s.smooth, w));
     }
     INFO("integral " << cosIntegral << ", estimate " << est.mean << " +- " << est.standardError());
     CHECK(std::fabs(est.mean - cosIntegral) < 4.0 * est.standardError() + 2e-3);

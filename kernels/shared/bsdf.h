@@ -113,16 +113,16 @@ MCL_INLINE BsdfDirection bsdf_sample_direction(Bsdf b, SurfaceFrame s, float3 wo
 }
 
 MCL_INLINE BsdfWeight bsdf_direction_weight(Bsdf b, SurfaceFrame s, float3 wo, float3 wi, float pdf) {
+  BsdfWeight w;
+  w.weight = make_float3(0.0f, 0.0f, 0.0f);
+  w.counts = 0;
   switch (b.kind) {
 #define MCL_BSDF_CASE(kind, Params) \
-  case MCL_MATERIAL_##kind: return kind##_direction_weight(b.p.kind, s, wo, wi, pdf);
+  case MCL_MATERIAL_##kind: w.weight = kind##_direction_weight(b.p.kind, s, wo, wi, pdf, &w.counts); break;
     MCL_MATERIAL_KINDS(MCL_BSDF_CASE)
 #undef MCL_BSDF_CASE
   }
-  BsdfWeight none;
-  none.weight = make_float3(0.0f, 0.0f, 0.0f);
-  none.counts = 0;
-  return none;
+  return w;
 }
 
 MCL_INLINE float3 bsdf_albedo(Bsdf b) {

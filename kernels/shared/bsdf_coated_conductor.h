@@ -184,18 +184,20 @@ MCL_INLINE int coated_conductor_is_delta(CoatedConductorBsdf b) {
   return 0;
 }
 
-// The albedo AOV: the base metal's reflectance at normal incidence under the coat.
-MCL_INLINE float3 coated_conductor_albedo(CoatedConductorBsdf b) { return fresnel_conductor(1.0f, b.eta, b.k); }
 
 MCL_INLINE BsdfDirection coated_conductor_sample_direction(CoatedConductorBsdf b, SurfaceFrame s, float3 wo, float u1,
                                                            float u2, float uLobe) {
   return bsdf_direction_of(coated_conductor_sample(b, s, wo, u1, u2, uLobe));
 }
 
-MCL_INLINE BsdfWeight coated_conductor_direction_weight(CoatedConductorBsdf b, SurfaceFrame s, float3 wo, float3 wi,
-                                                        float pdf) {
-  BsdfWeight w;
-  w.counts = pdf > 0.0f;
-  w.weight = coated_conductor_eval(b, s, wo, wi) * (1.0f / fmax(pdf, 1e-30f));
-  return w;
-}
+// Written once for floats and lanes (lane_bsdf.h): coated_conductor_albedo, the albedo AOV: the base metal's reflectance at normal incidence under the coat;
+// coated_conductor_direction_weight: eval / pdf, counted where pdf > 0.
+#define MCL_DEFINE_COATED_CONDUCTOR_WEIGHTS(P, F, F3, M, V, B, FR)                                      \
+  MCL_INLINE F3 P##coated_conductor_albedo(B b) {                                                       \
+    return P##fresnel_conductor((F)(1.0f), b.eta, b.k);                                                 \
+  }                                                                                                     \
+  MCL_INLINE F3 P##coated_conductor_direction_weight(B b, FR s, F3 wo, F3 wi, F pdf, M* counts) {       \
+    *counts = pdf > 0.0f;                                                                               \
+    return V##_scale(P##coated_conductor_eval(b, s, wo, wi), 1.0f / fmax(pdf, 1e-30f));                 \
+  }
+MCL_DEFINE_COATED_CONDUCTOR_WEIGHTS(, float, float3, int, f3, CoatedConductorBsdf, SurfaceFrame)

@@ -58,8 +58,6 @@ MCL_INLINE int coated_diffuse_is_delta(CoatedDiffuseBsdf b) {
   return 0;
 }
 
-// The albedo AOV: the base's colour (what a denoiser should see under a clear coat).
-MCL_INLINE float3 coated_diffuse_albedo(CoatedDiffuseBsdf b) { return b.base; }
 
 // The kind's functions written once for floats and lanes (P, F, F3, M, U, V, ANY: the prefix,
 // float, float3, int mask, uint, f3, MCL_ANY1 here; the packet stages' v_, vfloat, vfloat3, vmask,
@@ -170,10 +168,14 @@ MCL_INLINE BsdfDirection coated_diffuse_sample_direction(CoatedDiffuseBsdf b, Su
   return bsdf_direction_of(coated_diffuse_sample(b, s, wo, u1, u2, uLobe));
 }
 
-MCL_INLINE BsdfWeight coated_diffuse_direction_weight(CoatedDiffuseBsdf b, SurfaceFrame s, float3 wo, float3 wi,
-                                                      float pdf) {
-  BsdfWeight w;
-  w.counts = pdf > 0.0f;
-  w.weight = coated_diffuse_eval(b, s, wo, wi) * (1.0f / fmax(pdf, 1e-30f));
-  return w;
-}
+// Written once for floats and lanes (lane_bsdf.h): coated_diffuse_albedo, the albedo AOV: the base's colour (what a denoiser should see under a clear coat);
+// coated_diffuse_direction_weight: eval / pdf, counted where pdf > 0.
+#define MCL_DEFINE_COATED_DIFFUSE_WEIGHTS(P, F, F3, M, V, B, FR)                                        \
+  MCL_INLINE F3 P##coated_diffuse_albedo(B b) {                                                         \
+    return b.base;                                                                                      \
+  }                                                                                                     \
+  MCL_INLINE F3 P##coated_diffuse_direction_weight(B b, FR s, F3 wo, F3 wi, F pdf, M* counts) {         \
+    *counts = pdf > 0.0f;                                                                               \
+    return V##_scale(P##coated_diffuse_eval(b, s, wo, wi), 1.0f / fmax(pdf, 1e-30f));                   \
+  }
+MCL_DEFINE_COATED_DIFFUSE_WEIGHTS(, float, float3, int, f3, CoatedDiffuseBsdf, SurfaceFrame)

@@ -101,21 +101,24 @@ MCL_INLINE ConductorBsdf conductor_from_material(Material m, float3 albedo) {
 
 MCL_INLINE int conductor_is_delta(ConductorBsdf b) { return b.smooth; }
 
-// The albedo AOV: the reflectance at normal incidence, F(1) (an approximation of the directional
-// albedo that ignores the Fresnel rise at grazing angles and the rough lobe's energy loss).
-MCL_INLINE float3 conductor_albedo(ConductorBsdf b) { return conductor_fresnel(b, 1.0f); }
 
 MCL_INLINE BsdfDirection conductor_sample_direction(ConductorBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,
                                                     float uLobe) {
   return bsdf_direction_of(conductor_sample(b, s, wo, u1, u2, uLobe));
 }
 
-// pdf: conductor_pdf of wi (0 for the smooth kind, whose weight is rebuilt from wo: F(cos_o)).
-MCL_INLINE BsdfWeight conductor_direction_weight(ConductorBsdf b, SurfaceFrame s, float3 wo, float3 wi, float pdf) {
-  BsdfWeight w;
-  float cosO = fmin(fmax(dot(wo, s.ns), 0.0f), 1.0f);
-  w.counts = b.smooth ? above_surface(s.ng, wi) : pdf > 0.0f;
-  w.weight = b.smooth ? conductor_fresnel(b, cosO)
-                      : conductor_eval(b, s, wo, wi) * (1.0f / fmax(pdf, 1e-30f));
-  return w;
-}
+// Written once for floats and lanes (lane_bsdf.h):
+// - conductor_albedo: the albedo AOV, the reflectance at normal incidence, F(1) (an approximation
+//   of the directional albedo that ignores the Fresnel rise at grazing angles and the rough lobe's
+//   energy loss);
+// - conductor_direction_weight: pdf is conductor_pdf of wi (0 for the smooth kind, whose weight is
+//   rebuilt from wo: F(cos_o), counted above the geometric surface).
+#define MCL_DEFINE_CONDUCTOR_WEIGHTS(P, F, F3, M, V, B, FR)                                             \
+  MCL_INLINE F3 P##conductor_albedo(B b) { return P##conductor_fresnel(b, (F)(1.0f)); }                 \
+  MCL_INLINE F3 P##conductor_direction_weight(B b, FR s, F3 wo, F3 wi, F pdf, M* counts) {              \
+    F cosO = fmin(fmax(V##_dot(wo, s.ns), 0.0f), 1.0f);                                                 \
+    *counts = vsel(b.smooth, V##_dot(s.ng, wi) > 0.0f, pdf > 0.0f);                                     \
+    F3 rough = V##_scale(P##conductor_eval(b, s, wo, wi), 1.0f / fmax(pdf, 1e-30f));                    \
+    return V##_select(b.smooth, P##conductor_fresnel(b, cosO), rough);                                  \
+  }
+MCL_DEFINE_CONDUCTOR_WEIGHTS(, float, float3, int, f3, ConductorBsdf, SurfaceFrame)

@@ -168,36 +168,6 @@ MCL_INLINE DielectricBsdf dielectric_from_material(Material m, float3 albedo) {
 }
 
 MCL_INLINE int dielectric_is_delta(DielectricBsdf b) { return b.smooth; }
-// The albedo AOV (the tint not counted): the directional albedo at normal incidence from outside, counted in energy
-// (reflected plus transmitted, without the 1 / eta^2 of radiance), as the conductor's F(1):
-// 1 for the smooth kind (clear glass reflects and transmits everything); the rough kind keeps
-// E = the mean over wo's visible normals h of F G1(reflected) + (1 - F) G1(refracted) (what
-// dielectric_sample's weights average to, times eta^2 for a transmission; single-scattering GGX
-// loses the rest). At normal incidence the visible normals are symmetric about wo, so E is a 1-D
-// integral over u1 (the disk radius^2 of ggx_sample_visible_normal): 32 midpoints of
-// u1 = 1 - (1 - x)^2, weight 2 (1 - x), crowded toward the grazing microfacets where the
-// integrand bends (within 1e-4 of the integral for alpha in [0.01, 1], ior 1.5 and 2.4; an 8 x 8
-// grid in (u1, u2) was 6e-3 off; tests/test_bsdf_rough_dielectric.cpp).
-MCL_INLINE float3 dielectric_albedo(DielectricBsdf b) {
-  float3 wo = make_float3(0.0f, 0.0f, 1.0f);
-  float eta = b.ior;
-  float sum = 0.0f;
-  for (int i = 0; i < 32; ++i) {
-    float x = ((float)i + 0.5f) * (1.0f / 32.0f);
-    float3 h = ggx_sample_visible_normal(wo, b.alpha, 1.0f - (1.0f - x) * (1.0f - x), 0.0f);
-    float cosI = fmin(fmax(h.z, 0.0f), 1.0f);
-    float cosT;
-    float F = fresnel_dielectric(cosI, eta, &cosT);
-    float3 wr = reflect_about(wo, h);
-    float3 wt = normalize(h * (cosI / eta - cosT) - wo * (1.0f / eta));
-    float gr = wr.z > 0.0f ? ggx_g1(wr, b.alpha) : 0.0f;
-    float gt = wt.z < 0.0f ? ggx_g1(wt, b.alpha) : 0.0f;
-    sum += (F * gr + (1.0f - F) * gt) * (2.0f * (1.0f - x));
-  }
-  float e = b.smooth ? 1.0f : sum * (1.0f / 32.0f);
-  return make_float3(e, e, e);
-}
-
 MCL_INLINE float3 dielectric_eval(DielectricBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
   float p;
   return dielectric_eval_pdf(b, s, wo, wi, &p);
@@ -212,16 +182,48 @@ MCL_INLINE BsdfDirection dielectric_sample_direction(DielectricBsdf b, SurfaceFr
   return bsdf_direction_of(dielectric_sample(b, s, wo, u1, u2, uLobe));
 }
 
-// The weight of a direction dielectric_sample drew. Smooth: rebuilt from its side: above the
-// geometric surface the reflection (1), below it the refraction (1 / eta^2, times the tint).
-// Rough: eval / pdf (pdf: dielectric_pdf of wi).
-MCL_INLINE BsdfWeight dielectric_direction_weight(DielectricBsdf b, SurfaceFrame s, float3 wo, float3 wi, float pdf) {
-  float eta = dielectric_eta(b, s);
-  int above = above_surface(s.ng, wi);
-  float w = above ? 1.0f : 1.0f / (eta * eta);
-  float3 wr = dielectric_eval(b, s, wo, wi) * (1.0f / fmax(pdf, 1e-30f));
-  BsdfWeight r;
-  r.counts = b.smooth ? 1 : pdf > 0.0f;
-  r.weight = b.smooth ? tint_transmitted(b.tint, !above, w) : wr;
-  return r;
-}
+// Written once for floats and lanes (lane_bsdf.h):
+// - dielectric_albedo: the albedo AOV (the tint not counted): the directional albedo at normal
+//   incidence from outside, counted in energy (reflected plus transmitted, without the 1 / eta^2
+//   of radiance), as the conductor's F(1): 1 for the smooth kind (clear glass reflects and
+//   transmits everything); the rough kind keeps E = the mean over wo's visible normals h of
+//   F G1(reflected) + (1 - F) G1(refracted) (what dielectric_sample's weights average to, times
+//   eta^2 for a transmission; single-scattering GGX loses the rest). At normal incidence the
+//   visible normals are symmetric about wo, so E is a 1-D integral over u1 (the disk radius^2 of
+//   ggx_sample_visible_normal): 32 midpoints of u1 = 1 - (1 - x)^2, weight 2 (1 - x), crowded
+//   toward the grazing microfacets where the integrand bends (within 1e-4 of the integral for
+//   alpha in [0.01, 1], ior 1.5 and 2.4; an 8 x 8 grid in (u1, u2) was 6e-3 off;
+//   tests/test_bsdf_rough_dielectric.cpp).
+// - dielectric_direction_weight: the weight of a direction dielectric_sample drew. Smooth: rebuilt
+//   from its side: above the geometric surface the reflection (1), below it the refraction
+//   (1 / eta^2, times the tint). Rough: eval / pdf (pdf: dielectric_pdf of wi).
+#define MCL_DEFINE_DIELECTRIC_WEIGHTS(P, F, F3, M, V, B, FR)                                                    \
+  MCL_INLINE F3 P##dielectric_albedo(B b) {                                                                     \
+    F3 wo = V##_make((F)(0.0f), (F)(0.0f), (F)(1.0f));                                                          \
+    F eta = b.ior;                                                                                              \
+    F sum = (F)(0.0f);                                                                                          \
+    for (int i = 0; i < 32; ++i) {                                                                              \
+      float x = ((float)i + 0.5f) * (1.0f / 32.0f);                                                             \
+      F3 h = P##ggx_sample_visible_normal(wo, b.alpha, (F)(1.0f - (1.0f - x) * (1.0f - x)), (F)(0.0f));         \
+      F cosI = fmin(fmax(h.z, 0.0f), 1.0f);                                                                     \
+      F cosT;                                                                                                   \
+      F fr = P##fresnel_dielectric(cosI, eta, &cosT);                                                           \
+      F3 wr = P##reflect_about(wo, h);                                                                          \
+      F3 wt = V##_normalize(V##_sub(V##_scale(h, cosI / eta - cosT), V##_scale(wo, 1.0f / eta)));               \
+      F gr = vsel(wr.z > 0.0f, P##ggx_g1(wr, b.alpha), (F)(0.0f));                                              \
+      F gt = vsel(wt.z < 0.0f, P##ggx_g1(wt, b.alpha), (F)(0.0f));                                              \
+      sum += (fr * gr + (1.0f - fr) * gt) * (2.0f * (1.0f - x));                                                \
+    }                                                                                                           \
+    F e = vsel(b.smooth, (F)(1.0f), sum * (1.0f / 32.0f));                                                      \
+    return V##_make(e, e, e);                                                                                   \
+  }                                                                                                             \
+  MCL_INLINE F3 P##dielectric_direction_weight(B b, FR s, F3 wo, F3 wi, F pdf, M* counts) {                     \
+    F eta = P##dielectric_eta(b, s);                                                                            \
+    M above = V##_dot(s.ng, wi) > 0.0f;                                                                         \
+    F w = vsel(above, (F)(1.0f), 1.0f / (eta * eta));                                                           \
+    F p;                                                                                                        \
+    F3 wr = V##_scale(P##dielectric_eval_pdf(b, s, wo, wi, &p), 1.0f / fmax(pdf, 1e-30f));                      \
+    *counts = b.smooth | (pdf > 0.0f);                                                                          \
+    return V##_select(b.smooth, P##tint_transmitted(b.tint, above == (M)(0), w), wr);                           \
+  }
+MCL_DEFINE_DIELECTRIC_WEIGHTS(, float, float3, int, f3, DielectricBsdf, SurfaceFrame)

@@ -52,8 +52,6 @@ MCL_INLINE int diffuse_is_delta(DiffuseBsdf b) {
   return 0;
 }
 
-// What the albedo AOV shows: Kd x texture (the glossy lobe is left out, as denoisers expect).
-MCL_INLINE float3 diffuse_albedo(DiffuseBsdf b) { return b.kd; }
 
 // --- the glossy mixture (specProb > 0), written once for floats and lanes ----------------------
 // P, F, F3, M, V, ANY: the prefix, float, float3, int mask, f3 and MCL_ANY1 here; the packet
@@ -220,7 +218,7 @@ MCL_INLINE BsdfSample diffuse_sample(DiffuseBsdf b, SurfaceFrame s, float3 wo, f
 
 // The direct integrator's split sample (bsdf_common.h). Lambert-only: the cosine lobe around the
 // shading frame, folded above the geometric surface, always traced (its weight,
-// Kd x frame_cosine_weight, is 0 where the folded pdf is). The glossy mixture: diffuse_sample's.
+// Kd x cosine_weight, is 0 where the folded pdf is). The glossy mixture: diffuse_sample's.
 MCL_INLINE BsdfDirection diffuse_sample_direction(DiffuseBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,
                                                   float uLobe) {
   BsdfDirection d;
@@ -236,10 +234,18 @@ MCL_INLINE BsdfDirection diffuse_sample_direction(DiffuseBsdf b, SurfaceFrame s,
   return d;
 }
 
-// f cos / p of a direction wi from diffuse_sample_direction whose pdf (diffuse_pdf) is pdf.
-MCL_INLINE BsdfWeight diffuse_direction_weight(DiffuseBsdf b, SurfaceFrame s, float3 wo, float3 wi, float pdf) {
-  BsdfWeight w;
-  w.counts = b.specProb == 0.0f || pdf > 0.0f;
-  w.weight = b.specProb == 0.0f ? b.kd * frame_cosine_weight(s, wi) : diffuse_eval(b, s, wo, wi) * (1.0f / pdf);
-  return w;
-}
+// The albedo AOV and the direct integrator's weight, written once for floats and lanes (lane_bsdf.h):
+// - diffuse_albedo: Kd x texture (the glossy lobe is left out, as denoisers expect);
+// - diffuse_direction_weight: f cos / p of a direction wi from diffuse_sample_direction whose pdf
+//   (diffuse_pdf) is pdf; *counts: whether it contributes (bsdf_common.h). Lambert-only: Kd times
+//   cosine_weight (shading.h); the glossy mixture: glossy_eval / pdf.
+#define MCL_DEFINE_DIFFUSE_WEIGHTS(P, F, F3, M, V, ANY, B, FR)                                          \
+  MCL_INLINE F3 P##diffuse_albedo(B b) { return b.kd; }                                                 \
+  MCL_INLINE F3 P##diffuse_direction_weight(B b, FR s, F3 wo, F3 wi, F pdf, M* counts) {                \
+    M lambert = b.specProb == 0.0f;                                                                     \
+    *counts = lambert | (pdf > 0.0f);                                                                   \
+    F3 w = V##_scale(b.kd, P##cosine_weight(s.ns, s.ng, s.smooth, wi));                                 \
+    if (ANY(lambert == (M)(0))) w = V##_select(lambert, w, V##_scale(P##glossy_eval(b, s, wo, wi), 1.0f / pdf)); \
+    return w;                                                                                           \
+  }
+MCL_DEFINE_DIFFUSE_WEIGHTS(, float, float3, int, f3, MCL_ANY1, DiffuseBsdf, SurfaceFrame)

@@ -153,25 +153,27 @@ MCL_INLINE int metal_rough_is_delta(MetalRoughBsdf b) {
   return 0;
 }
 
-// The albedo AOV: the diffuse colour plus F0 (the directional albedo at normal incidence,
-// approximately: base for a metal, base (1 - 0.04) + 0.04 for a dielectric), under a coat mixed
-// with the coat's 0.04 by coat x 0.04 (its weight at normal incidence).
-MCL_INLINE float3 metal_rough_albedo(MetalRoughBsdf b) {
-  float3 f0 = metal_rough_f0(b);
-  float3 a = b.base * (1.0f - b.metallic) * (make_float3(1.0f, 1.0f, 1.0f) - f0) + f0;
-  if (!(b.coat > 0.0f)) return a;
-  float w = b.coat * 0.04f;
-  return a * (1.0f - w) + make_float3(w, w, w);
-}
-
 MCL_INLINE BsdfDirection metal_rough_sample_direction(MetalRoughBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,
                                                       float uLobe) {
   return bsdf_direction_of(metal_rough_sample(b, s, wo, u1, u2, uLobe));
 }
 
-MCL_INLINE BsdfWeight metal_rough_direction_weight(MetalRoughBsdf b, SurfaceFrame s, float3 wo, float3 wi, float pdf) {
-  BsdfWeight w;
-  w.counts = pdf > 0.0f;
-  w.weight = metal_rough_eval(b, s, wo, wi) * (1.0f / fmax(pdf, 1e-30f));
-  return w;
-}
+// Written once for floats and lanes (lane_bsdf.h):
+// - metal_rough_albedo: the albedo AOV, the diffuse colour plus F0 (the directional albedo at
+//   normal incidence, approximately: base for a metal, base (1 - 0.04) + 0.04 for a dielectric),
+//   under a coat mixed with the coat's 0.04 by coat x 0.04 (its weight at normal incidence);
+// - metal_rough_direction_weight: eval / pdf, counted where pdf > 0.
+#define MCL_DEFINE_METAL_ROUGH_WEIGHTS(P, F, F3, M, V, B, FR)                                           \
+  MCL_INLINE F3 P##metal_rough_albedo(B b) {                                                            \
+    F3 f0 = P##metal_rough_f0(b);                                                                       \
+    F3 one = V##_make((F)(1.0f), (F)(1.0f), (F)(1.0f));                                                 \
+    F3 a = V##_add(V##_mul(V##_scale(b.base, 1.0f - b.metallic), V##_sub(one, f0)), f0);                \
+    F w = b.coat * 0.04f;                                                                               \
+    F3 coated = V##_add(V##_scale(a, 1.0f - w), V##_make(w, w, w));                                     \
+    return V##_select(b.coat > 0.0f, coated, a);                                                        \
+  }                                                                                                     \
+  MCL_INLINE F3 P##metal_rough_direction_weight(B b, FR s, F3 wo, F3 wi, F pdf, M* counts) {            \
+    *counts = pdf > 0.0f;                                                                               \
+    return V##_scale(P##metal_rough_eval(b, s, wo, wi), 1.0f / fmax(pdf, 1e-30f));                      \
+  }
+MCL_DEFINE_METAL_ROUGH_WEIGHTS(, float, float3, int, f3, MetalRoughBsdf, SurfaceFrame)

@@ -54,10 +54,6 @@ MCL_INLINE int thin_dielectric_is_delta(ThinDielectricBsdf b) {
   (void)b;
   return 1;
 }
-MCL_INLINE float3 thin_dielectric_albedo(ThinDielectricBsdf b) {
-  (void)b;
-  return make_float3(1.0f, 1.0f, 1.0f);
-}
 
 MCL_INLINE float3 thin_dielectric_f(ThinDielectricBsdf b, SurfaceFrame s, float3 wo, float3 wi) {
   (void)b; (void)s; (void)wi; (void)wo;
@@ -78,14 +74,19 @@ MCL_INLINE BsdfDirection thin_dielectric_sample_direction(ThinDielectricBsdf b, 
   return bsdf_direction_of(thin_dielectric_sample(b, s, wo, u1, u2, uLobe));
 }
 
-// Both lobes weigh 1 (each is picked with its own reflectance or transmittance), the one
-// through (below the geometric surface) times the tint.
-MCL_INLINE BsdfWeight thin_dielectric_direction_weight(ThinDielectricBsdf b, SurfaceFrame s, float3 wo, float3 wi,
-                                                       float pdf) {
-  (void)wo;
-  (void)pdf;
-  BsdfWeight r;
-  r.counts = 1;
-  r.weight = tint_transmitted(b.tint, !above_surface(s.ng, wi), 1.0f);
-  return r;
-}
+// Written once for floats and lanes (lane_bsdf.h): the albedo AOV, 1 (the sheet passes or
+// reflects everything), and the direct integrator's weight: both lobes weigh 1 (each is picked
+// with its own reflectance or transmittance), the one through (below the geometric surface) times
+// the tint; every direction counts.
+#define MCL_DEFINE_THIN_DIELECTRIC_WEIGHTS(P, F, F3, M, V, B, FR)                                       \
+  MCL_INLINE F3 P##thin_dielectric_albedo(B b) {                                                        \
+    (void)b;                                                                                            \
+    return V##_make((F)(1.0f), (F)(1.0f), (F)(1.0f));                                                   \
+  }                                                                                                     \
+  MCL_INLINE F3 P##thin_dielectric_direction_weight(B b, FR s, F3 wo, F3 wi, F pdf, M* counts) {        \
+    (void)wo;                                                                                           \
+    (void)pdf;                                                                                          \
+    *counts = (F)(0.0f) == (F)(0.0f);                                                                   \
+    return P##tint_transmitted(b.tint, (V##_dot(s.ng, wi) > 0.0f) == (M)(0), (F)(1.0f));                \
+  }
+MCL_DEFINE_THIN_DIELECTRIC_WEIGHTS(, float, float3, int, f3, ThinDielectricBsdf, SurfaceFrame)

@@ -1,13 +1,10 @@
 // bump_map.h: height-map bump mapping of a hit: reads the material's bump texture (Material::maps.w,
 // one more than its index, 0: none; texels hold the height gradient per unit of UV times the
 // material's scale, (s dh/du, s dh/dv), made by the host, host/texture/bump_gradient.cpp), the
-// triangle's UVs and edges, and writes the perturbed shading normal of a SurfaceFrame. Pure;
+// triangle's UVs and edges, and gives the perturbed shading normal of a frame. Pure;
 // compiled by the kernels, the host backend and the host tests.
 #pragma once
 #include "normal_map.h"
-
-// 1 when material m has a bump map.
-MCL_INLINE int has_bump_map(Material m) { return as_uint(m.maps.w) != 0u; }
 
 // The bumped unit normal of a triangle with edges e1 = v1 - v0, e2 = v2 - v0 and UV deltas
 // (du1, dv1), (du2, dv2) of v1, v2 from v0, about the unit normal N (the unoriented shading
@@ -34,20 +31,3 @@ MCL_INLINE int has_bump_map(Material m) { return as_uint(m.maps.w) != 0u; }
     return V##_select(ok, n, V##_make((F)(0.0f), (F)(0.0f), (F)(0.0f)));                                   \
   }
 MCL_DEFINE_BUMP_NORMAL(, float, float3, int, f3)
-
-// The frame fr of hit h on triangle tri (attributes sh, unit geometric normal ng0, unoriented)
-// under material m's bump map; fr unchanged without a map or without UVs, and (bit for bit) where
-// the gradient is zero (a constant height). The normal map's rules follow (normal_mapped_frame:
-// the side of ng, and never below the geometric surface). The gradient is read at the finest level
-// kept, bilinear, as the normal map is (the same normal for every ray that reaches the point).
-MCL_INLINE SurfaceFrame apply_bump_map(SurfaceFrame fr, TextureTables tt, Material m, MCL_GLOBAL const Triangle* tri,
-                                       MCL_GLOBAL const TriangleShading* sh, float3 ng0, Hit h) {
-  if (!has_bump_map(m) || !(as_uint(tri->e2.w) & MCL_ATTR_UV)) return fr;
-  uint tex = as_uint(m.maps.w) - 1u;
-  float2 uv = surface_uv(tri, sh, h.u, h.v);
-  float4 g = texture_fine(tt, tex, uv.x, uv.y);
-  float4 q = map_uv_deltas(tt.textures[tex], sh);  // the gradient is per unit of the map's own UVs
-  float3 N = unoriented_shading_normal(tri, sh, ng0, h);
-  float3 n = bump_normal(N, xyz(tri->e1), xyz(tri->e2), q.x, q.y, q.z, q.w, g.x, g.y);
-  return normal_mapped_frame(fr, N, n, make_float3(g.x, g.y, 1.0f));
-}

@@ -1,15 +1,12 @@
 // normal_map.h: the tangent-space normal map of a hit: reads the material's normal texture
 // (Material::maps.z, one more than its index, 0: none; texels hold the decoded tangent-space
 // vector ((2r - 1) s, (2g - 1) s, 2b - 1), s the map's scale, baked in by the host), the triangle's
-// corner tangents (glTF TANGENT, MCL_ATTR_TANGENTS) or else its UVs and edges, and writes the
-// perturbed shading normal of a SurfaceFrame. Pure; compiled by the kernels, the host backend and
+// corner tangents (glTF TANGENT, MCL_ATTR_TANGENTS) or else its UVs and edges, and gives the
+// perturbed shading normal of a frame (lane_frame, stages/stage_lanes.h). Pure; compiled by the kernels, the host backend and
 // the host tests.
 #pragma once
 #include "shading.h"
 #include "surface_texture.h"
-
-// 1 when material m has a normal map.
-MCL_INLINE int has_normal_map(Material m) { return as_uint(m.maps.z) != 0u; }
 
 // The relief maps' functions written once for floats and lanes (P, F, F3, F4, M, V, MAKE4, FR: the
 // prefix, float, float3, float4, int mask, f3, make_float4, SurfaceFrame here; the packet stages'
@@ -84,45 +81,3 @@ MCL_INLINE int has_normal_map(Material m) { return as_uint(m.maps.z) != 0u; }
                  row1.x * du2 + row1.y * dv2);                                                            \
   }
 MCL_DEFINE_NORMAL_MAP(, float, float3, float4, int, f3, make_float4, SurfaceFrame)
-
-// The normal that a relief map tilts at hit h on triangle tri (attributes sh, unit geometric
-// normal ng0, unoriented): the interpolated corner normals, else ng0.
-MCL_INLINE float3 unoriented_shading_normal(MCL_GLOBAL const Triangle* tri, MCL_GLOBAL const TriangleShading* sh,
-                                            float3 ng0, Hit h) {
-  float3 N = ng0;
-  if (as_uint(tri->e2.w) & MCL_ATTR_NORMALS) {
-    float3 ni = interpolate_normal(xyz(sh->n0), xyz(sh->n1), xyz(sh->n2), h.u, h.v);
-    N = dot(ni, ni) > 0.0f ? ni : ng0;
-  }
-  return N;
-}
-
-// The UV deltas of corners 1 and 2 from corner 0 (attributes sh) in the UVs of the map whose desc
-// is d (map_uv_deltas_of).
-MCL_INLINE float4 map_uv_deltas(TextureDesc d, MCL_GLOBAL const TriangleShading* sh) {
-  return map_uv_deltas_of(d.uvRow0, d.uvRow1, sh->n1.w - sh->n0.w, sh->tv.y - sh->tv.x, sh->n2.w - sh->n0.w,
-                          sh->tv.z - sh->tv.x);
-}
-
-// The frame fr of hit h on triangle tri (attributes sh, unit geometric normal ng0, unoriented)
-// under material m's normal map; fr unchanged without a map or without UVs. The map is read at
-// the finest level kept, bilinear (deterministic, as the alpha test: the same normal for every
-// ray that reaches the point). The tangent frame is the file's (tt.tangents) when the triangle has
-// tangents, else the one made from its UVs (tangent_to_world).
-MCL_INLINE SurfaceFrame apply_normal_map(SurfaceFrame fr, TextureTables tt, Material m, MCL_GLOBAL const Triangle* tri,
-                                         MCL_GLOBAL const TriangleShading* sh, float3 ng0, Hit h) {
-  if (!has_normal_map(m) || !(as_uint(tri->e2.w) & MCL_ATTR_UV)) return fr;
-  uint tex = as_uint(m.maps.z) - 1u;
-  float2 uv = surface_uv(tri, sh, h.u, h.v);
-  float3 t = xyz(texture_fine(tt, tex, uv.x, uv.y));
-  float4 q = map_uv_deltas(tt.textures[tex], sh);
-  float3 N = unoriented_shading_normal(tri, sh, ng0, h);
-  float3 n;
-  if (as_uint(tri->e2.w) & MCL_ATTR_TANGENTS) {
-    MCL_GLOBAL const float4* c = tt.tangents + 3u * h.tri;
-    n = file_tangent_to_world(N, c[0], c[1], c[2], h.u, h.v, t);
-  } else {
-    n = tangent_to_world(N, xyz(tri->e1), xyz(tri->e2), q.x, q.y, q.z, q.w, t);
-  }
-  return normal_mapped_frame(fr, N, n, t);
-}

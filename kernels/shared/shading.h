@@ -84,6 +84,13 @@ MCL_INLINE float shading_cosine(float3 ns, float3 ng, float3 wi) {
   /* Its pdf (diffuse_pdf without a glossy lobe): folded where smooth. */                              \
   MCL_INLINE F P##lambert_pdf(F3 ng, F3 ns, M smooth, F3 wi) {                                         \
     return vsel(smooth, P##pdf_cosine_folded(ns, ng, wi), PDF(DOT(ns, wi)));                           \
+  }                                                                                                    \
+  /* f cos / p of a Lambertian lobe of albedo 1 for a direction from its cosine sampling: 1 where      \
+     flat; where smooth the shading cosine / (pi pdf) <= 1, 0 where the folded pdf is 0. */            \
+  MCL_INLINE F P##cosine_weight(F3 ns, F3 ng, M smooth, F3 wi) {                                       \
+    F pdf = P##pdf_cosine_folded(ns, ng, wi);                                                          \
+    F c = vsel(DOT(ng, wi) > 0.0f, fmax(DOT(ns, wi), (F)(0.0f)), (F)(0.0f));                           \
+    return vsel(smooth, vsel(pdf > 0.0f, c * MCL_INV_PI / pdf, (F)(0.0f)), (F)(1.0f));                 \
   }
 MCL_INLINE float3 mcl_sub3(float3 a, float3 b) { return a - b; }
 MCL_INLINE float3 mcl_scale3(float3 a, float s) { return a * s; }
@@ -99,11 +106,4 @@ MCL_INLINE float3 frame_sample_direction(SurfaceFrame s, float3 dirLocal) {
 // The Lambert cosine of wi (may be <= 0 when flat: callers skip non-positive cosines).
 MCL_INLINE float frame_cosine(SurfaceFrame s, float3 wi) {
   return s.smooth ? shading_cosine(s.ns, s.ng, wi) : dot(s.ng, wi);
-}
-// f cos / p of a Lambertian surface of albedo 1 for a direction from cosine sampling: 1 when flat;
-// with folding, cos_s(wi) / (pi pdf) <= 1.
-MCL_INLINE float frame_cosine_weight(SurfaceFrame s, float3 wi) {
-  if (!s.smooth) return 1.0f;
-  float pdf = pdf_cosine_folded(s.ns, s.ng, wi);
-  return pdf > 0.0f ? shading_cosine(s.ns, s.ng, wi) * MCL_INV_PI / pdf : 0.0f;
 }

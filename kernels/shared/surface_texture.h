@@ -38,12 +38,10 @@ MCL_INLINE float uv_area(MCL_GLOBAL const Triangle* tri, MCL_GLOBAL const Triang
   return uv_triangle_area(sh->n0.w, sh->n1.w, sh->n2.w, sh->tv.x, sh->tv.y, sh->tv.z);
 }
 
-// Albedo at a hit h of a camera ray along unit direction dir: Kd x the albedo texture's colour
-// (trilinear, footprint from the camera's ray cone, camera_spread_angle(f) * h.t wide there), or
-// Kd without one (then nothing else is read or computed: no cone, no UVs). nA: the triangle's unit
-// geometric normal (xyz) and area (w), as triangle_unit_normal and triangle_area_of give them.
 // Texture tex (not MCL_NO_TEXTURE) at hit h of a camera ray along unit direction dir: trilinear,
-// footprint from the camera's ray cone (as hit_albedo).
+// footprint from the camera's ray cone, camera_spread_angle(f) * h.t wide there. nA: the
+// triangle's unit geometric normal (xyz) and area (w), as triangle_unit_normal and
+// triangle_area_of give them.
 MCL_INLINE float4 hit_texture(TextureTables tt, MCL_CONSTANT const FrameParams* f, uint tex,
                               MCL_GLOBAL const Triangle* tri, float4 nA, MCL_GLOBAL const TriangleShading* sh,
                               Hit h, float3 dir) {
@@ -53,19 +51,6 @@ MCL_INLINE float4 hit_texture(TextureTables tt, MCL_CONSTANT const FrameParams* 
   return texture_sample(tt, tex, uv.x, uv.y, fp);
 }
 
-MCL_INLINE float3 hit_albedo(TextureTables tt, MCL_CONSTANT const FrameParams* f, Material m,
-                             MCL_GLOBAL const Triangle* tri, float4 nA, MCL_GLOBAL const TriangleShading* sh,
-                             Hit h, float3 dir) {
-  float3 kd = xyz(m.albedo);
-  if (as_uint(tri->e2.w) & MCL_ATTR_COLOR) {  // times the vertex colour interpolated at the hit
-    MCL_GLOBAL const float4* c = tt.colors + 3u * h.tri;
-    float w = 1.0f - h.u - h.v;
-    kd = kd * (xyz(c[0]) * w + xyz(c[1]) * h.u + xyz(c[2]) * h.v);
-  }
-  uint tex = as_uint(m.albedo.w);
-  if (tex == MCL_NO_TEXTURE) return kd;
-  return kd * xyz(hit_texture(tt, f, tex, tri, nA, sh, h, dir));
-}
 
 // Material m with its metallic-roughness texture applied at hit h (glTF: B metallic, G roughness,
 // multiplying the factors in params0.x, .y; read by the metal_rough kind only); m unchanged without one.
@@ -202,7 +187,7 @@ MCL_INLINE TextureTables make_texture_tables(MCL_GLOBAL const TextureDesc* textu
   return tt;
 }
 
-// The texture tables with the vertex colours and corner tangents (what surface_at reads).
+// The texture tables with the vertex colours and corner tangents (what the shade stages read).
 MCL_INLINE TextureTables make_surface_tables(MCL_GLOBAL const TextureDesc* textures, MCL_GLOBAL const TextureLevel* levels,
                                              MCL_GLOBAL const ushort* texels, MCL_GLOBAL const float4* colors,
                                              MCL_GLOBAL const float4* tangents) {

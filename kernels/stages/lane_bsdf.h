@@ -32,6 +32,13 @@ MCL_DEFINE_COATED_CONDUCTOR_TYPE(vCoatedConductorBsdf, vfloat, vfloat3, vuint)
 MCL_DEFINE_COATED_CONDUCTOR(v_, vfloat, vfloat3, vmask, vuint, v3, v_any, vCoatedConductorBsdf, LaneFrame, vBsdfSample,
                             vRngOut, v_pcg4d, v_u32_to_unit, v_cvt_f_u, v_)
 MCL_DEFINE_SHADOW_DIR_FROM(v_, vfloat, vfloat3, vmask, v3)
+MCL_DEFINE_DIFFUSE_WEIGHTS(v_, vfloat, vfloat3, vmask, v3, v_any, vDiffuseBsdf, LaneFrame)
+MCL_DEFINE_CONDUCTOR_WEIGHTS(v_, vfloat, vfloat3, vmask, v3, vConductorBsdf, LaneFrame)
+MCL_DEFINE_DIELECTRIC_WEIGHTS(v_, vfloat, vfloat3, vmask, v3, vDielectricBsdf, LaneFrame)
+MCL_DEFINE_THIN_DIELECTRIC_WEIGHTS(v_, vfloat, vfloat3, vmask, v3, vThinDielectricBsdf, LaneFrame)
+MCL_DEFINE_METAL_ROUGH_WEIGHTS(v_, vfloat, vfloat3, vmask, v3, vMetalRoughBsdf, LaneFrame)
+MCL_DEFINE_COATED_DIFFUSE_WEIGHTS(v_, vfloat, vfloat3, vmask, v3, vCoatedDiffuseBsdf, LaneFrame)
+MCL_DEFINE_COATED_CONDUCTOR_WEIGHTS(v_, vfloat, vfloat3, vmask, v3, vCoatedConductorBsdf, LaneFrame)
 
 // The BSDFs of a packet's hits (LaneHits' masks say which lane is which kind; each kind's
 // parameters are made in every lane and read only in its own).
@@ -128,8 +135,47 @@ MCL_INLINE vfloat3 lane_bsdf_eval_pdf(const LaneBsdf* b, LaneFrame s, vfloat3 wo
     fc = v3_select(b->coatedConductor, v_coated_conductor_eval(b->cc, s, wo, wi), fc);
     p = vsel(b->coatedConductor, v_coated_conductor_pdf(b->cc, s, wo, wi), p);
   }
+  if (v_any(b->thin)) {  // delta lobes only: eval and pdf 0
+    fc = v3_select(b->thin, v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f)), fc);
+    p = vsel(b->thin, v_f(0.0f), p);
+  }
   *pdf = p;
   return fc;
+}
+
+// bsdf_albedo (the albedo AOV's colour) at each lane (0 in lanes of no kind here).
+MCL_INLINE vfloat3 lane_bsdf_albedo(const LaneBsdf* b) {
+  vfloat3 a = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f));
+  a = v3_select(b->lamb | b->glossy, v_diffuse_albedo(b->gl), a);
+  if (v_any(b->conductor)) a = v3_select(b->conductor, v_conductor_albedo(b->cond), a);
+  if (v_any(b->dielectric)) a = v3_select(b->dielectric, v_dielectric_albedo(b->diel), a);
+  if (v_any(b->thin)) a = v3_select(b->thin, v_thin_dielectric_albedo(b->sheet), a);
+  if (v_any(b->metalRough)) a = v3_select(b->metalRough, v_metal_rough_albedo(b->mr), a);
+  if (v_any(b->coatedDiffuse)) a = v3_select(b->coatedDiffuse, v_coated_diffuse_albedo(b->cd), a);
+  if (v_any(b->coatedConductor)) a = v3_select(b->coatedConductor, v_coated_conductor_albedo(b->cc), a);
+  return a;
+}
+
+// bsdf_direction_weight at each lane: f cos / p of a direction wi the kind's sample drew, whose
+// bsdf_pdf is pdf; *counts where it contributes (none in lanes of no kind here).
+MCL_INLINE vfloat3 lane_bsdf_direction_weight(const LaneBsdf* b, LaneFrame s, vfloat3 wo, vfloat3 wi, vfloat pdf,
+                                              vmask* counts) {
+  vmask c;
+  vfloat3 w = v_diffuse_direction_weight(b->gl, s, wo, wi, pdf, &c);  // the Lambertian and glossy lanes
+  *counts = c & (b->lamb | b->glossy);
+#define MCL_LANE_WEIGH(mask, fn, params)                 \
+  if (v_any(b->mask)) {                                  \
+    w = v3_select(b->mask, fn(b->params, s, wo, wi, pdf, &c), w); \
+    *counts = *counts | (c & b->mask);                   \
+  }
+  MCL_LANE_WEIGH(conductor, v_conductor_direction_weight, cond)
+  MCL_LANE_WEIGH(dielectric, v_dielectric_direction_weight, diel)
+  MCL_LANE_WEIGH(thin, v_thin_dielectric_direction_weight, sheet)
+  MCL_LANE_WEIGH(metalRough, v_metal_rough_direction_weight, mr)
+  MCL_LANE_WEIGH(coatedDiffuse, v_coated_diffuse_direction_weight, cd)
+  MCL_LANE_WEIGH(coatedConductor, v_coated_conductor_direction_weight, cc)
+#undef MCL_LANE_WEIGH
+  return w;
 }
 
 // bsdf_f (no cosine) of wi at each lane of the kinds other than the Lambertian lobe (0 in the

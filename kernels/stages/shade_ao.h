@@ -26,7 +26,7 @@ MCL_INLINE void stage_shade_ao(const shade_ao_args* a, uint first) {
   if (!v_any(hit)) return;
   vfloat dx, dy, dz, dw;
   v_load4_stride_n((MCL_GLOBAL const float*)(a->rays + first) + 4, 8, lanes, &dx, &dy, &dz, &dw);
-  LaneFrame sf = lane_surface_frame(a->tris, a->normals, a->shading, a->instances, f, a->hits, a->hitInstances, first,
+  LaneFrame sf = lane_surface_frame(a->tris, a->normals, a->shading, a->instances, f, a->hitInstances, first, lanes,
                                     hit, tri, hu, hv, v3_make(dx, dy, dz));
   vuint pixel, sample;
   v_item_pixel_sample(f, a->active, a->waveStart, first, &pixel, &sample);

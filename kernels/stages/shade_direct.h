@@ -3,7 +3,7 @@
 // or the background without one; else Le seen directly), pushes K light-sample occlusion queries
 // onto the shadow queue (light / mis; lights: the environment, emitter triangles and the light
 // records: point, spot, directional, the delta ones by light sampling only; stages/direct_light.h) and writes the BSDF ray bounce[i] (brdf / mis; otherwise an empty ray
-// with tmax < 0). Surfaces: surface_at (shared/surface.h): the shading frame and the material
+// with tmax < 0). Surfaces: lane_frame (stage_lanes.h): the shading frame and the material
 // kind's BSDF (shared/bsdf.h; light directions below the geometric surface count only through a
 // transmitting lobe, their shadow rays leaving from the far side).
 // Shadow slots per sample: [0, K) light samples, K the BSDF sample (shade_direct_hit); each

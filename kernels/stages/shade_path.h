@@ -6,7 +6,7 @@
 // next-event queries onto the shadow queue (slots id * shadowSlots + k, contributions MIS
 // weighted but for delta lights; lights: emitter triangles, the environment and the light records,
 // stages/direct_light.h), samples the
-// BSDF (surface_at, kernels/shared/surface.h: the material kind's BSDF around the shading frame;
+// BSDF (lane_frame, stage_lanes.h: the material kind's BSDF around the shading frame;
 // textures filtered with the camera's ray-cone width at this segment's length, a lower bound after
 // diffuse bounces), applies Russian roulette from depth
 // rrDepth, and pushes the continuation ray onto nextRays / nextPathIds (compacted, *nextCount).

@@ -268,8 +268,8 @@ MCL_INLINE void v_push_shadow_queries(MCL_GLOBAL ShadowWork* queue, MCL_GLOBAL v
 
 // --- a packet's Lambertian hits (the diffuse kind without a glossy lobe) ------------------------
 // Each lane's shading frame and albedo: from the triangle alone for flat untextured world-space
-// hits, else from the scalar surface_at (textures, vertex colours, shading normals, normal and bump
-// maps, instances are the scalar code's). The lobe itself is shading.h's, instantiated for lanes.
+// hits, else with textures, vertex colours, shading normals, normal and bump maps and instances
+// (lane_frame below). The lobe itself is shading.h's, instantiated for lanes.
 MCL_DEFINE_SHADING_RULE(v_, vfloat, vfloat3, vmask, v3_dot, v3_sub, v3_scale, v3_select, v3_make, v_pdf_cosine_hemisphere)
 
 // The shading frame of W hits (SurfaceFrame per lane) and their Lambertian albedo Kd.
@@ -297,7 +297,7 @@ MCL_DEFINE_LIGHT_PICKS(v_, vfloat, vfloat3, vuint, vmask, v_any, v_, v_cvt_u_f, 
 // tint); and of them
 // all flat, whose frame comes from the triangle alone (no shading normals, normal or bump map, nor
 // an instance, and where tinted no vertex colours nor albedo texture: the others' frame comes from
-// surface_at).
+// lane_frame_attributes).
 typedef struct {
   vfloat3 v0, e1, e2, n, kd, ke;
   vfloat area, twoSided;  // normals[].w; Material::emission.w
@@ -364,7 +364,7 @@ MCL_INLINE LaneHits lane_hits(MCL_CONSTANT const FrameParams* f, MCL_GLOBAL cons
   h.bumpMap = v_as_uint(kmw);
   h.placed = hit & v_not(hit);  // none
   h.instance = v_u(0u);
-  if (f->instanceCount > 0u) {  // instanced hits: their frame from surface_at, in object space
+  if (f->instanceCount > 0u) {  // instanced hits: their frame made in object space
     uint inst[MCL_LANES] MCL_LANE_ALIGN;
     for (uint j = 0; j < MCL_LANES; ++j) inst[j] = j < lanes ? hit_instance(f, hitInstances, first + j) : 0u;
     h.placed = hit & (v_loadu_lanes(inst) != MCL_NO_INSTANCE);
@@ -467,6 +467,19 @@ MCL_INLINE vfloat4 lane_texture(TextureTables tt, vmask on, vuint tex, vfloat u,
 
 // The lanes set in m (hits on world-space triangles) of a frame whose flat part is set:
 // surface_frame's shading normal, the normal and bump maps (lane_relief), for the tinted lanes
+// The corner normals n0, n1, n2 blended at hu, hv in the lanes set in hasN (surface_frame): where
+// the blend is a direction, lf's ns becomes it on ng's side and smooth is set. Returns the
+// unoriented shading normal (unoriented_shading_normal): that blend, else N (the triangle's).
+MCL_INLINE vfloat3 lane_smooth_normal(LaneFrame* lf, vmask hasN, vfloat3 n0, vfloat3 n1, vfloat3 n2, vfloat hu,
+                                      vfloat hv, vfloat3 N) {
+  if (!v_any(hasN)) return N;
+  vfloat3 n = v_interpolate_normal(n0, n1, n2, hu, hv);
+  vmask usable = hasN & (v3_dot(n, n) > 0.0f);
+  lf->ns = v3_select(usable, v_orient_to(n, lf->ng), lf->ns);
+  lf->smooth = lf->smooth | usable;
+  return v3_select(usable, n, N);
+}
+
 // hit_albedo's vertex colour and albedo texture (trilinear, ray-cone footprint, hit_texture), and
 // the metallic-roughness texture (hit_metal_rough, into lh's params0) and the transmission texture
 // (hit_transmission_texture, into params1.x), in lanes, at barycentrics
@@ -488,14 +501,7 @@ MCL_INLINE LaneFrame lane_frame_attributes(SurfaceScene sc, MCL_CONSTANT const F
     v_gather4(sh + 8, ts, stride, &n2.x, &n2.y, &n2.z, &u2);
     v_gather4(sh + 12, ts, stride, &t0, &t1, &t2, &tw);
   }
-  vfloat3 N = lh->n;  // unoriented_shading_normal: the interpolated corner normals, else the triangle's
-  if (v_any(hasN)) {
-    vfloat3 n = v_interpolate_normal(n0, n1, n2, hu, hv);
-    vmask usable = hasN & (v3_dot(n, n) > 0.0f);
-    lf.ns = v3_select(usable, v_orient_to(n, lf.ng), lf.ns);
-    lf.smooth = lf.smooth | usable;
-    N = v3_select(usable, n, N);
-  }
+  vfloat3 N = lane_smooth_normal(&lf, hasN, n0, n1, n2, hu, hv, lh->n);
   vmask relief = hasUV & ((lh->normalMap | lh->bumpMap) != 0u);
   if (v_any(relief)) lf = lane_relief(sc.tex, lh, relief, N, u0, u1, u2, t0, t1, t2, hu, hv, lf);
   vfloat3 kd = lf.kd;
@@ -549,8 +555,19 @@ MCL_INLINE void v_instance_rows(MCL_GLOBAL const Instance* instances, vuint inst
   v_gather4(p + 8, inst, stride, &r2->x, &r2->y, &r2->z, &r2->w);
 }
 
-// The frame of W hits (lh, at barycentrics hu, hv and distance ht along dir), surface_at's
-// operations per lane: flat world-space hits from their triangle alone; the lanes in `rich` with
+// instance_frame in the lanes set in placed: the frame made in instance inst's object space
+// placed in the world (w0, w1, w2: the instance's worldToObject rows).
+MCL_INLINE void lane_place_frame(MCL_GLOBAL const Instance* instances, vuint inst, vmask placed, vfloat4 w0,
+                                 vfloat4 w1, vfloat4 w2, LaneFrame* lf) {
+  vfloat4 o0, o1, o2;
+  v_instance_rows(instances, inst, 3u, &o0, &o1, &o2);
+  lf->p = v3_select(placed, v_affine_point_of(o0, o1, o2, lf->p), lf->p);
+  lf->ng = v3_select(placed, v_instance_normal_of(w0, w1, w2, lf->ng), lf->ng);
+  lf->ns = v3_select(placed, v_instance_normal_of(w0, w1, w2, lf->ns), lf->ns);
+}
+
+// The frame of W hits (lh, at barycentrics hu, hv and distance ht along dir), the same operations
+// per lane as the float functions they are written with: flat world-space hits from their triangle alone; the lanes in `rich` with
 // their shading normals, relief maps and textures (lane_frame_attributes); hits in an instance
 // (lh's placed lanes) made in its object space with the unit object-space direction, then placed
 // (instance_frame). lh's metal_rough lanes then hold their parameters after the metallic-roughness
@@ -572,13 +589,7 @@ MCL_INLINE LaneFrame lane_frame(SurfaceScene sc, MCL_CONSTANT const FrameParams*
   lf.kd = lh->kd;
   lf.smooth = v_not(rich | v_not(rich));  // none
   if (v_any(rich)) lf = lane_frame_attributes(sc, f, rich, lh, hu, hv, ht, dir, lf);
-  if (v_any(placed)) {  // instance_frame
-    vfloat4 o0, o1, o2;
-    v_instance_rows(sc.instances, lh->instance, 3u, &o0, &o1, &o2);
-    lf.p = v3_select(placed, v_affine_point_of(o0, o1, o2, lf.p), lf.p);
-    lf.ng = v3_select(placed, v_instance_normal_of(w0, w1, w2, lf.ng), lf.ng);
-    lf.ns = v3_select(placed, v_instance_normal_of(w0, w1, w2, lf.ns), lf.ns);
-  }
+  if (v_any(placed)) lane_place_frame(sc.instances, lh->instance, placed, w0, w1, w2, &lf);
   if (v_any(lh->mixes)) {  // hit_transmission: the kind this sample's hit is (transmission_uniform)
     vfloat u = f->sampler == MCL_SAMPLER_SOBOL ? v_sample_uniform4(f, pixel, sample, MCL_DIM_MIX + bounce).x
                                                : v_hit_uniform_at(lh->tri, hu, hv, dir);
@@ -590,55 +601,57 @@ MCL_INLINE LaneFrame lane_frame(SurfaceScene sc, MCL_CONSTANT const FrameParams*
   return lf;
 }
 
-// The shading frames (surface_frame_in: no textures or maps) of W hits, `hit` the lanes with one:
-// flat world-space hits from their triangle in lanes (vertex v0, edges e1, e2 at barycentrics hu, hv,
-// unit normal, facing dir); hits on triangles with corner normals, and every hit of a scene with
-// instances, through the scalar surface_frame_in per lane. kd is left 0.
+// The shading frames (surface_frame_in: no textures or maps) of W hits, `hit` the lanes with one,
+// in lanes: each from its triangle (vertex v0, edges e1, e2 at barycentrics hu, hv, unit normal,
+// facing dir) and its corner normals where it has them; a hit in an instance made in its object
+// space with the object-space direction (not normalised, as surface_frame_in), then placed. kd is
+// left 0.
 MCL_INLINE LaneFrame lane_surface_frame(MCL_GLOBAL const Triangle* tris, MCL_GLOBAL const float4* normals,
                                         MCL_GLOBAL const TriangleShading* shading,
                                         MCL_GLOBAL const Instance* instances, MCL_CONSTANT const FrameParams* f,
-                                        MCL_GLOBAL const Hit* hits, MCL_GLOBAL const uint* hitInstances,
-                                        uint first, vmask hit, vuint tri, vfloat hu, vfloat hv, vfloat3 dir) {
+                                        MCL_GLOBAL const uint* hitInstances, uint first, uint lanes, vmask hit,
+                                        vuint tri, vfloat hu, vfloat hv, vfloat3 dir) {
   vuint t = vsel(hit, tri, v_u(0u));  // misses read triangle 0 and are masked off
   MCL_GLOBAL const float* tf = (MCL_GLOBAL const float*)tris;
-  vfloat v0x, v0y, v0z, v0w, e1x, e1y, e1z, e1w, e2x, e2y, e2z, e2w, nx, ny, nz, nw;
-  v_gather4(tf, t, 12, &v0x, &v0y, &v0z, &v0w);
-  v_gather4(tf + 4, t, 12, &e1x, &e1y, &e1z, &e1w);
-  v_gather4(tf + 8, t, 12, &e2x, &e2y, &e2z, &e2w);
-  v_gather4((MCL_GLOBAL const float*)normals, t, 4, &nx, &ny, &nz, &nw);
+  vfloat3 v0, e1, e2, n;
+  vfloat v0w, e1w, e2w, area;
+  v_gather4(tf, t, 12, &v0.x, &v0.y, &v0.z, &v0w);
+  v_gather4(tf + 4, t, 12, &e1.x, &e1.y, &e1.z, &e1w);
+  v_gather4(tf + 8, t, 12, &e2.x, &e2.y, &e2.z, &e2w);
+  v_gather4((MCL_GLOBAL const float*)normals, t, 4, &n.x, &n.y, &n.z, &area);
+  vmask placed = hit & v_not(hit);  // none
+  vuint instance = v_u(0u);
+  vfloat4 w0, w1, w2;
+  if (f->instanceCount > 0u) {
+    uint inst[MCL_LANES] MCL_LANE_ALIGN;
+    for (uint j = 0; j < MCL_LANES; ++j) inst[j] = j < lanes ? hit_instance(f, hitInstances, first + j) : 0u;
+    placed = hit & (v_loadu_lanes(inst) != MCL_NO_INSTANCE);
+    instance = vsel(placed, v_loadu_lanes(inst), v_u(0u));
+  }
+  if (v_any(placed)) {  // the object-space direction
+    v_instance_rows(instances, instance, 0u, &w0, &w1, &w2);
+    dir = v3_select(placed, v_affine_vector_of(w0, w1, w2, dir), dir);
+  }
   LaneFrame lf;
-  lf.p = v3_add(v3_add(v3_make(v0x, v0y, v0z), v3_scale(v3_make(e1x, e1y, e1z), hu)), v3_scale(v3_make(e2x, e2y, e2z), hv));
-  lf.ng = v_orient_facing(v3_make(nx, ny, nz), dir);
-  lf.backface = v3_dot(v3_make(nx, ny, nz), dir) > 0.0f;  // (instanced lanes: not read)
+  lf.p = v3_add(v3_add(v0, v3_scale(e1, hu)), v3_scale(e2, hv));
+  lf.ng = v_orient_facing(n, dir);
+  lf.backface = v3_dot(n, dir) > 0.0f;
   lf.ns = lf.ng;
   lf.kd = v3_make(v_f(0.0f), v_f(0.0f), v_f(0.0f));
   lf.smooth = hit & v_not(hit);  // none
-  vmask rich = hit & (f->instanceCount > 0u ? hit : (v_as_uint(e2w) & MCL_ATTR_NORMALS) != 0u);
-  if (!v_any(rich)) return lf;
-  uint set[MCL_LANES] MCL_LANE_ALIGN, smo[MCL_LANES] MCL_LANE_ALIGN;
-  float pX[MCL_LANES] MCL_LANE_ALIGN, pY[MCL_LANES] MCL_LANE_ALIGN, pZ[MCL_LANES] MCL_LANE_ALIGN;
-  float gX[MCL_LANES] MCL_LANE_ALIGN, gY[MCL_LANES] MCL_LANE_ALIGN, gZ[MCL_LANES] MCL_LANE_ALIGN;
-  float sX[MCL_LANES] MCL_LANE_ALIGN, sY[MCL_LANES] MCL_LANE_ALIGN, sZ[MCL_LANES] MCL_LANE_ALIGN;
-  float dX[MCL_LANES] MCL_LANE_ALIGN, dY[MCL_LANES] MCL_LANE_ALIGN, dZ[MCL_LANES] MCL_LANE_ALIGN;
-  v_store_lanes(v_mask01(rich), set);
-  v_store_lanes(v_u(0u), smo);
-  v3_store_lanes(lf.p, pX, pY, pZ);
-  v3_store_lanes(lf.ng, gX, gY, gZ);
-  v3_store_lanes(lf.ns, sX, sY, sZ);
-  v3_store_lanes(dir, dX, dY, dZ);
-  for (uint j = 0; j < MCL_LANES; ++j) {
-    if (!set[j]) continue;
-    SurfaceFrame sf = surface_frame_in(tris, normals, shading, instances, hits[first + j],
-                                       hit_instance(f, hitInstances, first + j), make_float3(dX[j], dY[j], dZ[j]));
-    pX[j] = sf.p.x; pY[j] = sf.p.y; pZ[j] = sf.p.z;
-    gX[j] = sf.ng.x; gY[j] = sf.ng.y; gZ[j] = sf.ng.z;
-    sX[j] = sf.ns.x; sY[j] = sf.ns.y; sZ[j] = sf.ns.z;
-    smo[j] = sf.smooth != 0;
+  vmask hasN = hit & ((v_as_uint(e2w) & MCL_ATTR_NORMALS) != 0u);
+  if (v_any(hasN)) {  // TriangleShading: the corner normals
+    MCL_GLOBAL const float* sh = (MCL_GLOBAL const float*)shading;
+    const uint stride = (uint)(sizeof(TriangleShading) / sizeof(float));
+    vuint ts = vsel(hasN, t, v_u(0u));
+    vfloat3 n0, n1, n2;
+    vfloat u0, u1, u2;
+    v_gather4(sh, ts, stride, &n0.x, &n0.y, &n0.z, &u0);
+    v_gather4(sh + 4, ts, stride, &n1.x, &n1.y, &n1.z, &u1);
+    v_gather4(sh + 8, ts, stride, &n2.x, &n2.y, &n2.z, &u2);
+    (void)lane_smooth_normal(&lf, hasN, n0, n1, n2, hu, hv, n);
   }
-  lf.p = v3_load_lanes(pX, pY, pZ);
-  lf.ng = v3_load_lanes(gX, gY, gZ);
-  lf.ns = v3_load_lanes(sX, sY, sZ);
-  lf.smooth = v_loadu_lanes(smo) != 0u;
+  if (v_any(placed)) lane_place_frame(instances, instance, placed, w0, w1, w2, &lf);
   return lf;
 }
 
