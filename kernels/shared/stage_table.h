@@ -182,7 +182,7 @@
   ARG(MCL_GLOBAL Ray*, rays) ARG(MCL_GLOBAL const uint*, rayCount) ARG(MCL_GLOBAL Hit*, hits)      \
   ARG(MCL_GLOBAL volatile uint*, nanRays) MCL_ALPHA_ARGS(ARG)                                      \
   ARG(MCL_GLOBAL const float4*, normals) ARG(MCL_GLOBAL const Emitter*, emitters)                  \
-  ARG(MCL_GLOBAL const uint*, pathIds) ARG(MCL_GLOBAL float4*, radiance)                           \
+  ARG(MCL_GLOBAL uint*, pathIds) ARG(MCL_GLOBAL float4*, radiance)                                 \
   ARG(MCL_GLOBAL float4*, throughput) ARG(MCL_GLOBAL float4*, shadowContrib)                       \
   ARG(MCL_GLOBAL ShadowWork*, queue) ARG(MCL_GLOBAL volatile uint*, queueCount)                    \
   ARG(MCL_GLOBAL volatile uint*, groupCounts) ARG(MCL_GLOBAL Ray*, nextRays)                       \

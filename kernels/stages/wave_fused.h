@@ -96,8 +96,23 @@ MCL_INLINE uint fused_group_first(MCL_CONSTANT const FrameParams* f, uint waveCo
   {                                                                       \
     stage##_args s = MCL_FUSED_ARGS(stage);                               \
     MCL_FUSED_RAYS_##rays(s) MCL_FUSED_QUERIES_##queries(s)               \
+    MCL_FUSED_BEFORE_##stage                                              \
     MCL_FUSED_PACKETS(packets, count, fused_##stage(&s, at));             \
   }
+// What a group does before a step: a path bounce's hits sorted by material kind before they are
+// shaded (sort_by_kind.h; not the camera rays of bounce 0, nor at W = 1).
+#define MCL_FUSED_BEFORE_intersect
+#define MCL_FUSED_BEFORE_shade_ao
+#define MCL_FUSED_BEFORE_shade_direct
+#define MCL_FUSED_BEFORE_shade_direct_hit
+#if MCL_LANES > 1
+#define MCL_FUSED_BEFORE_shade_path                                                                 \
+  if (a->pathBounce > 0u)                                                                           \
+    fused_sort_by_kind(a->rays, a->hits, a->pathIds, a->hitInstances, f->instanceCount > 0u, \
+                       a->tris, a->materials, first, min(count - first, packets * (uint)MCL_LANES));
+#else
+#define MCL_FUSED_BEFORE_shade_path
+#endif
 
 // When the frame records AOVs: the group's items' first-hit AOVs (record_aov.h), after the shade
 // stages and before the occlusion queries, where the unfused launches record them too (radiance
@@ -155,9 +170,11 @@ MCL_INLINE void stage_wave_direct(const wave_direct_args* a, uint at0) {
 // bounce 0, where the queue is the wave's items), intersect, shade_path, the group's occlusion
 // queries and path_gather.
 #define MCL_FUSED_PATH_PACKETS 16u
+#include "sort_by_kind.h"  // its scratch arrays hold a group: MCL_FUSED_PATH_PACKETS packets
 
 MCL_INLINE void stage_wave_path(const wave_path_args* a, uint at0) {
   const uint g = at0 / MCL_LANES;  // the group (its work item)
+  MCL_CONSTANT const FrameParams* f = a->frame;
   const uint count = *a->rayCount, packets = MCL_FUSED_PATH_PACKETS, group = MCL_LANES * packets;
   if ((ulong)g * group >= count) return;
   const uint first = g * group;
