@@ -7,8 +7,8 @@
 //   bsdf_eval(b, s, wo, wi)         f * cos(ns, wi)
 //   bsdf_pdf(b, s, wo, wi)          solid-angle pdf of bsdf_sample producing wi
 //   bsdf_sample(b, s, wo, u1, u2, uLobe)             wi, weight = f cos / pdf, pdf (0: absorbed)
-//   bsdf_sample_direction / bsdf_direction_weight    the same sample split over two stages
-//                                                    (the direct integrator; bsdf_common.h)
+//   bsdf_direction_weight(b, s, wo, wi, pdf)        f cos / p of a sampled direction wi (the
+//                                                    direct integrator's split; bsdf_common.h)
 //   bsdf_albedo(b)                  the colour of the albedo AOV
 //   bsdf_is_delta(b)                1 when every lobe is a delta lobe (a mirror, smooth glass:
 //                                   eval and pdf are 0, light sampling there is skipped)
@@ -94,20 +94,6 @@ MCL_INLINE BsdfSample bsdf_sample(Bsdf b, SurfaceFrame s, float3 wo, float u1, f
   none.wi = s.ng;
   none.weight = make_float3(0.0f, 0.0f, 0.0f);
   none.pdf = 0.0f;
-  none.flags = 0;
-  return none;
-}
-
-MCL_INLINE BsdfDirection bsdf_sample_direction(Bsdf b, SurfaceFrame s, float3 wo, float u1, float u2, float uLobe) {
-  switch (b.kind) {
-#define MCL_BSDF_CASE(kind, Params) \
-  case MCL_MATERIAL_##kind: return kind##_sample_direction(b.p.kind, s, wo, u1, u2, uLobe);
-    MCL_MATERIAL_KINDS(MCL_BSDF_CASE)
-#undef MCL_BSDF_CASE
-  }
-  BsdfDirection none;
-  none.wi = s.ng;
-  none.traced = 0;
   none.flags = 0;
   return none;
 }

@@ -185,11 +185,6 @@ MCL_INLINE int coated_conductor_is_delta(CoatedConductorBsdf b) {
 }
 
 
-MCL_INLINE BsdfDirection coated_conductor_sample_direction(CoatedConductorBsdf b, SurfaceFrame s, float3 wo, float u1,
-                                                           float u2, float uLobe) {
-  return bsdf_direction_of(coated_conductor_sample(b, s, wo, u1, u2, uLobe));
-}
-
 // Written once for floats and lanes (lane_bsdf.h): coated_conductor_albedo, the albedo AOV: the base metal's reflectance at normal incidence under the coat;
 // coated_conductor_direction_weight: eval / pdf, counted where pdf > 0.
 #define MCL_DEFINE_COATED_CONDUCTOR_WEIGHTS(P, F, F3, M, V, B, FR)                                      \

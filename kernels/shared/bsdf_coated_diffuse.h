@@ -163,11 +163,6 @@ MCL_INLINE int coated_diffuse_is_delta(CoatedDiffuseBsdf b) {
 MCL_DEFINE_COATED_DIFFUSE(, float, float3, int, uint, f3, MCL_ANY1, CoatedDiffuseBsdf, SurfaceFrame, BsdfSample, RngOut,
                           pcg4d, u32_to_unit, as_uint, (float), mcl_)
 
-MCL_INLINE BsdfDirection coated_diffuse_sample_direction(CoatedDiffuseBsdf b, SurfaceFrame s, float3 wo, float u1,
-                                                         float u2, float uLobe) {
-  return bsdf_direction_of(coated_diffuse_sample(b, s, wo, u1, u2, uLobe));
-}
-
 // Written once for floats and lanes (lane_bsdf.h): coated_diffuse_albedo, the albedo AOV: the base's colour (what a denoiser should see under a clear coat);
 // coated_diffuse_direction_weight: eval / pdf, counted where pdf > 0.
 #define MCL_DEFINE_COATED_DIFFUSE_WEIGHTS(P, F, F3, M, V, B, FR)                                        \

@@ -31,30 +31,16 @@
   } T;
 MCL_DEFINE_BSDF_SAMPLE_TYPE(BsdfSample, float, float3, int)
 
-// The direct integrator draws its BSDF direction in shade_direct and weighs it in
-// shade_direct_hit, with only the direction passed between them: <kind>_sample_direction gives
-// the direction (traced 0: absorbed, no ray), <kind>_direction_weight the f cos / p of that
-// direction (counts 0: it contributes nothing, the slot stays 0). For a kind whose sample weight
-// is simply eval / pdf the pair is sample().wi with pdf > 0, and eval * (1 / pdf) with pdf > 0.
-typedef struct {
-  float3 wi;
-  int traced;
-  int flags;  // the sample's MCL_BSDF_* flags (the ray's origin side follows TRANSMISSION)
-} BsdfDirection;
-
+// The direct integrator draws its BSDF direction in shade_direct (the kind's sample, traced where
+// its pdf is positive; the Lambertian lobe: the cosine lobe, folded above the geometric surface,
+// always traced) and weighs it in shade_direct_hit, with only the direction passed between them:
+// <kind>_direction_weight gives the f cos / p of that direction (counts 0: it contributes nothing,
+// the slot stays 0). For a kind whose sample weight is simply eval / pdf that is eval * (1 / pdf)
+// with pdf > 0.
 typedef struct {
   float3 weight;  // f * cos / pdf
   int counts;
 } BsdfWeight;
-
-// The usual split pair of a kind whose sample weight can be rebuilt from wi alone.
-MCL_INLINE BsdfDirection bsdf_direction_of(BsdfSample bs) {
-  BsdfDirection d;
-  d.wi = bs.wi;
-  d.traced = bs.pdf > 0.0f;
-  d.flags = bs.flags;
-  return d;
-}
 
 // The ray origin for a ray leaving a hit at p (geometric normal ng facing the incoming ray) with
 // sample flags `flags`: offset to ng's side, or to the other side for a transmitted ray.

@@ -102,11 +102,6 @@ MCL_INLINE ConductorBsdf conductor_from_material(Material m, float3 albedo) {
 MCL_INLINE int conductor_is_delta(ConductorBsdf b) { return b.smooth; }
 
 
-MCL_INLINE BsdfDirection conductor_sample_direction(ConductorBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,
-                                                    float uLobe) {
-  return bsdf_direction_of(conductor_sample(b, s, wo, u1, u2, uLobe));
-}
-
 // Written once for floats and lanes (lane_bsdf.h):
 // - conductor_albedo: the albedo AOV, the reflectance at normal incidence, F(1) (an approximation
 //   of the directional albedo that ignores the Fresnel rise at grazing angles and the rough lobe's

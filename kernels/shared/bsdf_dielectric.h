@@ -177,11 +177,6 @@ MCL_INLINE float dielectric_pdf(DielectricBsdf b, SurfaceFrame s, float3 wo, flo
   (void)dielectric_eval_pdf(b, s, wo, wi, &p);
   return p;
 }
-MCL_INLINE BsdfDirection dielectric_sample_direction(DielectricBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,
-                                                     float uLobe) {
-  return bsdf_direction_of(dielectric_sample(b, s, wo, u1, u2, uLobe));
-}
-
 // Written once for floats and lanes (lane_bsdf.h):
 // - dielectric_albedo: the albedo AOV (the tint not counted): the directional albedo at normal
 //   incidence from outside, counted in energy (reflected plus transmitted, without the 1 / eta^2

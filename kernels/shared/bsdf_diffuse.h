@@ -216,29 +216,12 @@ MCL_INLINE BsdfSample diffuse_sample(DiffuseBsdf b, SurfaceFrame s, float3 wo, f
   return r;
 }
 
-// The direct integrator's split sample (bsdf_common.h). Lambert-only: the cosine lobe around the
-// shading frame, folded above the geometric surface, always traced (its weight,
-// Kd x cosine_weight, is 0 where the folded pdf is). The glossy mixture: diffuse_sample's.
-MCL_INLINE BsdfDirection diffuse_sample_direction(DiffuseBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,
-                                                  float uLobe) {
-  BsdfDirection d;
-  d.flags = 0;
-  if (b.specProb == 0.0f) {
-    d.wi = frame_sample_direction(s, sample_cosine_hemisphere(u1, u2));
-    d.traced = 1;
-    return d;
-  }
-  BsdfSample bs = diffuse_sample(b, s, wo, u1, u2, uLobe);
-  d.wi = bs.wi;
-  d.traced = bs.pdf > 0.0f;
-  return d;
-}
-
 // The albedo AOV and the direct integrator's weight, written once for floats and lanes (lane_bsdf.h):
 // - diffuse_albedo: Kd x texture (the glossy lobe is left out, as denoisers expect);
-// - diffuse_direction_weight: f cos / p of a direction wi from diffuse_sample_direction whose pdf
-//   (diffuse_pdf) is pdf; *counts: whether it contributes (bsdf_common.h). Lambert-only: Kd times
-//   cosine_weight (shading.h); the glossy mixture: glossy_eval / pdf.
+// - diffuse_direction_weight: f cos / p of a direction wi that shade_direct drew (the cosine lobe,
+//   or the glossy mixture's sample) whose pdf (diffuse_pdf) is pdf; *counts: whether it
+//   contributes (bsdf_common.h). Lambert-only: Kd times cosine_weight (shading.h); the glossy
+//   mixture: glossy_eval / pdf.
 #define MCL_DEFINE_DIFFUSE_WEIGHTS(P, F, F3, M, V, ANY, B, FR)                                          \
   MCL_INLINE F3 P##diffuse_albedo(B b) { return b.kd; }                                                 \
   MCL_INLINE F3 P##diffuse_direction_weight(B b, FR s, F3 wo, F3 wi, F pdf, M* counts) {                \

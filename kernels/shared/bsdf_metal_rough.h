@@ -153,11 +153,6 @@ MCL_INLINE int metal_rough_is_delta(MetalRoughBsdf b) {
   return 0;
 }
 
-MCL_INLINE BsdfDirection metal_rough_sample_direction(MetalRoughBsdf b, SurfaceFrame s, float3 wo, float u1, float u2,
-                                                      float uLobe) {
-  return bsdf_direction_of(metal_rough_sample(b, s, wo, u1, u2, uLobe));
-}
-
 // Written once for floats and lanes (lane_bsdf.h):
 // - metal_rough_albedo: the albedo AOV, the diffuse colour plus F0 (the directional albedo at
 //   normal incidence, approximately: base for a metal, base (1 - 0.04) + 0.04 for a dielectric),

@@ -68,12 +68,6 @@ MCL_INLINE float thin_dielectric_pdf(ThinDielectricBsdf b, SurfaceFrame s, float
   return 0.0f;
 }
 
-// The sheet's reflectance at cos_o = cosI.
-MCL_INLINE BsdfDirection thin_dielectric_sample_direction(ThinDielectricBsdf b, SurfaceFrame s, float3 wo, float u1,
-                                                          float u2, float uLobe) {
-  return bsdf_direction_of(thin_dielectric_sample(b, s, wo, u1, u2, uLobe));
-}
-
 // Written once for floats and lanes (lane_bsdf.h): the albedo AOV, 1 (the sheet passes or
 // reflects everything), and the direct integrator's weight: both lobes weigh 1 (each is picked
 // with its own reflectance or transmittance), the one through (below the geometric surface) times

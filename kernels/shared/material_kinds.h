@@ -5,7 +5,7 @@
 // - the kind tags MCL_MATERIAL_<kind> (0, 1, ... in table order) that Material::alpha.w holds as
 //   uint bits and MaterialDesc::kind holds on the host;
 // - the BSDF dispatch of shared/bsdf.h: one switch per interface function, case <kind> calling
-//   <kind>_f / _eval / _pdf / _sample / _sample_direction / _direction_weight / _albedo of the
+//   <kind>_f / _eval / _pdf / _sample / _direction_weight / _albedo of the
 //   kind's file kernels/shared/bsdf_<kind>.h, and the parameter union BsdfParams (member <kind>
 //   of type <Params>);
 // - on the host, the names a scene file's material "type" accepts (materialKindFromName).

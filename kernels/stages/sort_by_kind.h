@@ -16,14 +16,14 @@
 MCL_INLINE void fused_sort_by_kind(MCL_GLOBAL Ray* rays, MCL_GLOBAL Hit* hits, MCL_GLOBAL uint* pathIds,
                                    MCL_GLOBAL uint* hitInstances, int placed, MCL_GLOBAL const Triangle* tris,
                                    MCL_GLOBAL const Material* materials, uint first, uint n) {
-  uchar key[MCL_SORT_MAX];
+  unsigned char key[MCL_SORT_MAX];
   uint count[MCL_SORT_KEYS];
   for (uint k = 0; k < MCL_SORT_KEYS; ++k) count[k] = 0u;
   for (uint i = 0; i < n; ++i) {
     uint tri = hits[first + i].tri;
     uint k = tri == MCL_NO_HIT ? 0u : 1u + as_uint(materials[triangle_material(&tris[tri])].alpha.w);
     k = k < MCL_SORT_KEYS ? k : 0u;
-    key[i] = (uchar)k;
+    key[i] = (unsigned char)k;
     ++count[k];
   }
   uint kinds = 0u;
@@ -35,10 +35,10 @@ MCL_INLINE void fused_sort_by_kind(MCL_GLOBAL Ray* rays, MCL_GLOBAL Hit* hits, M
     start[k] = at;
     at += count[k];
   }
-  uchar dest[MCL_SORT_MAX];  // each entry's place (n <= 256)
-  uchar done[MCL_SORT_MAX];
+  unsigned char dest[MCL_SORT_MAX];  // each entry's place (n <= 256)
+  unsigned char done[MCL_SORT_MAX];
   for (uint i = 0; i < n; ++i) {
-    dest[i] = (uchar)(start[key[i]]++);
+    dest[i] = (unsigned char)(start[key[i]]++);
     done[i] = 0;
   }
   // Each cycle of the permutation: carry the entry at its start to its place, the one there to
