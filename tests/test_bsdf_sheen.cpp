@@ -1,7 +1,8 @@
 // test_bsdf_sheen.cpp: glTF's KHR_materials_sheen on the metal_rough kind (kernels/shared/sheen.h,
 // bsdf_metal_rough.h), compiled as C++: f cos is sheenColor x the Charlie lobe (D and Estevez and
-// Kulla's visibility, written out here in double precision) + (1 - max(sheenColor) E(n.wo)) x the
-// plain BRDF; the albedo fit E is within its stated error of the lobe's albedo integrated here; a
+// Kulla's visibility, written out in double precision in fixtures/charlie_sheen.h) + (1 -
+// max(sheenColor) E(n.wo)) x the plain BRDF; the albedo fit E is within its stated error of the
+// lobe's albedo integrated there; a
 // white sheen over a white base reflects at most 1 (its fit error aside) and exactly the layering's
 // closed form E_true + (1 - E) A_base (z-test of the kind's own samples); sheen under a coat is
 // the coat's mix of the sheened BRDF.
@@ -10,6 +11,7 @@
 #include <cmath>
 
 #include "bsdf_chi2.h"
+#include "charlie_sheen.h"
 #include "kernels/shared/bsdf.h"
 #include "kernels/shared/rng.h"
 #include "render/device_materials.h"
@@ -32,44 +34,12 @@ MaterialDesc sheened(glm::vec3 base, float metallic, float roughness, glm::vec3 
 }
 Bsdf make(const MaterialDesc& d) { return bsdf_from_material(montecl::deviceMaterial(d), float3(d.albedo.x, d.albedo.y, d.albedo.z)); }
 
-// The extension's Charlie distribution and visibility, in double precision (alpha = r^2, r at least
-// the sample implementation's 1e-6).
-double charlieD(double cosH, double alpha) {
-  const double sin2 = std::max(1.0 - cosH * cosH, 0.0);
-  return (2.0 + 1.0 / alpha) * std::pow(sin2, 0.5 / alpha) / (2.0 * M_PI);
-}
-double charlieL(double x, double alpha) {
-  const double t = (1.0 - alpha) * (1.0 - alpha);
-  const auto mix = [t](double a, double b) { return a + (b - a) * t; };
-  return mix(21.5473, 25.3245) / (1.0 + mix(3.82987, 3.32435) * std::pow(x, mix(0.19823, 0.16801))) +
-         mix(-1.97760, -1.27393) * x + mix(-4.32054, -4.85967);
-}
-double charlieLambda(double c, double alpha) {
-  return c < 0.5 ? std::exp(charlieL(c, alpha)) : std::exp(2.0 * charlieL(0.5, alpha) - charlieL(1.0 - c, alpha));
-}
-// f cos of the sheen lobe of colour 1: D V cos_i, V = 1 / ((1 + Lambda_o + Lambda_i) 4 cos_o cos_i).
+// f cos of the sheen lobe of colour 1 (charlie_sheen.h, in double precision).
 double lobeCos(float3 wo, float3 wi, double r) {
-  const double alpha = std::max(r, 1e-6) * std::max(r, 1e-6);
-  if (!(wo.z > 0.0f && wi.z > 0.0f)) return 0.0;
-  const double hx = double(wo.x) + wi.x, hy = double(wo.y) + wi.y, hz = double(wo.z) + wi.z;
-  const double cosH = hz / std::sqrt(hx * hx + hy * hy + hz * hz);
-  return charlieD(cosH, alpha) / ((1.0 + charlieLambda(wo.z, alpha) + charlieLambda(wi.z, alpha)) * 4.0 * wo.z);
+  const double o[3] = {wo.x, wo.y, wo.z}, i[3] = {wi.x, wi.y, wi.z};
+  return montecl_test::charlieLobeCos(o, i, r);
 }
-// The lobe's directional albedo at cos(theta_o) = mu, by the midpoint rule over the hemisphere.
-double lobeAlbedo(double mu, double r) {
-  const int nt = 400, np = 200;
-  const float3 wo = float3(float(std::sqrt(1.0 - mu * mu)), 0.0f, float(mu));
-  double sum = 0.0;
-  for (int i = 0; i < nt; ++i) {
-    const double th = (i + 0.5) * (M_PI / 2) / nt;
-    for (int j = 0; j < np; ++j) {  // phi in [0, pi], twice (the lobe is symmetric about the plane of wo)
-      const double ph = (j + 0.5) * M_PI / np;
-      const float3 wi = float3(float(std::sin(th) * std::cos(ph)), float(std::sin(th) * std::sin(ph)), float(std::cos(th)));
-      sum += lobeCos(wo, wi, r) * std::sin(th);
-    }
-  }
-  return sum * (M_PI / 2 / nt) * (M_PI / np) * 2.0;
-}
+double lobeAlbedo(double mu, double r) { return montecl_test::charlieAlbedo(mu, r); }
 
 }  // namespace
 

@@ -1,14 +1,18 @@
 // test_gltf_sheen.cpp: glTF KHR_materials_sheen onto metal_rough's sheen (host/scene/gltf_sheen.cpp,
 // kernels/shared/sheen.h, bsdf_metal_rough.h): the file's sheen renders bit-identically to the scene
 // file's sheen keys, colour 0 to the plain material; a file that requires the extension loads; what
-// is not modelled is warned; bad values are one line naming the key; the packet stages shade
+// is not modelled is warned; bad values are one line naming the key; a coloured sheen over a smooth
+// black base under a white sky renders its closed form per channel (z-test); the packet stages shade
 // sheened and plain hits in one packet byte for byte as the host backend does at W = 1, 4, 8, 16,
 // all in lane types.
 #include <doctest/doctest.h>
 
 #include <nlohmann/json.hpp>
 
+#include "charlie_sheen.h"
 #include "cli_runner.h"
+#include "film_stats.h"
+#include "kernels/shared/sheen.h"
 #include "lanes_vs_host.h"
 #include "mesh_files.h"
 #include "scene_renders.h"
@@ -137,6 +141,45 @@ TEST_CASE("glTF sheen: bad values are one line naming the key" * doctest::test_s
     CHECK(e.find("bad.gltf: materials[0].extensions.") != std::string::npos);
     CHECK(e.find(key) != std::string::npos);
     CHECK(e.find('\n') == std::string::npos);
+  }
+}
+
+// A square facing the camera seen head-on through a 4-degree field of view (n.wo > 0.9993), a
+// smooth black dielectric base (F0 0.04: Schlick's term is 0.04 to within 1e-16) under a sheen of
+// colour c and roughness 1, in a sky of radiance 1 with nothing else: direct lighting (MIS of the
+// sky's samples and the BSDF's) sees the one-bounce white furnace, per channel c_k E_true(1) + (1 -
+// max(c) E(1)) 0.04, E_true the lobe's albedo (charlie_sheen.h's quadrature), E the kernel's fit.
+// Channels apart tell a packing that moves the colour's components (the keys test cannot: glTF and
+// the keys share the packing). Over the view's 0.0007 of n.wo, E_true moves by under 3e-4.
+TEST_CASE("glTF sheen: a coloured sheen over a black base under a white sky renders c E + (1 - max(c) E) F (z-test)" *
+          doctest::test_suite("cpu")) {
+  TempDir dir;
+  MeshData quad;
+  quad.positions = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+  quad.normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  quad.faces = {{0, 1, 2, 3}};
+  const double color[3] = {0.9, 0.5, 0.2};
+  nlohmann::json g = nlohmann::json::parse(gltfText(quad, 0.0f, ""));
+  auto& m = g["materials"][0];
+  m["pbrMetallicRoughness"]["metallicFactor"] = 0.0;
+  m["pbrMetallicRoughness"]["roughnessFactor"] = 0.0;
+  m["extensions"] = sheenExt({color[0], color[1], color[2]}, 1.0);
+  g["extensionsUsed"] = {"KHR_materials_sheen"};
+  dir.write("quad.gltf", g.dump());
+  const nlohmann::json s = {{"camera", {{"position", {0, 0, 4}}, {"target", {0, 0, 0}}, {"fov_y", 4}, {"width", 6}, {"height", 6}}},
+                            {"meshes", {{{"file", "quad.gltf"}}}},
+                            {"environment", {{"radiance", {1, 1, 1}}}},
+                            {"render", {{"integrator", "direct"}, {"spp", 256}, {"sampler", "independent"}}}};
+  dir.write("white.json", s.dump());
+  const Film f = renderSceneFile(dir.file("white.json"));
+  const double eTrue = charlieAlbedo(1.0, 1.0), e = sheen_albedo(1.0f, 1.0f);
+  for (int k = 0; k < 3; ++k) {
+    const ImageEstimate est = imageEstimate(f, k);
+    const double want = color[k] * eTrue + (1.0 - 0.9 * e) * 0.04;
+    INFO("channel " << k << ": image mean " << est.mean << " +- " << est.standardError << ", closed form " << want
+                    << " (E " << e << ", true " << eTrue << ")");
+    CHECK(std::fabs(est.mean - want) <= 4.0 * est.standardError + 3e-4);
+    CHECK(est.standardError < 0.01 * want);  // sharp enough to tell the channels (0.3 c E apart) apart
   }
 }
 
