@@ -53,6 +53,12 @@ MaterialDesc coatedDesc(glm::vec3 base, float roughness, float coatRoughness) {
   d.clearcoat = 1.0f, d.clearcoatRoughness = coatRoughness;
   return d;
 }
+// metal_rough (metallic 0) under a sheen of colour c and roughness r.
+MaterialDesc sheenDesc(glm::vec3 base, float roughness, glm::vec3 c, float r) {
+  MaterialDesc d = metalRoughDesc(base, 0.0f, roughness);
+  d.sheenColor = c, d.sheenRoughness = r;
+  return d;
+}
 MaterialDesc iorDesc(std::uint32_t kind, float ior) {
   MaterialDesc d;
   d.kind = kind;
@@ -96,6 +102,8 @@ TEST_CASE("bsdf: rough conductor and metal_rough samplers pass chi-square agains
        metalRoughDesc(glm::vec3(0.9f, 0.6f, 0.3f), 1.0f, 0.48f)},
       {"metal_rough clearcoat r 0.3 over red r 0.7", coatedDesc(glm::vec3(0.8f, 0.2f, 0.1f), 0.7f, 0.3f),
        coatedDesc(glm::vec3(0.8f, 0.2f, 0.1f), 0.7f, 0.36f)},
+      {"metal_rough sheen r 0.5 over blue r 0.3", sheenDesc(glm::vec3(0.1f, 0.2f, 0.6f), 0.3f, glm::vec3(1.0f), 0.5f),
+       sheenDesc(glm::vec3(0.1f, 0.2f, 0.6f), 0.3f, glm::vec3(0.3f), 0.5f)},
   };
   for (const Case& c : cases)
     for (double thetaO : {0.35, 1.1}) {

@@ -143,7 +143,7 @@ TEST_CASE("glTF: base colour x texture, MASK cut-outs, BLEND transparency, emiss
        json{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 1}}}}}, {"alphaMode", "BLEND"},
             {"emissiveFactor", {1, 0.5, 0}}, {"doubleSided", true},
             {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}}}}}});
-  g["extensionsUsed"] = {"KHR_materials_emissive_strength", "KHR_texture_transform", "KHR_materials_sheen"};
+  g["extensionsUsed"] = {"KHR_materials_emissive_strength", "KHR_texture_transform", "KHR_materials_iridescence"};
   auto prim = g["meshes"][0]["primitives"][0];
   g["meshes"][0]["primitives"] = json::array({prim, prim});
   g["meshes"][0]["primitives"][1]["material"] = 1;
@@ -170,7 +170,7 @@ TEST_CASE("glTF: base colour x texture, MASK cut-outs, BLEND transparency, emiss
   INFO(allLines(warnings));
   CHECK(countContaining(warnings, "embedded image") == 0);
   CHECK(countContaining(warnings, "BLEND") == 0);
-  CHECK(countContaining(warnings, "m.gltf: extensionsUsed: extension 'KHR_materials_sheen' not used by montecl") == 1);
+  CHECK(countContaining(warnings, "m.gltf: extensionsUsed: extension 'KHR_materials_iridescence' not used by montecl") == 1);
   CHECK(countContaining(warnings, "KHR_texture_transform") == 0);  // read (test_texture_sampling.cpp)
   CHECK(countContaining(warnings, "emissive_strength' not used") == 0);
   // A texture file that is not there: an error naming the image.

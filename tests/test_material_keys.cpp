@@ -73,6 +73,9 @@ TEST_CASE("material keys: bad values exit 2 with one line naming the key, no out
       {R"({"type": "conductor", "metal": "Au", "eta": [1, 1, 1]})", "material.eta"},
       {R"({"type": "conductor", "distribution": "phong"})", "material.distribution"},
       {R"({"type": "conductor", "specular_reflectance": [0.3, -1, 0.3]})", "material.specular_reflectance"},
+      {R"({"type": "metal_rough", "sheen_color": [0.5, 1.5, 0.5]})", "material.sheen_color: components must be in [0, 1]"},
+      {R"({"type": "metal_rough", "sheen_color": [0.5, 0.5]})", "material.sheen_color"},
+      {R"({"type": "metal_rough", "sheen_roughness": 2})", "material.sheen_roughness: must be in [0, 1]"},
   };
   for (const auto& row : bad) {
     const auto& material = std::get<0>(row);

@@ -104,8 +104,14 @@ MaterialDesc clearcoat(MaterialDesc d, float coat, float roughness) {
   d.clearcoat = coat, d.clearcoatRoughness = roughness;
   return d;
 }
+MaterialDesc sheen(MaterialDesc d, float3 color, float roughness) {
+  d.sheenColor = color, d.sheenRoughness = roughness;
+  return d;
+}
 // Uncoated, and under glTF's clearcoat (KHR_materials_clearcoat: the coat's lobe picked by its
 // weight, so the mixture pdf must still agree with the samples); a smooth coat is a near-mirror lobe.
+// Under glTF's sheen (KHR_materials_sheen: the Charlie lobe picked by its weight and sampled by a
+// cosine lobe), alone and under a coat.
 std::vector<KindCase> kindCases_metal_rough() {
   return {{"dielectric rough", metalRough(float3(0.8f, 0.4f, 0.2f), 0.0f, 0.6f), float3(0.8f, 0.4f, 0.2f), false},
           {"metal glossy", metalRough(float3(0.9f, 0.7f, 0.3f), 1.0f, 0.3f), float3(0.9f, 0.7f, 0.3f), false},
@@ -115,7 +121,13 @@ std::vector<KindCase> kindCases_metal_rough() {
           {"clearcoat 0.5 r 0.5 over metal", clearcoat(metalRough(float3(0.9f, 0.7f, 0.3f), 1.0f, 0.3f), 0.5f, 0.5f),
            float3(0.9f, 0.7f, 0.3f), false},
           {"smooth clearcoat over white", clearcoat(metalRough(float3(1.0f), 0.0f, 1.0f), 1.0f, 0.0f), float3(1.0f), false,
-           false}};
+           false},
+          {"sheen white r 0.5 over blue", sheen(metalRough(float3(0.1f, 0.2f, 0.8f), 0.0f, 0.7f), float3(1.0f), 0.5f),
+           float3(0.1f, 0.2f, 0.8f), false},
+          {"sheen red r 0.3 over metal", sheen(metalRough(float3(0.9f, 0.7f, 0.3f), 1.0f, 0.3f), float3(0.9f, 0.2f, 0.1f), 0.3f),
+           float3(0.9f, 0.7f, 0.3f), false},
+          {"sheen r 0.8 under clearcoat 0.6", clearcoat(sheen(metalRough(float3(0.5f), 0.0f, 0.5f), float3(0.6f, 0.6f, 0.9f), 0.8f), 0.6f, 0.4f),
+           float3(0.5f), false}};
 }
 MaterialDesc coatedDiffuse(float3 kd, float alpha, float thickness, int maxDepth = 10) {
   MaterialDesc d;

@@ -28,8 +28,11 @@ Material deviceMaterial(const MaterialDesc& m) {
     case MCL_MATERIAL_dielectric: d.params0 = glm::vec4(m.ior, m.kindAlpha, m.transmissionTinted ? 1.0f : 0.0f, 0.0f); break;
     case MCL_MATERIAL_thin_dielectric: d.params0 = glm::vec4(m.ior, 0.0f, m.transmissionTinted ? 1.0f : 0.0f, 0.0f); break;
     case MCL_MATERIAL_metal_rough:
-      d.params0 = glm::vec4(m.metallic, m.roughness, 0.0f, 0.0f);
-      d.specular = glm::vec4(m.clearcoat, m.clearcoatRoughness, 0.0f, 0.0f);  // bsdf_metal_rough.h: the coat
+      // bsdf_metal_rough.h: the coat in specular.x, .y; the sheen's colour in params0.z, .w and
+      // specular.z, its roughness in specular.w (slots no other reader of metal_rough uses: the
+      // transmission pick rewrites params0.z only for the glass it picks)
+      d.params0 = glm::vec4(m.metallic, m.roughness, m.sheenColor.x, m.sheenColor.y);
+      d.specular = glm::vec4(m.clearcoat, m.clearcoatRoughness, m.sheenColor.z, m.sheenRoughness);
       // transmission_mix.h: x the factor, y the ior, z 1 for a solid dielectric (all 0 without);
       // w the transmission texture + 1 (setTextureIndices), 0 none
       if (m.transmission > 0.0f) d.params1 = glm::vec4(m.transmission, m.ior, m.transmissionSolid ? 1.0f : 0.0f, 0.0f);

@@ -5,6 +5,7 @@
 
 #include "scene/gltf_clearcoat.h"
 #include "scene/gltf_model.h"
+#include "scene/gltf_sheen.h"
 #include "scene/gltf_spec_gloss.h"
 #include "scene/gltf_texture_info.h"
 #include "scene/gltf_transmission.h"
@@ -98,7 +99,8 @@ void applyGltfSpecular(const std::string& file, const std::string& where, const 
 
 bool gltfMaterialExtensionRead(const std::string& name) {
   return name == kSpecGloss || name == kSpecular || name == "KHR_materials_emissive_strength" ||
-         name == "KHR_materials_unlit" || gltfTransmissionExtension(name) || gltfClearcoatExtension(name);
+         name == "KHR_materials_unlit" || gltfTransmissionExtension(name) || gltfClearcoatExtension(name) ||
+         gltfSheenExtension(name);
 }
 
 GltfMaterials::GltfMaterials(const std::string& file, const tinygltf::Model& m, Scene& scene, KindWarnings& unused)
@@ -305,6 +307,7 @@ MaterialDesc GltfMaterials::read(std::size_t i) {
   }
   applyGltfTransmission(file_, where, g, d, unused_);
   applyGltfClearcoat(file_, where, g, d, unused_);
+  applyGltfSheen(file_, where, g, d, unused_);
   if (g.occlusionTexture.index >= 0) unused_.add("occlusionTexture", where, "occlusionTexture not used by montecl, ignored");
   return d;
 }

@@ -10,7 +10,8 @@
 // - KHR_materials_pbrSpecularGlossiness: converted to metal/rough on load (gltf_spec_gloss.h; an
 //   approximation, warned); KHR_materials_specular where it maps onto a kind (specularFactor 0 on a
 //   dielectric: Lambert), else warned; emission x KHR_materials_emissive_strength; unlit;
-//   transmission (+ ior, volume: gltf_transmission.h); clearcoat (metal_rough's coat: gltf_clearcoat.h).
+//   transmission (+ ior, volume: gltf_transmission.h); clearcoat (metal_rough's coat: gltf_clearcoat.h);
+//   sheen (metal_rough's sheen: gltf_sheen.h).
 #pragma once
 #include <tiny_gltf.h>
 

@@ -1,5 +1,6 @@
 // material_params.cpp: the material kinds' scene-file keys (see material_params.h): reads a
-// material object's eta / k / metal / alpha / roughness / ior / metallic / clearcoat, writes MaterialDesc.
+// material object's eta / k / metal / alpha / roughness / ior / metallic / clearcoat / sheen, writes
+// MaterialDesc.
 #include "scene/material_params.h"
 
 #include <cmath>
@@ -97,6 +98,14 @@ bool parseKindParams(const JsonCtx& ctx, const json& j, const std::string& prefi
   if (const json* v = optionalKey(j, "clearcoat")) any = true, d.clearcoat = unitKey(ctx, *v, prefix + ".clearcoat");
   if (const json* v = optionalKey(j, "clearcoat_roughness"))
     any = true, d.clearcoatRoughness = unitKey(ctx, *v, prefix + ".clearcoat_roughness");
+  // metal_rough's sheen (glTF KHR_materials_sheen's colour factor and perceptual roughness).
+  if (const json* v = optionalKey(j, "sheen_color")) {
+    any = true;
+    d.sheenColor = getColor(ctx, *v, prefix + ".sheen_color");
+    if (!(d.sheenColor.x <= 1.0f && d.sheenColor.y <= 1.0f && d.sheenColor.z <= 1.0f))
+      jsonFail(ctx, prefix + ".sheen_color", "components must be in [0, 1]");
+  }
+  if (const json* v = optionalKey(j, "sheen_roughness")) any = true, d.sheenRoughness = unitKey(ctx, *v, prefix + ".sheen_roughness");
   // conductor: the microfacets (Mitsuba's and Tungsten's "beckmann", or "ggx") and a factor on F.
   if (const json* v = optionalKey(j, "distribution")) {
     any = true;

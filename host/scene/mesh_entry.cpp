@@ -55,7 +55,8 @@ void parseMaterial(const JsonCtx& ctx, const json& j, const std::string& prefix,
                    "two_sided_emission", "specular", "specular_exponent", "eta", "k", "metal", "alpha",
                    "roughness", "ior", "metallic", "emission_texture", "normal_texture", "normal_scale",
                    "metallic_roughness_texture", "thickness", "max_depth", "samples", "base_alpha",
-                   "distribution", "specular_reflectance", "clearcoat", "clearcoat_roughness"});
+                   "distribution", "specular_reflectance", "clearcoat", "clearcoat_roughness", "sheen_color",
+                   "sheen_roughness"});
   MaterialDesc& d = o.value;
   if (const json* v = optionalKey(j, "type")) {  // the material kind (kernels/shared/material_kinds.h)
     const std::string name = getString(ctx, *v, prefix + ".type", "a material type");
@@ -206,6 +207,7 @@ void overrideMaterials(const JsonCtx& ctx, Scene& scene, std::size_t firstTri, c
         d.layerSamples = o.value.layerSamples, d.baseAlpha = o.value.baseAlpha;
         d.beckmann = o.value.beckmann, d.conductorFactor = o.value.conductorFactor;
         d.clearcoat = o.value.clearcoat, d.clearcoatRoughness = o.value.clearcoatRoughness;
+        d.sheenColor = o.value.sheenColor, d.sheenRoughness = o.value.sheenRoughness;
       }
       copyOf[m] = static_cast<std::int64_t>(scene.materials.size());
       scene.materials.push_back(d);

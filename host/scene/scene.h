@@ -113,6 +113,10 @@ struct MaterialDesc {
   // metal_rough: glTF KHR_materials_clearcoat's layer (factor 0: none; roughness: glTF's, alpha its
   // square), IOR 1.5 (kernels/shared/bsdf_metal_rough.h).
   float clearcoat = 0.0f, clearcoatRoughness = 0.0f;
+  // metal_rough: glTF KHR_materials_sheen's layer under the coat (colour 0: none; roughness: glTF's,
+  // alpha its square; kernels/shared/sheen.h).
+  glm::vec3 sheenColor = glm::vec3(0.0f);
+  float sheenRoughness = 0.0f;
   // An MTL map_Kd without map_d: where it is ("<mtl>: line N: material 'm': map_Kd 'name'"), so the
   // texture loader can say how to cut it out when its alpha is not all 1 (it renders opaque). "": none.
   std::string cutoutHint;

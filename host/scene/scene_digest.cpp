@@ -143,6 +143,11 @@ std::string sceneDigest(const Scene& scene) {
         bytes.add("clearcoat");
         append(bytes, coat, sizeof coat);
       }
+      if (m.kind == MCL_MATERIAL_metal_rough && m.sheenColor != glm::vec3(0.0f)) {  // only then: as the coat
+        bytes.add("sheen");
+        appendVec(bytes, m.sheenColor);
+        append(bytes, &m.sheenRoughness, sizeof m.sheenRoughness);
+      }
       if (m.kind == MCL_MATERIAL_conductor && (m.beckmann || m.conductorFactor != glm::vec3(1.0f))) {
         bytes.add(m.beckmann ? "beckmann" : "ggx");  // only then: other scenes keep their digests
         appendVec(bytes, m.conductorFactor);

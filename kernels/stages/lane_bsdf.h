@@ -1,7 +1,7 @@
 // lane_bsdf.h: the BSDF of W hits in lane types, for the packet stages: the material kinds written
 // once for floats and lanes (bsdf_diffuse.h's glossy mixture; bsdf_conductor.h with
 // microfacet_beckmann.h and exp_neg.h; bsdf_dielectric.h, bsdf_thin_dielectric.h,
-// bsdf_metal_rough.h, bsdf_coated_diffuse.h, bsdf_coated_conductor.h; microfacet.h and bsdf_common.h's Fresnel terms) instantiated for lanes, and
+// bsdf_metal_rough.h with sheen.h, bsdf_coated_diffuse.h, bsdf_coated_conductor.h; microfacet.h and bsdf_common.h's Fresnel terms) instantiated for lanes, and
 // their dispatch under masks, with the Lambertian lobe of stage_lanes.h. Reads the hits' material
 // fields (LaneHits); writes nothing. At W = 1 every mask test is the plain `if`; each lane performs
 // the scalar functions' operations in order.
@@ -12,6 +12,7 @@
 MCL_DEFINE_GGX(v_, v_, vfloat, vfloat3, vmask, v3)
 MCL_DEFINE_EXP_NEG(v_, vfloat, vint, v_cvt_i_f, v_cvt_f_i, v_int_as_uint, v_as_float)
 MCL_DEFINE_BECKMANN(v_, v_, vfloat, vfloat3, v3)
+MCL_DEFINE_SHEEN(v_, v_, vfloat, vuint, vmask, vfloat3, v3, v_as_uint, v_as_float, v_cvt_f_u)
 MCL_DEFINE_FRESNEL(v_, vfloat, vfloat3, v3)
 MCL_DEFINE_BSDF_SAMPLE_TYPE(vBsdfSample, vfloat, vfloat3, vmask)
 MCL_DEFINE_DIFFUSE_TYPE(vDiffuseBsdf, vfloat, vfloat3)
@@ -82,8 +83,12 @@ MCL_INLINE LaneBsdf lane_bsdf(const LaneHits* lh, LaneFrame s) {
   b.diel.tint = v_transmission_tint_of(lh->params0.z, s.kd);
   b.sheet.ior = lh->params0.x;
   b.sheet.tint = b.diel.tint;
-  // metal_rough_from_material: the clearcoat's factor and roughness in specular.x, .y
+  // metal_rough_from_material: the clearcoat's factor and roughness in specular.x, .y; the sheen's
+  // colour in params0.z, .w and specular.z, its roughness in specular.w (LaneHits' specAlpha); the
+  // colour kept to metal_rough lanes, so other kinds' fields there start no sheen maths
   b.mr = v_metal_rough_coated(v_metal_rough_make(s.kd, lh->params0.x, lh->params0.y), lh->specular.x, lh->specular.y);
+  b.mr = v_metal_rough_sheened(b.mr, vsel(lh->metalRough, lh->params0.z, v_f(0.0f)), vsel(lh->metalRough, lh->params0.w, v_f(0.0f)),
+                               vsel(lh->metalRough, lh->specular.z, v_f(0.0f)), lh->specAlpha);
   b.cd.base = s.kd;  // coated_diffuse_from_material
   b.cd.alpha = fmax(lh->params0.x, MCL_GGX_MIN_ALPHA);
   b.cd.eta = lh->params0.y;
