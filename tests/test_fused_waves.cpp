@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_checks.h"
 #include "cli_runner.h"
 #include "skip.h"
 
@@ -71,24 +72,7 @@ TEST_CASE("fused waves: AO, direct and path are byte-identical fused, unfused an
     std::vector<std::string> common = {"render", scene, "-q", "--width", "19", "--height", "13",
                                        "--integrator", c[0], "--spp", c[1], "--overwrite"};
     common.insert(common.end(), c.begin() + 2, c.end());
-    std::vector<std::string> host = common;
-    host.insert(host.end(), {"--device", "host", "-o", dir.file("host" + ext)});
-    CliResult h = runMontecl(host);
-    REQUIRE_MESSAGE(h.exitCode == 0, h.err);
-    const std::string reference = readAll(dir.file("host" + ext));
-    REQUIRE(!reference.empty());
-    for (const char* lanes : {"16", "4"}) {
-      for (bool fuse : {true, false}) {
-        CAPTURE(lanes);
-        CAPTURE(fuse);
-        std::vector<std::string> cl = common;
-        cl.insert(cl.end(), {"--lanes", lanes, "-o", dir.file("cl" + ext)});
-        if (!fuse) cl.push_back("--no-fuse");
-        CliResult r = runMontecl(cl);
-        REQUIRE_MESSAGE(r.exitCode == 0, r.err);
-        CHECK(readAll(dir.file("cl" + ext)) == reference);
-      }
-    }
+    checkLanesMatchHostCli(common, dir, ext);
   }
 }
 

@@ -12,6 +12,7 @@
 #include "cli_runner.h"
 #include "film_stats.h"
 #include "lanes_vs_host.h"
+#include "gltf_extension_scenes.h"
 #include "mesh_files.h"
 #include "scene_renders.h"
 #include "util/errors.h"
@@ -25,35 +26,16 @@ namespace {
 
 // The tent mesh as glTF (a red base of the given factors) with the material extensions `ext`.
 std::string coatGltf(float metallic, float roughness, const nlohmann::json& ext) {
-  nlohmann::json g = nlohmann::json::parse(gltfText(tentMesh(), 1.0f, ""));
-  auto& m = g["materials"][0];
-  m["pbrMetallicRoughness"]["baseColorFactor"] = {0.8, 0.1, 0.05, 1.0};
-  m["pbrMetallicRoughness"]["metallicFactor"] = metallic;
-  m["pbrMetallicRoughness"]["roughnessFactor"] = roughness;
-  if (!ext.is_null()) {
-    m["extensions"] = ext;
-    for (auto it = ext.begin(); it != ext.end(); ++it) g["extensionsUsed"].push_back(it.key());
-  }
-  return g.dump();
+  return tentGltf(nlohmann::json::array({0.8, 0.1, 0.05, 1.0}), metallic, roughness, ext);
 }
 
 nlohmann::json coatExt(double factor, double roughness) {
   return {{"KHR_materials_clearcoat", {{"clearcoatFactor", factor}, {"clearcoatRoughnessFactor", roughness}}}};
 }
 
-// Mesh `gltf` (material override `material`, or none), and where `second` is given a second copy
-// of it beside the first with that override; a sky and a directional light, seen from above.
+// The scene looking at the tent (gltf_extension_scenes.h).
 std::string sceneText(const std::string& gltf, const nlohmann::json& material, const nlohmann::json& second = nullptr) {
-  nlohmann::json s = {{"camera", {{"position", {1.2, 3.5, -1}}, {"target", {1.2, 0, -1}}, {"up", {0, 0, -1}},
-                                  {"fov_y", 50}, {"width", 12}, {"height", 10}}},
-                      {"meshes", {{{"file", gltf}}}},
-                      {"environment", {{"radiance", {0.3, 0.4, 0.6}}}},
-                      {"lights", {{{"type", "directional"}, {"direction", {0.3, -1, 0.2}}, {"irradiance", {2, 2, 2}}}}},
-                      {"render", {{"integrator", "path"}, {"spp", 4}, {"max_depth", 4}}}};
-  if (!material.is_null()) s["meshes"][0]["material"] = material;
-  if (!second.is_null())
-    s["meshes"].push_back({{"file", gltf}, {"material", second}, {"transform", {{"translate", {0.6, 0, 0}}}}});
-  return s.dump();
+  return tentSceneText(gltf, material, second);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_checks.h"
 #include "cli_runner.h"
 #include "kernels/stages/stages.h"
 
@@ -74,26 +75,9 @@ TEST_CASE("sort by kind: path renders of glass, metals and a diffuse box are byt
           doctest::test_suite("cli")) {
   TempDir dir;
   const std::string scene = std::string(MONTECL_SOURCE_DIR) + "/scenes/materials/scene.json";
-  std::vector<std::string> common = {"render", scene, "-q", "--width", "20", "--height", "16", "--integrator", "path",
+  const std::vector<std::string> common = {"render", scene, "-q", "--width", "20", "--height", "16", "--integrator", "path",
                                      "--spp", "16", "--max-depth", "6", "--overwrite"};
-  std::vector<std::string> host = common;
-  host.insert(host.end(), {"--device", "host", "-o", dir.file("host.pfm")});
-  CliResult h = runMontecl(host);
-  REQUIRE_MESSAGE(h.exitCode == 0, h.err);
-  const std::string reference = readAll(dir.file("host.pfm"));
-  REQUIRE(!reference.empty());
-  for (const char* lanes : {"16", "4"}) {
-    for (bool fuse : {true, false}) {
-      CAPTURE(lanes);
-      CAPTURE(fuse);
-      std::vector<std::string> cl = common;
-      cl.insert(cl.end(), {"--lanes", lanes, "-o", dir.file("cl.pfm")});
-      if (!fuse) cl.push_back("--no-fuse");
-      CliResult r = runMontecl(cl);
-      REQUIRE_MESSAGE(r.exitCode == 0, r.err);
-      CHECK(readAll(dir.file("cl.pfm")) == reference);
-    }
-  }
+  checkLanesMatchHostCli(common, dir, ".pfm");
 }
 
 }  // namespace test_file_sort_by_kind

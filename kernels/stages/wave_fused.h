@@ -108,7 +108,7 @@ MCL_INLINE uint fused_group_first(MCL_CONSTANT const FrameParams* f, uint waveCo
 #if MCL_LANES > 1
 #define MCL_FUSED_BEFORE_shade_path                                                                 \
   if (a->pathBounce > 0u)                                                                           \
-    fused_sort_by_kind(a->rays, a->hits, a->pathIds, a->hitInstances, f->instanceCount > 0u, \
+    fused_sort_by_kind(a->rays, a->hits, a->pathIds, a->hitInstances, a->frame->instanceCount > 0u, \
                        a->tris, a->materials, first, min(count - first, packets * (uint)MCL_LANES));
 #else
 #define MCL_FUSED_BEFORE_shade_path
@@ -174,7 +174,6 @@ MCL_INLINE void stage_wave_direct(const wave_direct_args* a, uint at0) {
 
 MCL_INLINE void stage_wave_path(const wave_path_args* a, uint at0) {
   const uint g = at0 / MCL_LANES;  // the group (its work item)
-  MCL_CONSTANT const FrameParams* f = a->frame;
   const uint count = *a->rayCount, packets = MCL_FUSED_PATH_PACKETS, group = MCL_LANES * packets;
   if ((ulong)g * group >= count) return;
   const uint first = g * group;
