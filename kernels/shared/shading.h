@@ -86,7 +86,7 @@ MCL_INLINE float shading_cosine(float3 ns, float3 ng, float3 wi) {
     return vsel(smooth, P##pdf_cosine_folded(ns, ng, wi), PDF(DOT(ns, wi)));                           \
   }                                                                                                    \
   /* f cos / p of a Lambertian lobe of albedo 1 for a direction from its cosine sampling: 1 where      \
-     flat; where smooth the shading cosine / (pi pdf) <= 1, 0 where the folded pdf is 0. */            \
+     flat; where smooth the shading cosine / (pi pdf), at most 1 (zero where the folded pdf is). */    \
   MCL_INLINE F P##cosine_weight(F3 ns, F3 ng, M smooth, F3 wi) {                                       \
     F pdf = P##pdf_cosine_folded(ns, ng, wi);                                                          \
     F c = vsel(DOT(ng, wi) > 0.0f, fmax(DOT(ns, wi), (F)(0.0f)), (F)(0.0f));                           \
