@@ -40,15 +40,6 @@ std::string sceneText(const std::string& gltf, const nlohmann::json& material, c
   return tentSceneText(gltf, material, second);
 }
 
-std::string loadError(const std::string& file) {
-  try {
-    std::vector<std::string> warnings;
-    loadScene(file, warnings);
-  } catch (const InputError& x) {
-    return x.what();
-  }
-  return "";
-}
 
 }  // namespace
 
@@ -119,7 +110,7 @@ TEST_CASE("glTF sheen: bad values are one line naming the key" * doctest::test_s
     const std::string what = b.first.dump(), key = b.second;
     CAPTURE(what);
     dir.write("bad.gltf", sheenGltf(0.0f, 0.5f, b.first));
-    const std::string e = loadError(dir.file("bad.gltf"));
+    const std::string e = sceneLoadError(dir.file("bad.gltf"));
     CHECK(e.find("bad.gltf: materials[0].extensions.") != std::string::npos);
     CHECK(e.find(key) != std::string::npos);
     CHECK(e.find('\n') == std::string::npos);
@@ -136,24 +127,9 @@ TEST_CASE("glTF sheen: bad values are one line naming the key" * doctest::test_s
 TEST_CASE("glTF sheen: a coloured sheen over a black base under a white sky renders c E + (1 - max(c) E) F (z-test)" *
           doctest::test_suite("cpu")) {
   TempDir dir;
-  MeshData quad;
-  quad.positions = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
-  quad.normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
-  quad.faces = {{0, 1, 2, 3}};
   const double color[3] = {0.9, 0.5, 0.2};
-  nlohmann::json g = nlohmann::json::parse(gltfText(quad, 0.0f, ""));
-  auto& m = g["materials"][0];
-  m["pbrMetallicRoughness"]["metallicFactor"] = 0.0;
-  m["pbrMetallicRoughness"]["roughnessFactor"] = 0.0;
-  m["extensions"] = sheenExt({color[0], color[1], color[2]}, 1.0);
-  g["extensionsUsed"] = {"KHR_materials_sheen"};
-  dir.write("quad.gltf", g.dump());
-  const nlohmann::json s = {{"camera", {{"position", {0, 0, 4}}, {"target", {0, 0, 0}}, {"fov_y", 4}, {"width", 6}, {"height", 6}}},
-                            {"meshes", {{{"file", "quad.gltf"}}}},
-                            {"environment", {{"radiance", {1, 1, 1}}}},
-                            {"render", {{"integrator", "direct"}, {"spp", 256}, {"sampler", "independent"}}}};
-  dir.write("white.json", s.dump());
-  const Film f = renderSceneFile(dir.file("white.json"));
+  const std::string white = headOnWhiteSkyQuad(dir, sheenExt({color[0], color[1], color[2]}, 1.0));
+  const Film f = renderSceneFile(white);
   const double eTrue = charlieAlbedo(1.0, 1.0), e = sheen_albedo(1.0f, 1.0f);
   for (int k = 0; k < 3; ++k) {
     const ImageEstimate est = imageEstimate(f, k);
